@@ -1,0 +1,1 @@
+//! Proc-macros of mechdiff (see the symbolic-engine issue).
