@@ -1,0 +1,191 @@
+//! Arbitrary-precision evaluation (astro-float, pure Rust) for reference values.
+//!
+//! Constants of the IR are exact `f64` values (see [`super::simplify`]), so an evaluation at
+//! `p` bits is limited only by `p` and by the decimal inputs given.
+
+use std::fmt;
+
+use astro_float_num::{BigFloat, Consts, Radix, RoundingMode};
+
+use super::error::SymbolicError;
+use super::eval::Arithmetic;
+use super::graph::{Graph, Id};
+use super::ops::{Binary, Comparison, Unary};
+
+const ROUNDING: RoundingMode = RoundingMode::ToEven;
+
+/// A real number of arbitrary precision.
+#[derive(Debug, Clone)]
+pub struct BigReal(BigFloat);
+
+impl BigReal {
+    /// Parses a decimal string (`"0.65"`, `"-1.5e-3"`) to `bits` of precision.
+    ///
+    /// # Errors
+    /// [`SymbolicError::BadNumber`] if `text` is not a decimal number.
+    pub fn parse(text: &str, bits: usize) -> Result<Self, SymbolicError> {
+        let mut consts = new_consts();
+        let value = BigFloat::parse(text.trim(), Radix::Dec, bits, ROUNDING, &mut consts);
+        if value.is_nan() || value.is_inf() {
+            return Err(SymbolicError::BadNumber { text: text.to_owned() });
+        }
+        Ok(BigReal(value))
+    }
+
+    /// The nearest `f64`.
+    pub fn to_f64(&self) -> f64 {
+        self.to_string().replace('_', "").parse().unwrap_or(f64::NAN)
+    }
+
+    /// `|self - reference| / |reference|`, or `|self - reference|` where the reference is 0,
+    /// as an `f64`.
+    pub fn relative_difference(&self, reference: &BigReal) -> f64 {
+        let bits = 256;
+        let difference = self.0.sub(&reference.0, bits, ROUNDING).abs();
+        if reference.0.is_zero() {
+            BigReal(difference).to_f64()
+        } else {
+            BigReal(difference.div(&reference.0.abs(), bits, ROUNDING)).to_f64()
+        }
+    }
+}
+
+impl fmt::Display for BigReal {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mut consts = new_consts();
+        match self.0.format(Radix::Dec, ROUNDING, &mut consts) {
+            Ok(text) => f.write_str(&text),
+            Err(_) => f.write_str("NaN"),
+        }
+    }
+}
+
+fn new_consts() -> Consts {
+    Consts::new().expect("the constants cache of astro-float allocates")
+}
+
+/// Evaluation in arbitrary precision.
+#[derive(Debug)]
+pub struct BigArithmetic {
+    bits: usize,
+    consts: Consts,
+}
+
+impl BigArithmetic {
+    /// Arithmetic with `bits` of mantissa (256 bits ≈ 77 decimal digits).
+    pub fn new(bits: usize) -> Self {
+        BigArithmetic { bits, consts: new_consts() }
+    }
+
+    fn pi(&mut self) -> BigFloat {
+        self.consts.pi(self.bits, ROUNDING)
+    }
+}
+
+impl Arithmetic for BigArithmetic {
+    type Value = BigReal;
+
+    fn constant(&mut self, c: f64) -> BigReal {
+        BigReal(BigFloat::from_f64(c, self.bits))
+    }
+
+    fn unary(&mut self, op: Unary, u: &BigReal) -> BigReal {
+        let (p, cc, u) = (self.bits, &mut self.consts, &u.0);
+        BigReal(match op {
+            Unary::Neg => u.neg(),
+            Unary::Sqrt => u.sqrt(p, ROUNDING),
+            Unary::Cbrt => u.cbrt(p, ROUNDING),
+            Unary::Exp => u.exp(p, ROUNDING, cc),
+            Unary::Ln => u.ln(p, ROUNDING, cc),
+            Unary::Sin => u.sin(p, ROUNDING, cc),
+            Unary::Cos => u.cos(p, ROUNDING, cc),
+            Unary::Tan => u.tan(p, ROUNDING, cc),
+            Unary::Asin => u.asin(p, ROUNDING, cc),
+            Unary::Acos => u.acos(p, ROUNDING, cc),
+            Unary::Atan => u.atan(p, ROUNDING, cc),
+            Unary::Sinh => u.sinh(p, ROUNDING, cc),
+            Unary::Cosh => u.cosh(p, ROUNDING, cc),
+            Unary::Tanh => u.tanh(p, ROUNDING, cc),
+            Unary::Abs => u.abs(),
+        })
+    }
+
+    fn binary(&mut self, op: Binary, a: &BigReal, b: &BigReal) -> BigReal {
+        let p = self.bits;
+        let (x, y) = (&a.0, &b.0);
+        BigReal(match op {
+            Binary::Add => x.add(y, p, ROUNDING),
+            Binary::Sub => x.sub(y, p, ROUNDING),
+            Binary::Mul => x.mul(y, p, ROUNDING),
+            Binary::Div => x.div(y, p, ROUNDING),
+            Binary::Powf => x.pow(y, p, ROUNDING, &mut self.consts),
+            Binary::Hypot => {
+                let sum = x.mul(x, p, ROUNDING).add(&y.mul(y, p, ROUNDING), p, ROUNDING);
+                sum.sqrt(p, ROUNDING)
+            }
+            // atan2(y = x, x = y): the angle of the point (b, a)
+            Binary::Atan2 => {
+                if y.is_zero() {
+                    if x.is_zero() {
+                        BigFloat::from_f64(0.0, p)
+                    } else {
+                        let half_pi = self.pi().div(&BigFloat::from_f64(2.0, p), p, ROUNDING);
+                        if x.is_negative() { half_pi.neg() } else { half_pi }
+                    }
+                } else {
+                    let angle = x.div(y, p, ROUNDING).atan(p, ROUNDING, &mut self.consts);
+                    if y.is_positive() {
+                        angle
+                    } else if x.is_negative() {
+                        angle.sub(&self.pi(), p, ROUNDING)
+                    } else {
+                        angle.add(&self.pi(), p, ROUNDING)
+                    }
+                }
+            }
+        })
+    }
+
+    fn powi(&mut self, u: &BigReal, n: i32) -> BigReal {
+        let p = self.bits;
+        let power = u.0.powi(n.unsigned_abs() as usize, p, ROUNDING);
+        BigReal(if n < 0 { power.reciprocal(p, ROUNDING) } else { power })
+    }
+
+    fn compare(&mut self, cmp: Comparison, a: &BigReal, b: &BigReal) -> bool {
+        cmp.holds(&a.0, &b.0)
+    }
+}
+
+impl Graph {
+    /// Evaluates `outputs` in `bits` of precision with the symbol values given as decimal
+    /// strings (so that `"0.65"` means 0.65, not the nearest `f64`).
+    ///
+    /// ```
+    /// use mechdiff_core::symbolic::{BigReal, Graph};
+    ///
+    /// let mut graph = Graph::new();
+    /// let f = graph.parse_sexpr("(* 4 (atan x))").unwrap();
+    /// let pi = &graph.evaluate_big(&[f], &[("x", "1")], 256).unwrap()[0];
+    /// let reference = BigReal::parse("3.14159265358979323846264338327950288", 256).unwrap();
+    /// assert!(pi.relative_difference(&reference) < 1e-34);
+    /// ```
+    ///
+    /// # Errors
+    /// [`SymbolicError::Unbound`] if a symbol has no value, [`SymbolicError::BadNumber`] if a
+    /// value does not parse.
+    pub fn evaluate_big(
+        &self,
+        outputs: &[Id],
+        bindings: &[(&str, &str)],
+        bits: usize,
+    ) -> Result<Vec<BigReal>, SymbolicError> {
+        let parsed: Vec<(&str, BigReal)> = bindings
+            .iter()
+            .map(|(name, text)| Ok((*name, BigReal::parse(text, bits)?)))
+            .collect::<Result<_, SymbolicError>>()?;
+        let lookup =
+            |name: &str| parsed.iter().find(|(n, _)| *n == name).map(|(_, v)| v.clone());
+        self.evaluate(&mut BigArithmetic::new(bits), outputs, &lookup)
+    }
+}

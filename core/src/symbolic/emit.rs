@@ -1,0 +1,272 @@
+//! Emission of expressions as Rust: tokens (for the proc-macro) and formatted source.
+//!
+//! The emitted code is straight-line `f64` code: every node the outputs need is computed
+//! once; a node used more than once (or returned) is bound with `let`, a node used once is
+//! written inline where it is used; `sin` and `cos` of one argument become one
+//! `sin_cos()` call; `x²` of a named value is `x * x`. Parentheses are written only where
+//! precedence or the evaluation order needs them, so the `f64` operations are exactly those
+//! of the graph. Symbols are emitted as written (`phi`, `std::f64::consts::PI`).
+
+use std::collections::{HashMap, HashSet};
+
+use proc_macro2::{Ident, Literal, Span, TokenStream};
+use quote::{ToTokens, quote};
+
+use super::error::SymbolicError;
+use super::graph::{Graph, Id, Node};
+use super::ops::{Binary, Unary};
+
+/// Binding strength of an emitted expression, weakest first.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+enum Precedence {
+    Block,
+    Sum,
+    Product,
+    Prefix,
+    Postfix,
+}
+
+/// An emitted expression and how strongly it binds.
+#[derive(Clone)]
+struct Emitted {
+    tokens: TokenStream,
+    precedence: Precedence,
+}
+
+/// The tokens of a symbol: an identifier or a path.
+fn symbol_tokens(name: &str) -> TokenStream {
+    match syn::parse_str::<syn::Path>(name) {
+        Ok(path) => path.to_token_stream(),
+        Err(_) => Ident::new(name, Span::call_site()).to_token_stream(),
+    }
+}
+
+struct Emitter<'g> {
+    graph: &'g Graph,
+    emitted: HashMap<Id, Emitted>,
+    bound: HashSet<Id>,
+    statements: Vec<TokenStream>,
+    taken: HashSet<String>,
+    next_temporary: usize,
+}
+
+impl Emitter<'_> {
+    fn fresh(&mut self, wanted: &str) -> Ident {
+        let mut name = wanted.to_owned();
+        while !self.taken.insert(name.clone()) {
+            name.push('_');
+        }
+        Ident::new(&name, Span::call_site())
+    }
+
+    fn temporary(&mut self) -> Ident {
+        let name = format!("t{}", self.next_temporary);
+        self.next_temporary += 1;
+        self.fresh(&name)
+    }
+
+    fn leaf(&self, id: Id, receiver: bool) -> Option<Emitted> {
+        match self.graph.node(id) {
+            Node::Num(n) => {
+                let c = n.value();
+                let literal = |v: f64| {
+                    if receiver { Literal::f64_suffixed(v) } else { Literal::f64_unsuffixed(v) }
+                };
+                Some(if c < 0.0 {
+                    let positive = literal(-c);
+                    Emitted { tokens: quote!(-#positive), precedence: Precedence::Prefix }
+                } else {
+                    let tokens = literal(c).to_token_stream();
+                    Emitted { tokens, precedence: Precedence::Postfix }
+                })
+            }
+            Node::Sym(name) => {
+                Some(Emitted { tokens: symbol_tokens(name), precedence: Precedence::Postfix })
+            }
+            _ => None,
+        }
+    }
+
+    /// The expression of child `id`, parenthesized if it binds weaker than `at_least`.
+    fn operand(&self, id: Id, at_least: Precedence) -> TokenStream {
+        let receiver = at_least == Precedence::Postfix;
+        let emitted = self.leaf(id, receiver).unwrap_or_else(|| self.emitted[&id].clone());
+        if emitted.precedence < at_least {
+            let tokens = emitted.tokens;
+            quote!((#tokens))
+        } else {
+            emitted.tokens
+        }
+    }
+
+    fn is_named(&self, id: Id) -> bool {
+        self.graph.node(id).is_leaf() || self.bound.contains(&id)
+    }
+
+    fn expression(&self, node: &Node) -> Emitted {
+        use Precedence::{Block, Postfix, Prefix, Product, Sum};
+        let (tokens, precedence) = match *node {
+            Node::Num(_) | Node::Sym(_) => unreachable!("leaves are not bound"),
+            Node::Unary(Unary::Neg, a) => {
+                let a = self.operand(a, Prefix);
+                (quote!(-#a), Prefix)
+            }
+            Node::Unary(op, a) => {
+                let (a, method) = (self.operand(a, Postfix), Ident::new(op.name(), Span::call_site()));
+                (quote!(#a.#method()), Postfix)
+            }
+            Node::Binary(op, a, b) if op.is_infix() => {
+                let (level, symbol) = match op {
+                    Binary::Add => (Sum, quote!(+)),
+                    Binary::Sub => (Sum, quote!(-)),
+                    Binary::Mul => (Product, quote!(*)),
+                    _ => (Product, quote!(/)),
+                };
+                let right_level = if level == Sum { Product } else { Prefix };
+                let (a, b) = (self.operand(a, level), self.operand(b, right_level));
+                (quote!(#a #symbol #b), level)
+            }
+            Node::Binary(op, a, b) => {
+                let method = Ident::new(op.name(), Span::call_site());
+                let (a, b) = (self.operand(a, Postfix), self.operand(b, Block));
+                (quote!(#a.#method(#b)), Postfix)
+            }
+            Node::Powi(a, 2) if self.is_named(a) => {
+                let a = self.operand(a, Postfix);
+                (quote!(#a * #a), Product)
+            }
+            Node::Powi(a, n) => {
+                let a = self.operand(a, Postfix);
+                let n = Literal::i32_unsuffixed(n);
+                (quote!(#a.powi(#n)), Postfix)
+            }
+            Node::Select(cmp, [a, b, t, e]) => {
+                let cmp: TokenStream = cmp.name().parse().expect("a comparison operator");
+                let (a, b) = (self.operand(a, Sum), self.operand(b, Sum));
+                let (t, e) = (self.operand(t, Block), self.operand(e, Block));
+                (quote!(if #a #cmp #b { #t } else { #e }), Block)
+            }
+        };
+        Emitted { tokens, precedence }
+    }
+
+    fn bind(&mut self, id: Id, name: Ident, value: TokenStream) {
+        self.statements.push(quote!(let #name = #value;));
+        self.bound.insert(id);
+        self.emitted.insert(id, Emitted { tokens: name.into_token_stream(), precedence: Precedence::Postfix });
+    }
+}
+
+/// How often each reachable node is used by other reachable nodes and by the outputs.
+pub(crate) fn use_counts(graph: &Graph, outputs: &[Id]) -> (Vec<bool>, Vec<usize>) {
+    let reachable = graph.reachable(outputs);
+    let mut uses = vec![0usize; reachable.len()];
+    for (index, node) in graph.nodes().iter().enumerate() {
+        if reachable[index] {
+            for child in node.children() {
+                uses[child.index()] += 1;
+            }
+        }
+    }
+    for output in outputs {
+        uses[output.index()] += 1;
+    }
+    (reachable, uses)
+}
+
+/// For each argument whose `sin` and `cos` are both needed: the ids of the two nodes.
+pub(crate) fn sin_cos_pairs(graph: &Graph, reachable: &[bool]) -> HashMap<Id, (Id, Id)> {
+    let mut pairs = HashMap::new();
+    for (index, node) in graph.nodes().iter().enumerate() {
+        if let (true, Node::Unary(Unary::Sin, u)) = (reachable[index], node) {
+            if let Some(cos) = graph.lookup(&Node::Unary(Unary::Cos, *u)) {
+                if reachable[cos.index()] {
+                    pairs.insert(*u, (Id::at(index), cos));
+                }
+            }
+        }
+    }
+    pairs
+}
+
+impl Graph {
+    /// The statements and the final array expression computing `outputs`, as the body of a
+    /// function: `{ let …; [o0, o1, …] }`. `output_names` name the bound outputs
+    /// (`value`, `d1`, …); temporaries are `t0`, `t1`, … (avoiding every symbol's name).
+    pub fn emit_body(&self, outputs: &[Id], output_names: &[&str]) -> TokenStream {
+        let (reachable, uses) = use_counts(self, outputs);
+        let pairs = sin_cos_pairs(self, &reachable);
+        let mut emitter = Emitter {
+            graph: self,
+            emitted: HashMap::new(),
+            bound: HashSet::new(),
+            statements: Vec::new(),
+            taken: self.symbols(outputs).into_iter().map(str::to_owned).collect(),
+            next_temporary: 0,
+        };
+        let output_name: HashMap<Id, &str> =
+            outputs.iter().zip(output_names).rev().map(|(id, name)| (*id, *name)).collect();
+        for (index, node) in self.nodes().iter().enumerate() {
+            let id = Id::at(index);
+            if !reachable[index] || node.is_leaf() || emitter.emitted.contains_key(&id) {
+                continue;
+            }
+            if let Node::Unary(Unary::Sin | Unary::Cos, u) = node {
+                if let Some(&(sin, cos)) = pairs.get(u) {
+                    let argument = emitter.operand(*u, Precedence::Postfix);
+                    let (s, c) = (emitter.temporary(), emitter.temporary());
+                    emitter.statements.push(quote!(let (#s, #c) = #argument.sin_cos();));
+                    for (node, name) in [(sin, s), (cos, c)] {
+                        emitter.bound.insert(node);
+                        let tokens = name.into_token_stream();
+                        emitter.emitted.insert(node, Emitted { tokens, precedence: Precedence::Postfix });
+                    }
+                    continue;
+                }
+            }
+            let expression = emitter.expression(node);
+            if let Some(name) = output_name.get(&id) {
+                let name = emitter.fresh(name);
+                emitter.bind(id, name, expression.tokens);
+            } else if uses[index] >= 2 {
+                let name = emitter.temporary();
+                emitter.bind(id, name, expression.tokens);
+            } else {
+                emitter.emitted.insert(id, expression);
+            }
+        }
+        let results: Vec<TokenStream> =
+            outputs.iter().map(|&id| emitter.operand(id, Precedence::Block)).collect();
+        let statements = emitter.statements;
+        quote! { #(#statements)* [#(#results),*] }
+    }
+
+    /// A complete function `pub fn name(p: f64, …) -> [f64; N]` returning `outputs`.
+    pub fn emit_function(
+        &self,
+        name: &str,
+        parameters: &[&str],
+        outputs: &[Id],
+        output_names: &[&str],
+    ) -> TokenStream {
+        let name = Ident::new(name, Span::call_site());
+        let parameters = parameters.iter().map(|p| Ident::new(p, Span::call_site()));
+        let body = self.emit_body(outputs, output_names);
+        let count = Literal::usize_unsuffixed(outputs.len());
+        quote! {
+            pub fn #name(#(#parameters: f64),*) -> [f64; #count] {
+                #body
+            }
+        }
+    }
+}
+
+/// Formats Rust tokens (a file's items) as source text with prettyplease.
+///
+/// # Errors
+/// [`SymbolicError::Emit`] if the tokens are not a valid Rust file.
+pub fn format_rust(tokens: TokenStream) -> Result<String, SymbolicError> {
+    let file: syn::File =
+        syn::parse2(tokens).map_err(|e| SymbolicError::Emit { reason: e.to_string() })?;
+    Ok(prettyplease::unparse(&file))
+}

@@ -1,0 +1,43 @@
+//! The symbolic differentiation engine, shared by the proc-macro (`mechdiff-macros`) and the
+//! run time (`mechdiff codegen`, scene formulas).
+//!
+//! - [`graph`]: the IR, a flat hash-consed arena ([`Graph`], [`Id`], [`Node`]);
+//! - [`sexpr`] and [`infix`]: text forms, with positioned parse errors;
+//! - [`simplify`]: the simplifying constructors every node is built with;
+//! - [`rules`]: the one table of derivative rules and the differentiation driver;
+//! - [`eval`] and [`bigfloat`]: evaluation in `f64`, in num-dual types, in arbitrary
+//!   precision;
+//! - [`emit`] and [`count`]: Rust tokens, formatted source, operation counts.
+//!
+//! ```
+//! use mechdiff_core::symbolic::Graph;
+//!
+//! let mut graph = Graph::new();
+//! let psi = graph.parse_infix("atan2(lambda*sin(phi), 1 - lambda*cos(phi))").unwrap();
+//! let jet = graph.derivatives(psi, "phi", 2); // [ψ, ψ′, ψ″]
+//! let values = graph.evaluate_f64(&jet, &[("phi", 0.0), ("lambda", 0.375)]).unwrap();
+//! // ψ′(0) = λ / (1 - λ)
+//! assert!((values[1] - 0.375 / 0.625).abs() < 1e-15);
+//! ```
+//!
+//! See `docs/symbolic.md` for the rules table and how to add a primitive.
+
+pub mod bigfloat;
+pub mod count;
+pub mod emit;
+pub mod error;
+pub mod eval;
+pub mod graph;
+pub mod infix;
+pub mod ops;
+pub mod rules;
+pub mod sexpr;
+pub mod simplify;
+
+pub use bigfloat::{BigArithmetic, BigReal};
+pub use count::OperationCount;
+pub use emit::format_rust;
+pub use error::SymbolicError;
+pub use eval::{Arithmetic, DualArithmetic};
+pub use graph::{Graph, Id, Node, Number};
+pub use ops::{Binary, Comparison, Unary};

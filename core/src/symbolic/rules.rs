@@ -1,0 +1,196 @@
+//! The derivative rules: one table, one arm per primitive.
+//!
+//! [`differential`] gives `d f(args)` from the arguments, their derivatives and the node
+//! itself (so `d exp(u) = exp(u) du` reuses the node). Adding a primitive means adding one
+//! arm here, its name in [`super::ops`] and its numeric evaluation in [`super::eval`].
+//!
+//! The driver ([`Graph::derivative`]) applies the table bottom-up, memoized per
+//! (node, variable), so derivatives of any order and mixed partial derivatives are repeated
+//! applications that share every subexpression with the value and with each other.
+
+use super::graph::{Graph, Id, Node};
+use super::ops::{Binary, Comparison, Unary};
+
+/// `d op(u)` given `u`, `du` and the node `f = op(u)`.
+fn unary_differential(g: &mut Graph, op: Unary, u: Id, du: Id, f: Id) -> Id {
+    let one = g.number(1.0);
+    let derivative = match op {
+        Unary::Neg => return g.neg(du),
+        Unary::Sqrt => {
+            let twice = g.add(f, f);
+            return g.div(du, twice);
+        }
+        Unary::Cbrt => {
+            let square = g.powi(f, 2);
+            let three = g.number(3.0);
+            let denominator = g.mul(three, square);
+            return g.div(du, denominator);
+        }
+        Unary::Exp => f,
+        Unary::Ln => return g.div(du, u),
+        Unary::Sin => g.cos(u),
+        Unary::Cos => {
+            let sin = g.sin(u);
+            g.neg(sin)
+        }
+        Unary::Tan => {
+            let square = g.powi(f, 2);
+            g.add(one, square)
+        }
+        Unary::Asin | Unary::Acos => {
+            let square = g.powi(u, 2);
+            let rest = g.sub(one, square);
+            let root = g.sqrt(rest);
+            let quotient = g.div(du, root);
+            return if op == Unary::Asin { quotient } else { g.neg(quotient) };
+        }
+        Unary::Atan => {
+            let square = g.powi(u, 2);
+            let denominator = g.add(one, square);
+            return g.div(du, denominator);
+        }
+        Unary::Sinh => g.cosh(u),
+        Unary::Cosh => g.sinh(u),
+        Unary::Tanh => {
+            let square = g.powi(f, 2);
+            g.sub(one, square)
+        }
+        Unary::Abs => {
+            let zero = g.number(0.0);
+            let minus_one = g.number(-1.0);
+            g.select(Comparison::Less, u, zero, minus_one, one)
+        }
+    };
+    g.mul(derivative, du)
+}
+
+/// `d op(a, b)` given the arguments, their derivatives and the node `f = op(a, b)`.
+fn binary_differential(g: &mut Graph, op: Binary, [a, b, da, db]: [Id; 4], f: Id) -> Id {
+    match op {
+        Binary::Add => g.add(da, db),
+        Binary::Sub => g.sub(da, db),
+        Binary::Mul => {
+            let left = g.mul(da, b);
+            let right = g.mul(a, db);
+            g.add(left, right)
+        }
+        // (a/b)' = (a' - f b') / b: one division, reusing f
+        Binary::Div => {
+            let term = g.mul(f, db);
+            let numerator = g.sub(da, term);
+            g.div(numerator, b)
+        }
+        // (aᵇ)' = aᵇ (b' ln a + b a' / a)
+        Binary::Powf => {
+            let log = g.ln(a);
+            let left = g.mul(db, log);
+            let ratio = g.div(da, a);
+            let right = g.mul(b, ratio);
+            let sum = g.add(left, right);
+            g.mul(f, sum)
+        }
+        // atan2(a, b)' = (b a' - a b') / (a² + b²): one division for both partials
+        Binary::Atan2 => {
+            let left = g.mul(b, da);
+            let right = g.mul(a, db);
+            let numerator = g.sub(left, right);
+            let a2 = g.powi(a, 2);
+            let b2 = g.powi(b, 2);
+            let denominator = g.add(a2, b2);
+            g.div(numerator, denominator)
+        }
+        // hypot(a, b)' = (a a' + b b') / f
+        Binary::Hypot => {
+            let left = g.mul(a, da);
+            let right = g.mul(b, db);
+            let numerator = g.add(left, right);
+            g.div(numerator, f)
+        }
+    }
+}
+
+/// `d f` for any node `f`, given the derivatives of its children.
+fn differential(g: &mut Graph, f: Id, known: &[Option<Id>]) -> Id {
+    let derivative_of = |c: Id| known[c.index()].expect("children are differentiated first");
+    match g.node(f).clone() {
+        Node::Num(_) | Node::Sym(_) => unreachable!("leaves are handled by the driver"),
+        Node::Unary(op, u) => unary_differential(g, op, u, derivative_of(u), f),
+        Node::Binary(op, a, b) => {
+            binary_differential(g, op, [a, b, derivative_of(a), derivative_of(b)], f)
+        }
+        // (uⁿ)' = n uⁿ⁻¹ u'
+        Node::Powi(u, n) => {
+            let lower = g.powi(u, n - 1);
+            let factor = g.number(f64::from(n));
+            let scaled = g.mul(factor, lower);
+            g.mul(scaled, derivative_of(u))
+        }
+        // the derivative of the branch taken
+        Node::Select(cmp, [a, b, then, otherwise]) => {
+            g.select(cmp, a, b, derivative_of(then), derivative_of(otherwise))
+        }
+    }
+}
+
+impl Graph {
+    /// The derivative of `f` with respect to the symbol `variable` (every other symbol is
+    /// held constant).
+    ///
+    /// ```
+    /// use mechdiff_core::symbolic::Graph;
+    ///
+    /// let mut graph = Graph::new();
+    /// let f = graph.parse_sexpr("(* x (sin x))").unwrap();
+    /// let df = graph.derivative(f, "x");
+    /// assert_eq!(graph.to_sexpr(df), "(+ (sin x) (* x (cos x)))");
+    /// ```
+    pub fn derivative(&mut self, f: Id, variable: &str) -> Id {
+        // children before parents: differentiate every reachable node in arena order
+        let reachable = self.reachable(&[f]);
+        let mut derivative = vec![None; f.index() + 1];
+        let zero = self.number(0.0);
+        for index in 0..=f.index() {
+            if !reachable[index] {
+                continue;
+            }
+            let id = Id::at(index);
+            let key = (id, Box::<str>::from(variable));
+            let d = if let Some(&cached) = self.derivative_cache.get(&key) {
+                cached
+            } else {
+                let d = match self.node(id) {
+                    Node::Num(_) => zero,
+                    Node::Sym(name) => self.number(if **name == *variable { 1.0 } else { 0.0 }),
+                    node => {
+                        let children = node.children();
+                        if children.iter().all(|c| derivative[c.index()] == Some(zero)) {
+                            zero
+                        } else {
+                            differential(self, id, &derivative)
+                        }
+                    }
+                };
+                self.derivative_cache.insert(key, d);
+                d
+            };
+            derivative[index] = Some(d);
+        }
+        derivative[f.index()].expect("f is reachable from itself")
+    }
+
+    /// `f` and its derivatives of order 1 to `order` with respect to `variable`:
+    /// `[f, f′, f″, …]`.
+    pub fn derivatives(&mut self, f: Id, variable: &str, order: usize) -> Vec<Id> {
+        let mut all = vec![f];
+        for _ in 0..order {
+            let last = *all.last().expect("not empty");
+            all.push(self.derivative(last, variable));
+        }
+        all
+    }
+
+    /// The partial derivatives of `f` with respect to each of `variables`, in order.
+    pub fn gradient(&mut self, f: Id, variables: &[&str]) -> Vec<Id> {
+        variables.iter().map(|v| self.derivative(f, v)).collect()
+    }
+}

@@ -1,0 +1,347 @@
+//! Simplifying constructors: every node enters the [`Graph`] through these.
+//!
+//! Rules, applied locally as a node is built (so the derivative expressions are simplified
+//! as they are produced, and never grow first):
+//! - constant folding, only where the `f64` result is **exact** (`2 * 3`, `1 - 0.375`, but
+//!   not `0.1 + 0.2` or `sin(1)`), so that no rounding is frozen into a constant and the
+//!   arbitrary-precision evaluation stays exact;
+//! - identities: `x + 0`, `x - 0`, `0 - x`, `x * 1`, `x * -1`, `x / 1`, `x - x = 0`,
+//!   `x / x = 1`, `x + x = 2 * x`, `--x = x`, `-(a - b) = b - a`, `a + -b = a - b`;
+//! - `0 * x = 0` and `0 / x = 0`: "safe" here because `x` is always part of the value or of a
+//!   lower derivative that is returned too, so a non-finite `x` stays visible there (and the
+//!   derivative of a constant is then 0, not `0 * inf = NaN`);
+//! - negation is pulled out of products and quotients, negative factors become `neg`;
+//! - integer powers: `x * x = x²`, `xᵐ · xⁿ = xᵐ⁺ⁿ`, `(xᵐ)ⁿ = xᵐⁿ`, `x⁰ = 1`, `x¹ = x`,
+//!   `x⁻ⁿ = 1 / xⁿ`, `(-x)ⁿ = ±xⁿ`, `x.powf(n)` with an integer constant `n` is `x.powi(n)`;
+//! - commutative operands are put in a canonical order (constants first, then by id), so
+//!   `a * b` and `b * a` are one node.
+//!
+//! `sin` and `cos` of one argument are computed once by the emitter (`sin_cos`).
+
+use super::graph::{Graph, Id, Node};
+use super::ops::{Binary, Comparison, Unary};
+
+fn exact_add(x: f64, y: f64) -> Option<f64> {
+    let s = x + y;
+    let bb = s - x;
+    let error = (x - (s - bb)) + (y - bb);
+    (s.is_finite() && error == 0.0).then_some(s)
+}
+
+fn exact_mul(x: f64, y: f64) -> Option<f64> {
+    let p = x * y;
+    (p.is_finite() && x.mul_add(y, -p) == 0.0).then_some(p)
+}
+
+fn exact_div(x: f64, y: f64) -> Option<f64> {
+    let q = x / y;
+    (y != 0.0 && q.is_finite() && q.mul_add(y, -x) == 0.0).then_some(q)
+}
+
+fn exact_powi(x: f64, n: i32) -> Option<f64> {
+    let mut p = 1.0;
+    for _ in 0..n.unsigned_abs() {
+        p = exact_mul(p, x)?;
+    }
+    if n < 0 { exact_div(1.0, p) } else { Some(p) }
+}
+
+/// The value of `op(c)` when it is exact in `f64`.
+fn exact_unary(op: Unary, c: f64) -> Option<f64> {
+    match op {
+        Unary::Neg => Some(-c),
+        Unary::Abs => Some(c.abs()),
+        Unary::Sqrt => {
+            let r = c.sqrt();
+            (c >= 0.0 && r.mul_add(r, -c) == 0.0).then_some(r)
+        }
+        Unary::Cbrt => {
+            let r = c.cbrt();
+            (exact_powi(r, 3) == Some(c)).then_some(r)
+        }
+        Unary::Sin
+        | Unary::Tan
+        | Unary::Asin
+        | Unary::Atan
+        | Unary::Sinh
+        | Unary::Tanh
+        | Unary::Exp
+        | Unary::Cos
+        | Unary::Cosh
+            if c == 0.0 =>
+        {
+            Some(if matches!(op, Unary::Exp | Unary::Cos | Unary::Cosh) { 1.0 } else { 0.0 })
+        }
+        Unary::Ln | Unary::Acos if c == 1.0 => Some(0.0),
+        _ => None,
+    }
+}
+
+macro_rules! unary_constructors {
+    ($($fname:ident => $op:ident,)*) => {
+        impl Graph {
+            $(
+                #[doc = concat!("`", stringify!($fname), "(u)`, simplified.")]
+                pub fn $fname(&mut self, u: Id) -> Id {
+                    self.unary(Unary::$op, u)
+                }
+            )*
+        }
+    };
+}
+
+unary_constructors! {
+    sqrt => Sqrt, cbrt => Cbrt, exp => Exp, ln => Ln, sin => Sin, cos => Cos, tan => Tan,
+    asin => Asin, acos => Acos, atan => Atan, sinh => Sinh, cosh => Cosh, tanh => Tanh,
+    abs => Abs,
+}
+
+impl Graph {
+    fn constant_pair(&self, a: Id, b: Id) -> Option<(f64, f64)> {
+        Some((self.as_number(a)?, self.as_number(b)?))
+    }
+
+    fn negated(&self, id: Id) -> Option<Id> {
+        match self.node(id) {
+            Node::Unary(Unary::Neg, x) => Some(*x),
+            _ => None,
+        }
+    }
+
+    fn ordered(&self, a: Id, b: Id) -> (Id, Id) {
+        let key = |id: Id| (self.as_number(id).is_none(), id);
+        if key(a) <= key(b) { (a, b) } else { (b, a) }
+    }
+
+    /// `a + b`, simplified.
+    pub fn add(&mut self, a: Id, b: Id) -> Id {
+        if let Some(c) = self.constant_pair(a, b).and_then(|(x, y)| exact_add(x, y)) {
+            return self.number(c);
+        }
+        if self.is_number(a, 0.0) {
+            return b;
+        }
+        if self.is_number(b, 0.0) {
+            return a;
+        }
+        if a == b {
+            let two = self.number(2.0);
+            return self.mul(two, a);
+        }
+        if let Some(c) = self.negated(b) {
+            return self.sub(a, c);
+        }
+        if let Some(c) = self.negated(a) {
+            return self.sub(b, c);
+        }
+        let (a, b) = self.ordered(a, b);
+        self.intern(Node::Binary(Binary::Add, a, b))
+    }
+
+    /// `a - b`, simplified.
+    pub fn sub(&mut self, a: Id, b: Id) -> Id {
+        if let Some(c) = self.constant_pair(a, b).and_then(|(x, y)| exact_add(x, -y)) {
+            return self.number(c);
+        }
+        if a == b {
+            return self.number(0.0);
+        }
+        if self.is_number(b, 0.0) {
+            return a;
+        }
+        if self.is_number(a, 0.0) {
+            return self.neg(b);
+        }
+        if let Some(c) = self.negated(b) {
+            return self.add(a, c);
+        }
+        if let Some(c) = self.negated(a) {
+            let sum = self.add(c, b);
+            return self.neg(sum);
+        }
+        self.intern(Node::Binary(Binary::Sub, a, b))
+    }
+
+    /// `a * b`, simplified.
+    pub fn mul(&mut self, a: Id, b: Id) -> Id {
+        if let Some(c) = self.constant_pair(a, b).and_then(|(x, y)| exact_mul(x, y)) {
+            return self.number(c);
+        }
+        if self.is_number(a, 0.0) || self.is_number(b, 0.0) {
+            return self.number(0.0);
+        }
+        if self.is_number(a, 1.0) {
+            return b;
+        }
+        if self.is_number(b, 1.0) {
+            return a;
+        }
+        for (x, y) in [(a, b), (b, a)] {
+            if let Some(c) = self.as_number(x).filter(|c| *c < 0.0) {
+                let positive = self.number(-c);
+                let product = self.mul(positive, y);
+                return self.neg(product);
+            }
+            if let Some(inner) = self.negated(x) {
+                let product = self.mul(inner, y);
+                return self.neg(product);
+            }
+        }
+        if a == b {
+            return self.powi(a, 2);
+        }
+        let power = |g: &Self, id: Id| match g.node(id) {
+            Node::Powi(base, n) => (*base, *n),
+            _ => (id, 1),
+        };
+        let ((base_a, m), (base_b, n)) = (power(self, a), power(self, b));
+        if base_a == base_b {
+            if let Some(sum) = m.checked_add(n) {
+                return self.powi(base_a, sum);
+            }
+        }
+        // c1 * (c2 * y) = (c1 c2) * y when c1 c2 is exact
+        for (x, y) in [(a, b), (b, a)] {
+            if let (Some(c1), Node::Binary(Binary::Mul, inner_c, inner_y)) =
+                (self.as_number(x), self.node(y).clone())
+            {
+                if let Some(c) = self.as_number(inner_c).and_then(|c2| exact_mul(c1, c2)) {
+                    let c = self.number(c);
+                    return self.mul(c, inner_y);
+                }
+            }
+        }
+        let (a, b) = self.ordered(a, b);
+        self.intern(Node::Binary(Binary::Mul, a, b))
+    }
+
+    /// `a / b`, simplified.
+    pub fn div(&mut self, a: Id, b: Id) -> Id {
+        if let Some(c) = self.constant_pair(a, b).and_then(|(x, y)| exact_div(x, y)) {
+            return self.number(c);
+        }
+        if self.is_number(a, 0.0) && !self.is_number(b, 0.0) {
+            return a;
+        }
+        if self.is_number(b, 1.0) {
+            return a;
+        }
+        if self.is_number(b, -1.0) {
+            return self.neg(a);
+        }
+        if a == b && !self.is_number(a, 0.0) {
+            return self.number(1.0);
+        }
+        if let Some(x) = self.negated(a) {
+            let quotient = self.div(x, b);
+            return self.neg(quotient);
+        }
+        if let Some(y) = self.negated(b) {
+            let quotient = self.div(a, y);
+            return self.neg(quotient);
+        }
+        self.intern(Node::Binary(Binary::Div, a, b))
+    }
+
+    /// `-u`, simplified.
+    pub fn neg(&mut self, u: Id) -> Id {
+        if let Some(c) = self.as_number(u) {
+            return self.number(-c);
+        }
+        match *self.node(u) {
+            Node::Unary(Unary::Neg, x) => x,
+            Node::Binary(Binary::Sub, a, b) => self.sub(b, a),
+            _ => self.intern(Node::Unary(Unary::Neg, u)),
+        }
+    }
+
+    /// `u.powi(n)`, simplified.
+    pub fn powi(&mut self, u: Id, n: i32) -> Id {
+        if n == 0 {
+            return self.number(1.0);
+        }
+        if n == 1 {
+            return u;
+        }
+        if let Some(c) = self.as_number(u).and_then(|c| exact_powi(c, n)) {
+            return self.number(c);
+        }
+        if n < 0 {
+            if let Some(m) = n.checked_neg() {
+                let one = self.number(1.0);
+                let power = self.powi(u, m);
+                return self.div(one, power);
+            }
+        }
+        match *self.node(u) {
+            Node::Powi(base, m) if m.checked_mul(n).is_some() => self.powi(base, m * n),
+            Node::Unary(Unary::Neg, x) => {
+                let power = self.powi(x, n);
+                if n % 2 == 0 { power } else { self.neg(power) }
+            }
+            _ => self.intern(Node::Powi(u, n)),
+        }
+    }
+
+    /// `a.powf(b)`, simplified (an integer constant exponent gives `powi`).
+    pub fn powf(&mut self, a: Id, b: Id) -> Id {
+        if let Some(n) = self.as_number(b) {
+            if n.fract() == 0.0 && n.abs() <= f64::from(i32::MAX) {
+                return self.powi(a, n as i32);
+            }
+        }
+        self.intern(Node::Binary(Binary::Powf, a, b))
+    }
+
+    /// `op(u)`, simplified.
+    pub fn unary(&mut self, op: Unary, u: Id) -> Id {
+        if op == Unary::Neg {
+            return self.neg(u);
+        }
+        if let Some(c) = self.as_number(u).and_then(|c| exact_unary(op, c)) {
+            return self.number(c);
+        }
+        if op == Unary::Abs {
+            match *self.node(u) {
+                Node::Unary(Unary::Abs | Unary::Neg, x) => return self.abs(x),
+                Node::Powi(_, n) if n % 2 == 0 => return u,
+                _ => {}
+            }
+        }
+        self.intern(Node::Unary(op, u))
+    }
+
+    /// `op(a, b)`, simplified.
+    pub fn binary(&mut self, op: Binary, a: Id, b: Id) -> Id {
+        match op {
+            Binary::Add => self.add(a, b),
+            Binary::Sub => self.sub(a, b),
+            Binary::Mul => self.mul(a, b),
+            Binary::Div => self.div(a, b),
+            Binary::Powf => self.powf(a, b),
+            Binary::Atan2 | Binary::Hypot => self.intern(Node::Binary(op, a, b)),
+        }
+    }
+
+    /// `a.atan2(b)`: the angle of the point (b, a).
+    pub fn atan2(&mut self, a: Id, b: Id) -> Id {
+        self.binary(Binary::Atan2, a, b)
+    }
+
+    /// `a.hypot(b)` = √(a² + b²).
+    pub fn hypot(&mut self, a: Id, b: Id) -> Id {
+        self.binary(Binary::Hypot, a, b)
+    }
+
+    /// `if a <cmp> b { then } else { otherwise }`, simplified (equal branches, constant
+    /// conditions).
+    pub fn select(&mut self, cmp: Comparison, a: Id, b: Id, then: Id, otherwise: Id) -> Id {
+        if then == otherwise {
+            return then;
+        }
+        if let Some((x, y)) = self.constant_pair(a, b) {
+            return if cmp.holds(&x, &y) { then } else { otherwise };
+        }
+        self.intern(Node::Select(cmp, [a, b, then, otherwise]))
+    }
+}
