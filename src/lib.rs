@@ -1,1 +1,11 @@
-//! x
+//! # mechdiff
+//!
+//! Kinematics and dynamics of planar mechanisms in which nobody derives a derivative by hand.
+//! This facade re-exports the derivative core ([`core`]) and the closed-form mechanisms
+//! ([`mechanisms`]), and holds what the `mechdiff` command-line tool prints.
+#![warn(missing_docs)]
+
+pub mod codegen;
+
+pub use mechdiff_core as core;
+pub use mechdiff_mechanisms as mechanisms;

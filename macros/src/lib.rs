@@ -26,16 +26,17 @@ mod expand;
 ///     (lambda * phi.sin()).atan2(1.0 - lambda * phi.cos())
 /// }
 ///
-/// let [value, d1, d2] = psi_derivatives(0.0, 0.375);
-/// assert_eq!(value, psi(0.0, 0.375));
-/// assert!((d1 - 0.375 / 0.625).abs() < 1e-15); // ψ′(0) = λ / (1 − λ)
-/// assert!(d2.abs() < 1e-15); // ψ is odd in φ
+/// let jet = psi_derivatives(0.0, 0.375); // a mechdiff_core::Jet<2>
+/// assert_eq!(jet.value, psi(0.0, 0.375));
+/// assert!((jet.d1() - 0.375 / 0.625).abs() < 1e-15); // ψ′(0) = λ / (1 − λ)
+/// assert!(jet.d2().abs() < 1e-15); // ψ is odd in φ
 /// ```
 ///
 /// Arguments: `wrt = <parameter>` and `order = <1..>` (required); `name = <ident>` for the
 /// sibling (default `<function>_derivatives`); `expression = <ident>` to also generate a
 /// function returning the value's s-expression. The sibling has the original parameters and
-/// returns `[f64; order + 1]`: `[value, d1, d2, …]`.
+/// returns a `mechdiff_core::Jet<order>` (value and derivatives 1 to `order`), so the crate
+/// using the macro depends on `mechdiff-core`.
 ///
 /// The function may use `let` bindings, `+ - * /` and negation, the methods `sqrt cbrt exp
 /// ln sin cos tan asin acos atan sinh cosh tanh abs`, `powi(<integer>)`, `powf(x)`,

@@ -7,7 +7,7 @@ use std::fmt;
 
 use astro_float_num::{BigFloat, Consts, Radix, RoundingMode};
 
-use super::error::SymbolicError;
+use crate::error::Error;
 use super::eval::Arithmetic;
 use super::graph::{Graph, Id};
 use super::ops::{Binary, Comparison, Unary};
@@ -22,12 +22,12 @@ impl BigReal {
     /// Parses a decimal string (`"0.65"`, `"-1.5e-3"`) to `bits` of precision.
     ///
     /// # Errors
-    /// [`SymbolicError::BadNumber`] if `text` is not a decimal number.
-    pub fn parse(text: &str, bits: usize) -> Result<Self, SymbolicError> {
+    /// [`Error::BadDecimal`] if `text` is not a decimal number.
+    pub fn parse(text: &str, bits: usize) -> Result<Self, Error> {
         let mut consts = new_consts();
         let value = BigFloat::parse(text.trim(), Radix::Dec, bits, ROUNDING, &mut consts);
         if value.is_nan() || value.is_inf() {
-            return Err(SymbolicError::BadNumber { text: text.to_owned() });
+            return Err(Error::BadDecimal { text: text.to_owned() });
         }
         Ok(BigReal(value))
     }
@@ -172,18 +172,18 @@ impl Graph {
     /// ```
     ///
     /// # Errors
-    /// [`SymbolicError::Unbound`] if a symbol has no value, [`SymbolicError::BadNumber`] if a
+    /// [`Error::UnboundSymbol`] if a symbol has no value, [`Error::BadDecimal`] if a
     /// value does not parse.
     pub fn evaluate_big(
         &self,
         outputs: &[Id],
         bindings: &[(&str, &str)],
         bits: usize,
-    ) -> Result<Vec<BigReal>, SymbolicError> {
+    ) -> Result<Vec<BigReal>, Error> {
         let parsed: Vec<(&str, BigReal)> = bindings
             .iter()
             .map(|(name, text)| Ok((*name, BigReal::parse(text, bits)?)))
-            .collect::<Result<_, SymbolicError>>()?;
+            .collect::<Result<_, Error>>()?;
         let lookup =
             |name: &str| parsed.iter().find(|(n, _)| *n == name).map(|(_, v)| v.clone());
         self.evaluate(&mut BigArithmetic::new(bits), outputs, &lookup)

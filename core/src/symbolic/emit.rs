@@ -12,7 +12,7 @@ use std::collections::{HashMap, HashSet};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{ToTokens, quote};
 
-use super::error::SymbolicError;
+use crate::error::Error;
 use super::graph::{Graph, Id, Node};
 use super::ops::{Binary, Unary};
 
@@ -189,11 +189,27 @@ pub(crate) fn sin_cos_pairs(graph: &Graph, reachable: &[bool]) -> HashMap<Id, (I
     pairs
 }
 
+/// Straight-line Rust computing some outputs: `let` statements, then one expression per
+/// output (a name, a constant or a symbol).
+#[derive(Clone, Debug)]
+pub struct Emission {
+    /// The `let` statements, in order.
+    pub statements: Vec<TokenStream>,
+    /// The expression of each output, in order.
+    pub results: Vec<TokenStream>,
+}
+
 impl Graph {
     /// The statements and the final array expression computing `outputs`, as the body of a
-    /// function: `{ let …; [o0, o1, …] }`. `output_names` name the bound outputs
-    /// (`value`, `d1`, …); temporaries are `t0`, `t1`, … (avoiding every symbol's name).
+    /// function: `{ let …; [o0, o1, …] }`. See [`Graph::emit`].
     pub fn emit_body(&self, outputs: &[Id], output_names: &[&str]) -> TokenStream {
+        let Emission { statements, results } = self.emit(outputs, output_names);
+        quote! { #(#statements)* [#(#results),*] }
+    }
+
+    /// Straight-line code computing `outputs`. `output_names` name the bound outputs
+    /// (`value`, `d1`, …); temporaries are `t0`, `t1`, … (avoiding every symbol's name).
+    pub fn emit(&self, outputs: &[Id], output_names: &[&str]) -> Emission {
         let (reachable, uses) = use_counts(self, outputs);
         let pairs = sin_cos_pairs(self, &reachable);
         let mut emitter = Emitter {
@@ -237,8 +253,7 @@ impl Graph {
         }
         let results: Vec<TokenStream> =
             outputs.iter().map(|&id| emitter.operand(id, Precedence::Block)).collect();
-        let statements = emitter.statements;
-        quote! { #(#statements)* [#(#results),*] }
+        Emission { statements: emitter.statements, results }
     }
 
     /// A complete function `pub fn name(p: f64, …) -> [f64; N]` returning `outputs`.
@@ -264,9 +279,9 @@ impl Graph {
 /// Formats Rust tokens (a file's items) as source text with prettyplease.
 ///
 /// # Errors
-/// [`SymbolicError::Emit`] if the tokens are not a valid Rust file.
-pub fn format_rust(tokens: TokenStream) -> Result<String, SymbolicError> {
+/// [`Error::InvalidEmittedRust`] if the tokens are not a valid Rust file.
+pub fn format_rust(tokens: TokenStream) -> Result<String, Error> {
     let file: syn::File =
-        syn::parse2(tokens).map_err(|e| SymbolicError::Emit { reason: e.to_string() })?;
+        syn::parse2(tokens).map_err(|e| Error::InvalidEmittedRust { reason: e.to_string() })?;
     Ok(prettyplease::unparse(&file))
 }

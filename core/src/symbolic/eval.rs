@@ -7,7 +7,7 @@ use std::marker::PhantomData;
 
 use num_dual::DualNum;
 
-use super::error::SymbolicError;
+use crate::error::Error;
 use super::graph::{Graph, Id, Node};
 use super::ops::{Binary, Comparison, Unary};
 
@@ -98,13 +98,13 @@ impl Graph {
     /// Evaluates `outputs` with `arithmetic`; `value_of` gives the value of each symbol.
     ///
     /// # Errors
-    /// [`SymbolicError::Unbound`] if a symbol the outputs depend on has no value.
+    /// [`Error::UnboundSymbol`] if a symbol the outputs depend on has no value.
     pub fn evaluate<A: Arithmetic>(
         &self,
         arithmetic: &mut A,
         outputs: &[Id],
         value_of: &dyn Fn(&str) -> Option<A::Value>,
-    ) -> Result<Vec<A::Value>, SymbolicError> {
+    ) -> Result<Vec<A::Value>, Error> {
         let needed = self.reachable(outputs);
         let mut values: Vec<Option<A::Value>> = vec![None; needed.len()];
         let get = |values: &[Option<A::Value>], id: Id| -> A::Value {
@@ -117,7 +117,7 @@ impl Graph {
             let value = match node {
                 Node::Num(n) => arithmetic.constant(n.value()),
                 Node::Sym(name) => value_of(name)
-                    .ok_or_else(|| SymbolicError::Unbound { symbol: name.to_string() })?,
+                    .ok_or_else(|| Error::UnboundSymbol { symbol: name.to_string() })?,
                 Node::Unary(op, a) => arithmetic.unary(*op, &get(&values, *a)),
                 Node::Binary(op, a, b) => {
                     arithmetic.binary(*op, &get(&values, *a), &get(&values, *b))
@@ -145,24 +145,24 @@ impl Graph {
     /// ```
     ///
     /// # Errors
-    /// [`SymbolicError::Unbound`] if a symbol has no value.
+    /// [`Error::UnboundSymbol`] if a symbol has no value.
     pub fn evaluate_f64(
         &self,
         outputs: &[Id],
         bindings: &[(&str, f64)],
-    ) -> Result<Vec<f64>, SymbolicError> {
+    ) -> Result<Vec<f64>, Error> {
         self.evaluate_dual(outputs, bindings)
     }
 
     /// Evaluates `outputs` in the num-dual type `D` with the symbol values `bindings`.
     ///
     /// # Errors
-    /// [`SymbolicError::Unbound`] if a symbol has no value.
+    /// [`Error::UnboundSymbol`] if a symbol has no value.
     pub fn evaluate_dual<D: DualNum<Primitive = f64> + Copy>(
         &self,
         outputs: &[Id],
         bindings: &[(&str, D)],
-    ) -> Result<Vec<D>, SymbolicError> {
+    ) -> Result<Vec<D>, Error> {
         let lookup = |name: &str| bindings.iter().find(|(n, _)| *n == name).map(|(_, v)| *v);
         self.evaluate(&mut DualArithmetic::<D>::new(), outputs, &lookup)
     }

@@ -11,7 +11,7 @@
 //! `pow` for `powf`). Names may be paths (`std::f64::consts::PI`). Errors carry the
 //! character position of the problem.
 
-use super::error::SymbolicError;
+use crate::error::Error;
 use super::graph::{Graph, Id};
 use super::ops::{Binary, Unary};
 
@@ -29,7 +29,7 @@ struct Token {
     at: usize,
 }
 
-fn tokenize(input: &str) -> Result<Vec<Token>, SymbolicError> {
+fn tokenize(input: &str) -> Result<Vec<Token>, Error> {
     let chars: Vec<char> = input.chars().collect();
     let mut tokens = Vec::new();
     let mut i = 0;
@@ -54,7 +54,7 @@ fn tokenize(input: &str) -> Result<Vec<Token>, SymbolicError> {
             let text: String = chars[at..i].iter().collect();
             let value = text
                 .parse::<f64>()
-                .map_err(|_| SymbolicError::parse(input, at, format!("`{text}` is not a number")))?;
+                .map_err(|_| Error::formula(input, at, format!("`{text}` is not a number")))?;
             tokens.push(Token { kind: Kind::Number(value), at });
         } else if c.is_alphabetic() || c == '_' {
             while i < chars.len()
@@ -69,7 +69,7 @@ fn tokenize(input: &str) -> Result<Vec<Token>, SymbolicError> {
             tokens.push(Token { kind: Kind::Symbol(c), at });
             i += 1;
         } else {
-            return Err(SymbolicError::parse(input, at, format!("unexpected character `{c}`")));
+            return Err(Error::formula(input, at, format!("unexpected character `{c}`")));
         }
     }
     tokens.push(Token { kind: Kind::End, at: chars.len() });
@@ -94,8 +94,8 @@ impl Parser<'_, '_> {
         found
     }
 
-    fn error(&self, at: usize, message: impl Into<String>) -> SymbolicError {
-        SymbolicError::parse(self.input, at, message)
+    fn error(&self, at: usize, message: impl Into<String>) -> Error {
+        Error::formula(self.input, at, message)
     }
 
     fn describe(kind: &Kind) -> String {
@@ -107,7 +107,7 @@ impl Parser<'_, '_> {
         }
     }
 
-    fn expect(&mut self, symbol: char) -> Result<(), SymbolicError> {
+    fn expect(&mut self, symbol: char) -> Result<(), Error> {
         if self.eat(symbol) {
             Ok(())
         } else {
@@ -116,7 +116,7 @@ impl Parser<'_, '_> {
         }
     }
 
-    fn sum(&mut self) -> Result<Id, SymbolicError> {
+    fn sum(&mut self) -> Result<Id, Error> {
         let mut left = self.product()?;
         loop {
             if self.eat('+') {
@@ -131,7 +131,7 @@ impl Parser<'_, '_> {
         }
     }
 
-    fn product(&mut self) -> Result<Id, SymbolicError> {
+    fn product(&mut self) -> Result<Id, Error> {
         let mut left = self.unary()?;
         loop {
             if self.eat('*') {
@@ -146,7 +146,7 @@ impl Parser<'_, '_> {
         }
     }
 
-    fn unary(&mut self) -> Result<Id, SymbolicError> {
+    fn unary(&mut self) -> Result<Id, Error> {
         if self.eat('-') {
             let operand = self.unary()?;
             return Ok(self.graph.neg(operand));
@@ -159,7 +159,7 @@ impl Parser<'_, '_> {
         Ok(base)
     }
 
-    fn atom(&mut self) -> Result<Id, SymbolicError> {
+    fn atom(&mut self) -> Result<Id, Error> {
         let token = self.peek().clone();
         self.next += 1;
         match token.kind {
@@ -175,7 +175,7 @@ impl Parser<'_, '_> {
         }
     }
 
-    fn call(&mut self, name: &str, at: usize) -> Result<Id, SymbolicError> {
+    fn call(&mut self, name: &str, at: usize) -> Result<Id, Error> {
         let mut arguments = vec![(self.peek().at, self.sum()?)];
         while self.eat(',') {
             arguments.push((self.peek().at, self.sum()?));
@@ -232,8 +232,8 @@ impl Graph {
     /// ```
     ///
     /// # Errors
-    /// [`SymbolicError::Parse`] with the position of the problem.
-    pub fn parse_infix(&mut self, input: &str) -> Result<Id, SymbolicError> {
+    /// [`Error::Formula`] with the position of the problem.
+    pub fn parse_infix(&mut self, input: &str) -> Result<Id, Error> {
         let tokens = tokenize(input)?;
         let mut parser = Parser { input, tokens, next: 0, graph: self };
         let id = parser.sum()?;

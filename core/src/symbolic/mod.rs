@@ -25,7 +25,6 @@
 pub mod bigfloat;
 pub mod count;
 pub mod emit;
-pub mod error;
 pub mod eval;
 pub mod graph;
 pub mod infix;
@@ -36,8 +35,7 @@ pub mod simplify;
 
 pub use bigfloat::{BigArithmetic, BigReal};
 pub use count::OperationCount;
-pub use emit::format_rust;
-pub use error::SymbolicError;
+pub use emit::{Emission, format_rust};
 pub use eval::{Arithmetic, DualArithmetic};
 pub use graph::{Graph, Id, Node, Number};
 pub use ops::{Binary, Comparison, Unary};

@@ -8,7 +8,7 @@
 //! `+` and `*` take two or more arguments; numbers are decimal `f64` literals; every other
 //! atom is a symbol.
 
-use super::error::SymbolicError;
+use crate::error::Error;
 use super::graph::{Graph, Id, Node};
 use super::ops::{Binary, Comparison, Unary};
 
@@ -62,15 +62,15 @@ struct Parser<'a, 'g> {
 }
 
 impl Parser<'_, '_> {
-    fn error(&self, position: usize, message: impl Into<String>) -> SymbolicError {
-        SymbolicError::parse(self.input, position, message)
+    fn error(&self, position: usize, message: impl Into<String>) -> Error {
+        Error::formula(self.input, position, message)
     }
 
     fn end(&self) -> usize {
         self.input.chars().count()
     }
 
-    fn expression(&mut self) -> Result<Id, SymbolicError> {
+    fn expression(&mut self) -> Result<Id, Error> {
         let Some(token) = self.tokens.get(self.next) else {
             return Err(self.error(self.end(), "expected an expression, found the end"));
         };
@@ -91,7 +91,7 @@ impl Parser<'_, '_> {
         }
     }
 
-    fn arguments(&mut self) -> Result<Vec<(usize, Id)>, SymbolicError> {
+    fn arguments(&mut self) -> Result<Vec<(usize, Id)>, Error> {
         let mut arguments = Vec::new();
         loop {
             match self.tokens.get(self.next) {
@@ -108,7 +108,7 @@ impl Parser<'_, '_> {
         }
     }
 
-    fn list(&mut self, open: usize) -> Result<Id, SymbolicError> {
+    fn list(&mut self, open: usize) -> Result<Id, Error> {
         let (head_at, head) = match self.tokens.get(self.next) {
             Some(Token::Atom(at, text)) => (*at, *text),
             Some(Token::Open(at) | Token::Close(at)) => {
@@ -122,12 +122,12 @@ impl Parser<'_, '_> {
         }
         let arguments = self.arguments()?;
         let ids: Vec<Id> = arguments.iter().map(|(_, id)| *id).collect();
-        let arity = |n: usize| -> Result<(), SymbolicError> {
+        let arity = |n: usize| -> Result<(), Error> {
             if ids.len() == n {
                 Ok(())
             } else {
                 let message = format!("`{head}` takes {n} argument(s), found {}", ids.len());
-                Err(SymbolicError::parse(self.input, head_at, message))
+                Err(Error::formula(self.input, head_at, message))
             }
         };
         match head {
@@ -168,7 +168,7 @@ impl Parser<'_, '_> {
         }
     }
 
-    fn select(&mut self, head_at: usize) -> Result<Id, SymbolicError> {
+    fn select(&mut self, head_at: usize) -> Result<Id, Error> {
         let condition = match self.tokens.get(self.next) {
             Some(Token::Open(_)) => self.next + 1,
             _ => return Err(self.error(head_at, "`if` needs a condition like `(< a b)`")),
@@ -204,7 +204,7 @@ impl Graph {
     /// assert_eq!(lhs, rhs);
     /// assert!(graph.parse_sexpr("(sin x").is_err());
     /// ```
-    pub fn parse_sexpr(&mut self, input: &str) -> Result<Id, SymbolicError> {
+    pub fn parse_sexpr(&mut self, input: &str) -> Result<Id, Error> {
         let mut parser = Parser { input, tokens: tokenize(input), next: 0, graph: self };
         let id = parser.expression()?;
         match parser.tokens.get(parser.next) {
