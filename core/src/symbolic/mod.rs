@@ -3,7 +3,7 @@
 //!
 //! - [`graph`]: the IR, a flat hash-consed arena ([`Graph`], [`Id`], [`Node`]);
 //! - [`sexpr`] and [`infix`]: text forms, with positioned parse errors;
-//! - [`simplify`]: the simplifying constructors every node is built with;
+//! - [`simplify`] and [`sums`]: the simplifying constructors every node is built with;
 //! - [`rules`]: the one table of derivative rules and the differentiation driver;
 //! - [`eval`] and [`bigfloat`]: evaluation in `f64`, in num-dual types, in arbitrary
 //!   precision;
@@ -32,6 +32,7 @@ pub mod ops;
 pub mod rules;
 pub mod sexpr;
 pub mod simplify;
+pub mod sums;
 
 pub use bigfloat::{BigArithmetic, BigReal};
 pub use count::OperationCount;

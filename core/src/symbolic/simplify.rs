@@ -11,6 +11,7 @@
 //!   lower derivative that is returned too, so a non-finite `x` stays visible there (and the
 //!   derivative of a constant is then 0, not `0 * inf = NaN`);
 //! - negation is pulled out of products and quotients, negative factors become `neg`;
+//! - `tan(atan2(a, b)) = a / b`, `tan(atan(x)) = x`;
 //! - integer powers: `x * x = x²`, `xᵐ · xⁿ = xᵐ⁺ⁿ`, `(xᵐ)ⁿ = xᵐⁿ`, `x⁰ = 1`, `x¹ = x`,
 //!   `x⁻ⁿ = 1 / xⁿ`, `(-x)ⁿ = ±xⁿ`, `x.powf(n)` with an integer constant `n` is `x.powi(n)`;
 //! - commutative operands are put in a canonical order (constants first, then by id), so
@@ -20,13 +21,6 @@
 
 use super::graph::{Graph, Id, Node};
 use super::ops::{Binary, Comparison, Unary};
-
-fn exact_add(x: f64, y: f64) -> Option<f64> {
-    let s = x + y;
-    let bb = s - x;
-    let error = (x - (s - bb)) + (y - bb);
-    (s.is_finite() && error == 0.0).then_some(s)
-}
 
 fn exact_mul(x: f64, y: f64) -> Option<f64> {
     let p = x * y;
@@ -113,53 +107,14 @@ impl Graph {
         if key(a) <= key(b) { (a, b) } else { (b, a) }
     }
 
-    /// `a + b`, simplified.
+    /// `a + b`, simplified (a linear combination: see [`super::sums`]).
     pub fn add(&mut self, a: Id, b: Id) -> Id {
-        if let Some(c) = self.constant_pair(a, b).and_then(|(x, y)| exact_add(x, y)) {
-            return self.number(c);
-        }
-        if self.is_number(a, 0.0) {
-            return b;
-        }
-        if self.is_number(b, 0.0) {
-            return a;
-        }
-        if a == b {
-            let two = self.number(2.0);
-            return self.mul(two, a);
-        }
-        if let Some(c) = self.negated(b) {
-            return self.sub(a, c);
-        }
-        if let Some(c) = self.negated(a) {
-            return self.sub(b, c);
-        }
-        let (a, b) = self.ordered(a, b);
-        self.intern(Node::Binary(Binary::Add, a, b))
+        self.sum(a, 1.0, b)
     }
 
-    /// `a - b`, simplified.
+    /// `a - b`, simplified (a linear combination: see [`super::sums`]).
     pub fn sub(&mut self, a: Id, b: Id) -> Id {
-        if let Some(c) = self.constant_pair(a, b).and_then(|(x, y)| exact_add(x, -y)) {
-            return self.number(c);
-        }
-        if a == b {
-            return self.number(0.0);
-        }
-        if self.is_number(b, 0.0) {
-            return a;
-        }
-        if self.is_number(a, 0.0) {
-            return self.neg(b);
-        }
-        if let Some(c) = self.negated(b) {
-            return self.add(a, c);
-        }
-        if let Some(c) = self.negated(a) {
-            let sum = self.add(c, b);
-            return self.neg(sum);
-        }
-        self.intern(Node::Binary(Binary::Sub, a, b))
+        self.sum(a, -1.0, b)
     }
 
     /// `a * b`, simplified.
@@ -200,14 +155,22 @@ impl Graph {
                 return self.powi(base_a, sum);
             }
         }
-        // c1 * (c2 * y) = (c1 c2) * y when c1 c2 is exact
+        // c1 * (c2 * y) = (c1 c2) * y when c1 c2 is exact; x * (c * y) = c * (x * y)
         for (x, y) in [(a, b), (b, a)] {
-            if let (Some(c1), Node::Binary(Binary::Mul, inner_c, inner_y)) =
-                (self.as_number(x), self.node(y).clone())
-            {
-                if let Some(c) = self.as_number(inner_c).and_then(|c2| exact_mul(c1, c2)) {
-                    let c = self.number(c);
-                    return self.mul(c, inner_y);
+            if let Node::Binary(Binary::Mul, inner_c, inner_y) = *self.node(y) {
+                if let Some(c2) = self.as_number(inner_c) {
+                    match self.as_number(x) {
+                        Some(c1) => {
+                            if let Some(c) = exact_mul(c1, c2) {
+                                let c = self.number(c);
+                                return self.mul(c, inner_y);
+                            }
+                        }
+                        None => {
+                            let product = self.mul(x, inner_y);
+                            return self.mul(inner_c, product);
+                        }
+                    }
                 }
             }
         }
@@ -300,6 +263,14 @@ impl Graph {
         }
         if let Some(c) = self.as_number(u).and_then(|c| exact_unary(op, c)) {
             return self.number(c);
+        }
+        // tan(atan2(a, b)) = a / b and tan(atan(x)) = x (tan has period π)
+        if op == Unary::Tan {
+            match *self.node(u) {
+                Node::Binary(Binary::Atan2, a, b) => return self.div(a, b),
+                Node::Unary(Unary::Atan, x) => return x,
+                _ => {}
+            }
         }
         if op == Unary::Abs {
             match *self.node(u) {
