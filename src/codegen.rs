@@ -62,7 +62,12 @@ pub fn generate(args: &Args) -> Result<String, mechdiff_core::Error> {
     }
     let outputs = graph.derivatives(value, &args.wrt, args.order);
     let mut parameters = vec![args.wrt.as_str()];
-    parameters.extend(graph.symbols(&[value]).into_iter().filter(|s| *s != args.wrt));
+    parameters.extend(
+        graph
+            .symbols(&[value])
+            .into_iter()
+            .filter(|s| *s != args.wrt),
+    );
     let mut names = vec!["value".to_owned()];
     names.extend((1..=args.order).map(|k| format!("d{k}")));
     let names: Vec<&str> = names.iter().map(String::as_str).collect();

@@ -66,7 +66,11 @@ fn show_position(input: &str, position: usize, message: &str) -> String {
 impl Error {
     /// A formula error at character `position` of `input`.
     pub(crate) fn formula(input: &str, position: usize, message: impl Into<String>) -> Self {
-        Error::Formula { input: input.to_owned(), position, message: message.into() }
+        Error::Formula {
+            input: input.to_owned(),
+            position,
+            message: message.into(),
+        }
     }
 }
 

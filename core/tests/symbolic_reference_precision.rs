@@ -25,24 +25,39 @@ fn assert_matches(what: &str, phi_deg: &str, value: &BigReal, reference: &str) {
     let reference = BigReal::parse(reference, BITS).unwrap();
     let magnitude = reference.to_f64().abs();
     let error = if magnitude < 1e-25 {
-        value.relative_difference(&BigReal::parse("0", BITS).unwrap())
+        value
+            .relative_difference(&BigReal::parse("0", BITS).unwrap())
             .max(reference.relative_difference(&BigReal::parse("0", BITS).unwrap()))
     } else {
         value.relative_difference(&reference)
     };
-    assert!(error <= 1e-25, "{what} at φ = {phi_deg}°: {value} vs {reference} (error {error:e})");
+    assert!(
+        error <= 1e-25,
+        "{what} at φ = {phi_deg}°: {value} vs {reference} (error {error:e})"
+    );
 }
 
 #[test]
 fn psi_and_x_c_derivatives_match_30_digit_references() {
     let mut graph = Graph::new();
-    let psi = graph.parse_infix("atan2(lambda*sin(phi), 1 - lambda*cos(phi))").unwrap();
+    let psi = graph
+        .parse_infix("atan2(lambda*sin(phi), 1 - lambda*cos(phi))")
+        .unwrap();
     let h = graph.symbol("h");
     let tan_psi = graph.tan(psi);
     let x_c = graph.mul(h, tan_psi);
     let mut outputs = graph.derivatives(psi, "phi", 3);
     outputs.extend(graph.derivatives(x_c, "phi", 3));
-    let keys = ["psi_rad", "psi_p", "psi_pp", "psi_ppp", "x_C_m", "x_C_p_m", "x_C_pp_m", "x_C_ppp_m"];
+    let keys = [
+        "psi_rad",
+        "psi_p",
+        "psi_pp",
+        "psi_ppp",
+        "x_C_m",
+        "x_C_p_m",
+        "x_C_pp_m",
+        "x_C_ppp_m",
+    ];
     let rows = reference_rows();
     assert_eq!(rows.len(), 38, "36 angles every 10° and 2 dead positions");
     for row in rows {

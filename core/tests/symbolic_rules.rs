@@ -14,7 +14,10 @@ fn check(lhs: &str, rhs: &str) {
         graph.to_sexpr(right),
         "{lhs} should simplify to {rhs}"
     );
-    assert_eq!(left, right, "{lhs} and {rhs} print alike but are different nodes");
+    assert_eq!(
+        left, right,
+        "{lhs} and {rhs} print alike but are different nodes"
+    );
 }
 
 macro_rules! rules {
@@ -90,7 +93,10 @@ fn malformed_sexpr_reports_the_position() {
     let error = graph.parse_sexpr("(sin x) )").unwrap_err().to_string();
     assert!(error.contains("column 9"), "{error}");
     let error = graph.parse_sexpr("(frob x)").unwrap_err().to_string();
-    assert!(error.contains("unknown operator `frob`") && error.contains("column 2"), "{error}");
+    assert!(
+        error.contains("unknown operator `frob`") && error.contains("column 2"),
+        "{error}"
+    );
 }
 
 #[test]
@@ -98,9 +104,15 @@ fn malformed_infix_reports_the_position() {
     let mut graph = Graph::new();
     let input = "atan2(lambda*sin(phi), 1 - lambda*cos(phi)";
     let error = graph.parse_infix(input).unwrap_err().to_string();
-    assert!(error.contains("expected `)`, found the end (column 43)"), "{error}");
+    assert!(
+        error.contains("expected `)`, found the end (column 43)"),
+        "{error}"
+    );
     let error = graph.parse_infix("1 + * x").unwrap_err().to_string();
-    assert!(error.contains("column 5") && error.contains("found `*`"), "{error}");
+    assert!(
+        error.contains("column 5") && error.contains("found `*`"),
+        "{error}"
+    );
     let error = graph.parse_infix("sine(x)").unwrap_err().to_string();
     assert!(error.contains("unknown function `sine`"), "{error}");
 }
@@ -123,7 +135,9 @@ fn mixed_partials_commute_numerically() {
     let mut graph = Graph::new();
     let xy = graph.parse_sexpr("(d y (d x (sin (* x y))))").unwrap();
     let yx = graph.parse_sexpr("(d x (d y (sin (* x y))))").unwrap();
-    let values = graph.evaluate_f64(&[xy, yx], &[("x", 0.7), ("y", -1.3)]).unwrap();
+    let values = graph
+        .evaluate_f64(&[xy, yx], &[("x", 0.7), ("y", -1.3)])
+        .unwrap();
     let xy = 0.7f64 * -1.3;
     let (first, second) = (xy.cos(), xy * xy.sin());
     let exact = first - second;

@@ -51,7 +51,10 @@ impl Lowering {
     }
 
     fn lookup(&self, name: &str) -> Option<Id> {
-        self.scopes.iter().rev().find_map(|scope| scope.get(name).copied())
+        self.scopes
+            .iter()
+            .rev()
+            .find_map(|scope| scope.get(name).copied())
     }
 
     fn parameters(&mut self, function: &ItemFn) -> Vec<Ident> {
@@ -70,10 +73,17 @@ impl Lowering {
             match input {
                 FnArg::Typed(typed) => {
                     if !is_f64(&typed.ty) {
-                        self.error(&typed.ty, "parameters must be `f64`; pass every quantity as an `f64` parameter");
+                        self.error(
+                            &typed.ty,
+                            "parameters must be `f64`; pass every quantity as an `f64` parameter",
+                        );
                     }
                     match &*typed.pat {
-                        Pat::Ident(ident) if ident.by_ref.is_none() && ident.mutability.is_none() && ident.subpat.is_none() => {
+                        Pat::Ident(ident)
+                            if ident.by_ref.is_none()
+                                && ident.mutability.is_none()
+                                && ident.subpat.is_none() =>
+                        {
                             let id = self.graph.symbol(&ident.ident.to_string());
                             self.scopes[0].insert(ident.ident.to_string(), id);
                             parameters.push(ident.ident.clone());
@@ -106,7 +116,10 @@ impl Lowering {
                         continue;
                     };
                     if let Some((else_token, _)) = &init.diverge {
-                        self.error(else_token, "`let … else` is not supported; use `if`/`else` on a comparison");
+                        self.error(
+                            else_token,
+                            "`let … else` is not supported; use `if`/`else` on a comparison",
+                        );
                     }
                     let id = self.expr(&init.expr);
                     let pattern = match &local.pat {
@@ -127,7 +140,9 @@ impl Lowering {
                     }
                 }
                 Stmt::Expr(expr, None) if last => value = Some(self.expr(expr)),
-                Stmt::Expr(expr @ (Expr::Assign(_) | Expr::Binary(_)), Some(_)) if is_mutation(expr) => {
+                Stmt::Expr(expr @ (Expr::Assign(_) | Expr::Binary(_)), Some(_))
+                    if is_mutation(expr) =>
+                {
                     self.error(expr, "mutation is not supported: bind the new value with `let` instead of assigning");
                 }
                 Stmt::Expr(Expr::Return(ret), _) => {
@@ -137,19 +152,30 @@ impl Lowering {
                     let errors_before = self.error_count;
                     self.expr(expr);
                     if !last && self.error_count == errors_before {
-                        self.error(expr, "statements other than `let` have no effect here; remove it");
+                        self.error(
+                            expr,
+                            "statements other than `let` have no effect here; remove it",
+                        );
                     }
                 }
                 Stmt::Item(item) => {
                     self.error(item, "items inside the function are not supported; move the item out of the function");
                 }
                 Stmt::Macro(mac) => {
-                    self.error(mac, "macros are not expanded by #[derivatives]; write the expression out");
+                    self.error(
+                        mac,
+                        "macros are not expanded by #[derivatives]; write the expression out",
+                    );
                 }
             }
         }
         self.scopes.pop();
-        value.unwrap_or_else(|| self.error(block, "the block needs a value: end it with an expression (no `;`)"))
+        value.unwrap_or_else(|| {
+            self.error(
+                block,
+                "the block needs a value: end it with an expression (no `;`)",
+            )
+        })
     }
 
     fn expr(&mut self, expr: &Expr) -> Id {
@@ -159,17 +185,26 @@ impl Lowering {
                     Ok(value) if value.is_finite() => self.graph.number(value),
                     _ => self.error(float, "the literal is not a finite f64"),
                 },
-                Lit::Int(int) => self.error(int, format!("integer literal in an f64 expression; write `{}.0`", int.base10_digits())),
+                Lit::Int(int) => self.error(
+                    int,
+                    format!(
+                        "integer literal in an f64 expression; write `{}.0`",
+                        int.base10_digits()
+                    ),
+                ),
                 other => self.error(other, "only f64 literals are supported"),
             },
             Expr::Path(path) => {
                 if path.qself.is_some() {
-                    return self.error(path, "qualified paths are not supported; use a plain constant name");
+                    return self.error(
+                        path,
+                        "qualified paths are not supported; use a plain constant name",
+                    );
                 }
-                if let Some(ident) = path.path.get_ident() {
-                    if let Some(id) = self.lookup(&ident.to_string()) {
-                        return id;
-                    }
+                if let Some(ident) = path.path.get_ident()
+                    && let Some(id) = self.lookup(&ident.to_string())
+                {
+                    return id;
                 }
                 // a named constant: differentiated as a constant, emitted as written
                 let name = path.path.to_token_stream().to_string().replace(' ', "");
@@ -183,8 +218,13 @@ impl Lowering {
                     let operand = self.expr(&unary.expr);
                     self.graph.neg(operand)
                 }
-                UnOp::Deref(_) => self.error(unary, "references are not supported: use `f64` values"),
-                _ => self.error(unary, format!("this operator is not differentiable; {SUPPORTED}")),
+                UnOp::Deref(_) => {
+                    self.error(unary, "references are not supported: use `f64` values")
+                }
+                _ => self.error(
+                    unary,
+                    format!("this operator is not differentiable; {SUPPORTED}"),
+                ),
             },
             Expr::Binary(binary) => self.binary(binary),
             Expr::MethodCall(call) => self.method(call),
@@ -193,27 +233,57 @@ impl Lowering {
                 expr,
                 "loops are not differentiable here; unroll the loop or move it out of the function",
             ),
-            Expr::Assign(_) => self.error(expr, "mutation is not supported: bind the new value with `let` instead of assigning"),
-            Expr::Reference(_) | Expr::RawAddr(_) => self.error(expr, "references are not supported: use `f64` values"),
+            Expr::Assign(_) => self.error(
+                expr,
+                "mutation is not supported: bind the new value with `let` instead of assigning",
+            ),
+            Expr::Reference(_) | Expr::RawAddr(_) => {
+                self.error(expr, "references are not supported: use `f64` values")
+            }
             Expr::Call(call) => {
                 let hint = match &*call.func {
                     Expr::Path(path) => {
-                        let name = path.path.segments.last().map(|s| s.ident.to_string()).unwrap_or_default();
+                        let name = path
+                            .path
+                            .segments
+                            .last()
+                            .map(|s| s.ident.to_string())
+                            .unwrap_or_default();
                         if Unary::from_name(&name).is_some() || Binary::from_name(&name).is_some() {
                             format!("; write it as a method: `x.{name}(…)`")
                         } else {
-                            format!("; `{name}` is unknown to #[derivatives]: write its body out, or give it its own #[derivatives] and chain the derivatives by hand")
+                            format!(
+                                "; `{name}` is unknown to #[derivatives]: write its body out, or give it its own #[derivatives] and chain the derivatives by hand"
+                            )
                         }
                     }
                     _ => String::new(),
                 };
-                self.error(call, format!("function calls are not differentiable here{hint}"))
+                self.error(
+                    call,
+                    format!("function calls are not differentiable here{hint}"),
+                )
             }
-            Expr::Return(_) => self.error(expr, "`return` is not supported; end the function with its value as the tail expression"),
-            Expr::Macro(_) => self.error(expr, "macros are not expanded by #[derivatives]; write the expression out"),
-            Expr::Match(_) => self.error(expr, "`match` is not supported; use `if`/`else` on comparisons"),
-            Expr::Cast(_) => self.error(expr, "casts are not supported; every value is already `f64`"),
-            _ => self.error(expr, format!("this construct is not supported by #[derivatives]; {SUPPORTED}")),
+            Expr::Return(_) => self.error(
+                expr,
+                "`return` is not supported; end the function with its value as the tail expression",
+            ),
+            Expr::Macro(_) => self.error(
+                expr,
+                "macros are not expanded by #[derivatives]; write the expression out",
+            ),
+            Expr::Match(_) => self.error(
+                expr,
+                "`match` is not supported; use `if`/`else` on comparisons",
+            ),
+            Expr::Cast(_) => self.error(
+                expr,
+                "casts are not supported; every value is already `f64`",
+            ),
+            _ => self.error(
+                expr,
+                format!("this construct is not supported by #[derivatives]; {SUPPORTED}"),
+            ),
         }
     }
 
@@ -223,13 +293,29 @@ impl Lowering {
             BinOp::Sub(_) => Binary::Sub,
             BinOp::Mul(_) => Binary::Mul,
             BinOp::Div(_) => Binary::Div,
-            BinOp::Lt(_) | BinOp::Le(_) | BinOp::Gt(_) | BinOp::Ge(_) | BinOp::Eq(_) | BinOp::Ne(_) => {
-                return self.error(binary, "comparisons are supported only as the condition of an `if`");
+            BinOp::Lt(_)
+            | BinOp::Le(_)
+            | BinOp::Gt(_)
+            | BinOp::Ge(_)
+            | BinOp::Eq(_)
+            | BinOp::Ne(_) => {
+                return self.error(
+                    binary,
+                    "comparisons are supported only as the condition of an `if`",
+                );
             }
             _ if is_mutation(&Expr::Binary(binary.clone())) => {
-                return self.error(binary, "mutation is not supported: bind the new value with `let` instead of assigning");
+                return self.error(
+                    binary,
+                    "mutation is not supported: bind the new value with `let` instead of assigning",
+                );
             }
-            _ => return self.error(&binary.op, format!("this operator is not differentiable; {SUPPORTED}")),
+            _ => {
+                return self.error(
+                    binary.op,
+                    format!("this operator is not differentiable; {SUPPORTED}"),
+                );
+            }
         };
         let (left, right) = (self.expr(&binary.left), self.expr(&binary.right));
         self.graph.binary(op, left, right)
@@ -245,7 +331,9 @@ impl Lowering {
             "powi" | "powf" | "atan2" | "hypot" => 1,
             _ => 0,
         };
-        if call.args.len() != arity && (Unary::from_name(&name).is_some() || arity == 1 || name == "recip") {
+        if call.args.len() != arity
+            && (Unary::from_name(&name).is_some() || arity == 1 || name == "recip")
+        {
             return self.error(call, format!("`{name}` takes {arity} argument(s)"));
         }
         match name.as_str() {
@@ -285,12 +373,18 @@ impl Lowering {
             _ => None,
         };
         let Some((cmp, binary)) = comparison else {
-            return self.error(&branch.cond, "the condition must be one comparison of two f64 expressions (`a < b`)");
+            return self.error(
+                &branch.cond,
+                "the condition must be one comparison of two f64 expressions (`a < b`)",
+            );
         };
         let (a, b) = (self.expr(&binary.left), self.expr(&binary.right));
         let then = self.block(&branch.then_branch);
         let Some((_, otherwise)) = &branch.else_branch else {
-            return self.error(branch, "an `if` needs an `else`: both branches give the value");
+            return self.error(
+                branch,
+                "an `if` needs an `else`: both branches give the value",
+            );
         };
         let otherwise = self.expr(otherwise);
         self.graph.select(cmp, a, b, then, otherwise)
@@ -302,8 +396,16 @@ fn is_mutation(expr: &Expr) -> bool {
         Expr::Assign(_) => true,
         Expr::Binary(binary) => matches!(
             binary.op,
-            BinOp::AddAssign(_) | BinOp::SubAssign(_) | BinOp::MulAssign(_) | BinOp::DivAssign(_) | BinOp::RemAssign(_)
-                | BinOp::BitXorAssign(_) | BinOp::BitAndAssign(_) | BinOp::BitOrAssign(_) | BinOp::ShlAssign(_) | BinOp::ShrAssign(_)
+            BinOp::AddAssign(_)
+                | BinOp::SubAssign(_)
+                | BinOp::MulAssign(_)
+                | BinOp::DivAssign(_)
+                | BinOp::RemAssign(_)
+                | BinOp::BitXorAssign(_)
+                | BinOp::BitAndAssign(_)
+                | BinOp::BitOrAssign(_)
+                | BinOp::ShlAssign(_)
+                | BinOp::ShrAssign(_)
         ),
         _ => false,
     }
@@ -312,8 +414,14 @@ fn is_mutation(expr: &Expr) -> bool {
 /// The value of an integer literal, possibly negated (`3`, `-2`).
 fn integer(expr: &Expr) -> Option<i32> {
     match expr {
-        Expr::Lit(syn::ExprLit { lit: Lit::Int(int), .. }) => int.base10_parse().ok(),
-        Expr::Unary(syn::ExprUnary { op: UnOp::Neg(_), expr, .. }) => integer(expr).and_then(i32::checked_neg),
+        Expr::Lit(syn::ExprLit {
+            lit: Lit::Int(int), ..
+        }) => int.base10_parse().ok(),
+        Expr::Unary(syn::ExprUnary {
+            op: UnOp::Neg(_),
+            expr,
+            ..
+        }) => integer(expr).and_then(i32::checked_neg),
         Expr::Paren(inner) => integer(&inner.expr),
         _ => None,
     }
@@ -321,11 +429,20 @@ fn integer(expr: &Expr) -> Option<i32> {
 
 /// Lowers `function` into the IR.
 pub fn lower(function: &ItemFn) -> syn::Result<Lowered> {
-    let mut lowering = Lowering { graph: Graph::new(), scopes: vec![HashMap::new()], errors: None, error_count: 0 };
+    let mut lowering = Lowering {
+        graph: Graph::new(),
+        scopes: vec![HashMap::new()],
+        errors: None,
+        error_count: 0,
+    };
     let parameters = lowering.parameters(function);
     let value = lowering.block(&function.block);
     match lowering.errors {
         Some(errors) => Err(errors),
-        None => Ok(Lowered { graph: lowering.graph, value, parameters }),
+        None => Ok(Lowered {
+            graph: lowering.graph,
+            value,
+            parameters,
+        }),
     }
 }

@@ -26,7 +26,10 @@ pub fn parse(tokens: TokenStream) -> syn::Result<Arguments> {
             let literal: syn::LitInt = meta.value()?.parse()?;
             let value: usize = literal.base10_parse()?;
             if value == 0 {
-                return Err(syn::Error::new_spanned(literal, "`order` must be at least 1"));
+                return Err(syn::Error::new_spanned(
+                    literal,
+                    "`order` must be at least 1",
+                ));
             }
             order = Some(value);
         } else if meta.path.is_ident("name") {
@@ -34,7 +37,9 @@ pub fn parse(tokens: TokenStream) -> syn::Result<Arguments> {
         } else if meta.path.is_ident("expression") {
             expression = Some(meta.value()?.parse::<Ident>()?);
         } else {
-            return Err(meta.error("unknown argument; expected `wrt`, `order`, `name` or `expression`"));
+            return Err(
+                meta.error("unknown argument; expected `wrt`, `order`, `name` or `expression`")
+            );
         }
         Ok(())
     });

@@ -8,7 +8,7 @@ use crate::attr::Arguments;
 
 /// `[value, d1, …, d_order]` with respect to `arguments.wrt`, in `lowered.graph`.
 pub fn derivatives(lowered: &mut Lowered, arguments: &Arguments) -> syn::Result<Vec<Id>> {
-    if !lowered.parameters.iter().any(|p| *p == arguments.wrt) {
+    if !lowered.parameters.contains(&arguments.wrt) {
         let names: Vec<String> = lowered.parameters.iter().map(ToString::to_string).collect();
         return Err(syn::Error::new_spanned(
             &arguments.wrt,
@@ -20,5 +20,7 @@ pub fn derivatives(lowered: &mut Lowered, arguments: &Arguments) -> syn::Result<
         ));
     }
     let variable = arguments.wrt.to_string();
-    Ok(lowered.graph.derivatives(lowered.value, &variable, arguments.order))
+    Ok(lowered
+        .graph
+        .derivatives(lowered.value, &variable, arguments.order))
 }

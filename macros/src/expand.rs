@@ -41,7 +41,10 @@ fn sibling(
     outputs: &[mechdiff_core::symbolic::Id],
 ) -> TokenStream {
     let original = &function.sig.ident;
-    let name = arguments.name.clone().unwrap_or_else(|| format_ident!("{}_derivatives", original));
+    let name = arguments
+        .name
+        .clone()
+        .unwrap_or_else(|| format_ident!("{}_derivatives", original));
     let visibility = &function.vis;
     let parameters = &lowered.parameters;
     let order = arguments.order;

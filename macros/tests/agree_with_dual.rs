@@ -110,7 +110,12 @@ fn piecewise_dual(x: D, a: D) -> D {
 
 fn assert_agree(name: &str, generated: Jet<3>, dual: D) {
     let reference = [dual.re, dual.v1, dual.v2, dual.v3];
-    let generated = [generated.value, generated.d1(), generated.d2(), generated.d3()];
+    let generated = [
+        generated.value,
+        generated.d1(),
+        generated.d2(),
+        generated.d3(),
+    ];
     for (order, (g, r)) in generated.iter().zip(reference).enumerate() {
         let tolerance = 1e-13 * r.abs().max(1.0);
         assert!(
@@ -192,8 +197,14 @@ fn the_original_function_is_kept_and_agrees_with_the_value() {
         ("roots", (roots, roots_derivatives)),
         ("exp_ln", (exp_ln, exp_ln_derivatives)),
         ("trigonometric", (trigonometric, trigonometric_derivatives)),
-        ("inverse_trigonometric", (inverse_trigonometric, inverse_trigonometric_derivatives)),
-        ("angle_and_distance", (angle_and_distance, angle_and_distance_derivatives)),
+        (
+            "inverse_trigonometric",
+            (inverse_trigonometric, inverse_trigonometric_derivatives),
+        ),
+        (
+            "angle_and_distance",
+            (angle_and_distance, angle_and_distance_derivatives),
+        ),
         ("hyperbolic", (hyperbolic, hyperbolic_derivatives)),
         ("piecewise", (piecewise, piecewise_derivatives)),
     ];

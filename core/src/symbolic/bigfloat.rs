@@ -7,10 +7,10 @@ use std::fmt;
 
 use astro_float_num::{BigFloat, Consts, Radix, RoundingMode};
 
-use crate::error::Error;
 use super::eval::Arithmetic;
 use super::graph::{Graph, Id};
 use super::ops::{Binary, Comparison, Unary};
+use crate::error::Error;
 
 const ROUNDING: RoundingMode = RoundingMode::ToEven;
 
@@ -27,14 +27,19 @@ impl BigReal {
         let mut consts = new_consts();
         let value = BigFloat::parse(text.trim(), Radix::Dec, bits, ROUNDING, &mut consts);
         if value.is_nan() || value.is_inf() {
-            return Err(Error::BadDecimal { text: text.to_owned() });
+            return Err(Error::BadDecimal {
+                text: text.to_owned(),
+            });
         }
         Ok(BigReal(value))
     }
 
     /// The nearest `f64`.
     pub fn to_f64(&self) -> f64 {
-        self.to_string().replace('_', "").parse().unwrap_or(f64::NAN)
+        self.to_string()
+            .replace('_', "")
+            .parse()
+            .unwrap_or(f64::NAN)
     }
 
     /// `|self - reference| / |reference|`, or `|self - reference|` where the reference is 0,
@@ -74,7 +79,10 @@ pub struct BigArithmetic {
 impl BigArithmetic {
     /// Arithmetic with `bits` of mantissa (256 bits ≈ 77 decimal digits).
     pub fn new(bits: usize) -> Self {
-        BigArithmetic { bits, consts: new_consts() }
+        BigArithmetic {
+            bits,
+            consts: new_consts(),
+        }
     }
 
     fn pi(&mut self) -> BigFloat {
@@ -120,7 +128,9 @@ impl Arithmetic for BigArithmetic {
             Binary::Div => x.div(y, p, ROUNDING),
             Binary::Powf => x.pow(y, p, ROUNDING, &mut self.consts),
             Binary::Hypot => {
-                let sum = x.mul(x, p, ROUNDING).add(&y.mul(y, p, ROUNDING), p, ROUNDING);
+                let sum = x
+                    .mul(x, p, ROUNDING)
+                    .add(&y.mul(y, p, ROUNDING), p, ROUNDING);
                 sum.sqrt(p, ROUNDING)
             }
             // atan2(y = x, x = y): the angle of the point (b, a)
@@ -130,7 +140,11 @@ impl Arithmetic for BigArithmetic {
                         BigFloat::from_f64(0.0, p)
                     } else {
                         let half_pi = self.pi().div(&BigFloat::from_f64(2.0, p), p, ROUNDING);
-                        if x.is_negative() { half_pi.neg() } else { half_pi }
+                        if x.is_negative() {
+                            half_pi.neg()
+                        } else {
+                            half_pi
+                        }
                     }
                 } else {
                     let angle = x.div(y, p, ROUNDING).atan(p, ROUNDING, &mut self.consts);
@@ -149,7 +163,11 @@ impl Arithmetic for BigArithmetic {
     fn powi(&mut self, u: &BigReal, n: i32) -> BigReal {
         let p = self.bits;
         let power = u.0.powi(n.unsigned_abs() as usize, p, ROUNDING);
-        BigReal(if n < 0 { power.reciprocal(p, ROUNDING) } else { power })
+        BigReal(if n < 0 {
+            power.reciprocal(p, ROUNDING)
+        } else {
+            power
+        })
     }
 
     fn compare(&mut self, cmp: Comparison, a: &BigReal, b: &BigReal) -> bool {
@@ -184,8 +202,12 @@ impl Graph {
             .iter()
             .map(|(name, text)| Ok((*name, BigReal::parse(text, bits)?)))
             .collect::<Result<_, Error>>()?;
-        let lookup =
-            |name: &str| parsed.iter().find(|(n, _)| *n == name).map(|(_, v)| v.clone());
+        let lookup = |name: &str| {
+            parsed
+                .iter()
+                .find(|(n, _)| *n == name)
+                .map(|(_, v)| v.clone())
+        };
         self.evaluate(&mut BigArithmetic::new(bits), outputs, &lookup)
     }
 }

@@ -52,7 +52,9 @@ impl OperationCount {
         self.mul = self.mul.saturating_add(other.mul.saturating_mul(times));
         self.div = self.div.saturating_add(other.div.saturating_mul(times));
         self.neg = self.neg.saturating_add(other.neg.saturating_mul(times));
-        self.select = self.select.saturating_add(other.select.saturating_mul(times));
+        self.select = self
+            .select
+            .saturating_add(other.select.saturating_mul(times));
         for (name, n) in &other.calls {
             let entry = self.calls.entry(name.clone()).or_default();
             *entry = entry.saturating_add(n.saturating_mul(times));
@@ -101,7 +103,11 @@ impl Graph {
     /// The operations of evaluating each output as a tree, without sharing anything (no
     /// common-subexpression elimination, no `sin_cos`): the cost of naive generated code.
     pub fn naive_operation_count(&self, outputs: &[Id]) -> OperationCount {
-        let last = outputs.iter().map(|id| id.index()).max().map_or(0, |m| m + 1);
+        let last = outputs
+            .iter()
+            .map(|id| id.index())
+            .max()
+            .map_or(0, |m| m + 1);
         let mut tree: Vec<OperationCount> = Vec::with_capacity(last);
         for node in &self.nodes()[..last] {
             let mut count = OperationCount::default();

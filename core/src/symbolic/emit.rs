@@ -12,9 +12,9 @@ use std::collections::{HashMap, HashSet};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{ToTokens, quote};
 
-use crate::error::Error;
 use super::graph::{Graph, Id, Node};
 use super::ops::{Binary, Unary};
+use crate::error::Error;
 
 /// Binding strength of an emitted expression, weakest first.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
@@ -70,19 +70,30 @@ impl Emitter<'_> {
             Node::Num(n) => {
                 let c = n.value();
                 let literal = |v: f64| {
-                    if receiver { Literal::f64_suffixed(v) } else { Literal::f64_unsuffixed(v) }
+                    if receiver {
+                        Literal::f64_suffixed(v)
+                    } else {
+                        Literal::f64_unsuffixed(v)
+                    }
                 };
                 Some(if c < 0.0 {
                     let positive = literal(-c);
-                    Emitted { tokens: quote!(-#positive), precedence: Precedence::Prefix }
+                    Emitted {
+                        tokens: quote!(-#positive),
+                        precedence: Precedence::Prefix,
+                    }
                 } else {
                     let tokens = literal(c).to_token_stream();
-                    Emitted { tokens, precedence: Precedence::Postfix }
+                    Emitted {
+                        tokens,
+                        precedence: Precedence::Postfix,
+                    }
                 })
             }
-            Node::Sym(name) => {
-                Some(Emitted { tokens: symbol_tokens(name), precedence: Precedence::Postfix })
-            }
+            Node::Sym(name) => Some(Emitted {
+                tokens: symbol_tokens(name),
+                precedence: Precedence::Postfix,
+            }),
             _ => None,
         }
     }
@@ -90,7 +101,9 @@ impl Emitter<'_> {
     /// The expression of child `id`, parenthesized if it binds weaker than `at_least`.
     fn operand(&self, id: Id, at_least: Precedence) -> TokenStream {
         let receiver = at_least == Precedence::Postfix;
-        let emitted = self.leaf(id, receiver).unwrap_or_else(|| self.emitted[&id].clone());
+        let emitted = self
+            .leaf(id, receiver)
+            .unwrap_or_else(|| self.emitted[&id].clone());
         if emitted.precedence < at_least {
             let tokens = emitted.tokens;
             quote!((#tokens))
@@ -112,7 +125,10 @@ impl Emitter<'_> {
                 (quote!(-#a), Prefix)
             }
             Node::Unary(op, a) => {
-                let (a, method) = (self.operand(a, Postfix), Ident::new(op.name(), Span::call_site()));
+                let (a, method) = (
+                    self.operand(a, Postfix),
+                    Ident::new(op.name(), Span::call_site()),
+                );
                 (quote!(#a.#method()), Postfix)
             }
             Node::Binary(op, a, b) if op.is_infix() => {
@@ -153,7 +169,13 @@ impl Emitter<'_> {
     fn bind(&mut self, id: Id, name: Ident, value: TokenStream) {
         self.statements.push(quote!(let #name = #value;));
         self.bound.insert(id);
-        self.emitted.insert(id, Emitted { tokens: name.into_token_stream(), precedence: Precedence::Postfix });
+        self.emitted.insert(
+            id,
+            Emitted {
+                tokens: name.into_token_stream(),
+                precedence: Precedence::Postfix,
+            },
+        );
     }
 }
 
@@ -178,12 +200,11 @@ pub(crate) fn use_counts(graph: &Graph, outputs: &[Id]) -> (Vec<bool>, Vec<usize
 pub(crate) fn sin_cos_pairs(graph: &Graph, reachable: &[bool]) -> HashMap<Id, (Id, Id)> {
     let mut pairs = HashMap::new();
     for (index, node) in graph.nodes().iter().enumerate() {
-        if let (true, Node::Unary(Unary::Sin, u)) = (reachable[index], node) {
-            if let Some(cos) = graph.lookup(&Node::Unary(Unary::Cos, *u)) {
-                if reachable[cos.index()] {
-                    pairs.insert(*u, (Id::at(index), cos));
-                }
-            }
+        if let (true, Node::Unary(Unary::Sin, u)) = (reachable[index], node)
+            && let Some(cos) = graph.lookup(&Node::Unary(Unary::Cos, *u))
+            && reachable[cos.index()]
+        {
+            pairs.insert(*u, (Id::at(index), cos));
         }
     }
     pairs
@@ -203,7 +224,10 @@ impl Graph {
     /// The statements and the final array expression computing `outputs`, as the body of a
     /// function: `{ let …; [o0, o1, …] }`. See [`Graph::emit`].
     pub fn emit_body(&self, outputs: &[Id], output_names: &[&str]) -> TokenStream {
-        let Emission { statements, results } = self.emit(outputs, output_names);
+        let Emission {
+            statements,
+            results,
+        } = self.emit(outputs, output_names);
         quote! { #(#statements)* [#(#results),*] }
     }
 
@@ -217,28 +241,44 @@ impl Graph {
             emitted: HashMap::new(),
             bound: HashSet::new(),
             statements: Vec::new(),
-            taken: self.symbols(outputs).into_iter().map(str::to_owned).collect(),
+            taken: self
+                .symbols(outputs)
+                .into_iter()
+                .map(str::to_owned)
+                .collect(),
             next_temporary: 0,
         };
-        let output_name: HashMap<Id, &str> =
-            outputs.iter().zip(output_names).rev().map(|(id, name)| (*id, *name)).collect();
+        let output_name: HashMap<Id, &str> = outputs
+            .iter()
+            .zip(output_names)
+            .rev()
+            .map(|(id, name)| (*id, *name))
+            .collect();
         for (index, node) in self.nodes().iter().enumerate() {
             let id = Id::at(index);
             if !reachable[index] || node.is_leaf() || emitter.emitted.contains_key(&id) {
                 continue;
             }
-            if let Node::Unary(Unary::Sin | Unary::Cos, u) = node {
-                if let Some(&(sin, cos)) = pairs.get(u) {
-                    let argument = emitter.operand(*u, Precedence::Postfix);
-                    let (s, c) = (emitter.temporary(), emitter.temporary());
-                    emitter.statements.push(quote!(let (#s, #c) = #argument.sin_cos();));
-                    for (node, name) in [(sin, s), (cos, c)] {
-                        emitter.bound.insert(node);
-                        let tokens = name.into_token_stream();
-                        emitter.emitted.insert(node, Emitted { tokens, precedence: Precedence::Postfix });
-                    }
-                    continue;
+            if let Node::Unary(Unary::Sin | Unary::Cos, u) = node
+                && let Some(&(sin, cos)) = pairs.get(u)
+            {
+                let argument = emitter.operand(*u, Precedence::Postfix);
+                let (s, c) = (emitter.temporary(), emitter.temporary());
+                emitter
+                    .statements
+                    .push(quote!(let (#s, #c) = #argument.sin_cos();));
+                for (node, name) in [(sin, s), (cos, c)] {
+                    emitter.bound.insert(node);
+                    let tokens = name.into_token_stream();
+                    emitter.emitted.insert(
+                        node,
+                        Emitted {
+                            tokens,
+                            precedence: Precedence::Postfix,
+                        },
+                    );
                 }
+                continue;
             }
             let expression = emitter.expression(node);
             if let Some(name) = output_name.get(&id) {
@@ -251,9 +291,14 @@ impl Graph {
                 emitter.emitted.insert(id, expression);
             }
         }
-        let results: Vec<TokenStream> =
-            outputs.iter().map(|&id| emitter.operand(id, Precedence::Block)).collect();
-        Emission { statements: emitter.statements, results }
+        let results: Vec<TokenStream> = outputs
+            .iter()
+            .map(|&id| emitter.operand(id, Precedence::Block))
+            .collect();
+        Emission {
+            statements: emitter.statements,
+            results,
+        }
     }
 
     /// A complete function `pub fn name(p: f64, …) -> [f64; N]` returning `outputs`.
@@ -281,7 +326,8 @@ impl Graph {
 /// # Errors
 /// [`Error::InvalidEmittedRust`] if the tokens are not a valid Rust file.
 pub fn format_rust(tokens: TokenStream) -> Result<String, Error> {
-    let file: syn::File =
-        syn::parse2(tokens).map_err(|e| Error::InvalidEmittedRust { reason: e.to_string() })?;
+    let file: syn::File = syn::parse2(tokens).map_err(|e| Error::InvalidEmittedRust {
+        reason: e.to_string(),
+    })?;
     Ok(prettyplease::unparse(&file))
 }

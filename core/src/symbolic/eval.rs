@@ -7,9 +7,9 @@ use std::marker::PhantomData;
 
 use num_dual::DualNum;
 
-use crate::error::Error;
 use super::graph::{Graph, Id, Node};
 use super::ops::{Binary, Comparison, Unary};
+use crate::error::Error;
 
 /// How to compute each primitive on one kind of value.
 pub trait Arithmetic {
@@ -108,7 +108,9 @@ impl Graph {
         let needed = self.reachable(outputs);
         let mut values: Vec<Option<A::Value>> = vec![None; needed.len()];
         let get = |values: &[Option<A::Value>], id: Id| -> A::Value {
-            values[id.index()].clone().expect("children are evaluated before their parents")
+            values[id.index()]
+                .clone()
+                .expect("children are evaluated before their parents")
         };
         for (index, node) in self.nodes().iter().enumerate() {
             if !needed[index] {
@@ -116,8 +118,9 @@ impl Graph {
             }
             let value = match node {
                 Node::Num(n) => arithmetic.constant(n.value()),
-                Node::Sym(name) => value_of(name)
-                    .ok_or_else(|| Error::UnboundSymbol { symbol: name.to_string() })?,
+                Node::Sym(name) => value_of(name).ok_or_else(|| Error::UnboundSymbol {
+                    symbol: name.to_string(),
+                })?,
                 Node::Unary(op, a) => arithmetic.unary(*op, &get(&values, *a)),
                 Node::Binary(op, a, b) => {
                     arithmetic.binary(*op, &get(&values, *a), &get(&values, *b))

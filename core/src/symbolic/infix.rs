@@ -11,9 +11,9 @@
 //! `pow` for `powf`). Names may be paths (`std::f64::consts::PI`). Errors carry the
 //! character position of the problem.
 
-use crate::error::Error;
 use super::graph::{Graph, Id};
 use super::ops::{Binary, Unary};
+use crate::error::Error;
 
 #[derive(Clone, Debug, PartialEq)]
 enum Kind {
@@ -38,7 +38,9 @@ fn tokenize(input: &str) -> Result<Vec<Token>, Error> {
         let at = i;
         if c.is_whitespace() {
             i += 1;
-        } else if c.is_ascii_digit() || (c == '.' && chars.get(i + 1).is_some_and(char::is_ascii_digit)) {
+        } else if c.is_ascii_digit()
+            || (c == '.' && chars.get(i + 1).is_some_and(char::is_ascii_digit))
+        {
             while i < chars.len() && (chars[i].is_ascii_digit() || chars[i] == '.') {
                 i += 1;
             }
@@ -55,7 +57,10 @@ fn tokenize(input: &str) -> Result<Vec<Token>, Error> {
             let value = text
                 .parse::<f64>()
                 .map_err(|_| Error::formula(input, at, format!("`{text}` is not a number")))?;
-            tokens.push(Token { kind: Kind::Number(value), at });
+            tokens.push(Token {
+                kind: Kind::Number(value),
+                at,
+            });
         } else if c.is_alphabetic() || c == '_' {
             while i < chars.len()
                 && (chars[i].is_alphanumeric()
@@ -64,15 +69,28 @@ fn tokenize(input: &str) -> Result<Vec<Token>, Error> {
             {
                 i += if chars[i] == ':' { 2 } else { 1 };
             }
-            tokens.push(Token { kind: Kind::Name(chars[at..i].iter().collect()), at });
+            tokens.push(Token {
+                kind: Kind::Name(chars[at..i].iter().collect()),
+                at,
+            });
         } else if "+-*/^(),".contains(c) {
-            tokens.push(Token { kind: Kind::Symbol(c), at });
+            tokens.push(Token {
+                kind: Kind::Symbol(c),
+                at,
+            });
             i += 1;
         } else {
-            return Err(Error::formula(input, at, format!("unexpected character `{c}`")));
+            return Err(Error::formula(
+                input,
+                at,
+                format!("unexpected character `{c}`"),
+            ));
         }
     }
-    tokens.push(Token { kind: Kind::End, at: chars.len() });
+    tokens.push(Token {
+        kind: Kind::End,
+        at: chars.len(),
+    });
     Ok(tokens)
 }
 
@@ -112,7 +130,10 @@ impl Parser<'_, '_> {
             Ok(())
         } else {
             let token = self.peek();
-            Err(self.error(token.at, format!("expected `{symbol}`, found {}", Self::describe(&token.kind))))
+            Err(self.error(
+                token.at,
+                format!("expected `{symbol}`, found {}", Self::describe(&token.kind)),
+            ))
         }
     }
 
@@ -171,7 +192,13 @@ impl Parser<'_, '_> {
             }
             Kind::Name(name) if self.eat('(') => self.call(&name, token.at),
             Kind::Name(name) => Ok(self.graph.symbol(&name)),
-            other => Err(self.error(token.at, format!("expected a number, a name or `(`, found {}", Self::describe(&other)))),
+            other => Err(self.error(
+                token.at,
+                format!(
+                    "expected a number, a name or `(`, found {}",
+                    Self::describe(&other)
+                ),
+            )),
         }
     }
 
@@ -188,14 +215,20 @@ impl Parser<'_, '_> {
             (.., "pow" | "powi") => 2,
             _ => {
                 let known: Vec<&str> = Unary::ALL.iter().map(|op| op.name()).collect();
-                return Err(self.error(at, format!(
-                    "unknown function `{name}`; known: {}, atan2, hypot, powf, powi, pow",
-                    known.join(", ")
-                )));
+                return Err(self.error(
+                    at,
+                    format!(
+                        "unknown function `{name}`; known: {}, atan2, hypot, powf, powi, pow",
+                        known.join(", ")
+                    ),
+                ));
             }
         };
         if ids.len() != arity {
-            return Err(self.error(at, format!("`{name}` takes {arity} argument(s), found {}", ids.len())));
+            return Err(self.error(
+                at,
+                format!("`{name}` takes {arity} argument(s), found {}", ids.len()),
+            ));
         }
         if let Some(op) = Unary::from_name(name) {
             return Ok(self.graph.unary(op, ids[0]));
@@ -203,8 +236,13 @@ impl Parser<'_, '_> {
         match name {
             "pow" => Ok(self.graph.powf(ids[0], ids[1])),
             "powi" => {
-                let n = self.graph.as_number(ids[1]).filter(|n| n.fract() == 0.0 && n.abs() <= f64::from(i32::MAX));
-                let n = n.ok_or_else(|| self.error(arguments[1].0, "`powi` needs an integer constant exponent"))?;
+                let n = self
+                    .graph
+                    .as_number(ids[1])
+                    .filter(|n| n.fract() == 0.0 && n.abs() <= f64::from(i32::MAX));
+                let n = n.ok_or_else(|| {
+                    self.error(arguments[1].0, "`powi` needs an integer constant exponent")
+                })?;
                 Ok(self.graph.powi(ids[0], n as i32))
             }
             _ => {
@@ -235,11 +273,22 @@ impl Graph {
     /// [`Error::Formula`] with the position of the problem.
     pub fn parse_infix(&mut self, input: &str) -> Result<Id, Error> {
         let tokens = tokenize(input)?;
-        let mut parser = Parser { input, tokens, next: 0, graph: self };
+        let mut parser = Parser {
+            input,
+            tokens,
+            next: 0,
+            graph: self,
+        };
         let id = parser.sum()?;
         let token = parser.peek().clone();
         if token.kind != Kind::End {
-            return Err(parser.error(token.at, format!("unexpected {} after the formula", Parser::describe(&token.kind))));
+            return Err(parser.error(
+                token.at,
+                format!(
+                    "unexpected {} after the formula",
+                    Parser::describe(&token.kind)
+                ),
+            ));
         }
         Ok(id)
     }

@@ -42,7 +42,11 @@ fn unary_differential(g: &mut Graph, op: Unary, u: Id, du: Id, f: Id) -> Id {
             let rest = g.sub(one, square);
             let root = g.sqrt(rest);
             let quotient = g.div(du, root);
-            return if op == Unary::Asin { quotient } else { g.neg(quotient) };
+            return if op == Unary::Asin {
+                quotient
+            } else {
+                g.neg(quotient)
+            };
         }
         Unary::Atan => {
             let square = g.powi(u, 2);

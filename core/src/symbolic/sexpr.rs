@@ -8,9 +8,9 @@
 //! `+` and `*` take two or more arguments; numbers are decimal `f64` literals; every other
 //! atom is a symbol.
 
-use crate::error::Error;
 use super::graph::{Graph, Id, Node};
 use super::ops::{Binary, Comparison, Unary};
+use crate::error::Error;
 
 /// Formats a constant: integers without a fraction, exponent notation when very large or
 /// small.
@@ -132,16 +132,21 @@ impl Parser<'_, '_> {
         };
         match head {
             "+" | "*" if ids.len() >= 2 => {
-                let op = if head == "+" { Binary::Add } else { Binary::Mul };
+                let op = if head == "+" {
+                    Binary::Add
+                } else {
+                    Binary::Mul
+                };
                 let g = &mut *self.graph;
                 Ok(ids[1..].iter().fold(ids[0], |acc, &x| g.binary(op, acc, x)))
             }
             "-" if ids.len() == 1 => Ok(self.graph.neg(ids[0])),
             "powi" => {
                 arity(2)?;
-                let exponent = self.graph.as_number(ids[1]).filter(|n| {
-                    n.fract() == 0.0 && n.abs() <= f64::from(i32::MAX)
-                });
+                let exponent = self
+                    .graph
+                    .as_number(ids[1])
+                    .filter(|n| n.fract() == 0.0 && n.abs() <= f64::from(i32::MAX));
                 let Some(n) = exponent else {
                     return Err(self.error(arguments[1].0, "`powi` needs an integer exponent"));
                 };
@@ -205,7 +210,12 @@ impl Graph {
     /// assert!(graph.parse_sexpr("(sin x").is_err());
     /// ```
     pub fn parse_sexpr(&mut self, input: &str) -> Result<Id, Error> {
-        let mut parser = Parser { input, tokens: tokenize(input), next: 0, graph: self };
+        let mut parser = Parser {
+            input,
+            tokens: tokenize(input),
+            next: 0,
+            graph: self,
+        };
         let id = parser.expression()?;
         match parser.tokens.get(parser.next) {
             None => Ok(id),

@@ -64,7 +64,11 @@ fn exact_unary(op: Unary, c: f64) -> Option<f64> {
         | Unary::Cosh
             if c == 0.0 =>
         {
-            Some(if matches!(op, Unary::Exp | Unary::Cos | Unary::Cosh) { 1.0 } else { 0.0 })
+            Some(if matches!(op, Unary::Exp | Unary::Cos | Unary::Cosh) {
+                1.0
+            } else {
+                0.0
+            })
         }
         Unary::Ln | Unary::Acos if c == 1.0 => Some(0.0),
         _ => None,
@@ -150,26 +154,26 @@ impl Graph {
             _ => (id, 1),
         };
         let ((base_a, m), (base_b, n)) = (power(self, a), power(self, b));
-        if base_a == base_b {
-            if let Some(sum) = m.checked_add(n) {
-                return self.powi(base_a, sum);
-            }
+        if base_a == base_b
+            && let Some(sum) = m.checked_add(n)
+        {
+            return self.powi(base_a, sum);
         }
         // c1 * (c2 * y) = (c1 c2) * y when c1 c2 is exact; x * (c * y) = c * (x * y)
         for (x, y) in [(a, b), (b, a)] {
-            if let Node::Binary(Binary::Mul, inner_c, inner_y) = *self.node(y) {
-                if let Some(c2) = self.as_number(inner_c) {
-                    match self.as_number(x) {
-                        Some(c1) => {
-                            if let Some(c) = exact_mul(c1, c2) {
-                                let c = self.number(c);
-                                return self.mul(c, inner_y);
-                            }
+            if let Node::Binary(Binary::Mul, inner_c, inner_y) = *self.node(y)
+                && let Some(c2) = self.as_number(inner_c)
+            {
+                match self.as_number(x) {
+                    Some(c1) => {
+                        if let Some(c) = exact_mul(c1, c2) {
+                            let c = self.number(c);
+                            return self.mul(c, inner_y);
                         }
-                        None => {
-                            let product = self.mul(x, inner_y);
-                            return self.mul(inner_c, product);
-                        }
+                    }
+                    None => {
+                        let product = self.mul(x, inner_y);
+                        return self.mul(inner_c, product);
                     }
                 }
             }
@@ -229,12 +233,12 @@ impl Graph {
         if let Some(c) = self.as_number(u).and_then(|c| exact_powi(c, n)) {
             return self.number(c);
         }
-        if n < 0 {
-            if let Some(m) = n.checked_neg() {
-                let one = self.number(1.0);
-                let power = self.powi(u, m);
-                return self.div(one, power);
-            }
+        if n < 0
+            && let Some(m) = n.checked_neg()
+        {
+            let one = self.number(1.0);
+            let power = self.powi(u, m);
+            return self.div(one, power);
         }
         match *self.node(u) {
             Node::Powi(base, m) if m.checked_mul(n).is_some() => self.powi(base, m * n),
@@ -248,10 +252,11 @@ impl Graph {
 
     /// `a.powf(b)`, simplified (an integer constant exponent gives `powi`).
     pub fn powf(&mut self, a: Id, b: Id) -> Id {
-        if let Some(n) = self.as_number(b) {
-            if n.fract() == 0.0 && n.abs() <= f64::from(i32::MAX) {
-                return self.powi(a, n as i32);
-            }
+        if let Some(n) = self.as_number(b)
+            && n.fract() == 0.0
+            && n.abs() <= f64::from(i32::MAX)
+        {
+            return self.powi(a, n as i32);
         }
         self.intern(Node::Binary(Binary::Powf, a, b))
     }

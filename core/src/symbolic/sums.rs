@@ -39,7 +39,10 @@ impl Linear {
     fn collect(self) -> Linear {
         let mut constants: Vec<f64> = Vec::new();
         for c in self.constants {
-            match constants.iter_mut().find_map(|k| exact_add(*k, c).map(|s| (k, s))) {
+            match constants
+                .iter_mut()
+                .find_map(|k| exact_add(*k, c).map(|s| (k, s)))
+            {
                 Some((k, s)) => *k = s,
                 None => constants.push(c),
             }
@@ -47,9 +50,13 @@ impl Linear {
         constants.retain(|c| *c != 0.0);
         let mut terms: Vec<(f64, Id)> = Vec::new();
         for (c, id) in self.terms {
-            let merged = terms
-                .iter_mut()
-                .find_map(|(k, t)| if *t == id { exact_add(*k, c).map(|s| (k, s)) } else { None });
+            let merged = terms.iter_mut().find_map(|(k, t)| {
+                if *t == id {
+                    exact_add(*k, c).map(|s| (k, s))
+                } else {
+                    None
+                }
+            });
             match merged {
                 Some((k, s)) => *k = s,
                 None => terms.push((c, id)),
@@ -88,7 +95,15 @@ impl Graph {
             },
             Node::Binary(op @ (Binary::Add | Binary::Sub), a, b) => {
                 self.flatten(a, coefficient, out);
-                self.flatten(b, if op == Binary::Add { coefficient } else { -coefficient }, out);
+                self.flatten(
+                    b,
+                    if op == Binary::Add {
+                        coefficient
+                    } else {
+                        -coefficient
+                    },
+                    out,
+                );
             }
             _ => {
                 let (c, term) = self.split_coefficient(id);
@@ -123,7 +138,11 @@ impl Graph {
         self.flatten(b, sign, &mut deep);
         let before = deep.size();
         let deep = deep.collect();
-        let linear = if deep.size() < before { deep } else { self.shallow(a, sign, b).collect() };
+        let linear = if deep.size() < before {
+            deep
+        } else {
+            self.shallow(a, sign, b).collect()
+        };
         self.build(linear)
     }
 
@@ -152,12 +171,15 @@ impl Graph {
                 list
             })
             .collect();
-        let common = *factor_lists[0]
-            .iter()
-            .find(|f| self.as_number(**f).is_none() && factor_lists[1..].iter().all(|l| l.contains(f)))?;
+        let common = *factor_lists[0].iter().find(|f| {
+            self.as_number(**f).is_none() && factor_lists[1..].iter().all(|l| l.contains(f))
+        })?;
         let mut inner: Option<Id> = None;
         for ((coefficient, _), mut list) in linear.terms.iter().zip(factor_lists) {
-            let position = list.iter().position(|f| *f == common).expect("common factor");
+            let position = list
+                .iter()
+                .position(|f| *f == common)
+                .expect("common factor");
             list.remove(position);
             let one = self.number(1.0);
             let cofactor = list.into_iter().fold(one, |acc, f| self.mul(acc, f));
@@ -178,7 +200,10 @@ impl Graph {
         if let Some(factored) = self.factor_out(&linear) {
             return factored;
         }
-        let Linear { constants, mut terms } = linear;
+        let Linear {
+            constants,
+            mut terms,
+        } = linear;
         terms.sort_by_key(|(_, id)| *id);
         let (positive, negative): (Vec<f64>, Vec<f64>) = constants.iter().partition(|c| **c > 0.0);
         let mut parts: Vec<(bool, Id)> = Vec::new();
