@@ -67,6 +67,7 @@ fn inverse_trigonometric_dual(x: D, a: D) -> D {
     (a * x).asin() + (a * x).acos() * x + x.atan()
 }
 
+#[derivatives(wrt = x, order = 3, name = angle_and_distance_jet, expression = angle_and_distance_expression)]
 #[derivatives(wrt = x, order = 3)]
 fn angle_and_distance(x: f64, a: f64) -> f64 {
     (a * x.sin()).atan2(1.0 - a * x.cos()) + x.hypot(a)
@@ -217,4 +218,21 @@ fn the_original_function_is_kept_and_agrees_with_the_value() {
             );
         }
     }
+}
+
+#[test]
+fn stacked_attributes_and_the_expression_function() {
+    // two attributes on one function give two siblings; `expression` gives the value's IR
+    let (x, a) = (0.8, 0.4);
+    assert_eq!(
+        angle_and_distance_jet(x, a),
+        angle_and_distance_derivatives(x, a)
+    );
+    let mut graph = mechdiff_core::symbolic::Graph::new();
+    let value = graph.parse_sexpr(angle_and_distance_expression()).unwrap();
+    let evaluated = graph.evaluate_f64(&[value], &[("x", x), ("a", a)]).unwrap()[0];
+    // the same IR evaluated in the same order, except hypot: `f64::hypot` in the original
+    // function vs √(x² + a²) in the evaluator, 2 ulp apart at most
+    let original = angle_and_distance(x, a);
+    assert!((evaluated - original).abs() <= 2.0 * f64::EPSILON * original.abs());
 }
