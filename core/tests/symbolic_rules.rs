@@ -52,6 +52,7 @@ rules! {
     d_asin: "(d x (asin x))" => "(/ 1 (sqrt (- 1 (powi x 2))))";
     d_acos: "(d x (acos x))" => "(neg (/ 1 (sqrt (- 1 (powi x 2)))))";
     d_atan: "(d x (atan x))" => "(/ 1 (+ 1 (powi x 2)))";
+    d_atan_of_quotient_is_atan2_rule: "(d x (atan (/ x y)))" => "(/ y (+ (powi x 2) (powi y 2)))";
     d_atan2_numerator: "(d x (atan2 x y))" => "(/ y (+ (powi x 2) (powi y 2)))";
     d_atan2_denominator: "(d x (atan2 y x))" => "(neg (/ y (+ (powi y 2) (powi x 2))))";
     d_sinh: "(d x (sinh x))" => "(cosh x)";

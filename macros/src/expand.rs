@@ -90,19 +90,22 @@ mod tests {
     use super::*;
 
     /// The expansion of `#[derivatives(wrt = phi, order = 2)]` on the Whitworth ψ and x_C,
-    /// formatted: compare with (1.35)/(1.36) of the source by eye.
+    /// formatted: compare with (1.35)/(1.36) of the source by eye. With s = sin φ,
+    /// c = cos φ: t2 = λs, t3 = λc, t4 = 1 − λc, t6 = λ²s² + (1 − λc)² = 1 − 2λc + λ², so
+    /// d1 = (λc(1 − λc) − λ²s²)/t6 = λ(c − λ)/t6 (1.35) and d2 = λs(−1 − 2ψ′)/t6, which is
+    /// λs(λ² − 1)/t6² (1.36) after inserting (1.35).
     #[test]
     fn whitworth_expansion_snapshot() {
         let psi: ItemFn = syn::parse_quote! {
-            /// Rocker angle ψ: tan ψ = λ sin φ / (1 − λ cos φ).
+            /// Rocker angle ψ (1.30): tan ψ = λ sin φ / (1 − λ cos φ), 1 − λ cos φ > 0.
             pub fn psi(phi: f64, lambda: f64) -> f64 {
-                (lambda * phi.sin()).atan2(1.0 - lambda * phi.cos())
+                (lambda * phi.sin() / (1.0 - lambda * phi.cos())).atan()
             }
         };
         let x_c: ItemFn = syn::parse_quote! {
-            /// Ram position x_C = h tan ψ.
+            /// Ram position x_C = h tan ψ (1.37).
             pub fn x_c(phi: f64, lambda: f64, h: f64) -> f64 {
-                let psi = (lambda * phi.sin()).atan2(1.0 - lambda * phi.cos());
+                let psi = (lambda * phi.sin() / (1.0 - lambda * phi.cos())).atan();
                 h * psi.tan()
             }
         };

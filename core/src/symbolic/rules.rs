@@ -118,6 +118,14 @@ fn differential(g: &mut Graph, f: Id, known: &[Option<Id>]) -> Id {
     let derivative_of = |c: Id| known[c.index()].expect("children are differentiated first");
     match g.node(f).clone() {
         Node::Num(_) | Node::Sym(_) => unreachable!("leaves are handled by the driver"),
+        // atan(a / b)' = atan2(a, b)' = (b a' - a b') / (a² + b²): no derivative of the quotient
+        Node::Unary(Unary::Atan, u) if matches!(g.node(u), Node::Binary(Binary::Div, ..)) => {
+            let Node::Binary(Binary::Div, a, b) = *g.node(u) else {
+                unreachable!("matched above")
+            };
+            let quotient_rule = [a, b, derivative_of(a), derivative_of(b)];
+            binary_differential(g, Binary::Atan2, quotient_rule, f)
+        }
         Node::Unary(op, u) => unary_differential(g, op, u, derivative_of(u), f),
         Node::Binary(op, a, b) => {
             binary_differential(g, op, [a, b, derivative_of(a), derivative_of(b)], f)

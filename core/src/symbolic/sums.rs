@@ -146,43 +146,60 @@ impl Graph {
         self.build(linear)
     }
 
-    /// The factors of a product chain (`a·b·c` → `[a, b, c]`).
-    fn factors(&self, id: Id, out: &mut Vec<Id>) {
-        match *self.node(id) {
-            Node::Binary(Binary::Mul, a, b) => {
-                self.factors(a, out);
-                self.factors(b, out);
-            }
-            _ => out.push(id),
+    /// The nodes of the product tree of `id`: itself and, through products, every sub-product
+    /// and factor (`a·(b·c)` → `[a·(b·c), a, b·c, b, c]`).
+    fn product_nodes(&self, id: Id, out: &mut Vec<Id>) {
+        out.push(id);
+        if let Node::Binary(Binary::Mul, a, b) = *self.node(id) {
+            self.product_nodes(a, out);
+            self.product_nodes(b, out);
         }
     }
 
-    /// Takes a factor shared by every term out: `a·b + a·c = a·(b + c)`.
+    /// The product `id` with one occurrence of the sub-product `factor` replaced by 1.
+    fn without(&mut self, id: Id, factor: Id) -> Option<Id> {
+        if id == factor {
+            return Some(self.number(1.0));
+        }
+        let Node::Binary(Binary::Mul, a, b) = *self.node(id) else {
+            return None;
+        };
+        if let Some(rest) = self.without(a, factor) {
+            return Some(self.mul(rest, b));
+        }
+        let rest = self.without(b, factor)?;
+        Some(self.mul(a, rest))
+    }
+
+    /// Takes the largest sub-product shared by every term out: `a·b + a·c = a·(b + c)`,
+    /// `u + 2·(v·u) = u·(1 + 2v)`.
     fn factor_out(&mut self, linear: &Linear) -> Option<Id> {
         if !linear.constants.is_empty() || linear.terms.len() < 2 {
             return None;
         }
-        let factor_lists: Vec<Vec<Id>> = linear
+        let node_lists: Vec<Vec<Id>> = linear
             .terms
             .iter()
             .map(|(_, t)| {
                 let mut list = Vec::new();
-                self.factors(*t, &mut list);
+                self.product_nodes(*t, &mut list);
                 list
             })
             .collect();
-        let common = *factor_lists[0].iter().find(|f| {
-            self.as_number(**f).is_none() && factor_lists[1..].iter().all(|l| l.contains(f))
-        })?;
+        // the largest common sub-product: parents are stored after their children, so the
+        // highest id is the largest
+        let common = node_lists[0]
+            .iter()
+            .filter(|f| {
+                self.as_number(**f).is_none() && node_lists[1..].iter().all(|l| l.contains(f))
+            })
+            .max()
+            .copied()?;
         let mut inner: Option<Id> = None;
-        for ((coefficient, _), mut list) in linear.terms.iter().zip(factor_lists) {
-            let position = list
-                .iter()
-                .position(|f| *f == common)
-                .expect("common factor");
-            list.remove(position);
-            let one = self.number(1.0);
-            let cofactor = list.into_iter().fold(one, |acc, f| self.mul(acc, f));
+        for (coefficient, t) in &linear.terms {
+            let cofactor = self
+                .without(*t, common)
+                .expect("the common factor is in every term");
             let c = self.number(*coefficient);
             let term = self.mul(c, cofactor);
             inner = Some(match inner {
@@ -218,9 +235,15 @@ impl Graph {
         for c in negative {
             parts.push((false, self.number(-c)));
         }
-        // start with a positive part if there is one, so that `-a + b` is written `b - a`
-        if let Some(first_positive) = parts.iter().position(|(p, _)| *p) {
-            let part = parts.remove(first_positive);
+        // start with a positive part if there is one, so that `-a + b` is written `b - a`;
+        // else with a negative constant, a literal (`-1 - a`, not `-a - 1`)
+        let start = parts.iter().position(|(p, _)| *p).or_else(|| {
+            parts
+                .iter()
+                .position(|(_, id)| self.as_number(*id).is_some())
+        });
+        if let Some(first) = start {
+            let part = parts.remove(first);
             parts.insert(0, part);
         }
         let mut result: Option<Id> = None;
