@@ -1,0 +1,18 @@
+//! Mechanisms defined by geometry only: points, links, joints and a drive.
+//!
+//! The model ([`Mechanism`], built with [`Mechanism::builder`]) is turned into constraint
+//! equations Φ(q, φ) = 0 ([`Equations`], generic over the scalar type), checked for mobility
+//! ([`check_mobility`]), solved for the pose at each drive position by Newton's method
+//! keeping the sketch's assembly branch ([`Solver`]), and lifted to exact derivatives
+//! q′, q″, q‴ with respect to φ by implicit differentiation ([`Kinematics`]).
+
+mod constraints;
+mod error;
+mod model;
+mod validate;
+
+pub use constraints::Equations;
+pub use error::GeometryError;
+pub use model::{
+    Drive, DriveKind, GROUND, Inertia, Joint, JointKind, Link, Mechanism, MechanismBuilder, Point,
+};
