@@ -1,1 +1,9 @@
-//! x
+//! # mechdiff
+//!
+//! Kinematics and dynamics of planar mechanisms in which nobody derives a derivative by hand.
+//! This facade re-exports the derivative core ([`core`]) and the closed-form mechanisms
+//! ([`mechanisms`]), and holds what the `mechdiff` command-line tool prints.
+#![warn(missing_docs)]
+
+pub use mechdiff_core as core;
+pub use mechdiff_mechanisms as mechanisms;

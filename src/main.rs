@@ -1,1 +1,36 @@
-fn main(){}
+//! The `mechdiff` command-line tool.
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// mechdiff: kinematics and dynamics of planar mechanisms with exact, automatic derivatives.
+///
+/// Without a command, prints the Whitworth shaping machine report: accelerations of the centres
+/// of gravity and inertial forces at φ = 0°, 180° and at both dead positions (found
+/// numerically), then the dead positions and the ram's stroke.
+#[derive(Debug, Parser)]
+#[command(name = "mechdiff", version, about, long_about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// The Whitworth shaping machine report (the default command).
+    Whitworth,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result: Result<(), Box<dyn std::error::Error>> = match cli.command {
+        None | Some(Command::Whitworth) => Ok(()),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => {
+            eprintln!("error: {error}");
+            ExitCode::FAILURE
+        }
+    }
+}

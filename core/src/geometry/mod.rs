@@ -7,12 +7,10 @@
 //! q′, q″, q‴ with respect to φ by implicit differentiation ([`Kinematics`]).
 
 mod constraints;
-mod error;
 mod model;
 mod validate;
 
 pub use constraints::Equations;
-pub use error::GeometryError;
 pub use model::{
     Drive, DriveKind, GROUND, Inertia, Joint, JointKind, Link, Mechanism, MechanismBuilder, Point,
 };

@@ -31,7 +31,7 @@
 //! assert_eq!(m.coordinate_count(), 9);
 //! ```
 
-use super::error::GeometryError;
+use crate::Error;
 
 /// Name of the ground link, present in every model.
 pub const GROUND: &str = "ground";
@@ -246,8 +246,8 @@ impl Mechanism {
     }
 
     /// Index of the link named `name`.
-    pub fn link_index(&self, name: &str) -> Result<usize, GeometryError> {
-        self.links.iter().position(|l| l.name == name).ok_or_else(|| GeometryError::UnknownName {
+    pub fn link_index(&self, name: &str) -> Result<usize, Error> {
+        self.links.iter().position(|l| l.name == name).ok_or_else(|| Error::UnknownName {
             what: "link",
             name: name.to_owned(),
             context: "lookup".to_owned(),
@@ -255,9 +255,9 @@ impl Mechanism {
     }
 
     /// Index of the point named `name`.
-    pub fn point_index(&self, name: &str) -> Result<usize, GeometryError> {
+    pub fn point_index(&self, name: &str) -> Result<usize, Error> {
         self.points.iter().position(|p| p.name == name).ok_or_else(|| {
-            GeometryError::UnknownName {
+            Error::UnknownName {
                 what: "point",
                 name: name.to_owned(),
                 context: "lookup".to_owned(),
@@ -266,9 +266,9 @@ impl Mechanism {
     }
 
     /// Index of the joint named `name`.
-    pub fn joint_index(&self, name: &str) -> Result<usize, GeometryError> {
+    pub fn joint_index(&self, name: &str) -> Result<usize, Error> {
         self.joints.iter().position(|j| j.name == name).ok_or_else(|| {
-            GeometryError::UnknownName {
+            Error::UnknownName {
                 what: "joint",
                 name: name.to_owned(),
                 context: "lookup".to_owned(),
@@ -453,7 +453,7 @@ impl MechanismBuilder {
 
     /// Validates names, references and lengths, and returns the model. Mobility is checked
     /// separately ([`crate::geometry::check_mobility`]) because it needs the Jacobian.
-    pub fn build(self) -> Result<Mechanism, GeometryError> {
+    pub fn build(self) -> Result<Mechanism, Error> {
         super::validate::build(self)
     }
 }

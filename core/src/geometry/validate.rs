@@ -1,7 +1,7 @@
 //! Validation of a declared model: names, references, lengths, sketch consistency.
 
 use super::constraints;
-use super::error::GeometryError;
+use crate::Error;
 use super::model::{
     Drive, DriveKind, GROUND, Joint, JointKind, Link, Mechanism, MechanismBuilder, PendingJoint,
 };
@@ -16,38 +16,38 @@ struct Names<'a> {
 }
 
 impl Names<'_> {
-    fn point(&self, name: &str, context: &str) -> Result<usize, GeometryError> {
+    fn point(&self, name: &str, context: &str) -> Result<usize, Error> {
         self.points.get(name).copied().ok_or_else(|| unknown("point", name, context))
     }
 
-    fn link(&self, name: &str, context: &str) -> Result<usize, GeometryError> {
+    fn link(&self, name: &str, context: &str) -> Result<usize, Error> {
         self.links.get(name).copied().ok_or_else(|| unknown("link", name, context))
     }
 }
 
-fn unknown(what: &'static str, name: &str, context: &str) -> GeometryError {
-    GeometryError::UnknownName { what, name: name.to_owned(), context: context.to_owned() }
+fn unknown(what: &'static str, name: &str, context: &str) -> Error {
+    Error::UnknownName { what, name: name.to_owned(), context: context.to_owned() }
 }
 
 fn unique<'a>(
     what: &'static str,
     names: impl Iterator<Item = &'a str>,
-) -> Result<HashMap<&'a str, usize>, GeometryError> {
+) -> Result<HashMap<&'a str, usize>, Error> {
     let mut map = HashMap::new();
     for (i, n) in names.enumerate() {
         if map.insert(n, i).is_some() {
-            return Err(GeometryError::DuplicateName { what, name: n.to_owned() });
+            return Err(Error::DuplicateName { what, name: n.to_owned() });
         }
     }
     Ok(map)
 }
 
-fn finite(what: impl FnOnce() -> String, value: f64) -> Result<(), GeometryError> {
-    if value.is_finite() { Ok(()) } else { Err(GeometryError::InvalidValue { what: what(), value }) }
+fn finite(what: impl FnOnce() -> String, value: f64) -> Result<(), Error> {
+    if value.is_finite() { Ok(()) } else { Err(Error::InvalidValue { what: what(), value }) }
 }
 
 /// Builds and validates a [`Mechanism`] from a builder.
-pub(super) fn build(b: MechanismBuilder) -> Result<Mechanism, GeometryError> {
+pub(super) fn build(b: MechanismBuilder) -> Result<Mechanism, Error> {
     for p in &b.points {
         finite(|| format!("x of point `{}`", p.name), p.sketch[0])?;
         finite(|| format!("y of point `{}`", p.name), p.sketch[1])?;
@@ -69,7 +69,7 @@ pub(super) fn build(b: MechanismBuilder) -> Result<Mechanism, GeometryError> {
         for p in points {
             let i = names.point(p, &context)?;
             if links[k].points.contains(&i) {
-                return Err(GeometryError::DuplicateName {
+                return Err(Error::DuplicateName {
                     what: "point on a link",
                     name: format!("{p} (link `{}`)", links[k].name),
                 });
@@ -77,7 +77,7 @@ pub(super) fn build(b: MechanismBuilder) -> Result<Mechanism, GeometryError> {
             links[k].points.push(i);
         }
         if k > 0 && links[k].points.is_empty() {
-            return Err(GeometryError::InvalidJoint {
+            return Err(Error::InvalidJoint {
                 joint: links[k].name.clone(),
                 problem: "a moving link must carry at least one point".to_owned(),
             });
@@ -90,7 +90,7 @@ pub(super) fn build(b: MechanismBuilder) -> Result<Mechanism, GeometryError> {
         finite(|| format!("centre of gravity of link `{name}`"), inertia.center[0])?;
         finite(|| format!("centre of gravity of link `{name}`"), inertia.center[1])?;
         if inertia.mass < 0.0 || inertia.moment < 0.0 {
-            return Err(GeometryError::InvalidValue {
+            return Err(Error::InvalidValue {
                 what: format!("mass or moment of inertia of link `{name}` (must be ≥ 0)"),
                 value: inertia.mass.min(inertia.moment),
             });
@@ -104,7 +104,7 @@ pub(super) fn build(b: MechanismBuilder) -> Result<Mechanism, GeometryError> {
         joints.push(Joint { name: name.clone(), kind });
     }
 
-    let drive = b.drive.ok_or(GeometryError::MissingDrive)?;
+    let drive = b.drive.ok_or(Error::MissingDrive)?;
     let (drive_joint, drive_kind, drive_at_sketch) = resolve_drive(&joints, &drive)?;
     let mut m = Mechanism {
         points: b.points,
@@ -125,7 +125,7 @@ pub(super) fn build(b: MechanismBuilder) -> Result<Mechanism, GeometryError> {
 fn resolve_drive(
     joints: &[Joint],
     drive: &Drive,
-) -> Result<(usize, DriveKind, Option<f64>), GeometryError> {
+) -> Result<(usize, DriveKind, Option<f64>), Error> {
     let j = joints
         .iter()
         .position(|j| j.name == drive.joint)
@@ -136,7 +136,7 @@ fn resolve_drive(
             | (DriveKind::Displacement, JointKind::Prismatic { .. })
     );
     if !ok {
-        return Err(GeometryError::InvalidJoint {
+        return Err(Error::InvalidJoint {
             joint: drive.joint.clone(),
             problem: format!(
                 "a {} joint cannot carry a drive {}",
@@ -158,22 +158,22 @@ fn resolve_joint(
     previous: &[Joint],
     name: &str,
     pending: &PendingJoint,
-) -> Result<JointKind, GeometryError> {
+) -> Result<JointKind, Error> {
     let context = format!("joint `{name}`");
-    let on = |link: usize, point: usize| -> Result<(), GeometryError> {
+    let on = |link: usize, point: usize| -> Result<(), Error> {
         if links[link].points.contains(&point) {
             Ok(())
         } else {
-            Err(GeometryError::PointNotOnLink {
+            Err(Error::PointNotOnLink {
                 point: points[point].name.clone(),
                 link: links[link].name.clone(),
                 context: context.clone(),
             })
         }
     };
-    let distinct = |a: usize, b: usize| -> Result<(), GeometryError> {
+    let distinct = |a: usize, b: usize| -> Result<(), Error> {
         if a == b {
-            Err(GeometryError::InvalidJoint {
+            Err(Error::InvalidJoint {
                 joint: name.to_owned(),
                 problem: format!("joins link `{}` to itself", links[a].name),
             })
@@ -181,27 +181,27 @@ fn resolve_joint(
             Ok(())
         }
     };
-    let line = |link: usize, l: &[String; 2]| -> Result<[usize; 2], GeometryError> {
+    let line = |link: usize, l: &[String; 2]| -> Result<[usize; 2], Error> {
         let p = [names.point(&l[0], &context)?, names.point(&l[1], &context)?];
         on(link, p[0])?;
         on(link, p[1])?;
         let (a, c) = (points[p[0]].sketch, points[p[1]].sketch);
         let length = (c[0] - a[0]).hypot(c[1] - a[1]);
         if length.is_nan() || length <= 0.0 {
-            return Err(GeometryError::NonPositiveLength {
+            return Err(Error::NonPositiveLength {
                 what: format!("line `{}`–`{}` of joint `{name}`", l[0], l[1]),
                 length,
             });
         }
         Ok(p)
     };
-    let joint_of = |jname: &str, want: &str| -> Result<usize, GeometryError> {
+    let joint_of = |jname: &str, want: &str| -> Result<usize, Error> {
         let j = previous
             .iter()
             .position(|j| j.name == jname)
             .ok_or_else(|| unknown("joint", jname, &format!("{context} (declare it before)")))?;
         if previous[j].kind.kind_name() != want {
-            return Err(GeometryError::InvalidJoint {
+            return Err(Error::InvalidJoint {
                 joint: name.to_owned(),
                 problem: format!("`{jname}` is a {} joint, not {want}", previous[j].kind.kind_name()),
             });
@@ -236,7 +236,7 @@ fn resolve_joint(
         PendingJoint::RackPinion { pinion, rack, radius } => {
             finite(|| format!("radius of joint `{name}`"), *radius)?;
             if *radius == 0.0 {
-                return Err(GeometryError::NonPositiveLength {
+                return Err(Error::NonPositiveLength {
                     what: format!("pitch radius of joint `{name}`"),
                     length: 0.0,
                 });
@@ -248,7 +248,7 @@ fn resolve_joint(
         PendingJoint::Gear { a, b, ratio } => {
             finite(|| format!("ratio of joint `{name}`"), *ratio)?;
             if *ratio == 0.0 {
-                return Err(GeometryError::InvalidValue {
+                return Err(Error::InvalidValue {
                     what: format!("ratio of joint `{name}` (must be non-zero)"),
                     value: 0.0,
                 });
@@ -266,7 +266,7 @@ fn resolve_joint(
 }
 
 /// Every joint must hold at the sketch pose (it is the assembly the designer drew).
-fn check_sketch(m: &Mechanism) -> Result<(), GeometryError> {
+fn check_sketch(m: &Mechanism) -> Result<(), Error> {
     let q = m.sketch_coordinates();
     let scale = sketch_size(m).max(f64::MIN_POSITIVE);
     let phi = m.drive_at_sketch;
@@ -276,7 +276,7 @@ fn check_sketch(m: &Mechanism) -> Result<(), GeometryError> {
         let n = j.kind.equation_count();
         let r = residual[row..row + n].iter().fold(0.0f64, |a, &x| a.max(x.abs()));
         if r.is_nan() || r > SKETCH_TOLERANCE * scale {
-            return Err(GeometryError::SketchNotAssembled { joint: j.name.clone(), residual: r });
+            return Err(Error::SketchNotAssembled { joint: j.name.clone(), residual: r });
         }
         row += n;
     }

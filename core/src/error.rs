@@ -1,14 +1,32 @@
-//! Errors of the geometry model and solver.
+//! The errors of mechdiff-core.
 
 use thiserror::Error;
 
-/// What went wrong while building, checking or solving a geometry-only mechanism.
-///
-/// Every variant names the items involved (points, links, joints) and, for solver failures,
-/// the drive position φ where it happened.
+/// Everything that can go wrong in mechdiff-core.
 #[derive(Debug, Clone, PartialEq, Error)]
 #[non_exhaustive]
-pub enum GeometryError {
+pub enum Error {
+    /// A sweep over the drive variable is not a finite, non-empty range with a positive step.
+    #[error("invalid sweep from {start} to {end} with step {step}: {reason}")]
+    InvalidSweep {
+        /// First drive position.
+        start: f64,
+        /// Last drive position.
+        end: f64,
+        /// Step between drive positions.
+        step: f64,
+        /// What is wrong with it.
+        reason: &'static str,
+    },
+    /// A computed quantity is NaN or infinite at a drive position where it should be finite.
+    #[error("{quantity} is not finite at drive position φ = {phi}")]
+    NonFinite {
+        /// The drive position.
+        phi: f64,
+        /// Which quantity.
+        quantity: &'static str,
+    },
+    // ---- geometry-only mechanisms (`geometry` module) ----
     /// Two items of the same kind share a name.
     #[error("duplicate {what} name `{name}`")]
     DuplicateName {
@@ -152,3 +170,6 @@ pub enum GeometryError {
         problem: String,
     },
 }
+
+/// The result type of mechdiff-core.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
