@@ -286,6 +286,28 @@ impl Equations {
         }
     }
 
+    /// For each row, the moving bodies (indices into `q / 3`) it depends on.
+    pub(crate) fn row_bodies(&self) -> Vec<Vec<usize>> {
+        let mut out = Vec::with_capacity(self.rows());
+        for t in &self.terms {
+            let bodies: Vec<Body> = match *t {
+                Term::Revolute { a, b, .. } | Term::Rigid { a, b, .. } => vec![a, b],
+                Term::DriveAngle { a, b, .. } => vec![a, b],
+                Term::Prismatic { slide, .. } | Term::DriveSlide { slide, .. } => {
+                    vec![slide.line.body, slide.slider]
+                }
+                Term::PinInSlot { line, pin, .. } => vec![line.body, pin],
+                Term::RackPinion { a, b, slide, .. } => vec![a, b, slide.line.body, slide.slider],
+                Term::Gear { a1, b1, a2, b2, .. } => vec![a1, b1, a2, b2],
+            };
+            let mut bodies: Vec<usize> = bodies.into_iter().flatten().collect();
+            bodies.sort_unstable();
+            bodies.dedup();
+            out.extend(std::iter::repeat_n(bodies, t.rows()));
+        }
+        out
+    }
+
     /// Rows of Φ_q that are angular (rad) rather than lengths (m): used to scale the
     /// Jacobian for rank and condition estimates.
     pub(crate) fn angular_rows(&self) -> Vec<bool> {
