@@ -160,20 +160,35 @@ pub(crate) fn block(jac: &DMatrix<f64>, l: &Loop) -> DMatrix<f64> {
     DMatrix::from_fn(l.rows.len(), l.columns.len(), |i, j| jac[(l.rows[i], l.columns[j])])
 }
 
-/// The branch certificate of every loop: the sign of its block's determinant (0 if exactly
-/// singular).
-pub(crate) fn certificates(jac: &DMatrix<f64>, loops: &[Loop]) -> Vec<i8> {
-    loops
-        .iter()
-        .map(|l| {
-            let d = block(jac, l).determinant();
-            if d > 0.0 {
-                1
-            } else if d < 0.0 {
-                -1
-            } else {
-                0
-            }
-        })
-        .collect()
+/// The branch certificate of loop `l` (the sign of its block's determinant, 0 if exactly
+/// singular) and the block's condition number after scaling its columns to unit length.
+///
+/// `jac` must be the scaled Jacobian. The condition is computed by an SVD only when the
+/// Hadamard ratio |det| / Π‖column‖ does not already prove it below `limit`: with unit
+/// columns σ_max ≤ √k and σ_min ≥ |det| / σ_max^(k−1), so the condition is at most
+/// k^(k/2) / |det|.
+pub(crate) fn certificate(jac: &DMatrix<f64>, l: &Loop, limit: f64) -> (i8, f64) {
+    let mut b = block(jac, l);
+    for mut c in b.column_iter_mut() {
+        let norm = c.norm();
+        if norm > 0.0 {
+            c /= norm;
+        }
+    }
+    let det = b.clone().determinant();
+    let sign = if det > 0.0 {
+        1
+    } else if det < 0.0 {
+        -1
+    } else {
+        0
+    };
+    let k = l.rows.len() as f64;
+    let bound = k.powf(0.5 * k) / det.abs();
+    if bound <= limit {
+        return (sign, bound);
+    }
+    let s = b.singular_values();
+    let condition = s.max() / s.min();
+    (sign, if condition.is_nan() { f64::INFINITY } else { condition })
 }
