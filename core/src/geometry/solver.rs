@@ -334,6 +334,15 @@ impl<'m> Tracker<'m> {
             certificates.push(sign);
         }
         let lu = self.jac.clone().lu();
+        // Polish: one more Newton step with this LU takes the converged pose from the
+        // tolerance down to rounding (the Jacobian, ~1e-13 away, is still the right one for
+        // the derivatives to that order).
+        if let Some(step) = lu.solve(&self.residual) {
+            if step.iter().all(|s| s.is_finite()) {
+                self.q -= step;
+                self.eq.evaluate(self.q.as_slice(), phi, self.residual.as_mut_slice());
+            }
+        }
         let singular = || Error::Singular {
             phi,
             condition: f64::INFINITY,
