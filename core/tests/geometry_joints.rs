@@ -228,3 +228,40 @@ fn four_bar_rocker_pin_helper_is_consistent() {
     assert!(((p[0] - 0.2).hypot(p[1]) - 0.6).abs() < 1e-15);
     assert!(((p[0] - 0.7).hypot(p[1]) - 0.5).abs() < 1e-15);
 }
+
+#[test]
+fn one_long_step_lands_on_the_sketch_closure() {
+    // A whole revolution asked in one step: the Taylor predictor is useless that far, so
+    // Newton may converge to either closure; the certificate check (subdividing when it
+    // flips) must bring the tracker back to the sketch's closure: the pose of φ = 0.
+    let (a, b, c, d) = (0.2, 0.6, 0.5, 0.7);
+    for up in [true, false] {
+        let m = four_bar(a, b, c, d, 0.0, up).unwrap();
+        let mut t = Solver::default().track(&m).unwrap();
+        let start = t.kinematics::<1>().unwrap().point("rocker", "B").unwrap();
+        t.move_to(std::f64::consts::TAU).unwrap();
+        let end = t.kinematics::<1>().unwrap().point("rocker", "B").unwrap();
+        // Same pose to rounding (1e-13 m on a 0.5 m rocker).
+        for i in 0..2 {
+            assert!((end[i].value - start[i].value).abs() < 1e-13, "up = {up}");
+        }
+    }
+}
+
+#[test]
+fn a_step_that_lands_on_the_other_closure_is_rejected_and_subdivided() {
+    // Four-bar a = 0.1, b = c = d = 0.3 asked to go from φ = 0 to φ = 3 rad in one step:
+    // Newton from the (far extrapolated) predictor converges to the other closure; the
+    // certificate flips, the step is halved, and the pose found is the sketch's closure.
+    let (a, b, c, d) = (0.1, 0.3, 0.3, 0.3);
+    for up in [true, false] {
+        let m = four_bar(a, b, c, d, 0.0, up).unwrap();
+        let mut t = Solver::default().track(&m).unwrap();
+        let report = t.move_to(3.0).unwrap();
+        assert!(report.branch_rejections >= 1, "{report:?}");
+        let [x, y] = t.kinematics::<1>().unwrap().point("rocker", "B").unwrap();
+        let [ex, ey] = four_bar_pin(a, b, c, d, 3.0, up);
+        // The sketch's closure to rounding (1e-14 m on 0.3 m links).
+        assert!((x.value - ex.re).abs() < 1e-14 && (y.value - ey.re).abs() < 1e-14, "up = {up}");
+    }
+}
