@@ -21,12 +21,29 @@ struct Factor {
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct BlockLu {
     factors: Vec<Factor>,
+    /// Per loop: (index of the row in the loop, row, column) of every entry coupling it to
+    /// the loops before it (structurally non-zero).
+    coupling: Vec<Vec<(usize, usize, usize)>>,
     valid: bool,
 }
 
 impl BlockLu {
-    /// Buffers for the loops `loops`.
-    pub fn new(loops: &[Loop]) -> Self {
+    /// Buffers for the loops `loops`; `row_columns[r]` lists the columns row `r` depends on.
+    pub fn new(loops: &[Loop], row_columns: &[Vec<usize>]) -> Self {
+        let mut solved: Vec<usize> = Vec::new();
+        let mut coupling = Vec::with_capacity(loops.len());
+        for l in loops {
+            let mut entries = Vec::new();
+            for (i, &r) in l.rows.iter().enumerate() {
+                for &c in &row_columns[r] {
+                    if solved.contains(&c) {
+                        entries.push((i, r, c));
+                    }
+                }
+            }
+            coupling.push(entries);
+            solved.extend_from_slice(&l.columns);
+        }
         let factors = loops
             .iter()
             .map(|l| {
@@ -34,7 +51,7 @@ impl BlockLu {
                 Factor { lu: vec![0.0; k * k], pivots: vec![0; k], parity: 1.0 }
             })
             .collect();
-        BlockLu { factors, valid: false }
+        BlockLu { factors, coupling, valid: false }
     }
 
     /// Factorises the diagonal blocks of `jac`. Returns false if a pivot is exactly zero
@@ -56,10 +73,11 @@ impl BlockLu {
         if !self.valid {
             return false;
         }
-        x.iter_mut().for_each(|v| *v = 0.0);
+        let n = jac.nrows();
+        let entries = jac.as_slice();
         let mut rhs = [0.0; 16];
         let mut buf = Vec::new();
-        for (l, f) in loops.iter().zip(&self.factors) {
+        for ((l, f), coupling) in loops.iter().zip(&self.factors).zip(&self.coupling) {
             let k = l.rows.len();
             let r: &mut [f64] = if k <= 16 {
                 &mut rhs[..k]
@@ -67,16 +85,12 @@ impl BlockLu {
                 buf.resize(k, 0.0);
                 &mut buf[..]
             };
-            // Right-hand side minus the coupling to the loops solved before (later loops'
-            // unknowns are still 0, and this block's own columns are skipped).
             for (i, &row) in l.rows.iter().enumerate() {
-                let mut s = b[row];
-                for c in 0..x.len() {
-                    if x[c] != 0.0 {
-                        s -= jac[(row, c)] * x[c];
-                    }
-                }
-                r[i] = s;
+                r[i] = b[row];
+            }
+            // Minus the coupling to the loops solved before (column-major storage).
+            for &(i, row, c) in coupling {
+                r[i] -= entries[c * n + row] * x[c];
             }
             for i in 0..k {
                 r.swap(i, f.pivots[i]);
@@ -103,16 +117,20 @@ impl BlockLu {
 /// Doolittle LU with partial pivoting of `jac[l.rows, l.columns]` into `f`.
 fn factor_block(jac: &DMatrix<f64>, l: &Loop, f: &mut Factor) -> bool {
     let k = l.rows.len();
+    let (n, entries) = (jac.nrows(), jac.as_slice());
     for (i, &r) in l.rows.iter().enumerate() {
         for (j, &c) in l.columns.iter().enumerate() {
-            f.lu[i * k + j] = jac[(r, c)];
+            f.lu[i * k + j] = entries[c * n + r];
         }
     }
     f.parity = 1.0;
     for d in 0..k {
-        let p = (d..k)
-            .max_by(|&a, &b| f.lu[a * k + d].abs().total_cmp(&f.lu[b * k + d].abs()))
-            .unwrap_or(d);
+        let mut p = d;
+        for i in d + 1..k {
+            if f.lu[i * k + d].abs() > f.lu[p * k + d].abs() {
+                p = i;
+            }
+        }
         f.pivots[d] = p;
         if p != d {
             for j in 0..k {

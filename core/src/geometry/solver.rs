@@ -108,14 +108,18 @@ impl Solver {
         })?;
         let n = eq.coordinates();
         let size = super::validate::sketch_size(m);
+        let row_columns = branch::structure(&eq);
+        let mut unit_drive = DVector::zeros(n);
+        unit_drive[n - 1] = 1.0;
         let mut t = Tracker {
+            unit_drive,
             mechanism: m,
             solver: *self,
             mobility,
             jac: DMatrix::zeros(n, n),
-            lu: BlockLu::new(&loops),
+            lu: BlockLu::new(&loops, &row_columns),
             work: DMatrix::zeros(n, n),
-            work_lu: BlockLu::new(&loops),
+            work_lu: BlockLu::new(&loops, &row_columns),
             residual: DVector::zeros(n),
             trial: DVector::zeros(n),
             trial_residual: DVector::zeros(n),
@@ -174,6 +178,8 @@ pub struct Tracker<'m> {
     trial: DVector<f64>,
     trial_residual: DVector<f64>,
     step: DVector<f64>,
+    /// e_drive = −Φ_φ.
+    unit_drive: DVector<f64>,
     q: DVector<f64>,
     phi: f64,
     dq: DVector<f64>,
@@ -235,7 +241,7 @@ impl<'m> Tracker<'m> {
         const { assert!(N >= 1 && N <= 3, "the geometry solver lifts derivatives of order 1 to 3") };
         let mut dddq = vec![0.0; self.q.len()];
         if N == 3 {
-            let lu = Loops { t: self, lu: &self.lu };
+            let lu = Loops { jac: &self.jac, loops: &self.loops, lu: &self.lu };
             let (q, dq, ddq) = (self.q.as_slice(), self.dq.as_slice(), self.ddq.as_slice());
             if !implicit::third_derivative(&self.eq, &lu, q, dq, ddq, self.phi, &mut dddq) {
                 return Err(self.singular(self.phi));
@@ -401,26 +407,24 @@ impl<'m> Tracker<'m> {
         std::mem::swap(&mut self.lu, &mut self.work_lu);
         std::mem::swap(&mut self.q, &mut self.trial);
         self.phi = phi;
-        let lu = Loops { t: self, lu: &self.lu };
-        let mut step = vec![0.0; self.q.len()];
-        if lu.solve_into(self.trial_residual.as_slice(), &mut step) {
-            self.q.iter_mut().zip(&step).for_each(|(q, s)| *q -= s);
+        let lu = Loops { jac: &self.jac, loops: &self.loops, lu: &self.lu };
+        if lu.solve_into(self.trial_residual.as_slice(), self.step.as_mut_slice()) {
+            self.q -= &self.step;
         }
         self.eq.evaluate(self.q.as_slice(), phi, self.residual.as_mut_slice());
         // Φ_q q′ = −Φ_φ = e_drive (the drive row, last, is the only one that depends on φ).
-        let n = self.q.len();
-        let mut e = vec![0.0; n];
-        e[n - 1] = 1.0;
-        let lu = Loops { t: self, lu: &self.lu };
-        let mut dq = vec![0.0; n];
-        let mut ddq = vec![0.0; n];
-        let ok = lu.solve_into(&e, &mut dq)
-            && implicit::second_derivative(&self.eq, &lu, self.q.as_slice(), &dq, phi, &mut ddq);
+        let ok = lu.solve_into(self.unit_drive.as_slice(), self.dq.as_mut_slice())
+            && implicit::second_derivative(
+                &self.eq,
+                &lu,
+                self.q.as_slice(),
+                self.dq.as_slice(),
+                phi,
+                self.ddq.as_mut_slice(),
+            );
         if !ok {
             return Err(self.singular(phi));
         }
-        self.dq.copy_from_slice(&dq);
-        self.ddq.copy_from_slice(&ddq);
         self.certificates_refresh();
         Ok(())
     }
@@ -444,14 +448,15 @@ impl<'m> Tracker<'m> {
     }
 }
 
-/// The current factorisation of a tracker, as a linear solver.
-struct Loops<'a, 'm> {
-    t: &'a Tracker<'m>,
+/// A factorised Φ_q with the matrix it came from, as a linear solver.
+struct Loops<'a> {
+    jac: &'a DMatrix<f64>,
+    loops: &'a [Loop],
     lu: &'a BlockLu,
 }
 
-impl Factorised for Loops<'_, '_> {
+impl Factorised for Loops<'_> {
     fn solve_into(&self, b: &[f64], x: &mut [f64]) -> bool {
-        self.lu.solve(&self.t.jac, &self.t.loops, b, x)
+        self.lu.solve(self.jac, self.loops, b, x)
     }
 }
