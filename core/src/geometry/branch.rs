@@ -30,7 +30,12 @@ pub(crate) struct Loop {
 pub(crate) fn structure(eq: &Equations) -> Vec<Vec<usize>> {
     eq.row_bodies()
         .into_iter()
-        .map(|bodies| bodies.into_iter().flat_map(|k| [3 * k, 3 * k + 1, 3 * k + 2]).collect())
+        .map(|bodies| {
+            bodies
+                .into_iter()
+                .flat_map(|k| [3 * k, 3 * k + 1, 3 * k + 2])
+                .collect()
+        })
         .collect()
 }
 
@@ -157,7 +162,9 @@ fn tarjan(edges: &[Vec<usize>]) -> Vec<Vec<usize>> {
 
 /// The block of `jac` belonging to `l`.
 pub(crate) fn block(jac: &DMatrix<f64>, l: &Loop) -> DMatrix<f64> {
-    DMatrix::from_fn(l.rows.len(), l.columns.len(), |i, j| jac[(l.rows[i], l.columns[j])])
+    DMatrix::from_fn(l.rows.len(), l.columns.len(), |i, j| {
+        jac[(l.rows[i], l.columns[j])]
+    })
 }
 
 /// The branch certificate of loop `l` (the sign of its block's determinant, 0 if exactly
@@ -190,5 +197,12 @@ pub(crate) fn certificate(jac: &DMatrix<f64>, l: &Loop, limit: f64) -> (i8, f64)
     }
     let s = b.singular_values();
     let condition = s.max() / s.min();
-    (sign, if condition.is_nan() { f64::INFINITY } else { condition })
+    (
+        sign,
+        if condition.is_nan() {
+            f64::INFINITY
+        } else {
+            condition
+        },
+    )
 }

@@ -102,7 +102,11 @@ pub fn check_mobility(m: &Mechanism) -> Result<Mobility, Error> {
                 joints.push(name);
             }
         }
-        return Err(Error::Overconstrained { redundant: joints, equations: rows, coordinates: cols });
+        return Err(Error::Overconstrained {
+            redundant: joints,
+            equations: rows,
+            coordinates: cols,
+        });
     }
     if rank < cols {
         // Right null space: coordinate motions that no equation sees.
@@ -125,7 +129,10 @@ pub fn check_mobility(m: &Mechanism) -> Result<Mobility, Error> {
             .collect();
         return Err(Error::Underconstrained {
             free: cols - rank,
-            links: free_links.iter().map(|&k| m.links[k].name.clone()).collect(),
+            links: free_links
+                .iter()
+                .map(|&k| m.links[k].name.clone())
+                .collect(),
             joints,
         });
     }
@@ -144,13 +151,19 @@ fn links_of(kind: &JointKind, m: &Mechanism) -> Vec<usize> {
             vec![link_a, link_b]
         }
         JointKind::Prismatic { guide, slider, .. } => vec![guide, slider],
-        JointKind::PinInSlot { slot_link, pin_link, .. } => vec![slot_link, pin_link],
+        JointKind::PinInSlot {
+            slot_link,
+            pin_link,
+            ..
+        } => vec![slot_link, pin_link],
         JointKind::RackPinion { pinion, rack, .. } => {
             let mut v = links_of(&m.joints[pinion].kind, m);
             v.extend(links_of(&m.joints[rack].kind, m));
             v
         }
-        JointKind::Gear { joint_a, joint_b, .. } => {
+        JointKind::Gear {
+            joint_a, joint_b, ..
+        } => {
             let mut v = links_of(&m.joints[joint_a].kind, m);
             v.extend(links_of(&m.joints[joint_b].kind, m));
             v
