@@ -25,7 +25,10 @@ fn main() -> Result<(), mechdiff_core::Error> {
         .drive(Drive::angle("A0"))
         .build()?;
     let mobility = check_mobility(&m)?;
-    println!("{} coordinates, Grübler F = {}", mobility.coordinates, mobility.degrees_of_freedom);
+    println!(
+        "{} coordinates, Grübler F = {}",
+        mobility.coordinates, mobility.degrees_of_freedom
+    );
 
     let drive = DriveState::from_rpm(120.0);
     let phis: Vec<f64> = (0..=12).map(|i| (30.0 * i as f64).to_radians()).collect();

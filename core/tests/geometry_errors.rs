@@ -283,3 +283,20 @@ fn non_finite_drive_positions_and_unknown_outputs_are_errors() {
         Err(Error::InvalidOutput { .. })
     ));
 }
+
+#[test]
+fn a_sketch_drawn_at_a_toggle_is_reported_singular_at_the_sketch() {
+    // Slider-driven slider-crank drawn at its dead centre (crank and rod collinear): the
+    // count is right, the structure is fine, but Φ_q is singular there.
+    let m = slider_crank(0.1, 0.35, 0.0, true).unwrap();
+    match check_mobility(&m).unwrap_err() {
+        Error::Singular { phi, joints, .. } => {
+            // The drive value at the sketch is the slider's displacement r + l (rounding).
+            assert!((phi - 0.45).abs() < 1e-15);
+            assert!(joints.contains(&"A".to_owned()), "{joints:?}");
+        }
+        other => panic!("expected Singular, got {other:?}"),
+    }
+    // Driven by the crank, the same sketch is regular (a dead position of the output only).
+    assert!(check_mobility(&slider_crank(0.1, 0.35, 0.0, false).unwrap()).is_ok());
+}

@@ -8,7 +8,10 @@
 //! - rows in the left null space of Φ_q ⇒ **over-constrained**: the joints owning those rows
 //!   are named (together they say the same thing twice);
 //! - columns in the right null space ⇒ **under-constrained**: the links that can still move
-//!   with the drive fixed, and the joints attached to them, are named.
+//!   with the drive fixed, and the joints attached to them, are named;
+//! - a square system whose structure fixes every coordinate (a perfect matching of
+//!   equations to coordinates exists) but whose Jacobian is rank deficient is drawn at a
+//!   **singular** pose (a toggle): [`Error::Singular`] at the sketch's drive value.
 
 use super::constraints::Equations;
 use super::model::{JointKind, Mechanism};
@@ -101,6 +104,21 @@ pub fn check_mobility(m: &Mechanism) -> Result<Mobility, Error> {
             if weight > 1e-6 && !joints.contains(&name) {
                 joints.push(name);
             }
+        }
+        if rows == cols && super::branch::loops(&eq).is_some() {
+            // The count is right and every coordinate is structurally fixed: the Jacobian is
+            // singular only because of where the sketch is drawn (a toggle, or a dead centre
+            // of a driven slider).
+            let sigma_min = svd.singular_values.min();
+            return Err(Error::Singular {
+                phi: m.drive_at_sketch,
+                condition: if sigma_min > 0.0 {
+                    sigma_max / sigma_min
+                } else {
+                    f64::INFINITY
+                },
+                joints,
+            });
         }
         return Err(Error::Overconstrained {
             redundant: joints,
