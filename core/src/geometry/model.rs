@@ -220,27 +220,52 @@ impl Drive {
     }
 }
 
-/// A validated mechanism model. Build it with [`Mechanism::builder`].
+/// A validated mechanism model. Build it with [`Mechanism::builder`]; its parts are read
+/// through accessors, so a model cannot be changed after validation.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Mechanism {
-    /// All points.
-    pub points: Vec<Point>,
-    /// All links; index 0 is the ground.
-    pub links: Vec<Link>,
-    /// All joints, in the order they were declared.
-    pub joints: Vec<Joint>,
-    /// Index of the driven joint in [`Mechanism::joints`].
-    pub drive_joint: usize,
-    /// Angle or displacement.
-    pub drive_kind: DriveKind,
-    /// Value of φ at the sketch pose.
-    pub drive_at_sketch: f64,
+    pub(crate) points: Vec<Point>,
+    pub(crate) links: Vec<Link>,
+    pub(crate) joints: Vec<Joint>,
+    pub(crate) drive_joint: usize,
+    pub(crate) drive_kind: DriveKind,
+    pub(crate) drive_at_sketch: f64,
 }
 
 impl Mechanism {
     /// Starts a builder with an empty ground link.
     pub fn builder() -> MechanismBuilder {
         MechanismBuilder::default()
+    }
+
+    /// All points, in declaration order.
+    pub fn points(&self) -> &[Point] {
+        &self.points
+    }
+
+    /// All links; index 0 is the ground.
+    pub fn links(&self) -> &[Link] {
+        &self.links
+    }
+
+    /// All joints, in declaration order.
+    pub fn joints(&self) -> &[Joint] {
+        &self.joints
+    }
+
+    /// Index of the driven joint in [`Mechanism::joints`].
+    pub fn drive_joint(&self) -> usize {
+        self.drive_joint
+    }
+
+    /// Whether the drive is an angle or a displacement.
+    pub fn drive_kind(&self) -> &DriveKind {
+        &self.drive_kind
+    }
+
+    /// Value of the drive variable φ at the sketch pose (rad or m).
+    pub fn drive_at_sketch(&self) -> f64 {
+        self.drive_at_sketch
     }
 
     /// Number of pose coordinates `q` (3 per moving link).
