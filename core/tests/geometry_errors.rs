@@ -300,3 +300,26 @@ fn a_sketch_drawn_at_a_toggle_is_reported_singular_at_the_sketch() {
     // Driven by the crank, the same sketch is regular (a dead position of the output only).
     assert!(check_mobility(&slider_crank(0.1, 0.35, 0.0, false).unwrap()).is_ok());
 }
+
+#[test]
+fn unlimited_subdivision_still_ends_with_an_error() {
+    // With (practically) unlimited halvings the walk creeps up to the four-bar's limit
+    // position (coupler and rocker collinear, ≈ 95.08°) until φ stops moving or the pose
+    // there is singular; either way the move must end with an error, not loop forever.
+    let m = four_bar(0.4, 0.3, 0.45, 0.6, 0.0, true).unwrap();
+    let limit = ((0.16 + 0.36 - 0.5625) / 0.48f64).acos();
+    let mut t = Solver::default()
+        .with_max_subdivisions(usize::MAX)
+        .track(&m)
+        .unwrap();
+    match t.move_to(2.0) {
+        Err(Error::Unassemblable { phi, .. }) => assert_eq!(phi, 2.0),
+        // The limit position is a toggle of the coupler–rocker loop (1e-6 rad: the
+        // condition reaches the threshold ~1e-11 rad before it).
+        Err(Error::Singular { phi, joints, .. }) => {
+            assert!((phi - limit).abs() < 1e-6, "{phi}");
+            assert_eq!(joints, ["A", "B", "B0"]);
+        }
+        other => panic!("expected an error, got {other:?}"),
+    }
+}

@@ -302,7 +302,7 @@ impl<'m> Tracker<'m> {
         };
         let mut halvings: usize = 0;
         while self.phi != phi {
-            let h = (phi - self.phi) / f64::powi(2.0, halvings as i32);
+            let h = (phi - self.phi) / f64::powi(2.0, halvings.min(1074) as i32);
             let target = if halvings == 0 { phi } else { self.phi + h };
             // Taylor predictor q + h q′ + h²/2 q″.
             for i in 0..self.q.len() {
@@ -344,7 +344,9 @@ impl<'m> Tracker<'m> {
                 }
             };
             halvings += 1;
-            if halvings > self.solver.max_subdivisions {
+            // Give up after the allowed halvings, or once a halved step no longer moves φ.
+            let next = self.phi + (phi - self.phi) / f64::powi(2.0, halvings.min(1074) as i32);
+            if halvings > self.solver.max_subdivisions || next == self.phi {
                 return Err(failure);
             }
         }
