@@ -401,7 +401,7 @@ impl<'m> Tracker<'m> {
             } else {
                 0.0
             };
-            // Hadamard screen on the scaled block with unit columns (see branch::certificate):
+            // Hadamard screen on the scaled block with unit columns (see branch::condition):
             // its determinant is det · Π(row scales) / Π(column norms), the column scales
             // cancelling.
             let mut normalized = det;
@@ -428,7 +428,7 @@ impl<'m> Tracker<'m> {
             if bound.is_nan() || bound > limit {
                 let mut scaled = self.work.clone();
                 mobility::scale(&self.eq, &mut scaled, self.size);
-                let (_, condition) = branch::certificate(&scaled, l, limit);
+                let condition = branch::condition(&scaled, l, limit);
                 if condition.is_nan() || condition > limit {
                     return Err(Error::Singular {
                         phi,
