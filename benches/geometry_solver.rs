@@ -72,6 +72,18 @@ fn per_drive_position(c: &mut Criterion) {
         },
     );
     group.bench_function(
+        BenchmarkId::new("geometry solve only", "720 positions"),
+        |b| {
+            b.iter(|| {
+                let mut t = start.clone();
+                for &phi in &phis {
+                    t.move_to(black_box(phi)).expect("assembles");
+                }
+                t.phi()
+            })
+        },
+    );
+    group.bench_function(
         BenchmarkId::new("closed-form Dual2", "720 positions"),
         |b| {
             b.iter(|| {
