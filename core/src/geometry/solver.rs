@@ -4,13 +4,18 @@
 //! at the sketch pose, and [`Tracker::move_to`] walks it to a new drive position:
 //!
 //! 1. **Predict** with the Taylor polynomial `q + h q′ + h²/2 q″` (q′, q″ from the last pose).
-//! 2. **Correct** with Newton on Φ(q, φ) = 0 (analytic Φ_q, LU) until the residual is below
-//!    `tolerance × size` (size: the sketch's diagonal).
+//! 2. **Correct** with Newton on Φ(q, φ) = 0 (analytic Φ_q, factorised loop by loop, see
+//!    `block_lu`) until the residual is below `tolerance × size` (size: the sketch's
+//!    diagonal).
 //! 3. **Check** at the new pose: the scaled Jacobian's condition (a toggle is reported as
 //!    [`Error::Singular`]) and every loop's branch certificate (see [`super::branch`]).
 //! 4. If Newton fails or a certificate flips, **halve** the step and retry from the last good
 //!    pose; after `max_subdivisions` halvings report [`Error::Unassemblable`] or
 //!    [`Error::BranchFlip`], naming the drive position and the loop's joints.
+//! 5. **Accept**: one more Newton step with the factorisation at the new pose (the residual
+//!    drops from the tolerance to rounding), then q′ = Φ_q⁻¹ e_drive and q″ (see
+//!    [`super::implicit`]) with the same factorisation; they feed the next predictor and
+//!    [`Tracker::kinematics`].
 
 use super::block_lu::BlockLu;
 use super::branch::{self, Loop};
