@@ -85,10 +85,19 @@ pub enum Closure001 {
 /// a gear wheel of radius 0.04 m above the rack drives it (rack-and-pinion), else the rack's
 /// displacement ρ4 is the drive.
 pub fn rack_slotted_link(closure: Closure001, pinion: bool) -> Result<Mechanism, Error> {
+    rack_slotted_link_incline(closure, pinion, rack001::THETA8)
+}
+
+/// [`rack_slotted_link`] with the incline at `theta8` (rad) instead of the assumed 60°.
+pub fn rack_slotted_link_incline(
+    closure: Closure001,
+    pinion: bool,
+    theta8: f64,
+) -> Result<Mechanism, Error> {
     use rack001::*;
     let b = [RHO2, -RHO1];
     let e3 = [THETA3.cos(), THETA3.sin()];
-    let u8 = [THETA8.cos(), THETA8.sin()];
+    let u8 = [theta8.cos(), theta8.sin()];
     let c = [b[0] + RHO5 * e3[0], b[1] + RHO5 * e3[1]];
     let g1 = [b[0] + RHO9 * e3[0], b[1] + RHO9 * e3[1]];
     let p = [b[0] + RHO7 * THETA7.cos(), b[1] + RHO7 * THETA7.sin()];
