@@ -13,6 +13,7 @@ pub mod error;
 pub mod jet;
 pub mod method;
 pub mod motion;
+pub mod point;
 pub mod position;
 pub mod scalar;
 
@@ -20,6 +21,7 @@ pub use dead_position::{DeadPosition, DeadPositionSearch};
 pub use error::{Error, Result};
 pub use jet::Jet;
 pub use motion::{DriveState, Motion};
+pub use point::Point;
 pub use num_dual;
 pub use position::PositionFunction;
 pub use scalar::{Scalar, atan2, hypot};
