@@ -7,3 +7,5 @@
 
 pub use mechdiff_core as core;
 pub use mechdiff_mechanisms as mechanisms;
+
+pub mod report;
