@@ -9,3 +9,8 @@ pub use mechdiff_core as core;
 pub use mechdiff_mechanisms as mechanisms;
 
 pub mod report;
+
+/// The Rust examples of `README.md`, compiled and run as doc-tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

@@ -21,7 +21,7 @@ pub use dead_position::{DeadPosition, DeadPositionSearch};
 pub use error::{Error, Result};
 pub use jet::Jet;
 pub use motion::{DriveState, Motion};
-pub use point::Point;
 pub use num_dual;
+pub use point::Point;
 pub use position::PositionFunction;
 pub use scalar::{Scalar, atan2, hypot};

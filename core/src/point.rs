@@ -96,7 +96,10 @@ mod tests {
         let p = Point::new(Jet::new(0.0, [1.0, 0.0]), Jet::new(0.0, [0.0, 1.0]));
         let a = p.acceleration(&DriveState::accelerating(3.0, 2.0));
         assert_eq!(a, Point::new(2.0, 9.0));
-        assert_eq!(p.velocity(&DriveState::constant_speed(3.0)), Point::new(3.0, 0.0));
+        assert_eq!(
+            p.velocity(&DriveState::constant_speed(3.0)),
+            Point::new(3.0, 0.0)
+        );
         assert_eq!(-2.0 * a + a, Point::new(-2.0, -9.0));
     }
 }

@@ -34,13 +34,14 @@ pub fn acceleration_coefficient(lambda: f64, phi: f64) -> f64 {
 }
 
 /// ψ from tan ψ = λ sin φ / (1 − λ cos φ) (1.30), with ψ′ (1.35) and ψ″ (1.36), sharing one
-/// sin/cos evaluation: the fastest hand-written ψ, ψ′, ψ″.
+/// sin/cos evaluation: the fastest hand-written ψ, ψ′, ψ″. ψ = atan(tan ψ) is valid on the
+/// whole revolution because 1 − λ cos φ > 0 for λ < 1 (|ψ| < π/2).
 pub fn rocker_angle(lambda: f64, phi: f64) -> Jet<2> {
     let (sin, cos) = phi.sin_cos();
     let y = 1.0 - lambda * cos;
     let d = 1.0 - 2.0 * lambda * cos + lambda * lambda;
     Jet::new(
-        (lambda * sin).atan2(y),
+        (lambda * sin / y).atan(),
         [
             lambda * (cos - lambda) / d,
             lambda * sin * (lambda * lambda - 1.0) / (d * d),
