@@ -110,26 +110,29 @@ impl Parameters {
 
     /// Every parameter in range, or the first one that is not.
     fn validate(&self) -> Result<()> {
-        let positive: [(&'static str, f64, &'static str); 9] = [
-            ("l0", self.l0, "m"),
-            ("l1", self.l1, "m"),
-            ("l_S1", self.l_s1, "m"),
-            ("l_S2", self.l_s2, "m"),
-            ("h", self.h, "m"),
-            ("m1", self.m1, "kg"),
-            ("m2", self.m2, "kg"),
-            ("m3", self.m3, "kg"),
-            ("ω", self.crank_speed, "rad/s"),
+        const LENGTH: &str = "a length must be positive";
+        const MASS: &str = "a mass must be positive";
+        let positive = [
+            ("l0", self.l0, "m", LENGTH),
+            ("l1", self.l1, "m", LENGTH),
+            ("l_S1", self.l_s1, "m", LENGTH),
+            ("l_S2", self.l_s2, "m", LENGTH),
+            ("h", self.h, "m", LENGTH),
+            ("m1", self.m1, "kg", MASS),
+            ("m2", self.m2, "kg", MASS),
+            ("m3", self.m3, "kg", MASS),
+            (
+                "ω",
+                self.crank_speed,
+                "rad/s",
+                "the crank speed must be positive (the crank turns at constant speed)",
+            ),
         ];
-        for (name, value, unit) in positive {
+        for (name, value, unit, if_not_positive) in positive {
             let reason = if !value.is_finite() {
                 "must be finite"
             } else if value <= 0.0 {
-                match unit {
-                    "m" => "a length must be positive",
-                    "kg" => "a mass must be positive",
-                    _ => "the crank speed must be positive (the crank turns at constant speed)",
-                }
+                if_not_positive
             } else {
                 continue;
             };
