@@ -153,8 +153,9 @@ fn dual3_and_hand_formulas_match_the_30_digit_reference() {
     );
 }
 
-/// Velocities, accelerations and inertial forces against the reference sweep (every 10° and
-/// at both dead positions), to 1e-13 of each quantity's largest magnitude over the sweep.
+/// Positions, velocities, accelerations and inertial forces against the reference sweep
+/// (every 10° and at both dead positions), to 1e-13 of each quantity's largest magnitude over
+/// the sweep (f64 evaluations of exact formulas, a few dozen roundings).
 #[test]
 fn accelerations_and_forces_match_the_reference_sweep() {
     let data = reference();
@@ -177,6 +178,19 @@ fn accelerations_and_forces_match_the_reference_sweep() {
         "SumF_y_N",
         "xd_S3_m_s",
         "psi_ddot_rad_s2",
+        "psi_rad",
+        "x_A_m",
+        "y_A_m",
+        "x_S1_m",
+        "y_S1_m",
+        "x_S2_m",
+        "y_S2_m",
+        "x_C_m",
+        "xd_S1_m_s",
+        "yd_S1_m_s",
+        "xd_S2_m_s",
+        "yd_S2_m_s",
+        "psi_dot_rad_s",
     ];
     let scale = keys.map(|k| {
         sweep
@@ -205,6 +219,19 @@ fn accelerations_and_forces_match_the_reference_sweep() {
             f.sum.y,
             pose.s3.x.velocity(&drive),
             pose.psi.motion(&drive).acceleration,
+            pose.psi.value,
+            pose.a.x.value,
+            pose.a.y.value,
+            pose.s1.x.value,
+            pose.s1.y.value,
+            pose.s2.x.value,
+            pose.s2.y.value,
+            pose.c.x.value,
+            pose.s1.x.velocity(&drive),
+            pose.s1.y.velocity(&drive),
+            pose.s2.x.velocity(&drive),
+            pose.s2.y.velocity(&drive),
+            pose.psi.velocity(&drive),
         ];
         for (q, key) in keys.iter().enumerate() {
             let want = number(&row[key]);
@@ -252,6 +279,41 @@ fn source_time_formulas_match_automatic_motion_at_constant_speed() {
                 "quantity {q} at φ = {phi}: {} vs {}",
                 got[q],
                 want[q]
+            );
+        }
+    }
+}
+
+/// The drive's acceleration is never assumed zero: with φ(t) = φ₀ + ω₀t + α t²/2, the
+/// accelerations of S1, S2, S3 at t = 0 for the drive state (ω₀, α) equal the second time
+/// difference of the positions, (x(t₁) − 2x(t₀) + x(t₋₁))/Δt² with Δt = 1e-4 s: to 1e-6 of
+/// their size (truncation ~Δt²·x⁗ ~ 1e-6, rounding ~ε·x/Δt² ~ 1e-8 here).
+#[test]
+fn accelerations_with_a_drive_acceleration_match_time_differences() {
+    let shaper = Whitworth::reference();
+    let (omega, alpha, dt) = (8.0, -30.0, 1e-4);
+    for phi0 in [0.3, 1.186, 2.5, 4.0, 5.5] {
+        let at = |t: f64| shaper.evaluate(phi0 + omega * t + 0.5 * alpha * t * t);
+        let drive = mechdiff_core::DriveState::accelerating(omega, alpha);
+        let a = shaper.centre_accelerations(phi0, &drive).unwrap();
+        let (before, now, after) = (at(-dt), at(0.0), at(dt));
+        let second_difference =
+            |f: fn(&Pose<f64>) -> f64| (f(&after) - 2.0 * f(&now) + f(&before)) / (dt * dt);
+        let pairs = [
+            (a.s1.x, second_difference(|p| p.s1.x)),
+            (a.s1.y, second_difference(|p| p.s1.y)),
+            (a.s2.x, second_difference(|p| p.s2.x)),
+            (a.s2.y, second_difference(|p| p.s2.y)),
+            (a.s3.x, second_difference(|p| p.s3.x)),
+        ];
+        let size = pairs
+            .iter()
+            .map(|(exact, _)| exact.abs())
+            .fold(1.0, f64::max);
+        for (exact, difference) in pairs {
+            assert!(
+                (exact - difference).abs() <= 1e-6 * size,
+                "φ₀ = {phi0}: {exact} vs {difference}"
             );
         }
     }
