@@ -87,3 +87,10 @@ fn help_explains_the_default_report() {
         "{help}"
     );
 }
+
+/// README.md shows the real default output (regenerate it there when the report changes).
+#[test]
+fn readme_shows_the_default_output() {
+    let readme = include_str!("../README.md");
+    assert!(readme.contains(&mechdiff(&[])), "README.md's default output is stale");
+}

@@ -74,20 +74,20 @@ pub fn report(shaper: &Whitworth) -> Result<String> {
     let mut out = String::new();
     out.push_str("Whitworth shaping machine: inertial forces on the frame\n");
     out.push_str(&format!(
-        "l0 = {} m, l1 = {} m (λ = {}), l_S1 = {} m, l_S2 = {} m, h = {} m, \
-         m1 = {} kg, m2 = {} kg, m3 = {} kg\n",
+        "geometry: l0 = {} m, l1 = {} m (λ = {}), l_S1 = {} m, l_S2 = {} m, h = {} m\n",
         p.l0,
         p.l1,
         trimmed(shaper.lambda(), 6),
         p.l_s1,
         p.l_s2,
         p.h,
-        p.m1,
-        p.m2,
-        p.m3
     ));
     out.push_str(&format!(
-        "crank at constant speed ω = {} rad/s ({} rpm)\n\n",
+        "masses: m1 = {} kg, m2 = {} kg, m3 = {} kg; crank at constant speed ω = {} rad/s \
+         ({} rpm)\n\n",
+        p.m1,
+        p.m2,
+        p.m3,
         fixed(drive.omega, 6),
         trimmed(drive.omega * 30.0 / std::f64::consts::PI, 6)
     ));
