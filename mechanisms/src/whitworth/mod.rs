@@ -59,7 +59,7 @@ pub use forces::{CentreAccelerations, InertialForces};
 
 use crate::error::{Error, Result};
 use mechdiff_core::{DeadPosition, DeadPositionSearch, DriveState, Point, PositionFunction};
-use mechdiff_core::{Scalar, atan2, hypot};
+use mechdiff_core::{Scalar, hypot};
 use std::f64::consts::TAU;
 
 /// The geometry, masses and crank speed of a Whitworth shaping machine (SI units; see the
@@ -290,9 +290,11 @@ fn on_crank<D: Scalar>(l0: f64, radius: f64, (sin, cos): (D, D)) -> Point<D> {
     Point::new(sin * radius, -cos * radius + l0)
 }
 
-/// The angle from +y towards +x of the line from B0 (the origin) through `p`.
+/// The angle from +y towards +x of the line from B0 (the origin) through `p`, for a point
+/// above B0: tan ψ = x/y (1.30). The crank pin is always above B0 (y_A ≥ l0 − l1 > 0, since
+/// `Whitworth::new` demands l1 < l0), so atan(x/y) is atan2(x, y) without its quadrant branch.
 fn angle_from_vertical<D: Scalar>(p: Point<D>) -> D {
-    atan2(p.x, p.y)
+    (p.x / p.y).atan()
 }
 
 impl PositionFunction for Whitworth {
