@@ -92,5 +92,8 @@ fn help_explains_the_default_report() {
 #[test]
 fn readme_shows_the_default_output() {
     let readme = include_str!("../README.md");
-    assert!(readme.contains(&mechdiff(&[])), "README.md's default output is stale");
+    assert!(
+        readme.contains(&mechdiff(&[])),
+        "README.md's default output is stale"
+    );
 }

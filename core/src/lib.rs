@@ -4,8 +4,8 @@
 //! a [`PositionFunction`] generic over the [`Scalar`] type, and their derivatives with respect
 //! to the drive variable φ follow by any [`method`] — dual numbers (exact), central differences,
 //! or formulas derived by hand — as [`Jet`]s. A [`DriveState`] turns them into velocities,
-//! accelerations and jerks ([`Motion`]); [`DeadPositionSearch`] finds where a coefficient
-//! changes sign.
+//! accelerations and jerks ([`Motion`]), of single coordinates or of [`Point`]s;
+//! [`DeadPositionSearch`] finds where a coefficient changes sign.
 #![warn(missing_docs)]
 
 pub mod dead_position;
