@@ -23,7 +23,7 @@ use nalgebra::DMatrix;
 use num_dual::DualNum;
 
 /// Index of a body's coordinates in `q`; `None` for the ground.
-type Body = Option<usize>;
+pub(crate) type Body = Option<usize>;
 
 /// A line fixed in a body: a point of it and its unit direction, both link-local.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -73,7 +73,7 @@ pub struct Equations {
     coordinates: usize,
 }
 
-fn body(link: usize) -> Body {
+pub(crate) fn body(link: usize) -> Body {
     link.checked_sub(1)
 }
 
@@ -81,7 +81,7 @@ fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
     [a[0] - b[0], a[1] - b[1]]
 }
 
-fn compile_slide(m: &Mechanism, guide: usize, line: [usize; 2], slider: usize, point: usize) -> Slide {
+pub(crate) fn compile_slide(m: &Mechanism, guide: usize, line: [usize; 2], slider: usize, point: usize) -> Slide {
     let (a, b) = (m.points[line[0]].sketch, m.points[line[1]].sketch);
     let d = sub(b, a);
     let len = d[0].hypot(d[1]);
@@ -286,6 +286,28 @@ impl Equations {
         }
     }
 
+    /// For each row, the moving bodies (indices into `q / 3`) it depends on.
+    pub(crate) fn row_bodies(&self) -> Vec<Vec<usize>> {
+        let mut out = Vec::with_capacity(self.rows());
+        for t in &self.terms {
+            let bodies: Vec<Body> = match *t {
+                Term::Revolute { a, b, .. } | Term::Rigid { a, b, .. } => vec![a, b],
+                Term::DriveAngle { a, b, .. } => vec![a, b],
+                Term::Prismatic { slide, .. } | Term::DriveSlide { slide, .. } => {
+                    vec![slide.line.body, slide.slider]
+                }
+                Term::PinInSlot { line, pin, .. } => vec![line.body, pin],
+                Term::RackPinion { a, b, slide, .. } => vec![a, b, slide.line.body, slide.slider],
+                Term::Gear { a1, b1, a2, b2, .. } => vec![a1, b1, a2, b2],
+            };
+            let mut bodies: Vec<usize> = bodies.into_iter().flatten().collect();
+            bodies.sort_unstable();
+            bodies.dedup();
+            out.extend(std::iter::repeat_n(bodies, t.rows()));
+        }
+        out
+    }
+
     /// Rows of Φ_q that are angular (rad) rather than lengths (m): used to scale the
     /// Jacobian for rank and condition estimates.
     pub(crate) fn angular_rows(&self) -> Vec<bool> {
@@ -304,9 +326,9 @@ impl Equations {
 }
 
 /// Sine and cosine of every body's angle, for evaluating point positions.
-struct Frames<'a, D> {
-    q: &'a [D],
-    frames: &'a [(D, D)],
+pub(crate) struct Frames<'a, D> {
+    pub q: &'a [D],
+    pub frames: &'a [(D, D)],
 }
 
 impl<D: DualNum<Primitive = f64> + Copy> Frames<'_, D> {
@@ -320,7 +342,7 @@ impl<D: DualNum<Primitive = f64> + Copy> Frames<'_, D> {
         }
     }
 
-    fn point(&self, b: Body, p: [f64; 2]) -> [D; 2] {
+    pub fn point(&self, b: Body, p: [f64; 2]) -> [D; 2] {
         let r = self.rotate(b, p);
         match b {
             None => r,
@@ -328,7 +350,7 @@ impl<D: DualNum<Primitive = f64> + Copy> Frames<'_, D> {
         }
     }
 
-    fn angle(&self, b: Body) -> D {
+    pub fn angle(&self, b: Body) -> D {
         b.map_or(D::from(0.0), |k| self.q[3 * k + 2])
     }
 
@@ -339,7 +361,7 @@ impl<D: DualNum<Primitive = f64> + Copy> Frames<'_, D> {
         (u, [r[0] - a[0], r[1] - a[1]])
     }
 
-    fn displacement(&self, slide: &Slide) -> D {
+    pub fn displacement(&self, slide: &Slide) -> D {
         let (u, d) = self.along(&slide.line, self.point(slide.slider, slide.point));
         u[0] * d[0] + u[1] * d[1]
     }

@@ -6,11 +6,19 @@
 //! keeping the sketch's assembly branch ([`Solver`]), and lifted to exact derivatives
 //! q′, q″, q‴ with respect to φ by implicit differentiation ([`Kinematics`]).
 
+pub mod branch;
 mod constraints;
+pub mod implicit;
+mod kinematics;
+mod mobility;
 mod model;
+mod solver;
 mod validate;
 
 pub use constraints::Equations;
 pub use model::{
     Drive, DriveKind, GROUND, Inertia, Joint, JointKind, Link, Mechanism, MechanismBuilder, Point,
 };
+pub use kinematics::Kinematics;
+pub use mobility::{Mobility, check_mobility};
+pub use solver::{SolveReport, Solver, Tracker};
