@@ -133,6 +133,9 @@ pub enum JointKind {
     /// A pinion's turning in its revolute joint is tied to a rack's travel in its prismatic
     /// joint by rolling: s = R·θ.
     RackPinion,
+    /// Two gears in mesh: the turning in one revolute joint is tied to the turning in
+    /// another by a fixed ratio.
+    Gear,
     /// The two links are welded into one rigid body.
     Weld,
 }
@@ -164,6 +167,10 @@ pub struct JointDef {
     pub rack: Option<Name>,
     /// Rack and pinion: the pinion's pitch radius (length unit, positive).
     pub radius: Option<Spanned<f64>>,
+    /// Gear: the two revolute joints in mesh, `[driving, driven]`.
+    pub gears: Option<Spanned<[Name; 2]>>,
+    /// Gear: Δθ_driven = ratio · Δθ_driving (negative for an external mesh).
+    pub ratio: Option<Spanned<f64>>,
 }
 
 /// `[drive]`.

@@ -16,6 +16,7 @@ fn fields(kind: Kind) -> &'static [&'static str] {
         Kind::Prismatic => &["links", "line", "point"],
         Kind::PinInSlot => &["links", "slot", "pin"],
         Kind::RackPinion => &["pinion", "rack", "radius"],
+        Kind::Gear => &["gears", "ratio"],
         Kind::Weld => &["links"],
     }
 }
@@ -26,6 +27,7 @@ fn type_name(kind: Kind) -> &'static str {
         Kind::Prismatic => "prismatic",
         Kind::PinInSlot => "pin_in_slot",
         Kind::RackPinion => "rack_pinion",
+        Kind::Gear => "gear",
         Kind::Weld => "weld",
     }
 }
@@ -43,7 +45,7 @@ pub(crate) fn resolve(
     let kind = *d.kind.get_ref();
     let context = format!("joint `{name}`");
     let allowed = fields(kind);
-    let given: [(&str, Option<std::ops::Range<usize>>); 9] = [
+    let given: [(&str, Option<std::ops::Range<usize>>); 11] = [
         ("links", d.links.as_ref().map(|v| v.span())),
         ("at", d.at.as_ref().map(|v| v.span())),
         ("line", d.line.as_ref().map(|v| v.span())),
@@ -53,6 +55,8 @@ pub(crate) fn resolve(
         ("pinion", d.pinion.as_ref().map(|v| v.span())),
         ("rack", d.rack.as_ref().map(|v| v.span())),
         ("radius", d.radius.as_ref().map(|v| v.span())),
+        ("gears", d.gears.as_ref().map(|v| v.span())),
+        ("ratio", d.ratio.as_ref().map(|v| v.span())),
     ];
     let expected = format!(
         "a `{}` joint takes `type`, {}",
@@ -118,6 +122,17 @@ pub(crate) fn resolve(
                 rack: rack.name.clone(),
                 radius: sign * radius,
             }
+        }
+        Kind::Gear => {
+            let [a, b] = d.gears.as_ref().expect("checked").get_ref();
+            let a = joint_of(cx, a, earlier, "revolute", &context)?;
+            let b = joint_of(cx, b, earlier, "revolute", &context)?;
+            let ratio = d.ratio.as_ref().expect("checked");
+            let value = *ratio.get_ref();
+            if !value.is_finite() || value == 0.0 {
+                return Err(cx.invalid(ratio, format!("{context}: `ratio` must be a finite, non-zero number, found {value}")));
+            }
+            JointKind::Gear { joints: [a.name.clone(), b.name.clone()], ratio: value }
         }
         Kind::Weld => {
             let links = links(cx)?;

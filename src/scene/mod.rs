@@ -32,13 +32,16 @@
 //! assert_eq!(scene.order(), 0);
 //! ```
 
+pub mod build;
+mod drive;
 pub mod format;
 mod joints;
-mod drive;
 pub mod model;
 pub mod outputs;
 pub mod resolve;
+pub mod run;
 pub mod source;
+pub mod table;
 pub mod units;
 
 use std::path::Path;
@@ -46,6 +49,7 @@ use std::path::Path;
 use crate::error::{Error, Result};
 
 pub use model::Scene;
+pub use run::{Checked, Plan, Report, check, run};
 pub use source::Source;
 
 /// Parses and checks a scene given as text; `file` names it in messages.

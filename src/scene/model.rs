@@ -100,6 +100,13 @@ pub enum JointKind {
         /// the rack forwards along its line (pinion centre to the left of the line).
         radius: f64,
     },
+    /// `Δθ` in revolute joint `joints[1]` = `ratio` × `Δθ` in revolute joint `joints[0]`.
+    Gear {
+        /// The two revolute joints.
+        joints: [String; 2],
+        /// Signed transmission ratio.
+        ratio: f64,
+    },
     /// The links are welded together.
     Weld {
         /// The two links.
@@ -237,10 +244,6 @@ impl Scene {
     /// A drive value (SI) printed with the scene's unit, e.g. `"67.5 deg"`.
     pub fn drive_text(&self, value: f64) -> String {
         let dimension = self.drive.kind.dimension();
-        format!(
-            "{} {}",
-            self.units.from_si(value, dimension),
-            self.units.symbol(dimension)
-        )
+        format!("{} {}", Units::tidy(self.units.from_si(value, dimension)), self.units.symbol(dimension))
     }
 }

@@ -190,6 +190,7 @@ impl Column {
 /// The columns of one output, in the order its values are produced by the evaluation: for
 /// each quantity, one column (angle, slider) or two (x and y of a point).
 pub fn columns(output: &Output, units: &Units, drive: Dimension) -> Vec<Column> {
+    let units = &units.for_outputs();
     let value = output.kind.dimension();
     let point = matches!(output.kind, OutputKind::Point(_));
     let (rate, rate2) = match value {

@@ -371,6 +371,7 @@ impl JointKind {
             JointKind::Prismatic { .. } => "prismatic",
             JointKind::PinInSlot { .. } => "pin_in_slot",
             JointKind::RackPinion { .. } => "rack_pinion",
+            JointKind::Gear { .. } => "gear",
             JointKind::Weld { .. } => "weld",
         }
     }

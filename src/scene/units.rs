@@ -88,6 +88,25 @@ pub enum Dimension {
 }
 
 impl Units {
+    /// The units of printed results: the same, except that angular velocities given in rpm
+    /// (a unit for a drive speed) are printed in rad/s.
+    pub fn for_outputs(&self) -> Units {
+        let mut units = *self;
+        if units.angular_velocity == AngularVelocityUnit::Rpm {
+            units.angular_velocity = AngularVelocityUnit::RadianPerSecond;
+        }
+        units
+    }
+
+    /// A number for messages and the plan line: at most 15 significant digits, so that the
+    /// rounding of a unit conversion does not show (`1500 rpm`, not `1500.0000000000002 rpm`).
+    pub fn tidy(value: f64) -> String {
+        match format!("{value:.14e}").parse::<f64>() {
+            Ok(v) => (v + 0.0).to_string(),
+            Err(_) => value.to_string(),
+        }
+    }
+
     /// SI value per unit of the given dimension: `si = file_value * factor`.
     pub fn factor(&self, dimension: Dimension) -> f64 {
         let length = match self.length {
