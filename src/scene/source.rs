@@ -35,7 +35,33 @@ impl Source {
             Some(span) => self.location(span),
             None => Location { file: self.file.clone(), line: 1, column: 1 },
         };
-        Error::Syntax { location, message: tidy_toml_message(error.message()) }
+        let message = tidy_toml_message(error.message());
+        if message.starts_with("duplicate key") {
+            if let Some(span) = error.span() {
+                return self.duplicate_key(span, location);
+            }
+        }
+        Error::Syntax { location, message }
+    }
+
+    /// toml says only "duplicate key": name the key and its table, and treat a point defined
+    /// twice as [`Error::DuplicatePoint`].
+    fn duplicate_key(&self, span: Range<usize>, location: Location) -> Error {
+        let key = self.text.get(span.clone()).unwrap_or("").trim().trim_matches('"').to_owned();
+        let table = self.text[..span.start.min(self.text.len())]
+            .lines()
+            .rev()
+            .map(str::trim)
+            .find(|l| l.starts_with('['))
+            .map(|l| l.split('#').next().unwrap_or(l).trim().to_owned());
+        match table.as_deref() {
+            Some("[points]") => Error::DuplicatePoint { location, name: key, context: "`[points]`".to_owned() },
+            Some(table) => Error::Syntax {
+                location,
+                message: format!("duplicate key `{key}` in `{table}`; each key may appear once"),
+            },
+            None => Error::Syntax { location, message: format!("duplicate key `{key}`; each key may appear once") },
+        }
     }
 }
 
@@ -48,7 +74,7 @@ fn floor_char_boundary(text: &str, mut index: usize) -> usize {
 
 /// toml's messages end with a newline and sometimes say "TOML parse error"; keep one line.
 fn tidy_toml_message(message: &str) -> String {
-    message.trim().replace('\n', "; ")
+    message.trim().replace('\n', "; ").replace("unknown variant", "unknown value")
 }
 
 #[cfg(test)]
