@@ -50,3 +50,42 @@ pub(crate) fn third_derivative(
     let rhs = DVector::from_iterator(out.len(), out.iter().map(|r| -r.v3));
     lu.solve(&rhs)
 }
+
+/// The derivatives `[q′, q″, q‴][..order]` (order 1 to 3) at an assembled pose `q` at drive
+/// position `phi`: one Jacobian, one LU, `order − 1` dual-number evaluations of Φ. `None` if
+/// Φ_q is singular there or `order` is not 1 to 3. ([`super::Tracker`] does this itself; this
+/// is for a pose found some other way.)
+///
+/// ```
+/// use mechdiff_core::geometry::{implicit, Drive, Equations, Mechanism};
+/// let m = Mechanism::builder()
+///     .point("O", [0.0, 0.0]).point("A", [2.0, 0.0])
+///     .ground(["O"]).link("crank", ["O", "A"])
+///     .revolute("O", "ground", "crank", "O")
+///     .drive(Drive::angle("O"))
+///     .build().unwrap();
+/// let eq = Equations::new(&m);
+/// let d = implicit::lift(&eq, &m.sketch_coordinates(), 0.0, 2).unwrap();
+/// // The crank's reference point O does not move; its angle θ = φ: θ′ = 1, θ″ = 0.
+/// assert_eq!((d[0][2], d[1][2]), (1.0, 0.0));
+/// ```
+pub fn lift(eq: &Equations, q: &[f64], phi: f64, order: usize) -> Option<Vec<DVector<f64>>> {
+    if !(1..=3).contains(&order) || q.len() != eq.coordinates() || eq.rows() != q.len() {
+        return None;
+    }
+    let mut jac = nalgebra::DMatrix::zeros(eq.rows(), eq.coordinates());
+    eq.jacobian(q, &mut jac);
+    let lu = jac.lu();
+    let q = DVector::from_column_slice(q);
+    let mut e = DVector::zeros(q.len());
+    e[q.len() - 1] = 1.0;
+    let dq = lu.solve(&e)?;
+    let mut out = vec![dq];
+    if order >= 2 {
+        out.push(second_derivative(eq, &lu, &q, &out[0], phi)?);
+    }
+    if order == 3 {
+        out.push(third_derivative(eq, &lu, &q, &out[0], &out[1], phi)?);
+    }
+    Some(out)
+}

@@ -276,8 +276,12 @@ impl Mechanism {
         })
     }
 
-    /// Sketch position of the reference point (first point) of link `k`.
+    /// Sketch position of the reference point of link `k`: its first point, or the origin
+    /// for the ground (whose frame is the global one).
     pub fn reference_sketch(&self, link: usize) -> [f64; 2] {
+        if link == 0 {
+            return [0.0, 0.0];
+        }
         self.links[link].points.first().map_or([0.0, 0.0], |&p| self.points[p].sketch)
     }
 

@@ -36,14 +36,17 @@ pub struct Solver {
     pub max_iterations: usize,
     /// Step halvings allowed before a failure is reported.
     pub max_subdivisions: usize,
-    /// A scaled Φ_q whose condition number exceeds this is singular (a toggle). At an exact
-    /// toggle Newton only converges to ~√tolerance, which leaves a condition of ~1e6–1e7.
-    pub singular_condition: f64,
+    /// A loop whose scaled Φ_q block has a condition number above this is singular (a
+    /// toggle). `None` (the default) means `0.1 / √tolerance`: at an exact toggle Newton
+    /// converges only to ~√tolerance, which leaves a condition of ~1/√tolerance (3e6 for
+    /// 1e-13, measured on a slider-crank driven into its dead centre), ten times above it;
+    /// a regular pose that close to a toggle has lost half the digits of q′ anyway.
+    pub singular_condition: Option<f64>,
 }
 
 impl Default for Solver {
     fn default() -> Self {
-        Solver { tolerance: 1e-13, max_iterations: 50, max_subdivisions: 24, singular_condition: 1e6 }
+        Solver { tolerance: 1e-13, max_iterations: 50, max_subdivisions: 24, singular_condition: None }
     }
 }
 
@@ -68,7 +71,7 @@ impl Solver {
 
     /// Sets the condition number above which a pose is reported singular.
     pub fn with_singular_condition(mut self, condition: f64) -> Self {
-        self.singular_condition = condition;
+        self.singular_condition = Some(condition);
         self
     }
 
@@ -86,6 +89,11 @@ impl Solver {
                 tracker.kinematics::<N>()
             })
             .collect()
+    }
+
+    /// The condition number above which a loop is singular (see [`Solver::singular_condition`]).
+    pub fn singular_threshold(&self) -> f64 {
+        self.singular_condition.unwrap_or(0.1 / self.tolerance.sqrt())
     }
 
     /// Checks mobility and starts tracking `m` at its sketch pose.
@@ -132,6 +140,10 @@ pub struct SolveReport {
     pub steps: usize,
     /// Final max |Φ| (m or rad).
     pub residual: f64,
+    /// Sub-steps rejected because Newton landed on another assembly branch.
+    pub branch_rejections: usize,
+    /// Sub-steps rejected because Newton did not converge.
+    pub newton_failures: usize,
 }
 
 /// A mechanism being walked along its drive, one assembly branch kept.
@@ -234,7 +246,14 @@ impl<'m> Tracker<'m> {
         if !phi.is_finite() {
             return Err(Error::NonFinite { phi, quantity: "drive position" });
         }
-        let mut report = SolveReport { phi: self.phi, iterations: 0, steps: 0, residual: 0.0 };
+        let mut report = SolveReport {
+            phi: self.phi,
+            iterations: 0,
+            steps: 0,
+            residual: 0.0,
+            branch_rejections: 0,
+            newton_failures: 0,
+        };
         let mut halvings: usize = 0;
         while self.phi != phi {
             let h = (phi - self.phi) / f64::powi(2.0, halvings as i32);
@@ -255,16 +274,20 @@ impl<'m> Tracker<'m> {
                         Some(l) => {
                             let joints = self.loop_joints(&self.loops[l]);
                             self.restore(saved);
+                            report.branch_rejections += 1;
                             Error::BranchFlip { from: self.phi, to: target, joints }
                         }
                     }
                 }
-                Err((residual, l)) => Error::Unassemblable {
+                Err((residual, l)) => {
+                    report.newton_failures += 1;
+                    Error::Unassemblable {
                     phi,
                     last_assembled: self.phi,
                     joints: self.loop_joints(&self.loops[l]),
                     residual,
-                },
+                    }
+                }
             };
             halvings += 1;
             if halvings > self.solver.max_subdivisions {
@@ -327,13 +350,23 @@ impl<'m> Tracker<'m> {
         mobility::scale(&self.eq, &mut scaled, self.size);
         let mut certificates = Vec::with_capacity(self.loops.len());
         for l in &self.loops {
-            let (sign, condition) = branch::certificate(&scaled, l, self.solver.singular_condition);
-            if !(condition <= self.solver.singular_condition) {
+            let limit = self.solver.singular_threshold();
+            let (sign, condition) = branch::certificate(&scaled, l, limit);
+            if !(condition <= limit) {
                 return Err(Error::Singular { phi, condition, joints: self.loop_joints(l) });
             }
             certificates.push(sign);
         }
         let lu = self.jac.clone().lu();
+        // Polish: one more Newton step with this LU takes the converged pose from the
+        // tolerance down to rounding (the Jacobian, ~1e-13 away, is still the right one for
+        // the derivatives to that order).
+        if let Some(step) = lu.solve(&self.residual) {
+            if step.iter().all(|s| s.is_finite()) {
+                self.q -= step;
+                self.eq.evaluate(self.q.as_slice(), phi, self.residual.as_mut_slice());
+            }
+        }
         let singular = || Error::Singular {
             phi,
             condition: f64::INFINITY,
