@@ -4,6 +4,7 @@ use std::io::{self, Write};
 
 use super::model::Scene;
 use super::run::Report;
+use super::units::Units;
 
 /// Significant digits in the printed table (the CSV carries every digit).
 const DIGITS: usize = 9;
@@ -63,7 +64,7 @@ pub fn write_table(scene: &Scene, report: &Report, out: &mut impl Write) -> io::
     write_dead_positions(scene, report, out)
 }
 
-/// Writes the dead positions found and the stroke between them, with 15 significant digits.
+/// Writes the dead positions found and the stroke between them, to 15 significant digits.
 pub fn write_dead_positions(scene: &Scene, report: &Report, out: &mut impl Write) -> io::Result<()> {
     let u = &scene.units.for_outputs();
     for dead in &report.dead_positions {
@@ -82,14 +83,15 @@ pub fn write_dead_positions(scene: &Scene, report: &Report, out: &mut impl Write
             let kind = if d.d2 < 0.0 { "maximum" } else { "minimum" };
             writeln!(
                 out,
-                "  phi = {}: {} = {:.15} {unit} ({kind})",
+                "  phi = {}: {} = {} {unit} ({kind})",
                 scene.drive_text(d.phi),
                 dead.output,
-                u.from_si(d.value, dead.dimension),
+                Units::tidy(u.from_si(d.value, dead.dimension)),
             )?;
         }
         if let Some(stroke) = dead.stroke() {
-            writeln!(out, "stroke of {}: {:.15} {unit}", dead.output, u.from_si(stroke, dead.dimension))?;
+            let stroke = Units::tidy(u.from_si(stroke, dead.dimension));
+            writeln!(out, "stroke of {}: {stroke} {unit}", dead.output)?;
         }
     }
     Ok(())
