@@ -224,3 +224,16 @@ fn a_pin_drawn_off_its_slot_is_located() {
     let e = scene::parse("bad.toml", &text).unwrap_err();
     assert_message(&e, 20, &["point `A`", "off the line `O4`–`B`"]);
 }
+
+#[test]
+fn dead_positions_need_a_scalar_output_and_a_range() {
+    let with_point = FOUR_BAR.replace(r#"name = "psi"
+angle = ["O4", "B"]"#, "point = \"B\"\ndead_positions = true");
+    let e = scene::parse("bad.toml", &with_point).unwrap_err();
+    assert_message(&e, 33, &["`dead_positions` applies to an angle or slider output"]);
+    let one_position = FOUR_BAR
+        .replace("from = 0\nto = 360\nstep = 10", "positions = [10]")
+        .replace(r#"angle = ["O4", "B"]"#, "angle = [\"O4\", \"B\"]\ndead_positions = true");
+    let e = scene::parse("bad.toml", &one_position).unwrap_err();
+    assert_message(&e, 31, &["output `psi`", "`dead_positions` needs a range"]);
+}

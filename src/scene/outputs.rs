@@ -141,6 +141,12 @@ fn resolve_one(
             });
         }
     }
+    if d.dead_positions && matches!(kind, OutputKind::Point(_)) {
+        return Err(cx.invalid(
+            def,
+            format!("output `{name}`: `dead_positions` applies to an angle or slider output; measure the point along a line with a slider or an angle"),
+        ));
+    }
     Ok(Output { name, kind, quantities, dead_positions: d.dead_positions, location: cx.at(def) })
 }
 

@@ -38,6 +38,15 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
         drive.at_sketch = nearest_turn(drive.at_sketch, positions[0]);
     }
     let outputs = outputs::resolve(&cx, &file.outputs, &geometry, &joints, &drive)?;
+    if let Some(output) = outputs.iter().find(|o| o.dead_positions) {
+        let (lo, hi) = positions.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+        if !(hi > lo) {
+            return Err(Error::Invalid {
+                location: output.location.clone(),
+                message: format!("output `{}`: `dead_positions` needs a range of drive positions to search; `[sweep]` has one position", output.name),
+            });
+        }
+    }
     Ok(Scene {
         file: source.file.clone(),
         title: file.title,
