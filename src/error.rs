@@ -2,14 +2,15 @@
 
 use std::fmt;
 use std::path::PathBuf;
+use std::sync::Arc;
 
 use thiserror::Error;
 
 /// A place in a scene file: `file:line:column` (1-based, columns in characters).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Location {
-    /// The file as named on the command line (or `<string>` for in-memory scenes).
-    pub file: String,
+    /// The file as named on the command line (or as given to [`crate::scene::parse`]).
+    pub file: Arc<str>,
     /// Line, from 1.
     pub line: usize,
     /// Column, from 1.

@@ -44,7 +44,10 @@ angle = ["O4", "B"]
 
 /// Replaces `from` (which must occur in the base scene) and parses the result as `bad.toml`.
 fn parse_with(from: &str, to: &str) -> Error {
-    assert!(FOUR_BAR.contains(from), "test bug: `{from}` is not in the base scene");
+    assert!(
+        FOUR_BAR.contains(from),
+        "test bug: `{from}` is not in the base scene"
+    );
     match scene::parse("bad.toml", &FOUR_BAR.replacen(from, to, 1)) {
         Ok(_) => panic!("`{to}` was accepted"),
         Err(e) => e,
@@ -54,7 +57,10 @@ fn parse_with(from: &str, to: &str) -> Error {
 /// Asserts the message starts with `bad.toml:<line>:` and contains every `part`.
 fn assert_message(error: &Error, line: usize, parts: &[&str]) {
     let message = error.to_string();
-    assert!(message.starts_with(&format!("bad.toml:{line}:")), "wrong place: {message}");
+    assert!(
+        message.starts_with(&format!("bad.toml:{line}:")),
+        "wrong place: {message}"
+    );
     for part in parts {
         assert!(message.contains(part), "`{part}` missing from: {message}");
     }
@@ -70,14 +76,33 @@ fn the_base_scene_is_valid() {
 fn an_unknown_joint_type_lists_the_types() {
     let e = parse_with(r#"A = { type = "revolute""#, r#"A = { type = "hinge""#);
     assert!(matches!(e, Error::Syntax { .. }), "{e:?}");
-    assert_message(&e, 19, &["`hinge`", "`revolute`", "`prismatic`", "`pin_in_slot`", "`rack_pinion`", "`gear`", "`weld`"]);
+    assert_message(
+        &e,
+        19,
+        &[
+            "`hinge`",
+            "`revolute`",
+            "`prismatic`",
+            "`pin_in_slot`",
+            "`rack_pinion`",
+            "`gear`",
+            "`weld`",
+        ],
+    );
 }
 
 #[test]
 fn a_missing_point_names_the_link_and_lists_the_points() {
     let e = parse_with(r#"coupler = ["A", "B"]"#, r#"coupler = ["A", "C"]"#);
-    assert!(matches!(&e, Error::UnknownPoint { name, .. } if name == "C"), "{e:?}");
-    assert_message(&e, 14, &["unknown point `C`", "link `coupler`", "A, B, O2, O4"]);
+    assert!(
+        matches!(&e, Error::UnknownPoint { name, .. } if name == "C"),
+        "{e:?}"
+    );
+    assert_message(
+        &e,
+        14,
+        &["unknown point `C`", "link `coupler`", "A, B, O2, O4"],
+    );
 }
 
 #[test]
@@ -90,7 +115,10 @@ fn a_missing_point_in_a_joint_is_located_too() {
 #[test]
 fn a_point_defined_twice_is_a_duplicate() {
     let e = parse_with("B = [0.4, 0.3]\n", "B = [0.4, 0.3]\nA = [0.0, 0.2]\n");
-    assert!(matches!(&e, Error::DuplicatePoint { name, .. } if name == "A"), "{e:?}");
+    assert!(
+        matches!(&e, Error::DuplicatePoint { name, .. } if name == "A"),
+        "{e:?}"
+    );
     assert_message(&e, 10, &["point `A`", "`[points]`"]);
 }
 
@@ -103,9 +131,19 @@ fn a_point_listed_twice_in_a_link_is_a_duplicate() {
 
 #[test]
 fn a_non_positive_length_is_rejected() {
-    let e = parse_with("B = [0.4, 0.3]", r#"B = { from = "O4", length = -0.3, angle = 90 }"#);
-    assert!(matches!(e, Error::NonPositiveLength { value, .. } if value == -0.3), "{e:?}");
-    assert_message(&e, 9, &["`length` of point `B`", "must be positive", "-0.3"]);
+    let e = parse_with(
+        "B = [0.4, 0.3]",
+        r#"B = { from = "O4", length = -0.3, angle = 90 }"#,
+    );
+    assert!(
+        matches!(e, Error::NonPositiveLength { value, .. } if value == -0.3),
+        "{e:?}"
+    );
+    assert_message(
+        &e,
+        9,
+        &["`length` of point `B`", "must be positive", "-0.3"],
+    );
 }
 
 #[test]
@@ -136,7 +174,10 @@ fn a_misspelt_key_lists_the_keys_expected_there() {
     let e = parse_with("speed = 10", "sped = 10");
     assert!(matches!(e, Error::Syntax { .. }), "{e:?}");
     assert_message(&e, 26, &["`sped`", "`speed`", "`acceleration`", "`line`"]);
-    let e = parse_with(r#"links = ["ground", "crank"]"#, r#"link = ["ground", "crank"]"#);
+    let e = parse_with(
+        r#"links = ["ground", "crank"]"#,
+        r#"link = ["ground", "crank"]"#,
+    );
     assert_message(&e, 18, &["`link`", "`links`", "`at`"]);
     let e = parse_with("[sweep]", "[swep]");
     assert_message(&e, 28, &["`swep`", "`sweep`"]);
@@ -145,7 +186,14 @@ fn a_misspelt_key_lists_the_keys_expected_there() {
 #[test]
 fn a_field_that_does_not_apply_to_a_joint_type_says_which_fields_do() {
     let e = parse_with(r#"at = "A", links"#, r#"at = "A", radius = 0.1, links"#);
-    assert_message(&e, 19, &["`radius` does not apply", "`revolute` joint takes `type`, `links`, `at`"]);
+    assert_message(
+        &e,
+        19,
+        &[
+            "`radius` does not apply",
+            "`revolute` joint takes `type`, `links`, `at`",
+        ],
+    );
 }
 
 #[test]
@@ -171,12 +219,27 @@ fn geometry_that_cannot_assemble_names_the_position_and_the_loop() {
         .replace("from = 0\nto = 360", "from = 90\nto = 180");
     let scene = scene::parse("bad.toml", &text).unwrap();
     let e = scene::run(&scene).unwrap_err();
-    let Error::Unassemblable { position, last, loop_joints, .. } = &e else { panic!("{e:?}") };
+    let Error::Unassemblable {
+        position,
+        last,
+        loop_joints,
+        ..
+    } = &e
+    else {
+        panic!("{e:?}")
+    };
     assert_eq!(position, "110 deg");
     let last: f64 = last.trim_end_matches(" deg").parse().unwrap();
     assert!(last > 100.0 && last < 110.0, "{e}");
-    assert!(loop_joints.contains('A') && loop_joints.contains("O4"), "{e}");
-    assert!(e.to_string().starts_with("bad.toml: cannot assemble at drive position 110 deg"), "{e}");
+    assert!(
+        loop_joints.contains('A') && loop_joints.contains("O4"),
+        "{e}"
+    );
+    assert!(
+        e.to_string()
+            .starts_with("bad.toml: cannot assemble at drive position 110 deg"),
+        "{e}"
+    );
 }
 
 /// A centred slider-crank (r = 0.3 m, l = 0.5 m) driven by its slider: at s = l + r = 0.8 m
@@ -210,9 +273,15 @@ quantities = ["position", "velocity_coefficient"]
 "#;
     let scene = scene::parse("toggle.toml", text).unwrap();
     let e = scene::run(&scene).unwrap_err();
-    let Error::Singular { position, .. } = &e else { panic!("{e:?}") };
+    let Error::Singular { position, .. } = &e else {
+        panic!("{e:?}")
+    };
     assert_eq!(position, "0.8 m");
-    assert!(e.to_string().starts_with("toggle.toml: singular position (toggle) at drive position 0.8 m"), "{e}");
+    assert!(
+        e.to_string()
+            .starts_with("toggle.toml: singular position (toggle) at drive position 0.8 m"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -227,13 +296,23 @@ fn a_pin_drawn_off_its_slot_is_located() {
 
 #[test]
 fn dead_positions_need_a_scalar_output_and_a_range() {
-    let with_point = FOUR_BAR.replace(r#"name = "psi"
-angle = ["O4", "B"]"#, "point = \"B\"\ndead_positions = true");
+    let with_point = FOUR_BAR.replace(
+        r#"name = "psi"
+angle = ["O4", "B"]"#,
+        "point = \"B\"\ndead_positions = true",
+    );
     let e = scene::parse("bad.toml", &with_point).unwrap_err();
-    assert_message(&e, 33, &["`dead_positions` applies to an angle or slider output"]);
+    assert_message(
+        &e,
+        33,
+        &["`dead_positions` applies to an angle or slider output"],
+    );
     let one_position = FOUR_BAR
         .replace("from = 0\nto = 360\nstep = 10", "positions = [10]")
-        .replace(r#"angle = ["O4", "B"]"#, "angle = [\"O4\", \"B\"]\ndead_positions = true");
+        .replace(
+            r#"angle = ["O4", "B"]"#,
+            "angle = [\"O4\", \"B\"]\ndead_positions = true",
+        );
     let e = scene::parse("bad.toml", &one_position).unwrap_err();
     assert_message(&e, 31, &["output `psi`", "`dead_positions` needs a range"]);
 }

@@ -7,7 +7,9 @@ use std::path::{Path, PathBuf};
 use mechdiff::scene::{self, Report};
 
 fn scene_path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes").join(name)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes")
+        .join(name)
 }
 
 fn run(name: &str) -> Report {
@@ -16,14 +18,20 @@ fn run(name: &str) -> Report {
 }
 
 fn column(report: &Report, name: &str) -> Vec<f64> {
-    report.column(name).unwrap_or_else(|| panic!("no column `{name}`"))
+    report
+        .column(name)
+        .unwrap_or_else(|| panic!("no column `{name}`"))
 }
 
 /// max |a − b| over the sweep divided by max |b|: relative where the value is large, and
 /// absolute (scaled by its largest magnitude) where it passes through zero.
 fn scaled_error(a: &[f64], b: &[f64]) -> f64 {
     let scale = b.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-    a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max) / scale
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+        / scale
 }
 
 #[test]
@@ -34,14 +42,20 @@ fn every_scene_in_the_scenes_folder_runs() {
         .filter(|n| n.ends_with(".toml"))
         .collect();
     names.sort();
-    assert!(names.len() >= 6, "expected the six reference scenes, found {names:?}");
+    assert!(
+        names.len() >= 6,
+        "expected the six reference scenes, found {names:?}"
+    );
     for name in names {
         let scene = scene::load(scene_path(&name)).unwrap_or_else(|e| panic!("{e}"));
         let report = scene::run(&scene).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(report.rows.len(), scene.positions.len(), "{name}");
         for row in &report.rows {
             assert_eq!(row.len(), report.columns.len(), "{name}");
-            assert!(row.iter().all(|v| v.is_finite()), "{name}: non-finite value in {row:?}");
+            assert!(
+                row.iter().all(|v| v.is_finite()),
+                "{name}: non-finite value in {row:?}"
+            );
         }
     }
 }
@@ -104,7 +118,11 @@ fn whitworth_dead_positions_and_stroke() {
     assert!((phis[0] - lambda.acos()).abs() <= 1e-12);
     assert!((phis[1] - (2.0 * PI - lambda.acos())).abs() <= 1e-12);
     let stroke = 2.0 * 0.65 * lambda / (1.0 - lambda * lambda).sqrt();
-    assert!((dead.stroke().unwrap() - stroke).abs() <= 1e-12, "{:?}", dead.stroke());
+    assert!(
+        (dead.stroke().unwrap() - stroke).abs() <= 1e-12,
+        "{:?}",
+        dead.stroke()
+    );
 }
 
 /// Reference 001 at θ3 = 63° (ρ4 = 0.419162449232150365 m, ρ̇4 = 0.050 m/s, ρ̈4 = 0.002 m/s²,
@@ -113,7 +131,8 @@ fn whitworth_dead_positions_and_stroke() {
 /// issue's 1e-9: the agreement measured is ≤ 2e-15 (rounding of the sketch's 17-digit
 /// coordinates and of the JSON's doubles).
 fn check_rack_slotted_link(scene_file: &str, branch: &str) {
-    let data: serde_json::Value = serde_json::from_str(include_str!("data/rack_slotted_link_001.json")).unwrap();
+    let data: serde_json::Value =
+        serde_json::from_str(include_str!("data/rack_slotted_link_001.json")).unwrap();
     let want = &data[branch];
     let report = run(scene_file);
     assert_eq!(report.rows.len(), 1);
@@ -124,20 +143,36 @@ fn check_rack_slotted_link(scene_file: &str, branch: &str) {
     let checks: Vec<(&str, f64, f64)> = vec![
         ("theta3", got("theta3"), number("theta3_deg").to_radians()),
         ("theta3_dot", got("theta3_dot"), number("theta3_dot_rad_s")),
-        ("theta3_ddot", got("theta3_ddot"), number("theta3_ddot_rad_s2")),
+        (
+            "theta3_ddot",
+            got("theta3_ddot"),
+            number("theta3_ddot_rad_s2"),
+        ),
         ("rho3", got("rho3"), number("rho3_m")),
         ("rho3_dot", got("rho3_dot"), number("rho3_dot_m_s")),
         ("rho3_ddot", got("rho3_ddot"), number("rho3_ddot_m_s2")),
         ("theta6", got("theta6"), number("theta6_rad")),
         ("theta6_dot", got("theta6_dot"), number("theta6_dot_rad_s")),
-        ("theta6_ddot", got("theta6_ddot"), number("theta6_ddot_rad_s2")),
+        (
+            "theta6_ddot",
+            got("theta6_ddot"),
+            number("theta6_ddot_rad_s2"),
+        ),
         ("rho8", got("rho8"), number("rho8_m")),
         ("rho8_dot", got("rho8_dot"), number("rho8_dot_m_s")),
         ("rho8_ddot", got("rho8_ddot"), number("rho8_ddot_m_s2")),
         ("theta3'", got("theta3'"), coefficient("theta3_p_rad_per_m")),
-        ("theta3''", got("theta3''"), coefficient("theta3_pp_rad_per_m2")),
+        (
+            "theta3''",
+            got("theta3''"),
+            coefficient("theta3_pp_rad_per_m2"),
+        ),
         ("theta6'", got("theta6'"), coefficient("theta6_p_rad_per_m")),
-        ("theta6''", got("theta6''"), coefficient("theta6_pp_rad_per_m2")),
+        (
+            "theta6''",
+            got("theta6''"),
+            coefficient("theta6_pp_rad_per_m2"),
+        ),
         ("rho8'", got("rho8'"), coefficient("rho8_p")),
         ("rho8''", got("rho8''"), coefficient("rho8_pp_per_m")),
         ("vx_G1", got("vx_G1"), pair("v_G1_m_s", 0)),
@@ -148,12 +183,23 @@ fn check_rack_slotted_link(scene_file: &str, branch: &str) {
         ("vy_D", got("vy_D"), pair("v_D_m_s", 1)),
         ("ax_D", got("ax_D"), pair("a_D_m_s2", 0)),
         ("ay_D", got("ay_D"), pair("a_D_m_s2", 1)),
-        ("x_D", got("x_D"), want["positions_m"]["D"][0].as_f64().unwrap()),
-        ("y_D", got("y_D"), want["positions_m"]["D"][1].as_f64().unwrap()),
+        (
+            "x_D",
+            got("x_D"),
+            want["positions_m"]["D"][0].as_f64().unwrap(),
+        ),
+        (
+            "y_D",
+            got("y_D"),
+            want["positions_m"]["D"][1].as_f64().unwrap(),
+        ),
     ];
     for (name, got, want) in checks {
         let error = (got - want).abs() / want.abs();
-        assert!(error <= 1e-12, "{scene_file} {name}: {got} vs {want} (relative error {error:e})");
+        assert!(
+            error <= 1e-12,
+            "{scene_file} {name}: {got} vs {want} (relative error {error:e})"
+        );
     }
     // The wheel rolls on the rack: θ̇1 = ρ̇4 / R = 0.050 / 0.04 = 1.25 rad/s (R as a radius).
     assert!((got("theta1_dot") - 1.25).abs() <= 1e-12);
@@ -183,11 +229,17 @@ fn shaper_stroke_and_dead_positions_match_the_closed_form() {
     let (l0, l1, l3) = (0.315, 0.100, 0.480);
     let phi = column(&report, "phi");
     assert_eq!(phi.len(), 361);
-    let phi3: Vec<f64> = phi.iter().map(|p| (l0 + l1 * p.sin()).atan2(l1 * p.cos())).collect();
+    let phi3: Vec<f64> = phi
+        .iter()
+        .map(|p| (l0 + l1 * p.sin()).atan2(l1 * p.cos()))
+        .collect();
     assert!(scaled_error(&column(&report, "phi3"), &phi3) <= 1e-12);
     let s5: Vec<f64> = phi3.iter().map(|a| l3 * a.cos()).collect();
     assert!(scaled_error(&column(&report, "s5"), &s5) <= 1e-12);
-    let s2: Vec<f64> = phi.iter().map(|p| (l1 * l1 + l0 * l0 + 2.0 * l0 * l1 * p.sin()).sqrt()).collect();
+    let s2: Vec<f64> = phi
+        .iter()
+        .map(|p| (l1 * l1 + l0 * l0 + 2.0 * l0 * l1 * p.sin()).sqrt())
+        .collect();
     assert!(scaled_error(&column(&report, "s2"), &s2) <= 1e-12);
 
     let dead = &report.dead_positions[0];
@@ -198,7 +250,10 @@ fn shaper_stroke_and_dead_positions_match_the_closed_form() {
     assert!((found[0] - (PI + beta)).abs() <= 1e-12, "{found:?}");
     assert!((found[1] - (2.0 * PI - beta)).abs() <= 1e-12, "{found:?}");
     let stroke = dead.stroke().unwrap();
-    assert!((stroke - 2.0 * l3 * l1 / l0).abs() <= 1e-14, "stroke {stroke}");
+    assert!(
+        (stroke - 2.0 * l3 * l1 / l0).abs() <= 1e-14,
+        "stroke {stroke}"
+    );
 }
 
 /// Slider-crank with offset e: the slider's extremes are where crank and rod are in line,
@@ -211,8 +266,14 @@ fn slider_crank_stroke_matches_the_closed_form() {
     let dead = &report.dead_positions[0];
     let values: Vec<f64> = dead.positions.iter().map(|d| d.value).collect();
     assert_eq!(values.len(), 2);
-    let (near, far) = (((l - r).powi(2) - e * e).sqrt(), ((l + r).powi(2) - e * e).sqrt());
-    assert!((values[0] - near).abs() <= 1e-14 && (values[1] - far).abs() <= 1e-14, "{values:?}");
+    let (near, far) = (
+        ((l - r).powi(2) - e * e).sqrt(),
+        ((l + r).powi(2) - e * e).sqrt(),
+    );
+    assert!(
+        (values[0] - near).abs() <= 1e-14 && (values[1] - far).abs() <= 1e-14,
+        "{values:?}"
+    );
     assert!((dead.stroke().unwrap() - (far - near)).abs() <= 1e-14);
 }
 
@@ -233,6 +294,33 @@ fn four_bar_rocker_extremes_match_the_law_of_cosines() {
     assert_eq!(values.len(), 2, "{values:?}");
     let (lo, hi) = (values[0].min(values[1]), values[0].max(values[1]));
     // The longer diagonal opens the angle at O4, which lowers the rocker.
-    assert!((lo - extreme(b + a)).abs() <= 1e-13, "{lo} vs {}", extreme(b + a));
-    assert!((hi - extreme(b - a)).abs() <= 1e-13, "{hi} vs {}", extreme(b - a));
+    assert!(
+        (lo - extreme(b + a)).abs() <= 1e-13,
+        "{lo} vs {}",
+        extreme(b + a)
+    );
+    assert!(
+        (hi - extreme(b - a)).abs() <= 1e-13,
+        "{hi} vs {}",
+        extreme(b - a)
+    );
+}
+
+/// docs/scene-format.md shows scenes/whitworth.toml as its complete example: keep them equal
+/// (the file without its leading comment block), so the documentation cannot go stale.
+#[test]
+fn the_documented_example_is_the_whitworth_scene() {
+    let docs =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/scene-format.md"))
+            .unwrap();
+    let start = docs.find("```toml\n").expect("a toml block in the docs") + "```toml\n".len();
+    let example = &docs[start..start + docs[start..].find("```").unwrap()];
+    let file = std::fs::read_to_string(scene_path("whitworth.toml")).unwrap();
+    let body: String = file
+        .lines()
+        .skip_while(|l| l.starts_with('#'))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    assert_eq!(example, body);
+    scene::parse("docs/scene-format.md", example).unwrap();
 }

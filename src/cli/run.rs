@@ -28,13 +28,19 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
             table::write_csv(&report, &mut out)?;
             out.flush()
         };
-        write(path).map_err(|source| Error::Write { path: path.clone(), source })?;
+        write(path).map_err(|source| Error::Write {
+            path: path.clone(),
+            source,
+        })?;
     }
     let stdout = std::io::stdout();
     let mut out = BufWriter::new(stdout.lock());
     match table::write_table(&scene, &report, &mut out).and_then(|()| out.flush()) {
         // The reader went away (`mechdiff run s.toml | head`): not an error of ours.
         Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
-        result => result.map_err(|source| Error::Write { path: PathBuf::from("<stdout>"), source }),
+        result => result.map_err(|source| Error::Write {
+            path: PathBuf::from("<stdout>"),
+            source,
+        }),
     }
 }

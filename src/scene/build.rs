@@ -27,16 +27,25 @@ pub fn mechanism(scene: &Scene) -> Result<Mechanism> {
         let name = joint.name.as_str();
         b = match &joint.kind {
             JointKind::Revolute { links: [a, c], at } => b.revolute(name, a, c, at),
-            JointKind::Prismatic { links: [guide, slider], line: [p, q], point } => {
-                b.prismatic(name, guide, [p, q], slider, point)
-            }
-            JointKind::PinInSlot { links: [slot, pin_link], slot: [p, q], pin } => {
-                b.pin_in_slot(name, slot, [p, q], pin_link, pin)
-            }
-            JointKind::RackPinion { pinion, rack, radius } => {
-                b.rack_pinion(name, pinion, rack, *radius)
-            }
-            JointKind::Gear { joints: [a, c], ratio } => b.gear(name, a, c, *ratio),
+            JointKind::Prismatic {
+                links: [guide, slider],
+                line: [p, q],
+                point,
+            } => b.prismatic(name, guide, [p, q], slider, point),
+            JointKind::PinInSlot {
+                links: [slot, pin_link],
+                slot: [p, q],
+                pin,
+            } => b.pin_in_slot(name, slot, [p, q], pin_link, pin),
+            JointKind::RackPinion {
+                pinion,
+                rack,
+                radius,
+            } => b.rack_pinion(name, pinion, rack, *radius),
+            JointKind::Gear {
+                joints: [a, c],
+                ratio,
+            } => b.gear(name, a, c, *ratio),
             JointKind::Weld { links: [a, c] } => b.rigid(name, a, c),
         };
     }
@@ -57,7 +66,13 @@ pub(crate) fn model_error(scene: &Scene, source: mechdiff_core::Error) -> Error 
         _ => None,
     };
     match joint.and_then(|j| scene.joints.iter().find(|k| &k.name == j)) {
-        Some(joint) => Error::Invalid { location: joint.location.clone(), message: source.to_string() },
-        None => Error::Model { file: scene.file.clone(), source },
+        Some(joint) => Error::Invalid {
+            location: joint.location.clone(),
+            message: source.to_string(),
+        },
+        None => Error::Model {
+            file: scene.file.clone(),
+            source,
+        },
     }
 }

@@ -8,7 +8,7 @@ use crate::error::{Error, Result};
 
 use super::format::{DriveSection, SweepSection};
 use super::model::{Drive, DriveKind, Joint, JointKind};
-use super::resolve::{Context, Geometry, GROUND};
+use super::resolve::{Context, GROUND, Geometry};
 
 /// The most drive positions a sweep may have (a typo like `step = 1e-9` should not hang).
 pub const MAX_POSITIONS: usize = 1_000_000;
@@ -71,7 +71,12 @@ impl Context<'_> {
                 (DriveKind::Angle, angle)
             }
             JointKind::Prismatic { line, point, .. } => {
-                if let Some(extra) = d.line.as_ref().map(|l| l.span()).or(d.reference.as_ref().map(|r| r.span())) {
+                if let Some(extra) = d
+                    .line
+                    .as_ref()
+                    .map(|l| l.span())
+                    .or(d.reference.as_ref().map(|r| r.span()))
+                {
                     return Err(Error::Invalid {
                         location: self.source.location(extra),
                         message: format!(
@@ -80,7 +85,11 @@ impl Context<'_> {
                         ),
                     });
                 }
-                let (a, b, p) = (geometry.sketch(&line[0]), geometry.sketch(&line[1]), geometry.sketch(point));
+                let (a, b, p) = (
+                    geometry.sketch(&line[0]),
+                    geometry.sketch(&line[1]),
+                    geometry.sketch(point),
+                );
                 let (ux, uy) = (b[0] - a[0], b[1] - a[1]);
                 let s = ((p[0] - a[0]) * ux + (p[1] - a[1]) * uy) / ux.hypot(uy);
                 (DriveKind::Displacement, s)
@@ -118,14 +127,21 @@ impl Context<'_> {
     }
 
     /// The drive positions (SI) of `[sweep]`.
-    pub(crate) fn sweep(&self, section: &Spanned<SweepSection>, kind: DriveKind) -> Result<Vec<f64>> {
+    pub(crate) fn sweep(
+        &self,
+        section: &Spanned<SweepSection>,
+        kind: DriveKind,
+    ) -> Result<Vec<f64>> {
         let s = section.get_ref();
         let dimension = kind.dimension();
         let expected = "expected either `from`, `to` and `step`, or `positions = [...]`";
         match (&s.positions, &s.from, &s.to, &s.step) {
             (Some(list), None, None, None) => {
                 if list.get_ref().is_empty() {
-                    return Err(self.invalid(list, "`positions` is empty; expected at least one drive position"));
+                    return Err(self.invalid(
+                        list,
+                        "`positions` is empty; expected at least one drive position",
+                    ));
                 }
                 list.get_ref()
                     .iter()
@@ -133,7 +149,10 @@ impl Context<'_> {
                         if v.is_finite() {
                             Ok(self.units.to_si(v, dimension))
                         } else {
-                            Err(self.invalid(list, format!("`positions` must be finite numbers, found {v}")))
+                            Err(self.invalid(
+                                list,
+                                format!("`positions` must be finite numbers, found {v}"),
+                            ))
                         }
                     })
                     .collect()
@@ -145,7 +164,10 @@ impl Context<'_> {
                     self.number(to, "`[sweep] to`", dimension)?,
                 );
                 if to_si < from_si {
-                    return Err(self.invalid(to, "`[sweep] to` must not be below `from`; the step is positive"));
+                    return Err(self.invalid(
+                        to,
+                        "`[sweep] to` must not be below `from`; the step is positive",
+                    ));
                 }
                 // Count in the file's units so that 0..360 by 0.5 has exactly 721 positions.
                 let (f, t, h) = (*from.get_ref(), *to.get_ref(), *step.get_ref());
@@ -157,7 +179,9 @@ impl Context<'_> {
                     ));
                 }
                 let n = intervals as usize + 1;
-                Ok((0..n).map(|i| self.units.to_si(f + i as f64 * h, dimension)).collect())
+                Ok((0..n)
+                    .map(|i| self.units.to_si(f + i as f64 * h, dimension))
+                    .collect())
             }
             _ => Err(self.invalid(section, format!("`[sweep]`: {expected}"))),
         }

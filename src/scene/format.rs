@@ -8,13 +8,11 @@
 
 use std::collections::BTreeMap;
 
-use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
 use serde::Deserialize;
+use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
 use toml::Spanned;
 
-use super::units::{
-    AngleUnit, AngularAccelerationUnit, AngularVelocityUnit, LengthUnit,
-};
+use super::units::{AngleUnit, AngularAccelerationUnit, AngularVelocityUnit, LengthUnit};
 
 /// A name with the place where it is written.
 pub type Name = Spanned<String>;
@@ -94,8 +92,12 @@ impl<'de> Visitor<'de> for PointVisitor {
     }
 
     fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<PointDef, A::Error> {
-        let x: f64 = seq.next_element()?.ok_or_else(|| de::Error::invalid_length(0, &self))?;
-        let y: f64 = seq.next_element()?.ok_or_else(|| de::Error::invalid_length(1, &self))?;
+        let x: f64 = seq
+            .next_element()?
+            .ok_or_else(|| de::Error::invalid_length(0, &self))?;
+        let y: f64 = seq
+            .next_element()?
+            .ok_or_else(|| de::Error::invalid_length(1, &self))?;
         if seq.next_element::<de::IgnoredAny>()?.is_some() {
             return Err(de::Error::invalid_length(3, &self));
         }

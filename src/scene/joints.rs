@@ -6,7 +6,7 @@ use crate::error::{Error, Result};
 
 use super::format::{JointDef, JointKind as Kind, Name};
 use super::model::{Joint, JointKind};
-use super::resolve::{Context, Geometry, GROUND};
+use super::resolve::{Context, GROUND, Geometry};
 use super::units::Dimension;
 
 /// The fields each joint type takes, besides `type` (in the order they are documented).
@@ -61,7 +61,11 @@ pub(crate) fn resolve(
     let expected = format!(
         "a `{}` joint takes `type`, {}",
         type_name(kind),
-        allowed.iter().map(|f| format!("`{f}`")).collect::<Vec<_>>().join(", ")
+        allowed
+            .iter()
+            .map(|f| format!("`{f}`"))
+            .collect::<Vec<_>>()
+            .join(", ")
     );
     for (field, span) in &given {
         match span {
@@ -83,7 +87,10 @@ pub(crate) fn resolve(
         let a = cx.link(a, geometry.links, &context)?;
         let b = cx.link(b, geometry.links, &context)?;
         if a == b {
-            return Err(cx.invalid(links, format!("{context} joins link `{a}` to itself; expected two different links")));
+            return Err(cx.invalid(
+                links,
+                format!("{context} joins link `{a}` to itself; expected two different links"),
+            ));
         }
         Ok([a.to_owned(), b.to_owned()])
     };
@@ -93,29 +100,61 @@ pub(crate) fn resolve(
             let at = d.at.as_ref().expect("checked above");
             cx.point_on(at, &links[0], geometry, &context)?;
             let at = cx.point_on(at, &links[1], geometry, &context)?;
-            JointKind::Revolute { links, at: at.to_owned() }
+            JointKind::Revolute {
+                links,
+                at: at.to_owned(),
+            }
         }
         Kind::Prismatic => {
             let links = links(cx)?;
-            let line = cx.line(d.line.as_ref().expect("checked"), &links[0], geometry, &context)?;
+            let line = cx.line(
+                d.line.as_ref().expect("checked"),
+                &links[0],
+                geometry,
+                &context,
+            )?;
             let point_name = d.point.as_ref().expect("checked");
-            let point = cx.point_on(point_name, &links[1], geometry, &context)?.to_owned();
+            let point = cx
+                .point_on(point_name, &links[1], geometry, &context)?
+                .to_owned();
             cx.on_line(point_name, geometry, &point, &line, &context)?;
             JointKind::Prismatic { links, line, point }
         }
         Kind::PinInSlot => {
             let links = links(cx)?;
-            let slot = cx.line(d.slot.as_ref().expect("checked"), &links[0], geometry, &context)?;
+            let slot = cx.line(
+                d.slot.as_ref().expect("checked"),
+                &links[0],
+                geometry,
+                &context,
+            )?;
             let pin_name = d.pin.as_ref().expect("checked");
-            let pin = cx.point_on(pin_name, &links[1], geometry, &context)?.to_owned();
+            let pin = cx
+                .point_on(pin_name, &links[1], geometry, &context)?
+                .to_owned();
             cx.on_line(pin_name, geometry, &pin, &slot, &context)?;
             JointKind::PinInSlot { links, slot, pin }
         }
         Kind::RackPinion => {
-            let pinion = joint_of(cx, d.pinion.as_ref().expect("checked"), earlier, "revolute", &context)?;
-            let rack = joint_of(cx, d.rack.as_ref().expect("checked"), earlier, "prismatic", &context)?;
-            let radius =
-                cx.positive(d.radius.as_ref().expect("checked"), &format!("`radius` of {context}"), Dimension::Length)?;
+            let pinion = joint_of(
+                cx,
+                d.pinion.as_ref().expect("checked"),
+                earlier,
+                "revolute",
+                &context,
+            )?;
+            let rack = joint_of(
+                cx,
+                d.rack.as_ref().expect("checked"),
+                earlier,
+                "prismatic",
+                &context,
+            )?;
+            let radius = cx.positive(
+                d.radius.as_ref().expect("checked"),
+                &format!("`radius` of {context}"),
+                Dimension::Length,
+            )?;
             let sign = rolling_sense(geometry, pinion, rack);
             JointKind::RackPinion {
                 pinion: pinion.name.clone(),
@@ -130,9 +169,15 @@ pub(crate) fn resolve(
             let ratio = d.ratio.as_ref().expect("checked");
             let value = *ratio.get_ref();
             if !value.is_finite() || value == 0.0 {
-                return Err(cx.invalid(ratio, format!("{context}: `ratio` must be a finite, non-zero number, found {value}")));
+                return Err(cx.invalid(
+                    ratio,
+                    format!("{context}: `ratio` must be a finite, non-zero number, found {value}"),
+                ));
             }
-            JointKind::Gear { joints: [a.name.clone(), b.name.clone()], ratio: value }
+            JointKind::Gear {
+                joints: [a.name.clone(), b.name.clone()],
+                ratio: value,
+            }
         }
         Kind::Weld => {
             let links = links(cx)?;
@@ -165,7 +210,11 @@ fn joint_of<'j>(
     if joint.kind.type_name() != kind {
         return Err(cx.invalid(
             name,
-            format!("{context}: joint `{}` is {}; expected a {kind} joint", joint.name, joint.kind.type_name()),
+            format!(
+                "{context}: joint `{}` is {}; expected a {kind} joint",
+                joint.name,
+                joint.kind.type_name()
+            ),
         ));
     }
     Ok(joint)
@@ -174,11 +223,16 @@ fn joint_of<'j>(
 /// +1 when the pinion's centre is to the left of the rack's line (then a counter-clockwise
 /// turn of the pinion pushes the rack forwards along the line), −1 otherwise.
 fn rolling_sense(geometry: &Geometry, pinion: &Joint, rack: &Joint) -> f64 {
-    let (JointKind::Revolute { at, .. }, JointKind::Prismatic { line, .. }) = (&pinion.kind, &rack.kind)
+    let (JointKind::Revolute { at, .. }, JointKind::Prismatic { line, .. }) =
+        (&pinion.kind, &rack.kind)
     else {
         return 1.0;
     };
-    let (c, a, b) = (geometry.sketch(at), geometry.sketch(&line[0]), geometry.sketch(&line[1]));
+    let (c, a, b) = (
+        geometry.sketch(at),
+        geometry.sketch(&line[0]),
+        geometry.sketch(&line[1]),
+    );
     let cross = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
     if cross >= 0.0 { 1.0 } else { -1.0 }
 }

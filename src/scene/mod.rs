@@ -62,7 +62,9 @@ pub fn parse(file: &str, text: &str) -> Result<Scene> {
 /// Reads, parses and checks a scene file.
 pub fn load(path: impl AsRef<Path>) -> Result<Scene> {
     let path = path.as_ref();
-    let text = std::fs::read_to_string(path)
-        .map_err(|source| Error::Read { path: path.to_owned(), source })?;
+    let text = std::fs::read_to_string(path).map_err(|source| Error::Read {
+        path: path.to_owned(),
+        source,
+    })?;
     parse(&path.display().to_string(), &text)
 }

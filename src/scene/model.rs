@@ -236,7 +236,10 @@ impl Quantity {
 impl Scene {
     /// The highest derivative order any output needs (0: positions only).
     pub fn order(&self) -> usize {
-        let asked = self.outputs.iter().flat_map(|o| o.quantities.iter().map(|q| q.order()));
+        let asked = self
+            .outputs
+            .iter()
+            .flat_map(|o| o.quantities.iter().map(|q| q.order()));
         let dead = self.outputs.iter().filter(|o| o.dead_positions).map(|_| 2);
         asked.chain(dead).max().unwrap_or(0)
     }
@@ -244,6 +247,10 @@ impl Scene {
     /// A drive value (SI) printed with the scene's unit, e.g. `"67.5 deg"`.
     pub fn drive_text(&self, value: f64) -> String {
         let dimension = self.drive.kind.dimension();
-        format!("{} {}", Units::tidy(self.units.from_si(value, dimension)), self.units.symbol(dimension))
+        format!(
+            "{} {}",
+            Units::tidy(self.units.from_si(value, dimension)),
+            self.units.symbol(dimension)
+        )
     }
 }

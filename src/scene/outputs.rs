@@ -10,8 +10,11 @@ use super::resolve::{Context, Geometry};
 use super::units::{Dimension, Units};
 
 /// What an output reports when `quantities` is not given.
-pub const DEFAULT_QUANTITIES: [Quantity; 3] =
-    [Quantity::Position, Quantity::Velocity, Quantity::Acceleration];
+pub const DEFAULT_QUANTITIES: [Quantity; 3] = [
+    Quantity::Position,
+    Quantity::Velocity,
+    Quantity::Acceleration,
+];
 
 pub(crate) fn resolve(
     cx: &Context,
@@ -24,10 +27,17 @@ pub(crate) fn resolve(
     for def in defs {
         let output = resolve_one(cx, def, geometry, joints, drive)?;
         if outputs.iter().any(|o| o.name == output.name) {
-            let at = def.get_ref().name.as_ref().map_or_else(|| cx.at(def), |n| cx.at(n));
+            let at = def
+                .get_ref()
+                .name
+                .as_ref()
+                .map_or_else(|| cx.at(def), |n| cx.at(n));
             return Err(Error::Invalid {
                 location: at,
-                message: format!("a second output is named `{}`; give it another `name`", output.name),
+                message: format!(
+                    "a second output is named `{}`; give it another `name`",
+                    output.name
+                ),
             });
         }
         outputs.push(output);
@@ -43,11 +53,16 @@ fn resolve_one(
     drive: &Drive,
 ) -> Result<Output> {
     let d = def.get_ref();
-    let expected = "expected exactly one of `point = \"P\"`, `angle = [\"P\", \"Q\"]`, `slider = \"joint\"`";
+    let expected =
+        "expected exactly one of `point = \"P\"`, `angle = [\"P\", \"Q\"]`, `slider = \"joint\"`";
     let (kind, default_name) = match (&d.point, &d.angle, &d.slider) {
         (Some(point), None, None) => {
             let name = cx.point(point, geometry.names, "`[[output]] point`")?;
-            if !geometry.links.iter().any(|l| l.points.iter().any(|p| p == name)) {
+            if !geometry
+                .links
+                .iter()
+                .any(|l| l.points.iter().any(|p| p == name))
+            {
                 return Err(cx.invalid(point, format!("point `{name}` is on no link, so it does not move with the mechanism; add it to a link in `[links]`")));
             }
             (OutputKind::Point(name.to_owned()), Some(name.to_owned()))
@@ -60,7 +75,14 @@ fn resolve_one(
                 .map(|r| self::line(cx, r, geometry, "`[[output]] reference`"))
                 .transpose()?;
             let sense = d.sense.as_ref().map_or(Sense::Ccw, |s| *s.get_ref());
-            (OutputKind::Angle { line, reference, sense }, None)
+            (
+                OutputKind::Angle {
+                    line,
+                    reference,
+                    sense,
+                },
+                None,
+            )
         }
         (None, None, Some(slider)) => {
             let Some(joint) = joints.iter().find(|j| &j.name == slider.get_ref()) else {
@@ -74,12 +96,16 @@ fn resolve_one(
                 });
             };
             let kind = match &joint.kind {
-                JointKind::Prismatic { line, point, .. } => {
-                    OutputKind::Slider { joint: joint.name.clone(), point: point.clone(), line: line.clone() }
-                }
-                JointKind::PinInSlot { slot, pin, .. } => {
-                    OutputKind::Slider { joint: joint.name.clone(), point: pin.clone(), line: slot.clone() }
-                }
+                JointKind::Prismatic { line, point, .. } => OutputKind::Slider {
+                    joint: joint.name.clone(),
+                    point: point.clone(),
+                    line: line.clone(),
+                },
+                JointKind::PinInSlot { slot, pin, .. } => OutputKind::Slider {
+                    joint: joint.name.clone(),
+                    point: pin.clone(),
+                    line: slot.clone(),
+                },
                 other => {
                     return Err(cx.invalid(
                         slider,
@@ -96,7 +122,12 @@ fn resolve_one(
         _ => return Err(cx.invalid(def, format!("`[[output]]`: {expected}"))),
     };
     if !matches!(kind, OutputKind::Angle { .. }) {
-        if let Some(span) = d.reference.as_ref().map(|r| r.span()).or(d.sense.as_ref().map(|s| s.span())) {
+        if let Some(span) = d
+            .reference
+            .as_ref()
+            .map(|r| r.span())
+            .or(d.sense.as_ref().map(|s| s.span()))
+        {
             return Err(Error::Invalid {
                 location: cx.source.location(span),
                 message: "`reference` and `sense` apply to an `angle` output only".to_owned(),
@@ -106,12 +137,20 @@ fn resolve_one(
     let name = match (&d.name, default_name) {
         (Some(name), _) => {
             if !valid_name(name.get_ref()) {
-                return Err(cx.invalid(name, "an output name must be non-empty and contain no spaces, commas or quotes"));
+                return Err(cx.invalid(
+                    name,
+                    "an output name must be non-empty and contain no spaces, commas or quotes",
+                ));
             }
             name.get_ref().clone()
         }
         (None, Some(name)) => name,
-        (None, None) => return Err(cx.invalid(def, "an `angle` output needs a `name`, e.g. `name = \"psi\"`")),
+        (None, None) => {
+            return Err(cx.invalid(
+                def,
+                "an `angle` output needs a `name`, e.g. `name = \"psi\"`",
+            ));
+        }
     };
     let quantities = match &d.quantities {
         None => DEFAULT_QUANTITIES.to_vec(),
@@ -131,12 +170,19 @@ fn resolve_one(
     };
     if drive.speed.is_none() {
         if let Some(q) = quantities.iter().find(|q| q.is_time_derivative()) {
-            let at = d.quantities.as_ref().map_or_else(|| cx.at(def), |l| cx.at(l));
+            let at = d
+                .quantities
+                .as_ref()
+                .map_or_else(|| cx.at(def), |l| cx.at(l));
             return Err(Error::Invalid {
                 location: at,
                 message: format!(
                     "output `{name}` asks for the {} but `[drive]` has no `speed`; give `speed` (and `acceleration`) or ask only for position and coefficients",
-                    if *q == Quantity::Velocity { "velocity" } else { "acceleration" }
+                    if *q == Quantity::Velocity {
+                        "velocity"
+                    } else {
+                        "acceleration"
+                    }
                 ),
             });
         }
@@ -147,10 +193,21 @@ fn resolve_one(
             format!("output `{name}`: `dead_positions` applies to an angle or slider output; measure the point along a line with a slider or an angle"),
         ));
     }
-    Ok(Output { name, kind, quantities, dead_positions: d.dead_positions, location: cx.at(def) })
+    Ok(Output {
+        name,
+        kind,
+        quantities,
+        dead_positions: d.dead_positions,
+        location: cx.at(def),
+    })
 }
 
-fn line(cx: &Context, line: &Spanned<[super::format::Name; 2]>, geometry: &Geometry, context: &str) -> Result<[String; 2]> {
+fn line(
+    cx: &Context,
+    line: &Spanned<[super::format::Name; 2]>,
+    geometry: &Geometry,
+    context: &str,
+) -> Result<[String; 2]> {
     let [a, b] = line.get_ref();
     let a = cx.point(a, geometry.names, context)?;
     let b = cx.point(b, geometry.names, context)?;
@@ -164,15 +221,25 @@ fn line(cx: &Context, line: &Spanned<[super::format::Name; 2]>, geometry: &Geome
         });
     }
     for p in [a, b] {
-        if !geometry.links.iter().any(|l| l.points.iter().any(|q| q == p)) {
-            return Err(cx.invalid(line, format!("point `{p}` in {context} is on no link; add it to a link in `[links]`")));
+        if !geometry
+            .links
+            .iter()
+            .any(|l| l.points.iter().any(|q| q == p))
+        {
+            return Err(cx.invalid(
+                line,
+                format!("point `{p}` in {context} is on no link; add it to a link in `[links]`"),
+            ));
         }
     }
     Ok([a.to_owned(), b.to_owned()])
 }
 
 fn valid_name(name: &str) -> bool {
-    !name.is_empty() && !name.chars().any(|c| c.is_whitespace() || matches!(c, ',' | '"' | '\''))
+    !name.is_empty()
+        && !name
+            .chars()
+            .any(|c| c.is_whitespace() || matches!(c, ',' | '"' | '\''))
 }
 
 /// One printed column: its header and how to convert its SI values for printing.
@@ -221,7 +288,9 @@ pub fn columns(output: &Output, units: &Units, drive: Dimension) -> Vec<Column> 
         let names: Vec<String> = match (q, point) {
             (Quantity::Position, true) => vec![format!("x_{n}"), format!("y_{n}")],
             (Quantity::VelocityCoefficient, true) => vec![format!("x_{n}'"), format!("y_{n}'")],
-            (Quantity::AccelerationCoefficient, true) => vec![format!("x_{n}''"), format!("y_{n}''")],
+            (Quantity::AccelerationCoefficient, true) => {
+                vec![format!("x_{n}''"), format!("y_{n}''")]
+            }
             (Quantity::Velocity, true) => vec![format!("vx_{n}"), format!("vy_{n}")],
             (Quantity::Acceleration, true) => vec![format!("ax_{n}"), format!("ay_{n}")],
             (Quantity::Position, false) => vec![n.clone()],
@@ -230,7 +299,11 @@ pub fn columns(output: &Output, units: &Units, drive: Dimension) -> Vec<Column> 
             (Quantity::Velocity, false) => vec![format!("{n}_dot")],
             (Quantity::Acceleration, false) => vec![format!("{n}_ddot")],
         };
-        columns.extend(names.into_iter().map(|name| Column { name, unit: unit.clone(), factor }));
+        columns.extend(names.into_iter().map(|name| Column {
+            name,
+            unit: unit.clone(),
+            factor,
+        }));
     }
     columns
 }

@@ -9,8 +9,8 @@ use toml::Spanned;
 
 use crate::error::{Error, Location, Result};
 
-use super::format::{self, JointDef, Name, PointDef, SceneFile};
 use super::drive::nearest_turn;
+use super::format::{self, JointDef, Name, PointDef, SceneFile};
 use super::model::{DriveKind, Joint, JointKind, Link, Point, Scene};
 use super::outputs;
 use super::source::Source;
@@ -26,11 +26,19 @@ const ON_LINE_TOLERANCE: f64 = 1e-9;
 pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
     let cx = Context::new(source, units(&file.units));
     let points = cx.points(&file.points)?;
-    let names: HashMap<&str, usize> =
-        points.iter().enumerate().map(|(i, p)| (p.name.as_str(), i)).collect();
+    let names: HashMap<&str, usize> = points
+        .iter()
+        .enumerate()
+        .map(|(i, p)| (p.name.as_str(), i))
+        .collect();
     let links = cx.links(&file.links, &names)?;
     let scale = sketch_scale(&points);
-    let geometry = Geometry { points: &points, names: &names, links: &links, scale };
+    let geometry = Geometry {
+        points: &points,
+        names: &names,
+        links: &links,
+        scale,
+    };
     let joints = cx.joints(&file.joints, &geometry)?;
     let mut drive = cx.drive(&file.drive, &geometry, &joints)?;
     let positions = cx.sweep(&file.sweep, drive.kind)?;
@@ -39,11 +47,18 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
     }
     let outputs = outputs::resolve(&cx, &file.outputs, &geometry, &joints, &drive)?;
     if let Some(output) = outputs.iter().find(|o| o.dead_positions) {
-        let (lo, hi) = positions.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+        let (lo, hi) = positions
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &p| {
+                (lo.min(p), hi.max(p))
+            });
         if !(hi > lo) {
             return Err(Error::Invalid {
                 location: output.location.clone(),
-                message: format!("output `{}`: `dead_positions` needs a range of drive positions to search; `[sweep]` has one position", output.name),
+                message: format!(
+                    "output `{}`: `dead_positions` needs a range of drive positions to search; `[sweep]` has one position",
+                    output.name
+                ),
             });
         }
     }
@@ -62,8 +77,16 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
 
 fn units(section: &format::UnitsSection) -> Units {
     Units {
-        length: section.length.as_ref().map(|u| *u.get_ref()).unwrap_or_default(),
-        angle: section.angle.as_ref().map(|u| *u.get_ref()).unwrap_or_default(),
+        length: section
+            .length
+            .as_ref()
+            .map(|u| *u.get_ref())
+            .unwrap_or_default(),
+        angle: section
+            .angle
+            .as_ref()
+            .map(|u| *u.get_ref())
+            .unwrap_or_default(),
         angular_velocity: section
             .angular_velocity
             .as_ref()
@@ -130,11 +153,19 @@ impl<'a> Context<'a> {
     }
 
     pub(crate) fn invalid<T>(&self, at: &Spanned<T>, message: impl Into<String>) -> Error {
-        Error::Invalid { location: self.at(at), message: message.into() }
+        Error::Invalid {
+            location: self.at(at),
+            message: message.into(),
+        }
     }
 
     /// A finite number in the file, converted to SI.
-    pub(crate) fn number(&self, value: &Spanned<f64>, what: &str, dimension: Dimension) -> Result<f64> {
+    pub(crate) fn number(
+        &self,
+        value: &Spanned<f64>,
+        what: &str,
+        dimension: Dimension,
+    ) -> Result<f64> {
         let v = *value.get_ref();
         if !v.is_finite() {
             return Err(self.invalid(value, format!("{what} must be a finite number, found {v}")));
@@ -143,7 +174,12 @@ impl<'a> Context<'a> {
     }
 
     /// A positive length in the file, converted to SI.
-    pub(crate) fn positive(&self, value: &Spanned<f64>, what: &str, dimension: Dimension) -> Result<f64> {
+    pub(crate) fn positive(
+        &self,
+        value: &Spanned<f64>,
+        what: &str,
+        dimension: Dimension,
+    ) -> Result<f64> {
         let v = self.number(value, what, dimension)?;
         if v <= 0.0 {
             return Err(Error::NonPositiveLength {
@@ -184,7 +220,9 @@ impl<'a> Context<'a> {
         context: &str,
     ) -> Result<&'n str> {
         let point = self.point(name, geometry.names, context)?;
-        let carried = geometry.link(link).is_some_and(|l| l.points.iter().any(|p| p == point));
+        let carried = geometry
+            .link(link)
+            .is_some_and(|l| l.points.iter().any(|p| p == point));
         if !carried {
             return Err(self.invalid(
                 name,
@@ -218,7 +256,12 @@ impl<'a> Context<'a> {
     }
 
     /// A link that must exist.
-    pub(crate) fn link<'n>(&self, name: &'n Name, links: &[Link], context: &str) -> Result<&'n str> {
+    pub(crate) fn link<'n>(
+        &self,
+        name: &'n Name,
+        links: &[Link],
+        context: &str,
+    ) -> Result<&'n str> {
         if links.iter().any(|l| &l.name == name.get_ref()) {
             return Ok(name.get_ref());
         }
@@ -238,13 +281,19 @@ impl<'a> Context<'a> {
         if entries.is_empty() {
             return Err(self.invalid(table, "`[points]` is empty; expected `NAME = [x, y]` lines"));
         }
-        let defs: HashMap<&str, &Spanned<PointDef>> =
-            entries.iter().map(|(n, d)| (n.get_ref().as_str(), *d)).collect();
+        let defs: HashMap<&str, &Spanned<PointDef>> = entries
+            .iter()
+            .map(|(n, d)| (n.get_ref().as_str(), *d))
+            .collect();
         let mut placed: HashMap<String, [f64; 2]> = HashMap::new();
         let mut points = Vec::with_capacity(entries.len());
         for (name, _) in &entries {
             let sketch = self.place(name.get_ref(), &defs, &mut placed, &mut Vec::new())?;
-            points.push(Point { name: name.get_ref().clone(), sketch, location: self.at(name) });
+            points.push(Point {
+                name: name.get_ref().clone(),
+                sketch,
+                location: self.at(name),
+            });
         }
         Ok(points)
     }
@@ -264,11 +313,20 @@ impl<'a> Context<'a> {
         let xy = match def.get_ref() {
             PointDef::Xy([x, y]) => {
                 if !x.is_finite() || !y.is_finite() {
-                    return Err(self.invalid(def, format!("point `{name}` must have finite coordinates")));
+                    return Err(
+                        self.invalid(def, format!("point `{name}` must have finite coordinates"))
+                    );
                 }
-                [self.units.to_si(*x, Dimension::Length), self.units.to_si(*y, Dimension::Length)]
+                [
+                    self.units.to_si(*x, Dimension::Length),
+                    self.units.to_si(*y, Dimension::Length),
+                ]
             }
-            PointDef::Polar { from, length, angle } => {
+            PointDef::Polar {
+                from,
+                length,
+                angle,
+            } => {
                 let context = format!("the polar definition of point `{name}`");
                 let names: HashMap<&str, usize> = defs.keys().map(|&k| (k, 0)).collect();
                 let origin = self.point(from, &names, &context)?;
@@ -280,8 +338,16 @@ impl<'a> Context<'a> {
                         ),
                     ));
                 }
-                let length = self.positive(length, &format!("`length` of point `{name}`"), Dimension::Length)?;
-                let angle = self.number(angle, &format!("`angle` of point `{name}`"), Dimension::Angle)?;
+                let length = self.positive(
+                    length,
+                    &format!("`length` of point `{name}`"),
+                    Dimension::Length,
+                )?;
+                let angle = self.number(
+                    angle,
+                    &format!("`angle` of point `{name}`"),
+                    Dimension::Angle,
+                )?;
                 chain.push(name.to_owned());
                 let o = self.place(origin, defs, placed, chain)?;
                 chain.pop();
@@ -311,13 +377,20 @@ impl<'a> Context<'a> {
         for (name, list) in entries {
             let context = format!("link `{}`", name.get_ref());
             if list.get_ref().is_empty() {
-                return Err(self.invalid(list, format!("{context} has no points; expected a list of point names")));
+                return Err(self.invalid(
+                    list,
+                    format!("{context} has no points; expected a list of point names"),
+                ));
             }
             let mut points: Vec<String> = Vec::new();
             for point in list.get_ref() {
-                let point = self.point(point, names, &context).map_err(|e| e)?;
+                let point = self.point(point, names, &context)?;
                 if points.iter().any(|p| p == point) {
-                    let spanned = list.get_ref().iter().filter(|p| p.get_ref() == point).nth(1);
+                    let spanned = list
+                        .get_ref()
+                        .iter()
+                        .filter(|p| p.get_ref() == point)
+                        .nth(1);
                     return Err(Error::DuplicatePoint {
                         location: self.at(spanned.unwrap_or(&list.get_ref()[0])),
                         name: point.to_owned(),
@@ -326,7 +399,11 @@ impl<'a> Context<'a> {
                 }
                 points.push(point.to_owned());
             }
-            links.push(Link { name: name.get_ref().clone(), points, location: self.at(name) });
+            links.push(Link {
+                name: name.get_ref().clone(),
+                points,
+                location: self.at(name),
+            });
         }
         Ok(links)
     }
@@ -341,7 +418,11 @@ impl<'a> Context<'a> {
         let mut joints: Vec<Joint> = Vec::with_capacity(entries.len());
         for (name, def) in entries {
             let kind = super::joints::resolve(self, name.get_ref(), def, geometry, &joints)?;
-            joints.push(Joint { name: name.get_ref().clone(), kind, location: self.at(name) });
+            joints.push(Joint {
+                name: name.get_ref().clone(),
+                kind,
+                location: self.at(name),
+            });
         }
         Ok(joints)
     }

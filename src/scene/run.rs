@@ -39,8 +39,13 @@ impl Plan {
         let (lo, hi) = scene
             .positions
             .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
-        let times = scene.outputs.iter().any(|o| o.quantities.iter().any(|q| q.is_time_derivative()));
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &p| {
+                (lo.min(p), hi.max(p))
+            });
+        let times = scene
+            .outputs
+            .iter()
+            .any(|o| o.quantities.iter().any(|q| q.is_time_derivative()));
         let drive = match (times, scene.drive.speed) {
             (true, Some(omega)) => Some(DriveState::accelerating(omega, scene.drive.acceleration)),
             _ => None,
@@ -51,8 +56,17 @@ impl Plan {
             range: (lo, hi),
             order: scene.order(),
             drive,
-            columns: scene.outputs.iter().map(|o| columns(o, &scene.units, drive_dimension).len()).sum(),
-            dead_positions: scene.outputs.iter().filter(|o| o.dead_positions).map(|o| o.name.clone()).collect(),
+            columns: scene
+                .outputs
+                .iter()
+                .map(|o| columns(o, &scene.units, drive_dimension).len())
+                .sum(),
+            dead_positions: scene
+                .outputs
+                .iter()
+                .filter(|o| o.dead_positions)
+                .map(|o| o.name.clone())
+                .collect(),
         }
     }
 
@@ -160,8 +174,15 @@ pub struct Checked {
 /// the sketch's assembly.
 pub fn check(scene: &Scene) -> Result<Checked> {
     let mechanism = mechanism(scene)?;
-    let mobility = Solver::default().track(&mechanism).map_err(|e| solver_error(scene, e))?.mobility();
-    Ok(Checked { mechanism, mobility, plan: Plan::of(scene) })
+    let mobility = Solver::default()
+        .track(&mechanism)
+        .map_err(|e| solver_error(scene, e))?
+        .mobility();
+    Ok(Checked {
+        mechanism,
+        mobility,
+        plan: Plan::of(scene),
+    })
 }
 
 /// Runs a scene: solves every drive position of the sweep (keeping the sketch's assembly
@@ -190,11 +211,22 @@ pub fn run(scene: &Scene) -> Result<Report> {
             positions: search_dead_positions(scene, &mechanism, output)?,
         });
     }
-    Ok(Report { plan, columns: all, rows, dead_positions })
+    Ok(Report {
+        plan,
+        columns: all,
+        rows,
+        dead_positions,
+    })
 }
 
-fn sweep<const N: usize>(scene: &Scene, mechanism: &Mechanism, plan: &Plan) -> Result<Vec<Vec<f64>>> {
-    let mut tracker = Solver::default().track(mechanism).map_err(|e| solver_error(scene, e))?;
+fn sweep<const N: usize>(
+    scene: &Scene,
+    mechanism: &Mechanism,
+    plan: &Plan,
+) -> Result<Vec<Vec<f64>>> {
+    let mut tracker = Solver::default()
+        .track(mechanism)
+        .map_err(|e| solver_error(scene, e))?;
     let drive = plan.drive.unwrap_or(DriveState::constant_speed(0.0));
     let mut previous: Vec<Option<f64>> = vec![None; scene.outputs.len()];
     let mut rows = Vec::with_capacity(scene.positions.len());
@@ -214,9 +246,15 @@ fn sweep<const N: usize>(scene: &Scene, mechanism: &Mechanism, plan: &Plan) -> R
     Ok(rows)
 }
 
-fn solve<'m, const N: usize>(scene: &Scene, tracker: &mut Tracker<'m>, phi: f64) -> Result<Kinematics<'m, N>> {
+fn solve<'m, const N: usize>(
+    scene: &Scene,
+    tracker: &mut Tracker<'m>,
+    phi: f64,
+) -> Result<Kinematics<'m, N>> {
     tracker.move_to(phi).map_err(|e| solver_error(scene, e))?;
-    tracker.kinematics::<N>().map_err(|e| solver_error(scene, e))
+    tracker
+        .kinematics::<N>()
+        .map_err(|e| solver_error(scene, e))
 }
 
 /// One quantity of a jet: its value, a coefficient, or a time derivative.
@@ -245,12 +283,18 @@ fn evaluate<const N: usize>(
             .iter()
             .find(|l| l.points.iter().any(|p| p == name))
             .expect("outputs name points carried by a link (checked when the scene was read)");
-        let [x, y] = k.point(&link.name, name).map_err(|e| solver_error(scene, e))?;
+        let [x, y] = k
+            .point(&link.name, name)
+            .map_err(|e| solver_error(scene, e))?;
         Ok([dual(&x), dual(&y)])
     };
     Ok(match &output.kind {
         OutputKind::Point(name) => point(name)?.iter().map(jet::<N>).collect(),
-        OutputKind::Angle { line, reference, sense } => {
+        OutputKind::Angle {
+            line,
+            reference,
+            sense,
+        } => {
             let mut angle = direction(point(&line[0])?, point(&line[1])?);
             if let Some([a, b]) = reference {
                 angle -= direction(point(a)?, point(b)?);
@@ -264,7 +308,11 @@ fn evaluate<const N: usize>(
             *previous = Some(angle.re);
             vec![jet::<N>(&angle)]
         }
-        OutputKind::Slider { point: p, line: [a, b], .. } => {
+        OutputKind::Slider {
+            point: p,
+            line: [a, b],
+            ..
+        } => {
             // s = (p − a)·u with u the unit direction a → b of the guide or slot (both points
             // on one link, so |b − a| is constant; it is differentiated anyway, exactly).
             let (p, a, b) = (point(p)?, point(a)?, point(b)?);
@@ -279,14 +327,22 @@ fn evaluate<const N: usize>(
 /// The output angle at the sketch pose, where the sweep's angle continuity starts.
 fn sketch_angle(scene: &Scene, output: &Output) -> f64 {
     let sketch = |name: &str| {
-        scene.points.iter().find(|p| p.name == name).map_or([0.0, 0.0], |p| p.sketch)
+        scene
+            .points
+            .iter()
+            .find(|p| p.name == name)
+            .map_or([0.0, 0.0], |p| p.sketch)
     };
     let dir = |[a, b]: &[String; 2]| {
         let (a, b) = (sketch(a), sketch(b));
         (b[1] - a[1]).atan2(b[0] - a[0])
     };
     match &output.kind {
-        OutputKind::Angle { line, reference, sense } => {
+        OutputKind::Angle {
+            line,
+            reference,
+            sense,
+        } => {
             let angle = dir(line) - reference.as_ref().map_or(0.0, dir);
             if *sense == Sense::Cw { -angle } else { angle }
         }
@@ -310,28 +366,47 @@ fn jet<const N: usize>(x: &Dual3_64) -> Jet<N> {
 }
 
 /// Every dead position of an angle or slider output in the sweep's range.
-fn search_dead_positions(scene: &Scene, mechanism: &Mechanism, output: &Output) -> Result<Vec<DeadPosition>> {
+fn search_dead_positions(
+    scene: &Scene,
+    mechanism: &Mechanism,
+    output: &Output,
+) -> Result<Vec<DeadPosition>> {
     let (lo, hi) = scene
         .positions
         .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &p| {
+            (lo.min(p), hi.max(p))
+        });
     // Sample at least as finely as the sweep, and at least 360 intervals over the range.
-    let sweep_step = scene.positions.windows(2).map(|w| (w[1] - w[0]).abs()).fold(f64::INFINITY, f64::min);
+    let sweep_step = scene
+        .positions
+        .windows(2)
+        .map(|w| (w[1] - w[0]).abs())
+        .fold(f64::INFINITY, f64::min);
     let step = sweep_step.min((hi - lo) / 360.0);
-    let tracker = RefCell::new(Solver::default().track(mechanism).map_err(|e| solver_error(scene, e))?);
+    let tracker = RefCell::new(
+        Solver::default()
+            .track(mechanism)
+            .map_err(|e| solver_error(scene, e))?,
+    );
     let previous = RefCell::new(None);
     let failure = RefCell::new(None);
-    let found = DeadPositionSearch::new(lo..=hi).with_step(step).find_roots(|phi| {
-        let mut t = tracker.borrow_mut();
-        let k = t.move_to(phi).and_then(|_| t.kinematics::<3>())?;
-        match evaluate(scene, &k, output, &mut previous.borrow_mut()) {
-            Ok(jets) => Ok(jets[0]),
-            Err(e) => {
-                *failure.borrow_mut() = Some(e);
-                Err(mechdiff_core::Error::NonFinite { phi, quantity: "a dead-position search output" })
+    let found = DeadPositionSearch::new(lo..=hi)
+        .with_step(step)
+        .find_roots(|phi| {
+            let mut t = tracker.borrow_mut();
+            let k = t.move_to(phi).and_then(|_| t.kinematics::<3>())?;
+            match evaluate(scene, &k, output, &mut previous.borrow_mut()) {
+                Ok(jets) => Ok(jets[0]),
+                Err(e) => {
+                    *failure.borrow_mut() = Some(e);
+                    Err(mechdiff_core::Error::NonFinite {
+                        phi,
+                        quantity: "a dead-position search output",
+                    })
+                }
             }
-        }
-    });
+        });
     if let Some(e) = failure.into_inner() {
         return Err(e);
     }
@@ -343,14 +418,23 @@ pub(crate) fn solver_error(scene: &Scene, source: mechdiff_core::Error) -> Error
     use mechdiff_core::Error as Core;
     let joined = |joints: &[String]| joints.join(", ");
     match source {
-        Core::Unassemblable { phi, last_assembled, joints, residual } => Error::Unassemblable {
+        Core::Unassemblable {
+            phi,
+            last_assembled,
+            joints,
+            residual,
+        } => Error::Unassemblable {
             file: scene.file.clone(),
             position: scene.drive_text(phi),
             last: scene.drive_text(last_assembled),
             loop_joints: joined(&joints),
             residual,
         },
-        Core::Singular { phi, condition, joints } => Error::Singular {
+        Core::Singular {
+            phi,
+            condition,
+            joints,
+        } => Error::Singular {
             file: scene.file.clone(),
             position: scene.drive_text(phi),
             loop_joints: joined(&joints),
@@ -368,6 +452,10 @@ pub(crate) fn solver_error(scene: &Scene, source: mechdiff_core::Error) -> Error
 
 impl fmt::Display for Plan {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{} drive positions, derivative order {}", self.positions, self.order)
+        write!(
+            f,
+            "{} drive positions, derivative order {}",
+            self.positions, self.order
+        )
     }
 }

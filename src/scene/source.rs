@@ -16,7 +16,10 @@ pub struct Source {
 impl Source {
     /// Wraps a file's name and text.
     pub fn new(file: impl Into<String>, text: impl Into<String>) -> Self {
-        Source { file: file.into(), text: text.into() }
+        Source {
+            file: file.into(),
+            text: text.into(),
+        }
     }
 
     /// The line and column (1-based, columns in characters) where byte `span.start` is.
@@ -26,14 +29,22 @@ impl Source {
         let line = before.matches('\n').count() + 1;
         let line_start = before.rfind('\n').map_or(0, |i| i + 1);
         let column = before[line_start..].chars().count() + 1;
-        Location { file: self.file.clone(), line, column }
+        Location {
+            file: self.file.as_str().into(),
+            line,
+            column,
+        }
     }
 
     /// Turns a TOML parse or deserialisation error into [`Error::Syntax`] at its place.
     pub fn syntax_error(&self, error: &toml::de::Error) -> Error {
         let location = match error.span() {
             Some(span) => self.location(span),
-            None => Location { file: self.file.clone(), line: 1, column: 1 },
+            None => Location {
+                file: self.file.as_str().into(),
+                line: 1,
+                column: 1,
+            },
         };
         let message = tidy_toml_message(error.message());
         if message.starts_with("duplicate key") {
@@ -47,7 +58,13 @@ impl Source {
     /// toml says only "duplicate key": name the key and its table, and treat a point defined
     /// twice as [`Error::DuplicatePoint`].
     fn duplicate_key(&self, span: Range<usize>, location: Location) -> Error {
-        let key = self.text.get(span.clone()).unwrap_or("").trim().trim_matches('"').to_owned();
+        let key = self
+            .text
+            .get(span.clone())
+            .unwrap_or("")
+            .trim()
+            .trim_matches('"')
+            .to_owned();
         let table = self.text[..span.start.min(self.text.len())]
             .lines()
             .rev()
@@ -55,12 +72,19 @@ impl Source {
             .find(|l| l.starts_with('['))
             .map(|l| l.split('#').next().unwrap_or(l).trim().to_owned());
         match table.as_deref() {
-            Some("[points]") => Error::DuplicatePoint { location, name: key, context: "`[points]`".to_owned() },
+            Some("[points]") => Error::DuplicatePoint {
+                location,
+                name: key,
+                context: "`[points]`".to_owned(),
+            },
             Some(table) => Error::Syntax {
                 location,
                 message: format!("duplicate key `{key}` in `{table}`; each key may appear once"),
             },
-            None => Error::Syntax { location, message: format!("duplicate key `{key}`; each key may appear once") },
+            None => Error::Syntax {
+                location,
+                message: format!("duplicate key `{key}`; each key may appear once"),
+            },
         }
     }
 }
@@ -74,7 +98,10 @@ fn floor_char_boundary(text: &str, mut index: usize) -> usize {
 
 /// toml's messages end with a newline and sometimes say "TOML parse error"; keep one line.
 fn tidy_toml_message(message: &str) -> String {
-    message.trim().replace('\n', "; ").replace("unknown variant", "unknown value")
+    message
+        .trim()
+        .replace('\n', "; ")
+        .replace("unknown variant", "unknown value")
 }
 
 #[cfg(test)]

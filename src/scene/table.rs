@@ -37,7 +37,12 @@ pub fn write_table(scene: &Scene, report: &Report, out: &mut impl Write) -> io::
     let cells: Vec<Vec<String>> = report
         .rows
         .iter()
-        .map(|row| row.iter().zip(&report.columns).map(|(v, c)| format_number(v / c.factor)).collect())
+        .map(|row| {
+            row.iter()
+                .zip(&report.columns)
+                .map(|(v, c)| format_number(v / c.factor))
+                .collect()
+        })
         .collect();
     let widths: Vec<usize> = report
         .columns
@@ -56,8 +61,22 @@ pub fn write_table(scene: &Scene, report: &Report, out: &mut impl Write) -> io::
             .collect::<Vec<_>>()
             .join("  ")
     };
-    writeln!(out, "{}", line(report.columns.iter().map(|c| c.name.clone()).collect()))?;
-    writeln!(out, "{}", line(report.columns.iter().map(|c| format!("[{}]", c.unit)).collect()))?;
+    writeln!(
+        out,
+        "{}",
+        line(report.columns.iter().map(|c| c.name.clone()).collect())
+    )?;
+    writeln!(
+        out,
+        "{}",
+        line(
+            report
+                .columns
+                .iter()
+                .map(|c| format!("[{}]", c.unit))
+                .collect()
+        )
+    )?;
     for row in cells {
         writeln!(out, "{}", line(row))?;
     }
@@ -65,13 +84,21 @@ pub fn write_table(scene: &Scene, report: &Report, out: &mut impl Write) -> io::
 }
 
 /// Writes the dead positions found and the stroke between them, to 15 significant digits.
-pub fn write_dead_positions(scene: &Scene, report: &Report, out: &mut impl Write) -> io::Result<()> {
+pub fn write_dead_positions(
+    scene: &Scene,
+    report: &Report,
+    out: &mut impl Write,
+) -> io::Result<()> {
     let u = &scene.units.for_outputs();
     for dead in &report.dead_positions {
         let unit = u.symbol(dead.dimension);
         writeln!(out)?;
         if dead.positions.is_empty() {
-            writeln!(out, "{}: no dead position in the sweep's range ({}' keeps its sign)", dead.output, dead.output)?;
+            writeln!(
+                out,
+                "{}: no dead position in the sweep's range ({}' keeps its sign)",
+                dead.output, dead.output
+            )?;
             continue;
         }
         writeln!(
@@ -104,8 +131,11 @@ pub fn write_csv(report: &Report, out: &mut impl Write) -> io::Result<()> {
     let header: Vec<String> = report.columns.iter().map(|c| c.header()).collect();
     writeln!(out, "{}", header.join(","))?;
     for row in &report.rows {
-        let cells: Vec<String> =
-            row.iter().zip(&report.columns).map(|(v, c)| (v / c.factor + 0.0).to_string()).collect();
+        let cells: Vec<String> = row
+            .iter()
+            .zip(&report.columns)
+            .map(|(v, c)| (v / c.factor + 0.0).to_string())
+            .collect();
         writeln!(out, "{}", cells.join(","))?;
     }
     Ok(())
@@ -118,7 +148,7 @@ mod tests {
     #[test]
     fn numbers_keep_nine_significant_digits() {
         assert_eq!(format_number(0.0), "0");
-        assert_eq!(format_number(67.97568716295780), "67.9756872");
+        assert_eq!(format_number(67.975_687_162_957_8), "67.9756872");
         assert_eq!(format_number(-0.000123456789123), "-1.23456789e-4");
         assert_eq!(format_number(0.00123456789123), "0.00123456789");
         assert_eq!(format_number(123456.789), "123456.789");

@@ -180,7 +180,13 @@ impl Units {
             Dimension::Angle => "rad",
             _ => length_symbol(self.length),
         };
-        let power = |k: u32| if k == 1 { String::new() } else { format!("^{k}") };
+        let power = |k: u32| {
+            if k == 1 {
+                String::new()
+            } else {
+                format!("^{k}")
+            }
+        };
         match (numerator == denominator, order) {
             (true, 1) => "1".to_owned(),
             (true, k) => format!("1/{denominator}{}", power(k - 1)),
@@ -211,7 +217,10 @@ mod tests {
 
     #[test]
     fn rpm_converts_to_rad_per_second() {
-        let units = Units { angular_velocity: AngularVelocityUnit::Rpm, ..Units::default() };
+        let units = Units {
+            angular_velocity: AngularVelocityUnit::Rpm,
+            ..Units::default()
+        };
         // 100 rpm = 10π/3 rad/s; one rounding in the factor and one in the product.
         let omega = units.to_si(100.0, Dimension::AngularVelocity);
         assert!((omega - 10.0 * std::f64::consts::PI / 3.0).abs() <= 4.0 * f64::EPSILON * omega);
@@ -224,10 +233,22 @@ mod tests {
             angle: AngleUnit::Degree,
             ..Units::default()
         };
-        assert_eq!(units.coefficient_symbol(Dimension::Angle, Dimension::Angle, 1), "1");
-        assert_eq!(units.coefficient_symbol(Dimension::Angle, Dimension::Angle, 2), "1/rad");
-        assert_eq!(units.coefficient_symbol(Dimension::Length, Dimension::Angle, 2), "mm/rad^2");
-        assert_eq!(units.coefficient_symbol(Dimension::Angle, Dimension::Length, 1), "rad/mm");
+        assert_eq!(
+            units.coefficient_symbol(Dimension::Angle, Dimension::Angle, 1),
+            "1"
+        );
+        assert_eq!(
+            units.coefficient_symbol(Dimension::Angle, Dimension::Angle, 2),
+            "1/rad"
+        );
+        assert_eq!(
+            units.coefficient_symbol(Dimension::Length, Dimension::Angle, 2),
+            "mm/rad^2"
+        );
+        assert_eq!(
+            units.coefficient_symbol(Dimension::Angle, Dimension::Length, 1),
+            "rad/mm"
+        );
         // rad per mm² → rad per m²: a factor 1e6 (exact powers of ten within one rounding).
         let f = units.coefficient_factor(Dimension::Angle, Dimension::Length, 2);
         assert!((f - 1e6).abs() <= 1e6 * 4.0 * f64::EPSILON);
