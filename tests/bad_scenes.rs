@@ -316,3 +316,25 @@ angle = ["O4", "B"]"#,
     let e = scene::parse("bad.toml", &one_position).unwrap_err();
     assert_message(&e, 31, &["output `psi`", "`dead_positions` needs a range"]);
 }
+
+/// Without the joint at B the coupler and the rocker swing freely: `check` names the
+/// mobility problem (from the geometry model) with the file.
+#[test]
+fn an_under_constrained_mechanism_is_reported_by_check() {
+    let text = FOUR_BAR.replace(
+        "B = { type = \"revolute\", at = \"B\", links = [\"coupler\", \"rocker\"] }\n",
+        "",
+    );
+    let scene = scene::parse("bad.toml", &text).unwrap();
+    let e = scene::check(&scene).unwrap_err();
+    assert!(matches!(e, Error::Model { .. }), "{e:?}");
+    let message = e.to_string();
+    assert!(
+        message.starts_with("bad.toml: under-constrained"),
+        "{message}"
+    );
+    assert!(
+        message.contains("rocker") && message.contains("coupler"),
+        "{message}"
+    );
+}

@@ -324,3 +324,28 @@ fn the_documented_example_is_the_whitworth_scene() {
     assert_eq!(example, body);
     scene::parse("docs/scene-format.md", example).unwrap();
 }
+
+/// The two scenes of reference 001 differ only in where D is drawn; `check` sees the same
+/// loops, and the loop that places the slider (C, D, incline) on opposite branches.
+#[test]
+fn the_sketch_chooses_the_assembly_branch() {
+    let loops = |name: &str| {
+        scene::check(&scene::load(scene_path(name)).unwrap())
+            .unwrap()
+            .loops
+    };
+    let (primary, other) = (
+        loops("rack_slotted_link.toml"),
+        loops("rack_slotted_link_other_branch.toml"),
+    );
+    assert_eq!(primary.len(), other.len());
+    let mut flipped = Vec::new();
+    for ((joints, a), (joints_other, b)) in primary.iter().zip(&other) {
+        assert_eq!(joints, joints_other);
+        if a != b {
+            flipped.push(joints.clone());
+        }
+    }
+    assert_eq!(flipped.len(), 1, "{primary:?} vs {other:?}");
+    assert!(flipped[0].contains(&"incline".to_owned()), "{flipped:?}");
+}

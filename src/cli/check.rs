@@ -31,6 +31,13 @@ pub fn check(args: &CheckArgs) -> Result<(), Error> {
         checked.mobility.degrees_of_freedom,
         checked.mobility.rank,
     );
+    for (k, (joints, branch)) in checked.loops.iter().enumerate() {
+        println!(
+            "loop {}: {} (branch certificate {branch:+} in the sketch)",
+            k + 1,
+            joints.join(", ")
+        );
+    }
     println!("{}", checked.plan.describe(&scene));
     Ok(())
 }

@@ -166,6 +166,9 @@ pub struct Checked {
     pub mechanism: Mechanism,
     /// Its mobility at the sketch pose.
     pub mobility: Mobility,
+    /// The loops the solver closes in turn (joint names, the drive as `drive <joint>`) and
+    /// the sign of each loop's assembly branch in the sketch.
+    pub loops: Vec<(Vec<String>, i8)>,
     /// The plan a run would carry out.
     pub plan: Plan,
 }
@@ -174,13 +177,16 @@ pub struct Checked {
 /// the sketch's assembly.
 pub fn check(scene: &Scene) -> Result<Checked> {
     let mechanism = mechanism(scene)?;
-    let mobility = Solver::default()
-        .track(&mechanism)
-        .map_err(|e| solver_error(scene, e))?
-        .mobility();
+    let (mobility, loops) = {
+        let tracker = Solver::default()
+            .track(&mechanism)
+            .map_err(|e| solver_error(scene, e))?;
+        (tracker.mobility(), tracker.loops())
+    };
     Ok(Checked {
         mechanism,
         mobility,
+        loops,
         plan: Plan::of(scene),
     })
 }
