@@ -168,5 +168,5 @@ pub enum Error {
     },
 }
 
-/// Result with the facade's [`Error`].
+/// Result with the facade's [`enum@Error`].
 pub type Result<T, E = Error> = std::result::Result<T, E>;

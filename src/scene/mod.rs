@@ -4,10 +4,11 @@
 //! drive, the drive positions to compute and the outputs to print. The format is documented
 //! in `docs/scene-format.md`; this module reads it in three stages:
 //!
-//! 1. [`format`]: the TOML as written (serde, every value with its byte span);
+//! 1. [`format`](mod@format): the TOML as written (serde, every value with its byte span);
 //! 2. [`resolve`](resolve::resolve): units applied, names resolved, the sketch checked —
 //!    a [`Scene`], where every error names `file:line:column` and what was expected;
-//! 3. [`build`]: the geometry model of mechdiff-core, and [`run`]: the sweep, evaluated.
+//! 3. [`build`](mod@build): the geometry model of mechdiff-core, and [`run`](fn@run): the
+//!    sweep, evaluated.
 //!
 //! ```
 //! let scene = mechdiff::scene::parse("<doc>", r#"

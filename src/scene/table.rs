@@ -9,7 +9,7 @@ use super::units::Units;
 /// Significant digits in the printed table (the CSV carries every digit).
 const DIGITS: usize = 9;
 
-/// A number with [`DIGITS`] significant digits: fixed-point for magnitudes from 1e-3 to 1e6,
+/// A number with 9 significant digits: fixed-point for magnitudes from 1e-3 to 1e6,
 /// scientific otherwise.
 pub fn format_number(v: f64) -> String {
     if v == 0.0 {
