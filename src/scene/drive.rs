@@ -43,7 +43,8 @@ impl Context<'_> {
                     return Err(self.invalid(
                         section,
                         format!(
-                            "`[drive]` of revolute joint `{}` needs `line = [\"P\", \"Q\"]`: two points of link `{}` whose angle is the drive",
+                            "`[drive]` of revolute joint `{}` needs `line = [\"P\", \"Q\"]`: two \
+                            points of link `{}` whose angle is the drive",
                             joint.name, links[1]
                         ),
                     ));
@@ -61,7 +62,8 @@ impl Context<'_> {
                         return Err(self.invalid(
                             section,
                             format!(
-                                "`[drive]`: joint `{}` turns relative to link `{}`, not the ground; give `reference = [\"P\", \"Q\"]`, two points of `{}`",
+                                "`[drive]`: joint `{}` turns relative to link `{}`, not the \
+                                ground; give `reference = [\"P\", \"Q\"]`, two points of `{}`",
                                 joint.name, links[0], links[0]
                             ),
                         ));
@@ -80,7 +82,9 @@ impl Context<'_> {
                     return Err(Error::Invalid {
                         location: self.source.location(extra),
                         message: format!(
-                            "`[drive]`: joint `{}` is prismatic, its displacement is measured along its own line; `line` and `reference` apply to a revolute drive only",
+                            "`[drive]`: joint `{}` is prismatic, its displacement is measured \
+                            along its own line; `line` and `reference` apply to a revolute drive \
+                            only",
                             joint.name
                         ),
                     });
@@ -175,7 +179,10 @@ impl Context<'_> {
                 if intervals >= MAX_POSITIONS as f64 {
                     return Err(self.invalid(
                         step,
-                        format!("the sweep has more than {MAX_POSITIONS} positions; expected a larger step"),
+                        format!(
+                            "the sweep has more than {MAX_POSITIONS} positions; expected a \
+                            larger step"
+                        ),
                     ));
                 }
                 let n = intervals as usize + 1;

@@ -182,7 +182,14 @@ pub(crate) fn resolve(
         Kind::Weld => {
             let links = links(cx)?;
             if links[1] == GROUND {
-                return Err(cx.invalid(def, format!("{context}: weld the other link to `{GROUND}` with `links = [\"{GROUND}\", \"{}\"]`", links[0])));
+                return Err(cx.invalid(
+                    def,
+                    format!(
+                        "{context}: weld the other link to `{GROUND}` \
+                    with `links = [\"{GROUND}\", \"{}\"]`",
+                        links[0]
+                    ),
+                ));
             }
             JointKind::Weld { links }
         }

@@ -63,7 +63,13 @@ fn resolve_one(
                 .iter()
                 .any(|l| l.points.iter().any(|p| p == name))
             {
-                return Err(cx.invalid(point, format!("point `{name}` is on no link, so it does not move with the mechanism; add it to a link in `[links]`")));
+                return Err(cx.invalid(
+                    point,
+                    format!(
+                        "point `{name}` is on no link, so it does \
+                    not move with the mechanism; add it to a link in `[links]`"
+                    ),
+                ));
             }
             (OutputKind::Point(name.to_owned()), Some(name.to_owned()))
         }
@@ -110,7 +116,8 @@ fn resolve_one(
                     return Err(cx.invalid(
                         slider,
                         format!(
-                            "joint `{}` is {}; a slider output needs a prismatic or pin_in_slot joint",
+                            "joint `{}` is {}; a slider output needs a prismatic or pin_in_slot \
+                            joint",
                             joint.name,
                             other.type_name()
                         ),
@@ -156,7 +163,11 @@ fn resolve_one(
         None => DEFAULT_QUANTITIES.to_vec(),
         Some(list) => {
             if list.get_ref().is_empty() {
-                return Err(cx.invalid(list, "`quantities` is empty; expected some of: position, velocity_coefficient, acceleration_coefficient, velocity, acceleration"));
+                return Err(cx.invalid(
+                    list,
+                    "`quantities` is empty; expected some of: position, \
+                    velocity_coefficient, acceleration_coefficient, velocity, acceleration",
+                ));
             }
             let mut seen: Vec<Quantity> = Vec::new();
             for q in list.get_ref() {
@@ -177,7 +188,8 @@ fn resolve_one(
             return Err(Error::Invalid {
                 location: at,
                 message: format!(
-                    "output `{name}` asks for the {} but `[drive]` has no `speed`; give `speed` (and `acceleration`) or ask only for position and coefficients",
+                    "output `{name}` asks for the {} but `[drive]` has no `speed`; give `speed` \
+                    (and `acceleration`) or ask only for position and coefficients",
                     if *q == Quantity::Velocity {
                         "velocity"
                     } else {
@@ -190,7 +202,10 @@ fn resolve_one(
     if d.dead_positions && matches!(kind, OutputKind::Point(_)) {
         return Err(cx.invalid(
             def,
-            format!("output `{name}`: `dead_positions` applies to an angle or slider output; measure the point along a line with a slider or an angle"),
+            format!(
+                "output `{name}`: `dead_positions` applies to an angle or slider output; \
+                measure the point along a line with a slider or an angle"
+            ),
         ));
     }
     Ok(Output {

@@ -56,7 +56,8 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
             return Err(Error::Invalid {
                 location: output.location.clone(),
                 message: format!(
-                    "output `{}`: `dead_positions` needs a range of drive positions to search; `[sweep]` has one position",
+                    "output `{}`: `dead_positions` needs a range of drive positions to search; \
+                    `[sweep]` has one position",
                     output.name
                 ),
             });
@@ -226,7 +227,10 @@ impl<'a> Context<'a> {
         if !carried {
             return Err(self.invalid(
                 name,
-                format!("point `{point}` in {context} must be a point of link `{link}`; add it to `links.{link}`"),
+                format!(
+                    "point `{point}` in {context} must be a point of link `{link}`; add it \
+                    to `links.{link}`"
+                ),
             ));
         }
         Ok(point)
@@ -334,7 +338,8 @@ impl<'a> Context<'a> {
                     return Err(self.invalid(
                         from,
                         format!(
-                            "point `{name}` is measured from `{origin}`, which is measured from `{name}` (a cycle); place one of them by `[x, y]`"
+                            "point `{name}` is measured from `{origin}`, which is measured from \
+                            `{name}` (a cycle); place one of them by `[x, y]`"
                         ),
                     ));
                 }
@@ -368,7 +373,10 @@ impl<'a> Context<'a> {
         let Some(ground) = entries.iter().position(|(n, _)| n.get_ref() == GROUND) else {
             return Err(self.invalid(
                 table,
-                format!("`[links]` has no `{GROUND}`; expected `{GROUND} = [\"O\", ...]` listing the fixed points"),
+                format!(
+                    "`[links]` has no `{GROUND}`; expected `{GROUND} = [\"O\", ...]` listing \
+                    the fixed points"
+                ),
             ));
         };
         let ground = entries.remove(ground);
@@ -441,7 +449,8 @@ impl<'a> Context<'a> {
             return Err(self.invalid(
                 at,
                 format!(
-                    "in the sketch, point `{p}` of {context} is {} {} off the line `{}`–`{}`; draw it on the line",
+                    "in the sketch, point `{p}` of {context} is {} {} off the line `{}`–`{}`; \
+                    draw it on the line",
                     self.units.from_si(off, Dimension::Length),
                     self.units.symbol(Dimension::Length),
                     line[0],

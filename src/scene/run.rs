@@ -107,7 +107,8 @@ impl Plan {
             format!("; dead positions of {}", self.dead_positions.join(", "))
         };
         format!(
-            "plan: {range}; {what} by the geometry solver with implicit differentiation{motion}; {} columns{dead}",
+            "plan: {range}; {what} by the geometry solver with implicit differentiation{motion}; \
+            {} columns{dead}",
             self.columns
         )
     }
