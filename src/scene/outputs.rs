@@ -128,18 +128,18 @@ fn resolve_one(
         }
         _ => return Err(cx.invalid(def, format!("`[[output]]`: {expected}"))),
     };
-    if !matches!(kind, OutputKind::Angle { .. }) {
-        if let Some(span) = d
-            .reference
-            .as_ref()
-            .map(|r| r.span())
-            .or(d.sense.as_ref().map(|s| s.span()))
-        {
-            return Err(Error::Invalid {
-                location: cx.source.location(span),
-                message: "`reference` and `sense` apply to an `angle` output only".to_owned(),
-            });
-        }
+    let angle_only = d
+        .reference
+        .as_ref()
+        .map(|r| r.span())
+        .or(d.sense.as_ref().map(|s| s.span()));
+    if !matches!(kind, OutputKind::Angle { .. })
+        && let Some(span) = angle_only
+    {
+        return Err(Error::Invalid {
+            location: cx.source.location(span),
+            message: "`reference` and `sense` apply to an `angle` output only".to_owned(),
+        });
     }
     let name = match (&d.name, default_name) {
         (Some(name), _) => {
@@ -179,25 +179,25 @@ fn resolve_one(
             seen
         }
     };
-    if drive.speed.is_none() {
-        if let Some(q) = quantities.iter().find(|q| q.is_time_derivative()) {
-            let at = d
-                .quantities
-                .as_ref()
-                .map_or_else(|| cx.at(def), |l| cx.at(l));
-            return Err(Error::Invalid {
-                location: at,
-                message: format!(
-                    "output `{name}` asks for the {} but `[drive]` has no `speed`; give `speed` \
+    if drive.speed.is_none()
+        && let Some(q) = quantities.iter().find(|q| q.is_time_derivative())
+    {
+        let at = d
+            .quantities
+            .as_ref()
+            .map_or_else(|| cx.at(def), |l| cx.at(l));
+        return Err(Error::Invalid {
+            location: at,
+            message: format!(
+                "output `{name}` asks for the {} but `[drive]` has no `speed`; give `speed` \
                     (and `acceleration`) or ask only for position and coefficients",
-                    if *q == Quantity::Velocity {
-                        "velocity"
-                    } else {
-                        "acceleration"
-                    }
-                ),
-            });
-        }
+                if *q == Quantity::Velocity {
+                    "velocity"
+                } else {
+                    "acceleration"
+                }
+            ),
+        });
     }
     if d.dead_positions && matches!(kind, OutputKind::Point(_)) {
         return Err(cx.invalid(

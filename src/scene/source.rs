@@ -47,10 +47,10 @@ impl Source {
             },
         };
         let message = tidy_toml_message(error.message());
-        if message.starts_with("duplicate key") {
-            if let Some(span) = error.span() {
-                return self.duplicate_key(span, location);
-            }
+        if message.starts_with("duplicate key")
+            && let Some(span) = error.span()
+        {
+            return self.duplicate_key(span, location);
         }
         Error::Syntax { location, message }
     }
