@@ -338,3 +338,17 @@ fn an_under_constrained_mechanism_is_reported_by_check() {
         "{message}"
     );
 }
+
+#[test]
+fn a_missing_section_is_named_with_the_sections_a_scene_needs() {
+    let e = parse_with("[sweep]\nfrom = 0\nto = 360\nstep = 10\n", "");
+    assert!(matches!(e, Error::Syntax { .. }), "{e:?}");
+    assert_message(
+        &e,
+        1,
+        &[
+            "missing field `sweep`",
+            "`[points]`, `[links]`, `[joints]`, `[drive]`",
+        ],
+    );
+}

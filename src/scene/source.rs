@@ -46,7 +46,16 @@ impl Source {
                 column: 1,
             },
         };
-        let message = tidy_toml_message(error.message());
+        let mut message = tidy_toml_message(error.message());
+        // A missing top-level section is reported for the whole document (no span, or one
+        // starting at byte 0).
+        let top_level = error.span().is_none_or(|s| s.start == 0);
+        if top_level && message.starts_with("missing field") {
+            message.push_str(
+                "; a scene file needs the sections `[points]`, `[links]`, `[joints]`, `[drive]` \
+                 and `[sweep]`",
+            );
+        }
         if message.starts_with("duplicate key")
             && let Some(span) = error.span()
         {
