@@ -151,6 +151,23 @@ pub enum Error {
         /// Condition number of the constraint Jacobian there.
         condition: f64,
     },
+    /// No drive position was found where an output takes a value asked for by
+    /// `[sweep] of` (the value is out of the output's range, or at one of its dead positions).
+    #[error(
+        "{file}: no drive position found where `{output}` = {value} (searched by Newton from \
+         the previous position; last tried {last}); is the value within the output's range and \
+         away from its dead positions?"
+    )]
+    NotReached {
+        /// The scene file.
+        file: String,
+        /// The output named by `[sweep] of`.
+        output: String,
+        /// The value asked for, with its unit.
+        value: String,
+        /// The last drive position tried, with its unit.
+        last: String,
+    },
     /// The solver would jump to the other assembly branch between two drive positions.
     #[error(
         "{file}: the loop of joints {loop_joints} would change assembly branch between drive \

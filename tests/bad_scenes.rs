@@ -352,3 +352,41 @@ fn a_missing_section_is_named_with_the_sections_a_scene_needs() {
         ],
     );
 }
+
+/// `[sweep] of = "psi"` asks for drive positions where the rocker is at a given angle; 150°
+/// is beyond the rocker's swing (78.1° to 122.6°), so no drive position gives it.
+#[test]
+fn an_output_value_out_of_reach_is_reported_with_the_output() {
+    let text = FOUR_BAR.replace(
+        "from = 0\nto = 360\nstep = 10",
+        "of = \"psi\"\npositions = [100, 150]",
+    );
+    let scene = scene::parse("bad.toml", &text).unwrap();
+    let e = scene::run(&scene).unwrap_err();
+    let Error::NotReached { output, value, .. } = &e else {
+        panic!("{e:?}")
+    };
+    assert_eq!((output.as_str(), value.as_str()), ("psi", "150 deg"));
+    assert!(
+        e.to_string()
+            .starts_with("bad.toml: no drive position found where `psi` = 150 deg"),
+        "{e}"
+    );
+    // 100° is within the swing: the same scene without 150° runs, and psi is 100° there.
+    let text = FOUR_BAR.replace(
+        "from = 0\nto = 360\nstep = 10",
+        "of = \"psi\"\npositions = [100]",
+    );
+    let report = scene::run(&scene::parse("ok.toml", &text).unwrap()).unwrap();
+    let psi = report.column("psi").unwrap()[0];
+    assert!((psi - 100f64.to_radians()).abs() <= 1e-15, "{psi}");
+}
+
+#[test]
+fn sweep_of_must_name_an_angle_or_slider_output() {
+    let e = parse_with(
+        "from = 0\nto = 360\nstep = 10",
+        "of = \"phi3\"\npositions = [100]",
+    );
+    assert_message(&e, 29, &["no output is named `phi3`", "psi"]);
+}

@@ -7,8 +7,9 @@ use toml::Spanned;
 use crate::error::{Error, Result};
 
 use super::format::{DriveSection, SweepSection};
-use super::model::{Drive, DriveKind, Joint, JointKind};
+use super::model::{Drive, DriveKind, Joint, JointKind, Output, OutputKind};
 use super::resolve::{Context, GROUND, Geometry};
+use super::units::Dimension;
 
 /// The most drive positions a sweep may have (a typo like `step = 1e-9` should not hang).
 pub const MAX_POSITIONS: usize = 1_000_000;
@@ -130,14 +131,47 @@ impl Context<'_> {
         })
     }
 
-    /// The drive positions (SI) of `[sweep]`.
+    /// The output named by `[sweep] of`, if any: an angle or slider output.
+    pub(crate) fn sweep_of(
+        &self,
+        section: &Spanned<SweepSection>,
+        outputs: &[Output],
+    ) -> Result<Option<usize>> {
+        let Some(name) = &section.get_ref().of else {
+            return Ok(None);
+        };
+        let Some(k) = outputs.iter().position(|o| &o.name == name.get_ref()) else {
+            let known: Vec<&str> = outputs.iter().map(|o| o.name.as_str()).collect();
+            return Err(self.invalid(
+                name,
+                format!(
+                    "`[sweep] of`: no output is named `{}`; expected the name of an angle or \
+                     slider output: {}",
+                    name.get_ref(),
+                    known.join(", ")
+                ),
+            ));
+        };
+        if matches!(outputs[k].kind, OutputKind::Point(_)) {
+            return Err(self.invalid(
+                name,
+                format!(
+                    "`[sweep] of`: output `{}` is a point (two values); expected an angle or \
+                     slider output",
+                    outputs[k].name
+                ),
+            ));
+        }
+        Ok(Some(k))
+    }
+
+    /// The positions (SI) of `[sweep]`: drive positions, or values of the `of` output.
     pub(crate) fn sweep(
         &self,
         section: &Spanned<SweepSection>,
-        kind: DriveKind,
+        dimension: Dimension,
     ) -> Result<Vec<f64>> {
         let s = section.get_ref();
-        let dimension = kind.dimension();
         let expected = "expected either `from`, `to` and `step`, or `positions = [...]`";
         match (&s.positions, &s.from, &s.to, &s.step) {
             (Some(list), None, None, None) => {

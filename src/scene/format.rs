@@ -205,6 +205,9 @@ pub struct SweepSection {
     pub step: Option<Spanned<f64>>,
     /// An explicit list of drive positions.
     pub positions: Option<Spanned<Vec<f64>>>,
+    /// The positions (range or list) are values of this output (an angle or slider output),
+    /// in its unit; the drive positions that give them are solved for.
+    pub of: Option<Name>,
 }
 
 /// What an output reports.

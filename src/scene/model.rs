@@ -22,8 +22,11 @@ pub struct Scene {
     pub joints: Vec<Joint>,
     /// The drive.
     pub drive: Drive,
-    /// The drive positions to compute (SI: rad or m), in order.
+    /// The drive positions to compute (SI: rad or m), in order; or, when [`Scene::sweep_of`]
+    /// names an output, the values of that output (SI) whose drive positions are solved for.
     pub positions: Vec<f64>,
+    /// Index into [`Scene::outputs`] of the output whose values the sweep gives (`[sweep] of`).
+    pub sweep_of: Option<usize>,
     /// The outputs, in column order.
     pub outputs: Vec<Output>,
 }

@@ -41,11 +41,16 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
     };
     let joints = cx.joints(&file.joints, &geometry)?;
     let mut drive = cx.drive(&file.drive, &geometry, &joints)?;
-    let positions = cx.sweep(&file.sweep, drive.kind)?;
-    if drive.kind == DriveKind::Angle {
+    let outputs = outputs::resolve(&cx, &file.outputs, &geometry, &joints, &drive)?;
+    let sweep_of = cx.sweep_of(&file.sweep, &outputs)?;
+    let dimension = match sweep_of {
+        Some(k) => outputs[k].kind.dimension(),
+        None => drive.kind.dimension(),
+    };
+    let positions = cx.sweep(&file.sweep, dimension)?;
+    if drive.kind == DriveKind::Angle && sweep_of.is_none() {
         drive.at_sketch = nearest_turn(drive.at_sketch, positions[0]);
     }
-    let outputs = outputs::resolve(&cx, &file.outputs, &geometry, &joints, &drive)?;
     if let Some(output) = outputs.iter().find(|o| o.dead_positions) {
         let (lo, hi) = positions
             .iter()
@@ -72,6 +77,7 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
         joints,
         drive,
         positions,
+        sweep_of,
         outputs,
     })
 }

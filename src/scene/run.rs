@@ -21,8 +21,11 @@ use super::units::{Dimension, Units};
 pub struct Plan {
     /// Number of drive positions.
     pub positions: usize,
-    /// First and last drive position (SI).
+    /// Smallest and largest position of the sweep (SI): drive positions, or values of the
+    /// output named by `given_by`.
     pub range: (f64, f64),
+    /// The output whose values the sweep gives (`[sweep] of`), if any.
+    pub given_by: Option<String>,
     /// Highest derivative order with respect to the drive that the outputs need.
     pub order: usize,
     /// The drive state used for velocities and accelerations, if any is asked for.
@@ -54,6 +57,7 @@ impl Plan {
         Plan {
             positions: scene.positions.len(),
             range: (lo, hi),
+            given_by: scene.sweep_of.map(|k| scene.outputs[k].name.clone()),
             order: scene.order(),
             drive,
             columns: scene
@@ -77,7 +81,33 @@ impl Plan {
             1 => "positions and velocity coefficients (order 1)",
             _ => "positions, velocity and acceleration coefficients (order 2)",
         };
-        let range = if self.positions == 1 {
+        let range = if let Some(k) = scene.sweep_of {
+            let output = &scene.outputs[k];
+            let text = |v: f64| {
+                let d = output.kind.dimension();
+                let u = &scene.units;
+                format!("{} {}", Units::tidy(u.from_si(v, d)), u.symbol(d))
+            };
+            let values = if self.positions == 1 {
+                format!(
+                    "1 drive position where {} = {}",
+                    output.name,
+                    text(self.range.0)
+                )
+            } else {
+                format!(
+                    "{} drive positions where {} goes from {} to {}",
+                    self.positions,
+                    output.name,
+                    text(self.range.0),
+                    text(self.range.1)
+                )
+            };
+            format!(
+                "{values} (drive positions solved by Newton on {}')",
+                output.name
+            )
+        } else if self.positions == 1 {
             format!("1 drive position, phi = {}", scene.drive_text(self.range.0))
         } else {
             format!(
@@ -206,16 +236,17 @@ pub fn run(scene: &Scene) -> Result<Report> {
     for output in &scene.outputs {
         all.extend(columns(output, &scene.units, drive_dimension));
     }
+    let positions = drive_positions(scene, &mechanism)?;
     let rows = match plan.order {
-        0 | 1 => sweep::<1>(scene, &mechanism, &plan)?,
-        _ => sweep::<2>(scene, &mechanism, &plan)?,
+        0 | 1 => sweep::<1>(scene, &mechanism, &plan, &positions)?,
+        _ => sweep::<2>(scene, &mechanism, &plan, &positions)?,
     };
     let mut dead_positions = Vec::new();
     for output in scene.outputs.iter().filter(|o| o.dead_positions) {
         dead_positions.push(DeadPositions {
             output: output.name.clone(),
             dimension: output.kind.dimension(),
-            positions: search_dead_positions(scene, &mechanism, output)?,
+            positions: search_dead_positions(scene, &mechanism, output, &positions)?,
         });
     }
     Ok(Report {
@@ -226,18 +257,90 @@ pub fn run(scene: &Scene) -> Result<Report> {
     })
 }
 
+/// The drive positions of the sweep: as given, or, for `[sweep] of = "output"`, solved so
+/// that the output takes each given value (Newton on the output's exact velocity
+/// coefficient, from the sketch or the previous position; steps limited to a quarter turn or
+/// a quarter of the sketch's size).
+fn drive_positions(scene: &Scene, mechanism: &Mechanism) -> Result<Vec<f64>> {
+    let Some(k) = scene.sweep_of else {
+        return Ok(scene.positions.clone());
+    };
+    let output = &scene.outputs[k];
+    let mut tracker = Solver::default()
+        .track(mechanism)
+        .map_err(|e| solver_error(scene, e))?;
+    let max_step = match scene.drive.kind {
+        super::model::DriveKind::Angle => std::f64::consts::FRAC_PI_4,
+        super::model::DriveKind::Displacement => 0.25 * sketch_size(scene),
+    };
+    let dimension = output.kind.dimension();
+    let text = |v: f64| {
+        format!(
+            "{} {}",
+            Units::tidy(scene.units.from_si(v, dimension)),
+            scene.units.symbol(dimension)
+        )
+    };
+    let mut previous = None;
+    let mut drive = Vec::with_capacity(scene.positions.len());
+    for &target in &scene.positions {
+        let mut phi = tracker.phi();
+        let mut reached = false;
+        for _ in 0..60 {
+            let k = solve::<1>(scene, &mut tracker, phi)?;
+            let jet = evaluate(scene, &k, output, &mut previous)?[0];
+            let (miss, slope) = (jet.value - target, jet.d1());
+            if miss.abs() <= 4.0 * f64::EPSILON * target.abs().max(jet.value.abs()) {
+                reached = true;
+                break;
+            }
+            if slope == 0.0 || !slope.is_finite() {
+                break;
+            }
+            let step = (miss / slope).clamp(-max_step, max_step);
+            if step.abs() <= 2.0 * f64::EPSILON * phi.abs().max(1.0) {
+                reached = true;
+                break;
+            }
+            phi -= step;
+        }
+        if !reached {
+            return Err(Error::NotReached {
+                file: scene.file.clone(),
+                output: output.name.clone(),
+                value: text(target),
+                last: scene.drive_text(tracker.phi()),
+            });
+        }
+        drive.push(tracker.phi());
+    }
+    Ok(drive)
+}
+
+/// The sketch's size: the largest distance between two of its points (m).
+fn sketch_size(scene: &Scene) -> f64 {
+    let mut size: f64 = 0.0;
+    for p in &scene.points {
+        for q in &scene.points {
+            size = size.max((p.sketch[0] - q.sketch[0]).hypot(p.sketch[1] - q.sketch[1]));
+        }
+    }
+    size
+}
+
 fn sweep<const N: usize>(
     scene: &Scene,
     mechanism: &Mechanism,
     plan: &Plan,
+    positions: &[f64],
 ) -> Result<Vec<Vec<f64>>> {
     let mut tracker = Solver::default()
         .track(mechanism)
         .map_err(|e| solver_error(scene, e))?;
     let drive = plan.drive.unwrap_or(DriveState::constant_speed(0.0));
     let mut previous: Vec<Option<f64>> = vec![None; scene.outputs.len()];
-    let mut rows = Vec::with_capacity(scene.positions.len());
-    for &phi in &scene.positions {
+    let mut rows = Vec::with_capacity(positions.len());
+    for &phi in positions {
         let k = solve::<N>(scene, &mut tracker, phi)?;
         let mut row = vec![phi];
         for (output, previous) in scene.outputs.iter().zip(previous.iter_mut()) {
@@ -377,16 +480,15 @@ fn search_dead_positions(
     scene: &Scene,
     mechanism: &Mechanism,
     output: &Output,
+    positions: &[f64],
 ) -> Result<Vec<DeadPosition>> {
-    let (lo, hi) = scene
-        .positions
+    let (lo, hi) = positions
         .iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &p| {
             (lo.min(p), hi.max(p))
         });
     // Sample at least as finely as the sweep, and at least 360 intervals over the range.
-    let sweep_step = scene
-        .positions
+    let sweep_step = positions
         .windows(2)
         .map(|w| (w[1] - w[0]).abs())
         .fold(f64::INFINITY, f64::min);
