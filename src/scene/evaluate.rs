@@ -5,7 +5,7 @@ use mechdiff_core::geometry::Kinematics;
 use mechdiff_core::num_dual::{Dual3_64, DualNum};
 use mechdiff_core::{DriveState, Jet};
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 
 use super::format::{Quantity, Sense};
 use super::model::{Output, OutputKind, Scene};
@@ -36,7 +36,10 @@ pub(crate) fn evaluate<const N: usize>(
             .links
             .iter()
             .find(|l| l.points.iter().any(|p| p == name))
-            .expect("outputs name points carried by a link (checked when the scene was read)");
+            .ok_or_else(|| Error::Invalid {
+                location: output.location.clone(),
+                message: format!("output `{}`: point `{name}` is on no link", output.name),
+            })?;
         let [x, y] = k
             .point(&link.name, name)
             .map_err(|e| solver_error(scene, e))?;
