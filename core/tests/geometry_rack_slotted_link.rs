@@ -39,7 +39,10 @@ const OTHER: [f64; 6] = [
 fn close(name: &str, got: f64, want: f64) {
     let err = (got - want).abs() / want.abs();
     println!("{name}: relative error {err:.1e}");
-    assert!(err <= 1e-9, "{name}: got {got}, want {want}, relative error {err:e}");
+    assert!(
+        err <= 1e-9,
+        "{name}: got {got}, want {want}, relative error {err:e}"
+    );
 }
 
 fn check(k: &Kinematics<'_, 2>, drive: &DriveState, loop2: &[f64; 6]) {
@@ -59,7 +62,10 @@ fn check(k: &Kinematics<'_, 2>, drive: &DriveState, loop2: &[f64; 6]) {
     close("ρ8", rho8.position, loop2[3]);
     close("ρ̇8", rho8.velocity, loop2[4]);
     close("ρ̈8", rho8.acceleration, loop2[5]);
-    let g1 = k.point("slotted link", "G1").unwrap().map(|j| j.motion(drive));
+    let g1 = k
+        .point("slotted link", "G1")
+        .unwrap()
+        .map(|j| j.motion(drive));
     for i in 0..2 {
         close("v_G1", g1[i].velocity, V_G1[i]);
         close("a_G1", g1[i].acceleration, A_G1[i]);
@@ -80,7 +86,11 @@ fn reference_instant_primary_closure_matches_to_1e_9() {
 fn other_closure_is_kept_when_the_sketch_draws_it() {
     let m = rack_slotted_link(Closure001::Other, false).unwrap();
     let t = Solver::default().track(&m).unwrap();
-    check(&t.kinematics::<2>().unwrap(), &DriveState::accelerating(0.050, 0.002), &OTHER);
+    check(
+        &t.kinematics::<2>().unwrap(),
+        &DriveState::accelerating(0.050, 0.002),
+        &OTHER,
+    );
 }
 
 #[test]
@@ -102,7 +112,10 @@ fn loop_2_certificates_differ_between_closures_and_survive_a_sweep() {
     };
     let (primary, rho8_primary) = signs(Closure001::Primary);
     let (other, rho8_other) = signs(Closure001::Other);
-    assert_ne!(primary, other, "the two closures must have opposite certificates");
+    assert_ne!(
+        primary, other,
+        "the two closures must have opposite certificates"
+    );
     // Back at θ3 = 63° each sweep returns to its own closure (1e-12 m: solver rounding).
     assert!((rho8_primary - PRIMARY[3]).abs() < 1e-12);
     assert!((rho8_other - OTHER[3]).abs() < 1e-12);

@@ -29,7 +29,14 @@ pub fn whitworth() -> Result<Mechanism, Error> {
         .link("crank", ["O", "A", "S1"])
         .link("rocker", ["B0", "S"])
         .link("ram", ["C"])
-        .inertia("crank", Inertia { mass: 15.0, center: [0.0, L0 - 0.04], moment: 0.0 })
+        .inertia(
+            "crank",
+            Inertia {
+                mass: 15.0,
+                center: [0.0, L0 - 0.04],
+                moment: 0.0,
+            },
+        )
         .revolute("O", "ground", "crank", "O")
         .revolute("B0", "ground", "rocker", "B0")
         .pin_in_slot("slot A", "rocker", ["B0", "S"], "crank", "A")
@@ -190,14 +197,19 @@ pub fn four_bar_rocker_pin(a: [f64; 2], b: f64, c: f64, d: f64, up: bool) -> Opt
     }
     let (e, n) = ([f[0] / dist, f[1] / dist], [-f[1] / dist, f[0] / dist]);
     let s = if up { h2.sqrt() } else { -h2.sqrt() };
-    Some([a[0] + along * e[0] + s * n[0], a[1] + along * e[1] + s * n[1]])
+    Some([
+        a[0] + along * e[0] + s * n[0],
+        a[1] + along * e[1] + s * n[1],
+    ])
 }
 
 /// The drive positions of a full revolution from 0 at `step_deg` steps, plus `extra`
 /// (sorted in).
 pub fn revolution(step_deg: f64, extra: &[f64]) -> Vec<f64> {
     let n = (360.0 / step_deg).round() as usize;
-    let mut v: Vec<f64> = (0..=n).map(|i| (i as f64 * step_deg).to_radians()).collect();
+    let mut v: Vec<f64> = (0..=n)
+        .map(|i| (i as f64 * step_deg).to_radians())
+        .collect();
     v.extend_from_slice(extra);
     v.sort_by(f64::total_cmp);
     v
