@@ -26,6 +26,149 @@ pub enum Error {
         /// Which quantity.
         quantity: &'static str,
     },
+    // ---- geometry-only mechanisms (`geometry` module) ----
+    /// Two items of the same kind share a name.
+    #[error("duplicate {what} name `{name}`")]
+    DuplicateName {
+        /// "point", "link" or "joint".
+        what: &'static str,
+        /// The repeated name.
+        name: String,
+    },
+    /// A name refers to nothing declared.
+    #[error("unknown {what} `{name}` (in {context})")]
+    UnknownName {
+        /// "point", "link" or "joint".
+        what: &'static str,
+        /// The unknown name.
+        name: String,
+        /// Where it was used, e.g. "joint `A`".
+        context: String,
+    },
+    /// A joint uses a point that the link it names does not carry.
+    #[error("point `{point}` is not on link `{link}` (in {context})")]
+    PointNotOnLink {
+        /// The point.
+        point: String,
+        /// The link.
+        link: String,
+        /// Where, e.g. "joint `A`".
+        context: String,
+    },
+    /// A length that must be positive is not (coincident line points, zero radius, ...).
+    #[error("{what} must have a positive length, got {length} m")]
+    NonPositiveLength {
+        /// What the length belongs to, e.g. "slot line of joint `S`".
+        what: String,
+        /// The offending length (m).
+        length: f64,
+    },
+    /// A number given in the model is NaN or infinite, or out of its range.
+    #[error("invalid value {value} for {what}")]
+    InvalidValue {
+        /// What the value is, e.g. "x of point `A`".
+        what: String,
+        /// The value.
+        value: f64,
+    },
+    /// A joint refers to a joint of the wrong kind, or joins a link to itself.
+    #[error("joint `{joint}`: {problem}")]
+    InvalidJoint {
+        /// The joint.
+        joint: String,
+        /// What is wrong with it.
+        problem: String,
+    },
+    /// The sketch does not satisfy a joint (e.g. a pin drawn off its slot line).
+    #[error("the sketch does not satisfy joint `{joint}` (residual {residual:e} m)")]
+    SketchNotAssembled {
+        /// The joint.
+        joint: String,
+        /// The constraint residual at the sketch pose.
+        residual: f64,
+    },
+    /// The model has no drive.
+    #[error("the mechanism has no drive")]
+    MissingDrive,
+    /// More independent equations than coordinates, or dependent equations.
+    #[error(
+        "over-constrained: the equations of joint(s) {} are redundant at the sketch pose \
+         ({equations} equations for {coordinates} coordinates)",
+        .redundant.join(", ")
+    )]
+    Overconstrained {
+        /// Joints whose equations depend on the others' (the drive is named `drive <joint>`).
+        redundant: Vec<String>,
+        /// Number of equations, drive included.
+        equations: usize,
+        /// Number of pose coordinates.
+        coordinates: usize,
+    },
+    /// The drive does not fix the pose: some links can still move.
+    #[error(
+        "under-constrained: {free} degree(s) of freedom left with the drive fixed; \
+         links {} can move, joints involved: {}",
+        .links.join(", "), .joints.join(", ")
+    )]
+    Underconstrained {
+        /// Number of free motions with the drive fixed.
+        free: usize,
+        /// Links that move in a free motion.
+        links: Vec<String>,
+        /// Joints attached to those links.
+        joints: Vec<String>,
+    },
+    /// No assembly exists (or none was found near the previous one) at drive position `phi`.
+    #[error(
+        "cannot assemble at drive position φ = {phi} (last assembled at φ = {last_assembled}); \
+         loop of joints {} fails (residual {residual:e})",
+        .joints.join(", ")
+    )]
+    Unassemblable {
+        /// Drive position that could not be reached.
+        phi: f64,
+        /// Last drive position that assembled.
+        last_assembled: f64,
+        /// Joints of the loop whose equations could not be satisfied.
+        joints: Vec<String>,
+        /// Remaining constraint residual (m).
+        residual: f64,
+    },
+    /// The constraint Jacobian is singular (toggle position of the driven chain).
+    #[error(
+        "singular position at drive position φ = {phi} (condition number {condition:e}); \
+         loop of joints {}",
+        .joints.join(", ")
+    )]
+    Singular {
+        /// Drive position.
+        phi: f64,
+        /// Estimated condition number of the scaled Jacobian Φ_q.
+        condition: f64,
+        /// Joints of the loop that is singular.
+        joints: Vec<String>,
+    },
+    /// A step would switch a loop to its other assembly branch, and subdividing did not help.
+    #[error(
+        "assembly branch of the loop of joints {} would flip between φ = {from} and φ = {to}",
+        .joints.join(", ")
+    )]
+    BranchFlip {
+        /// Last drive position on the sketch's branch.
+        from: f64,
+        /// Drive position where the flip was detected.
+        to: f64,
+        /// Joints of the loop.
+        joints: Vec<String>,
+    },
+    /// A name given to an output or query is unknown or of the wrong kind.
+    #[error("output `{name}`: {problem}")]
+    InvalidOutput {
+        /// The name asked for.
+        name: String,
+        /// What is wrong.
+        problem: String,
+    },
 }
 
 /// The result type of mechdiff-core.

@@ -5,11 +5,14 @@
 //! to the drive variable φ follow by any [`method`] — dual numbers (exact), central differences,
 //! or formulas derived by hand — as [`Jet`]s. A [`DriveState`] turns them into velocities,
 //! accelerations and jerks ([`Motion`]), of single coordinates or of [`Point`]s;
-//! [`DeadPositionSearch`] finds where a coefficient changes sign.
+//! [`DeadPositionSearch`] finds where a coefficient changes sign. [`geometry`] derives, solves
+//! and differentiates the equations of a mechanism given only as points, links, joints and a
+//! drive.
 #![warn(missing_docs)]
 
 pub mod dead_position;
 pub mod error;
+pub mod geometry;
 pub mod jet;
 pub mod method;
 pub mod motion;

@@ -1,0 +1,593 @@
+//! Constraint equations Φ(q, φ) = 0, generic over the scalar, and their Jacobian Φ_q.
+//!
+//! Coordinates: `q = (x_1, y_1, θ_1, x_2, …)` for the moving links (see [`super::model`]).
+//! A point with link-local coordinates `p` on link `k` is at `r_k + A(θ_k)·p`, and
+//! `θ_k = 0` at the sketch. With `u = A(θ_g)·u_local` a guide's unit direction, `a` a point of
+//! its line and `c = cross`:
+//!
+//! | joint | equations |
+//! |---|---|
+//! | revolute | `r_a(p) − r_b(p) = 0` (2) |
+//! | prismatic | `θ_s − θ_g = 0`, `c(u, r_s(p) − r_g(a)) − e₀ = 0` (2) |
+//! | pin in slot | `c(u, r_pin − r_g(a)) = 0` (1) |
+//! | rack and pinion | `(s − s₀) − R·(θ_b − θ_a) = 0` (1) |
+//! | gear | `(θ_b2 − θ_a2) − ratio·(θ_b1 − θ_a1) = 0` (1) |
+//! | rigid | `r_b − r_a(p_b) = 0`, `θ_b − θ_a = 0` (3) |
+//! | drive | `θ_b − θ_a − (φ − φ₀) = 0` or `(s − s₀) − (φ − φ₀) = 0` (1) |
+//!
+//! where `s = u·(r_s(p) − r_g(a))` is a prismatic displacement. Rows are in joint order, the
+//! drive last. Angular rows are in rad, the others in m.
+
+use super::model::{DriveKind, JointKind, Mechanism};
+use nalgebra::DMatrix;
+use num_dual::DualNum;
+
+/// Index of a body's coordinates in `q`; `None` for the ground.
+pub(crate) type Body = Option<usize>;
+
+/// A line fixed in a body: a point of it and its unit direction, both link-local.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Line {
+    pub body: Body,
+    pub origin: [f64; 2],
+    pub direction: [f64; 2],
+}
+
+/// A prismatic pair compiled: the guide line, the slider and its measuring point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Slide {
+    pub line: Line,
+    pub slider: Body,
+    pub point: [f64; 2],
+}
+
+/// One joint (or the drive), compiled to link-local data.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Term {
+    Revolute {
+        a: Body,
+        pa: [f64; 2],
+        b: Body,
+        pb: [f64; 2],
+    },
+    Prismatic {
+        slide: Slide,
+        offset: f64,
+    },
+    PinInSlot {
+        line: Line,
+        pin: Body,
+        p: [f64; 2],
+    },
+    RackPinion {
+        a: Body,
+        b: Body,
+        slide: Slide,
+        s0: f64,
+        radius: f64,
+    },
+    Gear {
+        a1: Body,
+        b1: Body,
+        a2: Body,
+        b2: Body,
+        ratio: f64,
+    },
+    Rigid {
+        a: Body,
+        pa: [f64; 2],
+        b: Body,
+    },
+    DriveAngle {
+        a: Body,
+        b: Body,
+        phi0: f64,
+    },
+    DriveSlide {
+        slide: Slide,
+        s0: f64,
+        phi0: f64,
+    },
+}
+
+impl Term {
+    fn rows(&self) -> usize {
+        match self {
+            Term::Revolute { .. } | Term::Prismatic { .. } => 2,
+            Term::Rigid { .. } => 3,
+            _ => 1,
+        }
+    }
+}
+
+/// The compiled equations of a mechanism: what the solver evaluates.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Equations {
+    pub(crate) terms: Vec<Term>,
+    /// Rows that are angles (rad) rather than lengths (m).
+    pub(crate) angular: Vec<bool>,
+    /// Row → index of the joint it comes from (`joints.len()` for the drive).
+    pub(crate) row_joint: Vec<usize>,
+    coordinates: usize,
+}
+
+pub(crate) fn body(link: usize) -> Body {
+    link.checked_sub(1)
+}
+
+fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+pub(crate) fn compile_slide(
+    m: &Mechanism,
+    guide: usize,
+    line: [usize; 2],
+    slider: usize,
+    point: usize,
+) -> Slide {
+    let (a, b) = (m.points[line[0]].sketch, m.points[line[1]].sketch);
+    let d = sub(b, a);
+    let len = d[0].hypot(d[1]);
+    Slide {
+        line: Line {
+            body: body(guide),
+            origin: m.local(guide, a),
+            direction: [d[0] / len, d[1] / len],
+        },
+        slider: body(slider),
+        point: m.local(slider, m.points[point].sketch),
+    }
+}
+
+impl Equations {
+    /// Compiles the equations of `m`.
+    pub fn new(m: &Mechanism) -> Self {
+        let mut terms = Vec::with_capacity(m.joints.len() + 1);
+        let mut row_joint = Vec::new();
+        let slide_of = |j: usize| match m.joints[j].kind {
+            JointKind::Prismatic {
+                guide,
+                line,
+                slider,
+                point,
+            } => compile_slide(m, guide, line, slider, point),
+            _ => unreachable!("validated: a prismatic joint"),
+        };
+        let bodies_of = |j: usize| match m.joints[j].kind {
+            JointKind::Revolute { link_a, link_b, .. } => (body(link_a), body(link_b)),
+            _ => unreachable!("validated: a revolute joint"),
+        };
+        for (ji, j) in m.joints.iter().enumerate() {
+            let term = match j.kind {
+                JointKind::Revolute {
+                    link_a,
+                    link_b,
+                    point,
+                } => {
+                    let at = m.points[point].sketch;
+                    Term::Revolute {
+                        a: body(link_a),
+                        pa: m.local(link_a, at),
+                        b: body(link_b),
+                        pb: m.local(link_b, at),
+                    }
+                }
+                JointKind::Prismatic { .. } => {
+                    let slide = slide_of(ji);
+                    // The (constant) signed distance of the measuring point from the line.
+                    let offset = match j.kind {
+                        JointKind::Prismatic { line, point, .. } => cross(
+                            slide.line.direction,
+                            sub(m.points[point].sketch, m.points[line[0]].sketch),
+                        ),
+                        _ => unreachable!(),
+                    };
+                    Term::Prismatic { slide, offset }
+                }
+                JointKind::PinInSlot {
+                    slot_link,
+                    line,
+                    pin_link,
+                    pin,
+                } => {
+                    let (a, b) = (m.points[line[0]].sketch, m.points[line[1]].sketch);
+                    let d = sub(b, a);
+                    let len = d[0].hypot(d[1]);
+                    Term::PinInSlot {
+                        line: Line {
+                            body: body(slot_link),
+                            origin: m.local(slot_link, a),
+                            direction: [d[0] / len, d[1] / len],
+                        },
+                        pin: body(pin_link),
+                        p: m.local(pin_link, m.points[pin].sketch),
+                    }
+                }
+                JointKind::RackPinion {
+                    pinion,
+                    rack,
+                    radius,
+                } => {
+                    let (a, b) = bodies_of(pinion);
+                    let slide = slide_of(rack);
+                    Term::RackPinion {
+                        a,
+                        b,
+                        slide,
+                        s0: sketch_displacement(m, rack),
+                        radius,
+                    }
+                }
+                JointKind::Gear {
+                    joint_a,
+                    joint_b,
+                    ratio,
+                } => {
+                    let (a1, b1) = bodies_of(joint_a);
+                    let (a2, b2) = bodies_of(joint_b);
+                    Term::Gear {
+                        a1,
+                        b1,
+                        a2,
+                        b2,
+                        ratio,
+                    }
+                }
+                JointKind::Rigid { link_a, link_b } => Term::Rigid {
+                    a: body(link_a),
+                    pa: m.local(link_a, m.reference_sketch(link_b)),
+                    b: body(link_b),
+                },
+            };
+            row_joint.extend(std::iter::repeat_n(ji, term.rows()));
+            terms.push(term);
+        }
+        let phi0 = m.drive_at_sketch;
+        terms.push(match m.drive_kind {
+            DriveKind::Angle => {
+                let (a, b) = bodies_of(m.drive_joint);
+                Term::DriveAngle { a, b, phi0 }
+            }
+            DriveKind::Displacement => Term::DriveSlide {
+                slide: slide_of(m.drive_joint),
+                s0: sketch_displacement(m, m.drive_joint),
+                phi0,
+            },
+        });
+        row_joint.push(m.joints.len());
+        let mut eq = Equations {
+            terms,
+            angular: Vec::new(),
+            row_joint,
+            coordinates: m.coordinate_count(),
+        };
+        eq.angular = eq.angular_rows();
+        eq
+    }
+
+    /// Number of equations (rows of Φ).
+    pub fn rows(&self) -> usize {
+        self.row_joint.len()
+    }
+
+    /// Number of coordinates (columns of Φ_q).
+    pub fn coordinates(&self) -> usize {
+        self.coordinates
+    }
+
+    /// Evaluates Φ(q, φ) into `out` (length [`Equations::rows`]), for any scalar type.
+    pub fn evaluate<D: DualNum<Primitive = f64> + Copy>(&self, q: &[D], phi: D, out: &mut [D]) {
+        with_frames(q, |f| self.evaluate_with(f, phi, out));
+    }
+
+    fn evaluate_with<D: DualNum<Primitive = f64> + Copy>(
+        &self,
+        f: &Frames<'_, D>,
+        phi: D,
+        out: &mut [D],
+    ) {
+        let mut row = 0;
+        for t in &self.terms {
+            match *t {
+                Term::Revolute { a, pa, b, pb } => {
+                    let (ra, rb) = (f.point(a, pa), f.point(b, pb));
+                    out[row] = ra[0] - rb[0];
+                    out[row + 1] = ra[1] - rb[1];
+                }
+                Term::Prismatic { slide, offset } => {
+                    out[row] = f.angle(slide.slider) - f.angle(slide.line.body);
+                    let (u, d) = f.along(&slide.line, f.point(slide.slider, slide.point));
+                    out[row + 1] = u[0] * d[1] - u[1] * d[0] - offset;
+                }
+                Term::PinInSlot { line, pin, p } => {
+                    let (u, d) = f.along(&line, f.point(pin, p));
+                    out[row] = u[0] * d[1] - u[1] * d[0];
+                }
+                Term::RackPinion {
+                    a,
+                    b,
+                    slide,
+                    s0,
+                    radius,
+                } => {
+                    let s = f.displacement(&slide);
+                    out[row] = s - s0 - (f.angle(b) - f.angle(a)) * radius;
+                }
+                Term::Gear {
+                    a1,
+                    b1,
+                    a2,
+                    b2,
+                    ratio,
+                } => {
+                    out[row] = f.angle(b2) - f.angle(a2) - (f.angle(b1) - f.angle(a1)) * ratio;
+                }
+                Term::Rigid { a, pa, b } => {
+                    let ra = f.point(a, pa);
+                    let rb = f.point(b, [0.0, 0.0]);
+                    out[row] = rb[0] - ra[0];
+                    out[row + 1] = rb[1] - ra[1];
+                    out[row + 2] = f.angle(b) - f.angle(a);
+                }
+                Term::DriveAngle { a, b, phi0 } => {
+                    out[row] = f.angle(b) - f.angle(a) - (phi - phi0);
+                }
+                Term::DriveSlide { slide, s0, phi0 } => {
+                    out[row] = f.displacement(&slide) - s0 - (phi - phi0);
+                }
+            }
+            row += t.rows();
+        }
+    }
+
+    /// Evaluates the Jacobian Φ_q at `q` (f64) into `jac` (rows × coordinates), analytically.
+    pub fn jacobian(&self, q: &[f64], jac: &mut DMatrix<f64>) {
+        jac.fill(0.0);
+        with_frames(q, |f| self.jacobian_with(f, jac));
+    }
+
+    fn jacobian_with(&self, f: &Frames<'_, f64>, jac: &mut DMatrix<f64>) {
+        let mut g = Gradient { f, jac };
+        let mut row = 0;
+        for t in &self.terms {
+            match *t {
+                Term::Revolute { a, pa, b, pb } => {
+                    g.point(row, a, pa, [1.0, 0.0]);
+                    g.point(row + 1, a, pa, [0.0, 1.0]);
+                    g.point(row, b, pb, [-1.0, 0.0]);
+                    g.point(row + 1, b, pb, [0.0, -1.0]);
+                }
+                Term::Prismatic { slide, .. } => {
+                    g.angle(row, slide.slider, 1.0);
+                    g.angle(row, slide.line.body, -1.0);
+                    g.line(row + 1, &slide.line, slide.slider, slide.point, false);
+                }
+                Term::PinInSlot { line, pin, p } => g.line(row, &line, pin, p, false),
+                Term::RackPinion {
+                    a,
+                    b,
+                    slide,
+                    radius,
+                    ..
+                } => {
+                    g.line(row, &slide.line, slide.slider, slide.point, true);
+                    g.angle(row, b, -radius);
+                    g.angle(row, a, radius);
+                }
+                Term::Gear {
+                    a1,
+                    b1,
+                    a2,
+                    b2,
+                    ratio,
+                } => {
+                    g.angle(row, b2, 1.0);
+                    g.angle(row, a2, -1.0);
+                    g.angle(row, b1, -ratio);
+                    g.angle(row, a1, ratio);
+                }
+                Term::Rigid { a, pa, b } => {
+                    g.point(row, b, [0.0, 0.0], [1.0, 0.0]);
+                    g.point(row + 1, b, [0.0, 0.0], [0.0, 1.0]);
+                    g.point(row, a, pa, [-1.0, 0.0]);
+                    g.point(row + 1, a, pa, [0.0, -1.0]);
+                    g.angle(row + 2, b, 1.0);
+                    g.angle(row + 2, a, -1.0);
+                }
+                Term::DriveAngle { a, b, .. } => {
+                    g.angle(row, b, 1.0);
+                    g.angle(row, a, -1.0);
+                }
+                Term::DriveSlide { slide, .. } => {
+                    g.line(row, &slide.line, slide.slider, slide.point, true);
+                }
+            }
+            row += t.rows();
+        }
+    }
+
+    /// For each row, the moving bodies (indices into `q / 3`) it depends on.
+    pub(crate) fn row_bodies(&self) -> Vec<Vec<usize>> {
+        let mut out = Vec::with_capacity(self.rows());
+        for t in &self.terms {
+            let bodies: Vec<Body> = match *t {
+                Term::Revolute { a, b, .. } | Term::Rigid { a, b, .. } => vec![a, b],
+                Term::DriveAngle { a, b, .. } => vec![a, b],
+                Term::Prismatic { slide, .. } | Term::DriveSlide { slide, .. } => {
+                    vec![slide.line.body, slide.slider]
+                }
+                Term::PinInSlot { line, pin, .. } => vec![line.body, pin],
+                Term::RackPinion { a, b, slide, .. } => vec![a, b, slide.line.body, slide.slider],
+                Term::Gear { a1, b1, a2, b2, .. } => vec![a1, b1, a2, b2],
+            };
+            let mut bodies: Vec<usize> = bodies.into_iter().flatten().collect();
+            bodies.sort_unstable();
+            bodies.dedup();
+            out.extend(std::iter::repeat_n(bodies, t.rows()));
+        }
+        out
+    }
+
+    /// Rows of Φ_q that are angular (rad) rather than lengths (m): used to scale the
+    /// Jacobian for rank and condition estimates.
+    fn angular_rows(&self) -> Vec<bool> {
+        let mut out = Vec::with_capacity(self.rows());
+        for t in &self.terms {
+            match t {
+                Term::Revolute { .. } => out.extend([false, false]),
+                Term::Prismatic { .. } => out.extend([true, false]),
+                Term::Rigid { .. } => out.extend([false, false, true]),
+                Term::Gear { .. } | Term::DriveAngle { .. } => out.push(true),
+                _ => out.push(false),
+            }
+        }
+        out
+    }
+}
+
+/// Calls `body` with the sines and cosines of every body's angle, kept on the stack for up to
+/// 8 moving links (most mechanisms), on the heap beyond.
+pub(crate) fn with_frames<D: DualNum<Primitive = f64> + Copy, T>(
+    q: &[D],
+    body: impl FnOnce(&Frames<'_, D>) -> T,
+) -> T {
+    let n = q.len() / 3;
+    let sin_cos = |k: usize| q[3 * k + 2].sin_cos();
+    if n <= 8 {
+        let zero = D::from(0.0);
+        let mut frames = [(zero, zero); 8];
+        for (k, f) in frames.iter_mut().enumerate().take(n) {
+            *f = sin_cos(k);
+        }
+        body(&Frames {
+            q,
+            frames: &frames[..n],
+        })
+    } else {
+        let frames: Vec<(D, D)> = (0..n).map(sin_cos).collect();
+        body(&Frames { q, frames: &frames })
+    }
+}
+
+/// Sine and cosine of every body's angle, for evaluating point positions.
+pub(crate) struct Frames<'a, D> {
+    pub q: &'a [D],
+    pub frames: &'a [(D, D)],
+}
+
+impl<D: DualNum<Primitive = f64> + Copy> Frames<'_, D> {
+    fn rotate(&self, b: Body, p: [f64; 2]) -> [D; 2] {
+        match b {
+            None => [D::from(p[0]), D::from(p[1])],
+            Some(k) => {
+                let (s, c) = self.frames[k];
+                [c * p[0] - s * p[1], s * p[0] + c * p[1]]
+            }
+        }
+    }
+
+    pub fn point(&self, b: Body, p: [f64; 2]) -> [D; 2] {
+        let r = self.rotate(b, p);
+        match b {
+            None => r,
+            Some(k) => [self.q[3 * k] + r[0], self.q[3 * k + 1] + r[1]],
+        }
+    }
+
+    pub fn angle(&self, b: Body) -> D {
+        b.map_or(D::from(0.0), |k| self.q[3 * k + 2])
+    }
+
+    /// Unit direction of `line` and the vector from its origin to `r`.
+    fn along(&self, line: &Line, r: [D; 2]) -> ([D; 2], [D; 2]) {
+        let u = self.rotate(line.body, line.direction);
+        let a = self.point(line.body, line.origin);
+        (u, [r[0] - a[0], r[1] - a[1]])
+    }
+
+    pub fn displacement(&self, slide: &Slide) -> D {
+        let (u, d) = self.along(&slide.line, self.point(slide.slider, slide.point));
+        u[0] * d[0] + u[1] * d[1]
+    }
+}
+
+/// Accumulates rows of Φ_q from the pieces every equation is made of.
+struct Gradient<'a, 'f, 'q> {
+    f: &'f Frames<'q, f64>,
+    jac: &'a mut DMatrix<f64>,
+}
+
+impl Gradient<'_, '_, '_> {
+    /// Adds `w·∂r/∂q` for the point of `b` at local `p` to `row`.
+    fn point(&mut self, row: usize, b: Body, p: [f64; 2], w: [f64; 2]) {
+        if let Some(k) = b {
+            let r = self.f.rotate(b, p);
+            self.jac[(row, 3 * k)] += w[0];
+            self.jac[(row, 3 * k + 1)] += w[1];
+            self.jac[(row, 3 * k + 2)] += w[1] * r[0] - w[0] * r[1];
+        }
+    }
+
+    /// Adds `w·∂θ_b/∂q` to `row`.
+    fn angle(&mut self, row: usize, b: Body, w: f64) {
+        if let Some(k) = b {
+            self.jac[(row, 3 * k + 2)] += w;
+        }
+    }
+
+    /// Adds the gradient of `u·(r − r_g(a))` (`along`) or `c(u, r − r_g(a))` to `row`, where
+    /// `r` is the point of `pin` at local `p` and `u`, `a` belong to `line`.
+    fn line(&mut self, row: usize, line: &Line, pin: Body, p: [f64; 2], along: bool) {
+        let u = self.f.rotate(line.body, line.direction);
+        let w = if along { u } else { [-u[1], u[0]] };
+        self.point(row, pin, p, w);
+        if let Some(k) = line.body {
+            let rel = sub(self.f.point(pin, p), self.f.point(line.body, [0.0, 0.0]));
+            self.jac[(row, 3 * k)] -= w[0];
+            self.jac[(row, 3 * k + 1)] -= w[1];
+            // The guide's rotation turns u and moves a: ∂/∂θ_g of c(u, r − r_g(a)) is
+            // −u·(r − r_g), of u·(r − r_g(a)) it is c(u, r − r_g), r_g the guide's origin.
+            self.jac[(row, 3 * k + 2)] += if along {
+                cross(u, rel)
+            } else {
+                -(u[0] * rel[0] + u[1] * rel[1])
+            };
+        }
+    }
+}
+
+/// The planar cross product `a_x b_y − a_y b_x`.
+pub(crate) fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[1] - a[1] * b[0]
+}
+
+/// Displacement `u·(r_point − r_line0)` of prismatic joint `joint` at the sketch (m).
+pub(crate) fn sketch_displacement(m: &Mechanism, joint: usize) -> f64 {
+    match m.joints[joint].kind {
+        JointKind::Prismatic { line, point, .. } => {
+            let (a, b) = (m.points[line[0]].sketch, m.points[line[1]].sketch);
+            let d = sub(b, a);
+            let len = d[0].hypot(d[1]);
+            let r = sub(m.points[point].sketch, a);
+            (r[0] * d[0] + r[1] * d[1]) / len
+        }
+        _ => 0.0,
+    }
+}
+
+/// The drive value implied by the sketch when the model does not give one.
+pub(crate) fn sketch_drive_value(m: &Mechanism) -> f64 {
+    match m.drive_kind {
+        DriveKind::Angle => 0.0,
+        DriveKind::Displacement => sketch_displacement(m, m.drive_joint),
+    }
+}
+
+/// Φ(q, φ) in f64 (allocating; for checks, not for the solver's inner loop).
+pub(crate) fn residual(m: &Mechanism, q: &[f64], phi: f64) -> Vec<f64> {
+    let eq = Equations::new(m);
+    let mut out = vec![0.0; eq.rows()];
+    eq.evaluate(q, phi, &mut out);
+    out
+}

@@ -1,0 +1,190 @@
+//! Mobility: the Grübler count and the rank of Φ_q at the sketch pose.
+//!
+//! A planar mechanism with `n` moving links has `3n` pose coordinates; each joint removes as
+//! many freedoms as it has equations. The Grübler–Kutzbach count is
+//! `F = 3n − Σ equations(joints)`; with the drive it must leave no freedom. The count alone
+//! is blind to redundant joints (a parallelogram's extra link, a slider guided twice), so the
+//! rank of the (scaled) Jacobian at the sketch pose decides:
+//! - rows in the left null space of Φ_q ⇒ **over-constrained**: the joints owning those rows
+//!   are named (together they say the same thing twice);
+//! - columns in the right null space ⇒ **under-constrained**: the links that can still move
+//!   with the drive fixed, and the joints attached to them, are named;
+//! - a square system whose structure fixes every coordinate (a perfect matching of
+//!   equations to coordinates exists) but whose Jacobian is rank deficient is drawn at a
+//!   **singular** pose (a toggle): [`Error::Singular`] at the sketch's drive value.
+
+use super::constraints::Equations;
+use super::model::{JointKind, Mechanism};
+use crate::Error;
+use nalgebra::DMatrix;
+
+/// Singular values below this fraction of the largest count as zero (the sketch is exact
+/// to ~1e-15 relative, so a true dependency gives ~1e-15 and a weak but real constraint
+/// stays well above).
+const RANK_TOLERANCE: f64 = 1e-9;
+
+/// The outcome of a successful mobility check.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Mobility {
+    /// Pose coordinates (3 per moving link).
+    pub coordinates: usize,
+    /// Joint equations, drive excluded.
+    pub joint_equations: usize,
+    /// Grübler–Kutzbach degrees of freedom `3n − Σ equations` (1 for a drivable mechanism).
+    pub degrees_of_freedom: i64,
+    /// Rank of Φ_q (drive included) at the sketch pose.
+    pub rank: usize,
+}
+
+/// Φ_q at `q` with angular rows and angular columns multiplied by `length`, so that every
+/// entry is a length (or dimensionless) and singular values are comparable.
+pub(crate) fn scaled_jacobian(eq: &Equations, q: &[f64], length: f64) -> DMatrix<f64> {
+    let mut jac = DMatrix::zeros(eq.rows(), eq.coordinates());
+    eq.jacobian(q, &mut jac);
+    scale(eq, &mut jac, length);
+    jac
+}
+
+/// Applies the scaling of [`scaled_jacobian`] in place.
+pub(crate) fn scale(eq: &Equations, jac: &mut DMatrix<f64>, length: f64) {
+    for (r, &angular) in eq.angular.iter().enumerate() {
+        if angular {
+            jac.row_mut(r).scale_mut(length);
+        }
+    }
+    for k in 0..eq.coordinates() / 3 {
+        jac.column_mut(3 * k + 2).scale_mut(length);
+    }
+}
+
+/// Checks that the drive fixes the pose at the sketch, naming the joints if it does not.
+///
+/// ```
+/// use mechdiff_core::geometry::{check_mobility, Drive, Mechanism};
+/// let crank = Mechanism::builder()
+///     .point("O", [0.0, 0.0]).point("A", [1.0, 0.0])
+///     .ground(["O"]).link("crank", ["O", "A"])
+///     .revolute("O", "ground", "crank", "O")
+///     .drive(Drive::angle("O"))
+///     .build().unwrap();
+/// let mobility = check_mobility(&crank).unwrap();
+/// assert_eq!((mobility.degrees_of_freedom, mobility.rank), (1, 3));
+/// ```
+pub fn check_mobility(m: &Mechanism) -> Result<Mobility, Error> {
+    let eq = Equations::new(m);
+    let (rows, cols) = (eq.rows(), eq.coordinates());
+    let joint_equations = rows - 1;
+    let length = super::validate::sketch_size(m);
+    let jac = scaled_jacobian(&eq, &m.sketch_coordinates(), length);
+    // Pad to a square matrix so that the SVD gives both complete null spaces.
+    let size = rows.max(cols);
+    let mut square = DMatrix::zeros(size, size);
+    square.view_mut((0, 0), (rows, cols)).copy_from(&jac);
+    let svd = square.svd(true, true);
+    let (u, v_t) = (svd.u.expect("requested"), svd.v_t.expect("requested"));
+    let sigma_max = svd.singular_values.max();
+    let null: Vec<usize> = (0..size)
+        .filter(|&i| svd.singular_values[i] <= RANK_TOLERANCE * sigma_max.max(f64::MIN_POSITIVE))
+        .collect();
+    let rank = size - null.len();
+    let name_of_row = |r: usize| {
+        let j = eq.row_joint[r];
+        if j == m.joints.len() {
+            format!("drive `{}`", m.joints[m.drive_joint].name)
+        } else {
+            m.joints[j].name.clone()
+        }
+    };
+    if rank < rows {
+        // Left null space: rows that combine to zero.
+        let mut joints: Vec<String> = Vec::new();
+        for r in 0..rows {
+            let weight = null.iter().map(|&i| u[(r, i)].abs()).fold(0.0, f64::max);
+            let name = name_of_row(r);
+            if weight > 1e-6 && !joints.contains(&name) {
+                joints.push(name);
+            }
+        }
+        if rows == cols && super::branch::loops(&eq).is_some() {
+            // The count is right and every coordinate is structurally fixed: the Jacobian is
+            // singular only because of where the sketch is drawn (a toggle, or a dead centre
+            // of a driven slider).
+            let sigma_min = svd.singular_values.min();
+            return Err(Error::Singular {
+                phi: m.drive_at_sketch,
+                condition: if sigma_min > 0.0 {
+                    sigma_max / sigma_min
+                } else {
+                    f64::INFINITY
+                },
+                joints,
+            });
+        }
+        return Err(Error::Overconstrained {
+            redundant: joints,
+            equations: rows,
+            coordinates: cols,
+        });
+    }
+    if rank < cols {
+        // Right null space: coordinate motions that no equation sees.
+        let mut free_links: Vec<usize> = Vec::new();
+        for k in 0..cols / 3 {
+            let weight = null
+                .iter()
+                .flat_map(|&i| (0..3).map(move |c| (i, 3 * k + c)))
+                .map(|(i, c)| v_t[(i, c)].abs())
+                .fold(0.0, f64::max);
+            if weight > 1e-6 {
+                free_links.push(k + 1);
+            }
+        }
+        let joints = m
+            .joints
+            .iter()
+            .filter(|j| links_of(&j.kind, m).iter().any(|l| free_links.contains(l)))
+            .map(|j| j.name.clone())
+            .collect();
+        return Err(Error::Underconstrained {
+            free: cols - rank,
+            links: free_links
+                .iter()
+                .map(|&k| m.links[k].name.clone())
+                .collect(),
+            joints,
+        });
+    }
+    Ok(Mobility {
+        coordinates: cols,
+        joint_equations,
+        degrees_of_freedom: cols as i64 - joint_equations as i64,
+        rank,
+    })
+}
+
+/// The links a joint connects (for rack/gear joints, those of the joints they couple).
+fn links_of(kind: &JointKind, m: &Mechanism) -> Vec<usize> {
+    match *kind {
+        JointKind::Revolute { link_a, link_b, .. } | JointKind::Rigid { link_a, link_b } => {
+            vec![link_a, link_b]
+        }
+        JointKind::Prismatic { guide, slider, .. } => vec![guide, slider],
+        JointKind::PinInSlot {
+            slot_link,
+            pin_link,
+            ..
+        } => vec![slot_link, pin_link],
+        JointKind::RackPinion { pinion, rack, .. } => {
+            let mut v = links_of(&m.joints[pinion].kind, m);
+            v.extend(links_of(&m.joints[rack].kind, m));
+            v
+        }
+        JointKind::Gear {
+            joint_a, joint_b, ..
+        } => {
+            let mut v = links_of(&m.joints[joint_a].kind, m);
+            v.extend(links_of(&m.joints[joint_b].kind, m));
+            v
+        }
+    }
+}

@@ -1,0 +1,25 @@
+//! Mechanisms defined by geometry only: points, links, joints and a drive.
+//!
+//! The model ([`Mechanism`], built with [`Mechanism::builder`]) is turned into constraint
+//! equations Φ(q, φ) = 0 ([`Equations`], generic over the scalar type), checked for mobility
+//! ([`check_mobility`]), solved for the pose at each drive position by Newton's method
+//! keeping the sketch's assembly branch ([`Solver`]), and lifted to exact derivatives
+//! q′, q″, q‴ with respect to φ by implicit differentiation ([`Kinematics`]).
+
+mod block_lu;
+pub mod branch;
+mod constraints;
+pub mod implicit;
+mod kinematics;
+mod mobility;
+mod model;
+mod solver;
+mod validate;
+
+pub use constraints::Equations;
+pub use kinematics::Kinematics;
+pub use mobility::{Mobility, check_mobility};
+pub use model::{
+    Drive, DriveKind, GROUND, Inertia, Joint, JointKind, Link, Mechanism, MechanismBuilder, Point,
+};
+pub use solver::{SolveReport, Solver, Tracker};

@@ -1,0 +1,519 @@
+//! Position solver: Newton's method in f64, warm-started along a sweep, keeping the branch.
+//!
+//! [`Solver`] holds the configuration (builder style); [`Solver::track`] starts a [`Tracker`]
+//! at the sketch pose, and [`Tracker::move_to`] walks it to a new drive position:
+//!
+//! 1. **Predict** with the Taylor polynomial `q + h q′ + h²/2 q″` (q′, q″ from the last pose).
+//! 2. **Correct** with Newton on Φ(q, φ) = 0 (analytic Φ_q, factorised loop by loop, see
+//!    `block_lu`) until the residual is below `tolerance × size` (size: the sketch's
+//!    diagonal).
+//! 3. **Check** at the new pose: the scaled Jacobian's condition (a toggle is reported as
+//!    [`Error::Singular`]) and every loop's branch certificate (see [`super::branch`]).
+//! 4. If Newton fails or a certificate flips, **halve** the step and retry from the last good
+//!    pose; after `max_subdivisions` halvings report [`Error::Unassemblable`] or
+//!    [`Error::BranchFlip`], naming the drive position and the loop's joints.
+//! 5. **Accept**: one more Newton step with the factorisation at the new pose (the residual
+//!    drops from the tolerance to rounding), then q′ = Φ_q⁻¹ e_drive and q″ (see
+//!    [`super::implicit`]) with the same factorisation; they feed the next predictor and
+//!    [`Tracker::kinematics`].
+
+use super::block_lu::BlockLu;
+use super::branch::{self, Loop};
+use super::constraints::Equations;
+use super::implicit::{self, Factorised};
+use super::kinematics::Kinematics;
+use super::mobility::{self, Mobility};
+use super::model::Mechanism;
+use crate::{Error, Jet};
+use nalgebra::{DMatrix, DVector};
+
+/// Configuration of the position solver.
+///
+/// ```
+/// use mechdiff_core::geometry::Solver;
+/// let solver = Solver::default().with_tolerance(1e-13).with_max_iterations(30);
+/// assert_eq!(solver.tolerance, 1e-13);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Solver {
+    /// Newton stops when max |Φ| ≤ tolerance × (sketch size); dimensionless.
+    pub tolerance: f64,
+    /// Newton iterations allowed per attempt.
+    pub max_iterations: usize,
+    /// Step halvings allowed before a failure is reported.
+    pub max_subdivisions: usize,
+    /// A loop whose scaled Φ_q block has a condition number above this is singular (a
+    /// toggle). `None` (the default) means `0.1 / √tolerance`: at an exact toggle Newton
+    /// converges only to ~√tolerance, which leaves a condition of ~1/√tolerance (3e6 for
+    /// 1e-13, measured on a slider-crank driven into its dead centre), ten times above it;
+    /// a regular pose that close to a toggle has lost half the digits of q′ anyway.
+    pub singular_condition: Option<f64>,
+}
+
+impl Default for Solver {
+    fn default() -> Self {
+        Solver {
+            tolerance: 1e-13,
+            max_iterations: 50,
+            max_subdivisions: 24,
+            singular_condition: None,
+        }
+    }
+}
+
+impl Solver {
+    /// Sets the residual tolerance (relative to the sketch size).
+    pub fn with_tolerance(mut self, tolerance: f64) -> Self {
+        self.tolerance = tolerance;
+        self
+    }
+
+    /// Sets the Newton iterations allowed per attempt.
+    pub fn with_max_iterations(mut self, max_iterations: usize) -> Self {
+        self.max_iterations = max_iterations;
+        self
+    }
+
+    /// Sets how often a failing step may be halved.
+    pub fn with_max_subdivisions(mut self, max_subdivisions: usize) -> Self {
+        self.max_subdivisions = max_subdivisions;
+        self
+    }
+
+    /// Sets the condition number above which a pose is reported singular.
+    pub fn with_singular_condition(mut self, condition: f64) -> Self {
+        self.singular_condition = Some(condition);
+        self
+    }
+
+    /// Solves `m` at every drive position of `phis` in order, starting from the sketch pose,
+    /// and lifts each pose to `N` derivatives.
+    pub fn sweep<'m, const N: usize>(
+        &self,
+        m: &'m Mechanism,
+        phis: &[f64],
+    ) -> Result<Vec<Kinematics<'m, N>>, Error> {
+        let mut tracker = self.track(m)?;
+        phis.iter()
+            .map(|&phi| {
+                tracker.move_to(phi)?;
+                tracker.kinematics::<N>()
+            })
+            .collect()
+    }
+
+    /// The condition number above which a loop is singular (see [`Solver::singular_condition`]).
+    pub fn singular_threshold(&self) -> f64 {
+        self.singular_condition
+            .unwrap_or(0.1 / self.tolerance.sqrt())
+    }
+
+    /// Checks mobility and starts tracking `m` at its sketch pose.
+    pub fn track<'m>(&self, m: &'m Mechanism) -> Result<Tracker<'m>, Error> {
+        let mobility = mobility::check_mobility(m)?;
+        let eq = Equations::new(m);
+        let loops = branch::loops(&eq).ok_or_else(|| Error::Underconstrained {
+            free: 0,
+            links: Vec::new(),
+            joints: m.joints.iter().map(|j| j.name.clone()).collect(),
+        })?;
+        let n = eq.coordinates();
+        let size = super::validate::sketch_size(m);
+        let row_columns = branch::structure(&eq);
+        let mut unit_drive = DVector::zeros(n);
+        unit_drive[n - 1] = 1.0;
+        let mut t = Tracker {
+            unit_drive,
+            mechanism: m,
+            solver: *self,
+            mobility,
+            jac: DMatrix::zeros(n, n),
+            lu: BlockLu::new(&loops, &row_columns),
+            work: DMatrix::zeros(n, n),
+            work_lu: BlockLu::new(&loops, &row_columns),
+            residual: DVector::zeros(n),
+            trial: DVector::zeros(n),
+            trial_residual: DVector::zeros(n),
+            step: DVector::zeros(n),
+            q: DVector::from_vec(m.sketch_coordinates()),
+            phi: m.drive_at_sketch,
+            dq: DVector::zeros(n),
+            ddq: DVector::zeros(n),
+            certificates: Vec::new(),
+            loops,
+            size,
+            eq,
+        };
+        t.trial.copy_from(&t.q);
+        let phi = t.phi;
+        t.eq.evaluate(t.trial.as_slice(), phi, t.trial_residual.as_mut_slice());
+        t.certificates = t.check_trial(phi)?;
+        t.accept(phi)?;
+        Ok(t)
+    }
+}
+
+/// How a move ended.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolveReport {
+    /// Drive position reached.
+    pub phi: f64,
+    /// Newton iterations used in total (all sub-steps).
+    pub iterations: usize,
+    /// Sub-steps accepted (1 if the whole step was accepted at once).
+    pub steps: usize,
+    /// Final max |Φ| (m or rad).
+    pub residual: f64,
+    /// Sub-steps rejected because Newton landed on another assembly branch.
+    pub branch_rejections: usize,
+    /// Sub-steps rejected because Newton did not converge.
+    pub newton_failures: usize,
+}
+
+/// A mechanism being walked along its drive, one assembly branch kept.
+#[derive(Debug, Clone)]
+pub struct Tracker<'m> {
+    mechanism: &'m Mechanism,
+    solver: Solver,
+    mobility: Mobility,
+    eq: Equations,
+    loops: Vec<Loop>,
+    size: f64,
+    /// Φ_q at the current pose and its factorisation (reused for q′, q″, q‴).
+    jac: DMatrix<f64>,
+    lu: BlockLu,
+    /// Scratch Jacobian and factorisation for trial poses.
+    work: DMatrix<f64>,
+    work_lu: BlockLu,
+    residual: DVector<f64>,
+    trial: DVector<f64>,
+    trial_residual: DVector<f64>,
+    step: DVector<f64>,
+    /// e_drive = −Φ_φ.
+    unit_drive: DVector<f64>,
+    q: DVector<f64>,
+    phi: f64,
+    dq: DVector<f64>,
+    ddq: DVector<f64>,
+    certificates: Vec<i8>,
+}
+
+impl<'m> Tracker<'m> {
+    /// The mechanism tracked.
+    pub fn mechanism(&self) -> &'m Mechanism {
+        self.mechanism
+    }
+
+    /// The mobility found when tracking started.
+    pub fn mobility(&self) -> Mobility {
+        self.mobility
+    }
+
+    /// Current drive position.
+    pub fn phi(&self) -> f64 {
+        self.phi
+    }
+
+    /// Current pose coordinates `(x, y, θ)` per moving link.
+    pub fn coordinates(&self) -> &[f64] {
+        self.q.as_slice()
+    }
+
+    /// The loops (joint names per loop, in solving order) and their branch certificates.
+    pub fn loops(&self) -> Vec<(Vec<String>, i8)> {
+        self.loops
+            .iter()
+            .zip(&self.certificates)
+            .map(|(l, &c)| (self.loop_joints(l), c))
+            .collect()
+    }
+
+    fn loop_joints(&self, l: &Loop) -> Vec<String> {
+        let m = self.mechanism;
+        let mut names: Vec<String> = Vec::new();
+        for &r in &l.rows {
+            let j = self.eq.row_joint[r];
+            let name = if j == m.joints.len() {
+                format!("drive `{}`", m.joints[m.drive_joint].name)
+            } else {
+                m.joints[j].name.clone()
+            };
+            if !names.contains(&name) {
+                names.push(name);
+            }
+        }
+        names
+    }
+
+    /// The pose at the current drive position with its first `N` (1 ≤ N ≤ 3) exact
+    /// derivatives with respect to φ, by implicit differentiation with the factorisation
+    /// already computed for the pose (see [`super::implicit`]).
+    pub fn kinematics<const N: usize>(&self) -> Result<Kinematics<'m, N>, Error> {
+        const {
+            assert!(
+                N >= 1 && N <= 3,
+                "the geometry solver lifts derivatives of order 1 to 3"
+            )
+        };
+        let mut dddq = vec![0.0; self.q.len()];
+        if N == 3 {
+            let lu = Loops {
+                jac: &self.jac,
+                loops: &self.loops,
+                lu: &self.lu,
+            };
+            let (q, dq, ddq) = (self.q.as_slice(), self.dq.as_slice(), self.ddq.as_slice());
+            if !implicit::third_derivative(&self.eq, &lu, q, dq, ddq, self.phi, &mut dddq) {
+                return Err(self.singular(self.phi));
+            }
+        }
+        let coordinates = (0..self.q.len())
+            .map(|i| {
+                let d = [self.dq[i], self.ddq[i], dddq[i]];
+                Jet::new(self.q[i], std::array::from_fn(|k| d[k]))
+            })
+            .collect();
+        Ok(Kinematics::new(self.mechanism, self.phi, coordinates))
+    }
+
+    fn singular(&self, phi: f64) -> Error {
+        Error::Singular {
+            phi,
+            condition: f64::INFINITY,
+            joints: self
+                .mechanism
+                .joints
+                .iter()
+                .map(|j| j.name.clone())
+                .collect(),
+        }
+    }
+
+    /// Moves to drive position `phi`, keeping every loop on its branch.
+    pub fn move_to(&mut self, phi: f64) -> Result<SolveReport, Error> {
+        if !phi.is_finite() {
+            return Err(Error::NonFinite {
+                phi,
+                quantity: "drive position",
+            });
+        }
+        let mut report = SolveReport {
+            phi: self.phi,
+            iterations: 0,
+            steps: 0,
+            residual: 0.0,
+            branch_rejections: 0,
+            newton_failures: 0,
+        };
+        let mut halvings: usize = 0;
+        while self.phi != phi {
+            let h = (phi - self.phi) / f64::powi(2.0, halvings.min(1074) as i32);
+            let target = if halvings == 0 { phi } else { self.phi + h };
+            // Taylor predictor q + h q′ + h²/2 q″.
+            for i in 0..self.q.len() {
+                self.trial[i] = self.q[i] + h * (self.dq[i] + 0.5 * h * self.ddq[i]);
+            }
+            let failure = match self.newton(target) {
+                Ok(iterations) => {
+                    report.iterations += iterations;
+                    let certificates = self.check_trial(target)?;
+                    match certificates
+                        .iter()
+                        .zip(&self.certificates)
+                        .position(|(a, b)| a != b)
+                    {
+                        None => {
+                            self.accept(target)?;
+                            report.steps += 1;
+                            halvings = halvings.saturating_sub(1);
+                            continue;
+                        }
+                        Some(l) => {
+                            report.branch_rejections += 1;
+                            Error::BranchFlip {
+                                from: self.phi,
+                                to: target,
+                                joints: self.loop_joints(&self.loops[l]),
+                            }
+                        }
+                    }
+                }
+                Err((residual, l)) => {
+                    report.newton_failures += 1;
+                    Error::Unassemblable {
+                        phi,
+                        last_assembled: self.phi,
+                        joints: self.loop_joints(&self.loops[l]),
+                        residual,
+                    }
+                }
+            };
+            halvings += 1;
+            // Give up after the allowed halvings, or once a halved step no longer moves φ.
+            let next = self.phi + (phi - self.phi) / f64::powi(2.0, halvings.min(1074) as i32);
+            if halvings > self.solver.max_subdivisions || next == self.phi {
+                return Err(failure);
+            }
+        }
+        report.phi = self.phi;
+        report.residual = self.residual.amax();
+        Ok(report)
+    }
+
+    /// Newton on `trial` at drive position `phi`: the iterations, or the final residual and
+    /// the loop with the largest residual. Leaves Φ(trial) in `trial_residual`.
+    fn newton(&mut self, phi: f64) -> Result<usize, (f64, usize)> {
+        let limit = self.solver.tolerance * self.size;
+        for iteration in 0..=self.solver.max_iterations {
+            self.eq.evaluate(
+                self.trial.as_slice(),
+                phi,
+                self.trial_residual.as_mut_slice(),
+            );
+            let norm = self.trial_residual.amax();
+            if norm <= limit {
+                return Ok(iteration);
+            }
+            if !norm.is_finite() || iteration == self.solver.max_iterations {
+                break;
+            }
+            self.eq.jacobian(self.trial.as_slice(), &mut self.work);
+            let solved = self.work_lu.factor(&self.work, &self.loops)
+                && self.work_lu.solve(
+                    &self.work,
+                    &self.loops,
+                    self.trial_residual.as_slice(),
+                    self.step.as_mut_slice(),
+                );
+            if !solved {
+                break;
+            }
+            self.trial -= &self.step;
+        }
+        Err((self.trial_residual.amax(), self.worst_loop()))
+    }
+
+    /// Φ_q at the converged trial pose: factorises it into `work_lu` and returns every loop's
+    /// branch certificate, or [`Error::Singular`] if a loop's condition exceeds the limit.
+    fn check_trial(&mut self, phi: f64) -> Result<Vec<i8>, Error> {
+        self.eq.jacobian(self.trial.as_slice(), &mut self.work);
+        let factored = self.work_lu.factor(&self.work, &self.loops);
+        let limit = self.solver.singular_threshold();
+        let mut certificates = Vec::with_capacity(self.loops.len());
+        for (i, l) in self.loops.iter().enumerate() {
+            let det = if factored {
+                self.work_lu.determinant(i)
+            } else {
+                0.0
+            };
+            // Hadamard screen on the scaled block with unit columns (see branch::condition):
+            // its determinant is det · Π(row scales) / Π(column norms), the column scales
+            // cancelling.
+            let mut normalized = det;
+            for &r in &l.rows {
+                if self.eq.angular[r] {
+                    normalized *= self.size;
+                }
+            }
+            for &c in &l.columns {
+                let norm = l
+                    .rows
+                    .iter()
+                    .map(|&r| {
+                        let v =
+                            self.work[(r, c)] * if self.eq.angular[r] { self.size } else { 1.0 };
+                        v * v
+                    })
+                    .sum::<f64>()
+                    .sqrt();
+                normalized /= norm;
+            }
+            let k = l.rows.len() as f64;
+            let bound = k.powf(0.5 * k) / normalized.abs();
+            if bound.is_nan() || bound > limit {
+                let mut scaled = self.work.clone();
+                mobility::scale(&self.eq, &mut scaled, self.size);
+                let condition = branch::condition(&scaled, l, limit);
+                if condition.is_nan() || condition > limit {
+                    return Err(Error::Singular {
+                        phi,
+                        condition,
+                        joints: self.loop_joints(l),
+                    });
+                }
+            }
+            certificates.push(if det > 0.0 { 1 } else { -1 });
+        }
+        Ok(certificates)
+    }
+
+    /// Makes the checked trial pose current: polishes it with one more Newton step (the
+    /// factorisation is at the pose itself, so this takes the residual from the tolerance
+    /// down to rounding), then q′ and q″.
+    fn accept(&mut self, phi: f64) -> Result<(), Error> {
+        std::mem::swap(&mut self.jac, &mut self.work);
+        std::mem::swap(&mut self.lu, &mut self.work_lu);
+        std::mem::swap(&mut self.q, &mut self.trial);
+        self.phi = phi;
+        let lu = Loops {
+            jac: &self.jac,
+            loops: &self.loops,
+            lu: &self.lu,
+        };
+        if lu.solve_into(self.trial_residual.as_slice(), self.step.as_mut_slice()) {
+            self.q -= &self.step;
+        }
+        self.eq
+            .evaluate(self.q.as_slice(), phi, self.residual.as_mut_slice());
+        // Φ_q q′ = −Φ_φ = e_drive (the drive row, last, is the only one that depends on φ).
+        let ok = lu.solve_into(self.unit_drive.as_slice(), self.dq.as_mut_slice())
+            && implicit::second_derivative(
+                &self.eq,
+                &lu,
+                self.q.as_slice(),
+                self.dq.as_slice(),
+                phi,
+                self.ddq.as_mut_slice(),
+            );
+        if !ok {
+            return Err(self.singular(phi));
+        }
+        self.certificates_refresh();
+        Ok(())
+    }
+
+    fn certificates_refresh(&mut self) {
+        for (i, c) in self.certificates.iter_mut().enumerate() {
+            *c = if self.lu.determinant(i) > 0.0 { 1 } else { -1 };
+        }
+    }
+
+    /// The loop whose equations are furthest from being satisfied by the trial residual.
+    fn worst_loop(&self) -> usize {
+        let mut worst = (0.0, 0);
+        for (i, l) in self.loops.iter().enumerate() {
+            let x = l
+                .rows
+                .iter()
+                .map(|&row| self.trial_residual[row].abs())
+                .fold(0.0, f64::max);
+            if x.is_nan() || x > worst.0 {
+                worst = (x, i);
+            }
+        }
+        worst.1
+    }
+}
+
+/// A factorised Φ_q with the matrix it came from, as a linear solver.
+struct Loops<'a> {
+    jac: &'a DMatrix<f64>,
+    loops: &'a [Loop],
+    lu: &'a BlockLu,
+}
+
+impl Factorised for Loops<'_> {
+    fn solve_into(&self, b: &[f64], x: &mut [f64]) -> bool {
+        self.lu.solve(self.jac, self.loops, b, x)
+    }
+}
