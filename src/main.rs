@@ -1,5 +1,7 @@
 //! The `mechdiff` command-line tool.
 
+mod cli;
+
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
@@ -19,6 +21,10 @@ struct Cli {
 enum Command {
     /// The Whitworth shaping machine report (the default command).
     Whitworth,
+    /// Run a scene file: print the plan and a table of the outputs (optionally write CSV).
+    Run(cli::run::RunArgs),
+    /// Check a scene file (syntax, names, units, sketch, mobility) without running it.
+    Check(cli::check::CheckArgs),
     /// Generates the Rust function computing a formula and its derivatives.
     Codegen(mechdiff::codegen::Args),
 }
@@ -26,7 +32,9 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result: Result<(), Box<dyn std::error::Error>> = match cli.command {
-        None | Some(Command::Whitworth) => Ok(()),
+        None | Some(Command::Whitworth) => whitworth(),
+        Some(Command::Run(args)) => cli::run::run(&args).map_err(Into::into),
+        Some(Command::Check(args)) => cli::check::check(&args).map_err(Into::into),
         Some(Command::Codegen(args)) => mechdiff::codegen::run(&args).map_err(Into::into),
     };
     match result {
@@ -36,4 +44,11 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+/// Prints the report for the reference Whitworth shaping machine.
+fn whitworth() -> Result<(), Box<dyn std::error::Error>> {
+    let shaper = mechdiff::mechanisms::Whitworth::reference();
+    print!("{}", mechdiff::report::whitworth::report(&shaper)?);
+    Ok(())
 }

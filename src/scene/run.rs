@@ -1,0 +1,323 @@
+//! Running a scene: the drive positions, the sweep, the outputs at every drive position,
+//! and the dead positions asked for.
+
+use std::cell::RefCell;
+
+use mechdiff_core::geometry::{Kinematics, Mechanism, Mobility, Solver, Tracker};
+use mechdiff_core::{DeadPosition, DeadPositionSearch, DriveState};
+
+use crate::error::{Error, Result};
+
+use super::build::{mechanism, model_error};
+use super::evaluate::{evaluate, quantity};
+use super::model::{DriveKind, Output, Scene};
+use super::outputs::{Column, columns};
+use super::plan::Plan;
+use super::units::{Dimension, Units};
+
+/// The dead positions of one output found in the sweep's range.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DeadPositions {
+    /// The output's name.
+    pub output: String,
+    /// The output's dimension (angle or length).
+    pub dimension: Dimension,
+    /// Each dead position: drive position φ (SI) and the output there (SI).
+    pub positions: Vec<DeadPosition>,
+}
+
+impl DeadPositions {
+    /// The stroke: the largest minus the smallest value at the dead positions (SI), if there
+    /// are at least two.
+    pub fn stroke(&self) -> Option<f64> {
+        if self.positions.len() < 2 {
+            return None;
+        }
+        let values = self.positions.iter().map(|d| d.value);
+        let hi = values.clone().fold(f64::NEG_INFINITY, f64::max);
+        let lo = values.fold(f64::INFINITY, f64::min);
+        Some(hi - lo)
+    }
+}
+
+/// The result of a run: every column at every drive position, in SI, and the dead positions.
+#[derive(Debug, Clone)]
+pub struct Report {
+    /// The plan that was carried out.
+    pub plan: Plan,
+    /// The drive column first, then the outputs' columns.
+    pub columns: Vec<Column>,
+    /// One row per drive position: the drive value, then one value per output column (SI).
+    pub rows: Vec<Vec<f64>>,
+    /// The dead positions asked for.
+    pub dead_positions: Vec<DeadPositions>,
+}
+
+impl Report {
+    /// The SI values of the column named `name` (e.g. `psi'`, `vx_C`), in row order.
+    pub fn column(&self, name: &str) -> Option<Vec<f64>> {
+        let k = self.columns.iter().position(|c| c.name == name)?;
+        Some(self.rows.iter().map(|r| r[k]).collect())
+    }
+}
+
+/// What `mechdiff check` found: the model and its mobility at the sketch pose.
+#[derive(Debug, Clone)]
+pub struct Checked {
+    /// The geometry model built from the scene.
+    pub mechanism: Mechanism,
+    /// Its mobility at the sketch pose.
+    pub mobility: Mobility,
+    /// The loops the solver closes in turn (joint names, the drive as `drive <joint>`) and
+    /// the sign of each loop's assembly branch in the sketch.
+    pub loops: Vec<(Vec<String>, i8)>,
+    /// The plan a run would carry out.
+    pub plan: Plan,
+}
+
+/// Checks a scene without running its sweep: builds the model and checks its mobility and
+/// the sketch's assembly.
+pub fn check(scene: &Scene) -> Result<Checked> {
+    let mechanism = mechanism(scene)?;
+    let (mobility, loops) = {
+        let tracker = Solver::default()
+            .track(&mechanism)
+            .map_err(|e| solver_error(scene, e))?;
+        (tracker.mobility(), tracker.loops())
+    };
+    Ok(Checked {
+        mechanism,
+        mobility,
+        loops,
+        plan: Plan::of(scene),
+    })
+}
+
+/// Runs a scene: solves every drive position of the sweep (keeping the sketch's assembly
+/// branch), evaluates the outputs, and searches the dead positions asked for.
+pub fn run(scene: &Scene) -> Result<Report> {
+    let mechanism = mechanism(scene)?;
+    let plan = Plan::of(scene);
+    let drive_dimension = scene.drive.kind.dimension();
+    let mut all = vec![Column {
+        name: "phi".to_owned(),
+        unit: scene.units.symbol(drive_dimension).to_owned(),
+        factor: scene.units.factor(drive_dimension),
+    }];
+    for output in &scene.outputs {
+        all.extend(columns(output, &scene.units, drive_dimension));
+    }
+    let positions = drive_positions(scene, &mechanism)?;
+    let rows = match plan.order {
+        0 | 1 => sweep::<1>(scene, &mechanism, &plan, &positions)?,
+        _ => sweep::<2>(scene, &mechanism, &plan, &positions)?,
+    };
+    let mut dead_positions = Vec::new();
+    for output in scene.outputs.iter().filter(|o| o.dead_positions) {
+        dead_positions.push(DeadPositions {
+            output: output.name.clone(),
+            dimension: output.kind.dimension(),
+            positions: search_dead_positions(scene, &mechanism, output, &positions)?,
+        });
+    }
+    Ok(Report {
+        plan,
+        columns: all,
+        rows,
+        dead_positions,
+    })
+}
+
+/// The drive positions of the sweep: as given, or, for `[sweep] of = "output"`, solved so
+/// that the output takes each given value (Newton on the output's exact velocity
+/// coefficient, from the sketch or the previous position; steps limited to a quarter turn or
+/// a quarter of the sketch's size).
+fn drive_positions(scene: &Scene, mechanism: &Mechanism) -> Result<Vec<f64>> {
+    let Some(k) = scene.sweep_of else {
+        return Ok(scene.positions.clone());
+    };
+    let output = &scene.outputs[k];
+    let mut tracker = Solver::default()
+        .track(mechanism)
+        .map_err(|e| solver_error(scene, e))?;
+    let max_step = match scene.drive.kind {
+        DriveKind::Angle => std::f64::consts::FRAC_PI_4,
+        DriveKind::Displacement => 0.25 * sketch_size(scene),
+    };
+    let dimension = output.kind.dimension();
+    let text = |v: f64| {
+        format!(
+            "{} {}",
+            Units::tidy(scene.units.from_si(v, dimension)),
+            scene.units.symbol(dimension)
+        )
+    };
+    let mut previous = None;
+    let mut drive = Vec::with_capacity(scene.positions.len());
+    for &target in &scene.positions {
+        let mut phi = tracker.phi();
+        let mut reached = false;
+        for _ in 0..60 {
+            let k = solve::<1>(scene, &mut tracker, phi)?;
+            let jet = evaluate(scene, &k, output, &mut previous)?[0];
+            let (miss, slope) = (jet.value - target, jet.d1());
+            if miss.abs() <= 4.0 * f64::EPSILON * target.abs().max(jet.value.abs()) {
+                reached = true;
+                break;
+            }
+            if slope == 0.0 || !slope.is_finite() {
+                break;
+            }
+            let step = (miss / slope).clamp(-max_step, max_step);
+            if step.abs() <= 2.0 * f64::EPSILON * phi.abs().max(1.0) {
+                reached = true;
+                break;
+            }
+            phi -= step;
+        }
+        if !reached {
+            return Err(Error::NotReached {
+                file: scene.file.clone(),
+                output: output.name.clone(),
+                value: text(target),
+                last: scene.drive_text(tracker.phi()),
+            });
+        }
+        drive.push(tracker.phi());
+    }
+    Ok(drive)
+}
+
+/// The sketch's size: the largest distance between two of its points (m).
+fn sketch_size(scene: &Scene) -> f64 {
+    let mut size: f64 = 0.0;
+    for p in &scene.points {
+        for q in &scene.points {
+            size = size.max((p.sketch[0] - q.sketch[0]).hypot(p.sketch[1] - q.sketch[1]));
+        }
+    }
+    size
+}
+
+fn sweep<const N: usize>(
+    scene: &Scene,
+    mechanism: &Mechanism,
+    plan: &Plan,
+    positions: &[f64],
+) -> Result<Vec<Vec<f64>>> {
+    let mut tracker = Solver::default()
+        .track(mechanism)
+        .map_err(|e| solver_error(scene, e))?;
+    let drive = plan.drive.unwrap_or(DriveState::constant_speed(0.0));
+    let mut previous: Vec<Option<f64>> = vec![None; scene.outputs.len()];
+    let mut rows = Vec::with_capacity(positions.len());
+    for &phi in positions {
+        let k = solve::<N>(scene, &mut tracker, phi)?;
+        let mut row = vec![phi];
+        for (output, previous) in scene.outputs.iter().zip(previous.iter_mut()) {
+            let values = evaluate(scene, &k, output, previous)?;
+            for q in &output.quantities {
+                for v in &values {
+                    row.push(quantity(v, *q, &drive));
+                }
+            }
+        }
+        rows.push(row);
+    }
+    Ok(rows)
+}
+
+fn solve<'m, const N: usize>(
+    scene: &Scene,
+    tracker: &mut Tracker<'m>,
+    phi: f64,
+) -> Result<Kinematics<'m, N>> {
+    tracker.move_to(phi).map_err(|e| solver_error(scene, e))?;
+    tracker
+        .kinematics::<N>()
+        .map_err(|e| solver_error(scene, e))
+}
+
+/// Every dead position of an angle or slider output in the sweep's range.
+fn search_dead_positions(
+    scene: &Scene,
+    mechanism: &Mechanism,
+    output: &Output,
+    positions: &[f64],
+) -> Result<Vec<DeadPosition>> {
+    let (lo, hi) = positions
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &p| {
+            (lo.min(p), hi.max(p))
+        });
+    // Sample at least as finely as the sweep, and at least 360 intervals over the range.
+    let sweep_step = positions
+        .windows(2)
+        .map(|w| (w[1] - w[0]).abs())
+        .fold(f64::INFINITY, f64::min);
+    let step = sweep_step.min((hi - lo) / 360.0);
+    let tracker = RefCell::new(
+        Solver::default()
+            .track(mechanism)
+            .map_err(|e| solver_error(scene, e))?,
+    );
+    let previous = RefCell::new(None);
+    let failure = RefCell::new(None);
+    let found = DeadPositionSearch::new(lo..=hi)
+        .with_step(step)
+        .find_roots(|phi| {
+            let mut t = tracker.borrow_mut();
+            let k = t.move_to(phi).and_then(|_| t.kinematics::<3>())?;
+            match evaluate(scene, &k, output, &mut previous.borrow_mut()) {
+                Ok(jets) => Ok(jets[0]),
+                Err(e) => {
+                    *failure.borrow_mut() = Some(e);
+                    Err(mechdiff_core::Error::NonFinite {
+                        phi,
+                        quantity: "a dead-position search output",
+                    })
+                }
+            }
+        });
+    if let Some(e) = failure.into_inner() {
+        return Err(e);
+    }
+    found.map_err(|e| solver_error(scene, e))
+}
+
+/// A core solver error, with drive positions in the scene's units.
+pub(crate) fn solver_error(scene: &Scene, source: mechdiff_core::Error) -> Error {
+    use mechdiff_core::Error as Core;
+    let joined = |joints: &[String]| joints.join(", ");
+    match source {
+        Core::Unassemblable {
+            phi,
+            last_assembled,
+            joints,
+            residual,
+        } => Error::Unassemblable {
+            file: scene.file.clone(),
+            position: scene.drive_text(phi),
+            last: scene.drive_text(last_assembled),
+            loop_joints: joined(&joints),
+            residual,
+        },
+        Core::Singular {
+            phi,
+            condition,
+            joints,
+        } => Error::Singular {
+            file: scene.file.clone(),
+            position: scene.drive_text(phi),
+            loop_joints: joined(&joints),
+            condition,
+        },
+        Core::BranchFlip { from, to, joints } => Error::BranchFlip {
+            file: scene.file.clone(),
+            from: scene.drive_text(from),
+            to: scene.drive_text(to),
+            loop_joints: joined(&joints),
+        },
+        other => model_error(scene, other),
+    }
+}

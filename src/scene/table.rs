@@ -1,0 +1,190 @@
+//! Printing a [`Report`]: the aligned table, the dead positions, and CSV.
+
+use std::io::{self, Write};
+
+use super::model::Scene;
+use super::run::Report;
+use super::units::Units;
+use crate::report::Table;
+
+/// Significant digits of a column's largest value in the printed table (the CSV carries every
+/// digit).
+const DIGITS: i32 = 9;
+
+/// How every number of one column is printed, so that the decimal points line up.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum ColumnFormat {
+    /// Fixed point with this many decimals.
+    Fixed(usize),
+    /// Scientific notation with [`DIGITS`] significant digits.
+    Scientific,
+}
+
+impl ColumnFormat {
+    /// The format for a column of values: fixed point with [`DIGITS`] significant digits for
+    /// its largest magnitude when that lies between 1e-3 and 1e6, scientific otherwise. A
+    /// column of exact multiples of a round step (the drive positions) gets only the decimals
+    /// it needs.
+    fn for_column(values: &[f64]) -> Self {
+        let largest = values
+            .iter()
+            .filter(|v| v.is_finite())
+            .fold(0.0_f64, |m, v| m.max(v.abs()));
+        if largest == 0.0 {
+            return Self::Fixed(0);
+        }
+        let magnitude = largest.log10().floor() as i32;
+        if !(-3..6).contains(&magnitude) {
+            return Self::Scientific;
+        }
+        let decimals = (DIGITS - 1 - magnitude).max(0) as usize;
+        let exact = (0..decimals).find(|&d| {
+            let scale = 10f64.powi(d as i32);
+            values
+                .iter()
+                .all(|v| ((v * scale).round() / scale - v).abs() <= 1e-12 * largest)
+        });
+        Self::Fixed(exact.unwrap_or(decimals))
+    }
+
+    fn format(self, v: f64) -> String {
+        match self {
+            _ if !v.is_finite() => v.to_string(),
+            Self::Fixed(decimals) => crate::report::fixed(v, decimals),
+            Self::Scientific => format!("{v:.*e}", (DIGITS - 1) as usize),
+        }
+    }
+}
+
+/// Writes the title, the plan and the table: a header of column names, a header of units,
+/// then one line per drive position; each column has one number format, right-aligned.
+pub fn write_table(scene: &Scene, report: &Report, out: &mut impl Write) -> io::Result<()> {
+    if let Some(title) = &scene.title {
+        writeln!(out, "{title}")?;
+    }
+    writeln!(out, "{}", report.plan.describe(scene))?;
+    let scaled: Vec<Vec<f64>> = report
+        .rows
+        .iter()
+        .map(|row| {
+            row.iter()
+                .zip(&report.columns)
+                .map(|(v, c)| v / c.factor)
+                .collect()
+        })
+        .collect();
+    let formats: Vec<ColumnFormat> = (0..report.columns.len())
+        .map(|k| ColumnFormat::for_column(&scaled.iter().map(|row| row[k]).collect::<Vec<_>>()))
+        .collect();
+    let mut table = Table::new(0, report.columns.iter().map(|c| c.name.clone()).collect());
+    table.row(
+        report
+            .columns
+            .iter()
+            .map(|c| format!("[{}]", c.unit))
+            .collect(),
+    );
+    for row in &scaled {
+        table.row(
+            row.iter()
+                .zip(&formats)
+                .map(|(&v, f)| f.format(v))
+                .collect(),
+        );
+    }
+    write!(out, "{}", table.render())?;
+    write_dead_positions(scene, report, out)
+}
+
+/// Writes the dead positions found and the stroke between them, to 15 significant digits.
+pub fn write_dead_positions(
+    scene: &Scene,
+    report: &Report,
+    out: &mut impl Write,
+) -> io::Result<()> {
+    let u = &scene.units.for_outputs();
+    for dead in &report.dead_positions {
+        let unit = u.symbol(dead.dimension);
+        writeln!(out)?;
+        if dead.positions.is_empty() {
+            writeln!(
+                out,
+                "{}: no dead position in the sweep's range ({}' keeps its sign)",
+                dead.output, dead.output
+            )?;
+            continue;
+        }
+        writeln!(
+            out,
+            "dead positions of {} (where {}' changes sign, found numerically):",
+            dead.output, dead.output
+        )?;
+        for d in &dead.positions {
+            let kind = if d.d2 < 0.0 { "maximum" } else { "minimum" };
+            writeln!(
+                out,
+                "  phi = {}: {} = {} {unit} ({kind})",
+                scene.drive_text(d.phi),
+                dead.output,
+                Units::tidy(u.from_si(d.value, dead.dimension)),
+            )?;
+        }
+        if let Some(stroke) = dead.stroke() {
+            let stroke = Units::tidy(u.from_si(stroke, dead.dimension));
+            writeln!(out, "stroke of {}: {stroke} {unit}", dead.output)?;
+        }
+    }
+    Ok(())
+}
+
+/// Writes the report as CSV: a header `name [unit]` per column, then every value in the
+/// scene's units with all the digits of an `f64` (shortest representation that reads back
+/// to the same number).
+pub fn write_csv(report: &Report, out: &mut impl Write) -> io::Result<()> {
+    let header: Vec<String> = report.columns.iter().map(|c| c.header()).collect();
+    writeln!(out, "{}", header.join(","))?;
+    for row in &report.rows {
+        let cells: Vec<String> = row
+            .iter()
+            .zip(&report.columns)
+            .map(|(v, c)| (v / c.factor + 0.0).to_string())
+            .collect();
+        writeln!(out, "{}", cells.join(","))?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::ColumnFormat;
+
+    /// Nine significant digits for the column's largest value, the same decimals in every row.
+    #[test]
+    fn a_column_shares_one_format() {
+        let f = ColumnFormat::for_column(&[67.975_687_162_957_8, -0.5, 0.0]);
+        assert_eq!(f, ColumnFormat::Fixed(7));
+        assert_eq!(f.format(-0.5), "-0.5000000");
+        assert_eq!(f.format(-1e-9), "0.0000000");
+    }
+
+    /// Drive positions at a round step print without trailing zeros.
+    #[test]
+    fn round_steps_need_no_decimals() {
+        assert_eq!(
+            ColumnFormat::for_column(&[0.0, 5.0, 360.0]),
+            ColumnFormat::Fixed(0)
+        );
+        assert_eq!(
+            ColumnFormat::for_column(&[0.0, 0.5, 1.0]),
+            ColumnFormat::Fixed(1)
+        );
+    }
+
+    /// Magnitudes of 1e6 and more (or below 1e-3) are printed in scientific notation.
+    #[test]
+    fn large_columns_are_scientific() {
+        let f = ColumnFormat::for_column(&[3.085e6, -1.0]);
+        assert_eq!(f, ColumnFormat::Scientific);
+        assert_eq!(f.format(3.085e6), "3.08500000e6");
+    }
+}
