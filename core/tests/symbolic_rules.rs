@@ -37,7 +37,7 @@ rules! {
     d_sub: "(d x (- y x))" => "-1";
     d_mul: "(d x (* y x))" => "y";
     d_div: "(d x (/ x y))" => "(/ 1 y)";
-    d_div_denominator: "(d x (/ y x))" => "(/ (neg (/ y x)) x)";
+    d_div_denominator: "(d x (/ y x))" => "(neg (/ y (powi x 2)))";
     d_neg: "(d x (neg x))" => "-1";
     d_powi: "(d x (powi x 3))" => "(* 3 (powi x 2))";
     d_powf_constant_exponent: "(d x (powf x 2.5))" => "(* (powf x 2.5) (* 2.5 (/ 1 x)))";
@@ -85,6 +85,8 @@ rules! {
     powi_negative_exponent: "(powi x -2)" => "(/ 1 (powi x 2))";
     powf_integer_is_powi: "(powf x 3)" => "(powi x 3)";
     constant_factors_merge: "(* 2 (* 3 x))" => "(* 6 x)";
+    quotient_cancels_a_factor: "(/ (* a u) u)" => "a";
+    quotient_cancels_into_a_power: "(/ (* a u) (powi u 3))" => "(/ a (powi u 2))";
     select_with_equal_branches: "(if (< x 0) y y)" => "y";
 }
 

@@ -91,9 +91,9 @@ mod tests {
 
     /// The expansion of `#[derivatives(wrt = phi, order = 2)]` on the Whitworth ψ and x_C,
     /// formatted: compare with (1.35)/(1.36) of the source by eye. With s = sin φ,
-    /// c = cos φ: t2 = λs, t3 = λc, t4 = 1 − λc, t6 = λ²s² + (1 − λc)² = 1 − 2λc + λ², so
-    /// d1 = (λc(1 − λc) − λ²s²)/t6 = λ(c − λ)/t6 (1.35) and d2 = λs(−1 − 2ψ′)/t6, which is
-    /// λs(λ² − 1)/t6² (1.36) after inserting (1.35).
+    /// c = cos φ: t2 = λs, t3 = λc, t4 = 1 − λc, t8 = λ²s² + (1 − λc)² = 1 − 2λc + λ², so
+    /// d1 = (λc(1 − λc) − λ²s²)/t8 = λ(c − λ)/t8 (1.35) and
+    /// d2 = λs(λ²s² − 2λc(1 − λc) − (1 − λc)²)/t8² = λs(λ² − 1)/t8² (1.36).
     #[test]
     fn whitworth_expansion_snapshot() {
         let psi: ItemFn = syn::parse_quote! {

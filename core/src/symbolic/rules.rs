@@ -78,11 +78,14 @@ fn binary_differential(g: &mut Graph, op: Binary, [a, b, da, db]: [Id; 4], f: Id
             let right = g.mul(a, db);
             g.add(left, right)
         }
-        // (a/b)' = (a' - f b') / b: one division, reusing f
+        // (a/b)' = (a' b - a b') / b²: no dependency on the division f = a/b, so that the
+        // divisions of the value and of each derivative can run in parallel
         Binary::Div => {
-            let term = g.mul(f, db);
-            let numerator = g.sub(da, term);
-            g.div(numerator, b)
+            let left = g.mul(da, b);
+            let right = g.mul(a, db);
+            let numerator = g.sub(left, right);
+            let square = g.powi(b, 2);
+            g.div(numerator, square)
         }
         // (aᵇ)' = aᵇ (b' ln a + b a' / a)
         Binary::Powf => {

@@ -12,6 +12,7 @@
 //!   derivative of a constant is then 0, not `0 * inf = NaN`);
 //! - negation is pulled out of products and quotients, negative factors become `neg`;
 //! - `tan(atan2(a, b)) = a / b`, `tan(atan(x)) = x`;
+//! - common factors of a quotient cancel: `(x·u)/u = x`, `x·u/uⁿ = x/uⁿ⁻¹`;
 //! - integer powers: `x * x = x²`, `xᵐ · xⁿ = xᵐ⁺ⁿ`, `(xᵐ)ⁿ = xᵐⁿ`, `x⁰ = 1`, `x¹ = x`,
 //!   `x⁻ⁿ = 1 / xⁿ`, `(-x)ⁿ = ±xⁿ`, `x.powf(n)` with an integer constant `n` is `x.powi(n)`;
 //! - commutative operands are put in a canonical order (constants first, then by id), so
@@ -202,6 +203,17 @@ impl Graph {
         if let Some(x) = self.negated(a) {
             let quotient = self.div(x, b);
             return self.neg(quotient);
+        }
+        // a common factor cancels: (x·u)/u = x, (x·u)/uⁿ = x/uⁿ⁻¹
+        let (base, n) = match *self.node(b) {
+            Node::Powi(base, n) => (base, n),
+            _ => (b, 1),
+        };
+        if self.as_number(base).is_none()
+            && let Some(rest) = self.without(a, base)
+        {
+            let lower = self.powi(base, n - 1);
+            return self.div(rest, lower);
         }
         if let Some(y) = self.negated(b) {
             let quotient = self.div(a, y);

@@ -150,16 +150,26 @@ impl Graph {
     /// and factor (`a·(b·c)` → `[a·(b·c), a, b·c, b, c]`).
     fn product_nodes(&self, id: Id, out: &mut Vec<Id>) {
         out.push(id);
-        if let Node::Binary(Binary::Mul, a, b) = *self.node(id) {
-            self.product_nodes(a, out);
-            self.product_nodes(b, out);
+        match *self.node(id) {
+            Node::Binary(Binary::Mul, a, b) => {
+                self.product_nodes(a, out);
+                self.product_nodes(b, out);
+            }
+            // the base of a power is a factor (but not its own factors: `without` takes one
+            // power of the base, it does not split it)
+            Node::Powi(base, n) if n >= 2 => out.push(base),
+            _ => {}
         }
     }
 
-    /// The product `id` with one occurrence of the sub-product `factor` replaced by 1.
-    fn without(&mut self, id: Id, factor: Id) -> Option<Id> {
+    /// The product `id` with one occurrence of the sub-product `factor` replaced by 1
+    /// (`xⁿ` counts as a product of n factors x).
+    pub(super) fn without(&mut self, id: Id, factor: Id) -> Option<Id> {
         if id == factor {
             return Some(self.number(1.0));
+        }
+        if let Node::Powi(base, n) = *self.node(id) {
+            return (base == factor && n >= 1).then(|| self.powi(base, n - 1));
         }
         let Node::Binary(Binary::Mul, a, b) = *self.node(id) else {
             return None;
