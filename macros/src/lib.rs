@@ -1,10 +1,10 @@
 //! Proc-macros of mechdiff: derivatives generated at compile time by the symbolic engine of
 //! `mechdiff_core::symbolic`.
 //!
-//! The stages are modules, each returning `syn::Result`: [`attr`] (the attribute's
-//! arguments) → [`ast`] (the function's Rust into the engine's IR) → [`differentiate`]
+//! The stages are modules, each returning `syn::Result`: `attr` (the attribute's
+//! arguments) → `ast` (the function's Rust into the engine's IR) → `differentiate`
 //! (derivatives; simplification and CSE happen in the engine as nodes are built) →
-//! [`expand`] (straight-line Rust).
+//! `expand` (straight-line Rust).
 #![warn(missing_docs)]
 
 use proc_macro::TokenStream;

@@ -1,6 +1,6 @@
 //! The derivative rules: one table, one arm per primitive.
 //!
-//! [`differential`] gives `d f(args)` from the arguments, their derivatives and the node
+//! `differential` gives `d f(args)` from the arguments, their derivatives and the node
 //! itself (so `d exp(u) = exp(u) du` reuses the node). Adding a primitive means adding one
 //! arm here, its name in [`super::ops`] and its numeric evaluation in [`super::eval`].
 //!

@@ -27,6 +27,8 @@
 //! [`PositionFunction`] impl); ψ′, ψ″, velocities, accelerations and inertial forces follow
 //! by any [`mechdiff_core::method`]. The source's own formulas are kept in [`hand`] as the
 //! baseline they are verified and benchmarked against.
+//! [`symbolic`] has ψ and x_C differentiated at compile time by `#[derivatives]`
+//! (straight-line generated code, the "symbolic" method of the tests and benchmarks).
 //!
 //! With l1 < l0 the rocker swings between ±asin λ; it stops (ψ′ = 0, a dead position) where
 //! the crank is perpendicular to the slot, cos φ = λ.
