@@ -1,0 +1,450 @@
+//! Kinetostatics: every joint reaction and the drive torque at one drive position.
+//!
+//! The equilibrium of every moving link, `Φ_qᵀ λ = Q` (see [`super`]), is one square linear
+//! system per drive position. Without friction and efficiencies it is solved once. Friction
+//! forces `f·|N|` and efficiency factors depend on the signs of the reactions and on the
+//! direction of power flow, which are not known before solving; they are resolved by
+//! iteration: starting from the ideal solution, the friction columns are linearized with the
+//! current signs (`|N| = σ·N` in sliding joints, `|R| = R̂·R` in revolute joints, `R̂` the
+//! current direction) and each mesh's output side is scaled by `η` or `1/η` for the current
+//! direction of power flow; the system is solved again until the signs, directions and flows
+//! repeat. In sliding joints this is exact once the signs repeat; revolute friction circles
+//! converge geometrically. Signs that never settle mean that no consistent solution exists:
+//! [`Error::SelfLocking`].
+
+use super::efficiency::CompiledEfficiency;
+use super::energy::{self, PowerBalance};
+use super::friction::{self, CompiledFriction};
+use super::inertia::{self, InertialLoad};
+use super::model::CompiledModel;
+use super::motor::MotorState;
+use super::plan::{Effects, Trace};
+use super::state::{self, Generalized, LinkState, of};
+use super::{gravity, loads};
+use crate::geometry::{JointKind, Kinematics};
+use crate::{DriveState, Error};
+use nalgebra::{DMatrix, DVector};
+
+/// Iterations allowed for friction and efficiency before a position is reported self-locking.
+const MAX_ITERATIONS: usize = 100;
+
+/// The reaction in one joint.
+///
+/// `force` and `couple` are what link a of the joint (the first link of a revolute or rigid
+/// joint, the guide of a prismatic joint, the slot link of a pin in slot, the pinion's link of
+/// a rack-and-pinion) exerts on link b (the second link, the slider, the pin's link, the rack),
+/// friction included; the force acts at the joint's point (revolute), measuring point
+/// (prismatic) or pin (pin in slot).
+#[derive(Debug, Clone, PartialEq)]
+pub struct JointReaction {
+    /// Joint name.
+    pub joint: String,
+    /// Force on link b (N, global components).
+    pub force: [f64; 2],
+    /// Couple on link b (N·m): the prismatic joint's reaction couple, a rigid joint's couple,
+    /// a revolute joint's friction torque, the torque on a gear's second link.
+    pub couple: f64,
+    /// Normal force on link b along the guide's normal `n` (prismatic, pin in slot), the
+    /// magnitude `|R|` (revolute), the tooth force on the rack along its guide (rack-and-pinion)
+    /// or the torque on the second gear's link (gear) (N or N·m).
+    pub normal: f64,
+    /// Friction force on link b along the guide direction `u` (sliding joints, N) or friction
+    /// torque on link b (revolute, N·m); 0 without friction.
+    pub friction: f64,
+    /// Power lost in the joint by friction or imperfect efficiency (W, ≤ 0).
+    pub power_loss: f64,
+}
+
+/// The equilibrium at one drive position.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Solution {
+    /// Drive position.
+    pub phi: f64,
+    /// Drive state used.
+    pub drive: DriveState,
+    /// The multipliers λ, one per constraint row (joints in order, the drive last).
+    pub multipliers: Vec<f64>,
+    /// Torque (N·m) or force (N) the drive joint must apply, positive in the sense of φ.
+    pub drive_torque: f64,
+    /// The reaction in every joint, in the model's joint order.
+    pub reactions: Vec<JointReaction>,
+    /// The motor, if the model has one and the plan includes it.
+    pub motor: Option<MotorState>,
+    /// Inertial loads of the links with mass (empty when inertia is not evaluated).
+    pub inertial: Vec<InertialLoad>,
+    /// The power balance of this solution.
+    pub balance: PowerBalance,
+    /// Solves of the equilibrium system (1 without friction and efficiency).
+    pub iterations: usize,
+    /// What was evaluated.
+    pub trace: Trace,
+}
+
+/// The signs, directions and flows the friction and efficiency columns are built with.
+#[derive(Debug, Clone, PartialEq)]
+struct Signs {
+    /// Per friction: the sign of the normal force (sliding) or the unit direction of the
+    /// reaction (revolute).
+    normal: Vec<[f64; 2]>,
+    /// Per efficiency: `κ = η` (direct flow) or `1/η` (reverse).
+    kappa: Vec<f64>,
+}
+
+/// Everything fixed at one position: the Jacobian, the loads, the friction geometry.
+struct Assembly<'a, 'm> {
+    model: &'a CompiledModel<'m>,
+    states: Vec<LinkState>,
+    jac: DMatrix<f64>,
+    rhs: DVector<f64>,
+    friction: &'a [CompiledFriction],
+    efficiency: &'a [CompiledEfficiency],
+    /// Per friction: the generalized friction load per unit normal force.
+    directions: Vec<Vec<f64>>,
+    /// Per friction: the relative velocity (m/s or rad/s).
+    velocities: Vec<f64>,
+    /// Per friction: its sign (0 at rest).
+    slips: Vec<f64>,
+    /// Per efficiency: the driving side's part of the mesh row.
+    inputs: Vec<Vec<f64>>,
+    /// q̇.
+    qdot: Vec<f64>,
+}
+
+/// Solves the equilibrium at the pose of `k` for drive state `drive`, with `effects`.
+pub fn solve(
+    model: &CompiledModel<'_>,
+    effects: &Effects,
+    k: &Kinematics<'_, 2>,
+    drive: &DriveState,
+) -> Result<Solution, Error> {
+    let m = model.mechanism;
+    let states = state::from_kinematics(k, drive);
+    let n = model.equations.coordinates();
+    let q: Vec<f64> = k.coordinates.iter().map(|j| j.value).collect();
+    let qdot: Vec<f64> = k.coordinates.iter().map(|j| drive.omega * j.derivatives[0]).collect();
+    let mut jac = DMatrix::zeros(n, n);
+    model.equations.jacobian(&q, &mut jac);
+    let mut trace = Trace::default();
+    let mut load = Generalized::zeros(m.links.len() - 1);
+    let mut inertial = Vec::new();
+    if effects.inertia && !model.masses.is_empty() {
+        inertial = inertia::loads(&model.masses, &states);
+        inertia::load(&inertial, &states, &mut load);
+        trace.inertia += 1;
+    }
+    if effects.gravity
+        && let Some(g) = &model.gravity
+    {
+        gravity::load(g, &model.masses, &states, &mut load);
+        trace.gravity += 1;
+    }
+    if effects.loads && !model.loads.is_empty() {
+        loads::load(&model.loads, k.phi, &states, &mut load);
+        trace.loads += 1;
+    }
+    let friction: &[CompiledFriction] = if effects.friction { &model.friction } else { &[] };
+    let efficiency: &[CompiledEfficiency] = if effects.efficiency { &model.efficiency } else { &[] };
+    let qdot_max = qdot.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let speed_scale = qdot_max * super::energy::size(m);
+    let mut directions = Vec::with_capacity(friction.len());
+    let mut velocities = Vec::with_capacity(friction.len());
+    let mut slips = Vec::with_capacity(friction.len());
+    for f in friction {
+        let mut g = Generalized::zeros(m.links.len() - 1);
+        match *f {
+            CompiledFriction::Sliding { guide, slider, coefficient, .. } => {
+                let sl = f.sliding(&states).expect("a sliding friction");
+                let s = friction::sign(sl.velocity, speed_scale);
+                let t = [-s * coefficient * sl.u[0], -s * coefficient * sl.u[1]];
+                g.force(&states, slider, sl.contact, t);
+                g.force(&states, guide, sl.contact, [-t[0], -t[1]]);
+                velocities.push(sl.velocity);
+                slips.push(s);
+            }
+            CompiledFriction::Revolute { a, b, radius, .. } => {
+                let w = f.relative_rotation(&states).expect("a revolute friction");
+                let s = friction::sign(w, qdot_max);
+                g.couple(b, -s * radius);
+                g.couple(a, s * radius);
+                velocities.push(w);
+                slips.push(s);
+            }
+        }
+        directions.push(g.0);
+    }
+    let inputs = efficiency
+        .iter()
+        .map(|e| {
+            let row: Vec<f64> = jac.row(e.row).iter().copied().collect();
+            e.input_part(&row)
+        })
+        .collect();
+    let asm = Assembly {
+        model,
+        states,
+        rhs: DVector::from_vec(load.0),
+        jac,
+        friction,
+        efficiency,
+        directions,
+        velocities,
+        slips,
+        inputs,
+        qdot,
+    };
+    let (lambda, signs, iterations) = asm.iterate(k.phi, &mut trace)?;
+    trace.equilibrium_solves += iterations;
+    asm.finish(effects, k, drive, lambda, signs, iterations, inertial, trace)
+}
+
+impl Assembly<'_, '_> {
+    fn matrix(&self, signs: Option<&Signs>) -> DMatrix<f64> {
+        let mut a = self.jac.transpose();
+        let Some(signs) = signs else { return a };
+        for (i, f) in self.friction.iter().enumerate() {
+            let g = &self.directions[i];
+            let w = signs.normal[i];
+            match *f {
+                CompiledFriction::Sliding { row, .. } => {
+                    for (r, gv) in g.iter().enumerate() {
+                        a[(r, row)] -= w[0] * gv;
+                    }
+                }
+                CompiledFriction::Revolute { row, .. } => {
+                    for (r, gv) in g.iter().enumerate() {
+                        a[(r, row)] -= w[0] * gv;
+                        a[(r, row + 1)] -= w[1] * gv;
+                    }
+                }
+            }
+        }
+        for (i, e) in self.efficiency.iter().enumerate() {
+            let kappa = signs.kappa[i];
+            let input = &self.inputs[i];
+            for (r, inp) in input.iter().enumerate() {
+                // Column = input part + κ·(output part), output = row − input.
+                a[(r, e.row)] = inp + kappa * (self.jac[(e.row, r)] - inp);
+            }
+        }
+        a
+    }
+
+    fn signs_of(&self, lambda: &DVector<f64>) -> Signs {
+        let normal = self
+            .friction
+            .iter()
+            .map(|f| match *f {
+                CompiledFriction::Sliding { row, .. } => [if lambda[row] < 0.0 { -1.0 } else { 1.0 }, 0.0],
+                CompiledFriction::Revolute { row, .. } => {
+                    let (x, y) = (lambda[row], lambda[row + 1]);
+                    let r = x.hypot(y);
+                    if r == 0.0 { [1.0, 0.0] } else { [x / r, y / r] }
+                }
+            })
+            .collect();
+        let kappa = self
+            .efficiency
+            .iter()
+            .enumerate()
+            .map(|(i, e)| if self.input_power(i, lambda) >= 0.0 { e.eta } else { 1.0 / e.eta })
+            .collect();
+        Signs { normal, kappa }
+    }
+
+    /// Power the nominal driving side of mesh `i` delivers to the mesh, `λ·(J_in q̇)`.
+    fn input_power(&self, i: usize, lambda: &DVector<f64>) -> f64 {
+        let rate: f64 = self.inputs[i].iter().zip(&self.qdot).map(|(a, b)| a * b).sum();
+        lambda[self.efficiency[i].row] * rate
+    }
+
+    fn joints(&self) -> Vec<String> {
+        let m = self.model.mechanism;
+        let mut names: Vec<String> = self.friction.iter().map(|f| m.joints[f.joint()].name.clone()).collect();
+        names.extend(self.efficiency.iter().map(|e| m.joints[e.joint].name.clone()));
+        names
+    }
+
+    /// Solves, iterating on signs and flows; returns λ, the signs used and the solves done.
+    fn iterate(&self, phi: f64, trace: &mut Trace) -> Result<(DVector<f64>, Option<Signs>, usize), Error> {
+        let lambda = self.matrix(None).lu().solve(&self.rhs).ok_or(Error::SingularEquilibrium { phi })?;
+        if self.friction.is_empty() && self.efficiency.is_empty() {
+            return Ok((lambda, None, 1));
+        }
+        let mut signs = self.signs_of(&lambda);
+        let mut lambda = lambda;
+        let mut seen: Vec<Signs> = Vec::new();
+        for it in 1..=MAX_ITERATIONS {
+            trace.friction += usize::from(!self.friction.is_empty());
+            trace.efficiency += usize::from(!self.efficiency.is_empty());
+            let next = self.matrix(Some(&signs)).lu().solve(&self.rhs).ok_or_else(|| Error::SelfLocking {
+                phi,
+                joints: self.joints(),
+                reason: "the equilibrium equations with friction are singular".to_owned(),
+            })?;
+            let new_signs = self.signs_of(&next);
+            let scale = next.amax().max(f64::MIN_POSITIVE);
+            let settled = new_signs.kappa == signs.kappa
+                && new_signs.normal.iter().zip(&signs.normal).all(|(a, b)| {
+                    (a[0] - b[0]).abs() <= 1e-15 && (a[1] - b[1]).abs() <= 1e-15
+                })
+                && (&next - &lambda).amax() <= 1e-15 * scale;
+            lambda = next;
+            if settled {
+                return Ok((lambda, Some(signs), it + 1));
+            }
+            // Sliding signs and flows only: a repeated pattern that is not consistent is a cycle.
+            if self.friction.iter().all(|f| matches!(f, CompiledFriction::Sliding { .. })) {
+                if seen.contains(&new_signs) && new_signs != signs {
+                    break;
+                }
+                seen.push(signs.clone());
+            }
+            signs = new_signs;
+        }
+        Err(Error::SelfLocking {
+            phi,
+            joints: self.joints(),
+            reason: "the signs of the normal forces or the direction of power flow keep changing".to_owned(),
+        })
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn finish(
+        &self,
+        effects: &Effects,
+        k: &Kinematics<'_, 2>,
+        drive: &DriveState,
+        lambda: DVector<f64>,
+        signs: Option<Signs>,
+        iterations: usize,
+        inertial: Vec<InertialLoad>,
+        mut trace: Trace,
+    ) -> Result<Solution, Error> {
+        let model = self.model;
+        let m = model.mechanism;
+        let drive_torque = -lambda[model.drive_row];
+        let mut reactions: Vec<JointReaction> = m
+            .joints
+            .iter()
+            .enumerate()
+            .map(|(j, joint)| self.ideal_reaction(j, &joint.kind, &lambda, &joint.name))
+            .collect();
+        if let Some(signs) = &signs {
+            for (i, f) in self.friction.iter().enumerate() {
+                let r = &mut reactions[f.joint()];
+                match *f {
+                    CompiledFriction::Sliding { coefficient, .. } => {
+                        let sl = f.sliding(&self.states).expect("a sliding friction");
+                        let t = -self.slips[i] * coefficient * r.normal.abs();
+                        r.friction = t;
+                        r.force[0] += t * sl.u[0];
+                        r.force[1] += t * sl.u[1];
+                        r.power_loss = t * self.velocities[i];
+                    }
+                    CompiledFriction::Revolute { radius, .. } => {
+                        let t = -self.slips[i] * radius * r.normal;
+                        r.friction = t;
+                        r.couple = t;
+                        r.power_loss = t * self.velocities[i];
+                    }
+                }
+            }
+            for (i, e) in self.efficiency.iter().enumerate() {
+                let kappa = signs.kappa[i];
+                let p_in = self.input_power(i, &lambda);
+                let r = &mut reactions[e.joint];
+                r.power_loss = -(1.0 - kappa) * p_in;
+                // The second side carries κ·λ when the first side drives, and λ otherwise.
+                let second_scale = match e.driving {
+                    super::Driving::First => kappa,
+                    super::Driving::Second => 1.0,
+                };
+                r.normal *= second_scale;
+                r.force = [r.force[0] * second_scale, r.force[1] * second_scale];
+                if let JointKind::Gear { .. } = m.joints[e.joint].kind {
+                    r.couple *= second_scale;
+                }
+            }
+        }
+        let motor = match (effects.motor, &model.motor) {
+            (true, Some(mo)) => {
+                trace.motor += 1;
+                Some(mo.state(drive_torque, drive, effects.inertia, effects.efficiency))
+            }
+            _ => None,
+        };
+        let balance = energy::balance(model, effects, k, drive, &self.states, drive_torque, &reactions, motor.as_ref());
+        Ok(Solution {
+            phi: k.phi,
+            drive: *drive,
+            multipliers: lambda.iter().copied().collect(),
+            drive_torque,
+            reactions,
+            motor,
+            inertial,
+            balance,
+            iterations,
+            trace,
+        })
+    }
+
+    /// The reaction of joint `j` from its multipliers, without friction or efficiency.
+    fn ideal_reaction(&self, j: usize, kind: &JointKind, lambda: &DVector<f64>, name: &str) -> JointReaction {
+        let r = self.model.rows[j];
+        let l = |i: usize| lambda[r + i];
+        let mut out = JointReaction {
+            joint: name.to_owned(),
+            force: [0.0; 2],
+            couple: 0.0,
+            normal: 0.0,
+            friction: 0.0,
+            power_loss: 0.0,
+        };
+        let guide_dir = |guide: usize, line: [usize; 2]| {
+            let m = self.model.mechanism;
+            let (a, b) = (m.points[line[0]].sketch, m.points[line[1]].sketch);
+            let d = [b[0] - a[0], b[1] - a[1]];
+            let len = d[0].hypot(d[1]);
+            of(&self.states, guide).arm([d[0] / len, d[1] / len])
+        };
+        match *kind {
+            // Row r_a(p) − r_b(p): the force on link b is +λ.
+            JointKind::Revolute { .. } => {
+                out.force = [l(0), l(1)];
+                out.normal = l(0).hypot(l(1));
+            }
+            // Rows θ_s − θ_g and c(u, r_s(p) − r_g(a)): couple −λ₀, normal force −λ₁ along n.
+            JointKind::Prismatic { guide, line, .. } => {
+                let u = guide_dir(guide, line);
+                out.couple = -l(0);
+                out.normal = -l(1);
+                out.force = [-out.normal * u[1], out.normal * u[0]];
+            }
+            JointKind::PinInSlot { slot_link, line, .. } => {
+                let u = guide_dir(slot_link, line);
+                out.normal = -l(0);
+                out.force = [-out.normal * u[1], out.normal * u[0]];
+            }
+            // Row (s − s₀) − R(θ_b − θ_a): force −λ on the rack along u.
+            JointKind::RackPinion { rack, .. } => {
+                if let JointKind::Prismatic { guide, line, .. } = self.model.mechanism.joints[rack].kind {
+                    let u = guide_dir(guide, line);
+                    out.normal = -l(0);
+                    out.force = [out.normal * u[0], out.normal * u[1]];
+                }
+            }
+            // Row (θ_b2 − θ_a2) − ratio(θ_b1 − θ_a1): torque −λ on the second gear's link.
+            JointKind::Gear { .. } => {
+                out.normal = -l(0);
+                out.couple = -l(0);
+            }
+            // Rows r_b − r_a(p), θ_b − θ_a: force −λ and couple −λ₂ on link b.
+            JointKind::Rigid { .. } => {
+                out.force = [-l(0), -l(1)];
+                out.couple = -l(2);
+                out.normal = l(0).hypot(l(1));
+            }
+        }
+        out
+    }
+}
