@@ -10,7 +10,7 @@ use super::motor::MotorState;
 use super::plan::Effects;
 use super::state::{self, LinkState, dot, of};
 use super::{gravity, loads};
-use crate::geometry::{Kinematics, Mechanism};
+use crate::geometry::Mechanism;
 use crate::{DriveState, Jet};
 
 /// Kinetic energy and reduced moment of inertia at one drive position.
@@ -21,18 +21,24 @@ pub struct Energy {
     /// Reduced moment of inertia `J_red = Σ m |r_G′|² + J θ′² (+ J_d/τ²)` (kg·m², or kg for
     /// a linear drive).
     pub reduced_inertia: f64,
-    /// `dJ_red/dφ = 2 Σ (m r_G′·r_G″ + J θ′ θ″)` (kg·m²/rad).
-    pub reduced_inertia_derivative: f64,
-    /// `dT/dt = J_red ω α + ½ J_red′ ω³` (W).
-    pub kinetic_rate: f64,
+    /// `dJ_red/dφ = 2 Σ (m r_G′·r_G″ + J θ′ θ″)` (kg·m²/rad); `None` from first derivatives
+    /// only.
+    pub reduced_inertia_derivative: Option<f64>,
+    /// `dT/dt = J_red ω α + ½ J_red′ ω³` (W); `None` from first derivatives only.
+    pub kinetic_rate: Option<f64>,
 }
 
 /// The kinetic energy of the links with mass (and of the motor's rotor) at the pose of
-/// `coordinates` (with their first two φ-derivatives) for drive state `drive`.
-pub fn energy(model: &CompiledModel<'_>, coordinates: &[Jet<2>], drive: &DriveState) -> Energy {
+/// `coordinates` (with their first `N ≥ 1` φ-derivatives) for drive state `drive`.
+pub fn energy<const N: usize>(model: &CompiledModel<'_>, coordinates: &[Jet<N>], drive: &DriveState) -> Energy {
+    const { assert!(N >= 1, "the kinetic energy needs first derivatives") };
+    let padded: Vec<Jet<2>> = coordinates
+        .iter()
+        .map(|j| Jet::new(j.value, [j.derivatives[0], j.derivatives.get(1).copied().unwrap_or(0.0)]))
+        .collect();
     // With ω = 1 and α = 0 the "velocities" are the φ-derivatives r′, θ′ and the
     // "accelerations" the second derivatives r″, θ″.
-    let d = state::link_states(coordinates, &DriveState::constant_speed(1.0));
+    let d = state::link_states(&padded, &DriveState::constant_speed(1.0));
     let (j, dj) = reduced(&model.masses, &d);
     let rotor = model.motor.map_or(0.0, |mo| mo.rotor_inertia / (mo.ratio * mo.ratio));
     let j = j + rotor;
@@ -40,8 +46,8 @@ pub fn energy(model: &CompiledModel<'_>, coordinates: &[Jet<2>], drive: &DriveSt
     Energy {
         kinetic: 0.5 * j * w * w,
         reduced_inertia: j,
-        reduced_inertia_derivative: dj,
-        kinetic_rate: j * w * drive.alpha + 0.5 * dj * w * w * w,
+        reduced_inertia_derivative: (N >= 2).then_some(dj),
+        kinetic_rate: (N >= 2).then(|| j * w * drive.alpha + 0.5 * dj * w * w * w),
     }
 }
 
@@ -101,7 +107,7 @@ impl PowerBalance {
 pub(crate) fn balance(
     model: &CompiledModel<'_>,
     effects: &Effects,
-    k: &Kinematics<'_, 2>,
+    phi: f64,
     drive: &DriveState,
     states: &[LinkState],
     drive_torque: f64,
@@ -120,7 +126,7 @@ pub(crate) fn balance(
         (Some(g), true) => gravity::power(g, &model.masses, states),
         _ => 0.0,
     };
-    let loads = if effects.loads { loads::power(&model.loads, k.phi, states) } else { 0.0 };
+    let loads = if effects.loads { loads::power(&model.loads, phi, states) } else { 0.0 };
     let friction: f64 = reactions
         .iter()
         .zip(&model.mechanism.joints)

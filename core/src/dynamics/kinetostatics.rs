@@ -22,7 +22,7 @@ use super::plan::{Effects, Trace};
 use super::state::{self, Generalized, LinkState, of};
 use super::{gravity, loads};
 use crate::geometry::{JointKind, Kinematics};
-use crate::{DriveState, Error};
+use crate::{DriveState, Error, Jet};
 use nalgebra::{DMatrix, DVector};
 
 /// Iterations allowed for friction and efficiency before a position is reported self-locking.
@@ -117,11 +117,23 @@ pub fn solve(
     k: &Kinematics<'_, 2>,
     drive: &DriveState,
 ) -> Result<Solution, Error> {
+    solve_at(model, effects, k.phi, &k.coordinates, drive)
+}
+
+/// [`solve`] at drive position `phi` from the pose coordinates and their first two
+/// φ-derivatives (`Kinematics::coordinates`).
+pub fn solve_at(
+    model: &CompiledModel<'_>,
+    effects: &Effects,
+    phi: f64,
+    coordinates: &[Jet<2>],
+    drive: &DriveState,
+) -> Result<Solution, Error> {
     let m = model.mechanism;
-    let states = state::from_kinematics(k, drive);
+    let states = state::link_states(coordinates, drive);
     let n = model.equations.coordinates();
-    let q: Vec<f64> = k.coordinates.iter().map(|j| j.value).collect();
-    let qdot: Vec<f64> = k.coordinates.iter().map(|j| drive.omega * j.derivatives[0]).collect();
+    let q: Vec<f64> = coordinates.iter().map(|j| j.value).collect();
+    let qdot: Vec<f64> = coordinates.iter().map(|j| drive.omega * j.derivatives[0]).collect();
     let mut jac = DMatrix::zeros(n, n);
     model.equations.jacobian(&q, &mut jac);
     let mut trace = Trace::default();
@@ -139,7 +151,7 @@ pub fn solve(
         trace.gravity += 1;
     }
     if effects.loads && !model.loads.is_empty() {
-        loads::load(&model.loads, k.phi, &states, &mut load);
+        loads::load(&model.loads, phi, &states, &mut load);
         trace.loads += 1;
     }
     let friction: &[CompiledFriction] = if effects.friction { &model.friction } else { &[] };
@@ -192,9 +204,9 @@ pub fn solve(
         inputs,
         qdot,
     };
-    let (lambda, signs, iterations) = asm.iterate(k.phi, &mut trace)?;
+    let (lambda, signs, iterations) = asm.iterate(phi, &mut trace)?;
     trace.equilibrium_solves += iterations;
-    asm.finish(effects, k, drive, lambda, signs, iterations, inertial, trace)
+    asm.finish(effects, phi, drive, lambda, signs, iterations, inertial, trace)
 }
 
 impl Assembly<'_, '_> {
@@ -266,21 +278,35 @@ impl Assembly<'_, '_> {
 
     /// Solves, iterating on signs and flows; returns λ, the signs used and the solves done.
     fn iterate(&self, phi: f64, trace: &mut Trace) -> Result<(DVector<f64>, Option<Signs>, usize), Error> {
-        let lambda = self.matrix(None).lu().solve(&self.rhs).ok_or(Error::SingularEquilibrium { phi })?;
+        let lu = self.matrix(None).lu();
+        let lambda = lu.solve(&self.rhs).ok_or(Error::SingularEquilibrium { phi })?;
         if self.friction.is_empty() && self.efficiency.is_empty() {
             return Ok((lambda, None, 1));
         }
+        let ideal_sign = lu.determinant().signum();
         let mut signs = self.signs_of(&lambda);
         let mut lambda = lambda;
         let mut seen: Vec<Signs> = Vec::new();
         for it in 1..=MAX_ITERATIONS {
             trace.friction += usize::from(!self.friction.is_empty());
             trace.efficiency += usize::from(!self.efficiency.is_empty());
-            let next = self.matrix(Some(&signs)).lu().solve(&self.rhs).ok_or_else(|| Error::SelfLocking {
+            let lu = self.matrix(Some(&signs)).lu();
+            let next = lu.solve(&self.rhs).ok_or_else(|| Error::SelfLocking {
                 phi,
                 joints: self.joints(),
                 reason: "the equilibrium equations with friction are singular".to_owned(),
             })?;
+            // Friction that turns the determinant's sign reverses how the drive acts on the
+            // mechanism: no finite drive torque moves it in the prescribed sense.
+            if lu.determinant().signum() != ideal_sign {
+                return Err(Error::SelfLocking {
+                    phi,
+                    joints: self.joints(),
+                    reason: "friction reverses the sign of the equilibrium determinant: the drive \
+                             cannot move the mechanism in this sense"
+                        .to_owned(),
+                });
+            }
             let new_signs = self.signs_of(&next);
             let scale = next.amax().max(f64::MIN_POSITIVE);
             let settled = new_signs.kappa == signs.kappa
@@ -312,7 +338,7 @@ impl Assembly<'_, '_> {
     fn finish(
         &self,
         effects: &Effects,
-        k: &Kinematics<'_, 2>,
+        phi: f64,
         drive: &DriveState,
         lambda: DVector<f64>,
         signs: Option<Signs>,
@@ -373,9 +399,9 @@ impl Assembly<'_, '_> {
             }
             _ => None,
         };
-        let balance = energy::balance(model, effects, k, drive, &self.states, drive_torque, &reactions, motor.as_ref());
+        let balance = energy::balance(model, effects, phi, drive, &self.states, drive_torque, &reactions, motor.as_ref());
         Ok(Solution {
-            phi: k.phi,
+            phi,
             drive: *drive,
             multipliers: lambda.iter().copied().collect(),
             drive_torque,

@@ -56,6 +56,7 @@ mod model;
 pub mod motor;
 pub mod plan;
 pub mod shaking;
+pub mod run;
 mod state;
 
 pub use efficiency::{Driving, Efficiency};

@@ -157,6 +157,14 @@ impl fmt::Display for Plan {
 /// plan costs nothing.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Trace {
+    /// Positions solved.
+    pub positions: usize,
+    /// Poses lifted to derivatives (velocities or more).
+    pub derivatives: usize,
+    /// Kinetic energies evaluated.
+    pub energy: usize,
+    /// Shaking forces evaluated.
+    pub shaking: usize,
     /// Inertial loads evaluated.
     pub inertia: usize,
     /// Weights evaluated.
@@ -176,6 +184,10 @@ pub struct Trace {
 impl Trace {
     /// Adds another trace's counts.
     pub fn add(&mut self, o: &Trace) {
+        self.positions += o.positions;
+        self.derivatives += o.derivatives;
+        self.energy += o.energy;
+        self.shaking += o.shaking;
         self.inertia += o.inertia;
         self.gravity += o.gravity;
         self.loads += o.loads;

@@ -1,6 +1,5 @@
 //! The motion of every link at one instant, and the rigid-body formulas every effect uses.
 
-use crate::geometry::Kinematics;
 use crate::{DriveState, Jet};
 
 /// Position, velocity and acceleration of one moving link at an instant: its reference point
@@ -78,11 +77,6 @@ pub(crate) fn link_states(coordinates: &[Jet<2>], drive: &DriveState) -> Vec<Lin
             alpha: acc(&c[2]),
         })
         .collect()
-}
-
-/// The link states of a [`Kinematics`] solution.
-pub(crate) fn from_kinematics(k: &Kinematics<'_, 2>, drive: &DriveState) -> Vec<LinkState> {
-    link_states(&k.coordinates, drive)
 }
 
 /// State of link `link` (0 = ground) among `states`.
