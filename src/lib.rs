@@ -7,3 +7,8 @@
 
 pub use mechdiff_core as core;
 pub use mechdiff_mechanisms as mechanisms;
+
+pub mod error;
+pub mod scene;
+
+pub use error::{Error, Result};

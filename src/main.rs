@@ -1,5 +1,7 @@
 //! The `mechdiff` command-line tool.
 
+mod cli;
+
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
@@ -19,12 +21,18 @@ struct Cli {
 enum Command {
     /// The Whitworth shaping machine report (the default command).
     Whitworth,
+    /// Run a scene file: print the plan and a table of the outputs (optionally write CSV).
+    Run(cli::run::RunArgs),
+    /// Check a scene file (syntax, names, units, sketch, mobility) without running it.
+    Check(cli::check::CheckArgs),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result: Result<(), Box<dyn std::error::Error>> = match cli.command {
         None | Some(Command::Whitworth) => Ok(()),
+        Some(Command::Run(args)) => cli::run::run(&args).map_err(Into::into),
+        Some(Command::Check(args)) => cli::check::check(&args).map_err(Into::into),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -27,7 +27,7 @@ pub(crate) struct Loop {
 }
 
 /// Which coordinates each row depends on (whole bodies: x, y, θ together).
-fn structure(eq: &Equations) -> Vec<Vec<usize>> {
+pub(crate) fn structure(eq: &Equations) -> Vec<Vec<usize>> {
     eq.row_bodies()
         .into_iter()
         .map(|bodies| bodies.into_iter().flat_map(|k| [3 * k, 3 * k + 1, 3 * k + 2]).collect())

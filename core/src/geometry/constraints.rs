@@ -68,6 +68,8 @@ impl Term {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Equations {
     pub(crate) terms: Vec<Term>,
+    /// Rows that are angles (rad) rather than lengths (m).
+    pub(crate) angular: Vec<bool>,
     /// Row → index of the joint it comes from (`joints.len()` for the drive).
     pub(crate) row_joint: Vec<usize>,
     coordinates: usize,
@@ -176,7 +178,9 @@ impl Equations {
             },
         });
         row_joint.push(m.joints.len());
-        Equations { terms, row_joint, coordinates: m.coordinate_count() }
+        let mut eq = Equations { terms, angular: Vec::new(), row_joint, coordinates: m.coordinate_count() };
+        eq.angular = eq.angular_rows();
+        eq
     }
 
     /// Number of equations (rows of Φ).
@@ -191,8 +195,10 @@ impl Equations {
 
     /// Evaluates Φ(q, φ) into `out` (length [`Equations::rows`]), for any scalar type.
     pub fn evaluate<D: DualNum<Primitive = f64> + Copy>(&self, q: &[D], phi: D, out: &mut [D]) {
-        let frames: Vec<(D, D)> = (0..q.len() / 3).map(|k| q[3 * k + 2].sin_cos()).collect();
-        let f = Frames { q, frames: &frames };
+        with_frames(q, |f| self.evaluate_with(f, phi, out));
+    }
+
+    fn evaluate_with<D: DualNum<Primitive = f64> + Copy>(&self, f: &Frames<'_, D>, phi: D, out: &mut [D]) {
         let mut row = 0;
         for t in &self.terms {
             match *t {
@@ -238,8 +244,11 @@ impl Equations {
     /// Evaluates the Jacobian Φ_q at `q` (f64) into `jac` (rows × coordinates), analytically.
     pub fn jacobian(&self, q: &[f64], jac: &mut DMatrix<f64>) {
         jac.fill(0.0);
-        let frames: Vec<(f64, f64)> = (0..q.len() / 3).map(|k| q[3 * k + 2].sin_cos()).collect();
-        let mut g = Gradient { f: Frames { q, frames: &frames }, jac };
+        with_frames(q, |f| self.jacobian_with(f, jac));
+    }
+
+    fn jacobian_with(&self, f: &Frames<'_, f64>, jac: &mut DMatrix<f64>) {
+        let mut g = Gradient { f, jac };
         let mut row = 0;
         for t in &self.terms {
             match *t {
@@ -310,7 +319,7 @@ impl Equations {
 
     /// Rows of Φ_q that are angular (rad) rather than lengths (m): used to scale the
     /// Jacobian for rank and condition estimates.
-    pub(crate) fn angular_rows(&self) -> Vec<bool> {
+    fn angular_rows(&self) -> Vec<bool> {
         let mut out = Vec::with_capacity(self.rows());
         for t in &self.terms {
             match t {
@@ -322,6 +331,27 @@ impl Equations {
             }
         }
         out
+    }
+}
+
+/// Calls `body` with the sines and cosines of every body's angle, kept on the stack for up to
+/// 8 moving links (most mechanisms), on the heap beyond.
+pub(crate) fn with_frames<D: DualNum<Primitive = f64> + Copy, T>(
+    q: &[D],
+    body: impl FnOnce(&Frames<'_, D>) -> T,
+) -> T {
+    let n = q.len() / 3;
+    let sin_cos = |k: usize| q[3 * k + 2].sin_cos();
+    if n <= 8 {
+        let zero = D::from(0.0);
+        let mut frames = [(zero, zero); 8];
+        for (k, f) in frames.iter_mut().enumerate().take(n) {
+            *f = sin_cos(k);
+        }
+        body(&Frames { q, frames: &frames[..n] })
+    } else {
+        let frames: Vec<(D, D)> = (0..n).map(sin_cos).collect();
+        body(&Frames { q, frames: &frames })
     }
 }
 
@@ -368,12 +398,12 @@ impl<D: DualNum<Primitive = f64> + Copy> Frames<'_, D> {
 }
 
 /// Accumulates rows of Φ_q from the pieces every equation is made of.
-struct Gradient<'a, 'q> {
-    f: Frames<'q, f64>,
+struct Gradient<'a, 'f, 'q> {
+    f: &'f Frames<'q, f64>,
     jac: &'a mut DMatrix<f64>,
 }
 
-impl Gradient<'_, '_> {
+impl Gradient<'_, '_, '_> {
     /// Adds `w·∂r/∂q` for the point of `b` at local `p` to `row`.
     fn point(&mut self, row: usize, b: Body, p: [f64; 2], w: [f64; 2]) {
         if let Some(k) = b {

@@ -19,34 +19,97 @@ use super::constraints::Equations;
 use nalgebra::{DVector, Dyn, LU};
 use num_dual::{Dual2_64, Dual3_64};
 
-/// q″ from q, q′ and the LU of Φ_q at (q, φ); `None` if the LU is singular.
-pub(crate) fn second_derivative(
-    eq: &Equations,
-    lu: &LU<f64, Dyn, Dyn>,
-    q: &DVector<f64>,
-    dq: &DVector<f64>,
-    phi: f64,
-) -> Option<DVector<f64>> {
-    let x: Vec<Dual2_64> = q.iter().zip(dq.iter()).map(|(&a, &b)| Dual2_64::new(a, b, 0.0)).collect();
-    let mut out = vec![Dual2_64::from(0.0); eq.rows()];
-    eq.evaluate(&x, Dual2_64::new(phi, 1.0, 0.0), &mut out);
-    let rhs = DVector::from_iterator(out.len(), out.iter().map(|r| -r.v2));
-    lu.solve(&rhs)
+/// A linear solve with Φ_q already factorised: `solve(b, x)` sets x = Φ_q⁻¹ b, false if
+/// singular.
+pub(crate) trait Factorised {
+    /// x = Φ_q⁻¹ b.
+    fn solve_into(&self, b: &[f64], x: &mut [f64]) -> bool;
 }
 
-/// q‴ from q, q′, q″ and the LU of Φ_q at (q, φ); `None` if the LU is singular.
+impl Factorised for LU<f64, Dyn, Dyn> {
+    fn solve_into(&self, b: &[f64], x: &mut [f64]) -> bool {
+        match self.solve(&DVector::from_column_slice(b)) {
+            Some(s) => {
+                x.copy_from_slice(s.as_slice());
+                true
+            }
+            None => false,
+        }
+    }
+}
+
+/// q″ from q, q′ and the factorised Φ_q at (q, φ); false if singular.
+pub(crate) fn second_derivative(
+    eq: &Equations,
+    lu: &impl Factorised,
+    q: &[f64],
+    dq: &[f64],
+    phi: f64,
+    ddq: &mut [f64],
+) -> bool {
+    let x: Vec<Dual2_64> = q.iter().zip(dq).map(|(&a, &b)| Dual2_64::new(a, b, 0.0)).collect();
+    let mut out = vec![Dual2_64::from(0.0); eq.rows()];
+    eq.evaluate(&x, Dual2_64::new(phi, 1.0, 0.0), &mut out);
+    let rhs: Vec<f64> = out.iter().map(|r| -r.v2).collect();
+    lu.solve_into(&rhs, ddq)
+}
+
+/// q‴ from q, q′, q″ and the factorised Φ_q at (q, φ); false if singular.
 pub(crate) fn third_derivative(
     eq: &Equations,
-    lu: &LU<f64, Dyn, Dyn>,
-    q: &DVector<f64>,
-    dq: &DVector<f64>,
-    ddq: &DVector<f64>,
+    lu: &impl Factorised,
+    q: &[f64],
+    dq: &[f64],
+    ddq: &[f64],
     phi: f64,
-) -> Option<DVector<f64>> {
+    dddq: &mut [f64],
+) -> bool {
     let x: Vec<Dual3_64> =
         (0..q.len()).map(|i| Dual3_64::new(q[i], dq[i], ddq[i], 0.0)).collect();
     let mut out = vec![Dual3_64::from(0.0); eq.rows()];
     eq.evaluate(&x, Dual3_64::new(phi, 1.0, 0.0, 0.0), &mut out);
-    let rhs = DVector::from_iterator(out.len(), out.iter().map(|r| -r.v3));
-    lu.solve(&rhs)
+    let rhs: Vec<f64> = out.iter().map(|r| -r.v3).collect();
+    lu.solve_into(&rhs, dddq)
+}
+
+/// The derivatives `[q′, q″, q‴][..order]` (order 1 to 3) at an assembled pose `q` at drive
+/// position `phi`: one Jacobian, one LU, `order − 1` dual-number evaluations of Φ. `None` if
+/// Φ_q is singular there or `order` is not 1 to 3. ([`super::Tracker`] does this itself; this
+/// is for a pose found some other way.)
+///
+/// ```
+/// use mechdiff_core::geometry::{implicit, Drive, Equations, Mechanism};
+/// let m = Mechanism::builder()
+///     .point("O", [0.0, 0.0]).point("A", [2.0, 0.0])
+///     .ground(["O"]).link("crank", ["O", "A"])
+///     .revolute("O", "ground", "crank", "O")
+///     .drive(Drive::angle("O"))
+///     .build().unwrap();
+/// let eq = Equations::new(&m);
+/// let d = implicit::lift(&eq, &m.sketch_coordinates(), 0.0, 2).unwrap();
+/// // The crank's reference point O does not move; its angle θ = φ: θ′ = 1, θ″ = 0.
+/// assert_eq!((d[0][2], d[1][2]), (1.0, 0.0));
+/// ```
+pub fn lift(eq: &Equations, q: &[f64], phi: f64, order: usize) -> Option<Vec<DVector<f64>>> {
+    if !(1..=3).contains(&order) || q.len() != eq.coordinates() || eq.rows() != q.len() {
+        return None;
+    }
+    let mut jac = nalgebra::DMatrix::zeros(eq.rows(), eq.coordinates());
+    eq.jacobian(q, &mut jac);
+    let lu = jac.lu();
+    let n = q.len();
+    let mut e = vec![0.0; n];
+    e[n - 1] = 1.0;
+    let mut out = vec![DVector::zeros(n); order];
+    let ok = lu.solve_into(&e, out[0].as_mut_slice())
+        && (order < 2 || {
+            let (done, rest) = out.split_at_mut(1);
+            second_derivative(eq, &lu, q, done[0].as_slice(), phi, rest[0].as_mut_slice())
+        })
+        && (order < 3 || {
+            let (done, rest) = out.split_at_mut(2);
+            let (d1, d2) = (done[0].as_slice(), done[1].as_slice());
+            third_derivative(eq, &lu, q, d1, d2, phi, rest[0].as_mut_slice())
+        });
+    ok.then_some(out)
 }

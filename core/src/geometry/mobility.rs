@@ -44,7 +44,7 @@ pub(crate) fn scaled_jacobian(eq: &Equations, q: &[f64], length: f64) -> DMatrix
 
 /// Applies the scaling of [`scaled_jacobian`] in place.
 pub(crate) fn scale(eq: &Equations, jac: &mut DMatrix<f64>, length: f64) {
-    for (r, angular) in eq.angular_rows().into_iter().enumerate() {
+    for (r, &angular) in eq.angular.iter().enumerate() {
         if angular {
             jac.row_mut(r).scale_mut(length);
         }

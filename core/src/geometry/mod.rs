@@ -6,6 +6,7 @@
 //! keeping the sketch's assembly branch ([`Solver`]), and lifted to exact derivatives
 //! q′, q″, q‴ with respect to φ by implicit differentiation ([`Kinematics`]).
 
+mod block_lu;
 pub mod branch;
 mod constraints;
 pub mod implicit;

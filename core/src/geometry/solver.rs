@@ -12,14 +12,15 @@
 //!    pose; after `max_subdivisions` halvings report [`Error::Unassemblable`] or
 //!    [`Error::BranchFlip`], naming the drive position and the loop's joints.
 
+use super::block_lu::BlockLu;
 use super::branch::{self, Loop};
 use super::constraints::Equations;
+use super::implicit::{self, Factorised};
+use super::kinematics::Kinematics;
 use super::mobility::{self, Mobility};
 use super::model::Mechanism;
-use super::implicit;
-use super::kinematics::Kinematics;
 use crate::{Error, Jet};
-use nalgebra::{DMatrix, DVector, LU};
+use nalgebra::{DMatrix, DVector};
 
 /// Configuration of the position solver.
 ///
@@ -107,16 +108,24 @@ impl Solver {
         })?;
         let n = eq.coordinates();
         let size = super::validate::sketch_size(m);
+        let row_columns = branch::structure(&eq);
+        let mut unit_drive = DVector::zeros(n);
+        unit_drive[n - 1] = 1.0;
         let mut t = Tracker {
+            unit_drive,
             mechanism: m,
             solver: *self,
             mobility,
             jac: DMatrix::zeros(n, n),
+            lu: BlockLu::new(&loops, &row_columns),
             work: DMatrix::zeros(n, n),
+            work_lu: BlockLu::new(&loops, &row_columns),
             residual: DVector::zeros(n),
+            trial: DVector::zeros(n),
+            trial_residual: DVector::zeros(n),
+            step: DVector::zeros(n),
             q: DVector::from_vec(m.sketch_coordinates()),
             phi: m.drive_at_sketch,
-            lu: None,
             dq: DVector::zeros(n),
             ddq: DVector::zeros(n),
             certificates: Vec::new(),
@@ -124,7 +133,11 @@ impl Solver {
             size,
             eq,
         };
-        t.certificates = t.refresh(t.phi)?;
+        t.trial.copy_from(&t.q);
+        let phi = t.phi;
+        t.eq.evaluate(t.trial.as_slice(), phi, t.trial_residual.as_mut_slice());
+        t.certificates = t.check_trial(phi)?;
+        t.accept(phi)?;
         Ok(t)
     }
 }
@@ -136,7 +149,7 @@ pub struct SolveReport {
     pub phi: f64,
     /// Newton iterations used in total (all sub-steps).
     pub iterations: usize,
-    /// Sub-steps taken (1 if the whole step was accepted at once).
+    /// Sub-steps accepted (1 if the whole step was accepted at once).
     pub steps: usize,
     /// Final max |Φ| (m or rad).
     pub residual: f64,
@@ -152,18 +165,24 @@ pub struct Tracker<'m> {
     mechanism: &'m Mechanism,
     solver: Solver,
     mobility: Mobility,
-    pub(crate) eq: Equations,
+    eq: Equations,
     loops: Vec<Loop>,
     size: f64,
+    /// Φ_q at the current pose and its factorisation (reused for q′, q″, q‴).
     jac: DMatrix<f64>,
-    /// Scratch Jacobian for Newton iterations.
+    lu: BlockLu,
+    /// Scratch Jacobian and factorisation for trial poses.
     work: DMatrix<f64>,
+    work_lu: BlockLu,
     residual: DVector<f64>,
-    pub(crate) q: DVector<f64>,
-    pub(crate) phi: f64,
-    /// LU of Φ_q at (q, φ), reused for q′, q″, q‴.
-    pub(crate) lu: Option<LU<f64, nalgebra::Dyn, nalgebra::Dyn>>,
-    pub(crate) dq: DVector<f64>,
+    trial: DVector<f64>,
+    trial_residual: DVector<f64>,
+    step: DVector<f64>,
+    /// e_drive = −Φ_φ.
+    unit_drive: DVector<f64>,
+    q: DVector<f64>,
+    phi: f64,
+    dq: DVector<f64>,
     ddq: DVector<f64>,
     certificates: Vec<i8>,
 }
@@ -216,29 +235,33 @@ impl<'m> Tracker<'m> {
     }
 
     /// The pose at the current drive position with its first `N` (1 ≤ N ≤ 3) exact
-    /// derivatives with respect to φ, by implicit differentiation with the LU already
-    /// computed for the pose (see [`super::implicit`]).
+    /// derivatives with respect to φ, by implicit differentiation with the factorisation
+    /// already computed for the pose (see [`super::implicit`]).
     pub fn kinematics<const N: usize>(&self) -> Result<Kinematics<'m, N>, Error> {
         const { assert!(N >= 1 && N <= 3, "the geometry solver lifts derivatives of order 1 to 3") };
-        let singular = || Error::Singular {
-            phi: self.phi,
-            condition: f64::INFINITY,
-            joints: self.mechanism.joints.iter().map(|j| j.name.clone()).collect(),
-        };
-        let lu = self.lu.as_ref().ok_or_else(singular)?;
-        let dddq = if N == 3 {
-            implicit::third_derivative(&self.eq, lu, &self.q, &self.dq, &self.ddq, self.phi)
-                .ok_or_else(singular)?
-        } else {
-            DVector::zeros(0)
-        };
+        let mut dddq = vec![0.0; self.q.len()];
+        if N == 3 {
+            let lu = Loops { jac: &self.jac, loops: &self.loops, lu: &self.lu };
+            let (q, dq, ddq) = (self.q.as_slice(), self.dq.as_slice(), self.ddq.as_slice());
+            if !implicit::third_derivative(&self.eq, &lu, q, dq, ddq, self.phi, &mut dddq) {
+                return Err(self.singular(self.phi));
+            }
+        }
         let coordinates = (0..self.q.len())
             .map(|i| {
-                let d = [self.dq[i], self.ddq[i], dddq.get(i).copied().unwrap_or(0.0)];
+                let d = [self.dq[i], self.ddq[i], dddq[i]];
                 Jet::new(self.q[i], std::array::from_fn(|k| d[k]))
             })
             .collect();
         Ok(Kinematics::new(self.mechanism, self.phi, coordinates))
+    }
+
+    fn singular(&self, phi: f64) -> Error {
+        Error::Singular {
+            phi,
+            condition: f64::INFINITY,
+            joints: self.mechanism.joints.iter().map(|j| j.name.clone()).collect(),
+        }
     }
 
     /// Moves to drive position `phi`, keeping every loop on its branch.
@@ -258,34 +281,38 @@ impl<'m> Tracker<'m> {
         while self.phi != phi {
             let h = (phi - self.phi) / f64::powi(2.0, halvings as i32);
             let target = if halvings == 0 { phi } else { self.phi + h };
-            let start = &self.q + &self.dq * h + &self.ddq * (0.5 * h * h);
-            let failure = match self.newton(start, target) {
-                Ok((q, iterations)) => {
+            // Taylor predictor q + h q′ + h²/2 q″.
+            for i in 0..self.q.len() {
+                self.trial[i] = self.q[i] + h * (self.dq[i] + 0.5 * h * self.ddq[i]);
+            }
+            let failure = match self.newton(target) {
+                Ok(iterations) => {
                     report.iterations += iterations;
-                    let saved = self.save();
-                    self.q = q;
-                    let certificates = self.refresh(target)?;
+                    let certificates = self.check_trial(target)?;
                     match certificates.iter().zip(&self.certificates).position(|(a, b)| a != b) {
                         None => {
+                            self.accept(target)?;
                             report.steps += 1;
                             halvings = halvings.saturating_sub(1);
                             continue;
                         }
                         Some(l) => {
-                            let joints = self.loop_joints(&self.loops[l]);
-                            self.restore(saved);
                             report.branch_rejections += 1;
-                            Error::BranchFlip { from: self.phi, to: target, joints }
+                            Error::BranchFlip {
+                                from: self.phi,
+                                to: target,
+                                joints: self.loop_joints(&self.loops[l]),
+                            }
                         }
                     }
                 }
                 Err((residual, l)) => {
                     report.newton_failures += 1;
                     Error::Unassemblable {
-                    phi,
-                    last_assembled: self.phi,
-                    joints: self.loop_joints(&self.loops[l]),
-                    residual,
+                        phi,
+                        last_assembled: self.phi,
+                        joints: self.loop_joints(&self.loops[l]),
+                        residual,
                     }
                 }
             };
@@ -299,94 +326,120 @@ impl<'m> Tracker<'m> {
         Ok(report)
     }
 
-    fn save(&self) -> Saved {
-        Saved {
-            q: self.q.clone(),
-            phi: self.phi,
-            jac: self.jac.clone(),
-            residual: self.residual.clone(),
-            lu: self.lu.clone(),
-            dq: self.dq.clone(),
-            ddq: self.ddq.clone(),
-        }
-    }
-
-    fn restore(&mut self, s: Saved) {
-        (self.q, self.phi, self.jac, self.residual) = (s.q, s.phi, s.jac, s.residual);
-        (self.lu, self.dq, self.ddq) = (s.lu, s.dq, s.ddq);
-    }
-
-    /// Newton from `start` at drive position `phi`: the converged q and the iterations, or
-    /// the final residual and the loop with the largest residual.
-    fn newton(&mut self, start: DVector<f64>, phi: f64) -> Result<(DVector<f64>, usize), (f64, usize)> {
-        let mut q = start;
-        let mut r = DVector::zeros(self.residual.len());
+    /// Newton on `trial` at drive position `phi`: the iterations, or the final residual and
+    /// the loop with the largest residual. Leaves Φ(trial) in `trial_residual`.
+    fn newton(&mut self, phi: f64) -> Result<usize, (f64, usize)> {
         let limit = self.solver.tolerance * self.size;
         for iteration in 0..=self.solver.max_iterations {
-            self.eq.evaluate(q.as_slice(), phi, r.as_mut_slice());
-            let norm = r.amax();
+            self.eq.evaluate(self.trial.as_slice(), phi, self.trial_residual.as_mut_slice());
+            let norm = self.trial_residual.amax();
             if norm <= limit {
-                return Ok((q, iteration));
+                return Ok(iteration);
             }
             if !norm.is_finite() || iteration == self.solver.max_iterations {
                 break;
             }
-            self.eq.jacobian(q.as_slice(), &mut self.work);
-            match self.work.clone().lu().solve(&r) {
-                Some(step) if step.iter().all(|s| s.is_finite()) => q -= step,
-                _ => break,
+            self.eq.jacobian(self.trial.as_slice(), &mut self.work);
+            let solved = self.work_lu.factor(&self.work, &self.loops)
+                && self.work_lu.solve(
+                    &self.work,
+                    &self.loops,
+                    self.trial_residual.as_slice(),
+                    self.step.as_mut_slice(),
+                );
+            if !solved {
+                break;
             }
+            self.trial -= &self.step;
         }
-        Err((r.amax(), self.worst_loop(&r)))
+        Err((self.trial_residual.amax(), self.worst_loop()))
     }
 
-    /// Accepts the pose `q` at `phi`: Jacobian, LU, q′, q″; returns the loops' branch
-    /// certificates, or [`Error::Singular`].
-    fn refresh(&mut self, phi: f64) -> Result<Vec<i8>, Error> {
-        self.phi = phi;
-        self.eq.evaluate(self.q.as_slice(), phi, self.residual.as_mut_slice());
-        self.eq.jacobian(self.q.as_slice(), &mut self.jac);
-        let mut scaled = self.jac.clone();
-        mobility::scale(&self.eq, &mut scaled, self.size);
+    /// Φ_q at the converged trial pose: factorises it into `work_lu` and returns every loop's
+    /// branch certificate, or [`Error::Singular`] if a loop's condition exceeds the limit.
+    fn check_trial(&mut self, phi: f64) -> Result<Vec<i8>, Error> {
+        self.eq.jacobian(self.trial.as_slice(), &mut self.work);
+        let factored = self.work_lu.factor(&self.work, &self.loops);
+        let limit = self.solver.singular_threshold();
         let mut certificates = Vec::with_capacity(self.loops.len());
-        for l in &self.loops {
-            let limit = self.solver.singular_threshold();
-            let (sign, condition) = branch::certificate(&scaled, l, limit);
-            if !(condition <= limit) {
-                return Err(Error::Singular { phi, condition, joints: self.loop_joints(l) });
+        for (i, l) in self.loops.iter().enumerate() {
+            let det = if factored { self.work_lu.determinant(i) } else { 0.0 };
+            // Hadamard screen on the scaled block with unit columns (see branch::certificate):
+            // its determinant is det · Π(row scales) / Π(column norms), the column scales
+            // cancelling.
+            let mut normalized = det;
+            for &r in &l.rows {
+                if self.eq.angular[r] {
+                    normalized *= self.size;
+                }
             }
-            certificates.push(sign);
-        }
-        let lu = self.jac.clone().lu();
-        // Polish: one more Newton step with this LU takes the converged pose from the
-        // tolerance down to rounding (the Jacobian, ~1e-13 away, is still the right one for
-        // the derivatives to that order).
-        if let Some(step) = lu.solve(&self.residual) {
-            if step.iter().all(|s| s.is_finite()) {
-                self.q -= step;
-                self.eq.evaluate(self.q.as_slice(), phi, self.residual.as_mut_slice());
+            for &c in &l.columns {
+                let norm = l
+                    .rows
+                    .iter()
+                    .map(|&r| {
+                        let v = self.work[(r, c)] * if self.eq.angular[r] { self.size } else { 1.0 };
+                        v * v
+                    })
+                    .sum::<f64>()
+                    .sqrt();
+                normalized /= norm;
             }
+            let k = l.rows.len() as f64;
+            if !(k.powf(0.5 * k) / normalized.abs() <= limit) {
+                let mut scaled = self.work.clone();
+                mobility::scale(&self.eq, &mut scaled, self.size);
+                let (_, condition) = branch::certificate(&scaled, l, limit);
+                if !(condition <= limit) {
+                    return Err(Error::Singular { phi, condition, joints: self.loop_joints(l) });
+                }
+            }
+            certificates.push(if det > 0.0 { 1 } else { -1 });
         }
-        let singular = || Error::Singular {
-            phi,
-            condition: f64::INFINITY,
-            joints: self.mechanism.joints.iter().map(|j| j.name.clone()).collect(),
-        };
-        let mut e = DVector::zeros(self.q.len());
-        e[self.q.len() - 1] = 1.0;
-        // Φ_q q′ = −Φ_φ = e_drive (the drive row is the only one that depends on φ).
-        self.dq = lu.solve(&e).ok_or_else(singular)?;
-        self.ddq = implicit::second_derivative(&self.eq, &lu, &self.q, &self.dq, phi)
-            .ok_or_else(singular)?;
-        self.lu = Some(lu);
         Ok(certificates)
     }
 
-    /// The loop whose equations are furthest from being satisfied by residual `r`.
-    fn worst_loop(&self, r: &DVector<f64>) -> usize {
+    /// Makes the checked trial pose current: polishes it with one more Newton step (the
+    /// factorisation is at the pose itself, so this takes the residual from the tolerance
+    /// down to rounding), then q′ and q″.
+    fn accept(&mut self, phi: f64) -> Result<(), Error> {
+        std::mem::swap(&mut self.jac, &mut self.work);
+        std::mem::swap(&mut self.lu, &mut self.work_lu);
+        std::mem::swap(&mut self.q, &mut self.trial);
+        self.phi = phi;
+        let lu = Loops { jac: &self.jac, loops: &self.loops, lu: &self.lu };
+        if lu.solve_into(self.trial_residual.as_slice(), self.step.as_mut_slice()) {
+            self.q -= &self.step;
+        }
+        self.eq.evaluate(self.q.as_slice(), phi, self.residual.as_mut_slice());
+        // Φ_q q′ = −Φ_φ = e_drive (the drive row, last, is the only one that depends on φ).
+        let ok = lu.solve_into(self.unit_drive.as_slice(), self.dq.as_mut_slice())
+            && implicit::second_derivative(
+                &self.eq,
+                &lu,
+                self.q.as_slice(),
+                self.dq.as_slice(),
+                phi,
+                self.ddq.as_mut_slice(),
+            );
+        if !ok {
+            return Err(self.singular(phi));
+        }
+        self.certificates_refresh();
+        Ok(())
+    }
+
+    fn certificates_refresh(&mut self) {
+        for (i, c) in self.certificates.iter_mut().enumerate() {
+            *c = if self.lu.determinant(i) > 0.0 { 1 } else { -1 };
+        }
+    }
+
+    /// The loop whose equations are furthest from being satisfied by the trial residual.
+    fn worst_loop(&self) -> usize {
         let mut worst = (0.0, 0);
         for (i, l) in self.loops.iter().enumerate() {
-            let x = l.rows.iter().map(|&row| r[row].abs()).fold(0.0, f64::max);
+            let x = l.rows.iter().map(|&row| self.trial_residual[row].abs()).fold(0.0, f64::max);
             if !(x <= worst.0) {
                 worst = (x, i);
             }
@@ -395,13 +448,15 @@ impl<'m> Tracker<'m> {
     }
 }
 
-/// A tracker's state, kept to undo a rejected step.
-struct Saved {
-    q: DVector<f64>,
-    phi: f64,
-    jac: DMatrix<f64>,
-    residual: DVector<f64>,
-    lu: Option<LU<f64, nalgebra::Dyn, nalgebra::Dyn>>,
-    dq: DVector<f64>,
-    ddq: DVector<f64>,
+/// A factorised Φ_q with the matrix it came from, as a linear solver.
+struct Loops<'a> {
+    jac: &'a DMatrix<f64>,
+    loops: &'a [Loop],
+    lu: &'a BlockLu,
+}
+
+impl Factorised for Loops<'_> {
+    fn solve_into(&self, b: &[f64], x: &mut [f64]) -> bool {
+        self.lu.solve(self.jac, self.loops, b, x)
+    }
 }

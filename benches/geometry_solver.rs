@@ -1,0 +1,123 @@
+//! Cost of the geometry-only Whitworth per drive position against its closed form.
+//!
+//! - `whitworth ψ,ψ′,ψ″ per drive position: geometry solver vs closed-form Dual2` — one
+//!   revolution at 0.5° steps; the geometry path is a warm-started Newton solve plus the
+//!   implicit lift to second order plus reading ψ; the closed form is
+//!   ψ = atan2(λ sin φ, 1 − λ cos φ) in `Dual2_64`.
+//! - `whitworth lift q′,q″ at one pose: one LU + Dual2 vs num-dual implicit_derivative_vec`
+//!   — the two exact ways to differentiate the solved pose.
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use mechdiff_core::geometry::{Drive, Equations, Mechanism, Solver, implicit};
+use nalgebra::{SVector, U9};
+use num_dual::{Dual2_64, DualNum, DualVec, implicit_derivative_vec};
+use std::hint::black_box;
+
+const L0: f64 = 0.4;
+const L1: f64 = 0.15;
+const H: f64 = 0.65;
+
+/// The Whitworth of whitworth_000.md by geometry only (as in core/tests/common).
+fn whitworth() -> Mechanism {
+    Mechanism::builder()
+        .point("O", [0.0, L0])
+        .point("B0", [0.0, 0.0])
+        .point("A", [0.0, L0 - L1])
+        .point("S", [0.0, H])
+        .point("C", [0.0, H])
+        .point("H0", [0.0, H])
+        .point("H1", [1.0, H])
+        .ground(["O", "B0", "H0", "H1"])
+        .link("crank", ["O", "A"])
+        .link("rocker", ["B0", "S"])
+        .link("ram", ["C"])
+        .revolute("O", "ground", "crank", "O")
+        .revolute("B0", "ground", "rocker", "B0")
+        .pin_in_slot("slot A", "rocker", ["B0", "S"], "crank", "A")
+        .prismatic("ram guide", "ground", ["H0", "H1"], "ram", "C")
+        .pin_in_slot("slot C", "rocker", ["B0", "S"], "ram", "C")
+        .drive(Drive::angle("O"))
+        .build()
+        .expect("valid model")
+}
+
+fn closed_form_psi(phi: f64) -> Dual2_64 {
+    let lambda = L1 / L0;
+    let phi = Dual2_64::new(phi, 1.0, 0.0);
+    (phi.sin() * lambda).atan2(-phi.cos() * lambda + 1.0)
+}
+
+fn per_drive_position(c: &mut Criterion) {
+    let m = whitworth();
+    let phis: Vec<f64> = (1..=720).map(|i| (i as f64 * 0.5).to_radians()).collect();
+    let start = Solver::default().track(&m).expect("assembles");
+    let mut group =
+        c.benchmark_group("whitworth ψ,ψ′,ψ″ per drive position: geometry solver vs closed-form Dual2");
+    group.throughput(Throughput::Elements(phis.len() as u64));
+    group.bench_function(BenchmarkId::new("geometry solve + lift", "720 positions"), |b| {
+        b.iter(|| {
+            let mut t = start.clone();
+            let mut acc = 0.0;
+            for &phi in &phis {
+                t.move_to(black_box(phi)).expect("assembles");
+                let k = t.kinematics::<2>().expect("regular");
+                let psi = k.rotation("rocker").expect("link exists");
+                acc += psi.value + psi.d1() + psi.d2();
+            }
+            acc
+        })
+    });
+    group.bench_function(BenchmarkId::new("closed-form Dual2", "720 positions"), |b| {
+        b.iter(|| {
+            let mut acc = 0.0;
+            for &phi in &phis {
+                let psi = closed_form_psi(black_box(phi));
+                acc += psi.re + psi.v1 + psi.v2;
+            }
+            acc
+        })
+    });
+    group.finish();
+}
+
+fn lift(c: &mut Criterion) {
+    let m = whitworth();
+    let eq = Equations::new(&m);
+    let mut t = Solver::default().track(&m).expect("assembles");
+    let phi = 1.0;
+    t.move_to(phi).expect("assembles");
+    let q = t.coordinates().to_vec();
+    let x = SVector::<f64, 9>::from_column_slice(&q);
+    // Both must agree before they are timed (exact methods: 1e-12 on O(1) values).
+    let ours = implicit::lift(&eq, &q, phi, 2).expect("regular");
+    let theirs = lift_num_dual(&eq, x, phi);
+    for i in 0..9 {
+        assert!((ours[0][i] - theirs[i].v1).abs() < 1e-12 && (ours[1][i] - theirs[i].v2).abs() < 1e-12);
+    }
+    let mut group = c.benchmark_group(
+        "whitworth lift q′,q″ at one pose: one LU + Dual2 vs num-dual implicit_derivative_vec",
+    );
+    group.bench_function("one LU + Dual2 (mechdiff)", |b| {
+        b.iter(|| implicit::lift(&eq, black_box(&q), black_box(phi), 2))
+    });
+    group.bench_function("implicit_derivative_vec (num-dual)", |b| {
+        b.iter(|| lift_num_dual(&eq, black_box(x), black_box(phi)))
+    });
+    group.finish();
+}
+
+fn lift_num_dual(eq: &Equations, x: SVector<f64, 9>, phi: f64) -> SVector<Dual2_64, 9> {
+    let arg = Dual2_64::new(phi, 1.0, 0.0);
+    implicit_derivative_vec(
+        |q: SVector<DualVec<Dual2_64, U9>, 9>, phi: &DualVec<Dual2_64, U9>| {
+            let mut out = [DualVec::from_re(Dual2_64::from(0.0)); 9];
+            eq.evaluate(q.as_slice(), *phi, &mut out);
+            SVector::from(out)
+        },
+        x,
+        &arg,
+    )
+}
+
+criterion_group!(benches, per_drive_position, lift);
+criterion_main!(benches);

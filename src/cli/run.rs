@@ -1,0 +1,46 @@
+//! `mechdiff run <scene.toml> [--csv out.csv]`: run a scene and print its table.
+
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::PathBuf;
+
+use clap::Args;
+use mechdiff::Error;
+use mechdiff::scene::{self, table};
+
+/// Arguments of `mechdiff run`.
+#[derive(Debug, Args)]
+pub struct RunArgs {
+    /// The scene file (TOML; see docs/scene-format.md).
+    pub scene: PathBuf,
+    /// Also write every column at every drive position to this CSV file (header: `name [unit]`).
+    #[arg(long, value_name = "FILE")]
+    pub csv: Option<PathBuf>,
+}
+
+/// Reads, checks and runs the scene; prints the plan, the table and the dead positions.
+pub fn run(args: &RunArgs) -> Result<(), Error> {
+    let scene = scene::load(&args.scene)?;
+    let report = scene::run(&scene)?;
+    if let Some(path) = &args.csv {
+        let write = |path: &PathBuf| -> std::io::Result<()> {
+            let mut out = BufWriter::new(File::create(path)?);
+            table::write_csv(&report, &mut out)?;
+            out.flush()
+        };
+        write(path).map_err(|source| Error::Write {
+            path: path.clone(),
+            source,
+        })?;
+    }
+    let stdout = std::io::stdout();
+    let mut out = BufWriter::new(stdout.lock());
+    match table::write_table(&scene, &report, &mut out).and_then(|()| out.flush()) {
+        // The reader went away (`mechdiff run s.toml | head`): not an error of ours.
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        result => result.map_err(|source| Error::Write {
+            path: PathBuf::from("<stdout>"),
+            source,
+        }),
+    }
+}

@@ -1,0 +1,189 @@
+//! The facade crate's error type.
+
+use std::fmt;
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use thiserror::Error;
+
+/// A place in a scene file: `file:line:column` (1-based, columns in characters).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Location {
+    /// The file as named on the command line (or as given to [`crate::scene::parse`]).
+    pub file: Arc<str>,
+    /// Line, from 1.
+    pub line: usize,
+    /// Column, from 1.
+    pub column: usize,
+}
+
+impl fmt::Display for Location {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}:{}:{}", self.file, self.line, self.column)
+    }
+}
+
+/// Everything that can go wrong when reading, checking or running a scene.
+///
+/// Errors found in the file carry its [`Location`]; errors found while solving carry the
+/// drive position (in the scene's units) and the loop of joints involved.
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// The scene file could not be read.
+    #[error("cannot read {path}: {source}")]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// The operating system's reason.
+        source: std::io::Error,
+    },
+    /// An output file (CSV) could not be written.
+    #[error("cannot write {path}: {source}")]
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// The operating system's reason.
+        source: std::io::Error,
+    },
+    /// The file is not valid TOML, or a key, type or value is not one the format knows
+    /// (misspelt key, unknown joint type, unknown unit, wrong value type). The message says
+    /// what was expected.
+    #[error("{location}: {message}")]
+    Syntax {
+        /// Where.
+        location: Location,
+        /// What is wrong and what was expected.
+        message: String,
+    },
+    /// A name refers to a point that is not defined in `[points]`.
+    #[error("{location}: unknown point `{name}` in {context}; the points are: {known}")]
+    UnknownPoint {
+        /// Where the name is used.
+        location: Location,
+        /// The unknown name.
+        name: String,
+        /// What uses it, e.g. "link `crank`".
+        context: String,
+        /// The defined points, comma-separated.
+        known: String,
+    },
+    /// A name refers to a link or joint that does not exist.
+    #[error("{location}: unknown {what} `{name}` in {context}; expected one of: {known}")]
+    UnknownName {
+        /// Where the name is used.
+        location: Location,
+        /// "link" or "joint".
+        what: &'static str,
+        /// The unknown name.
+        name: String,
+        /// What uses it.
+        context: String,
+        /// The defined names, comma-separated.
+        known: String,
+    },
+    /// A point is defined twice, or listed twice where it may appear once.
+    #[error("{location}: point `{name}` appears twice in {context}")]
+    DuplicatePoint {
+        /// Where the second occurrence is.
+        location: Location,
+        /// The point.
+        name: String,
+        /// Where it may appear once, e.g. "`[points]`" or "link `rocker`".
+        context: String,
+    },
+    /// A length (distance, radius, line between two points, sweep step) is zero or negative.
+    #[error("{location}: {what} must be positive, found {value}")]
+    NonPositiveLength {
+        /// Where.
+        location: Location,
+        /// What the length is.
+        what: String,
+        /// The value found, in the file's units.
+        value: f64,
+    },
+    /// Any other inconsistency in the file (a field missing for a joint type, a point off
+    /// its slot in the sketch, a link without points, ...).
+    #[error("{location}: {message}")]
+    Invalid {
+        /// Where.
+        location: Location,
+        /// What is wrong and what is expected.
+        message: String,
+    },
+    /// The mechanism as a whole is rejected by the geometry model (mobility, redundancy).
+    #[error("{file}: {source}")]
+    Model {
+        /// The scene file.
+        file: String,
+        /// The model's reason.
+        source: mechdiff_core::Error,
+    },
+    /// The mechanism cannot be assembled at a drive position of the sweep.
+    #[error(
+        "{file}: cannot assemble at drive position {position} (last assembled at {last}): \
+         the loop of joints {loop_joints} does not close (residual {residual:e} m)"
+    )]
+    Unassemblable {
+        /// The scene file.
+        file: String,
+        /// The drive position, with its unit.
+        position: String,
+        /// The last drive position that assembled, with its unit.
+        last: String,
+        /// The joints of the loop that does not close, comma-separated.
+        loop_joints: String,
+        /// The remaining constraint residual (m).
+        residual: f64,
+    },
+    /// The position is singular: the drive cannot move the mechanism there (toggle).
+    #[error(
+        "{file}: singular position (toggle) at drive position {position}: the loop of joints \
+         {loop_joints} locks the driven link (condition number {condition:e})"
+    )]
+    Singular {
+        /// The scene file.
+        file: String,
+        /// The drive position, with its unit.
+        position: String,
+        /// The joints of the singular loop, comma-separated.
+        loop_joints: String,
+        /// Condition number of the constraint Jacobian there.
+        condition: f64,
+    },
+    /// No drive position was found where an output takes a value asked for by
+    /// `[sweep] of` (the value is out of the output's range, or at one of its dead positions).
+    #[error(
+        "{file}: no drive position found where `{output}` = {value} (searched by Newton from \
+         the previous position; last tried {last}); is the value within the output's range and \
+         away from its dead positions?"
+    )]
+    NotReached {
+        /// The scene file.
+        file: String,
+        /// The output named by `[sweep] of`.
+        output: String,
+        /// The value asked for, with its unit.
+        value: String,
+        /// The last drive position tried, with its unit.
+        last: String,
+    },
+    /// The solver would jump to the other assembly branch between two drive positions.
+    #[error(
+        "{file}: the loop of joints {loop_joints} would change assembly branch between drive \
+         positions {from} and {to}; use a finer step or stop the sweep before"
+    )]
+    BranchFlip {
+        /// The scene file.
+        file: String,
+        /// Last position on the sketch's branch, with its unit.
+        from: String,
+        /// Position where the flip was detected, with its unit.
+        to: String,
+        /// The joints of the loop, comma-separated.
+        loop_joints: String,
+    },
+}
+
+/// Result with the facade's [`enum@Error`].
+pub type Result<T, E = Error> = std::result::Result<T, E>;

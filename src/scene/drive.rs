@@ -1,0 +1,236 @@
+//! Checking `[drive]` and `[sweep]`.
+
+use std::f64::consts::TAU;
+
+use toml::Spanned;
+
+use crate::error::{Error, Result};
+
+use super::format::{DriveSection, SweepSection};
+use super::model::{Drive, DriveKind, Joint, JointKind, Output, OutputKind};
+use super::resolve::{Context, GROUND, Geometry};
+use super::units::Dimension;
+
+/// The most drive positions a sweep may have (a typo like `step = 1e-9` should not hang).
+pub const MAX_POSITIONS: usize = 1_000_000;
+
+/// Direction angle of the line `a → b` in the sketch (rad).
+pub(crate) fn direction(geometry: &Geometry, [a, b]: [&str; 2]) -> f64 {
+    let (a, b) = (geometry.sketch(a), geometry.sketch(b));
+    (b[1] - a[1]).atan2(b[0] - a[0])
+}
+
+impl Context<'_> {
+    pub(crate) fn drive(
+        &self,
+        section: &Spanned<DriveSection>,
+        geometry: &Geometry,
+        joints: &[Joint],
+    ) -> Result<Drive> {
+        let d = section.get_ref();
+        let Some(joint) = joints.iter().find(|j| &j.name == d.joint.get_ref()) else {
+            let known: Vec<&str> = joints.iter().map(|j| j.name.as_str()).collect();
+            return Err(Error::UnknownName {
+                location: self.at(&d.joint),
+                what: "joint",
+                name: d.joint.get_ref().clone(),
+                context: "`[drive]`".to_owned(),
+                known: known.join(", "),
+            });
+        };
+        let (kind, at_sketch) = match &joint.kind {
+            JointKind::Revolute { links, .. } => {
+                let Some(line) = &d.line else {
+                    return Err(self.invalid(
+                        section,
+                        format!(
+                            "`[drive]` of revolute joint `{}` needs `line = [\"P\", \"Q\"]`: two \
+                            points of link `{}` whose angle is the drive",
+                            joint.name, links[1]
+                        ),
+                    ));
+                };
+                let context = format!("`[drive] line` (of the driven link `{}`)", links[1]);
+                let line = self.line(line, &links[1], geometry, &context)?;
+                let mut angle = direction(geometry, [&line[0], &line[1]]);
+                match &d.reference {
+                    Some(reference) => {
+                        let context = format!("`[drive] reference` (of link `{}`)", links[0]);
+                        let reference = self.line(reference, &links[0], geometry, &context)?;
+                        angle -= direction(geometry, [&reference[0], &reference[1]]);
+                    }
+                    None if links[0] != GROUND => {
+                        return Err(self.invalid(
+                            section,
+                            format!(
+                                "`[drive]`: joint `{}` turns relative to link `{}`, not the \
+                                ground; give `reference = [\"P\", \"Q\"]`, two points of `{}`",
+                                joint.name, links[0], links[0]
+                            ),
+                        ));
+                    }
+                    None => {}
+                }
+                (DriveKind::Angle, angle)
+            }
+            JointKind::Prismatic { line, point, .. } => {
+                if let Some(extra) = d
+                    .line
+                    .as_ref()
+                    .map(|l| l.span())
+                    .or(d.reference.as_ref().map(|r| r.span()))
+                {
+                    return Err(Error::Invalid {
+                        location: self.source.location(extra),
+                        message: format!(
+                            "`[drive]`: joint `{}` is prismatic, its displacement is measured \
+                            along its own line; `line` and `reference` apply to a revolute drive \
+                            only",
+                            joint.name
+                        ),
+                    });
+                }
+                let (a, b, p) = (
+                    geometry.sketch(&line[0]),
+                    geometry.sketch(&line[1]),
+                    geometry.sketch(point),
+                );
+                let (ux, uy) = (b[0] - a[0], b[1] - a[1]);
+                let s = ((p[0] - a[0]) * ux + (p[1] - a[1]) * uy) / ux.hypot(uy);
+                (DriveKind::Displacement, s)
+            }
+            other => {
+                return Err(self.invalid(
+                    &d.joint,
+                    format!(
+                        "`[drive]`: joint `{}` is {}; expected a revolute or prismatic joint",
+                        joint.name,
+                        other.type_name()
+                    ),
+                ));
+            }
+        };
+        let speed = d
+            .speed
+            .as_ref()
+            .map(|v| self.number(v, "`[drive] speed`", kind.speed_dimension()))
+            .transpose()?;
+        let acceleration = d
+            .acceleration
+            .as_ref()
+            .map(|v| self.number(v, "`[drive] acceleration`", kind.acceleration_dimension()))
+            .transpose()?
+            .unwrap_or(0.0);
+        Ok(Drive {
+            joint: joint.name.clone(),
+            kind,
+            at_sketch,
+            speed,
+            acceleration,
+            location: self.at(section),
+        })
+    }
+
+    /// The output named by `[sweep] of`, if any: an angle or slider output.
+    pub(crate) fn sweep_of(
+        &self,
+        section: &Spanned<SweepSection>,
+        outputs: &[Output],
+    ) -> Result<Option<usize>> {
+        let Some(name) = &section.get_ref().of else {
+            return Ok(None);
+        };
+        let Some(k) = outputs.iter().position(|o| &o.name == name.get_ref()) else {
+            let known: Vec<&str> = outputs.iter().map(|o| o.name.as_str()).collect();
+            return Err(self.invalid(
+                name,
+                format!(
+                    "`[sweep] of`: no output is named `{}`; expected the name of an angle or \
+                     slider output: {}",
+                    name.get_ref(),
+                    known.join(", ")
+                ),
+            ));
+        };
+        if matches!(outputs[k].kind, OutputKind::Point(_)) {
+            return Err(self.invalid(
+                name,
+                format!(
+                    "`[sweep] of`: output `{}` is a point (two values); expected an angle or \
+                     slider output",
+                    outputs[k].name
+                ),
+            ));
+        }
+        Ok(Some(k))
+    }
+
+    /// The positions (SI) of `[sweep]`: drive positions, or values of the `of` output.
+    pub(crate) fn sweep(
+        &self,
+        section: &Spanned<SweepSection>,
+        dimension: Dimension,
+    ) -> Result<Vec<f64>> {
+        let s = section.get_ref();
+        let expected = "expected either `from`, `to` and `step`, or `positions = [...]`";
+        match (&s.positions, &s.from, &s.to, &s.step) {
+            (Some(list), None, None, None) => {
+                if list.get_ref().is_empty() {
+                    return Err(self.invalid(
+                        list,
+                        "`positions` is empty; expected at least one drive position",
+                    ));
+                }
+                list.get_ref()
+                    .iter()
+                    .map(|&v| {
+                        if v.is_finite() {
+                            Ok(self.units.to_si(v, dimension))
+                        } else {
+                            Err(self.invalid(
+                                list,
+                                format!("`positions` must be finite numbers, found {v}"),
+                            ))
+                        }
+                    })
+                    .collect()
+            }
+            (None, Some(from), Some(to), Some(step)) => {
+                self.positive(step, "`[sweep] step`", dimension)?;
+                let (from_si, to_si) = (
+                    self.number(from, "`[sweep] from`", dimension)?,
+                    self.number(to, "`[sweep] to`", dimension)?,
+                );
+                if to_si < from_si {
+                    return Err(self.invalid(
+                        to,
+                        "`[sweep] to` must not be below `from`; the step is positive",
+                    ));
+                }
+                // Count in the file's units so that 0..360 by 0.5 has exactly 721 positions.
+                let (f, t, h) = (*from.get_ref(), *to.get_ref(), *step.get_ref());
+                let intervals = ((t - f) / h * (1.0 + 4.0 * f64::EPSILON)).floor();
+                if intervals >= MAX_POSITIONS as f64 {
+                    return Err(self.invalid(
+                        step,
+                        format!(
+                            "the sweep has more than {MAX_POSITIONS} positions; expected a \
+                            larger step"
+                        ),
+                    ));
+                }
+                let n = intervals as usize + 1;
+                Ok((0..n)
+                    .map(|i| self.units.to_si(f + i as f64 * h, dimension))
+                    .collect())
+            }
+            _ => Err(self.invalid(section, format!("`[sweep]`: {expected}"))),
+        }
+    }
+}
+
+/// Moves the sketch's drive angle by whole turns to within half a turn of `target`, so that
+/// the solver goes the short way from the sketch to the first position.
+pub(crate) fn nearest_turn(angle: f64, target: f64) -> f64 {
+    angle + ((target - angle) / TAU).round() * TAU
+}

@@ -1,0 +1,259 @@
+//! A checked scene: names resolved, numbers in SI, every item with its place in the file.
+
+use crate::error::Location;
+
+use super::format::{Quantity, Sense};
+use super::units::{Dimension, Units};
+
+/// A scene after parsing and checking: ready to build into a geometry model and run.
+#[derive(Debug, Clone)]
+pub struct Scene {
+    /// The file name used in messages.
+    pub file: String,
+    /// The scene's title, if it has one.
+    pub title: Option<String>,
+    /// The units of the file and of the printed results.
+    pub units: Units,
+    /// Points in file order, sketch coordinates in m.
+    pub points: Vec<Point>,
+    /// Links in file order, the ground first.
+    pub links: Vec<Link>,
+    /// Joints in file order.
+    pub joints: Vec<Joint>,
+    /// The drive.
+    pub drive: Drive,
+    /// The drive positions to compute (SI: rad or m), in order; or, when [`Scene::sweep_of`]
+    /// names an output, the values of that output (SI) whose drive positions are solved for.
+    pub positions: Vec<f64>,
+    /// Index into [`Scene::outputs`] of the output whose values the sweep gives (`[sweep] of`).
+    pub sweep_of: Option<usize>,
+    /// The outputs, in column order.
+    pub outputs: Vec<Output>,
+}
+
+/// A named point at its sketch position.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Point {
+    /// Name.
+    pub name: String,
+    /// Sketch coordinates (m).
+    pub sketch: [f64; 2],
+    /// Where it is defined.
+    pub location: Location,
+}
+
+/// A rigid body and the points it carries.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Link {
+    /// Name (`ground` for the frame).
+    pub name: String,
+    /// Names of its points, as listed.
+    pub points: Vec<String>,
+    /// Where it is defined.
+    pub location: Location,
+}
+
+/// A named joint.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Joint {
+    /// Name.
+    pub name: String,
+    /// Type and connected items.
+    pub kind: JointKind,
+    /// Where it is defined.
+    pub location: Location,
+}
+
+/// A joint's type with the names it connects.
+#[derive(Debug, Clone, PartialEq)]
+pub enum JointKind {
+    /// `links[0]` and `links[1]` turn about the common point `at`.
+    Revolute {
+        /// The two links; the drive angle is `links[1]` relative to `links[0]`.
+        links: [String; 2],
+        /// The common point.
+        at: String,
+    },
+    /// `links[1]` translates along `line` (points of `links[0]`); `point` (of `links[1]`)
+    /// measures the displacement from `line[0]`.
+    Prismatic {
+        /// Guide and slider.
+        links: [String; 2],
+        /// Two points of the guide.
+        line: [String; 2],
+        /// The slider's point on the line.
+        point: String,
+    },
+    /// `pin` (of `links[1]`) lies on `slot` (two points of `links[0]`).
+    PinInSlot {
+        /// Slotted link and pin link.
+        links: [String; 2],
+        /// Two points of the slotted link on the slot's centre line.
+        slot: [String; 2],
+        /// The pin.
+        pin: String,
+    },
+    /// Rolling of the pinion in revolute joint `pinion` on the rack of prismatic joint `rack`.
+    RackPinion {
+        /// The pinion's revolute joint.
+        pinion: String,
+        /// The rack's prismatic joint.
+        rack: String,
+        /// Signed pitch radius (m): positive when a counter-clockwise turn of the pinion moves
+        /// the rack forwards along its line (pinion centre to the left of the line).
+        radius: f64,
+    },
+    /// `Δθ` in revolute joint `joints[1]` = `ratio` × `Δθ` in revolute joint `joints[0]`.
+    Gear {
+        /// The two revolute joints.
+        joints: [String; 2],
+        /// Signed transmission ratio.
+        ratio: f64,
+    },
+    /// The links are welded together.
+    Weld {
+        /// The two links.
+        links: [String; 2],
+    },
+}
+
+/// Whether the drive is an angle or a displacement.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DriveKind {
+    /// A revolute joint's angle (rad).
+    Angle,
+    /// A prismatic joint's displacement (m).
+    Displacement,
+}
+
+impl DriveKind {
+    /// The dimension of the drive variable.
+    pub fn dimension(self) -> Dimension {
+        match self {
+            DriveKind::Angle => Dimension::Angle,
+            DriveKind::Displacement => Dimension::Length,
+        }
+    }
+
+    /// The dimension of the drive speed.
+    pub fn speed_dimension(self) -> Dimension {
+        match self {
+            DriveKind::Angle => Dimension::AngularVelocity,
+            DriveKind::Displacement => Dimension::Velocity,
+        }
+    }
+
+    /// The dimension of the drive acceleration.
+    pub fn acceleration_dimension(self) -> Dimension {
+        match self {
+            DriveKind::Angle => Dimension::AngularAcceleration,
+            DriveKind::Displacement => Dimension::Acceleration,
+        }
+    }
+}
+
+/// The driven joint and its motion.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Drive {
+    /// The driven joint's name.
+    pub joint: String,
+    /// Angle or displacement.
+    pub kind: DriveKind,
+    /// The drive variable φ at the sketch pose (rad or m), measured as the file says.
+    pub at_sketch: f64,
+    /// φ̇ (rad/s or m/s), if given.
+    pub speed: Option<f64>,
+    /// φ̈ (rad/s² or m/s²); 0 if not given.
+    pub acceleration: f64,
+    /// Where `[drive]` is.
+    pub location: Location,
+}
+
+/// What one output column group measures.
+#[derive(Debug, Clone, PartialEq)]
+pub enum OutputKind {
+    /// The x and y of a point.
+    Point(String),
+    /// The angle of the line `line[0] → line[1]`, from `reference` (or +x), in `sense`.
+    Angle {
+        /// The measured line.
+        line: [String; 2],
+        /// The line it is measured from; `None`: the +x axis.
+        reference: Option<[String; 2]>,
+        /// Counter-clockwise or clockwise positive.
+        sense: Sense,
+    },
+    /// The displacement of a prismatic or pin-in-slot joint along its line, measured from the
+    /// line's first point.
+    Slider {
+        /// Name of the joint.
+        joint: String,
+        /// Point on the moving link (the prismatic joint's point, or the pin).
+        point: String,
+        /// The line (two points of the guide or slotted link).
+        line: [String; 2],
+    },
+}
+
+impl OutputKind {
+    /// The dimension of the output's value.
+    pub fn dimension(&self) -> Dimension {
+        match self {
+            OutputKind::Angle { .. } => Dimension::Angle,
+            OutputKind::Point(_) | OutputKind::Slider { .. } => Dimension::Length,
+        }
+    }
+}
+
+/// One requested output.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Output {
+    /// Column name.
+    pub name: String,
+    /// What is measured.
+    pub kind: OutputKind,
+    /// What is reported, in column order.
+    pub quantities: Vec<Quantity>,
+    /// Whether to search the sweep range for its dead positions.
+    pub dead_positions: bool,
+    /// Where it is defined.
+    pub location: Location,
+}
+
+impl Quantity {
+    /// The derivative order this quantity needs (0, 1 or 2).
+    pub fn order(self) -> usize {
+        match self {
+            Quantity::Position => 0,
+            Quantity::VelocityCoefficient | Quantity::Velocity => 1,
+            Quantity::AccelerationCoefficient | Quantity::Acceleration => 2,
+        }
+    }
+
+    /// Whether the quantity is a time derivative (needs the drive's speed).
+    pub fn is_time_derivative(self) -> bool {
+        matches!(self, Quantity::Velocity | Quantity::Acceleration)
+    }
+}
+
+impl Scene {
+    /// The highest derivative order any output needs (0: positions only).
+    pub fn order(&self) -> usize {
+        let asked = self
+            .outputs
+            .iter()
+            .flat_map(|o| o.quantities.iter().map(|q| q.order()));
+        let dead = self.outputs.iter().filter(|o| o.dead_positions).map(|_| 2);
+        asked.chain(dead).max().unwrap_or(0)
+    }
+
+    /// A drive value (SI) printed with the scene's unit, e.g. `"67.5 deg"`.
+    pub fn drive_text(&self, value: f64) -> String {
+        let dimension = self.drive.kind.dimension();
+        format!(
+            "{} {}",
+            Units::tidy(self.units.from_si(value, dimension)),
+            self.units.symbol(dimension)
+        )
+    }
+}

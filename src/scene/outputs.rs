@@ -1,0 +1,324 @@
+//! Checking `[[output]]` entries, and naming their columns.
+
+use toml::Spanned;
+
+use crate::error::{Error, Result};
+
+use super::format::{OutputDef, Quantity, Sense};
+use super::model::{Drive, Joint, JointKind, Output, OutputKind};
+use super::resolve::{Context, Geometry};
+use super::units::{Dimension, Units};
+
+/// What an output reports when `quantities` is not given.
+pub const DEFAULT_QUANTITIES: [Quantity; 3] = [
+    Quantity::Position,
+    Quantity::Velocity,
+    Quantity::Acceleration,
+];
+
+pub(crate) fn resolve(
+    cx: &Context,
+    defs: &[Spanned<OutputDef>],
+    geometry: &Geometry,
+    joints: &[Joint],
+    drive: &Drive,
+) -> Result<Vec<Output>> {
+    let mut outputs: Vec<Output> = Vec::with_capacity(defs.len());
+    for def in defs {
+        let output = resolve_one(cx, def, geometry, joints, drive)?;
+        if outputs.iter().any(|o| o.name == output.name) {
+            let at = def
+                .get_ref()
+                .name
+                .as_ref()
+                .map_or_else(|| cx.at(def), |n| cx.at(n));
+            return Err(Error::Invalid {
+                location: at,
+                message: format!(
+                    "a second output is named `{}`; give it another `name`",
+                    output.name
+                ),
+            });
+        }
+        outputs.push(output);
+    }
+    Ok(outputs)
+}
+
+fn resolve_one(
+    cx: &Context,
+    def: &Spanned<OutputDef>,
+    geometry: &Geometry,
+    joints: &[Joint],
+    drive: &Drive,
+) -> Result<Output> {
+    let d = def.get_ref();
+    let expected =
+        "expected exactly one of `point = \"P\"`, `angle = [\"P\", \"Q\"]`, `slider = \"joint\"`";
+    let (kind, default_name) = match (&d.point, &d.angle, &d.slider) {
+        (Some(point), None, None) => {
+            let name = cx.point(point, geometry.names, "`[[output]] point`")?;
+            if !geometry
+                .links
+                .iter()
+                .any(|l| l.points.iter().any(|p| p == name))
+            {
+                return Err(cx.invalid(
+                    point,
+                    format!(
+                        "point `{name}` is on no link, so it does \
+                    not move with the mechanism; add it to a link in `[links]`"
+                    ),
+                ));
+            }
+            (OutputKind::Point(name.to_owned()), Some(name.to_owned()))
+        }
+        (None, Some(angle), None) => {
+            let line = line(cx, angle, geometry, "`[[output]] angle`")?;
+            let reference = d
+                .reference
+                .as_ref()
+                .map(|r| self::line(cx, r, geometry, "`[[output]] reference`"))
+                .transpose()?;
+            let sense = d.sense.as_ref().map_or(Sense::Ccw, |s| *s.get_ref());
+            (
+                OutputKind::Angle {
+                    line,
+                    reference,
+                    sense,
+                },
+                None,
+            )
+        }
+        (None, None, Some(slider)) => {
+            let Some(joint) = joints.iter().find(|j| &j.name == slider.get_ref()) else {
+                let known: Vec<&str> = joints.iter().map(|j| j.name.as_str()).collect();
+                return Err(Error::UnknownName {
+                    location: cx.at(slider),
+                    what: "joint",
+                    name: slider.get_ref().clone(),
+                    context: "`[[output]] slider`".to_owned(),
+                    known: known.join(", "),
+                });
+            };
+            let kind = match &joint.kind {
+                JointKind::Prismatic { line, point, .. } => OutputKind::Slider {
+                    joint: joint.name.clone(),
+                    point: point.clone(),
+                    line: line.clone(),
+                },
+                JointKind::PinInSlot { slot, pin, .. } => OutputKind::Slider {
+                    joint: joint.name.clone(),
+                    point: pin.clone(),
+                    line: slot.clone(),
+                },
+                other => {
+                    return Err(cx.invalid(
+                        slider,
+                        format!(
+                            "joint `{}` is {}; a slider output needs a prismatic or pin_in_slot \
+                            joint",
+                            joint.name,
+                            other.type_name()
+                        ),
+                    ));
+                }
+            };
+            (kind, Some(joint.name.clone()))
+        }
+        _ => return Err(cx.invalid(def, format!("`[[output]]`: {expected}"))),
+    };
+    let angle_only = d
+        .reference
+        .as_ref()
+        .map(|r| r.span())
+        .or(d.sense.as_ref().map(|s| s.span()));
+    if !matches!(kind, OutputKind::Angle { .. })
+        && let Some(span) = angle_only
+    {
+        return Err(Error::Invalid {
+            location: cx.source.location(span),
+            message: "`reference` and `sense` apply to an `angle` output only".to_owned(),
+        });
+    }
+    let name = match (&d.name, default_name) {
+        (Some(name), _) => {
+            if !valid_name(name.get_ref()) {
+                return Err(cx.invalid(
+                    name,
+                    "an output name must be non-empty and contain no spaces, commas or quotes",
+                ));
+            }
+            name.get_ref().clone()
+        }
+        (None, Some(name)) => name,
+        (None, None) => {
+            return Err(cx.invalid(
+                def,
+                "an `angle` output needs a `name`, e.g. `name = \"psi\"`",
+            ));
+        }
+    };
+    let quantities = match &d.quantities {
+        None => DEFAULT_QUANTITIES.to_vec(),
+        Some(list) => {
+            if list.get_ref().is_empty() {
+                return Err(cx.invalid(
+                    list,
+                    "`quantities` is empty; expected some of: position, \
+                    velocity_coefficient, acceleration_coefficient, velocity, acceleration",
+                ));
+            }
+            let mut seen: Vec<Quantity> = Vec::new();
+            for q in list.get_ref() {
+                if seen.contains(q.get_ref()) {
+                    return Err(cx.invalid(q, "this quantity is listed twice"));
+                }
+                seen.push(*q.get_ref());
+            }
+            seen
+        }
+    };
+    if drive.speed.is_none()
+        && let Some(q) = quantities.iter().find(|q| q.is_time_derivative())
+    {
+        let at = d
+            .quantities
+            .as_ref()
+            .map_or_else(|| cx.at(def), |l| cx.at(l));
+        return Err(Error::Invalid {
+            location: at,
+            message: format!(
+                "output `{name}` asks for the {} but `[drive]` has no `speed`; give `speed` \
+                    (and `acceleration`) or ask only for position and coefficients",
+                if *q == Quantity::Velocity {
+                    "velocity"
+                } else {
+                    "acceleration"
+                }
+            ),
+        });
+    }
+    if d.dead_positions && matches!(kind, OutputKind::Point(_)) {
+        return Err(cx.invalid(
+            def,
+            format!(
+                "output `{name}`: `dead_positions` applies to an angle or slider output; \
+                measure the point along a line with a slider or an angle"
+            ),
+        ));
+    }
+    Ok(Output {
+        name,
+        kind,
+        quantities,
+        dead_positions: d.dead_positions,
+        location: cx.at(def),
+    })
+}
+
+fn line(
+    cx: &Context,
+    line: &Spanned<[super::format::Name; 2]>,
+    geometry: &Geometry,
+    context: &str,
+) -> Result<[String; 2]> {
+    let [a, b] = line.get_ref();
+    let a = cx.point(a, geometry.names, context)?;
+    let b = cx.point(b, geometry.names, context)?;
+    let (pa, pb) = (geometry.sketch(a), geometry.sketch(b));
+    let length = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
+    if length <= 1e-9 * geometry.scale {
+        return Err(Error::NonPositiveLength {
+            location: cx.at(line),
+            what: format!("the line `{a}`–`{b}` of {context} (distance between its points)"),
+            value: cx.units.from_si(length, Dimension::Length),
+        });
+    }
+    for p in [a, b] {
+        if !geometry
+            .links
+            .iter()
+            .any(|l| l.points.iter().any(|q| q == p))
+        {
+            return Err(cx.invalid(
+                line,
+                format!("point `{p}` in {context} is on no link; add it to a link in `[links]`"),
+            ));
+        }
+    }
+    Ok([a.to_owned(), b.to_owned()])
+}
+
+fn valid_name(name: &str) -> bool {
+    !name.is_empty()
+        && !name
+            .chars()
+            .any(|c| c.is_whitespace() || matches!(c, ',' | '"' | '\''))
+}
+
+/// One printed column: its header and how to convert its SI values for printing.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Column {
+    /// Header name, e.g. `psi'` or `vx_C`.
+    pub name: String,
+    /// Unit symbol, e.g. `rad/s`.
+    pub unit: String,
+    /// SI value per printed unit.
+    pub factor: f64,
+}
+
+impl Column {
+    /// `name [unit]`, as in the CSV header.
+    pub fn header(&self) -> String {
+        format!("{} [{}]", self.name, self.unit)
+    }
+}
+
+/// The columns of one output, in the order its values are produced by the evaluation: for
+/// each quantity, one column (angle, slider) or two (x and y of a point).
+pub fn columns(output: &Output, units: &Units, drive: Dimension) -> Vec<Column> {
+    let units = &units.for_outputs();
+    let value = output.kind.dimension();
+    let point = matches!(output.kind, OutputKind::Point(_));
+    let (rate, rate2) = match value {
+        Dimension::Angle => (Dimension::AngularVelocity, Dimension::AngularAcceleration),
+        _ => (Dimension::Velocity, Dimension::Acceleration),
+    };
+    let n = &output.name;
+    let mut columns = Vec::new();
+    for q in &output.quantities {
+        let (unit, factor) = match q {
+            Quantity::Position => (units.symbol(value).to_owned(), units.factor(value)),
+            Quantity::VelocityCoefficient | Quantity::AccelerationCoefficient => {
+                let order = q.order() as u32;
+                (
+                    units.coefficient_symbol(value, drive, order),
+                    units.coefficient_factor(value, drive, order),
+                )
+            }
+            Quantity::Velocity => (units.symbol(rate).to_owned(), units.factor(rate)),
+            Quantity::Acceleration => (units.symbol(rate2).to_owned(), units.factor(rate2)),
+        };
+        let names: Vec<String> = match (q, point) {
+            (Quantity::Position, true) => vec![format!("x_{n}"), format!("y_{n}")],
+            (Quantity::VelocityCoefficient, true) => vec![format!("x_{n}'"), format!("y_{n}'")],
+            (Quantity::AccelerationCoefficient, true) => {
+                vec![format!("x_{n}''"), format!("y_{n}''")]
+            }
+            (Quantity::Velocity, true) => vec![format!("vx_{n}"), format!("vy_{n}")],
+            (Quantity::Acceleration, true) => vec![format!("ax_{n}"), format!("ay_{n}")],
+            (Quantity::Position, false) => vec![n.clone()],
+            (Quantity::VelocityCoefficient, false) => vec![format!("{n}'")],
+            (Quantity::AccelerationCoefficient, false) => vec![format!("{n}''")],
+            (Quantity::Velocity, false) => vec![format!("{n}_dot")],
+            (Quantity::Acceleration, false) => vec![format!("{n}_ddot")],
+        };
+        columns.extend(names.into_iter().map(|name| Column {
+            name,
+            unit: unit.clone(),
+            factor,
+        }));
+    }
+    columns
+}

@@ -1,0 +1,483 @@
+//! From the file as written ([`super::format`]) to a checked [`Scene`]: units applied,
+//! names resolved, required fields present for each joint type, the sketch consistent.
+//!
+//! Every error names `file:line:column` and what was expected there.
+
+use std::collections::{BTreeMap, HashMap};
+
+use toml::Spanned;
+
+use crate::error::{Error, Location, Result};
+
+use super::drive::nearest_turn;
+use super::format::{self, JointDef, Name, PointDef, SceneFile};
+use super::model::{DriveKind, Joint, JointKind, Link, Point, Scene};
+use super::outputs;
+use super::source::Source;
+use super::units::{Dimension, Units};
+
+/// The name of the frame link, which every scene has.
+pub const GROUND: &str = "ground";
+
+/// Relative tolerance (of the sketch's size) for "this point lies on that line".
+const ON_LINE_TOLERANCE: f64 = 1e-9;
+
+/// Checks a parsed file and resolves it into a [`Scene`].
+pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
+    let cx = Context::new(source, units(&file.units));
+    let points = cx.points(&file.points)?;
+    let names: HashMap<&str, usize> = points
+        .iter()
+        .enumerate()
+        .map(|(i, p)| (p.name.as_str(), i))
+        .collect();
+    let links = cx.links(&file.links, &names)?;
+    let scale = sketch_scale(&points);
+    let geometry = Geometry {
+        points: &points,
+        names: &names,
+        links: &links,
+        scale,
+    };
+    let joints = cx.joints(&file.joints, &geometry)?;
+    let mut drive = cx.drive(&file.drive, &geometry, &joints)?;
+    let outputs = outputs::resolve(&cx, &file.outputs, &geometry, &joints, &drive)?;
+    let sweep_of = cx.sweep_of(&file.sweep, &outputs)?;
+    let dimension = match sweep_of {
+        Some(k) => outputs[k].kind.dimension(),
+        None => drive.kind.dimension(),
+    };
+    let positions = cx.sweep(&file.sweep, dimension)?;
+    if drive.kind == DriveKind::Angle && sweep_of.is_none() {
+        drive.at_sketch = nearest_turn(drive.at_sketch, positions[0]);
+    }
+    if let Some(output) = outputs.iter().find(|o| o.dead_positions) {
+        let (lo, hi) = positions
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &p| {
+                (lo.min(p), hi.max(p))
+            });
+        if !(hi > lo) {
+            return Err(Error::Invalid {
+                location: output.location.clone(),
+                message: format!(
+                    "output `{}`: `dead_positions` needs a range of drive positions to search; \
+                    `[sweep]` has one position",
+                    output.name
+                ),
+            });
+        }
+    }
+    Ok(Scene {
+        file: source.file.clone(),
+        title: file.title,
+        units: cx.units,
+        points,
+        links,
+        joints,
+        drive,
+        positions,
+        sweep_of,
+        outputs,
+    })
+}
+
+fn units(section: &format::UnitsSection) -> Units {
+    Units {
+        length: section
+            .length
+            .as_ref()
+            .map(|u| *u.get_ref())
+            .unwrap_or_default(),
+        angle: section
+            .angle
+            .as_ref()
+            .map(|u| *u.get_ref())
+            .unwrap_or_default(),
+        angular_velocity: section
+            .angular_velocity
+            .as_ref()
+            .map(|u| *u.get_ref())
+            .unwrap_or_default(),
+        angular_acceleration: section
+            .angular_acceleration
+            .as_ref()
+            .map(|u| *u.get_ref())
+            .unwrap_or_default(),
+    }
+}
+
+/// The size of the sketch (largest coordinate distance), for relative tolerances.
+fn sketch_scale(points: &[Point]) -> f64 {
+    let mut scale: f64 = 0.0;
+    for p in points {
+        for q in points {
+            scale = scale.max((p.sketch[0] - q.sketch[0]).hypot(p.sketch[1] - q.sketch[1]));
+        }
+    }
+    if scale > 0.0 { scale } else { 1.0 }
+}
+
+/// The resolved points and links, for the checks of joints, drive and outputs.
+pub(crate) struct Geometry<'a> {
+    pub(crate) points: &'a [Point],
+    pub(crate) names: &'a HashMap<&'a str, usize>,
+    pub(crate) links: &'a [Link],
+    pub(crate) scale: f64,
+}
+
+impl Geometry<'_> {
+    /// Sketch coordinates of a point known to exist.
+    pub(crate) fn sketch(&self, name: &str) -> [f64; 2] {
+        self.points[self.names[name]].sketch
+    }
+
+    pub(crate) fn link(&self, name: &str) -> Option<&Link> {
+        self.links.iter().find(|l| l.name == name)
+    }
+
+    /// Distance of `p` from the line through `a`, `b` in the sketch.
+    pub(crate) fn off_line(&self, p: &str, [a, b]: [&str; 2]) -> f64 {
+        let (p, a, b) = (self.sketch(p), self.sketch(a), self.sketch(b));
+        let (ux, uy) = (b[0] - a[0], b[1] - a[1]);
+        ((p[0] - a[0]) * uy - (p[1] - a[1]) * ux).abs() / ux.hypot(uy)
+    }
+}
+
+/// The source and units, for turning spans into locations and numbers into SI.
+pub(crate) struct Context<'a> {
+    pub(crate) source: &'a Source,
+    pub(crate) units: Units,
+}
+
+impl<'a> Context<'a> {
+    fn new(source: &'a Source, units: Units) -> Self {
+        Context { source, units }
+    }
+
+    pub(crate) fn at<T>(&self, spanned: &Spanned<T>) -> Location {
+        self.source.location(spanned.span())
+    }
+
+    pub(crate) fn invalid<T>(&self, at: &Spanned<T>, message: impl Into<String>) -> Error {
+        Error::Invalid {
+            location: self.at(at),
+            message: message.into(),
+        }
+    }
+
+    /// A finite number in the file, converted to SI.
+    pub(crate) fn number(
+        &self,
+        value: &Spanned<f64>,
+        what: &str,
+        dimension: Dimension,
+    ) -> Result<f64> {
+        let v = *value.get_ref();
+        if !v.is_finite() {
+            return Err(self.invalid(value, format!("{what} must be a finite number, found {v}")));
+        }
+        Ok(self.units.to_si(v, dimension))
+    }
+
+    /// A positive length in the file, converted to SI.
+    pub(crate) fn positive(
+        &self,
+        value: &Spanned<f64>,
+        what: &str,
+        dimension: Dimension,
+    ) -> Result<f64> {
+        let v = self.number(value, what, dimension)?;
+        if v <= 0.0 {
+            return Err(Error::NonPositiveLength {
+                location: self.at(value),
+                what: what.to_owned(),
+                value: *value.get_ref(),
+            });
+        }
+        Ok(v)
+    }
+
+    /// A reference to a point that must exist.
+    pub(crate) fn point<'n>(
+        &self,
+        name: &'n Name,
+        names: &HashMap<&str, usize>,
+        context: &str,
+    ) -> Result<&'n str> {
+        if names.contains_key(name.get_ref().as_str()) {
+            return Ok(name.get_ref());
+        }
+        let mut known: Vec<&str> = names.keys().copied().collect();
+        known.sort_unstable();
+        Err(Error::UnknownPoint {
+            location: self.at(name),
+            name: name.get_ref().clone(),
+            context: context.to_owned(),
+            known: known.join(", "),
+        })
+    }
+
+    /// A point that must also be carried by `link`.
+    pub(crate) fn point_on<'n>(
+        &self,
+        name: &'n Name,
+        link: &str,
+        geometry: &Geometry,
+        context: &str,
+    ) -> Result<&'n str> {
+        let point = self.point(name, geometry.names, context)?;
+        let carried = geometry
+            .link(link)
+            .is_some_and(|l| l.points.iter().any(|p| p == point));
+        if !carried {
+            return Err(self.invalid(
+                name,
+                format!(
+                    "point `{point}` in {context} must be a point of link `{link}`; add it \
+                    to `links.{link}`"
+                ),
+            ));
+        }
+        Ok(point)
+    }
+
+    /// A line: two distinct points of `link`.
+    pub(crate) fn line(
+        &self,
+        line: &Spanned<[Name; 2]>,
+        link: &str,
+        geometry: &Geometry,
+        context: &str,
+    ) -> Result<[String; 2]> {
+        let [a, b] = line.get_ref();
+        let a = self.point_on(a, link, geometry, context)?;
+        let b = self.point_on(b, link, geometry, context)?;
+        let (pa, pb) = (geometry.sketch(a), geometry.sketch(b));
+        let length = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
+        if length <= ON_LINE_TOLERANCE * geometry.scale {
+            return Err(Error::NonPositiveLength {
+                location: self.at(line),
+                what: format!("the line `{a}`–`{b}` in {context} (distance between its points)"),
+                value: self.units.from_si(length, Dimension::Length),
+            });
+        }
+        Ok([a.to_owned(), b.to_owned()])
+    }
+
+    /// A link that must exist.
+    pub(crate) fn link<'n>(
+        &self,
+        name: &'n Name,
+        links: &[Link],
+        context: &str,
+    ) -> Result<&'n str> {
+        if links.iter().any(|l| &l.name == name.get_ref()) {
+            return Ok(name.get_ref());
+        }
+        let known: Vec<&str> = links.iter().map(|l| l.name.as_str()).collect();
+        Err(Error::UnknownName {
+            location: self.at(name),
+            what: "link",
+            name: name.get_ref().clone(),
+            context: context.to_owned(),
+            known: known.join(", "),
+        })
+    }
+
+    fn points(&self, table: &Spanned<BTreeMap<Name, Spanned<PointDef>>>) -> Result<Vec<Point>> {
+        let mut entries: Vec<(&Name, &Spanned<PointDef>)> = table.get_ref().iter().collect();
+        entries.sort_by_key(|(name, _)| name.span().start);
+        if entries.is_empty() {
+            return Err(self.invalid(table, "`[points]` is empty; expected `NAME = [x, y]` lines"));
+        }
+        let defs: HashMap<&str, &Spanned<PointDef>> = entries
+            .iter()
+            .map(|(n, d)| (n.get_ref().as_str(), *d))
+            .collect();
+        let mut placed: HashMap<String, [f64; 2]> = HashMap::new();
+        let mut points = Vec::with_capacity(entries.len());
+        for (name, _) in &entries {
+            let sketch = self.place(name.get_ref(), &defs, &mut placed, &mut Vec::new())?;
+            points.push(Point {
+                name: name.get_ref().clone(),
+                sketch,
+                location: self.at(name),
+            });
+        }
+        Ok(points)
+    }
+
+    /// Sketch coordinates of a point, placing the points it is measured from first.
+    fn place(
+        &self,
+        name: &str,
+        defs: &HashMap<&str, &Spanned<PointDef>>,
+        placed: &mut HashMap<String, [f64; 2]>,
+        chain: &mut Vec<String>,
+    ) -> Result<[f64; 2]> {
+        if let Some(&xy) = placed.get(name) {
+            return Ok(xy);
+        }
+        let def = defs[name];
+        let xy = match def.get_ref() {
+            PointDef::Xy([x, y]) => {
+                if !x.is_finite() || !y.is_finite() {
+                    return Err(
+                        self.invalid(def, format!("point `{name}` must have finite coordinates"))
+                    );
+                }
+                [
+                    self.units.to_si(*x, Dimension::Length),
+                    self.units.to_si(*y, Dimension::Length),
+                ]
+            }
+            PointDef::Polar {
+                from,
+                length,
+                angle,
+            } => {
+                let context = format!("the polar definition of point `{name}`");
+                let names: HashMap<&str, usize> = defs.keys().map(|&k| (k, 0)).collect();
+                let origin = self.point(from, &names, &context)?;
+                if chain.iter().any(|c| c == origin) || origin == name {
+                    return Err(self.invalid(
+                        from,
+                        format!(
+                            "point `{name}` is measured from `{origin}`, which is measured from \
+                            `{name}` (a cycle); place one of them by `[x, y]`"
+                        ),
+                    ));
+                }
+                let length = self.positive(
+                    length,
+                    &format!("`length` of point `{name}`"),
+                    Dimension::Length,
+                )?;
+                let angle = self.number(
+                    angle,
+                    &format!("`angle` of point `{name}`"),
+                    Dimension::Angle,
+                )?;
+                chain.push(name.to_owned());
+                let o = self.place(origin, defs, placed, chain)?;
+                chain.pop();
+                [o[0] + length * angle.cos(), o[1] + length * angle.sin()]
+            }
+        };
+        placed.insert(name.to_owned(), xy);
+        Ok(xy)
+    }
+
+    fn links(
+        &self,
+        table: &Spanned<BTreeMap<Name, Spanned<Vec<Name>>>>,
+        names: &HashMap<&str, usize>,
+    ) -> Result<Vec<Link>> {
+        let mut entries: Vec<(&Name, &Spanned<Vec<Name>>)> = table.get_ref().iter().collect();
+        entries.sort_by_key(|(name, _)| name.span().start);
+        let Some(ground) = entries.iter().position(|(n, _)| n.get_ref() == GROUND) else {
+            return Err(self.invalid(
+                table,
+                format!(
+                    "`[links]` has no `{GROUND}`; expected `{GROUND} = [\"O\", ...]` listing \
+                    the fixed points"
+                ),
+            ));
+        };
+        let ground = entries.remove(ground);
+        entries.insert(0, ground);
+        let mut links = Vec::with_capacity(entries.len());
+        for (name, list) in entries {
+            let context = format!("link `{}`", name.get_ref());
+            if list.get_ref().is_empty() {
+                return Err(self.invalid(
+                    list,
+                    format!("{context} has no points; expected a list of point names"),
+                ));
+            }
+            let mut points: Vec<String> = Vec::new();
+            for point in list.get_ref() {
+                let point = self.point(point, names, &context)?;
+                if points.iter().any(|p| p == point) {
+                    let spanned = list
+                        .get_ref()
+                        .iter()
+                        .filter(|p| p.get_ref() == point)
+                        .nth(1);
+                    return Err(Error::DuplicatePoint {
+                        location: self.at(spanned.unwrap_or(&list.get_ref()[0])),
+                        name: point.to_owned(),
+                        context,
+                    });
+                }
+                points.push(point.to_owned());
+            }
+            links.push(Link {
+                name: name.get_ref().clone(),
+                points,
+                location: self.at(name),
+            });
+        }
+        Ok(links)
+    }
+
+    fn joints(
+        &self,
+        table: &Spanned<BTreeMap<Name, Spanned<JointDef>>>,
+        geometry: &Geometry,
+    ) -> Result<Vec<Joint>> {
+        let mut entries: Vec<(&Name, &Spanned<JointDef>)> = table.get_ref().iter().collect();
+        entries.sort_by_key(|(name, _)| name.span().start);
+        let mut joints: Vec<Joint> = Vec::with_capacity(entries.len());
+        for (name, def) in entries {
+            let kind = super::joints::resolve(self, name.get_ref(), def, geometry, &joints)?;
+            joints.push(Joint {
+                name: name.get_ref().clone(),
+                kind,
+                location: self.at(name),
+            });
+        }
+        Ok(joints)
+    }
+
+    /// Checks that point `p` lies on `line` in the sketch.
+    pub(crate) fn on_line<T>(
+        &self,
+        at: &Spanned<T>,
+        geometry: &Geometry,
+        p: &str,
+        line: &[String; 2],
+        context: &str,
+    ) -> Result<()> {
+        let off = geometry.off_line(p, [&line[0], &line[1]]);
+        if off > ON_LINE_TOLERANCE * geometry.scale {
+            return Err(self.invalid(
+                at,
+                format!(
+                    "in the sketch, point `{p}` of {context} is {} {} off the line `{}`–`{}`; \
+                    draw it on the line",
+                    self.units.from_si(off, Dimension::Length),
+                    self.units.symbol(Dimension::Length),
+                    line[0],
+                    line[1]
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
+
+impl JointKind {
+    /// The type name as written in the file.
+    pub fn type_name(&self) -> &'static str {
+        match self {
+            JointKind::Revolute { .. } => "revolute",
+            JointKind::Prismatic { .. } => "prismatic",
+            JointKind::PinInSlot { .. } => "pin_in_slot",
+            JointKind::RackPinion { .. } => "rack_pinion",
+            JointKind::Gear { .. } => "gear",
+            JointKind::Weld { .. } => "weld",
+        }
+    }
+}

@@ -1,0 +1,135 @@
+//! The text of a scene file, for turning byte spans into `file:line:column`.
+
+use std::ops::Range;
+
+use crate::error::{Error, Location};
+
+/// A scene file's name and text.
+#[derive(Debug, Clone)]
+pub struct Source {
+    /// The name printed in messages (the path as given, or `<string>`).
+    pub file: String,
+    /// The whole text.
+    pub text: String,
+}
+
+impl Source {
+    /// Wraps a file's name and text.
+    pub fn new(file: impl Into<String>, text: impl Into<String>) -> Self {
+        Source {
+            file: file.into(),
+            text: text.into(),
+        }
+    }
+
+    /// The line and column (1-based, columns in characters) where byte `span.start` is.
+    pub fn location(&self, span: Range<usize>) -> Location {
+        let start = floor_char_boundary(&self.text, span.start.min(self.text.len()));
+        let before = &self.text[..start];
+        let line = before.matches('\n').count() + 1;
+        let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+        let column = before[line_start..].chars().count() + 1;
+        Location {
+            file: self.file.as_str().into(),
+            line,
+            column,
+        }
+    }
+
+    /// Turns a TOML parse or deserialisation error into [`Error::Syntax`] at its place.
+    pub fn syntax_error(&self, error: &toml::de::Error) -> Error {
+        let location = match error.span() {
+            Some(span) => self.location(span),
+            None => Location {
+                file: self.file.as_str().into(),
+                line: 1,
+                column: 1,
+            },
+        };
+        let mut message = tidy_toml_message(error.message());
+        // A missing top-level section is reported for the whole document (no span, or one
+        // starting at byte 0).
+        let top_level = error.span().is_none_or(|s| s.start == 0);
+        if top_level && message.starts_with("missing field") {
+            message.push_str(
+                "; a scene file needs the sections `[points]`, `[links]`, `[joints]`, `[drive]` \
+                 and `[sweep]`",
+            );
+        }
+        if message.starts_with("duplicate key")
+            && let Some(span) = error.span()
+        {
+            return self.duplicate_key(span, location);
+        }
+        Error::Syntax { location, message }
+    }
+
+    /// toml says only "duplicate key": name the key and its table, and treat a point defined
+    /// twice as [`Error::DuplicatePoint`].
+    fn duplicate_key(&self, span: Range<usize>, location: Location) -> Error {
+        let key = self
+            .text
+            .get(span.clone())
+            .unwrap_or("")
+            .trim()
+            .trim_matches('"')
+            .to_owned();
+        let table = self.text[..span.start.min(self.text.len())]
+            .lines()
+            .rev()
+            .map(str::trim)
+            .find(|l| l.starts_with('['))
+            .map(|l| l.split('#').next().unwrap_or(l).trim().to_owned());
+        match table.as_deref() {
+            Some("[points]") => Error::DuplicatePoint {
+                location,
+                name: key,
+                context: "`[points]`".to_owned(),
+            },
+            Some(table) => Error::Syntax {
+                location,
+                message: format!("duplicate key `{key}` in `{table}`; each key may appear once"),
+            },
+            None => Error::Syntax {
+                location,
+                message: format!("duplicate key `{key}`; each key may appear once"),
+            },
+        }
+    }
+}
+
+fn floor_char_boundary(text: &str, mut index: usize) -> usize {
+    while !text.is_char_boundary(index) {
+        index -= 1;
+    }
+    index
+}
+
+/// toml's messages end with a newline and sometimes say "TOML parse error"; keep one line.
+fn tidy_toml_message(message: &str) -> String {
+    message
+        .trim()
+        .replace('\n', "; ")
+        .replace("unknown variant", "unknown value")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn spans_become_one_based_lines_and_columns() {
+        let source = Source::new("a.toml", "x = 1\n[units]\n  length = \"ft\"\n");
+        let at = source.text.find("\"ft\"").unwrap();
+        let location = source.location(at..at + 4);
+        assert_eq!((location.line, location.column), (3, 12));
+        assert_eq!(location.to_string(), "a.toml:3:12");
+    }
+
+    #[test]
+    fn columns_count_characters_not_bytes() {
+        let source = Source::new("a.toml", "# ψ″\nψ = 1");
+        let at = source.text.rfind('=').unwrap();
+        assert_eq!(source.location(at..at + 1).column, 3);
+    }
+}

@@ -1,0 +1,127 @@
+//! `mechdiff run` and `mechdiff check` as a user calls them: exit status, what is printed,
+//! and the CSV file.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use mechdiff::scene;
+
+fn mechdiff(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_mechdiff"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the mechdiff binary runs")
+}
+
+fn stdout(output: &Output) -> String {
+    String::from_utf8(output.stdout.clone()).unwrap()
+}
+
+fn stderr(output: &Output) -> String {
+    String::from_utf8(output.stderr.clone()).unwrap()
+}
+
+fn temp_file(name: &str) -> PathBuf {
+    std::env::temp_dir().join(format!("mechdiff-cli-{}-{name}", std::process::id()))
+}
+
+/// The table of the offset slider-crank (millimetres, rpm): plan line, headers with units,
+/// 73 rows, dead positions and stroke. Snapshot of what a user sees.
+#[test]
+fn run_prints_the_plan_the_table_and_the_dead_positions() {
+    let output = mechdiff(&["run", "scenes/slider_crank.toml"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    insta::assert_snapshot!(stdout(&output));
+}
+
+/// `--csv`: one column per output quantity, `name [unit]` headers, every value in the scene's
+/// units with all its digits: read back and converted to SI, each equals the library's value
+/// to 1 ulp (one division and one multiplication by the unit factor).
+#[test]
+fn run_writes_csv_with_named_columns_and_full_precision() {
+    let csv = temp_file("slider_crank.csv");
+    let output = mechdiff(&[
+        "run",
+        "scenes/slider_crank.toml",
+        "--csv",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = std::fs::read_to_string(&csv).unwrap();
+    std::fs::remove_file(&csv).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "phi [deg],s [mm],s' [mm/rad],s'' [mm/rad^2],s_dot [mm/s],s_ddot [mm/s^2],beta [deg],beta_dot [rad/s],beta_ddot [rad/s^2]"
+    );
+    let scene = scene::load(Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/slider_crank.toml"))
+        .unwrap();
+    let report = scene::run(&scene).unwrap();
+    let rows: Vec<&str> = lines.collect();
+    assert_eq!(rows.len(), 73);
+    for (line, row) in rows.iter().zip(&report.rows) {
+        let cells: Vec<f64> = line.split(',').map(|c| c.parse().unwrap()).collect();
+        assert_eq!(cells.len(), report.columns.len());
+        for ((cell, si), column) in cells.iter().zip(row).zip(&report.columns) {
+            let back = cell * column.factor;
+            assert!(
+                (back - si).abs() <= 2.0 * f64::EPSILON * si.abs(),
+                "{} {cell} vs {si}",
+                column.name
+            );
+        }
+    }
+}
+
+#[test]
+fn check_validates_without_running() {
+    let output = mechdiff(&["check", "scenes/whitworth.toml"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = stdout(&output);
+    assert!(
+        text.starts_with("scenes/whitworth.toml: ok: 7 points, 4 links"),
+        "{text}"
+    );
+    assert!(text.contains("1 degree(s) of freedom"), "{text}");
+    assert!(
+        text.contains("plan: 721 drive positions, phi from 0 deg to 360 deg"),
+        "{text}"
+    );
+}
+
+#[test]
+fn a_bad_scene_fails_with_its_location_on_stderr() {
+    let bad = temp_file("bad.toml");
+    let text =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/four_bar.toml"))
+            .unwrap()
+            .replace(
+                r#"angular_velocity = "rad/s""#,
+                r#"angular_velocity = "rps""#,
+            );
+    std::fs::write(&bad, text).unwrap();
+    for command in ["check", "run"] {
+        let output = mechdiff(&[command, bad.to_str().unwrap()]);
+        assert!(!output.status.success());
+        let message = stderr(&output);
+        let expected = format!("error: {}:13:20: unknown value `rps`", bad.display());
+        assert!(message.starts_with(&expected), "{message}");
+        assert!(
+            message.contains("expected one of `rad/s`, `deg/s`, `rpm`"),
+            "{message}"
+        );
+    }
+    std::fs::remove_file(&bad).unwrap();
+}
+
+#[test]
+fn a_missing_scene_file_is_an_error_not_a_panic() {
+    let output = mechdiff(&["run", "scenes/no_such_scene.toml"]);
+    assert!(!output.status.success());
+    assert!(
+        stderr(&output).starts_with("error: cannot read scenes/no_such_scene.toml"),
+        "{}",
+        stderr(&output)
+    );
+}
