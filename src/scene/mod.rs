@@ -35,6 +35,7 @@
 
 pub mod build;
 mod drive;
+pub mod dynamics;
 pub mod format;
 mod joints;
 pub mod model;

@@ -34,6 +34,8 @@ pub struct Plan {
     pub columns: usize,
     /// Outputs whose dead positions are searched.
     pub dead_positions: Vec<String>,
+    /// The plan of the `[[dynamics]]` outputs: derivative order and effects.
+    pub dynamics: Option<mechdiff_core::dynamics::Plan>,
 }
 
 impl Plan {
@@ -71,6 +73,11 @@ impl Plan {
                 .filter(|o| o.dead_positions)
                 .map(|o| o.name.clone())
                 .collect(),
+            dynamics: scene
+                .dynamics
+                .as_ref()
+                .filter(|d| !d.outputs.is_empty())
+                .and_then(|d| super::build::mechanism(scene).ok().map(|m| d.plan(&m))),
         }
     }
 
@@ -136,9 +143,13 @@ impl Plan {
         } else {
             format!("; dead positions of {}", self.dead_positions.join(", "))
         };
+        let dynamics = match &self.dynamics {
+            Some(p) => format!("\ndynamics plan: {p}"),
+            None => String::new(),
+        };
         format!(
             "plan: {range}; {what} by the geometry solver with implicit differentiation{motion}; \
-            {} columns{dead}",
+            {} columns{dead}{dynamics}",
             self.columns
         )
     }
@@ -180,6 +191,8 @@ pub struct Report {
     pub rows: Vec<Vec<f64>>,
     /// The dead positions asked for.
     pub dead_positions: Vec<DeadPositions>,
+    /// The dynamic outputs' run (their columns are also in `columns` and `rows`).
+    pub dynamics: Option<super::dynamics::DynamicsReport>,
 }
 
 impl Report {
@@ -249,11 +262,23 @@ pub fn run(scene: &Scene) -> Result<Report> {
             positions: search_dead_positions(scene, &mechanism, output, &positions)?,
         });
     }
+    let mut rows = rows;
+    let dynamics = match &scene.dynamics {
+        Some(d) => super::dynamics::run(scene, d, &mechanism, &positions, scene.drive.speed)?,
+        None => None,
+    };
+    if let Some(d) = &dynamics {
+        all.extend(d.columns.iter().cloned());
+        for (row, extra) in rows.iter_mut().zip(&d.rows) {
+            row.extend_from_slice(extra);
+        }
+    }
     Ok(Report {
         plan,
         columns: all,
         rows,
         dead_positions,
+        dynamics,
     })
 }
 
