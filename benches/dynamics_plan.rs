@@ -26,9 +26,30 @@ fn whitworth() -> Mechanism {
         .link("crank", ["O", "A"])
         .link("rocker", ["B0", "S"])
         .link("ram", ["C"])
-        .inertia("crank", Inertia { mass: 15.0, center: [0.0, L0 - 0.04], moment: 0.05 })
-        .inertia("rocker", Inertia { mass: 30.0, center: [0.0, 0.15], moment: 1.2 })
-        .inertia("ram", Inertia { mass: 50.0, center: [0.0, H], moment: 0.0 })
+        .inertia(
+            "crank",
+            Inertia {
+                mass: 15.0,
+                center: [0.0, L0 - 0.04],
+                moment: 0.05,
+            },
+        )
+        .inertia(
+            "rocker",
+            Inertia {
+                mass: 30.0,
+                center: [0.0, 0.15],
+                moment: 1.2,
+            },
+        )
+        .inertia(
+            "ram",
+            Inertia {
+                mass: 50.0,
+                center: [0.0, H],
+                moment: 0.0,
+            },
+        )
         .revolute("O", "ground", "crank", "O")
         .revolute("B0", "ground", "rocker", "B0")
         .pin_in_slot("slot A", "rocker", ["B0", "S"], "crank", "A")
@@ -49,11 +70,19 @@ fn plans(c: &mut Criterion) {
     let phis: Vec<f64> = (1..=360).map(|i| f64::from(i).to_radians()).collect();
     let solver = Solver::default();
     let drive = |_| DriveState::constant_speed(10.471975511965978);
-    let mut group = c.benchmark_group("whitworth 360-position sweep: positions vs kinematics vs dynamics");
+    let mut group =
+        c.benchmark_group("whitworth 360-position sweep: positions vs kinematics vs dynamics");
     for (name, requests) in [
         ("positions only (order 0)", vec![Request::Positions]),
         ("kinematics (order 2)", vec![Request::Accelerations]),
-        ("full dynamics (order 2; inertia, gravity, loads)", vec![Request::Reactions, Request::DriveTorque, Request::PowerBalance]),
+        (
+            "full dynamics (order 2; inertia, gravity, loads)",
+            vec![
+                Request::Reactions,
+                Request::DriveTorque,
+                Request::PowerBalance,
+            ],
+        ),
     ] {
         let plan = Plan::for_requests(&requests, available);
         group.bench_function(name, |b| {

@@ -7,19 +7,30 @@ use mechdiff::Error;
 use mechdiff::scene::{self, Report};
 
 fn run(name: &str) -> Report {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes").join(name);
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes")
+        .join(name);
     let scene = scene::load(path).unwrap_or_else(|e| panic!("{e}"));
     scene::run(&scene).unwrap_or_else(|e| panic!("{e}"))
 }
 
 fn column(r: &Report, name: &str) -> Vec<f64> {
-    r.column(name).unwrap_or_else(|| panic!("no column `{name}`"))
+    r.column(name)
+        .unwrap_or_else(|| panic!("no column `{name}`"))
 }
 
 /// whitworth_000.json `table_recomputed.A_exact_dead_positions`, rows at φ = 0°, 67.976°,
 /// 180°, 292.024° (the scene's order): F_x1, F_y1, F_x2, F_y2, F_x3, ΣF_x, ΣF_y (N).
 const WHITWORTH: [[f64; 7]; 4] = [
-    [0.0, -65.79736267392906, 0.0, 177.65287921960845, 0.0, 0.0, 111.8555165456794],
+    [
+        0.0,
+        -65.79736267392906,
+        0.0,
+        177.65287921960845,
+        0.0,
+        0.0,
+        111.8555165456794,
+    ],
     [
         60.995787689659664,
         -24.674011002723397,
@@ -29,7 +40,15 @@ const WHITWORTH: [[f64; 7]; 4] = [
         1923.6870803851873,
         -99.53247771276025,
     ],
-    [0.0, 65.79736267392906, 0.0, 36.705140334629846, 0.0, 0.0, 102.5025030085589],
+    [
+        0.0,
+        65.79736267392906,
+        0.0,
+        36.705140334629846,
+        0.0,
+        0.0,
+        102.5025030085589,
+    ],
     [
         -60.995787689659664,
         -24.674011002723397,
@@ -44,7 +63,15 @@ const WHITWORTH: [[f64; 7]; 4] = [
 #[test]
 fn whitworth_forces_scene_matches_the_inertial_force_table_to_1e_9() {
     let r = run("whitworth_forces.toml");
-    let names = ["Fx_crank", "Fy_crank", "Fx_rocker", "Fy_rocker", "Fx_ram", "SumF_x", "SumF_y"];
+    let names = [
+        "Fx_crank",
+        "Fy_crank",
+        "Fx_rocker",
+        "Fy_rocker",
+        "Fx_ram",
+        "SumF_x",
+        "SumF_y",
+    ];
     for (i, name) in names.iter().enumerate() {
         let got = column(&r, name);
         for (row, want) in WHITWORTH.iter().enumerate() {
@@ -52,15 +79,30 @@ fn whitworth_forces_scene_matches_the_inertial_force_table_to_1e_9() {
             // 1e-9 relative (the criterion); exact zeros are held to 1e-9 of the
             // largest force of the table (1923.7 N). The scene's dead positions are the
             // 18-digit degree values of whitworth_000.json, exact in f64 after conversion.
-            let tol = 1e-9 * if want == 0.0 { 1923.6870803851873 } else { want.abs() };
-            assert!((got[row] - want).abs() <= tol, "{name}, row {row}: {} vs {want}", got[row]);
+            let tol = 1e-9
+                * if want == 0.0 {
+                    1923.6870803851873
+                } else {
+                    want.abs()
+                };
+            assert!(
+                (got[row] - want).abs() <= tol,
+                "{name}, row {row}: {} vs {want}",
+                got[row]
+            );
         }
     }
     let plan = r.plan.dynamics.unwrap().to_string();
-    assert_eq!(plan, "order 2; effects: inertia; not computed: gravity, loads, friction, efficiency, motor");
+    assert_eq!(
+        plan,
+        "order 2; effects: inertia; not computed: gravity, loads, friction, efficiency, motor"
+    );
     // Proof that nothing else ran: no equilibrium solve, no gravity, 4 inertia evaluations.
     let t = r.dynamics.unwrap().run.trace;
-    assert_eq!((t.inertia, t.gravity, t.equilibrium_solves, t.friction), (4, 0, 0, 0));
+    assert_eq!(
+        (t.inertia, t.gravity, t.equilibrium_solves, t.friction),
+        (4, 0, 0, 0)
+    );
 }
 
 #[test]
@@ -143,7 +185,10 @@ output = "drive_torque"
 fn parse_with(edits: &[(&str, &str)]) -> (Error, String) {
     let mut text = CRANK.to_owned();
     for (from, to) in edits {
-        assert!(text.contains(from), "test bug: `{from}` is not in the scene");
+        assert!(
+            text.contains(from),
+            "test bug: `{from}` is not in the scene"
+        );
         text = text.replacen(from, to, 1);
     }
     match scene::parse("bad.toml", &text) {
@@ -155,9 +200,15 @@ fn parse_with(edits: &[(&str, &str)]) -> (Error, String) {
 /// Asserts the message starts with `bad.toml:<line>:` where `<line>` is the line of `at` in
 /// the modified text, and contains every part.
 fn assert_at((e, text): &(Error, String), at: &str, parts: &[&str]) {
-    let line = text[..text.find(at).expect("test bug: marker not in the text")].matches('\n').count() + 1;
+    let line = text[..text.find(at).expect("test bug: marker not in the text")]
+        .matches('\n')
+        .count()
+        + 1;
     let m = e.to_string();
-    assert!(m.starts_with(&format!("bad.toml:{line}:")), "expected line {line}: {m}");
+    assert!(
+        m.starts_with(&format!("bad.toml:{line}:")),
+        "expected line {line}: {m}"
+    );
     for p in parts {
         assert!(m.contains(p), "`{p}` missing from: {m}");
     }
@@ -169,21 +220,35 @@ fn the_base_scene_runs_and_balances() {
     let r = scene::run(&s).unwrap();
     // The torque holds the weight and the load and pays the friction: non-zero and finite
     // (its value against the power balance is checked in core's tests).
-    assert!(column(&r, "M_drive").iter().all(|t| t.is_finite() && *t != 0.0));
+    assert!(
+        column(&r, "M_drive")
+            .iter()
+            .all(|t| t.is_finite() && *t != 0.0)
+    );
 }
 
 #[test]
 fn negative_friction_coefficient() {
     let r = parse_with(&[("coefficient = 0.1", "coefficient = -0.1")]);
-    assert_at(&r, "coefficient = -0.1", &["friction coefficient of joint `O`", "≥ 0", "-0.1"]);
+    assert_at(
+        &r,
+        "coefficient = -0.1",
+        &["friction coefficient of joint `O`", "≥ 0", "-0.1"],
+    );
 }
 
 #[test]
 fn efficiency_outside_zero_one() {
     for eta in ["1.5", "0", "-0.2"] {
-        let motor = format!("[motor]\nrotor_inertia = 0.0\nratio = 1.0\nefficiency = {eta}\n\n[[dynamics]]");
+        let motor = format!(
+            "[motor]\nrotor_inertia = 0.0\nratio = 1.0\nefficiency = {eta}\n\n[[dynamics]]"
+        );
         let r = parse_with(&[("[[dynamics]]", &motor)]);
-        assert_at(&r, &format!("efficiency = {eta}"), &["gearbox `efficiency`", "(0, 1]"]);
+        assert_at(
+            &r,
+            &format!("efficiency = {eta}"),
+            &["gearbox `efficiency`", "(0, 1]"],
+        );
     }
 }
 
@@ -192,13 +257,21 @@ fn negative_mass_or_inertia() {
     let r = parse_with(&[("mass = 2.0", "mass = -2.0")]);
     assert_at(&r, "mass = -2.0", &["mass of link `crank`", "-2"]);
     let r = parse_with(&[("inertia = 0.01", "inertia = -0.01")]);
-    assert_at(&r, "inertia = -0.01", &["moment of inertia of link `crank`", "-0.01"]);
+    assert_at(
+        &r,
+        "inertia = -0.01",
+        &["moment of inertia of link `crank`", "-0.01"],
+    );
 }
 
 #[test]
 fn load_on_unknown_point_or_link() {
     let r = parse_with(&[("point = \"A\"", "point = \"Z\"")]);
-    assert_at(&r, "point = \"Z\"", &["unknown point `Z`", "[[load]] point"]);
+    assert_at(
+        &r,
+        "point = \"Z\"",
+        &["unknown point `Z`", "[[load]] point"],
+    );
     let r = parse_with(&[("link = \"crank\"\npoint", "link = \"arm\"\npoint")]);
     assert_at(&r, "link = \"arm\"", &["unknown link `arm`", "[[load]]"]);
     let r = parse_with(&[("point = \"A\"", "point = \"G\"")]);
@@ -209,11 +282,17 @@ fn load_on_unknown_point_or_link() {
 fn output_that_names_nothing() {
     let r = parse_with(&[("output = \"drive_torque\"", "output = \"drive_power\"")]);
     assert_at(&r, "\"drive_power\"", &["drive_power"]);
-    let r = parse_with(&[("output = \"drive_torque\"", "output = \"reactions\"\njoints = [\"Q\"]")]);
+    let r = parse_with(&[(
+        "output = \"drive_torque\"",
+        "output = \"reactions\"\njoints = [\"Q\"]",
+    )]);
     assert_at(&r, "[\"Q\"]", &["unknown joint `Q`"]);
     // A shaking force without masses has nothing to sum.
     let r = parse_with(&[
-        ("[masses]\ncrank = { mass = 2.0, center = \"S\", inertia = 0.01 }\n", ""),
+        (
+            "[masses]\ncrank = { mass = 2.0, center = \"S\", inertia = 0.01 }\n",
+            "",
+        ),
         ("output = \"drive_torque\"", "output = \"shaking_force\""),
     ]);
     assert_at(&r, "\"shaking_force\"", &["needs masses"]);

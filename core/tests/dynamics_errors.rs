@@ -37,7 +37,12 @@ fn wedge_solution(psi0: f64, f: f64) -> Result<f64, Error> {
         .with_friction(Friction::sliding("guide", f));
     let model = d.compile(&m)?;
     let k = Solver::default().track(&m)?.kinematics::<2>()?;
-    let s = kinetostatics::solve(&model, &d.available(&m), &k, &DriveState::constant_speed(1.0))?;
+    let s = kinetostatics::solve(
+        &model,
+        &d.available(&m),
+        &k,
+        &DriveState::constant_speed(1.0),
+    )?;
     Ok(s.drive_torque)
 }
 
@@ -54,7 +59,10 @@ fn wedge_self_locks_below_twice_the_friction_angle() {
         let torque = H / p.sin() * n;
         let got = wedge_solution(p, f).unwrap();
         // 1e-12 relative: a 6×6 solve, exact up to rounding.
-        assert!((got - torque).abs() <= 1e-12 * torque, "ψ = {psi}°: {got} vs {torque}");
+        assert!(
+            (got - torque).abs() <= 1e-12 * torque,
+            "ψ = {psi}°: {got} vs {torque}"
+        );
     }
     for psi in [30.0f64, 20.0, 5.0] {
         match wedge_solution(psi.to_radians(), f) {
@@ -70,7 +78,14 @@ fn crank() -> Mechanism {
         .point("A", [1.0, 0.0])
         .ground(["O"])
         .link("crank", ["O", "A"])
-        .inertia("crank", Inertia { mass: 1.0, center: [0.5, 0.0], moment: 0.1 })
+        .inertia(
+            "crank",
+            Inertia {
+                mass: 1.0,
+                center: [0.5, 0.0],
+                moment: 0.1,
+            },
+        )
         .revolute("O", "ground", "crank", "O")
         .drive(Drive::angle("O"))
         .build()
@@ -86,14 +101,28 @@ fn compile_error(d: Dynamics) -> String {
 #[test]
 fn negative_friction_coefficient_is_rejected() {
     let e = compile_error(Dynamics::new().with_friction(Friction::revolute("O", -0.1, 0.01)));
-    assert!(e.contains("friction coefficient of joint `O`") && e.contains("-0.1"), "{e}");
+    assert!(
+        e.contains("friction coefficient of joint `O`") && e.contains("-0.1"),
+        "{e}"
+    );
 }
 
 #[test]
 fn efficiency_outside_0_1_is_rejected() {
-    let e = compile_error(Dynamics::new().with_motor(Motor { rotor_inertia: 0.0, ratio: 0.1, efficiency: 1.2 }));
-    assert!(e.contains("gearbox efficiency") && e.contains("(0, 1]"), "{e}");
-    let e = compile_error(Dynamics::new().with_motor(Motor { rotor_inertia: 0.0, ratio: 0.1, efficiency: 0.0 }));
+    let e = compile_error(Dynamics::new().with_motor(Motor {
+        rotor_inertia: 0.0,
+        ratio: 0.1,
+        efficiency: 1.2,
+    }));
+    assert!(
+        e.contains("gearbox efficiency") && e.contains("(0, 1]"),
+        "{e}"
+    );
+    let e = compile_error(Dynamics::new().with_motor(Motor {
+        rotor_inertia: 0.0,
+        ratio: 0.1,
+        efficiency: 0.0,
+    }));
     assert!(e.contains("(0, 1]"), "{e}");
     // An efficiency on a revolute joint is a modelling error, named as such.
     let e = compile_error(Dynamics::new().with_efficiency(Efficiency::new("O", 0.9)));
@@ -108,21 +137,35 @@ fn negative_mass_or_inertia_is_rejected() {
             .point("A", [1.0, 0.0])
             .ground(["O"])
             .link("crank", ["O", "A"])
-            .inertia("crank", Inertia { mass, center: [0.5, 0.0], moment })
+            .inertia(
+                "crank",
+                Inertia {
+                    mass,
+                    center: [0.5, 0.0],
+                    moment,
+                },
+            )
             .revolute("O", "ground", "crank", "O")
             .drive(Drive::angle("O"))
             .build();
         let e = r.unwrap_err().to_string();
         assert!(e.contains("link `crank`") && e.contains("≥ 0"), "{e}");
     }
-    let e = compile_error(Dynamics::new().with_motor(Motor { rotor_inertia: -1.0, ratio: 0.1, efficiency: 1.0 }));
+    let e = compile_error(Dynamics::new().with_motor(Motor {
+        rotor_inertia: -1.0,
+        ratio: 0.1,
+        efficiency: 1.0,
+    }));
     assert!(e.contains("rotor inertia"), "{e}");
 }
 
 #[test]
 fn load_on_unknown_point_or_link_is_rejected() {
     let e = compile_error(Dynamics::new().with_load(Load::force("crank", "Z", [1.0, 0.0])));
-    assert!(e.contains("unknown point `Z`") && e.contains("load 1"), "{e}");
+    assert!(
+        e.contains("unknown point `Z`") && e.contains("load 1"),
+        "{e}"
+    );
     let e = compile_error(Dynamics::new().with_load(Load::torque("arm", 1.0)));
     assert!(e.contains("unknown link `arm`"), "{e}");
     // A point that exists but is not on the loaded link.

@@ -6,7 +6,9 @@ mod common;
 
 use common::{four_bar_rocker_pin, revolution, scaled_error};
 use mechdiff_core::DriveState;
-use mechdiff_core::dynamics::{Dynamics, Efficiency, Friction, Gravity, Load, Motor, kinetostatics};
+use mechdiff_core::dynamics::{
+    Dynamics, Efficiency, Friction, Gravity, Load, Motor, kinetostatics,
+};
 use mechdiff_core::geometry::{Drive, Inertia, Mechanism, Solver};
 
 /// Crank 0.1 m, coupler 0.35 m with a coupler point K, rocker 0.3 m, frame 0.4 m (Grashof:
@@ -27,9 +29,30 @@ fn four_bar(gear: bool) -> Mechanism {
         .link("crank", ["A0", "A"])
         .link("coupler", ["A", "B", "K"])
         .link("rocker", ["B0", "B"])
-        .inertia("crank", Inertia { mass: 0.8, center: [0.04, 0.01], moment: 0.002 })
-        .inertia("coupler", Inertia { mass: 2.0, center: k, moment: 0.03 })
-        .inertia("rocker", Inertia { mass: 1.5, center: [(0.4 + b[0]) / 2.0, b[1] / 2.0], moment: 0.015 })
+        .inertia(
+            "crank",
+            Inertia {
+                mass: 0.8,
+                center: [0.04, 0.01],
+                moment: 0.002,
+            },
+        )
+        .inertia(
+            "coupler",
+            Inertia {
+                mass: 2.0,
+                center: k,
+                moment: 0.03,
+            },
+        )
+        .inertia(
+            "rocker",
+            Inertia {
+                mass: 1.5,
+                center: [(0.4 + b[0]) / 2.0, b[1] / 2.0],
+                moment: 0.015,
+            },
+        )
         .revolute("A0", "ground", "crank", "A0")
         .revolute("A", "crank", "coupler", "A")
         .revolute("B", "coupler", "rocker", "B")
@@ -60,8 +83,14 @@ fn drive_torque_equals_power_balance_torque_with_gravity_and_loads() {
     let d = loads(Dynamics::new());
     let model = d.compile(&m).unwrap();
     let effects = d.available(&m);
-    let sweep = Solver::default().sweep::<2>(&m, &revolution(1.0, &[])).unwrap();
-    for drive in [DriveState::constant_speed(20.0), DriveState::accelerating(20.0, 150.0), DriveState::accelerating(-8.0, 40.0)] {
+    let sweep = Solver::default()
+        .sweep::<2>(&m, &revolution(1.0, &[]))
+        .unwrap();
+    for drive in [
+        DriveState::constant_speed(20.0),
+        DriveState::accelerating(20.0, 150.0),
+        DriveState::accelerating(-8.0, 40.0),
+    ] {
         let pairs: Vec<(f64, f64)> = sweep
             .iter()
             .map(|k| {
@@ -70,7 +99,10 @@ fn drive_torque_equals_power_balance_torque_with_gravity_and_loads() {
             })
             .collect();
         let e = scaled_error(&pairs);
-        println!("ω = {}, α = {}: scaled error {e:.1e}", drive.omega, drive.alpha);
+        println!(
+            "ω = {}, α = {}: scaled error {e:.1e}",
+            drive.omega, drive.alpha
+        );
         // 1e-9 of the largest torque over the revolution (the torque crosses zero).
         assert!(e <= 1e-9, "scaled error {e:e}");
     }
@@ -83,7 +115,11 @@ fn gear_efficiency_and_friction_close_the_balance_in_both_flow_directions() {
         .with_efficiency(Efficiency::new("mesh", 0.9))
         .with_friction(Friction::revolute("A", 0.15, 0.008))
         .with_friction(Friction::revolute("B0", 0.15, 0.008))
-        .with_motor(Motor { rotor_inertia: 1e-4, ratio: 0.25, efficiency: 0.95 });
+        .with_motor(Motor {
+            rotor_inertia: 1e-4,
+            ratio: 0.25,
+            efficiency: 0.95,
+        });
     let model = d.compile(&m).unwrap();
     let effects = d.available(&m);
     // The pinion turns −2 rad per crank radian: a crank revolution is φ ∈ [0, −4π].
@@ -97,14 +133,23 @@ fn gear_efficiency_and_friction_close_the_balance_in_both_flow_directions() {
         worst = worst.max(b.residual.abs() / b.scale());
         let mesh = s.reactions.iter().find(|r| r.joint == "mesh").unwrap();
         assert!(mesh.power_loss <= 0.0);
-        if s.motor.unwrap().direct_flow { direct += 1 } else { reverse += 1 }
+        if s.motor.unwrap().direct_flow {
+            direct += 1
+        } else {
+            reverse += 1
+        }
         // The two motor torques differ by rounding only: 1e-9 of the largest power term
         // divided by the motor speed |ω/τ| = 120 rad/s.
         let t = b.torque.unwrap();
         assert!((t - b.kinetostatic_torque).abs() <= 1e-9 * b.scale() / (drive.omega / 0.25).abs());
     }
-    println!("power balance with η and friction: worst residual {worst:.1e}; {direct} direct, {reverse} reverse");
+    println!(
+        "power balance with η and friction: worst residual {worst:.1e}; {direct} direct, {reverse} reverse"
+    );
     // 1e-9 relative to the largest power term (the criterion).
     assert!(worst <= 1e-9, "{worst:e}");
-    assert!(direct > 0 && reverse > 0, "the power flow must reverse during the revolution");
+    assert!(
+        direct > 0 && reverse > 0,
+        "the power flow must reverse during the revolution"
+    );
 }

@@ -15,7 +15,8 @@
 
 use mechdiff_core::DriveState;
 use mechdiff_core::dynamics::{
-    Dynamics, Efficiency, Friction, Gravity, Load, Motor, Plan, Request, Solution, energy, kinetostatics,
+    Dynamics, Efficiency, Friction, Gravity, Load, Motor, Plan, Request, Solution, energy,
+    kinetostatics,
 };
 use mechdiff_core::geometry::{Drive, Inertia, Mechanism, Solver};
 
@@ -84,9 +85,30 @@ fn mechanism() -> Mechanism {
         .link("rod", ["C", "D"])
         .link("slider", ["D", "E"])
         .link("pinion", ["W"])
-        .inertia("slotted link", Inertia { mass: 6.0, center: g1, moment: 0.55 })
-        .inertia("slider", Inertia { mass: 12.0, center: d, moment: 0.0 })
-        .inertia("rack", Inertia { mass: 10.0, center: [RHO4, 0.0], moment: 0.0 })
+        .inertia(
+            "slotted link",
+            Inertia {
+                mass: 6.0,
+                center: g1,
+                moment: 0.55,
+            },
+        )
+        .inertia(
+            "slider",
+            Inertia {
+                mass: 12.0,
+                center: d,
+                moment: 0.0,
+            },
+        )
+        .inertia(
+            "rack",
+            Inertia {
+                mass: 10.0,
+                center: [RHO4, 0.0],
+                moment: 0.0,
+            },
+        )
         .prismatic("rack guide", "ground", ["O'", "X"], "rack", "A")
         .revolute("A", "rack", "block", "A")
         .prismatic("slot", "slotted link", ["B", "C"], "block", "A")
@@ -109,7 +131,11 @@ fn dynamics() -> Dynamics {
         .with_friction(Friction::sliding("slot", 0.15))
         .with_friction(Friction::sliding("incline", 0.20).with_contact_offset(-H_D))
         .with_efficiency(Efficiency::new("mesh", 0.95))
-        .with_motor(Motor { rotor_inertia: 0.002, ratio: 1.0 / 30.0, efficiency: 0.90 })
+        .with_motor(Motor {
+            rotor_inertia: 0.002,
+            ratio: 1.0 / 30.0,
+            efficiency: 0.90,
+        })
 }
 
 /// ω1 = v_A/R = 1.25 rad/s, ω̇1 = a_A/R = 0.05 rad/s² (`dynamics.gear`).
@@ -128,13 +154,22 @@ fn solve() -> Solution {
 fn close(name: &str, got: f64, want: f64) {
     let err = (got - want).abs() / want.abs();
     println!("{name}: {got} (reference {want}), relative error {err:.1e}");
-    assert!(err <= 1e-6, "{name}: got {got}, want {want}, relative error {err:e}");
+    assert!(
+        err <= 1e-6,
+        "{name}: got {got}, want {want}, relative error {err:e}"
+    );
 }
 
 #[test]
 fn twelve_unknowns_match_the_worked_example() {
     let s = solve();
-    let r = |name: &str| s.reactions.iter().find(|r| r.joint == name).unwrap().clone();
+    let r = |name: &str| {
+        s.reactions
+            .iter()
+            .find(|r| r.joint == name)
+            .unwrap()
+            .clone()
+    };
     let motor = s.motor.unwrap();
     close("M_d", motor.torque, M_D);
     close("M'_d (wheel)", s.drive_torque, 26.869788081459216);
@@ -172,7 +207,11 @@ fn power_terms_match_the_worked_example_and_the_balance_closes() {
     close("W_r (F, weights)", b.loads + b.gravity, -24.950306305786217);
     close("W_i", -b.kinetic_rate, -0.053284366604046174);
     // The balance (1.30) closes up to rounding: 1e-12 of the drive power.
-    assert!(b.residual.abs() <= 1e-12 * b.drive, "residual {}", b.residual);
+    assert!(
+        b.residual.abs() <= 1e-12 * b.drive,
+        "residual {}",
+        b.residual
+    );
     close("M_d from the power balance", b.torque.unwrap(), M_D);
 }
 
@@ -181,7 +220,11 @@ fn kinetic_energy_and_reduced_inertia() {
     let m = mechanism();
     let d = dynamics();
     let model = d.compile(&m).unwrap();
-    let k = Solver::default().track(&m).unwrap().kinematics::<2>().unwrap();
+    let k = Solver::default()
+        .track(&m)
+        .unwrap()
+        .kinematics::<2>()
+        .unwrap();
     let e = energy(&model, &k.coordinates, &DRIVE);
     close("T", e.kinetic, 1.4684885471242257);
     close("dT/dt", e.kinetic_rate.unwrap(), 0.053284366604046174);
@@ -192,7 +235,11 @@ fn friction_and_efficiency_not_in_the_plan_are_not_evaluated() {
     let m = mechanism();
     let d = dynamics();
     let model = d.compile(&m).unwrap();
-    let k = Solver::default().track(&m).unwrap().kinematics::<2>().unwrap();
+    let k = Solver::default()
+        .track(&m)
+        .unwrap()
+        .kinematics::<2>()
+        .unwrap();
     let available = d.available(&m);
     let full = kinetostatics::solve(&model, &available, &k, &DRIVE).unwrap();
     assert!(full.trace.friction > 0 && full.trace.efficiency > 0 && full.trace.gravity == 1);
@@ -200,7 +247,17 @@ fn friction_and_efficiency_not_in_the_plan_are_not_evaluated() {
     let plan = Plan::for_requests(&[Request::ShakingForce], available);
     let only = kinetostatics::solve(&model, &plan.effects, &k, &DRIVE).unwrap();
     let t = only.trace;
-    assert_eq!((t.inertia, t.gravity, t.loads, t.friction, t.efficiency, t.motor), (1, 0, 0, 0, 0, 0));
+    assert_eq!(
+        (
+            t.inertia,
+            t.gravity,
+            t.loads,
+            t.friction,
+            t.efficiency,
+            t.motor
+        ),
+        (1, 0, 0, 0, 0, 0)
+    );
     assert_eq!(t.equilibrium_solves, 1);
     assert!(only.motor.is_none());
     // Without friction and efficiency (and no motor), the balance holds with no losses.

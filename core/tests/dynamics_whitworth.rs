@@ -9,7 +9,8 @@ mod reference;
 use common::{H, L0, L1, revolution};
 use mechdiff_core::DriveState;
 use mechdiff_core::dynamics::{
-    Dynamics, Effects, Friction, Gravity, Load, Plan, Request, ShakingSummary, kinetostatics, shaking_force,
+    Dynamics, Effects, Friction, Gravity, Load, Plan, Request, ShakingSummary, kinetostatics,
+    shaking_force,
 };
 use mechdiff_core::geometry::{Drive, Inertia, Mechanism, Solver};
 
@@ -33,9 +34,30 @@ fn whitworth(moments: [f64; 2]) -> Mechanism {
         .link("crank", ["O", "A"])
         .link("rocker", ["B0", "S"])
         .link("ram", ["C"])
-        .inertia("crank", Inertia { mass: 15.0, center: [0.0, L0 - 0.04], moment: moments[0] })
-        .inertia("rocker", Inertia { mass: 30.0, center: [0.0, 0.15], moment: moments[1] })
-        .inertia("ram", Inertia { mass: 50.0, center: [0.0, H], moment: 0.0 })
+        .inertia(
+            "crank",
+            Inertia {
+                mass: 15.0,
+                center: [0.0, L0 - 0.04],
+                moment: moments[0],
+            },
+        )
+        .inertia(
+            "rocker",
+            Inertia {
+                mass: 30.0,
+                center: [0.0, 0.15],
+                moment: moments[1],
+            },
+        )
+        .inertia(
+            "ram",
+            Inertia {
+                mass: 50.0,
+                center: [0.0, H],
+                moment: 0.0,
+            },
+        )
         .revolute("O", "ground", "crank", "O")
         .revolute("B0", "ground", "rocker", "B0")
         .pin_in_slot("slot A", "rocker", ["B0", "S"], "crank", "A")
@@ -60,7 +82,15 @@ fn inertial_force_table_matches_whitworth_000_to_1e_9() {
         let row = reference::TABLE.iter().find(|r| r[0] == k.phi).unwrap();
         let s = shaking_force(&model, k.phi, &k.coordinates, &drive);
         let [c, r, ram] = [&s.links[0], &s.links[1], &s.links[2]];
-        let got = [c.force[0], c.force[1], r.force[0], r.force[1], ram.force[0], s.force[0], s.force[1]];
+        let got = [
+            c.force[0],
+            c.force[1],
+            r.force[0],
+            r.force[1],
+            ram.force[0],
+            s.force[0],
+            s.force[1],
+        ];
         let names = ["F_x1", "F_y1", "F_x2", "F_y2", "F_x3", "ΣF_x", "ΣF_y"];
         for i in 0..7 {
             let want = row[i + 1];
@@ -69,8 +99,18 @@ fn inertial_force_table_matches_whitworth_000_to_1e_9() {
             // up to rounding (the geometry is solved to 1e-13 m).
             let err = (got[i] - want).abs();
             let tol = 1e-9 * if want == 0.0 { scale } else { want.abs() };
-            println!("φ = {:.6}, {}: {} (reference {}), error {err:.1e}", k.phi, names[i], got[i], want);
-            assert!(err <= tol, "{} at φ = {}: got {}, want {}", names[i], k.phi, got[i], want);
+            println!(
+                "φ = {:.6}, {}: {} (reference {}), error {err:.1e}",
+                k.phi, names[i], got[i], want
+            );
+            assert!(
+                err <= tol,
+                "{} at φ = {}: got {}, want {}",
+                names[i],
+                k.phi,
+                got[i],
+                want
+            );
         }
         // The ram translates horizontally: no vertical inertial force (exact).
         assert_eq!(ram.force[1], 0.0);
@@ -101,8 +141,13 @@ fn shaking_force_over_a_revolution_matches_the_reference_sweep_and_is_symmetric(
     }
     // Extremes on a 0.25° grid: φ ↦ 2π − φ mirrors the mechanism about the y axis at
     // constant ω, so max ΣF_x = −min ΣF_x at mirrored angles (1e-9 relative).
-    let fine = Solver::default().sweep::<2>(&m, &revolution(0.25, &[])).unwrap();
-    let forces: Vec<_> = fine.iter().map(|k| shaking_force(&model, k.phi, &k.coordinates, &drive)).collect();
+    let fine = Solver::default()
+        .sweep::<2>(&m, &revolution(0.25, &[]))
+        .unwrap();
+    let forces: Vec<_> = fine
+        .iter()
+        .map(|k| shaking_force(&model, k.phi, &k.coordinates, &drive))
+        .collect();
     let s = ShakingSummary::of(&forces).unwrap();
     println!("{s:?}");
     assert!((s.force_x[1].value + s.force_x[0].value).abs() <= 1e-9 * s.force_x[1].value);
@@ -130,9 +175,22 @@ fn drive_torque_equals_power_balance_torque_over_a_revolution() {
         .with_load(Load::force("ram", "C", [-2000.0, 0.0]).active_between(dead[1], dead[0]));
     let model = dynamics.compile(&m).unwrap();
     let plan = Plan::for_requests(&[Request::PowerBalance], dynamics.available(&m));
-    assert_eq!(plan.effects, Effects { inertia: true, gravity: true, loads: true, ..Effects::none() });
-    let sweep = Solver::default().sweep::<2>(&m, &revolution(1.0, &dead)).unwrap();
-    for drive in [DriveState::constant_speed(OMEGA), DriveState::accelerating(OMEGA, -3.0)] {
+    assert_eq!(
+        plan.effects,
+        Effects {
+            inertia: true,
+            gravity: true,
+            loads: true,
+            ..Effects::none()
+        }
+    );
+    let sweep = Solver::default()
+        .sweep::<2>(&m, &revolution(1.0, &dead))
+        .unwrap();
+    for drive in [
+        DriveState::constant_speed(OMEGA),
+        DriveState::accelerating(OMEGA, -3.0),
+    ] {
         let mut pairs = Vec::new();
         let mut max_load_power: f64 = 0.0;
         for k in &sweep {
@@ -143,10 +201,16 @@ fn drive_torque_equals_power_balance_torque_over_a_revolution() {
             assert_eq!(s.iterations, 1, "no friction: one solve");
         }
         let e = scaled_error(&pairs);
-        println!("ω = {}, α = {}: kinetostatic vs power-balance torque, scaled error {e:.1e}", drive.omega, drive.alpha);
+        println!(
+            "ω = {}, α = {}: kinetostatic vs power-balance torque, scaled error {e:.1e}",
+            drive.omega, drive.alpha
+        );
         // 1e-9 (the criterion); both are exact up to rounding of a 9×9 LU.
         assert!(e <= 1e-9, "scaled error {e:e}");
-        assert!(max_load_power > 1000.0, "the cutting force must do work on the forward stroke");
+        assert!(
+            max_load_power > 1000.0,
+            "the cutting force must do work on the forward stroke"
+        );
     }
 }
 
@@ -167,7 +231,9 @@ fn friction_in_every_joint_closes_the_power_balance() {
         .with_friction(Friction::sliding("ram guide", 0.08));
     let model = dynamics.compile(&m).unwrap();
     let effects = dynamics.available(&m);
-    let sweep = Solver::default().sweep::<2>(&m, &revolution(2.0, &[])).unwrap();
+    let sweep = Solver::default()
+        .sweep::<2>(&m, &revolution(2.0, &[]))
+        .unwrap();
     let drive = DriveState::accelerating(OMEGA, 2.0);
     let mut worst: f64 = 0.0;
     let mut lost: f64 = 0.0;
@@ -180,7 +246,9 @@ fn friction_in_every_joint_closes_the_power_balance() {
             assert!(r.power_loss <= 0.0, "friction must dissipate: {r:?}");
         }
     }
-    println!("friction power balance: worst residual {worst:.1e} of the largest term; max friction loss {lost:.1} W");
+    println!(
+        "friction power balance: worst residual {worst:.1e} of the largest term; max friction loss {lost:.1} W"
+    );
     // 1e-9 relative to the largest power term (the criterion).
     assert!(worst <= 1e-9, "residual {worst:e}");
     assert!(lost < -10.0, "friction must cost power somewhere");

@@ -256,13 +256,20 @@ fn efficiency(cx: &Context, v: &Spanned<f64>, what: &str) -> Result<f64> {
 }
 
 fn joint<'j>(cx: &Context, name: &Name, joints: &'j [Joint], context: &str) -> Result<&'j Joint> {
-    joints.iter().find(|j| &j.name == name.get_ref()).ok_or_else(|| Error::UnknownName {
-        location: cx.at(name),
-        what: "joint",
-        name: name.get_ref().clone(),
-        context: context.to_owned(),
-        known: joints.iter().map(|j| j.name.as_str()).collect::<Vec<_>>().join(", "),
-    })
+    joints
+        .iter()
+        .find(|j| &j.name == name.get_ref())
+        .ok_or_else(|| Error::UnknownName {
+            location: cx.at(name),
+            what: "joint",
+            name: name.get_ref().clone(),
+            context: context.to_owned(),
+            known: joints
+                .iter()
+                .map(|j| j.name.as_str())
+                .collect::<Vec<_>>()
+                .join(", "),
+        })
 }
 
 /// Checks the dynamic sections; `None` when the scene has none.
@@ -289,23 +296,38 @@ pub(crate) fn resolve(
         let d = def.get_ref();
         let mass = non_negative(cx, &d.mass, &format!("the mass of link `{link}` (kg)"))?;
         let moment = match &d.inertia {
-            Some(i) => non_negative(cx, i, &format!("the moment of inertia of link `{link}` (kg·m²)"))?,
+            Some(i) => non_negative(
+                cx,
+                i,
+                &format!("the moment of inertia of link `{link}` (kg·m²)"),
+            )?,
             None => 0.0,
         };
         let center = match d.center.get_ref() {
             CenterDef::Point(p) => {
                 let spanned = Spanned::new(d.center.span(), p.clone());
-                let p = cx.point_on(&spanned, link, geometry, &format!("`masses.{link}.center`"))?;
+                let p =
+                    cx.point_on(&spanned, link, geometry, &format!("`masses.{link}.center`"))?;
                 geometry.sketch(p)
             }
             CenterDef::Xy([x, y]) => {
                 if !(x.is_finite() && y.is_finite()) {
                     return Err(cx.invalid(&d.center, "the centre must have finite coordinates"));
                 }
-                [cx.units.to_si(*x, Dimension::Length), cx.units.to_si(*y, Dimension::Length)]
+                [
+                    cx.units.to_si(*x, Dimension::Length),
+                    cx.units.to_si(*y, Dimension::Length),
+                ]
             }
         };
-        masses.push((link.to_owned(), Inertia { mass, center, moment }));
+        masses.push((
+            link.to_owned(),
+            Inertia {
+                mass,
+                center,
+                moment,
+            },
+        ));
     }
     let mut data = Dynamics::new();
     if let Some(g) = s.gravity {
@@ -317,13 +339,25 @@ pub(crate) fn resolve(
     for (name, def) in s.friction.map(|m| m.get_ref().iter()).into_iter().flatten() {
         let j = joint(cx, name, joints, "`[friction]`")?;
         let d = def.get_ref();
-        let f = non_negative(cx, &d.coefficient, &format!("the friction coefficient of joint `{}`", j.name))?;
+        let f = non_negative(
+            cx,
+            &d.coefficient,
+            &format!("the friction coefficient of joint `{}`", j.name),
+        )?;
         let friction = match &j.kind {
             JointKind::Revolute { .. } => {
                 let r = d.pin_radius.as_ref().ok_or_else(|| {
-                    cx.invalid(def, format!("friction in revolute joint `{}` needs `pin_radius`", j.name))
+                    cx.invalid(
+                        def,
+                        format!("friction in revolute joint `{}` needs `pin_radius`", j.name),
+                    )
                 })?;
-                Friction::revolute(&j.name, f, cx.units.to_si(non_negative(cx, r, "pin_radius")?, Dimension::Length))
+                Friction::revolute(
+                    &j.name,
+                    f,
+                    cx.units
+                        .to_si(non_negative(cx, r, "pin_radius")?, Dimension::Length),
+                )
             }
             JointKind::Prismatic { .. } | JointKind::PinInSlot { .. } => {
                 let offset = match &d.contact_offset {
@@ -346,30 +380,54 @@ pub(crate) fn resolve(
         };
         data.friction.push(friction);
     }
-    for (name, def) in s.efficiency.map(|m| m.get_ref().iter()).into_iter().flatten() {
+    for (name, def) in s
+        .efficiency
+        .map(|m| m.get_ref().iter())
+        .into_iter()
+        .flatten()
+    {
         let j = joint(cx, name, joints, "`[efficiency]`")?;
-        if !matches!(j.kind, JointKind::RackPinion { .. } | JointKind::Gear { .. }) {
+        if !matches!(
+            j.kind,
+            JointKind::RackPinion { .. } | JointKind::Gear { .. }
+        ) {
             return Err(cx.invalid(
                 name,
-                format!("an efficiency applies to a rack_pinion or gear joint; `{}` is a {} joint", j.name, j.kind.type_name()),
+                format!(
+                    "an efficiency applies to a rack_pinion or gear joint; `{}` is a {} joint",
+                    j.name,
+                    j.kind.type_name()
+                ),
             ));
         }
         let d = def.get_ref();
-        let eta = efficiency(cx, &d.efficiency, &format!("the efficiency of joint `{}`", j.name))?;
+        let eta = efficiency(
+            cx,
+            &d.efficiency,
+            &format!("the efficiency of joint `{}`", j.name),
+        )?;
         let driving = match d.driving.as_ref().map(|s| *s.get_ref()) {
             Some(DrivingSide::Second) => Driving::Second,
             _ => Driving::First,
         };
-        data.efficiency.push(Efficiency::new(&j.name, eta).driven_from(driving));
+        data.efficiency
+            .push(Efficiency::new(&j.name, eta).driven_from(driving));
     }
     if let Some(m) = s.motor {
         let d = m.get_ref();
         let ratio = *d.ratio.get_ref();
         if !(ratio.is_finite() && ratio != 0.0) {
-            return Err(cx.invalid(&d.ratio, format!("the motor's `ratio` must be finite and non-zero, found {ratio}")));
+            return Err(cx.invalid(
+                &d.ratio,
+                format!("the motor's `ratio` must be finite and non-zero, found {ratio}"),
+            ));
         }
         data.motor = Some(Motor {
-            rotor_inertia: non_negative(cx, &d.rotor_inertia, "the motor's `rotor_inertia` (kg·m²)")?,
+            rotor_inertia: non_negative(
+                cx,
+                &d.rotor_inertia,
+                "the motor's `rotor_inertia` (kg·m²)",
+            )?,
             ratio,
             efficiency: match &d.efficiency {
                 Some(e) => efficiency(cx, e, "the motor's gearbox `efficiency`")?,
@@ -405,7 +463,9 @@ pub(crate) fn resolve(
                 for l in ls {
                     let l = cx.link(l, geometry.links, "`[[dynamics]] links`")?;
                     if !masses.iter().any(|(m, _)| m == l) {
-                        return Err(cx.invalid(def, format!("link `{l}` has no mass in `[masses]`")));
+                        return Err(
+                            cx.invalid(def, format!("link `{l}` has no mass in `[masses]`"))
+                        );
                     }
                     names.push(l.to_owned());
                 }
@@ -418,19 +478,35 @@ pub(crate) fn resolve(
                 ));
             }
         }
-        outputs.push(DynamicsOutput { quantity, names, location: cx.at(def) });
+        outputs.push(DynamicsOutput {
+            quantity,
+            names,
+            location: cx.at(def),
+        });
     }
-    Ok(Some(SceneDynamics { masses, data, outputs }))
+    Ok(Some(SceneDynamics {
+        masses,
+        data,
+        outputs,
+    }))
 }
 
-fn load(cx: &Context, def: &Spanned<LoadDef>, geometry: &Geometry, drive: DriveKind) -> Result<Load> {
+fn load(
+    cx: &Context,
+    def: &Spanned<LoadDef>,
+    geometry: &Geometry,
+    drive: DriveKind,
+) -> Result<Load> {
     let d = def.get_ref();
     let link = cx.link(&d.link, geometry.links, "`[[load]]`")?;
     let finite = |v: f64, at: &Location| -> Result<f64> {
         if v.is_finite() {
             Ok(v)
         } else {
-            Err(Error::Invalid { location: at.clone(), message: format!("a load value must be finite, found {v}") })
+            Err(Error::Invalid {
+                location: at.clone(),
+                message: format!("a load value must be finite, found {v}"),
+            })
         }
     };
     let mut load = match (&d.force, &d.torque) {
@@ -444,7 +520,12 @@ fn load(cx: &Context, def: &Spanned<LoadDef>, geometry: &Geometry, drive: DriveK
             Load::force(link, p, [finite(fx, &at)?, finite(fy, &at)?])
         }
         (None, Some(t)) => Load::torque(link, finite(*t.get_ref(), &cx.at(t))?),
-        _ => return Err(cx.invalid(def, "a `[[load]]` has either `force = [Fx, Fy]` (with `point`) or `torque = M`")),
+        _ => {
+            return Err(cx.invalid(
+                def,
+                "a `[[load]]` has either `force = [Fx, Fy]` (with `point`) or `torque = M`",
+            ));
+        }
     };
     if let Some(a) = &d.active {
         let [from, to] = *a.get_ref();
@@ -476,7 +557,11 @@ pub struct DynamicsReport {
 }
 
 fn column(name: impl Into<String>, unit: &str) -> Column {
-    Column { name: name.into(), unit: unit.to_owned(), factor: 1.0 }
+    Column {
+        name: name.into(),
+        unit: unit.to_owned(),
+        factor: 1.0,
+    }
 }
 
 /// Runs the dynamic outputs of `scene` at the drive positions `positions`.
@@ -490,7 +575,10 @@ pub(crate) fn run(
     if d.outputs.is_empty() {
         return Ok(None);
     }
-    let model = d.data.compile(mechanism).map_err(|source| Error::Model { file: scene.file.clone(), source })?;
+    let model = d.data.compile(mechanism).map_err(|source| Error::Model {
+        file: scene.file.clone(),
+        source,
+    })?;
     let plan = d.plan(mechanism);
     let drive = match speed {
         Some(omega) => DriveState::accelerating(omega, scene.drive.acceleration),
@@ -502,29 +590,44 @@ pub(crate) fn run(
         }
         None => DriveState::constant_speed(0.0),
     };
-    let result = run_plan(&plan, &model, &Solver::default(), positions, |_| drive).map_err(|e| match e {
-        mechdiff_core::Error::SelfLocking { phi, joints, reason } => Error::Invalid {
-            location: scene.drive.location.clone(),
-            message: format!(
-                "self-locking at drive position {}: joints {} ({reason})",
-                scene.drive_text(phi),
-                joints.join(", ")
-            ),
-        },
-        other => super::run::solver_error(scene, other),
-    })?;
+    let result =
+        run_plan(&plan, &model, &Solver::default(), positions, |_| drive).map_err(|e| match e {
+            mechdiff_core::Error::SelfLocking {
+                phi,
+                joints,
+                reason,
+            } => Error::Invalid {
+                location: scene.drive.location.clone(),
+                message: format!(
+                    "self-locking at drive position {}: joints {} ({reason})",
+                    scene.drive_text(phi),
+                    joints.join(", ")
+                ),
+            },
+            other => super::run::solver_error(scene, other),
+        })?;
     let m = mechanism;
-    let torque_unit = if scene.drive.kind == DriveKind::Angle { ("M_drive", "N m") } else { ("F_drive", "N") };
+    let torque_unit = if scene.drive.kind == DriveKind::Angle {
+        ("M_drive", "N m")
+    } else {
+        ("F_drive", "N")
+    };
     let mass_links: Vec<&str> = model_links(d);
     let mut columns = Vec::new();
     for o in &d.outputs {
         match o.quantity {
-            DynamicQuantity::ShakingForce => {
-                columns.extend([column("SumF_x", "N"), column("SumF_y", "N"), column("M_shaking", "N m")])
-            }
+            DynamicQuantity::ShakingForce => columns.extend([
+                column("SumF_x", "N"),
+                column("SumF_y", "N"),
+                column("M_shaking", "N m"),
+            ]),
             DynamicQuantity::InertialForces => {
                 for l in selected(&o.names, &mass_links) {
-                    columns.extend([column(format!("Fx_{l}"), "N"), column(format!("Fy_{l}"), "N"), column(format!("M_{l}"), "N m")]);
+                    columns.extend([
+                        column(format!("Fx_{l}"), "N"),
+                        column(format!("Fy_{l}"), "N"),
+                        column(format!("M_{l}"), "N m"),
+                    ]);
                 }
             }
             DynamicQuantity::Reactions => {
@@ -541,7 +644,11 @@ pub(crate) fn run(
             }
             DynamicQuantity::KineticEnergy => columns.push(column("T", "J")),
             DynamicQuantity::ReducedInertia => {
-                let u = if scene.drive.kind == DriveKind::Angle { ["kg m^2", "kg m^2/rad"] } else { ["kg", "kg/m"] };
+                let u = if scene.drive.kind == DriveKind::Angle {
+                    ["kg m^2", "kg m^2/rad"]
+                } else {
+                    ["kg", "kg/m"]
+                };
                 columns.extend([column("J_red", u[0]), column("J_red'", u[1])]);
             }
             DynamicQuantity::PowerBalance => columns.extend([
@@ -566,7 +673,11 @@ pub(crate) fn run(
                     let s = step.shaking.as_ref().expect("planned");
                     for l in selected(&o.names, &mass_links) {
                         let k = m.link_index(l).expect("checked");
-                        let f = s.links.iter().find(|x| x.link == k).expect("a link with mass");
+                        let f = s
+                            .links
+                            .iter()
+                            .find(|x| x.link == k)
+                            .expect("a link with mass");
                         row.extend([f.force[0], f.force[1], f.couple]);
                     }
                 }
@@ -574,7 +685,11 @@ pub(crate) fn run(
                     let s = step.solution.as_ref().expect("planned");
                     let all: Vec<&str> = m.joints.iter().map(|j| j.name.as_str()).collect();
                     for j in selected(&o.names, &all) {
-                        let r = s.reactions.iter().find(|r| r.joint == j).expect("every joint");
+                        let r = s
+                            .reactions
+                            .iter()
+                            .find(|r| r.joint == j)
+                            .expect("every joint");
                         row.extend(reaction_values(scene, r));
                     }
                 }
@@ -588,20 +703,36 @@ pub(crate) fn run(
                 DynamicQuantity::KineticEnergy => row.push(step.energy.expect("planned").kinetic),
                 DynamicQuantity::ReducedInertia => {
                     let e = step.energy.expect("planned");
-                    row.extend([e.reduced_inertia, e.reduced_inertia_derivative.unwrap_or(f64::NAN)]);
+                    row.extend([
+                        e.reduced_inertia,
+                        e.reduced_inertia_derivative.unwrap_or(f64::NAN),
+                    ]);
                 }
                 DynamicQuantity::PowerBalance => {
                     let b = step.solution.as_ref().expect("planned").balance;
                     let t = b.torque.unwrap_or(f64::NAN);
-                    row.extend([t, b.kinetostatic_torque - t, b.drive, b.kinetic_rate, b.friction + b.efficiency]);
+                    row.extend([
+                        t,
+                        b.kinetostatic_torque - t,
+                        b.drive,
+                        b.kinetic_rate,
+                        b.friction + b.efficiency,
+                    ]);
                 }
             }
         }
         rows.push(row);
     }
     let mut summary = Vec::new();
-    if d.outputs.iter().any(|o| o.quantity == DynamicQuantity::ShakingForce) {
-        let forces: Vec<_> = result.steps.iter().filter_map(|s| s.shaking.clone()).collect();
+    if d.outputs
+        .iter()
+        .any(|o| o.quantity == DynamicQuantity::ShakingForce)
+    {
+        let forces: Vec<_> = result
+            .steps
+            .iter()
+            .filter_map(|s| s.shaking.clone())
+            .collect();
         if let Some(s) = ShakingSummary::of(&forces) {
             summary.push(format!(
                 "shaking force over the sweep: SumF_x from {:.6} N (at {}) to {:.6} N (at {}); SumF_y from {:.6} N (at {}) to {:.6} N (at {}); largest |SumF| {:.6} N (at {})",
@@ -611,16 +742,27 @@ pub(crate) fn run(
             ));
         }
     }
-    if d.outputs.iter().any(|o| o.quantity == DynamicQuantity::PowerBalance) {
+    if d.outputs
+        .iter()
+        .any(|o| o.quantity == DynamicQuantity::PowerBalance)
+    {
         let worst = result
             .steps
             .iter()
             .filter_map(|s| s.solution.as_ref())
             .map(|s| s.balance.residual.abs() / s.balance.scale().max(f64::MIN_POSITIVE))
             .fold(0.0, f64::max);
-        summary.push(format!("power balance: largest residual {worst:.1e} of the largest power term"));
+        summary.push(format!(
+            "power balance: largest residual {worst:.1e} of the largest power term"
+        ));
     }
-    Ok(Some(DynamicsReport { plan, columns, rows, summary, run: result }))
+    Ok(Some(DynamicsReport {
+        plan,
+        columns,
+        rows,
+        summary,
+        run: result,
+    }))
 }
 
 fn model_links(d: &SceneDynamics) -> Vec<&str> {
@@ -628,23 +770,46 @@ fn model_links(d: &SceneDynamics) -> Vec<&str> {
 }
 
 fn selected<'a>(names: &'a [String], all: &[&'a str]) -> Vec<&'a str> {
-    if names.is_empty() { all.to_vec() } else { names.iter().map(String::as_str).collect() }
+    if names.is_empty() {
+        all.to_vec()
+    } else {
+        names.iter().map(String::as_str).collect()
+    }
 }
 
 fn joint_kind<'s>(scene: &'s Scene, name: &str) -> &'s JointKind {
-    &scene.joints.iter().find(|j| j.name == name).expect("a joint of the scene").kind
+    &scene
+        .joints
+        .iter()
+        .find(|j| j.name == name)
+        .expect("a joint of the scene")
+        .kind
 }
 
 fn reaction_columns(scene: &Scene, j: &str) -> Vec<Column> {
     match joint_kind(scene, j) {
-        JointKind::Revolute { .. } => vec![column(format!("Fx_{j}"), "N"), column(format!("Fy_{j}"), "N"), column(format!("Mf_{j}"), "N m")],
+        JointKind::Revolute { .. } => vec![
+            column(format!("Fx_{j}"), "N"),
+            column(format!("Fy_{j}"), "N"),
+            column(format!("Mf_{j}"), "N m"),
+        ],
         JointKind::Prismatic { .. } => {
-            vec![column(format!("N_{j}"), "N"), column(format!("T_{j}"), "N"), column(format!("M_{j}"), "N m")]
+            vec![
+                column(format!("N_{j}"), "N"),
+                column(format!("T_{j}"), "N"),
+                column(format!("M_{j}"), "N m"),
+            ]
         }
-        JointKind::PinInSlot { .. } => vec![column(format!("N_{j}"), "N"), column(format!("T_{j}"), "N")],
+        JointKind::PinInSlot { .. } => {
+            vec![column(format!("N_{j}"), "N"), column(format!("T_{j}"), "N")]
+        }
         JointKind::RackPinion { .. } => vec![column(format!("F_{j}"), "N")],
         JointKind::Gear { .. } => vec![column(format!("M_{j}"), "N m")],
-        JointKind::Weld { .. } => vec![column(format!("Fx_{j}"), "N"), column(format!("Fy_{j}"), "N"), column(format!("M_{j}"), "N m")],
+        JointKind::Weld { .. } => vec![
+            column(format!("Fx_{j}"), "N"),
+            column(format!("Fy_{j}"), "N"),
+            column(format!("M_{j}"), "N m"),
+        ],
     }
 }
 

@@ -41,7 +41,11 @@ pub struct Efficiency {
 impl Efficiency {
     /// Efficiency `η` of joint `joint`, driven from its first side (pinion / first gear).
     pub fn new(joint: impl Into<String>, efficiency: f64) -> Self {
-        Efficiency { joint: joint.into(), efficiency, driving: Driving::First }
+        Efficiency {
+            joint: joint.into(),
+            efficiency,
+            driving: Driving::First,
+        }
     }
 
     /// Sets the nominally driving side.
@@ -56,7 +60,10 @@ pub(crate) fn check_efficiency(what: impl FnOnce() -> String, eta: f64) -> Resul
     if eta.is_finite() && eta > 0.0 && eta <= 1.0 {
         Ok(())
     } else {
-        Err(Error::InvalidValue { what: format!("{} (must be in (0, 1])", what()), value: eta })
+        Err(Error::InvalidValue {
+            what: format!("{} (must be in (0, 1])", what()),
+            value: eta,
+        })
     }
 }
 
@@ -72,13 +79,20 @@ pub(crate) struct CompiledEfficiency {
     pub driving: Driving,
 }
 
-pub(crate) fn compile(m: &Mechanism, e: &Efficiency, rows: &[usize]) -> Result<CompiledEfficiency, Error> {
+pub(crate) fn compile(
+    m: &Mechanism,
+    e: &Efficiency,
+    rows: &[usize],
+) -> Result<CompiledEfficiency, Error> {
     let joint = m.joint_index(&e.joint).map_err(|_| Error::UnknownName {
         what: "joint",
         name: e.joint.clone(),
         context: "efficiency".to_owned(),
     })?;
-    check_efficiency(|| format!("efficiency of joint `{}`", e.joint), e.efficiency)?;
+    check_efficiency(
+        || format!("efficiency of joint `{}`", e.joint),
+        e.efficiency,
+    )?;
     let n = m.coordinate_count();
     let mut first = vec![0.0; n];
     let add_angle = |v: &mut Vec<f64>, link: usize, w: f64| {
@@ -113,7 +127,13 @@ pub(crate) fn compile(m: &Mechanism, e: &Efficiency, rows: &[usize]) -> Result<C
     };
     add_angle(&mut first, factor.1, -factor.2);
     add_angle(&mut first, factor.0, factor.2);
-    Ok(CompiledEfficiency { joint, row: rows[joint], eta: e.efficiency, first, driving: e.driving })
+    Ok(CompiledEfficiency {
+        joint,
+        row: rows[joint],
+        eta: e.efficiency,
+        first,
+        driving: e.driving,
+    })
 }
 
 impl CompiledEfficiency {

@@ -30,24 +30,38 @@ pub struct Energy {
 
 /// The kinetic energy of the links with mass (and of the motor's rotor) at the pose of
 /// `coordinates` (with their first `N ≥ 1` φ-derivatives) for drive state `drive`.
-pub fn energy<const N: usize>(model: &CompiledModel<'_>, coordinates: &[Jet<N>], drive: &DriveState) -> Energy {
+pub fn energy<const N: usize>(
+    model: &CompiledModel<'_>,
+    coordinates: &[Jet<N>],
+    drive: &DriveState,
+) -> Energy {
     const { assert!(N >= 1, "the kinetic energy needs first derivatives") };
     let padded: Vec<Jet<2>> = coordinates
         .iter()
-        .map(|j| Jet::new(j.value, [j.derivatives[0], j.derivatives.get(1).copied().unwrap_or(0.0)]))
+        .map(|j| {
+            Jet::new(
+                j.value,
+                [
+                    j.derivatives[0],
+                    j.derivatives.get(1).copied().unwrap_or(0.0),
+                ],
+            )
+        })
         .collect();
     // With ω = 1 and α = 0 the "velocities" are the φ-derivatives r′, θ′ and the
     // "accelerations" the second derivatives r″, θ″.
     let d = state::link_states(&padded, &DriveState::constant_speed(1.0));
     let (j, dj) = reduced(&model.masses, &d);
-    let rotor = model.motor.map_or(0.0, |mo| mo.rotor_inertia / (mo.ratio * mo.ratio));
+    let rotor = model
+        .motor
+        .map_or(0.0, |mo| mo.rotor_inertia / (mo.ratio * mo.ratio));
     let j = j + rotor;
     let w = drive.omega;
     Energy {
         kinetic: 0.5 * j * w * w,
         reduced_inertia: j,
         reduced_inertia_derivative: (N >= 2).then_some(dj),
-        kinetic_rate: (N >= 2).then(|| j * w * drive.alpha + 0.5 * dj * w * w * w),
+        kinetic_rate: (N >= 2).then_some(j * w * drive.alpha + 0.5 * dj * w * w * w),
     }
 }
 
@@ -92,9 +106,16 @@ pub struct PowerBalance {
 impl PowerBalance {
     /// The largest magnitude among the power terms (the scale of the residual).
     pub fn scale(&self) -> f64 {
-        [self.drive, self.kinetic_rate, self.gravity, self.loads, self.friction, self.efficiency]
-            .iter()
-            .fold(0.0, |a: f64, v| a.max(v.abs()))
+        [
+            self.drive,
+            self.kinetic_rate,
+            self.gravity,
+            self.loads,
+            self.friction,
+            self.efficiency,
+        ]
+        .iter()
+        .fold(0.0, |a: f64, v| a.max(v.abs()))
     }
 
     /// Difference of the two drive torques, `None` at rest.
@@ -119,24 +140,41 @@ pub(crate) fn balance(
         for m in &model.masses {
             let s = of(states, m.link);
             let g = s.position(m.center);
-            kinetic_rate += m.mass * dot(s.acceleration_at(g), s.velocity_at(g)) + m.moment * s.alpha * s.omega;
+            kinetic_rate +=
+                m.mass * dot(s.acceleration_at(g), s.velocity_at(g)) + m.moment * s.alpha * s.omega;
         }
     }
     let gravity = match (&model.gravity, effects.gravity) {
         (Some(g), true) => gravity::power(g, &model.masses, states),
         _ => 0.0,
     };
-    let loads = if effects.loads { loads::power(&model.loads, phi, states) } else { 0.0 };
+    let loads = if effects.loads {
+        loads::power(&model.loads, phi, states)
+    } else {
+        0.0
+    };
     let friction: f64 = reactions
         .iter()
         .zip(&model.mechanism.joints)
-        .filter(|(_, j)| !matches!(j.kind, crate::geometry::JointKind::RackPinion { .. } | crate::geometry::JointKind::Gear { .. }))
+        .filter(|(_, j)| {
+            !matches!(
+                j.kind,
+                crate::geometry::JointKind::RackPinion { .. }
+                    | crate::geometry::JointKind::Gear { .. }
+            )
+        })
         .map(|(r, _)| r.power_loss)
         .sum();
     let mut efficiency: f64 = reactions
         .iter()
         .zip(&model.mechanism.joints)
-        .filter(|(_, j)| matches!(j.kind, crate::geometry::JointKind::RackPinion { .. } | crate::geometry::JointKind::Gear { .. }))
+        .filter(|(_, j)| {
+            matches!(
+                j.kind,
+                crate::geometry::JointKind::RackPinion { .. }
+                    | crate::geometry::JointKind::Gear { .. }
+            )
+        })
         .map(|(r, _)| r.power_loss)
         .sum();
     let (power, speed, torque) = match motor {

@@ -37,12 +37,22 @@ pub struct Friction {
 impl Friction {
     /// Friction in a prismatic or pin-in-slot joint.
     pub fn sliding(joint: impl Into<String>, coefficient: f64) -> Self {
-        Friction { joint: joint.into(), coefficient, pin_radius: None, contact_offset: 0.0 }
+        Friction {
+            joint: joint.into(),
+            coefficient,
+            pin_radius: None,
+            contact_offset: 0.0,
+        }
     }
 
     /// Friction circle in a revolute joint with pin radius `pin_radius` (m).
     pub fn revolute(joint: impl Into<String>, coefficient: f64, pin_radius: f64) -> Self {
-        Friction { joint: joint.into(), coefficient, pin_radius: Some(pin_radius), contact_offset: 0.0 }
+        Friction {
+            joint: joint.into(),
+            coefficient,
+            pin_radius: Some(pin_radius),
+            contact_offset: 0.0,
+        }
     }
 
     /// Sets the contact offset (see [`Friction::contact_offset`]).
@@ -79,7 +89,11 @@ pub(crate) enum CompiledFriction {
     },
 }
 
-pub(crate) fn compile(m: &Mechanism, f: &Friction, rows: &[usize]) -> Result<CompiledFriction, Error> {
+pub(crate) fn compile(
+    m: &Mechanism,
+    f: &Friction,
+    rows: &[usize],
+) -> Result<CompiledFriction, Error> {
     let context = || format!("friction in joint `{}`", f.joint);
     let joint = m.joint_index(&f.joint).map_err(|_| Error::UnknownName {
         what: "joint",
@@ -93,7 +107,10 @@ pub(crate) fn compile(m: &Mechanism, f: &Friction, rows: &[usize]) -> Result<Com
         });
     }
     if !f.contact_offset.is_finite() {
-        return Err(Error::InvalidValue { what: format!("contact offset of {}", context()), value: f.contact_offset });
+        return Err(Error::InvalidValue {
+            what: format!("contact offset of {}", context()),
+            value: f.contact_offset,
+        });
     }
     let unit = |line: [usize; 2]| {
         let (a, b) = (m.points[line[0]].sketch, m.points[line[1]].sketch);
@@ -103,7 +120,12 @@ pub(crate) fn compile(m: &Mechanism, f: &Friction, rows: &[usize]) -> Result<Com
     };
     let row = rows[joint];
     match m.joints[joint].kind {
-        JointKind::Prismatic { guide, line, slider, point } => Ok(CompiledFriction::Sliding {
+        JointKind::Prismatic {
+            guide,
+            line,
+            slider,
+            point,
+        } => Ok(CompiledFriction::Sliding {
             joint,
             guide,
             slider,
@@ -113,7 +135,12 @@ pub(crate) fn compile(m: &Mechanism, f: &Friction, rows: &[usize]) -> Result<Com
             row: row + 1,
             coefficient: f.coefficient,
         }),
-        JointKind::PinInSlot { slot_link, line, pin_link, pin } => Ok(CompiledFriction::Sliding {
+        JointKind::PinInSlot {
+            slot_link,
+            line,
+            pin_link,
+            pin,
+        } => Ok(CompiledFriction::Sliding {
             joint,
             guide: slot_link,
             slider: pin_link,
@@ -129,9 +156,18 @@ pub(crate) fn compile(m: &Mechanism, f: &Friction, rows: &[usize]) -> Result<Com
                 missing: "the pin radius of the revolute joint".to_owned(),
             })?;
             if !(r.is_finite() && r >= 0.0) {
-                return Err(Error::InvalidValue { what: format!("pin radius of {} (must be ≥ 0)", context()), value: r });
+                return Err(Error::InvalidValue {
+                    what: format!("pin radius of {} (must be ≥ 0)", context()),
+                    value: r,
+                });
             }
-            Ok(CompiledFriction::Revolute { joint, a: link_a, b: link_b, row, radius: f.coefficient * r })
+            Ok(CompiledFriction::Revolute {
+                joint,
+                a: link_a,
+                b: link_b,
+                row,
+                radius: f.coefficient * r,
+            })
         }
         ref other => Err(Error::InvalidJoint {
             joint: f.joint.clone(),
@@ -157,19 +193,33 @@ pub(crate) struct Sliding {
 
 /// Sign of a relative velocity, zero below a rounding threshold.
 pub(crate) fn sign(v: f64, scale: f64) -> f64 {
-    if v.abs() <= 1e-12 * scale { 0.0 } else { v.signum() }
+    if v.abs() <= 1e-12 * scale {
+        0.0
+    } else {
+        v.signum()
+    }
 }
 
 impl CompiledFriction {
     pub fn joint(&self) -> usize {
         match *self {
-            CompiledFriction::Sliding { joint, .. } | CompiledFriction::Revolute { joint, .. } => joint,
+            CompiledFriction::Sliding { joint, .. } | CompiledFriction::Revolute { joint, .. } => {
+                joint
+            }
         }
     }
 
     /// Sliding geometry (sliding joints only).
     pub fn sliding(&self, states: &[LinkState]) -> Option<Sliding> {
-        let CompiledFriction::Sliding { guide, slider, direction, point, offset, .. } = *self else {
+        let CompiledFriction::Sliding {
+            guide,
+            slider,
+            direction,
+            point,
+            offset,
+            ..
+        } = *self
+        else {
             return None;
         };
         let (g, s) = (of(states, guide), of(states, slider));
@@ -177,13 +227,19 @@ impl CompiledFriction {
         let p = s.position(point);
         let contact = [p[0] - offset * u[1], p[1] + offset * u[0]];
         let (vs, vg) = (s.velocity_at(contact), g.velocity_at(contact));
-        Some(Sliding { u, contact, velocity: dot(u, [vs[0] - vg[0], vs[1] - vg[1]]) })
+        Some(Sliding {
+            u,
+            contact,
+            velocity: dot(u, [vs[0] - vg[0], vs[1] - vg[1]]),
+        })
     }
 
     /// Relative angular velocity `ω_b − ω_a` (revolute joints only).
     pub fn relative_rotation(&self, states: &[LinkState]) -> Option<f64> {
         match *self {
-            CompiledFriction::Revolute { a, b, .. } => Some(of(states, b).omega - of(states, a).omega),
+            CompiledFriction::Revolute { a, b, .. } => {
+                Some(of(states, b).omega - of(states, a).omega)
+            }
             CompiledFriction::Sliding { .. } => None,
         }
     }

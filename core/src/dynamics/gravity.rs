@@ -26,7 +26,10 @@ impl Gravity {
     pub(crate) fn validate(&self) -> Result<(), Error> {
         for (axis, v) in ["x", "y"].iter().zip(self.g) {
             if !v.is_finite() {
-                return Err(Error::InvalidValue { what: format!("gravity, {axis} component"), value: v });
+                return Err(Error::InvalidValue {
+                    what: format!("gravity, {axis} component"),
+                    value: v,
+                });
             }
         }
         Ok(())
@@ -37,7 +40,12 @@ impl Gravity {
 pub(crate) fn load(g: &Gravity, masses: &[Mass], states: &[LinkState], q: &mut Generalized) {
     for m in masses {
         let s = of(states, m.link);
-        q.force(states, m.link, s.position(m.center), [m.mass * g.g[0], m.mass * g.g[1]]);
+        q.force(
+            states,
+            m.link,
+            s.position(m.center),
+            [m.mass * g.g[0], m.mass * g.g[1]],
+        );
     }
 }
 

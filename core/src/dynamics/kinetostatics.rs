@@ -133,7 +133,10 @@ pub fn solve_at(
     let states = state::link_states(coordinates, drive);
     let n = model.equations.coordinates();
     let q: Vec<f64> = coordinates.iter().map(|j| j.value).collect();
-    let qdot: Vec<f64> = coordinates.iter().map(|j| drive.omega * j.derivatives[0]).collect();
+    let qdot: Vec<f64> = coordinates
+        .iter()
+        .map(|j| drive.omega * j.derivatives[0])
+        .collect();
     let mut jac = DMatrix::zeros(n, n);
     model.equations.jacobian(&q, &mut jac);
     let mut trace = Trace::default();
@@ -154,8 +157,16 @@ pub fn solve_at(
         loads::load(&model.loads, phi, &states, &mut load);
         trace.loads += 1;
     }
-    let friction: &[CompiledFriction] = if effects.friction { &model.friction } else { &[] };
-    let efficiency: &[CompiledEfficiency] = if effects.efficiency { &model.efficiency } else { &[] };
+    let friction: &[CompiledFriction] = if effects.friction {
+        &model.friction
+    } else {
+        &[]
+    };
+    let efficiency: &[CompiledEfficiency] = if effects.efficiency {
+        &model.efficiency
+    } else {
+        &[]
+    };
     let qdot_max = qdot.iter().fold(0.0f64, |a, v| a.max(v.abs()));
     let speed_scale = qdot_max * super::energy::size(m);
     let mut directions = Vec::with_capacity(friction.len());
@@ -164,7 +175,12 @@ pub fn solve_at(
     for f in friction {
         let mut g = Generalized::zeros(m.links.len() - 1);
         match *f {
-            CompiledFriction::Sliding { guide, slider, coefficient, .. } => {
+            CompiledFriction::Sliding {
+                guide,
+                slider,
+                coefficient,
+                ..
+            } => {
                 let sl = f.sliding(&states).expect("a sliding friction");
                 let s = friction::sign(sl.velocity, speed_scale);
                 let t = [-s * coefficient * sl.u[0], -s * coefficient * sl.u[1]];
@@ -206,7 +222,9 @@ pub fn solve_at(
     };
     let (lambda, signs, iterations) = asm.iterate(phi, &mut trace)?;
     trace.equilibrium_solves += iterations;
-    asm.finish(effects, phi, drive, lambda, signs, iterations, inertial, trace)
+    asm.finish(
+        effects, phi, drive, lambda, signs, iterations, inertial, trace,
+    )
 }
 
 impl Assembly<'_, '_> {
@@ -246,7 +264,9 @@ impl Assembly<'_, '_> {
             .friction
             .iter()
             .map(|f| match *f {
-                CompiledFriction::Sliding { row, .. } => [if lambda[row] < 0.0 { -1.0 } else { 1.0 }, 0.0],
+                CompiledFriction::Sliding { row, .. } => {
+                    [if lambda[row] < 0.0 { -1.0 } else { 1.0 }, 0.0]
+                }
                 CompiledFriction::Revolute { row, .. } => {
                     let (x, y) = (lambda[row], lambda[row + 1]);
                     let r = x.hypot(y);
@@ -258,28 +278,52 @@ impl Assembly<'_, '_> {
             .efficiency
             .iter()
             .enumerate()
-            .map(|(i, e)| if self.input_power(i, lambda) >= 0.0 { e.eta } else { 1.0 / e.eta })
+            .map(|(i, e)| {
+                if self.input_power(i, lambda) >= 0.0 {
+                    e.eta
+                } else {
+                    1.0 / e.eta
+                }
+            })
             .collect();
         Signs { normal, kappa }
     }
 
     /// Power the nominal driving side of mesh `i` delivers to the mesh, `λ·(J_in q̇)`.
     fn input_power(&self, i: usize, lambda: &DVector<f64>) -> f64 {
-        let rate: f64 = self.inputs[i].iter().zip(&self.qdot).map(|(a, b)| a * b).sum();
+        let rate: f64 = self.inputs[i]
+            .iter()
+            .zip(&self.qdot)
+            .map(|(a, b)| a * b)
+            .sum();
         lambda[self.efficiency[i].row] * rate
     }
 
     fn joints(&self) -> Vec<String> {
         let m = self.model.mechanism;
-        let mut names: Vec<String> = self.friction.iter().map(|f| m.joints[f.joint()].name.clone()).collect();
-        names.extend(self.efficiency.iter().map(|e| m.joints[e.joint].name.clone()));
+        let mut names: Vec<String> = self
+            .friction
+            .iter()
+            .map(|f| m.joints[f.joint()].name.clone())
+            .collect();
+        names.extend(
+            self.efficiency
+                .iter()
+                .map(|e| m.joints[e.joint].name.clone()),
+        );
         names
     }
 
     /// Solves, iterating on signs and flows; returns λ, the signs used and the solves done.
-    fn iterate(&self, phi: f64, trace: &mut Trace) -> Result<(DVector<f64>, Option<Signs>, usize), Error> {
+    fn iterate(
+        &self,
+        phi: f64,
+        trace: &mut Trace,
+    ) -> Result<(DVector<f64>, Option<Signs>, usize), Error> {
         let lu = self.matrix(None).lu();
-        let lambda = lu.solve(&self.rhs).ok_or(Error::SingularEquilibrium { phi })?;
+        let lambda = lu
+            .solve(&self.rhs)
+            .ok_or(Error::SingularEquilibrium { phi })?;
         if self.friction.is_empty() && self.efficiency.is_empty() {
             return Ok((lambda, None, 1));
         }
@@ -314,16 +358,22 @@ impl Assembly<'_, '_> {
             // alternate at the rounding level of the LU).
             let tol = 64.0 * f64::EPSILON;
             let settled = new_signs.kappa == signs.kappa
-                && new_signs.normal.iter().zip(&signs.normal).all(|(a, b)| {
-                    (a[0] - b[0]).abs() <= tol && (a[1] - b[1]).abs() <= tol
-                })
+                && new_signs
+                    .normal
+                    .iter()
+                    .zip(&signs.normal)
+                    .all(|(a, b)| (a[0] - b[0]).abs() <= tol && (a[1] - b[1]).abs() <= tol)
                 && (&next - &lambda).amax() <= tol * scale;
             lambda = next;
             if settled {
                 return Ok((lambda, Some(signs), it + 1));
             }
             // Sliding signs and flows only: a repeated pattern that is not consistent is a cycle.
-            if self.friction.iter().all(|f| matches!(f, CompiledFriction::Sliding { .. })) {
+            if self
+                .friction
+                .iter()
+                .all(|f| matches!(f, CompiledFriction::Sliding { .. }))
+            {
                 if seen.contains(&new_signs) && new_signs != signs {
                     break;
                 }
@@ -334,7 +384,8 @@ impl Assembly<'_, '_> {
         Err(Error::SelfLocking {
             phi,
             joints: self.joints(),
-            reason: "the signs of the normal forces or the direction of power flow keep changing".to_owned(),
+            reason: "the signs of the normal forces or the direction of power flow keep changing"
+                .to_owned(),
         })
     }
 
@@ -403,7 +454,16 @@ impl Assembly<'_, '_> {
             }
             _ => None,
         };
-        let balance = energy::balance(model, effects, phi, drive, &self.states, drive_torque, &reactions, motor.as_ref());
+        let balance = energy::balance(
+            model,
+            effects,
+            phi,
+            drive,
+            &self.states,
+            drive_torque,
+            &reactions,
+            motor.as_ref(),
+        );
         Ok(Solution {
             phi,
             drive: *drive,
@@ -419,7 +479,13 @@ impl Assembly<'_, '_> {
     }
 
     /// The reaction of joint `j` from its multipliers, without friction or efficiency.
-    fn ideal_reaction(&self, j: usize, kind: &JointKind, lambda: &DVector<f64>, name: &str) -> JointReaction {
+    fn ideal_reaction(
+        &self,
+        j: usize,
+        kind: &JointKind,
+        lambda: &DVector<f64>,
+        name: &str,
+    ) -> JointReaction {
         let r = self.model.rows[j];
         let l = |i: usize| lambda[r + i];
         let mut out = JointReaction {
@@ -450,14 +516,18 @@ impl Assembly<'_, '_> {
                 out.normal = -l(1);
                 out.force = [-out.normal * u[1], out.normal * u[0]];
             }
-            JointKind::PinInSlot { slot_link, line, .. } => {
+            JointKind::PinInSlot {
+                slot_link, line, ..
+            } => {
                 let u = guide_dir(slot_link, line);
                 out.normal = -l(0);
                 out.force = [-out.normal * u[1], out.normal * u[0]];
             }
             // Row (s − s₀) − R(θ_b − θ_a): force −λ on the rack along u.
             JointKind::RackPinion { rack, .. } => {
-                if let JointKind::Prismatic { guide, line, .. } = self.model.mechanism.joints[rack].kind {
+                if let JointKind::Prismatic { guide, line, .. } =
+                    self.model.mechanism.joints[rack].kind
+                {
                     let u = guide_dir(guide, line);
                     out.normal = -l(0);
                     out.force = [out.normal * u[0], out.normal * u[1]];

@@ -38,12 +38,22 @@ pub struct Load {
 impl Load {
     /// A constant force at a named point of a link.
     pub fn force(link: impl Into<String>, point: impl Into<String>, force: [f64; 2]) -> Self {
-        Load { link: link.into(), point: Some(point.into()), kind: LoadKind::Force(force), active: None }
+        Load {
+            link: link.into(),
+            point: Some(point.into()),
+            kind: LoadKind::Force(force),
+            active: None,
+        }
     }
 
     /// A constant torque on a link.
     pub fn torque(link: impl Into<String>, torque: f64) -> Self {
-        Load { link: link.into(), point: None, kind: LoadKind::Torque(torque), active: None }
+        Load {
+            link: link.into(),
+            point: None,
+            kind: LoadKind::Torque(torque),
+            active: None,
+        }
     }
 
     /// Makes the load act only for drive positions in `[from, to]`.
@@ -86,7 +96,11 @@ pub(crate) fn compile(m: &Mechanism, load: &Load, index: usize) -> Result<Compil
                 context: context.clone(),
             })?;
             if !m.carries(link, pi) {
-                return Err(Error::PointNotOnLink { point: p.clone(), link: load.link.clone(), context });
+                return Err(Error::PointNotOnLink {
+                    point: p.clone(),
+                    link: load.link.clone(),
+                    context,
+                });
             }
             m.local(link, m.points[pi].sketch)
         }
@@ -98,10 +112,19 @@ pub(crate) fn compile(m: &Mechanism, load: &Load, index: usize) -> Result<Compil
     };
     for v in values.into_iter().chain(load.active.into_iter().flatten()) {
         if !v.is_finite() {
-            return Err(Error::InvalidValue { what: format!("{context} on link `{}`", load.link), value: v });
+            return Err(Error::InvalidValue {
+                what: format!("{context} on link `{}`", load.link),
+                value: v,
+            });
         }
     }
-    Ok(CompiledLoad { link, local, kind: load.kind, active: load.active, periodic: m.drive_kind == DriveKind::Angle })
+    Ok(CompiledLoad {
+        link,
+        local,
+        kind: load.kind,
+        active: load.active,
+        periodic: m.drive_kind == DriveKind::Angle,
+    })
 }
 
 impl CompiledLoad {

@@ -92,11 +92,19 @@ impl Dynamics {
             .map(|(k, l, i)| {
                 if !(i.mass >= 0.0 && i.moment >= 0.0) {
                     return Err(Error::InvalidValue {
-                        what: format!("mass or moment of inertia of link `{}` (must be ≥ 0)", l.name),
+                        what: format!(
+                            "mass or moment of inertia of link `{}` (must be ≥ 0)",
+                            l.name
+                        ),
                         value: if i.mass < 0.0 { i.mass } else { i.moment },
                     });
                 }
-                Ok(Mass { link: k, mass: i.mass, center: m.local(k, i.center), moment: i.moment })
+                Ok(Mass {
+                    link: k,
+                    mass: i.mass,
+                    center: m.local(k, i.center),
+                    moment: i.moment,
+                })
             })
             .collect::<Result<Vec<_>, _>>()?;
         if let Some(g) = &self.gravity {
@@ -105,10 +113,22 @@ impl Dynamics {
         if let Some(mo) = &self.motor {
             mo.validate()?;
         }
-        let loads = self.loads.iter().enumerate().map(|(i, l)| loads::compile(m, l, i)).collect::<Result<_, _>>()?;
-        let friction = self.friction.iter().map(|f| friction::compile(m, f, &rows)).collect::<Result<_, _>>()?;
-        let efficiency =
-            self.efficiency.iter().map(|e| efficiency::compile(m, e, &rows)).collect::<Result<_, _>>()?;
+        let loads = self
+            .loads
+            .iter()
+            .enumerate()
+            .map(|(i, l)| loads::compile(m, l, i))
+            .collect::<Result<_, _>>()?;
+        let friction = self
+            .friction
+            .iter()
+            .map(|f| friction::compile(m, f, &rows))
+            .collect::<Result<_, _>>()?;
+        let efficiency = self
+            .efficiency
+            .iter()
+            .map(|e| efficiency::compile(m, e, &rows))
+            .collect::<Result<_, _>>()?;
         Ok(CompiledModel {
             mechanism: m,
             equations: Equations::new(m),

@@ -49,24 +49,43 @@ impl Motor {
     /// Checks the data.
     pub(crate) fn validate(&self) -> Result<(), Error> {
         if !(self.rotor_inertia.is_finite() && self.rotor_inertia >= 0.0) {
-            return Err(Error::InvalidValue { what: "rotor inertia of the motor (must be ≥ 0)".to_owned(), value: self.rotor_inertia });
+            return Err(Error::InvalidValue {
+                what: "rotor inertia of the motor (must be ≥ 0)".to_owned(),
+                value: self.rotor_inertia,
+            });
         }
         if !(self.ratio.is_finite() && self.ratio != 0.0) {
-            return Err(Error::InvalidValue { what: "gear ratio of the motor (must be finite and non-zero)".to_owned(), value: self.ratio });
+            return Err(Error::InvalidValue {
+                what: "gear ratio of the motor (must be finite and non-zero)".to_owned(),
+                value: self.ratio,
+            });
         }
-        super::efficiency::check_efficiency(|| "gearbox efficiency of the motor".to_owned(), self.efficiency)
+        super::efficiency::check_efficiency(
+            || "gearbox efficiency of the motor".to_owned(),
+            self.efficiency,
+        )
     }
 
     /// The motor state for drive-joint torque `joint_torque` and drive state `drive`; the
     /// rotor inertia counts if `inertia`, the gearbox efficiency if `efficiency`.
-    pub fn state(&self, joint_torque: f64, drive: &DriveState, inertia: bool, efficiency: bool) -> MotorState {
+    pub fn state(
+        &self,
+        joint_torque: f64,
+        drive: &DriveState,
+        inertia: bool,
+        efficiency: bool,
+    ) -> MotorState {
         let speed = drive.omega / self.ratio;
         let acceleration = drive.alpha / self.ratio;
         let p_out = joint_torque * drive.omega;
         let direct_flow = p_out >= 0.0;
         let eta = if efficiency { self.efficiency } else { 1.0 };
         let factor = if direct_flow { 1.0 / eta } else { eta };
-        let rotor = if inertia { self.rotor_inertia * acceleration } else { 0.0 };
+        let rotor = if inertia {
+            self.rotor_inertia * acceleration
+        } else {
+            0.0
+        };
         let gearbox_torque = joint_torque * self.ratio * factor;
         let gearbox_input = gearbox_torque * speed;
         MotorState {

@@ -23,12 +23,26 @@ pub struct Effects {
 impl Effects {
     /// No effect.
     pub const fn none() -> Self {
-        Effects { inertia: false, gravity: false, loads: false, friction: false, efficiency: false, motor: false }
+        Effects {
+            inertia: false,
+            gravity: false,
+            loads: false,
+            friction: false,
+            efficiency: false,
+            motor: false,
+        }
     }
 
     /// Every effect.
     pub const fn all() -> Self {
-        Effects { inertia: true, gravity: true, loads: true, friction: true, efficiency: true, motor: true }
+        Effects {
+            inertia: true,
+            gravity: true,
+            loads: true,
+            friction: true,
+            efficiency: true,
+            motor: true,
+        }
     }
 
     /// The effects in both sets.
@@ -112,7 +126,13 @@ impl Plan {
     /// assert_eq!(plan.to_string(), "order 2; effects: inertia; not computed: gravity, loads, friction, efficiency, motor");
     /// ```
     pub fn for_requests(requests: &[Request], available: Effects) -> Plan {
-        let mut plan = Plan { order: 0, effects: Effects::none(), kinetostatics: false, energy: false, shaking: false };
+        let mut plan = Plan {
+            order: 0,
+            effects: Effects::none(),
+            kinetostatics: false,
+            energy: false,
+            shaking: false,
+        };
         for r in requests {
             let order = match r {
                 Request::Positions => 0,
@@ -145,7 +165,16 @@ impl fmt::Display for Plan {
         let list = self.effects.list();
         let on: Vec<&str> = list.iter().filter(|e| e.1).map(|e| e.0).collect();
         let off: Vec<&str> = list.iter().filter(|e| !e.1).map(|e| e.0).collect();
-        write!(f, "order {}; effects: {}", self.order, if on.is_empty() { "none".to_owned() } else { on.join(", ") })?;
+        write!(
+            f,
+            "order {}; effects: {}",
+            self.order,
+            if on.is_empty() {
+                "none".to_owned()
+            } else {
+                on.join(", ")
+            }
+        )?;
         if !off.is_empty() {
             write!(f, "; not computed: {}", off.join(", "))?;
         }

@@ -73,7 +73,13 @@ pub fn run(
         tracker.move_to(phi)?;
         trace.positions += 1;
         let d = drive(phi);
-        let mut step = Step { phi, drive: d, solution: None, energy: None, shaking: None };
+        let mut step = Step {
+            phi,
+            drive: d,
+            solution: None,
+            energy: None,
+            shaking: None,
+        };
         match plan.order {
             0 => {}
             1 => {
@@ -87,8 +93,11 @@ pub fn run(
                     // Forces at order 1 are planned only without inertia: the accelerations
                     // (q″ padded with 0) are then never read.
                     debug_assert!(!plan.effects.inertia);
-                    let padded: Vec<Jet<2>> =
-                        k.coordinates.iter().map(|j| Jet::new(j.value, [j.derivatives[0], 0.0])).collect();
+                    let padded: Vec<Jet<2>> = k
+                        .coordinates
+                        .iter()
+                        .map(|j| Jet::new(j.value, [j.derivatives[0], 0.0]))
+                        .collect();
                     let s = kinetostatics::solve_at(model, &plan.effects, phi, &padded, &d)?;
                     trace.add(&s.trace);
                     step.solution = Some(s);
@@ -98,7 +107,12 @@ pub fn run(
                 let coordinates: Vec<Jet<2>> = if order == 2 {
                     tracker.kinematics::<2>()?.coordinates
                 } else {
-                    tracker.kinematics::<3>()?.coordinates.iter().map(|j| j.truncate::<2>()).collect()
+                    tracker
+                        .kinematics::<3>()?
+                        .coordinates
+                        .iter()
+                        .map(|j| j.truncate::<2>())
+                        .collect()
                 };
                 trace.derivatives += 1;
                 if plan.energy {

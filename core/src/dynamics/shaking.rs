@@ -21,7 +21,12 @@ pub struct ShakingForce {
 }
 
 /// The shaking force of `model` at the pose of `coordinates` for drive state `drive`.
-pub fn shaking_force(model: &CompiledModel<'_>, phi: f64, coordinates: &[Jet<2>], drive: &DriveState) -> ShakingForce {
+pub fn shaking_force(
+    model: &CompiledModel<'_>,
+    phi: f64,
+    coordinates: &[Jet<2>],
+    drive: &DriveState,
+) -> ShakingForce {
     let states = state::link_states(coordinates, drive);
     let links = inertia::loads(&model.masses, &states);
     let mut force = [0.0; 2];
@@ -31,7 +36,12 @@ pub fn shaking_force(model: &CompiledModel<'_>, phi: f64, coordinates: &[Jet<2>]
         force[1] += l.force[1];
         moment += cross(l.center, l.force) + l.couple;
     }
-    ShakingForce { phi, force, moment, links }
+    ShakingForce {
+        phi,
+        force,
+        moment,
+        links,
+    }
 }
 
 /// An extreme value over a sweep and where it occurs.
@@ -60,7 +70,10 @@ impl ShakingSummary {
     /// The extremes over `sweep`; `None` if it is empty.
     pub fn of(sweep: &[ShakingForce]) -> Option<Self> {
         let first = sweep.first()?;
-        let at = |v: f64| Extreme { value: v, phi: first.phi };
+        let at = |v: f64| Extreme {
+            value: v,
+            phi: first.phi,
+        };
         let mut s = ShakingSummary {
             force_x: [at(first.force[0]); 2],
             force_y: [at(first.force[1]); 2],
@@ -81,7 +94,10 @@ impl ShakingSummary {
             update(&mut s.moment, f.moment, f.phi);
             let mag = f.force[0].hypot(f.force[1]);
             if mag > s.magnitude.value {
-                s.magnitude = Extreme { value: mag, phi: f.phi };
+                s.magnitude = Extreme {
+                    value: mag,
+                    phi: f.phi,
+                };
             }
         }
         Some(s)

@@ -22,8 +22,14 @@ pub struct LinkState {
 
 impl LinkState {
     /// The ground: at rest, unrotated, its frame the global one.
-    pub const GROUND: LinkState =
-        LinkState { r: [0.0; 2], v: [0.0; 2], a: [0.0; 2], theta: 0.0, omega: 0.0, alpha: 0.0 };
+    pub const GROUND: LinkState = LinkState {
+        r: [0.0; 2],
+        v: [0.0; 2],
+        a: [0.0; 2],
+        theta: 0.0,
+        omega: 0.0,
+        alpha: 0.0,
+    };
 
     /// Global vector `ρ = A(θ)·local` from the reference point to the point at `local`.
     pub fn arm(&self, local: [f64; 2]) -> [f64; 2] {
@@ -40,7 +46,10 @@ impl LinkState {
     /// Velocity `v + ω k×ρ` of the point of this link that is at global position `p` (m/s).
     pub fn velocity_at(&self, p: [f64; 2]) -> [f64; 2] {
         let rho = [p[0] - self.r[0], p[1] - self.r[1]];
-        [self.v[0] - self.omega * rho[1], self.v[1] + self.omega * rho[0]]
+        [
+            self.v[0] - self.omega * rho[1],
+            self.v[1] + self.omega * rho[0],
+        ]
     }
 
     /// Acceleration `a + α k×ρ − ω² ρ` of the point of this link at global position `p`.
@@ -63,9 +72,8 @@ impl LinkState {
 /// their φ-derivatives, for the drive state `drive`: `q̇ = ω q′`, `q̈ = α q′ + ω² q″`.
 pub(crate) fn link_states(coordinates: &[Jet<2>], drive: &DriveState) -> Vec<LinkState> {
     let vel = |j: &Jet<2>| drive.omega * j.derivatives[0];
-    let acc = |j: &Jet<2>| {
-        drive.alpha * j.derivatives[0] + drive.omega * drive.omega * j.derivatives[1]
-    };
+    let acc =
+        |j: &Jet<2>| drive.alpha * j.derivatives[0] + drive.omega * drive.omega * j.derivatives[1];
     coordinates
         .chunks_exact(3)
         .map(|c| LinkState {
@@ -81,7 +89,11 @@ pub(crate) fn link_states(coordinates: &[Jet<2>], drive: &DriveState) -> Vec<Lin
 
 /// State of link `link` (0 = ground) among `states`.
 pub(crate) fn of(states: &[LinkState], link: usize) -> LinkState {
-    if link == 0 { LinkState::GROUND } else { states[link - 1] }
+    if link == 0 {
+        LinkState::GROUND
+    } else {
+        states[link - 1]
+    }
 }
 
 /// The planar cross product `a_x b_y − a_y b_x`.
