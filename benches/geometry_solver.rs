@@ -51,32 +51,51 @@ fn per_drive_position(c: &mut Criterion) {
     let m = whitworth();
     let phis: Vec<f64> = (1..=720).map(|i| (i as f64 * 0.5).to_radians()).collect();
     let start = Solver::default().track(&m).expect("assembles");
-    let mut group =
-        c.benchmark_group("whitworth ψ,ψ′,ψ″ per drive position: geometry solver vs closed-form Dual2");
+    let mut group = c.benchmark_group(
+        "whitworth ψ,ψ′,ψ″ per drive position: geometry solver vs closed-form Dual2",
+    );
     group.throughput(Throughput::Elements(phis.len() as u64));
-    group.bench_function(BenchmarkId::new("geometry solve + lift", "720 positions"), |b| {
-        b.iter(|| {
-            let mut t = start.clone();
-            let mut acc = 0.0;
-            for &phi in &phis {
-                t.move_to(black_box(phi)).expect("assembles");
-                let k = t.kinematics::<2>().expect("regular");
-                let psi = k.rotation("rocker").expect("link exists");
-                acc += psi.value + psi.d1() + psi.d2();
-            }
-            acc
-        })
-    });
-    group.bench_function(BenchmarkId::new("closed-form Dual2", "720 positions"), |b| {
-        b.iter(|| {
-            let mut acc = 0.0;
-            for &phi in &phis {
-                let psi = closed_form_psi(black_box(phi));
-                acc += psi.re + psi.v1 + psi.v2;
-            }
-            acc
-        })
-    });
+    group.bench_function(
+        BenchmarkId::new("geometry solve + lift", "720 positions"),
+        |b| {
+            b.iter(|| {
+                let mut t = start.clone();
+                let mut acc = 0.0;
+                for &phi in &phis {
+                    t.move_to(black_box(phi)).expect("assembles");
+                    let k = t.kinematics::<2>().expect("regular");
+                    let psi = k.rotation("rocker").expect("link exists");
+                    acc += psi.value + psi.d1() + psi.d2();
+                }
+                acc
+            })
+        },
+    );
+    group.bench_function(
+        BenchmarkId::new("geometry solve only", "720 positions"),
+        |b| {
+            b.iter(|| {
+                let mut t = start.clone();
+                for &phi in &phis {
+                    t.move_to(black_box(phi)).expect("assembles");
+                }
+                t.phi()
+            })
+        },
+    );
+    group.bench_function(
+        BenchmarkId::new("closed-form Dual2", "720 positions"),
+        |b| {
+            b.iter(|| {
+                let mut acc = 0.0;
+                for &phi in &phis {
+                    let psi = closed_form_psi(black_box(phi));
+                    acc += psi.re + psi.v1 + psi.v2;
+                }
+                acc
+            })
+        },
+    );
     group.finish();
 }
 
@@ -92,7 +111,9 @@ fn lift(c: &mut Criterion) {
     let ours = implicit::lift(&eq, &q, phi, 2).expect("regular");
     let theirs = lift_num_dual(&eq, x, phi);
     for i in 0..9 {
-        assert!((ours[0][i] - theirs[i].v1).abs() < 1e-12 && (ours[1][i] - theirs[i].v2).abs() < 1e-12);
+        assert!(
+            (ours[0][i] - theirs[i].v1).abs() < 1e-12 && (ours[1][i] - theirs[i].v2).abs() < 1e-12
+        );
     }
     let mut group = c.benchmark_group(
         "whitworth lift q′,q″ at one pose: one LU + Dual2 vs num-dual implicit_derivative_vec",

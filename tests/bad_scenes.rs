@@ -390,3 +390,20 @@ fn sweep_of_must_name_an_angle_or_slider_output() {
     );
     assert_message(&e, 29, &["no output is named `phi3`", "psi"]);
 }
+
+#[test]
+fn a_key_missing_for_the_joint_type_says_which_keys_it_takes() {
+    let e = parse_with(
+        r#"O4 = { type = "revolute", at = "O4", links"#,
+        r#"O4 = { type = "revolute", links"#,
+    );
+    assert!(matches!(e, Error::Invalid { .. }), "{e:?}");
+    assert_message(
+        &e,
+        21,
+        &[
+            "joint `O4`: `at` is missing",
+            "`revolute` joint takes `type`, `links`, `at`",
+        ],
+    );
+}

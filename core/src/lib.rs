@@ -5,7 +5,8 @@
 //! to the drive variable φ follow by any [`method`] — dual numbers (exact), central differences,
 //! or formulas derived by hand — as [`Jet`]s. A [`DriveState`] turns them into velocities,
 //! accelerations and jerks ([`Motion`]); [`DeadPositionSearch`] finds where a coefficient
-//! changes sign.
+//! changes sign. [`geometry`] derives, solves and differentiates the equations of a mechanism
+//! given only as points, links, joints and a drive.
 #![warn(missing_docs)]
 
 pub mod dead_position;

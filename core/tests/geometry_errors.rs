@@ -27,20 +27,33 @@ fn four_bar_with_a_short_coupler_names_the_drive_position_and_the_loop() {
     // b + c = 0.75 at cos φ = (a² + d² − 0.75²)/(2ad), φ ≈ 95.08°.
     let m = four_bar(0.4, 0.3, 0.45, 0.6, 0.0, true).unwrap();
     let limit = ((0.16 + 0.36 - 0.5625) / 0.48f64).acos();
-    let err = Solver::default().sweep::<1>(&m, &revolution(1.0, &[])).unwrap_err();
+    let err = Solver::default()
+        .sweep::<1>(&m, &revolution(1.0, &[]))
+        .unwrap_err();
     match &err {
-        Error::Unassemblable { phi, last_assembled, joints, .. } => {
+        Error::Unassemblable {
+            phi,
+            last_assembled,
+            joints,
+            ..
+        } => {
             // The first drive position of the sweep beyond the limit, 96°.
             assert_eq!(*phi, 96f64.to_radians());
             // The subdivision walks up to the limit (within 2⁻²⁴ of the 1° step).
-            assert!(*last_assembled <= limit && limit - last_assembled < 1e-6, "{last_assembled}");
+            assert!(
+                *last_assembled <= limit && limit - last_assembled < 1e-6,
+                "{last_assembled}"
+            );
             // The coupler–rocker loop, not the crank.
             assert_eq!(joints, &["A", "B", "B0"]);
         }
         other => panic!("expected Unassemblable, got {other:?}"),
     }
     let text = err.to_string();
-    assert!(text.contains("φ = 1.67") && text.contains("A, B, B0"), "{text}");
+    assert!(
+        text.contains("φ = 1.67") && text.contains("A, B, B0"),
+        "{text}"
+    );
 }
 
 #[test]
@@ -56,9 +69,16 @@ fn slider_driven_into_its_dead_centre_is_a_singular_toggle() {
         t.move_to(s).unwrap();
     }
     match t.move_to(r + l).unwrap_err() {
-        Error::Singular { phi, condition, joints } => {
+        Error::Singular {
+            phi,
+            condition,
+            joints,
+        } => {
             assert_eq!(phi, r + l);
-            assert!(condition > Solver::default().singular_threshold(), "{condition:e}");
+            assert!(
+                condition > Solver::default().singular_threshold(),
+                "{condition:e}"
+            );
             assert!(joints.contains(&"A".to_owned()) && joints.contains(&"O".to_owned()));
         }
         other => panic!("expected Singular, got {other:?}"),
@@ -85,14 +105,21 @@ fn a_doubled_guide_is_over_constrained_and_named() {
         .build()
         .unwrap();
     match check_mobility(&m).unwrap_err() {
-        Error::Overconstrained { redundant, equations, coordinates } => {
+        Error::Overconstrained {
+            redundant,
+            equations,
+            coordinates,
+        } => {
             assert_eq!((equations, coordinates), (11, 9));
             assert_eq!(redundant, ["guide", "guide 2"]);
         }
         other => panic!("expected Overconstrained, got {other:?}"),
     }
     // The solver refuses it too, with the same error.
-    assert!(matches!(Solver::default().track(&m), Err(Error::Overconstrained { .. })));
+    assert!(matches!(
+        Solver::default().track(&m),
+        Err(Error::Overconstrained { .. })
+    ));
 }
 
 #[test]
@@ -154,7 +181,11 @@ fn a_five_bar_with_one_drive_is_under_constrained_and_names_the_free_links() {
         .build()
         .unwrap();
     match check_mobility(&m).unwrap_err() {
-        Error::Underconstrained { free, links, joints } => {
+        Error::Underconstrained {
+            free,
+            links,
+            joints,
+        } => {
             assert_eq!(free, 1);
             assert_eq!(links, ["left", "right", "crank 2"]);
             assert_eq!(joints, ["A", "B", "C", "O2"]);
@@ -165,14 +196,29 @@ fn a_five_bar_with_one_drive_is_under_constrained_and_names_the_free_links() {
 
 #[test]
 fn builder_errors_name_the_item() {
-    let dup = Mechanism::builder().point("A", [0.0, 0.0]).point("A", [1.0, 0.0]).build();
-    assert_eq!(dup.unwrap_err(), Error::DuplicateName { what: "point", name: "A".into() });
+    let dup = Mechanism::builder()
+        .point("A", [0.0, 0.0])
+        .point("A", [1.0, 0.0])
+        .build();
+    assert_eq!(
+        dup.unwrap_err(),
+        Error::DuplicateName {
+            what: "point",
+            name: "A".into()
+        }
+    );
 
-    let unknown = crank_rod().revolute("Z", "crank", "wheel", "A").drive(Drive::angle("O")).build();
+    let unknown = crank_rod()
+        .revolute("Z", "crank", "wheel", "A")
+        .drive(Drive::angle("O"))
+        .build();
     assert!(matches!(unknown.unwrap_err(),
         Error::UnknownName { what: "link", name, context } if name == "wheel" && context == "joint `Z`"));
 
-    let off = crank_rod().revolute("Z", "crank", "slider", "A").drive(Drive::angle("O")).build();
+    let off = crank_rod()
+        .revolute("Z", "crank", "slider", "A")
+        .drive(Drive::angle("O"))
+        .build();
     assert!(matches!(off.unwrap_err(),
         Error::PointNotOnLink { point, link, .. } if point == "A" && link == "slider"));
 
@@ -186,14 +232,18 @@ fn builder_errors_name_the_item() {
     let nan = Mechanism::builder().point("A", [f64::NAN, 0.0]).build();
     assert!(matches!(nan.unwrap_err(), Error::InvalidValue { what, .. } if what.contains("`A`")));
 
-    let no_drive = crank_rod().prismatic("guide", "ground", ["O", "X"], "slider", "B").build();
+    let no_drive = crank_rod()
+        .prismatic("guide", "ground", ["O", "X"], "slider", "B")
+        .build();
     assert_eq!(no_drive.unwrap_err(), Error::MissingDrive);
 
     let wrong_drive = crank_rod()
         .prismatic("guide", "ground", ["O", "X"], "slider", "B")
         .drive(Drive::angle("guide"))
         .build();
-    assert!(matches!(wrong_drive.unwrap_err(), Error::InvalidJoint { joint, .. } if joint == "guide"));
+    assert!(
+        matches!(wrong_drive.unwrap_err(), Error::InvalidJoint { joint, .. } if joint == "guide")
+    );
 
     // A pin drawn 1 cm off its slot line: the sketch must satisfy every joint.
     let off_slot = Mechanism::builder()
@@ -216,8 +266,60 @@ fn non_finite_drive_positions_and_unknown_outputs_are_errors() {
     let mut t = Solver::default().track(&m).unwrap();
     assert!(matches!(t.move_to(f64::NAN), Err(Error::NonFinite { .. })));
     let k = t.kinematics::<1>().unwrap();
-    assert!(matches!(k.point("rod", "O"), Err(Error::InvalidOutput { .. })));
-    assert!(matches!(k.displacement("O"), Err(Error::InvalidOutput { .. })));
-    assert!(matches!(k.rotation("wheel"), Err(Error::InvalidOutput { .. })));
-    assert!(matches!(k.center_of_gravity("rod"), Err(Error::InvalidOutput { .. })));
+    assert!(matches!(
+        k.point("rod", "O"),
+        Err(Error::InvalidOutput { .. })
+    ));
+    assert!(matches!(
+        k.displacement("O"),
+        Err(Error::InvalidOutput { .. })
+    ));
+    assert!(matches!(
+        k.rotation("wheel"),
+        Err(Error::InvalidOutput { .. })
+    ));
+    assert!(matches!(
+        k.center_of_gravity("rod"),
+        Err(Error::InvalidOutput { .. })
+    ));
+}
+
+#[test]
+fn a_sketch_drawn_at_a_toggle_is_reported_singular_at_the_sketch() {
+    // Slider-driven slider-crank drawn at its dead centre (crank and rod collinear): the
+    // count is right, the structure is fine, but Φ_q is singular there.
+    let m = slider_crank(0.1, 0.35, 0.0, true).unwrap();
+    match check_mobility(&m).unwrap_err() {
+        Error::Singular { phi, joints, .. } => {
+            // The drive value at the sketch is the slider's displacement r + l (rounding).
+            assert!((phi - 0.45).abs() < 1e-15);
+            assert!(joints.contains(&"A".to_owned()), "{joints:?}");
+        }
+        other => panic!("expected Singular, got {other:?}"),
+    }
+    // Driven by the crank, the same sketch is regular (a dead position of the output only).
+    assert!(check_mobility(&slider_crank(0.1, 0.35, 0.0, false).unwrap()).is_ok());
+}
+
+#[test]
+fn unlimited_subdivision_still_ends_with_an_error() {
+    // With (practically) unlimited halvings the walk creeps up to the four-bar's limit
+    // position (coupler and rocker collinear, ≈ 95.08°) until φ stops moving or the pose
+    // there is singular; either way the move must end with an error, not loop forever.
+    let m = four_bar(0.4, 0.3, 0.45, 0.6, 0.0, true).unwrap();
+    let limit = ((0.16 + 0.36 - 0.5625) / 0.48f64).acos();
+    let mut t = Solver::default()
+        .with_max_subdivisions(usize::MAX)
+        .track(&m)
+        .unwrap();
+    match t.move_to(2.0) {
+        Err(Error::Unassemblable { phi, .. }) => assert_eq!(phi, 2.0),
+        // The limit position is a toggle of the coupler–rocker loop (1e-6 rad: the
+        // condition reaches the threshold ~1e-11 rad before it).
+        Err(Error::Singular { phi, joints, .. }) => {
+            assert!((phi - limit).abs() < 1e-6, "{phi}");
+            assert_eq!(joints, ["A", "B", "B0"]);
+        }
+        other => panic!("expected an error, got {other:?}"),
+    }
 }

@@ -12,23 +12,34 @@ use proptest::prelude::*;
 fn slider_crank_matches_its_closed_form_to_third_order() {
     let (r, l) = (0.1, 0.35);
     let m = slider_crank(r, l, 0.0, false).unwrap();
-    let sweep = Solver::default().sweep::<3>(&m, &revolution(2.0, &[])).unwrap();
+    let sweep = Solver::default()
+        .sweep::<3>(&m, &revolution(2.0, &[]))
+        .unwrap();
     let mut cols = vec![Vec::new(); 4];
     for k in &sweep {
         let s = k.displacement("guide").unwrap();
         // x = r cos φ + √(l² − r² sin² φ) with exact dual derivatives.
         let phi = Dual3_64::new(k.phi, 1.0, 0.0, 0.0);
         let x = phi.cos() * r + (-(phi.sin() * r).powi(2) + l * l).sqrt();
-        for (i, (g, e)) in [(s.value, x.re), (s.d1(), x.v1), (s.d2(), x.v2), (s.d3(), x.v3)]
-            .into_iter()
-            .enumerate()
+        for (i, (g, e)) in [
+            (s.value, x.re),
+            (s.d1(), x.v1),
+            (s.d2(), x.v2),
+            (s.d3(), x.v3),
+        ]
+        .into_iter()
+        .enumerate()
         {
             cols[i].push((g, e));
         }
     }
     // 1e-13 of each quantity's largest magnitude: both sides exact up to rounding.
     for (i, col) in cols.iter().enumerate() {
-        assert!(scaled_error(col) <= 1e-13, "order {i}: {:e}", scaled_error(col));
+        assert!(
+            scaled_error(col) <= 1e-13,
+            "order {i}: {:e}",
+            scaled_error(col)
+        );
     }
 }
 
@@ -54,7 +65,11 @@ fn grashof_crank_rocker_stays_on_its_branch_over_a_full_revolution() {
         let mut t = Solver::default().track(&m).unwrap();
         let start = t.loops();
         let mut cols = vec![Vec::new(); 6];
-        for phi in revolution(1.0, &[]).into_iter().chain(revolution(1.0, &[]).into_iter().map(|p| p + std::f64::consts::TAU)) {
+        for phi in revolution(1.0, &[]).into_iter().chain(
+            revolution(1.0, &[])
+                .into_iter()
+                .map(|p| p + std::f64::consts::TAU),
+        ) {
             t.move_to(phi).unwrap();
             let k = t.kinematics::<2>().unwrap();
             let [x, y] = k.point("rocker", "B").unwrap();
@@ -77,7 +92,11 @@ fn grashof_crank_rocker_stays_on_its_branch_over_a_full_revolution() {
         // follows the closed form of that branch (1e-12 of each quantity's magnitude).
         assert_eq!(t.loops(), start);
         for (i, col) in cols.iter().enumerate() {
-            assert!(scaled_error(col) <= 1e-12, "up = {up}, column {i}: {:e}", scaled_error(col));
+            assert!(
+                scaled_error(col) <= 1e-12,
+                "up = {up}, column {i}: {:e}",
+                scaled_error(col)
+            );
         }
     }
 }
@@ -112,7 +131,9 @@ fn shaper_slot_on_a_translating_ram_matches_its_closed_form() {
         .drive(Drive::angle("A"))
         .build()
         .unwrap();
-    let sweep = Solver::default().sweep::<2>(&m, &revolution(5.0, &[])).unwrap();
+    let sweep = Solver::default()
+        .sweep::<2>(&m, &revolution(5.0, &[]))
+        .unwrap();
     let mut cols = vec![Vec::new(); 3];
     for k in &sweep {
         let s5 = k.displacement("ram guide").unwrap();
@@ -121,13 +142,20 @@ fn shaper_slot_on_a_translating_ram_matches_its_closed_form() {
         // atan(y/x) and loses its derivatives where x = l1 cos φ1 passes through 0).
         let (bx, by) = (phi.cos() * l1, phi.sin() * l1 + l0);
         let x = bx / (bx * bx + by * by).sqrt() * l3;
-        for (i, (g, e)) in [(s5.value, x.re), (s5.d1(), x.v1), (s5.d2(), x.v2)].into_iter().enumerate() {
+        for (i, (g, e)) in [(s5.value, x.re), (s5.d1(), x.v1), (s5.d2(), x.v2)]
+            .into_iter()
+            .enumerate()
+        {
             cols[i].push((g, e));
         }
     }
     // 1e-12 of each quantity's magnitude (exact both sides; the ram's slot is vertical).
     for (i, col) in cols.iter().enumerate() {
-        assert!(scaled_error(col) <= 1e-12, "order {i}: {:e}", scaled_error(col));
+        assert!(
+            scaled_error(col) <= 1e-12,
+            "order {i}: {:e}",
+            scaled_error(col)
+        );
     }
 }
 
@@ -262,6 +290,36 @@ fn a_step_that_lands_on_the_other_closure_is_rejected_and_subdivided() {
         let [x, y] = t.kinematics::<1>().unwrap().point("rocker", "B").unwrap();
         let [ex, ey] = four_bar_pin(a, b, c, d, 3.0, up);
         // The sketch's closure to rounding (1e-14 m on 0.3 m links).
-        assert!((x.value - ex.re).abs() < 1e-14 && (y.value - ey.re).abs() < 1e-14, "up = {up}");
+        assert!(
+            (x.value - ex.re).abs() < 1e-14 && (y.value - ey.re).abs() < 1e-14,
+            "up = {up}"
+        );
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+    /// Over random slider-cranks (rod longer than crank) and random crank angles, the solved
+    /// slider displacement and its first three derivatives equal the closed form
+    /// x = r cos φ + √(l² − r² sin² φ) in dual numbers: 1e-12 of the stroke scale (r + l).
+    #[test]
+    fn random_slider_cranks_match_the_closed_form(
+        r in 0.05f64..0.5,
+        ratio in 1.3f64..5.0,
+        phi0 in -3.0f64..3.0,
+        dphi in -2.0f64..2.0,
+    ) {
+        let l = r * ratio;
+        let m = slider_crank(r, l, phi0, false).unwrap();
+        let mut t = Solver::default().track(&m).unwrap();
+        let phi = phi0 + dphi;
+        t.move_to(phi).unwrap();
+        let s = t.kinematics::<3>().unwrap().displacement("guide").unwrap();
+        let p = Dual3_64::new(phi, 1.0, 0.0, 0.0);
+        let x = p.cos() * r + (-(p.sin() * r).powi(2) + l * l).sqrt();
+        let scale = r + l;
+        for (g, e) in [(s.value, x.re), (s.d1(), x.v1), (s.d2(), x.v2), (s.d3(), x.v3)] {
+            prop_assert!((g - e).abs() <= 1e-12 * scale, "{g} vs {e}");
+        }
     }
 }

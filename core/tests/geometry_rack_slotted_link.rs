@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{Closure001, rack_slotted_link};
+use common::{Closure001, rack_slotted_link, rack_slotted_link_incline};
 use mechdiff_core::DriveState;
 use mechdiff_core::geometry::{Kinematics, Solver};
 
@@ -39,7 +39,10 @@ const OTHER: [f64; 6] = [
 fn close(name: &str, got: f64, want: f64) {
     let err = (got - want).abs() / want.abs();
     println!("{name}: relative error {err:.1e}");
-    assert!(err <= 1e-9, "{name}: got {got}, want {want}, relative error {err:e}");
+    assert!(
+        err <= 1e-9,
+        "{name}: got {got}, want {want}, relative error {err:e}"
+    );
 }
 
 fn check(k: &Kinematics<'_, 2>, drive: &DriveState, loop2: &[f64; 6]) {
@@ -59,7 +62,10 @@ fn check(k: &Kinematics<'_, 2>, drive: &DriveState, loop2: &[f64; 6]) {
     close("ρ8", rho8.position, loop2[3]);
     close("ρ̇8", rho8.velocity, loop2[4]);
     close("ρ̈8", rho8.acceleration, loop2[5]);
-    let g1 = k.point("slotted link", "G1").unwrap().map(|j| j.motion(drive));
+    let g1 = k
+        .point("slotted link", "G1")
+        .unwrap()
+        .map(|j| j.motion(drive));
     for i in 0..2 {
         close("v_G1", g1[i].velocity, V_G1[i]);
         close("a_G1", g1[i].acceleration, A_G1[i]);
@@ -80,7 +86,11 @@ fn reference_instant_primary_closure_matches_to_1e_9() {
 fn other_closure_is_kept_when_the_sketch_draws_it() {
     let m = rack_slotted_link(Closure001::Other, false).unwrap();
     let t = Solver::default().track(&m).unwrap();
-    check(&t.kinematics::<2>().unwrap(), &DriveState::accelerating(0.050, 0.002), &OTHER);
+    check(
+        &t.kinematics::<2>().unwrap(),
+        &DriveState::accelerating(0.050, 0.002),
+        &OTHER,
+    );
 }
 
 #[test]
@@ -102,7 +112,10 @@ fn loop_2_certificates_differ_between_closures_and_survive_a_sweep() {
     };
     let (primary, rho8_primary) = signs(Closure001::Primary);
     let (other, rho8_other) = signs(Closure001::Other);
-    assert_ne!(primary, other, "the two closures must have opposite certificates");
+    assert_ne!(
+        primary, other,
+        "the two closures must have opposite certificates"
+    );
     // Back at θ3 = 63° each sweep returns to its own closure (1e-12 m: solver rounding).
     assert!((rho8_primary - PRIMARY[3]).abs() < 1e-12);
     assert!((rho8_other - OTHER[3]).abs() < 1e-12);
@@ -118,4 +131,87 @@ fn pinion_drive_through_rack_and_pinion_gives_the_same_motion() {
     let rack = k.displacement("rack guide").unwrap();
     // ρ4′ = R exactly (rolling), ρ4″ = 0; 1e-15: rounding of a linear relation.
     assert!((rack.d1() - 0.04).abs() < 1e-15 && rack.d2().abs() < 1e-15);
+}
+
+#[test]
+fn other_incline_angles_match_the_reference_variants() {
+    // `kinematics_theta8_variants_primary_branch` of rack_slotted_link_001.json:
+    // θ8 (°) → θ6 (°), ρ8, θ̇6, θ̈6, ρ̇8, ρ̈8.
+    let variants: [(f64, [f64; 6]); 5] = [
+        (
+            50.0,
+            [
+                -8.240942702425937,
+                1.6809519770052201,
+                0.32602858124277,
+                -0.18939230174011784,
+                0.22906812611242588,
+                -0.17405658532661164,
+            ],
+        ),
+        (
+            70.0,
+            [
+                59.40722933544724,
+                2.1429123205289846,
+                0.17783633676468924,
+                -0.02307928604969454,
+                0.00811764976373331,
+                -0.039383979380916666,
+            ],
+        ),
+        (
+            80.0,
+            [
+                89.37847581987023,
+                2.146889514681985,
+                0.1707047006421322,
+                -0.015397500129103892,
+                -0.05734063038923242,
+                -0.03048485555834719,
+            ],
+        ),
+        (
+            90.0,
+            [
+                120.31719180646512,
+                2.015441480087347,
+                0.18178257510076362,
+                -0.006628069075225189,
+                -0.12415178849769577,
+                -0.027039097846706224,
+            ],
+        ),
+        (
+            100.0,
+            [
+                156.23048305177437,
+                1.7086860186876953,
+                0.25304241691809015,
+                0.0522505208580549,
+                -0.22871378024322958,
+                -0.06302323125321062,
+            ],
+        ),
+    ];
+    let drive = DriveState::accelerating(0.050, 0.002);
+    for (theta8, r) in variants {
+        let m = rack_slotted_link_incline(Closure001::Primary, false, theta8.to_radians()).unwrap();
+        let k = Solver::default()
+            .track(&m)
+            .unwrap()
+            .kinematics::<2>()
+            .unwrap();
+        let theta6 = k.angle("rod", "C", "D").unwrap().motion(&drive);
+        let rho8 = k.displacement("incline").unwrap().motion(&drive);
+        let theta6_deg = theta6.position.to_degrees();
+        // Angles compared modulo a turn (the sketch's atan2 branch).
+        let wrapped = theta6_deg - 360.0 * ((theta6_deg - r[0]) / 360.0).round();
+        close("θ6", wrapped, r[0]);
+        close("ρ8", rho8.position, r[1]);
+        close("θ̇6", theta6.velocity, r[2]);
+        close("θ̈6", theta6.acceleration, r[3]);
+        close("ρ̇8", rho8.velocity, r[4]);
+        close("ρ̈8", rho8.acceleration, r[5]);
+    }
 }

@@ -21,7 +21,10 @@ fn closed_form(phi: f64) -> (Dual3_64, Dual3_64) {
 fn hand_derived(phi: f64) -> (f64, f64) {
     let lambda = L1 / L0;
     let d = 1.0 - 2.0 * lambda * phi.cos() + lambda * lambda;
-    (lambda * (phi.cos() - lambda) / d, -lambda * phi.sin() * (1.0 - lambda * lambda) / (d * d))
+    (
+        lambda * (phi.cos() - lambda) / d,
+        -lambda * phi.sin() * (1.0 - lambda * lambda) / (d * d),
+    )
 }
 
 fn dead_positions() -> [f64; 2] {
@@ -40,7 +43,16 @@ fn full_revolution_at_half_degree_steps_matches_the_closed_form_to_1e_12() {
         let rot = k.rotation("rocker").unwrap();
         let x = k.displacement("ram guide").unwrap();
         let (psi, xc) = closed_form(k.phi);
-        let geo = [-rot.value, -rot.d1(), -rot.d2(), -rot.d3(), x.value, x.d1(), x.d2(), x.d3()];
+        let geo = [
+            -rot.value,
+            -rot.d1(),
+            -rot.d2(),
+            -rot.d3(),
+            x.value,
+            x.d1(),
+            x.d2(),
+            x.d3(),
+        ];
         let exact = [psi.re, psi.v1, psi.v2, psi.v3, xc.re, xc.v1, xc.v2, xc.v3];
         for i in 0..8 {
             cols[i].push((geo[i], exact[i]));
@@ -81,16 +93,31 @@ fn dead_positions_solve_with_zero_velocity_coefficient() {
 #[test]
 fn matches_the_30_digit_reference_sweep() {
     let m = whitworth().unwrap();
-    let phis: Vec<f64> = reference::WHITWORTH_SWEEP_30DIGITS.iter().map(|r| r[0]).collect();
+    let phis: Vec<f64> = reference::WHITWORTH_SWEEP_30DIGITS
+        .iter()
+        .map(|r| r[0])
+        .collect();
     let mut sorted = phis.clone();
     sorted.sort_by(f64::total_cmp);
     let sweep = Solver::default().sweep::<3>(&m, &sorted).unwrap();
     let mut cols: Vec<Vec<(f64, f64)>> = vec![Vec::new(); 8];
     for k in &sweep {
-        let row = reference::WHITWORTH_SWEEP_30DIGITS.iter().find(|r| r[0] == k.phi).unwrap();
+        let row = reference::WHITWORTH_SWEEP_30DIGITS
+            .iter()
+            .find(|r| r[0] == k.phi)
+            .unwrap();
         let rot = k.rotation("rocker").unwrap();
         let x = k.displacement("ram guide").unwrap();
-        let geo = [-rot.value, -rot.d1(), -rot.d2(), -rot.d3(), x.value, x.d1(), x.d2(), x.d3()];
+        let geo = [
+            -rot.value,
+            -rot.d1(),
+            -rot.d2(),
+            -rot.d3(),
+            x.value,
+            x.d1(),
+            x.d2(),
+            x.d3(),
+        ];
         for i in 0..8 {
             cols[i].push((geo[i], row[i + 1]));
         }
@@ -110,7 +137,11 @@ fn crank_centre_of_gravity_moves_on_its_circle() {
     let m = whitworth().unwrap();
     let mut t = Solver::default().track(&m).unwrap();
     t.move_to(0.3).unwrap();
-    let [x, y] = t.kinematics::<2>().unwrap().center_of_gravity("crank").unwrap();
+    let [x, y] = t
+        .kinematics::<2>()
+        .unwrap()
+        .center_of_gravity("crank")
+        .unwrap();
     let (s, c) = 0.3f64.sin_cos();
     // Values of size 0.04..0.4 m; 1e-15 absolute is a few ulps.
     assert!((x.value - 0.04 * s).abs() < 1e-15 && (y.value - (L0 - 0.04 * c)).abs() < 1e-15);

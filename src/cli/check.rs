@@ -23,9 +23,9 @@ pub fn check(args: &CheckArgs) -> Result<(), Error> {
         "{}: ok: {} points, {} links (ground included), {} joints; {} coordinates, {} joint \
          equations, {} degree(s) of freedom; Jacobian rank {} at the sketch pose (drive included)",
         scene.file,
-        m.points.len(),
-        m.links.len(),
-        m.joints.len(),
+        m.points().len(),
+        m.links().len(),
+        m.joints().len(),
         checked.mobility.coordinates,
         checked.mobility.joint_equations,
         checked.mobility.degrees_of_freedom,

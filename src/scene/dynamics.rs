@@ -631,7 +631,7 @@ pub(crate) fn run(
                 }
             }
             DynamicQuantity::Reactions => {
-                let all: Vec<&str> = m.joints.iter().map(|j| j.name.as_str()).collect();
+                let all: Vec<&str> = m.joints().iter().map(|j| j.name.as_str()).collect();
                 for j in selected(&o.names, &all) {
                     columns.extend(reaction_columns(scene, j));
                 }
@@ -683,7 +683,7 @@ pub(crate) fn run(
                 }
                 DynamicQuantity::Reactions => {
                     let s = step.solution.as_ref().expect("planned");
-                    let all: Vec<&str> = m.joints.iter().map(|j| j.name.as_str()).collect();
+                    let all: Vec<&str> = m.joints().iter().map(|j| j.name.as_str()).collect();
                     for j in selected(&o.names, &all) {
                         let r = s
                             .reactions

@@ -75,14 +75,14 @@ pub(crate) fn resolve(
                     message: format!("{context}: `{field}` does not apply; {expected}"),
                 });
             }
-            None if allowed.contains(field) => {
-                return Err(cx.invalid(def, format!("{context}: `{field}` is missing; {expected}")));
-            }
             _ => {}
         }
     }
+    // A field the type takes (every other one was refused above), or which one is missing.
+    let missing =
+        |field: &str| cx.invalid(def, format!("{context}: `{field}` is missing; {expected}"));
     let links = |cx: &Context| -> Result<[String; 2]> {
-        let links = d.links.as_ref().expect("checked above");
+        let links = d.links.as_ref().ok_or_else(|| missing("links"))?;
         let [a, b] = links.get_ref();
         let a = cx.link(a, geometry.links, &context)?;
         let b = cx.link(b, geometry.links, &context)?;
@@ -97,7 +97,7 @@ pub(crate) fn resolve(
     Ok(match kind {
         Kind::Revolute => {
             let links = links(cx)?;
-            let at = d.at.as_ref().expect("checked above");
+            let at = d.at.as_ref().ok_or_else(|| missing("at"))?;
             cx.point_on(at, &links[0], geometry, &context)?;
             let at = cx.point_on(at, &links[1], geometry, &context)?;
             JointKind::Revolute {
@@ -108,12 +108,12 @@ pub(crate) fn resolve(
         Kind::Prismatic => {
             let links = links(cx)?;
             let line = cx.line(
-                d.line.as_ref().expect("checked"),
+                d.line.as_ref().ok_or_else(|| missing("line"))?,
                 &links[0],
                 geometry,
                 &context,
             )?;
-            let point_name = d.point.as_ref().expect("checked");
+            let point_name = d.point.as_ref().ok_or_else(|| missing("point"))?;
             let point = cx
                 .point_on(point_name, &links[1], geometry, &context)?
                 .to_owned();
@@ -123,12 +123,12 @@ pub(crate) fn resolve(
         Kind::PinInSlot => {
             let links = links(cx)?;
             let slot = cx.line(
-                d.slot.as_ref().expect("checked"),
+                d.slot.as_ref().ok_or_else(|| missing("slot"))?,
                 &links[0],
                 geometry,
                 &context,
             )?;
-            let pin_name = d.pin.as_ref().expect("checked");
+            let pin_name = d.pin.as_ref().ok_or_else(|| missing("pin"))?;
             let pin = cx
                 .point_on(pin_name, &links[1], geometry, &context)?
                 .to_owned();
@@ -138,20 +138,20 @@ pub(crate) fn resolve(
         Kind::RackPinion => {
             let pinion = joint_of(
                 cx,
-                d.pinion.as_ref().expect("checked"),
+                d.pinion.as_ref().ok_or_else(|| missing("pinion"))?,
                 earlier,
                 "revolute",
                 &context,
             )?;
             let rack = joint_of(
                 cx,
-                d.rack.as_ref().expect("checked"),
+                d.rack.as_ref().ok_or_else(|| missing("rack"))?,
                 earlier,
                 "prismatic",
                 &context,
             )?;
             let radius = cx.positive(
-                d.radius.as_ref().expect("checked"),
+                d.radius.as_ref().ok_or_else(|| missing("radius"))?,
                 &format!("`radius` of {context}"),
                 Dimension::Length,
             )?;
@@ -163,10 +163,10 @@ pub(crate) fn resolve(
             }
         }
         Kind::Gear => {
-            let [a, b] = d.gears.as_ref().expect("checked").get_ref();
+            let [a, b] = d.gears.as_ref().ok_or_else(|| missing("gears"))?.get_ref();
             let a = joint_of(cx, a, earlier, "revolute", &context)?;
             let b = joint_of(cx, b, earlier, "revolute", &context)?;
-            let ratio = d.ratio.as_ref().expect("checked");
+            let ratio = d.ratio.as_ref().ok_or_else(|| missing("ratio"))?;
             let value = *ratio.get_ref();
             if !value.is_finite() || value == 0.0 {
                 return Err(cx.invalid(

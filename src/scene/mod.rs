@@ -36,10 +36,12 @@
 pub mod build;
 mod drive;
 pub mod dynamics;
+mod evaluate;
 pub mod format;
 mod joints;
 pub mod model;
 pub mod outputs;
+pub mod plan;
 pub mod resolve;
 pub mod run;
 pub mod source;
@@ -51,7 +53,8 @@ use std::path::Path;
 use crate::error::{Error, Result};
 
 pub use model::Scene;
-pub use run::{Checked, Plan, Report, check, run};
+pub use plan::Plan;
+pub use run::{Checked, Report, check, run};
 pub use source::Source;
 
 /// Parses and checks a scene given as text; `file` names it in messages.

@@ -67,7 +67,7 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &p| {
                 (lo.min(p), hi.max(p))
             });
-        if !(hi > lo) {
+        if hi <= lo {
             return Err(Error::Invalid {
                 location: output.location.clone(),
                 message: format!(

@@ -1,159 +1,19 @@
-//! Running a scene: the plan, the sweep, the outputs at every drive position, and the dead
-//! positions asked for.
+//! Running a scene: the drive positions, the sweep, the outputs at every drive position,
+//! and the dead positions asked for.
 
 use std::cell::RefCell;
-use std::fmt;
 
 use mechdiff_core::geometry::{Kinematics, Mechanism, Mobility, Solver, Tracker};
-use mechdiff_core::num_dual::{Dual3_64, DualNum};
-use mechdiff_core::{DeadPosition, DeadPositionSearch, DriveState, Jet};
+use mechdiff_core::{DeadPosition, DeadPositionSearch, DriveState};
 
 use crate::error::{Error, Result};
 
 use super::build::{mechanism, model_error};
-use super::format::{Quantity, Sense};
-use super::model::{Output, OutputKind, Scene};
+use super::evaluate::{evaluate, quantity};
+use super::model::{DriveKind, Output, Scene};
 use super::outputs::{Column, columns};
+use super::plan::Plan;
 use super::units::{Dimension, Units};
-
-/// What a run computes, printed before the table.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Plan {
-    /// Number of drive positions.
-    pub positions: usize,
-    /// Smallest and largest position of the sweep (SI): drive positions, or values of the
-    /// output named by `given_by`.
-    pub range: (f64, f64),
-    /// The output whose values the sweep gives (`[sweep] of`), if any.
-    pub given_by: Option<String>,
-    /// Highest derivative order with respect to the drive that the outputs need.
-    pub order: usize,
-    /// The drive state used for velocities and accelerations, if any is asked for.
-    pub drive: Option<DriveState>,
-    /// Number of output columns (the drive column excluded).
-    pub columns: usize,
-    /// Outputs whose dead positions are searched.
-    pub dead_positions: Vec<String>,
-    /// The plan of the `[[dynamics]]` outputs: derivative order and effects.
-    pub dynamics: Option<mechdiff_core::dynamics::Plan>,
-}
-
-impl Plan {
-    /// The plan of a scene.
-    pub fn of(scene: &Scene) -> Self {
-        let (lo, hi) = scene
-            .positions
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &p| {
-                (lo.min(p), hi.max(p))
-            });
-        let times = scene
-            .outputs
-            .iter()
-            .any(|o| o.quantities.iter().any(|q| q.is_time_derivative()));
-        let drive = match (times, scene.drive.speed) {
-            (true, Some(omega)) => Some(DriveState::accelerating(omega, scene.drive.acceleration)),
-            _ => None,
-        };
-        let drive_dimension = scene.drive.kind.dimension();
-        Plan {
-            positions: scene.positions.len(),
-            range: (lo, hi),
-            given_by: scene.sweep_of.map(|k| scene.outputs[k].name.clone()),
-            order: scene.order(),
-            drive,
-            columns: scene
-                .outputs
-                .iter()
-                .map(|o| columns(o, &scene.units, drive_dimension).len())
-                .sum(),
-            dead_positions: scene
-                .outputs
-                .iter()
-                .filter(|o| o.dead_positions)
-                .map(|o| o.name.clone())
-                .collect(),
-            dynamics: scene
-                .dynamics
-                .as_ref()
-                .filter(|d| !d.outputs.is_empty())
-                .and_then(|d| super::build::mechanism(scene).ok().map(|m| d.plan(&m))),
-        }
-    }
-
-    /// The plan as one line, in the scene's units.
-    pub fn describe(&self, scene: &Scene) -> String {
-        let what = match self.order {
-            0 => "positions only (order 0)",
-            1 => "positions and velocity coefficients (order 1)",
-            _ => "positions, velocity and acceleration coefficients (order 2)",
-        };
-        let range = if let Some(k) = scene.sweep_of {
-            let output = &scene.outputs[k];
-            let text = |v: f64| {
-                let d = output.kind.dimension();
-                let u = &scene.units;
-                format!("{} {}", Units::tidy(u.from_si(v, d)), u.symbol(d))
-            };
-            let values = if self.positions == 1 {
-                format!(
-                    "1 drive position where {} = {}",
-                    output.name,
-                    text(self.range.0)
-                )
-            } else {
-                format!(
-                    "{} drive positions where {} goes from {} to {}",
-                    self.positions,
-                    output.name,
-                    text(self.range.0),
-                    text(self.range.1)
-                )
-            };
-            format!(
-                "{values} (drive positions solved by Newton on {}')",
-                output.name
-            )
-        } else if self.positions == 1 {
-            format!("1 drive position, phi = {}", scene.drive_text(self.range.0))
-        } else {
-            format!(
-                "{} drive positions, phi from {} to {}",
-                self.positions,
-                scene.drive_text(self.range.0),
-                scene.drive_text(self.range.1)
-            )
-        };
-        let motion = match self.drive {
-            Some(d) => {
-                let kind = scene.drive.kind;
-                let u = &scene.units;
-                format!(
-                    "; velocities and accelerations for speed {} {}, acceleration {} {}",
-                    Units::tidy(u.from_si(d.omega, kind.speed_dimension())),
-                    u.symbol(kind.speed_dimension()),
-                    Units::tidy(u.from_si(d.alpha, kind.acceleration_dimension())),
-                    u.symbol(kind.acceleration_dimension()),
-                )
-            }
-            None => String::new(),
-        };
-        let dead = if self.dead_positions.is_empty() {
-            String::new()
-        } else {
-            format!("; dead positions of {}", self.dead_positions.join(", "))
-        };
-        let dynamics = match &self.dynamics {
-            Some(p) => format!("\ndynamics plan: {p}"),
-            None => String::new(),
-        };
-        format!(
-            "plan: {range}; {what} by the geometry solver with implicit differentiation{motion}; \
-            {} columns{dead}{dynamics}",
-            self.columns
-        )
-    }
-}
 
 /// The dead positions of one output found in the sweep's range.
 #[derive(Debug, Clone, PartialEq)]
@@ -295,8 +155,8 @@ fn drive_positions(scene: &Scene, mechanism: &Mechanism) -> Result<Vec<f64>> {
         .track(mechanism)
         .map_err(|e| solver_error(scene, e))?;
     let max_step = match scene.drive.kind {
-        super::model::DriveKind::Angle => std::f64::consts::FRAC_PI_4,
-        super::model::DriveKind::Displacement => 0.25 * sketch_size(scene),
+        DriveKind::Angle => std::f64::consts::FRAC_PI_4,
+        DriveKind::Displacement => 0.25 * sketch_size(scene),
     };
     let dimension = output.kind.dimension();
     let text = |v: f64| {
@@ -392,114 +252,6 @@ fn solve<'m, const N: usize>(
         .map_err(|e| solver_error(scene, e))
 }
 
-/// One quantity of a jet: its value, a coefficient, or a time derivative.
-fn quantity<const N: usize>(jet: &Jet<N>, q: Quantity, drive: &DriveState) -> f64 {
-    let d = |k: usize| jet.derivative(k).unwrap_or(0.0);
-    match q {
-        Quantity::Position => jet.value,
-        Quantity::VelocityCoefficient => d(1),
-        Quantity::AccelerationCoefficient => d(2),
-        Quantity::Velocity => drive.omega * d(1),
-        Quantity::Acceleration => drive.alpha * d(1) + drive.omega * drive.omega * d(2),
-    }
-}
-
-/// The output's jets at the current pose: `[x, y]` for a point, one jet otherwise. Angles are
-/// kept continuous along the sweep through `previous`.
-fn evaluate<const N: usize>(
-    scene: &Scene,
-    k: &Kinematics<'_, N>,
-    output: &Output,
-    previous: &mut Option<f64>,
-) -> Result<Vec<Jet<N>>> {
-    let point = |name: &str| -> Result<[Dual3_64; 2]> {
-        let link = scene
-            .links
-            .iter()
-            .find(|l| l.points.iter().any(|p| p == name))
-            .expect("outputs name points carried by a link (checked when the scene was read)");
-        let [x, y] = k
-            .point(&link.name, name)
-            .map_err(|e| solver_error(scene, e))?;
-        Ok([dual(&x), dual(&y)])
-    };
-    Ok(match &output.kind {
-        OutputKind::Point(name) => point(name)?.iter().map(jet::<N>).collect(),
-        OutputKind::Angle {
-            line,
-            reference,
-            sense,
-        } => {
-            let mut angle = direction(point(&line[0])?, point(&line[1])?);
-            if let Some([a, b]) = reference {
-                angle -= direction(point(a)?, point(b)?);
-            }
-            if *sense == Sense::Cw {
-                angle = -angle;
-            }
-            let target = previous.unwrap_or_else(|| sketch_angle(scene, output));
-            let turns = ((target - angle.re) / std::f64::consts::TAU).round();
-            angle.re += turns * std::f64::consts::TAU;
-            *previous = Some(angle.re);
-            vec![jet::<N>(&angle)]
-        }
-        OutputKind::Slider {
-            point: p,
-            line: [a, b],
-            ..
-        } => {
-            // s = (p − a)·u with u the unit direction a → b of the guide or slot (both points
-            // on one link, so |b − a| is constant; it is differentiated anyway, exactly).
-            let (p, a, b) = (point(p)?, point(a)?, point(b)?);
-            let u = [b[0] - a[0], b[1] - a[1]];
-            let norm = (u[0] * u[0] + u[1] * u[1]).sqrt();
-            let s = ((p[0] - a[0]) * u[0] + (p[1] - a[1]) * u[1]) / norm;
-            vec![jet::<N>(&s)]
-        }
-    })
-}
-
-/// The output angle at the sketch pose, where the sweep's angle continuity starts.
-fn sketch_angle(scene: &Scene, output: &Output) -> f64 {
-    let sketch = |name: &str| {
-        scene
-            .points
-            .iter()
-            .find(|p| p.name == name)
-            .map_or([0.0, 0.0], |p| p.sketch)
-    };
-    let dir = |[a, b]: &[String; 2]| {
-        let (a, b) = (sketch(a), sketch(b));
-        (b[1] - a[1]).atan2(b[0] - a[0])
-    };
-    match &output.kind {
-        OutputKind::Angle {
-            line,
-            reference,
-            sense,
-        } => {
-            let angle = dir(line) - reference.as_ref().map_or(0.0, dir);
-            if *sense == Sense::Cw { -angle } else { angle }
-        }
-        _ => 0.0,
-    }
-}
-
-/// Direction angle of `a → b`, with derivatives.
-fn direction(a: [Dual3_64; 2], b: [Dual3_64; 2]) -> Dual3_64 {
-    mechdiff_core::atan2(b[1] - a[1], b[0] - a[0])
-}
-
-fn dual<const N: usize>(j: &Jet<N>) -> Dual3_64 {
-    let d = |k: usize| j.derivatives.get(k).copied().unwrap_or(0.0);
-    Dual3_64::new(j.value, d(0), d(1), d(2))
-}
-
-fn jet<const N: usize>(x: &Dual3_64) -> Jet<N> {
-    let d = [x.v1, x.v2, x.v3];
-    Jet::new(x.re, std::array::from_fn(|k| d[k]))
-}
-
 /// Every dead position of an angle or slider output in the sweep's range.
 fn search_dead_positions(
     scene: &Scene,
@@ -581,15 +333,5 @@ pub(crate) fn solver_error(scene: &Scene, source: mechdiff_core::Error) -> Error
             loop_joints: joined(&joints),
         },
         other => model_error(scene, other),
-    }
-}
-
-impl fmt::Display for Plan {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "{} drive positions, derivative order {}",
-            self.positions, self.order
-        )
     }
 }

@@ -48,16 +48,27 @@ impl BlockLu {
             .iter()
             .map(|l| {
                 let k = l.rows.len();
-                Factor { lu: vec![0.0; k * k], pivots: vec![0; k], parity: 1.0 }
+                Factor {
+                    lu: vec![0.0; k * k],
+                    pivots: vec![0; k],
+                    parity: 1.0,
+                }
             })
             .collect();
-        BlockLu { factors, coupling, valid: false }
+        BlockLu {
+            factors,
+            coupling,
+            valid: false,
+        }
     }
 
     /// Factorises the diagonal blocks of `jac`. Returns false if a pivot is exactly zero
     /// (the factorisation is then unusable).
     pub fn factor(&mut self, jac: &DMatrix<f64>, loops: &[Loop]) -> bool {
-        self.valid = loops.iter().zip(&mut self.factors).all(|(l, f)| factor_block(jac, l, f));
+        self.valid = loops
+            .iter()
+            .zip(&mut self.factors)
+            .all(|(l, f)| factor_block(jac, l, f));
         self.valid
     }
 

@@ -30,7 +30,12 @@ pub(crate) struct Loop {
 pub(crate) fn structure(eq: &Equations) -> Vec<Vec<usize>> {
     eq.row_bodies()
         .into_iter()
-        .map(|bodies| bodies.into_iter().flat_map(|k| [3 * k, 3 * k + 1, 3 * k + 2]).collect())
+        .map(|bodies| {
+            bodies
+                .into_iter()
+                .flat_map(|k| [3 * k, 3 * k + 1, 3 * k + 2])
+                .collect()
+        })
         .collect()
 }
 
@@ -157,17 +162,19 @@ fn tarjan(edges: &[Vec<usize>]) -> Vec<Vec<usize>> {
 
 /// The block of `jac` belonging to `l`.
 pub(crate) fn block(jac: &DMatrix<f64>, l: &Loop) -> DMatrix<f64> {
-    DMatrix::from_fn(l.rows.len(), l.columns.len(), |i, j| jac[(l.rows[i], l.columns[j])])
+    DMatrix::from_fn(l.rows.len(), l.columns.len(), |i, j| {
+        jac[(l.rows[i], l.columns[j])]
+    })
 }
 
-/// The branch certificate of loop `l` (the sign of its block's determinant, 0 if exactly
-/// singular) and the block's condition number after scaling its columns to unit length.
+/// The condition number of loop `l`'s block of the scaled Jacobian `jac` after scaling its
+/// columns to unit length.
 ///
-/// `jac` must be the scaled Jacobian. The condition is computed by an SVD only when the
-/// Hadamard ratio |det| / Π‖column‖ does not already prove it below `limit`: with unit
-/// columns σ_max ≤ √k and σ_min ≥ |det| / σ_max^(k−1), so the condition is at most
-/// k^(k/2) / |det|.
-pub(crate) fn certificate(jac: &DMatrix<f64>, l: &Loop, limit: f64) -> (i8, f64) {
+/// An SVD is computed only when the Hadamard ratio |det| / Π‖column‖ does not already prove
+/// the condition below `limit`: with unit columns σ_max ≤ √k and
+/// σ_min ≥ |det| / σ_max^(k−1), so the condition is at most k^(k/2) / |det|; that bound is
+/// returned when it is below `limit`.
+pub(crate) fn condition(jac: &DMatrix<f64>, l: &Loop, limit: f64) -> f64 {
     let mut b = block(jac, l);
     for mut c in b.column_iter_mut() {
         let norm = c.norm();
@@ -175,20 +182,16 @@ pub(crate) fn certificate(jac: &DMatrix<f64>, l: &Loop, limit: f64) -> (i8, f64)
             c /= norm;
         }
     }
-    let det = b.clone().determinant();
-    let sign = if det > 0.0 {
-        1
-    } else if det < 0.0 {
-        -1
-    } else {
-        0
-    };
     let k = l.rows.len() as f64;
-    let bound = k.powf(0.5 * k) / det.abs();
+    let bound = k.powf(0.5 * k) / b.clone().determinant().abs();
     if bound <= limit {
-        return (sign, bound);
+        return bound;
     }
     let s = b.singular_values();
     let condition = s.max() / s.min();
-    (sign, if condition.is_nan() { f64::INFINITY } else { condition })
+    if condition.is_nan() {
+        f64::INFINITY
+    } else {
+        condition
+    }
 }

@@ -44,14 +44,50 @@ pub(crate) struct Slide {
 /// One joint (or the drive), compiled to link-local data.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum Term {
-    Revolute { a: Body, pa: [f64; 2], b: Body, pb: [f64; 2] },
-    Prismatic { slide: Slide, offset: f64 },
-    PinInSlot { line: Line, pin: Body, p: [f64; 2] },
-    RackPinion { a: Body, b: Body, slide: Slide, s0: f64, radius: f64 },
-    Gear { a1: Body, b1: Body, a2: Body, b2: Body, ratio: f64 },
-    Rigid { a: Body, pa: [f64; 2], b: Body },
-    DriveAngle { a: Body, b: Body, phi0: f64 },
-    DriveSlide { slide: Slide, s0: f64, phi0: f64 },
+    Revolute {
+        a: Body,
+        pa: [f64; 2],
+        b: Body,
+        pb: [f64; 2],
+    },
+    Prismatic {
+        slide: Slide,
+        offset: f64,
+    },
+    PinInSlot {
+        line: Line,
+        pin: Body,
+        p: [f64; 2],
+    },
+    RackPinion {
+        a: Body,
+        b: Body,
+        slide: Slide,
+        s0: f64,
+        radius: f64,
+    },
+    Gear {
+        a1: Body,
+        b1: Body,
+        a2: Body,
+        b2: Body,
+        ratio: f64,
+    },
+    Rigid {
+        a: Body,
+        pa: [f64; 2],
+        b: Body,
+    },
+    DriveAngle {
+        a: Body,
+        b: Body,
+        phi0: f64,
+    },
+    DriveSlide {
+        slide: Slide,
+        s0: f64,
+        phi0: f64,
+    },
 }
 
 impl Term {
@@ -83,12 +119,22 @@ fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
     [a[0] - b[0], a[1] - b[1]]
 }
 
-pub(crate) fn compile_slide(m: &Mechanism, guide: usize, line: [usize; 2], slider: usize, point: usize) -> Slide {
+pub(crate) fn compile_slide(
+    m: &Mechanism,
+    guide: usize,
+    line: [usize; 2],
+    slider: usize,
+    point: usize,
+) -> Slide {
     let (a, b) = (m.points[line[0]].sketch, m.points[line[1]].sketch);
     let d = sub(b, a);
     let len = d[0].hypot(d[1]);
     Slide {
-        line: Line { body: body(guide), origin: m.local(guide, a), direction: [d[0] / len, d[1] / len] },
+        line: Line {
+            body: body(guide),
+            origin: m.local(guide, a),
+            direction: [d[0] / len, d[1] / len],
+        },
         slider: body(slider),
         point: m.local(slider, m.points[point].sketch),
     }
@@ -100,9 +146,12 @@ impl Equations {
         let mut terms = Vec::with_capacity(m.joints.len() + 1);
         let mut row_joint = Vec::new();
         let slide_of = |j: usize| match m.joints[j].kind {
-            JointKind::Prismatic { guide, line, slider, point } => {
-                compile_slide(m, guide, line, slider, point)
-            }
+            JointKind::Prismatic {
+                guide,
+                line,
+                slider,
+                point,
+            } => compile_slide(m, guide, line, slider, point),
             _ => unreachable!("validated: a prismatic joint"),
         };
         let bodies_of = |j: usize| match m.joints[j].kind {
@@ -111,7 +160,11 @@ impl Equations {
         };
         for (ji, j) in m.joints.iter().enumerate() {
             let term = match j.kind {
-                JointKind::Revolute { link_a, link_b, point } => {
+                JointKind::Revolute {
+                    link_a,
+                    link_b,
+                    point,
+                } => {
                     let at = m.points[point].sketch;
                     Term::Revolute {
                         a: body(link_a),
@@ -132,7 +185,12 @@ impl Equations {
                     };
                     Term::Prismatic { slide, offset }
                 }
-                JointKind::PinInSlot { slot_link, line, pin_link, pin } => {
+                JointKind::PinInSlot {
+                    slot_link,
+                    line,
+                    pin_link,
+                    pin,
+                } => {
                     let (a, b) = (m.points[line[0]].sketch, m.points[line[1]].sketch);
                     let d = sub(b, a);
                     let len = d[0].hypot(d[1]);
@@ -146,15 +204,35 @@ impl Equations {
                         p: m.local(pin_link, m.points[pin].sketch),
                     }
                 }
-                JointKind::RackPinion { pinion, rack, radius } => {
+                JointKind::RackPinion {
+                    pinion,
+                    rack,
+                    radius,
+                } => {
                     let (a, b) = bodies_of(pinion);
                     let slide = slide_of(rack);
-                    Term::RackPinion { a, b, slide, s0: sketch_displacement(m, rack), radius }
+                    Term::RackPinion {
+                        a,
+                        b,
+                        slide,
+                        s0: sketch_displacement(m, rack),
+                        radius,
+                    }
                 }
-                JointKind::Gear { joint_a, joint_b, ratio } => {
+                JointKind::Gear {
+                    joint_a,
+                    joint_b,
+                    ratio,
+                } => {
                     let (a1, b1) = bodies_of(joint_a);
                     let (a2, b2) = bodies_of(joint_b);
-                    Term::Gear { a1, b1, a2, b2, ratio }
+                    Term::Gear {
+                        a1,
+                        b1,
+                        a2,
+                        b2,
+                        ratio,
+                    }
                 }
                 JointKind::Rigid { link_a, link_b } => Term::Rigid {
                     a: body(link_a),
@@ -178,7 +256,12 @@ impl Equations {
             },
         });
         row_joint.push(m.joints.len());
-        let mut eq = Equations { terms, angular: Vec::new(), row_joint, coordinates: m.coordinate_count() };
+        let mut eq = Equations {
+            terms,
+            angular: Vec::new(),
+            row_joint,
+            coordinates: m.coordinate_count(),
+        };
         eq.angular = eq.angular_rows();
         eq
     }
@@ -198,7 +281,12 @@ impl Equations {
         with_frames(q, |f| self.evaluate_with(f, phi, out));
     }
 
-    fn evaluate_with<D: DualNum<Primitive = f64> + Copy>(&self, f: &Frames<'_, D>, phi: D, out: &mut [D]) {
+    fn evaluate_with<D: DualNum<Primitive = f64> + Copy>(
+        &self,
+        f: &Frames<'_, D>,
+        phi: D,
+        out: &mut [D],
+    ) {
         let mut row = 0;
         for t in &self.terms {
             match *t {
@@ -216,11 +304,23 @@ impl Equations {
                     let (u, d) = f.along(&line, f.point(pin, p));
                     out[row] = u[0] * d[1] - u[1] * d[0];
                 }
-                Term::RackPinion { a, b, slide, s0, radius } => {
+                Term::RackPinion {
+                    a,
+                    b,
+                    slide,
+                    s0,
+                    radius,
+                } => {
                     let s = f.displacement(&slide);
                     out[row] = s - s0 - (f.angle(b) - f.angle(a)) * radius;
                 }
-                Term::Gear { a1, b1, a2, b2, ratio } => {
+                Term::Gear {
+                    a1,
+                    b1,
+                    a2,
+                    b2,
+                    ratio,
+                } => {
                     out[row] = f.angle(b2) - f.angle(a2) - (f.angle(b1) - f.angle(a1)) * ratio;
                 }
                 Term::Rigid { a, pa, b } => {
@@ -264,12 +364,24 @@ impl Equations {
                     g.line(row + 1, &slide.line, slide.slider, slide.point, false);
                 }
                 Term::PinInSlot { line, pin, p } => g.line(row, &line, pin, p, false),
-                Term::RackPinion { a, b, slide, radius, .. } => {
+                Term::RackPinion {
+                    a,
+                    b,
+                    slide,
+                    radius,
+                    ..
+                } => {
                     g.line(row, &slide.line, slide.slider, slide.point, true);
                     g.angle(row, b, -radius);
                     g.angle(row, a, radius);
                 }
-                Term::Gear { a1, b1, a2, b2, ratio } => {
+                Term::Gear {
+                    a1,
+                    b1,
+                    a2,
+                    b2,
+                    ratio,
+                } => {
                     g.angle(row, b2, 1.0);
                     g.angle(row, a2, -1.0);
                     g.angle(row, b1, -ratio);
@@ -348,7 +460,10 @@ pub(crate) fn with_frames<D: DualNum<Primitive = f64> + Copy, T>(
         for (k, f) in frames.iter_mut().enumerate().take(n) {
             *f = sin_cos(k);
         }
-        body(&Frames { q, frames: &frames[..n] })
+        body(&Frames {
+            q,
+            frames: &frames[..n],
+        })
     } else {
         let frames: Vec<(D, D)> = (0..n).map(sin_cos).collect();
         body(&Frames { q, frames: &frames })
@@ -433,8 +548,11 @@ impl Gradient<'_, '_, '_> {
             self.jac[(row, 3 * k + 1)] -= w[1];
             // The guide's rotation turns u and moves a: ∂/∂θ_g of c(u, r − r_g(a)) is
             // −u·(r − r_g), of u·(r − r_g(a)) it is c(u, r − r_g), r_g the guide's origin.
-            self.jac[(row, 3 * k + 2)] +=
-                if along { cross(u, rel) } else { -(u[0] * rel[0] + u[1] * rel[1]) };
+            self.jac[(row, 3 * k + 2)] += if along {
+                cross(u, rel)
+            } else {
+                -(u[0] * rel[0] + u[1] * rel[1])
+            };
         }
     }
 }

@@ -47,7 +47,11 @@ pub(crate) fn second_derivative(
     phi: f64,
     ddq: &mut [f64],
 ) -> bool {
-    let x: Vec<Dual2_64> = q.iter().zip(dq).map(|(&a, &b)| Dual2_64::new(a, b, 0.0)).collect();
+    let x: Vec<Dual2_64> = q
+        .iter()
+        .zip(dq)
+        .map(|(&a, &b)| Dual2_64::new(a, b, 0.0))
+        .collect();
     let mut out = vec![Dual2_64::from(0.0); eq.rows()];
     eq.evaluate(&x, Dual2_64::new(phi, 1.0, 0.0), &mut out);
     let rhs: Vec<f64> = out.iter().map(|r| -r.v2).collect();
@@ -64,8 +68,9 @@ pub(crate) fn third_derivative(
     phi: f64,
     dddq: &mut [f64],
 ) -> bool {
-    let x: Vec<Dual3_64> =
-        (0..q.len()).map(|i| Dual3_64::new(q[i], dq[i], ddq[i], 0.0)).collect();
+    let x: Vec<Dual3_64> = (0..q.len())
+        .map(|i| Dual3_64::new(q[i], dq[i], ddq[i], 0.0))
+        .collect();
     let mut out = vec![Dual3_64::from(0.0); eq.rows()];
     eq.evaluate(&x, Dual3_64::new(phi, 1.0, 0.0, 0.0), &mut out);
     let rhs: Vec<f64> = out.iter().map(|r| -r.v3).collect();

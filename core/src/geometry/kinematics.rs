@@ -19,7 +19,11 @@ pub struct Kinematics<'m, const N: usize> {
 
 impl<'m, const N: usize> Kinematics<'m, N> {
     pub(crate) fn new(mechanism: &'m Mechanism, phi: f64, coordinates: Vec<Jet<N>>) -> Self {
-        Kinematics { mechanism, phi, coordinates }
+        Kinematics {
+            mechanism,
+            phi,
+            coordinates,
+        }
     }
 
     /// The coordinates as third-order dual numbers (derivatives above `N` are zero).
@@ -41,14 +45,19 @@ impl<'m, const N: usize> Kinematics<'m, N> {
     fn with_frames<T>(&self, f: impl FnOnce(&Frames<'_, Dual3_64>) -> T) -> T {
         let q = self.duals();
         let frames: Vec<_> = (0..q.len() / 3).map(|k| q[3 * k + 2].sin_cos()).collect();
-        f(&Frames { q: &q, frames: &frames })
+        f(&Frames {
+            q: &q,
+            frames: &frames,
+        })
     }
 
     fn link(&self, name: &str) -> Result<usize, Error> {
-        self.mechanism.link_index(name).map_err(|_| Error::InvalidOutput {
-            name: name.to_owned(),
-            problem: "no link of this name".to_owned(),
-        })
+        self.mechanism
+            .link_index(name)
+            .map_err(|_| Error::InvalidOutput {
+                name: name.to_owned(),
+                problem: "no link of this name".to_owned(),
+            })
     }
 
     fn point_on(&self, link: usize, point: &str) -> Result<[f64; 2], Error> {
@@ -97,10 +106,12 @@ impl<'m, const N: usize> Kinematics<'m, N> {
     /// Position of link `link`'s centre of gravity (its [`super::Inertia`] must be given).
     pub fn center_of_gravity(&self, link: &str) -> Result<[Jet<N>; 2], Error> {
         let k = self.link(link)?;
-        let inertia = self.mechanism.links[k].inertia.ok_or_else(|| Error::InvalidOutput {
-            name: link.to_owned(),
-            problem: "the link has no mass properties".to_owned(),
-        })?;
+        let inertia = self.mechanism.links[k]
+            .inertia
+            .ok_or_else(|| Error::InvalidOutput {
+                name: link.to_owned(),
+                problem: "the link has no mass properties".to_owned(),
+            })?;
         Ok(self.point_at_index(k, inertia.center))
     }
 
@@ -144,7 +155,12 @@ impl<'m, const N: usize> Kinematics<'m, N> {
             problem: e.to_string(),
         })?;
         match m.joints[j].kind {
-            JointKind::Prismatic { guide, line, slider, point } => {
+            JointKind::Prismatic {
+                guide,
+                line,
+                slider,
+                point,
+            } => {
                 let slide = constraints::compile_slide(m, guide, line, slider, point);
                 Ok(Self::jet(self.with_frames(|f| f.displacement(&slide))))
             }

@@ -8,7 +8,10 @@
 //! - rows in the left null space of Φ_q ⇒ **over-constrained**: the joints owning those rows
 //!   are named (together they say the same thing twice);
 //! - columns in the right null space ⇒ **under-constrained**: the links that can still move
-//!   with the drive fixed, and the joints attached to them, are named.
+//!   with the drive fixed, and the joints attached to them, are named;
+//! - a square system whose structure fixes every coordinate (a perfect matching of
+//!   equations to coordinates exists) but whose Jacobian is rank deficient is drawn at a
+//!   **singular** pose (a toggle): [`Error::Singular`] at the sketch's drive value.
 
 use super::constraints::Equations;
 use super::model::{JointKind, Mechanism};
@@ -102,7 +105,26 @@ pub fn check_mobility(m: &Mechanism) -> Result<Mobility, Error> {
                 joints.push(name);
             }
         }
-        return Err(Error::Overconstrained { redundant: joints, equations: rows, coordinates: cols });
+        if rows == cols && super::branch::loops(&eq).is_some() {
+            // The count is right and every coordinate is structurally fixed: the Jacobian is
+            // singular only because of where the sketch is drawn (a toggle, or a dead centre
+            // of a driven slider).
+            let sigma_min = svd.singular_values.min();
+            return Err(Error::Singular {
+                phi: m.drive_at_sketch,
+                condition: if sigma_min > 0.0 {
+                    sigma_max / sigma_min
+                } else {
+                    f64::INFINITY
+                },
+                joints,
+            });
+        }
+        return Err(Error::Overconstrained {
+            redundant: joints,
+            equations: rows,
+            coordinates: cols,
+        });
     }
     if rank < cols {
         // Right null space: coordinate motions that no equation sees.
@@ -125,7 +147,10 @@ pub fn check_mobility(m: &Mechanism) -> Result<Mobility, Error> {
             .collect();
         return Err(Error::Underconstrained {
             free: cols - rank,
-            links: free_links.iter().map(|&k| m.links[k].name.clone()).collect(),
+            links: free_links
+                .iter()
+                .map(|&k| m.links[k].name.clone())
+                .collect(),
             joints,
         });
     }
@@ -144,13 +169,19 @@ fn links_of(kind: &JointKind, m: &Mechanism) -> Vec<usize> {
             vec![link_a, link_b]
         }
         JointKind::Prismatic { guide, slider, .. } => vec![guide, slider],
-        JointKind::PinInSlot { slot_link, pin_link, .. } => vec![slot_link, pin_link],
+        JointKind::PinInSlot {
+            slot_link,
+            pin_link,
+            ..
+        } => vec![slot_link, pin_link],
         JointKind::RackPinion { pinion, rack, .. } => {
             let mut v = links_of(&m.joints[pinion].kind, m);
             v.extend(links_of(&m.joints[rack].kind, m));
             v
         }
-        JointKind::Gear { joint_a, joint_b, .. } => {
+        JointKind::Gear {
+            joint_a, joint_b, ..
+        } => {
             let mut v = links_of(&m.joints[joint_a].kind, m);
             v.extend(links_of(&m.joints[joint_b].kind, m));
             v

@@ -17,9 +17,9 @@ mod solver;
 mod validate;
 
 pub use constraints::Equations;
+pub use kinematics::Kinematics;
+pub use mobility::{Mobility, check_mobility};
 pub use model::{
     Drive, DriveKind, GROUND, Inertia, Joint, JointKind, Link, Mechanism, MechanismBuilder, Point,
 };
-pub use kinematics::Kinematics;
-pub use mobility::{Mobility, check_mobility};
 pub use solver::{SolveReport, Solver, Tracker};

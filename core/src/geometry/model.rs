@@ -196,13 +196,21 @@ impl Drive {
     /// Drive the relative angle of revolute joint `joint` (φ = 0 at the sketch unless
     /// [`Drive::at_sketch`] says otherwise).
     pub fn angle(joint: impl Into<String>) -> Self {
-        Drive { joint: joint.into(), kind: DriveKind::Angle, at_sketch: None }
+        Drive {
+            joint: joint.into(),
+            kind: DriveKind::Angle,
+            at_sketch: None,
+        }
     }
 
     /// Drive the displacement of prismatic joint `joint` (φ = the sketch displacement unless
     /// [`Drive::at_sketch`] says otherwise).
     pub fn displacement(joint: impl Into<String>) -> Self {
-        Drive { joint: joint.into(), kind: DriveKind::Displacement, at_sketch: None }
+        Drive {
+            joint: joint.into(),
+            kind: DriveKind::Displacement,
+            at_sketch: None,
+        }
     }
 
     /// Sets the value of φ at the sketch pose (rad or m).
@@ -212,27 +220,52 @@ impl Drive {
     }
 }
 
-/// A validated mechanism model. Build it with [`Mechanism::builder`].
+/// A validated mechanism model. Build it with [`Mechanism::builder`]; its parts are read
+/// through accessors, so a model cannot be changed after validation.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Mechanism {
-    /// All points.
-    pub points: Vec<Point>,
-    /// All links; index 0 is the ground.
-    pub links: Vec<Link>,
-    /// All joints, in the order they were declared.
-    pub joints: Vec<Joint>,
-    /// Index of the driven joint in [`Mechanism::joints`].
-    pub drive_joint: usize,
-    /// Angle or displacement.
-    pub drive_kind: DriveKind,
-    /// Value of φ at the sketch pose.
-    pub drive_at_sketch: f64,
+    pub(crate) points: Vec<Point>,
+    pub(crate) links: Vec<Link>,
+    pub(crate) joints: Vec<Joint>,
+    pub(crate) drive_joint: usize,
+    pub(crate) drive_kind: DriveKind,
+    pub(crate) drive_at_sketch: f64,
 }
 
 impl Mechanism {
     /// Starts a builder with an empty ground link.
     pub fn builder() -> MechanismBuilder {
         MechanismBuilder::default()
+    }
+
+    /// All points, in declaration order.
+    pub fn points(&self) -> &[Point] {
+        &self.points
+    }
+
+    /// All links; index 0 is the ground.
+    pub fn links(&self) -> &[Link] {
+        &self.links
+    }
+
+    /// All joints, in declaration order.
+    pub fn joints(&self) -> &[Joint] {
+        &self.joints
+    }
+
+    /// Index of the driven joint in [`Mechanism::joints`].
+    pub fn drive_joint(&self) -> usize {
+        self.drive_joint
+    }
+
+    /// Whether the drive is an angle or a displacement.
+    pub fn drive_kind(&self) -> &DriveKind {
+        &self.drive_kind
+    }
+
+    /// Value of the drive variable φ at the sketch pose (rad or m).
+    pub fn drive_at_sketch(&self) -> f64 {
+        self.drive_at_sketch
     }
 
     /// Number of pose coordinates `q` (3 per moving link).
@@ -242,38 +275,47 @@ impl Mechanism {
 
     /// Number of constraint equations, drive included.
     pub fn equation_count(&self) -> usize {
-        self.joints.iter().map(|j| j.kind.equation_count()).sum::<usize>() + 1
+        self.joints
+            .iter()
+            .map(|j| j.kind.equation_count())
+            .sum::<usize>()
+            + 1
     }
 
     /// Index of the link named `name`.
     pub fn link_index(&self, name: &str) -> Result<usize, Error> {
-        self.links.iter().position(|l| l.name == name).ok_or_else(|| Error::UnknownName {
-            what: "link",
-            name: name.to_owned(),
-            context: "lookup".to_owned(),
-        })
+        self.links
+            .iter()
+            .position(|l| l.name == name)
+            .ok_or_else(|| Error::UnknownName {
+                what: "link",
+                name: name.to_owned(),
+                context: "lookup".to_owned(),
+            })
     }
 
     /// Index of the point named `name`.
     pub fn point_index(&self, name: &str) -> Result<usize, Error> {
-        self.points.iter().position(|p| p.name == name).ok_or_else(|| {
-            Error::UnknownName {
+        self.points
+            .iter()
+            .position(|p| p.name == name)
+            .ok_or_else(|| Error::UnknownName {
                 what: "point",
                 name: name.to_owned(),
                 context: "lookup".to_owned(),
-            }
-        })
+            })
     }
 
     /// Index of the joint named `name`.
     pub fn joint_index(&self, name: &str) -> Result<usize, Error> {
-        self.joints.iter().position(|j| j.name == name).ok_or_else(|| {
-            Error::UnknownName {
+        self.joints
+            .iter()
+            .position(|j| j.name == name)
+            .ok_or_else(|| Error::UnknownName {
                 what: "joint",
                 name: name.to_owned(),
                 context: "lookup".to_owned(),
-            }
-        })
+            })
     }
 
     /// Sketch position of the reference point of link `k`: its first point, or the origin
@@ -282,7 +324,10 @@ impl Mechanism {
         if link == 0 {
             return [0.0, 0.0];
         }
-        self.links[link].points.first().map_or([0.0, 0.0], |&p| self.points[p].sketch)
+        self.links[link]
+            .points
+            .first()
+            .map_or([0.0, 0.0], |&p| self.points[p].sketch)
     }
 
     /// Coordinates of global sketch position `at` in the frame of link `k`
@@ -321,18 +366,46 @@ pub struct MechanismBuilder {
 
 #[derive(Debug, Clone)]
 pub(super) enum PendingJoint {
-    Revolute { a: String, b: String, point: String },
-    Prismatic { guide: String, line: [String; 2], slider: String, point: String },
-    PinInSlot { slot: String, line: [String; 2], pin_link: String, pin: String },
-    RackPinion { pinion: String, rack: String, radius: f64 },
-    Gear { a: String, b: String, ratio: f64 },
-    Rigid { a: String, b: String },
+    Revolute {
+        a: String,
+        b: String,
+        point: String,
+    },
+    Prismatic {
+        guide: String,
+        line: [String; 2],
+        slider: String,
+        point: String,
+    },
+    PinInSlot {
+        slot: String,
+        line: [String; 2],
+        pin_link: String,
+        pin: String,
+    },
+    RackPinion {
+        pinion: String,
+        rack: String,
+        radius: f64,
+    },
+    Gear {
+        a: String,
+        b: String,
+        ratio: f64,
+    },
+    Rigid {
+        a: String,
+        b: String,
+    },
 }
 
 impl MechanismBuilder {
     /// Declares a point at its sketch position (m).
     pub fn point(mut self, name: impl Into<String>, sketch: [f64; 2]) -> Self {
-        self.points.push(Point { name: name.into(), sketch });
+        self.points.push(Point {
+            name: name.into(),
+            sketch,
+        });
         self
     }
 
@@ -348,7 +421,8 @@ impl MechanismBuilder {
         name: impl Into<String>,
         points: impl IntoIterator<Item = S>,
     ) -> Self {
-        self.links.push((name.into(), points.into_iter().map(Into::into).collect()));
+        self.links
+            .push((name.into(), points.into_iter().map(Into::into).collect()));
         self
     }
 
@@ -366,7 +440,11 @@ impl MechanismBuilder {
         b: impl Into<String>,
         point: impl Into<String>,
     ) -> Self {
-        let j = PendingJoint::Revolute { a: a.into(), b: b.into(), point: point.into() };
+        let j = PendingJoint::Revolute {
+            a: a.into(),
+            b: b.into(),
+            point: point.into(),
+        };
         self.joints.push((name.into(), j));
         self
     }
@@ -420,7 +498,11 @@ impl MechanismBuilder {
         rack: impl Into<String>,
         radius: f64,
     ) -> Self {
-        let j = PendingJoint::RackPinion { pinion: pinion.into(), rack: rack.into(), radius };
+        let j = PendingJoint::RackPinion {
+            pinion: pinion.into(),
+            rack: rack.into(),
+            radius,
+        };
         self.joints.push((name.into(), j));
         self
     }
@@ -433,7 +515,11 @@ impl MechanismBuilder {
         b: impl Into<String>,
         ratio: f64,
     ) -> Self {
-        let j = PendingJoint::Gear { a: a.into(), b: b.into(), ratio };
+        let j = PendingJoint::Gear {
+            a: a.into(),
+            b: b.into(),
+            ratio,
+        };
         self.joints.push((name.into(), j));
         self
     }
@@ -445,7 +531,13 @@ impl MechanismBuilder {
         a: impl Into<String>,
         b: impl Into<String>,
     ) -> Self {
-        self.joints.push((name.into(), PendingJoint::Rigid { a: a.into(), b: b.into() }));
+        self.joints.push((
+            name.into(),
+            PendingJoint::Rigid {
+                a: a.into(),
+                b: b.into(),
+            },
+        ));
         self
     }
 

@@ -4,13 +4,18 @@
 //! at the sketch pose, and [`Tracker::move_to`] walks it to a new drive position:
 //!
 //! 1. **Predict** with the Taylor polynomial `q + h q′ + h²/2 q″` (q′, q″ from the last pose).
-//! 2. **Correct** with Newton on Φ(q, φ) = 0 (analytic Φ_q, LU) until the residual is below
-//!    `tolerance × size` (size: the sketch's diagonal).
+//! 2. **Correct** with Newton on Φ(q, φ) = 0 (analytic Φ_q, factorised loop by loop, see
+//!    `block_lu`) until the residual is below `tolerance × size` (size: the sketch's
+//!    diagonal).
 //! 3. **Check** at the new pose: the scaled Jacobian's condition (a toggle is reported as
 //!    [`Error::Singular`]) and every loop's branch certificate (see [`super::branch`]).
 //! 4. If Newton fails or a certificate flips, **halve** the step and retry from the last good
 //!    pose; after `max_subdivisions` halvings report [`Error::Unassemblable`] or
 //!    [`Error::BranchFlip`], naming the drive position and the loop's joints.
+//! 5. **Accept**: one more Newton step with the factorisation at the new pose (the residual
+//!    drops from the tolerance to rounding), then q′ = Φ_q⁻¹ e_drive and q″ (see
+//!    [`super::implicit`]) with the same factorisation; they feed the next predictor and
+//!    [`Tracker::kinematics`].
 
 use super::block_lu::BlockLu;
 use super::branch::{self, Loop};
@@ -47,7 +52,12 @@ pub struct Solver {
 
 impl Default for Solver {
     fn default() -> Self {
-        Solver { tolerance: 1e-13, max_iterations: 50, max_subdivisions: 24, singular_condition: None }
+        Solver {
+            tolerance: 1e-13,
+            max_iterations: 50,
+            max_subdivisions: 24,
+            singular_condition: None,
+        }
     }
 }
 
@@ -94,7 +104,8 @@ impl Solver {
 
     /// The condition number above which a loop is singular (see [`Solver::singular_condition`]).
     pub fn singular_threshold(&self) -> f64 {
-        self.singular_condition.unwrap_or(0.1 / self.tolerance.sqrt())
+        self.singular_condition
+            .unwrap_or(0.1 / self.tolerance.sqrt())
     }
 
     /// Checks mobility and starts tracking `m` at its sketch pose.
@@ -238,10 +249,19 @@ impl<'m> Tracker<'m> {
     /// derivatives with respect to φ, by implicit differentiation with the factorisation
     /// already computed for the pose (see [`super::implicit`]).
     pub fn kinematics<const N: usize>(&self) -> Result<Kinematics<'m, N>, Error> {
-        const { assert!(N >= 1 && N <= 3, "the geometry solver lifts derivatives of order 1 to 3") };
+        const {
+            assert!(
+                N >= 1 && N <= 3,
+                "the geometry solver lifts derivatives of order 1 to 3"
+            )
+        };
         let mut dddq = vec![0.0; self.q.len()];
         if N == 3 {
-            let lu = Loops { jac: &self.jac, loops: &self.loops, lu: &self.lu };
+            let lu = Loops {
+                jac: &self.jac,
+                loops: &self.loops,
+                lu: &self.lu,
+            };
             let (q, dq, ddq) = (self.q.as_slice(), self.dq.as_slice(), self.ddq.as_slice());
             if !implicit::third_derivative(&self.eq, &lu, q, dq, ddq, self.phi, &mut dddq) {
                 return Err(self.singular(self.phi));
@@ -260,14 +280,22 @@ impl<'m> Tracker<'m> {
         Error::Singular {
             phi,
             condition: f64::INFINITY,
-            joints: self.mechanism.joints.iter().map(|j| j.name.clone()).collect(),
+            joints: self
+                .mechanism
+                .joints
+                .iter()
+                .map(|j| j.name.clone())
+                .collect(),
         }
     }
 
     /// Moves to drive position `phi`, keeping every loop on its branch.
     pub fn move_to(&mut self, phi: f64) -> Result<SolveReport, Error> {
         if !phi.is_finite() {
-            return Err(Error::NonFinite { phi, quantity: "drive position" });
+            return Err(Error::NonFinite {
+                phi,
+                quantity: "drive position",
+            });
         }
         let mut report = SolveReport {
             phi: self.phi,
@@ -279,7 +307,7 @@ impl<'m> Tracker<'m> {
         };
         let mut halvings: usize = 0;
         while self.phi != phi {
-            let h = (phi - self.phi) / f64::powi(2.0, halvings as i32);
+            let h = (phi - self.phi) / f64::powi(2.0, halvings.min(1074) as i32);
             let target = if halvings == 0 { phi } else { self.phi + h };
             // Taylor predictor q + h q′ + h²/2 q″.
             for i in 0..self.q.len() {
@@ -289,7 +317,11 @@ impl<'m> Tracker<'m> {
                 Ok(iterations) => {
                     report.iterations += iterations;
                     let certificates = self.check_trial(target)?;
-                    match certificates.iter().zip(&self.certificates).position(|(a, b)| a != b) {
+                    match certificates
+                        .iter()
+                        .zip(&self.certificates)
+                        .position(|(a, b)| a != b)
+                    {
                         None => {
                             self.accept(target)?;
                             report.steps += 1;
@@ -317,7 +349,9 @@ impl<'m> Tracker<'m> {
                 }
             };
             halvings += 1;
-            if halvings > self.solver.max_subdivisions {
+            // Give up after the allowed halvings, or once a halved step no longer moves φ.
+            let next = self.phi + (phi - self.phi) / f64::powi(2.0, halvings.min(1074) as i32);
+            if halvings > self.solver.max_subdivisions || next == self.phi {
                 return Err(failure);
             }
         }
@@ -331,7 +365,11 @@ impl<'m> Tracker<'m> {
     fn newton(&mut self, phi: f64) -> Result<usize, (f64, usize)> {
         let limit = self.solver.tolerance * self.size;
         for iteration in 0..=self.solver.max_iterations {
-            self.eq.evaluate(self.trial.as_slice(), phi, self.trial_residual.as_mut_slice());
+            self.eq.evaluate(
+                self.trial.as_slice(),
+                phi,
+                self.trial_residual.as_mut_slice(),
+            );
             let norm = self.trial_residual.amax();
             if norm <= limit {
                 return Ok(iteration);
@@ -363,8 +401,12 @@ impl<'m> Tracker<'m> {
         let limit = self.solver.singular_threshold();
         let mut certificates = Vec::with_capacity(self.loops.len());
         for (i, l) in self.loops.iter().enumerate() {
-            let det = if factored { self.work_lu.determinant(i) } else { 0.0 };
-            // Hadamard screen on the scaled block with unit columns (see branch::certificate):
+            let det = if factored {
+                self.work_lu.determinant(i)
+            } else {
+                0.0
+            };
+            // Hadamard screen on the scaled block with unit columns (see branch::condition):
             // its determinant is det · Π(row scales) / Π(column norms), the column scales
             // cancelling.
             let mut normalized = det;
@@ -378,7 +420,8 @@ impl<'m> Tracker<'m> {
                     .rows
                     .iter()
                     .map(|&r| {
-                        let v = self.work[(r, c)] * if self.eq.angular[r] { self.size } else { 1.0 };
+                        let v =
+                            self.work[(r, c)] * if self.eq.angular[r] { self.size } else { 1.0 };
                         v * v
                     })
                     .sum::<f64>()
@@ -386,12 +429,17 @@ impl<'m> Tracker<'m> {
                 normalized /= norm;
             }
             let k = l.rows.len() as f64;
-            if !(k.powf(0.5 * k) / normalized.abs() <= limit) {
+            let bound = k.powf(0.5 * k) / normalized.abs();
+            if bound.is_nan() || bound > limit {
                 let mut scaled = self.work.clone();
                 mobility::scale(&self.eq, &mut scaled, self.size);
-                let (_, condition) = branch::certificate(&scaled, l, limit);
-                if !(condition <= limit) {
-                    return Err(Error::Singular { phi, condition, joints: self.loop_joints(l) });
+                let condition = branch::condition(&scaled, l, limit);
+                if condition.is_nan() || condition > limit {
+                    return Err(Error::Singular {
+                        phi,
+                        condition,
+                        joints: self.loop_joints(l),
+                    });
                 }
             }
             certificates.push(if det > 0.0 { 1 } else { -1 });
@@ -407,11 +455,16 @@ impl<'m> Tracker<'m> {
         std::mem::swap(&mut self.lu, &mut self.work_lu);
         std::mem::swap(&mut self.q, &mut self.trial);
         self.phi = phi;
-        let lu = Loops { jac: &self.jac, loops: &self.loops, lu: &self.lu };
+        let lu = Loops {
+            jac: &self.jac,
+            loops: &self.loops,
+            lu: &self.lu,
+        };
         if lu.solve_into(self.trial_residual.as_slice(), self.step.as_mut_slice()) {
             self.q -= &self.step;
         }
-        self.eq.evaluate(self.q.as_slice(), phi, self.residual.as_mut_slice());
+        self.eq
+            .evaluate(self.q.as_slice(), phi, self.residual.as_mut_slice());
         // Φ_q q′ = −Φ_φ = e_drive (the drive row, last, is the only one that depends on φ).
         let ok = lu.solve_into(self.unit_drive.as_slice(), self.dq.as_mut_slice())
             && implicit::second_derivative(
@@ -439,8 +492,12 @@ impl<'m> Tracker<'m> {
     fn worst_loop(&self) -> usize {
         let mut worst = (0.0, 0);
         for (i, l) in self.loops.iter().enumerate() {
-            let x = l.rows.iter().map(|&row| self.trial_residual[row].abs()).fold(0.0, f64::max);
-            if !(x <= worst.0) {
+            let x = l
+                .rows
+                .iter()
+                .map(|&row| self.trial_residual[row].abs())
+                .fold(0.0, f64::max);
+            if x.is_nan() || x > worst.0 {
                 worst = (x, i);
             }
         }

@@ -1,10 +1,10 @@
 //! Validation of a declared model: names, references, lengths, sketch consistency.
 
 use super::constraints;
-use crate::Error;
 use super::model::{
     Drive, DriveKind, GROUND, Joint, JointKind, Link, Mechanism, MechanismBuilder, PendingJoint,
 };
+use crate::Error;
 use std::collections::HashMap;
 
 /// Tolerance (m, relative to the sketch size) for the sketch to satisfy each joint.
@@ -17,16 +17,26 @@ struct Names<'a> {
 
 impl Names<'_> {
     fn point(&self, name: &str, context: &str) -> Result<usize, Error> {
-        self.points.get(name).copied().ok_or_else(|| unknown("point", name, context))
+        self.points
+            .get(name)
+            .copied()
+            .ok_or_else(|| unknown("point", name, context))
     }
 
     fn link(&self, name: &str, context: &str) -> Result<usize, Error> {
-        self.links.get(name).copied().ok_or_else(|| unknown("link", name, context))
+        self.links
+            .get(name)
+            .copied()
+            .ok_or_else(|| unknown("link", name, context))
     }
 }
 
 fn unknown(what: &'static str, name: &str, context: &str) -> Error {
-    Error::UnknownName { what, name: name.to_owned(), context: context.to_owned() }
+    Error::UnknownName {
+        what,
+        name: name.to_owned(),
+        context: context.to_owned(),
+    }
 }
 
 fn unique<'a>(
@@ -36,14 +46,24 @@ fn unique<'a>(
     let mut map = HashMap::new();
     for (i, n) in names.enumerate() {
         if map.insert(n, i).is_some() {
-            return Err(Error::DuplicateName { what, name: n.to_owned() });
+            return Err(Error::DuplicateName {
+                what,
+                name: n.to_owned(),
+            });
         }
     }
     Ok(map)
 }
 
 fn finite(what: impl FnOnce() -> String, value: f64) -> Result<(), Error> {
-    if value.is_finite() { Ok(()) } else { Err(Error::InvalidValue { what: what(), value }) }
+    if value.is_finite() {
+        Ok(())
+    } else {
+        Err(Error::InvalidValue {
+            what: what(),
+            value,
+        })
+    }
 }
 
 /// Builds and validates a [`Mechanism`] from a builder.
@@ -59,9 +79,17 @@ pub(super) fn build(b: MechanismBuilder) -> Result<Mechanism, Error> {
     };
     unique("joint", b.joints.iter().map(|(n, _)| n.as_str()))?;
 
-    let mut links = vec![Link { name: GROUND.to_owned(), points: Vec::new(), inertia: None }];
+    let mut links = vec![Link {
+        name: GROUND.to_owned(),
+        points: Vec::new(),
+        inertia: None,
+    }];
     for (name, _) in &b.links {
-        links.push(Link { name: name.clone(), points: Vec::new(), inertia: None });
+        links.push(Link {
+            name: name.clone(),
+            points: Vec::new(),
+            inertia: None,
+        });
     }
     let carried = std::iter::once(&b.ground).chain(b.links.iter().map(|(_, p)| p));
     for (k, points) in carried.enumerate() {
@@ -86,9 +114,18 @@ pub(super) fn build(b: MechanismBuilder) -> Result<Mechanism, Error> {
     for (name, inertia) in &b.inertias {
         let k = names.link(name, "inertia")?;
         finite(|| format!("mass of link `{name}`"), inertia.mass)?;
-        finite(|| format!("moment of inertia of link `{name}`"), inertia.moment)?;
-        finite(|| format!("centre of gravity of link `{name}`"), inertia.center[0])?;
-        finite(|| format!("centre of gravity of link `{name}`"), inertia.center[1])?;
+        finite(
+            || format!("moment of inertia of link `{name}`"),
+            inertia.moment,
+        )?;
+        finite(
+            || format!("centre of gravity of link `{name}`"),
+            inertia.center[0],
+        )?;
+        finite(
+            || format!("centre of gravity of link `{name}`"),
+            inertia.center[1],
+        )?;
         if inertia.mass < 0.0 || inertia.moment < 0.0 {
             return Err(Error::InvalidValue {
                 what: format!("mass or moment of inertia of link `{name}` (must be ≥ 0)"),
@@ -101,7 +138,10 @@ pub(super) fn build(b: MechanismBuilder) -> Result<Mechanism, Error> {
     let mut joints: Vec<Joint> = Vec::with_capacity(b.joints.len());
     for (name, pending) in &b.joints {
         let kind = resolve_joint(&names, &links, &b.points, &joints, name, pending)?;
-        joints.push(Joint { name: name.clone(), kind });
+        joints.push(Joint {
+            name: name.clone(),
+            kind,
+        });
     }
 
     let drive = b.drive.ok_or(Error::MissingDrive)?;
@@ -141,7 +181,11 @@ fn resolve_drive(
             problem: format!(
                 "a {} joint cannot carry a drive {}",
                 joints[j].kind.kind_name(),
-                if drive.kind == DriveKind::Angle { "angle" } else { "displacement" }
+                if drive.kind == DriveKind::Angle {
+                    "angle"
+                } else {
+                    "displacement"
+                }
             ),
         });
     }
@@ -203,7 +247,10 @@ fn resolve_joint(
         if previous[j].kind.kind_name() != want {
             return Err(Error::InvalidJoint {
                 joint: name.to_owned(),
-                problem: format!("`{jname}` is a {} joint, not {want}", previous[j].kind.kind_name()),
+                problem: format!(
+                    "`{jname}` is a {} joint, not {want}",
+                    previous[j].kind.kind_name()
+                ),
             });
         }
         Ok(j)
@@ -215,25 +262,54 @@ fn resolve_joint(
             let point = names.point(point, &context)?;
             on(link_a, point)?;
             on(link_b, point)?;
-            JointKind::Revolute { link_a, link_b, point }
+            JointKind::Revolute {
+                link_a,
+                link_b,
+                point,
+            }
         }
-        PendingJoint::Prismatic { guide, line: l, slider, point } => {
+        PendingJoint::Prismatic {
+            guide,
+            line: l,
+            slider,
+            point,
+        } => {
             let (guide, slider) = (names.link(guide, &context)?, names.link(slider, &context)?);
             distinct(guide, slider)?;
             let line = line(guide, l)?;
             let point = names.point(point, &context)?;
             on(slider, point)?;
-            JointKind::Prismatic { guide, line, slider, point }
+            JointKind::Prismatic {
+                guide,
+                line,
+                slider,
+                point,
+            }
         }
-        PendingJoint::PinInSlot { slot, line: l, pin_link, pin } => {
-            let (slot_link, pin_link) = (names.link(slot, &context)?, names.link(pin_link, &context)?);
+        PendingJoint::PinInSlot {
+            slot,
+            line: l,
+            pin_link,
+            pin,
+        } => {
+            let (slot_link, pin_link) =
+                (names.link(slot, &context)?, names.link(pin_link, &context)?);
             distinct(slot_link, pin_link)?;
             let line = line(slot_link, l)?;
             let pin = names.point(pin, &context)?;
             on(pin_link, pin)?;
-            JointKind::PinInSlot { slot_link, line, pin_link, pin }
+            JointKind::PinInSlot {
+                slot_link,
+                line,
+                pin_link,
+                pin,
+            }
         }
-        PendingJoint::RackPinion { pinion, rack, radius } => {
+        PendingJoint::RackPinion {
+            pinion,
+            rack,
+            radius,
+        } => {
             finite(|| format!("radius of joint `{name}`"), *radius)?;
             if *radius == 0.0 {
                 return Err(Error::NonPositiveLength {
@@ -243,7 +319,11 @@ fn resolve_joint(
             }
             let pinion = joint_of(pinion, "revolute")?;
             let rack = joint_of(rack, "prismatic")?;
-            JointKind::RackPinion { pinion, rack, radius: *radius }
+            JointKind::RackPinion {
+                pinion,
+                rack,
+                radius: *radius,
+            }
         }
         PendingJoint::Gear { a, b, ratio } => {
             finite(|| format!("ratio of joint `{name}`"), *ratio)?;
@@ -255,7 +335,11 @@ fn resolve_joint(
             }
             let joint_a = joint_of(a, "revolute")?;
             let joint_b = joint_of(b, "revolute")?;
-            JointKind::Gear { joint_a, joint_b, ratio: *ratio }
+            JointKind::Gear {
+                joint_a,
+                joint_b,
+                ratio: *ratio,
+            }
         }
         PendingJoint::Rigid { a, b } => {
             let (link_a, link_b) = (names.link(a, &context)?, names.link(b, &context)?);
@@ -274,9 +358,14 @@ fn check_sketch(m: &Mechanism) -> Result<(), Error> {
     let residual = constraints::residual(m, &q, phi);
     for j in &m.joints {
         let n = j.kind.equation_count();
-        let r = residual[row..row + n].iter().fold(0.0f64, |a, &x| a.max(x.abs()));
+        let r = residual[row..row + n]
+            .iter()
+            .fold(0.0f64, |a, &x| a.max(x.abs()));
         if r.is_nan() || r > SKETCH_TOLERANCE * scale {
-            return Err(Error::SketchNotAssembled { joint: j.name.clone(), residual: r });
+            return Err(Error::SketchNotAssembled {
+                joint: j.name.clone(),
+                residual: r,
+            });
         }
         row += n;
     }
@@ -293,5 +382,9 @@ pub(super) fn sketch_size(m: &Mechanism) -> f64 {
             hi[i] = hi[i].max(p.sketch[i]);
         }
     }
-    if m.points.is_empty() { 1.0 } else { (hi[0] - lo[0]).hypot(hi[1] - lo[1]).max(1e-300) }
+    if m.points.is_empty() {
+        1.0
+    } else {
+        (hi[0] - lo[0]).hypot(hi[1] - lo[1]).max(1e-300)
+    }
 }

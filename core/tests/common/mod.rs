@@ -29,7 +29,14 @@ pub fn whitworth() -> Result<Mechanism, Error> {
         .link("crank", ["O", "A", "S1"])
         .link("rocker", ["B0", "S"])
         .link("ram", ["C"])
-        .inertia("crank", Inertia { mass: 15.0, center: [0.0, L0 - 0.04], moment: 0.0 })
+        .inertia(
+            "crank",
+            Inertia {
+                mass: 15.0,
+                center: [0.0, L0 - 0.04],
+                moment: 0.0,
+            },
+        )
         .revolute("O", "ground", "crank", "O")
         .revolute("B0", "ground", "rocker", "B0")
         .pin_in_slot("slot A", "rocker", ["B0", "S"], "crank", "A")
@@ -78,10 +85,19 @@ pub enum Closure001 {
 /// a gear wheel of radius 0.04 m above the rack drives it (rack-and-pinion), else the rack's
 /// displacement ρ4 is the drive.
 pub fn rack_slotted_link(closure: Closure001, pinion: bool) -> Result<Mechanism, Error> {
+    rack_slotted_link_incline(closure, pinion, rack001::THETA8)
+}
+
+/// [`rack_slotted_link`] with the incline at `theta8` (rad) instead of the assumed 60°.
+pub fn rack_slotted_link_incline(
+    closure: Closure001,
+    pinion: bool,
+    theta8: f64,
+) -> Result<Mechanism, Error> {
     use rack001::*;
     let b = [RHO2, -RHO1];
     let e3 = [THETA3.cos(), THETA3.sin()];
-    let u8 = [THETA8.cos(), THETA8.sin()];
+    let u8 = [theta8.cos(), theta8.sin()];
     let c = [b[0] + RHO5 * e3[0], b[1] + RHO5 * e3[1]];
     let g1 = [b[0] + RHO9 * e3[0], b[1] + RHO9 * e3[1]];
     let p = [b[0] + RHO7 * THETA7.cos(), b[1] + RHO7 * THETA7.sin()];
@@ -190,14 +206,19 @@ pub fn four_bar_rocker_pin(a: [f64; 2], b: f64, c: f64, d: f64, up: bool) -> Opt
     }
     let (e, n) = ([f[0] / dist, f[1] / dist], [-f[1] / dist, f[0] / dist]);
     let s = if up { h2.sqrt() } else { -h2.sqrt() };
-    Some([a[0] + along * e[0] + s * n[0], a[1] + along * e[1] + s * n[1]])
+    Some([
+        a[0] + along * e[0] + s * n[0],
+        a[1] + along * e[1] + s * n[1],
+    ])
 }
 
 /// The drive positions of a full revolution from 0 at `step_deg` steps, plus `extra`
 /// (sorted in).
 pub fn revolution(step_deg: f64, extra: &[f64]) -> Vec<f64> {
     let n = (360.0 / step_deg).round() as usize;
-    let mut v: Vec<f64> = (0..=n).map(|i| (i as f64 * step_deg).to_radians()).collect();
+    let mut v: Vec<f64> = (0..=n)
+        .map(|i| (i as f64 * step_deg).to_radians())
+        .collect();
     v.extend_from_slice(extra);
     v.sort_by(f64::total_cmp);
     v

@@ -1,0 +1,123 @@
+//! Reading an output from a solved pose: point jets from the model, angles and slider
+//! displacements computed from them with exact derivatives (third-order dual numbers).
+
+use mechdiff_core::geometry::Kinematics;
+use mechdiff_core::num_dual::{Dual3_64, DualNum};
+use mechdiff_core::{DriveState, Jet};
+
+use crate::error::{Error, Result};
+
+use super::format::{Quantity, Sense};
+use super::model::{Output, OutputKind, Scene};
+use super::run::solver_error;
+
+/// One quantity of a jet: its value, a coefficient, or a time derivative.
+pub(crate) fn quantity<const N: usize>(jet: &Jet<N>, q: Quantity, drive: &DriveState) -> f64 {
+    let d = |k: usize| jet.derivative(k).unwrap_or(0.0);
+    match q {
+        Quantity::Position => jet.value,
+        Quantity::VelocityCoefficient => d(1),
+        Quantity::AccelerationCoefficient => d(2),
+        Quantity::Velocity => drive.omega * d(1),
+        Quantity::Acceleration => drive.alpha * d(1) + drive.omega * drive.omega * d(2),
+    }
+}
+
+/// The output's jets at the current pose: `[x, y]` for a point, one jet otherwise. Angles are
+/// kept continuous along the sweep through `previous`.
+pub(crate) fn evaluate<const N: usize>(
+    scene: &Scene,
+    k: &Kinematics<'_, N>,
+    output: &Output,
+    previous: &mut Option<f64>,
+) -> Result<Vec<Jet<N>>> {
+    let point = |name: &str| -> Result<[Dual3_64; 2]> {
+        let link = scene
+            .links
+            .iter()
+            .find(|l| l.points.iter().any(|p| p == name))
+            .ok_or_else(|| Error::Invalid {
+                location: output.location.clone(),
+                message: format!("output `{}`: point `{name}` is on no link", output.name),
+            })?;
+        let [x, y] = k
+            .point(&link.name, name)
+            .map_err(|e| solver_error(scene, e))?;
+        Ok([dual(&x), dual(&y)])
+    };
+    Ok(match &output.kind {
+        OutputKind::Point(name) => point(name)?.iter().map(jet::<N>).collect(),
+        OutputKind::Angle {
+            line,
+            reference,
+            sense,
+        } => {
+            let mut angle = direction(point(&line[0])?, point(&line[1])?);
+            if let Some([a, b]) = reference {
+                angle -= direction(point(a)?, point(b)?);
+            }
+            if *sense == Sense::Cw {
+                angle = -angle;
+            }
+            let target = previous.unwrap_or_else(|| sketch_angle(scene, output));
+            let turns = ((target - angle.re) / std::f64::consts::TAU).round();
+            angle.re += turns * std::f64::consts::TAU;
+            *previous = Some(angle.re);
+            vec![jet::<N>(&angle)]
+        }
+        OutputKind::Slider {
+            point: p,
+            line: [a, b],
+            ..
+        } => {
+            // s = (p − a)·u with u the unit direction a → b of the guide or slot (both points
+            // on one link, so |b − a| is constant; it is differentiated anyway, exactly).
+            let (p, a, b) = (point(p)?, point(a)?, point(b)?);
+            let u = [b[0] - a[0], b[1] - a[1]];
+            let norm = (u[0] * u[0] + u[1] * u[1]).sqrt();
+            let s = ((p[0] - a[0]) * u[0] + (p[1] - a[1]) * u[1]) / norm;
+            vec![jet::<N>(&s)]
+        }
+    })
+}
+
+/// The output angle at the sketch pose, where the sweep's angle continuity starts.
+fn sketch_angle(scene: &Scene, output: &Output) -> f64 {
+    let sketch = |name: &str| {
+        scene
+            .points
+            .iter()
+            .find(|p| p.name == name)
+            .map_or([0.0, 0.0], |p| p.sketch)
+    };
+    let dir = |[a, b]: &[String; 2]| {
+        let (a, b) = (sketch(a), sketch(b));
+        (b[1] - a[1]).atan2(b[0] - a[0])
+    };
+    match &output.kind {
+        OutputKind::Angle {
+            line,
+            reference,
+            sense,
+        } => {
+            let angle = dir(line) - reference.as_ref().map_or(0.0, dir);
+            if *sense == Sense::Cw { -angle } else { angle }
+        }
+        _ => 0.0,
+    }
+}
+
+/// Direction angle of `a → b`, with derivatives.
+fn direction(a: [Dual3_64; 2], b: [Dual3_64; 2]) -> Dual3_64 {
+    mechdiff_core::atan2(b[1] - a[1], b[0] - a[0])
+}
+
+fn dual<const N: usize>(j: &Jet<N>) -> Dual3_64 {
+    let d = |k: usize| j.derivatives.get(k).copied().unwrap_or(0.0);
+    Dual3_64::new(j.value, d(0), d(1), d(2))
+}
+
+fn jet<const N: usize>(x: &Dual3_64) -> Jet<N> {
+    let d = [x.v1, x.v2, x.v3];
+    Jet::new(x.re, std::array::from_fn(|k| d[k]))
+}
