@@ -194,7 +194,7 @@ fn drive_torque_equals_power_balance_torque_over_a_revolution() {
         let mut pairs = Vec::new();
         let mut max_load_power: f64 = 0.0;
         for k in &sweep {
-            let s = kinetostatics::solve(&model, &plan.effects, &k, &drive).unwrap();
+            let s = kinetostatics::solve(&model, &plan.effects, k, &drive).unwrap();
             let b = s.balance;
             pairs.push((b.torque.unwrap(), s.drive_torque));
             max_load_power = max_load_power.max(b.loads.abs());
@@ -238,7 +238,7 @@ fn friction_in_every_joint_closes_the_power_balance() {
     let mut worst: f64 = 0.0;
     let mut lost: f64 = 0.0;
     for k in &sweep {
-        let s = kinetostatics::solve(&model, &effects, &k, &drive).unwrap();
+        let s = kinetostatics::solve(&model, &effects, k, &drive).unwrap();
         let b = s.balance;
         worst = worst.max(b.residual.abs() / b.scale());
         lost = lost.min(b.friction);

@@ -49,6 +49,8 @@ pub const TABLE: [[f64; 8]; 4] = [
 ];
 
 /// whitworth_000.json `sweep`: every 10° and both dead positions; columns φ (rad), ΣF_x, ΣF_y (N).
+// The angles are copied verbatim from the reference (some equal π/6, π/3, …).
+#[allow(clippy::approx_constant)]
 pub const SWEEP: [[f64; 3]; 39] = [
     [0.0, 0.0, 111.8555165456794],
     [0.17453292519943295, 1204.3251074836126, 76.47997225225825],
