@@ -4,7 +4,7 @@
 //! Each effect is a small independent piece ([`inertia`], [`gravity`], [`loads`],
 //! [`friction`], [`efficiency`], [`motor`]); [`kinetostatics`] assembles the equilibrium
 //! equations of every moving link (Newton–Euler with d'Alembert's inertial loads) and solves
-//! them for the joint reactions and the drive torque at one drive position; [`energy`] checks
+//! them for the joint reactions and the drive torque at one drive position; [`energy`](mod@energy) checks
 //! the result against the power balance and gives the kinetic energy and the reduced moment of
 //! inertia; [`shaking`] sums the inertial forces on the frame. A [`Plan`] (see [`plan`]) says
 //! which derivative order and which effects the requested outputs need, and nothing else is

@@ -25,7 +25,7 @@
 //!                              # | kinetic_energy | reduced_inertia | power_balance
 //! ```
 //!
-//! From the `[[dynamics]]` outputs mechdiff derives a [`Plan`]: the derivative order and the
+//! From the `[[dynamics]]` outputs mechdiff derives a [`Plan`](mechdiff_core::dynamics::Plan): the derivative order and the
 //! effects needed; effects whose data is given but which no output needs are not computed.
 
 mod format;
