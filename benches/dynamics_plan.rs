@@ -5,7 +5,7 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use mechdiff_core::DriveState;
 use mechdiff_core::dynamics::run::run;
-use mechdiff_core::dynamics::{Dynamics, Gravity, Load, Plan, Request};
+use mechdiff_core::dynamics::{Dynamics, Friction, Gravity, Load, Plan, Request};
 use mechdiff_core::geometry::{Drive, Inertia, Mechanism, Solver};
 use std::hint::black_box;
 
@@ -89,6 +89,39 @@ fn plans(c: &mut Criterion) {
             b.iter(|| run(black_box(&plan), &model, &solver, black_box(&phis), drive).unwrap())
         });
     }
+    // Every effect the Whitworth can have: friction circles in the two bearings and Coulomb
+    // friction in both slots and the ram guide, resolved by iteration at each position.
+    let with_friction = d
+        .clone()
+        .with_friction(Friction::revolute("O", 0.1, 0.03))
+        .with_friction(Friction::revolute("B0", 0.1, 0.03))
+        .with_friction(Friction::sliding("slot A", 0.12))
+        .with_friction(Friction::sliding("slot C", 0.12))
+        .with_friction(Friction::sliding("ram guide", 0.08));
+    let friction_model = with_friction.compile(&m).unwrap();
+    let plan = Plan::for_requests(
+        &[
+            Request::Reactions,
+            Request::DriveTorque,
+            Request::PowerBalance,
+        ],
+        with_friction.available(&m),
+    );
+    group.bench_function(
+        "full dynamics with friction (order 2; inertia, gravity, loads, friction)",
+        |b| {
+            b.iter(|| {
+                run(
+                    black_box(&plan),
+                    &friction_model,
+                    &solver,
+                    black_box(&phis),
+                    drive,
+                )
+                .unwrap()
+            })
+        },
+    );
     group.finish();
 }
 
