@@ -263,3 +263,54 @@ fn friction_and_efficiency_not_in_the_plan_are_not_evaluated() {
     // Without friction and efficiency (and no motor), the balance holds with no losses.
     assert_eq!((only.balance.friction, only.balance.efficiency), (0.0, 0.0));
 }
+
+#[test]
+fn wheel_bearing_carries_the_tooth_force() {
+    // The massless wheel is held by its bearing against the rack's tangential tooth force
+    // M′_d/R (before η2: the wheel is the mesh's driving side), horizontal.
+    let s = solve();
+    let w = s.reactions.iter().find(|r| r.joint == "W").unwrap();
+    let want = 26.869788081459216 / R;
+    // 1e-12 relative: one LU solve, exact up to rounding.
+    assert!(
+        (w.force[0] - want).abs() <= 1e-12 * want,
+        "{:?} vs {want}",
+        w.force
+    );
+    assert!(w.force[1].abs() <= 1e-12 * want, "{:?}", w.force);
+}
+
+#[test]
+fn friction_circle_in_the_wheel_bearing_closes_the_power_balance() {
+    // Friction in the pinion's bearing depends on the tooth force it carries; the balance
+    // closes only if the equilibrium uses the same |R| as the reported loss.
+    let m = mechanism();
+    let d = dynamics().with_friction(Friction::revolute("W", 0.1, 0.01));
+    let model = d.compile(&m).unwrap();
+    let mut t = Solver::default().track(&m).unwrap();
+    for phi in [0.0, -0.5, -1.0, 0.5, 1.0] {
+        t.move_to(phi).unwrap();
+        let s = kinetostatics::solve(
+            &model,
+            &d.available(&m),
+            &t.kinematics::<2>().unwrap(),
+            &DRIVE,
+        )
+        .unwrap();
+        let b = s.balance;
+        let w = s.reactions.iter().find(|r| r.joint == "W").unwrap();
+        // The bearing's loss is f·r·|R|·ω with |R| the tooth-force-carrying reaction.
+        let loss = 0.1 * 0.01 * w.force[0].hypot(w.force[1]) * DRIVE.omega;
+        assert!(
+            (w.power_loss + loss).abs() <= 1e-12 * loss,
+            "{} vs {loss}",
+            w.power_loss
+        );
+        // 1e-9 relative to the largest power term (the criterion).
+        assert!(
+            b.residual.abs() <= 1e-9 * b.scale(),
+            "φ = {phi}: residual {}",
+            b.residual
+        );
+    }
+}

@@ -35,6 +35,12 @@ const MAX_ITERATIONS: usize = 100;
 /// a rack-and-pinion) exerts on link b (the second link, the slider, the pin's link, the rack),
 /// friction included; the force acts at the joint's point (revolute), measuring point
 /// (prismatic) or pin (pin in slot).
+///
+/// Tooth forces: a rack-and-pinion's tangential tooth force (pressure angle 0) is included in
+/// its pinion bearing's reaction when the pinion turns on the rack's guide link (the usual
+/// frame-mounted case). A gear pair's constraint acts on the gears as couples only, so the
+/// bearing reactions of gears do not include the tooth force between them (nor would a
+/// friction circle in a gear's bearing see it).
 #[derive(Debug, Clone, PartialEq)]
 pub struct JointReaction {
     /// Joint name.
@@ -108,6 +114,23 @@ struct Assembly<'a, 'm> {
     inputs: Vec<Vec<f64>>,
     /// q̇.
     qdot: Vec<f64>,
+    /// Rack-and-pinion meshes whose tooth force passes through the pinion's bearing.
+    teeth: Vec<Tooth>,
+}
+
+/// A rack-and-pinion whose pinion turns on the rack's guide link: the mesh row gives the
+/// pinion only a couple, so the tangential tooth force (pressure angle 0) it also exerts on
+/// the pinion is added to the pinion bearing's reaction, `R = λ_bearing − s_p λ_mesh u`.
+#[derive(Debug, Clone, Copy)]
+struct Tooth {
+    /// The pinion's revolute joint.
+    bearing: usize,
+    /// The mesh's row.
+    row: usize,
+    /// The rack's direction (global).
+    u: [f64; 2],
+    /// The mesh's efficiency (index), when the pinion is its output side.
+    pinion_output: Option<usize>,
 }
 
 /// Solves the equilibrium at the pose of `k` for drive state `drive`, with `effects`.
@@ -207,7 +230,35 @@ pub fn solve_at(
             e.input_part(&row)
         })
         .collect();
+    let mut teeth = Vec::new();
+    for (j, joint) in m.joints.iter().enumerate() {
+        let JointKind::RackPinion { pinion, rack, .. } = joint.kind else {
+            continue;
+        };
+        let (JointKind::Revolute { link_a, .. }, JointKind::Prismatic { guide, line, .. }) =
+            (&m.joints[pinion].kind, &m.joints[rack].kind)
+        else {
+            continue;
+        };
+        if *link_a != *guide {
+            continue;
+        }
+        let (p, q) = (m.points[line[0]].sketch, m.points[line[1]].sketch);
+        let d = [q[0] - p[0], q[1] - p[1]];
+        let len = d[0].hypot(d[1]);
+        let u = state::of(&states, *guide).arm([d[0] / len, d[1] / len]);
+        let pinion_output = efficiency
+            .iter()
+            .position(|e| e.joint == j && e.driving == super::Driving::Second);
+        teeth.push(Tooth {
+            bearing: pinion,
+            row: model.rows[j],
+            u,
+            pinion_output,
+        });
+    }
     let asm = Assembly {
+        teeth,
         model,
         states,
         rhs: DVector::from_vec(load.0),
@@ -231,6 +282,15 @@ impl Assembly<'_, '_> {
     fn matrix(&self, signs: Option<&Signs>) -> DMatrix<f64> {
         let mut a = self.jac.transpose();
         let Some(signs) = signs else { return a };
+        // Efficiencies first: they replace the mesh columns, friction then adds to them.
+        for (i, e) in self.efficiency.iter().enumerate() {
+            let kappa = signs.kappa[i];
+            let input = &self.inputs[i];
+            for (r, inp) in input.iter().enumerate() {
+                // Column = input part + κ·(output part), output = row − input.
+                a[(r, e.row)] = inp + kappa * (self.jac[(e.row, r)] - inp);
+            }
+        }
         for (i, f) in self.friction.iter().enumerate() {
             let g = &self.directions[i];
             let w = signs.normal[i];
@@ -240,40 +300,25 @@ impl Assembly<'_, '_> {
                         a[(r, row)] -= w[0] * gv;
                     }
                 }
-                CompiledFriction::Revolute { row, .. } => {
+                CompiledFriction::Revolute { row, joint, .. } => {
                     for (r, gv) in g.iter().enumerate() {
                         a[(r, row)] -= w[0] * gv;
                         a[(r, row + 1)] -= w[1] * gv;
                     }
+                    // |R| ≈ R̂·(λ_bearing − s_p λ_mesh u) for a pinion's bearing.
+                    for t in self.teeth.iter().filter(|t| t.bearing == joint) {
+                        let c = self.pinion_scale(t, Some(signs)) * (w[0] * t.u[0] + w[1] * t.u[1]);
+                        for (r, gv) in g.iter().enumerate() {
+                            a[(r, t.row)] += c * gv;
+                        }
+                    }
                 }
-            }
-        }
-        for (i, e) in self.efficiency.iter().enumerate() {
-            let kappa = signs.kappa[i];
-            let input = &self.inputs[i];
-            for (r, inp) in input.iter().enumerate() {
-                // Column = input part + κ·(output part), output = row − input.
-                a[(r, e.row)] = inp + kappa * (self.jac[(e.row, r)] - inp);
             }
         }
         a
     }
 
     fn signs_of(&self, lambda: &DVector<f64>) -> Signs {
-        let normal = self
-            .friction
-            .iter()
-            .map(|f| match *f {
-                CompiledFriction::Sliding { row, .. } => {
-                    [if lambda[row] < 0.0 { -1.0 } else { 1.0 }, 0.0]
-                }
-                CompiledFriction::Revolute { row, .. } => {
-                    let (x, y) = (lambda[row], lambda[row + 1]);
-                    let r = x.hypot(y);
-                    if r == 0.0 { [1.0, 0.0] } else { [x / r, y / r] }
-                }
-            })
-            .collect();
         let kappa = self
             .efficiency
             .iter()
@@ -286,7 +331,52 @@ impl Assembly<'_, '_> {
                 }
             })
             .collect();
-        Signs { normal, kappa }
+        let mut signs = Signs {
+            normal: Vec::new(),
+            kappa,
+        };
+        signs.normal = self
+            .friction
+            .iter()
+            .map(|f| match *f {
+                CompiledFriction::Sliding { row, .. } => {
+                    [if lambda[row] < 0.0 { -1.0 } else { 1.0 }, 0.0]
+                }
+                CompiledFriction::Revolute { joint, row, .. } => {
+                    let [x, y] = self.bearing_force(joint, row, lambda, Some(&signs));
+                    let r = x.hypot(y);
+                    if r == 0.0 { [1.0, 0.0] } else { [x / r, y / r] }
+                }
+            })
+            .collect();
+        signs
+    }
+
+    /// The factor of the mesh's multiplier on the pinion side (κ if the pinion is the
+    /// output side of an efficiency, else 1).
+    fn pinion_scale(&self, t: &Tooth, signs: Option<&Signs>) -> f64 {
+        match (t.pinion_output, signs) {
+            (Some(i), Some(s)) => s.kappa[i],
+            _ => 1.0,
+        }
+    }
+
+    /// The force of link a on link b in revolute joint `joint` (first row `row`), the tooth
+    /// force of a mesh included when `joint` is its pinion's bearing.
+    fn bearing_force(
+        &self,
+        joint: usize,
+        row: usize,
+        lambda: &DVector<f64>,
+        signs: Option<&Signs>,
+    ) -> [f64; 2] {
+        let mut f = [lambda[row], lambda[row + 1]];
+        for t in self.teeth.iter().filter(|t| t.bearing == joint) {
+            let s = self.pinion_scale(t, signs) * lambda[t.row];
+            f[0] -= s * t.u[0];
+            f[1] -= s * t.u[1];
+        }
+        f
     }
 
     /// Power the nominal driving side of mesh `i` delivers to the mesh, `λ·(J_in q̇)`.
@@ -408,7 +498,9 @@ impl Assembly<'_, '_> {
             .joints
             .iter()
             .enumerate()
-            .map(|(j, joint)| self.ideal_reaction(j, &joint.kind, &lambda, &joint.name))
+            .map(|(j, joint)| {
+                self.ideal_reaction(j, &joint.kind, &lambda, &joint.name, signs.as_ref())
+            })
             .collect();
         if let Some(signs) = &signs {
             for (i, f) in self.friction.iter().enumerate() {
@@ -485,6 +577,7 @@ impl Assembly<'_, '_> {
         kind: &JointKind,
         lambda: &DVector<f64>,
         name: &str,
+        signs: Option<&Signs>,
     ) -> JointReaction {
         let r = self.model.rows[j];
         let l = |i: usize| lambda[r + i];
@@ -505,9 +598,10 @@ impl Assembly<'_, '_> {
         };
         match *kind {
             // Row r_a(p) − r_b(p): the force on link b is +λ.
+            // (plus the tooth force of a mesh whose pinion turns in this joint).
             JointKind::Revolute { .. } => {
-                out.force = [l(0), l(1)];
-                out.normal = l(0).hypot(l(1));
+                out.force = self.bearing_force(j, r, lambda, signs);
+                out.normal = out.force[0].hypot(out.force[1]);
             }
             // Rows θ_s − θ_g and c(u, r_s(p) − r_g(a)): couple −λ₀, normal force −λ₁ along n.
             JointKind::Prismatic { guide, line, .. } => {
