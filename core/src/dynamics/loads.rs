@@ -166,3 +166,39 @@ pub(crate) fn power(loads: &[CompiledLoad], phi: f64, states: &[LinkState]) -> f
         })
         .sum()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn load(active: [f64; 2], periodic: bool) -> CompiledLoad {
+        CompiledLoad {
+            link: 1,
+            local: [0.0; 2],
+            kind: LoadKind::Torque(1.0),
+            active: Some(active),
+            periodic,
+        }
+    }
+
+    /// A forward stroke from 292° to 68° wraps through 0°: active at 300°, 0°, 60° and
+    /// 360° + 10°, not at 100° or 200°.
+    #[test]
+    fn angle_ranges_wrap_around_a_turn() {
+        let l = load([292f64.to_radians(), 68f64.to_radians()], true);
+        for deg in [300.0f64, 0.0, 60.0, 370.0, -50.0] {
+            assert!(l.acts_at(deg.to_radians()), "{deg}°");
+        }
+        for deg in [100.0f64, 200.0, 460.0] {
+            assert!(!l.acts_at(deg.to_radians()), "{deg}°");
+        }
+    }
+
+    /// A displacement range does not wrap.
+    #[test]
+    fn displacement_ranges_are_plain_intervals() {
+        let l = load([0.1, 0.2], false);
+        assert!(l.acts_at(0.1) && l.acts_at(0.15) && l.acts_at(0.2));
+        assert!(!l.acts_at(0.0) && !l.acts_at(0.25) && !l.acts_at(0.1 + std::f64::consts::TAU));
+    }
+}
