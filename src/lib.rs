@@ -9,6 +9,12 @@ pub use mechdiff_core as core;
 pub use mechdiff_mechanisms as mechanisms;
 
 pub mod error;
+pub mod report;
 pub mod scene;
 
 pub use error::{Error, Result};
+
+/// The Rust examples of `README.md`, compiled and run as doc-tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

@@ -30,7 +30,7 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result: Result<(), Box<dyn std::error::Error>> = match cli.command {
-        None | Some(Command::Whitworth) => Ok(()),
+        None | Some(Command::Whitworth) => whitworth(),
         Some(Command::Run(args)) => cli::run::run(&args).map_err(Into::into),
         Some(Command::Check(args)) => cli::check::check(&args).map_err(Into::into),
     };
@@ -41,4 +41,11 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+/// Prints the report for the reference Whitworth shaping machine.
+fn whitworth() -> Result<(), Box<dyn std::error::Error>> {
+    let shaper = mechdiff::mechanisms::Whitworth::reference();
+    print!("{}", mechdiff::report::whitworth::report(&shaper)?);
+    Ok(())
 }

@@ -4,9 +4,10 @@
 //! a [`PositionFunction`] generic over the [`Scalar`] type, and their derivatives with respect
 //! to the drive variable φ follow by any [`method`] — dual numbers (exact), central differences,
 //! or formulas derived by hand — as [`Jet`]s. A [`DriveState`] turns them into velocities,
-//! accelerations and jerks ([`Motion`]); [`DeadPositionSearch`] finds where a coefficient
-//! changes sign. [`geometry`] derives, solves and differentiates the equations of a mechanism
-//! given only as points, links, joints and a drive.
+//! accelerations and jerks ([`Motion`]), of single coordinates or of [`Point`]s;
+//! [`DeadPositionSearch`] finds where a coefficient changes sign. [`geometry`] derives, solves
+//! and differentiates the equations of a mechanism given only as points, links, joints and a
+//! drive.
 #![warn(missing_docs)]
 
 pub mod dead_position;
@@ -16,6 +17,7 @@ pub mod geometry;
 pub mod jet;
 pub mod method;
 pub mod motion;
+pub mod point;
 pub mod position;
 pub mod scalar;
 
@@ -24,5 +26,6 @@ pub use error::{Error, Result};
 pub use jet::Jet;
 pub use motion::{DriveState, Motion};
 pub use num_dual;
+pub use point::Point;
 pub use position::PositionFunction;
 pub use scalar::{Scalar, atan2, hypot};

@@ -5,81 +5,94 @@ use std::io::{self, Write};
 use super::model::Scene;
 use super::run::Report;
 use super::units::Units;
+use crate::report::Table;
 
-/// Significant digits in the printed table (the CSV carries every digit).
-const DIGITS: usize = 9;
+/// Significant digits of a column's largest value in the printed table (the CSV carries every
+/// digit).
+const DIGITS: i32 = 9;
 
-/// A number with 9 significant digits: fixed-point for magnitudes from 1e-3 to 1e6,
-/// scientific otherwise.
-pub fn format_number(v: f64) -> String {
-    if v == 0.0 {
-        return "0".to_owned();
+/// How every number of one column is printed, so that the decimal points line up.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum ColumnFormat {
+    /// Fixed point with this many decimals.
+    Fixed(usize),
+    /// Scientific notation with [`DIGITS`] significant digits.
+    Scientific,
+}
+
+impl ColumnFormat {
+    /// The format for a column of values: fixed point with [`DIGITS`] significant digits for
+    /// its largest magnitude when that lies between 1e-3 and 1e6, scientific otherwise. A
+    /// column of exact multiples of a round step (the drive positions) gets only the decimals
+    /// it needs.
+    fn for_column(values: &[f64]) -> Self {
+        let largest = values
+            .iter()
+            .filter(|v| v.is_finite())
+            .fold(0.0_f64, |m, v| m.max(v.abs()));
+        if largest == 0.0 {
+            return Self::Fixed(0);
+        }
+        let magnitude = largest.log10().floor() as i32;
+        if !(-3..6).contains(&magnitude) {
+            return Self::Scientific;
+        }
+        let decimals = (DIGITS - 1 - magnitude).max(0) as usize;
+        let exact = (0..decimals).find(|&d| {
+            let scale = 10f64.powi(d as i32);
+            values
+                .iter()
+                .all(|v| ((v * scale).round() / scale - v).abs() <= 1e-12 * largest)
+        });
+        Self::Fixed(exact.unwrap_or(decimals))
     }
-    if !v.is_finite() {
-        return v.to_string();
-    }
-    let magnitude = v.abs().log10().floor() as i32;
-    if (-3..6).contains(&magnitude) {
-        let decimals = (DIGITS as i32 - 1 - magnitude).max(0) as usize;
-        format!("{v:.decimals$}")
-    } else {
-        format!("{v:.*e}", DIGITS - 1)
+
+    fn format(self, v: f64) -> String {
+        match self {
+            _ if !v.is_finite() => v.to_string(),
+            Self::Fixed(decimals) => crate::report::fixed(v, decimals),
+            Self::Scientific => format!("{v:.*e}", (DIGITS - 1) as usize),
+        }
     }
 }
 
 /// Writes the title, the plan and the table: a header of column names, a header of units,
-/// then one line per drive position, every column right-aligned.
+/// then one line per drive position; each column has one number format, right-aligned.
 pub fn write_table(scene: &Scene, report: &Report, out: &mut impl Write) -> io::Result<()> {
     if let Some(title) = &scene.title {
         writeln!(out, "{title}")?;
     }
     writeln!(out, "{}", report.plan.describe(scene))?;
-    let cells: Vec<Vec<String>> = report
+    let scaled: Vec<Vec<f64>> = report
         .rows
         .iter()
         .map(|row| {
             row.iter()
                 .zip(&report.columns)
-                .map(|(v, c)| format_number(v / c.factor))
+                .map(|(v, c)| v / c.factor)
                 .collect()
         })
         .collect();
-    let widths: Vec<usize> = report
-        .columns
-        .iter()
-        .enumerate()
-        .map(|(k, c)| {
-            let header = c.name.chars().count().max(c.unit.chars().count() + 2);
-            cells.iter().map(|r| r[k].len()).fold(header, usize::max)
-        })
+    let formats: Vec<ColumnFormat> = (0..report.columns.len())
+        .map(|k| ColumnFormat::for_column(&scaled.iter().map(|row| row[k]).collect::<Vec<_>>()))
         .collect();
-    let line = |items: Vec<String>| -> String {
-        items
+    let mut table = Table::new(0, report.columns.iter().map(|c| c.name.clone()).collect());
+    table.row(
+        report
+            .columns
             .iter()
-            .zip(&widths)
-            .map(|(s, w)| format!("{s:>w$}"))
-            .collect::<Vec<_>>()
-            .join("  ")
-    };
-    writeln!(
-        out,
-        "{}",
-        line(report.columns.iter().map(|c| c.name.clone()).collect())
-    )?;
-    writeln!(
-        out,
-        "{}",
-        line(
-            report
-                .columns
-                .iter()
-                .map(|c| format!("[{}]", c.unit))
-                .collect()
-        )
-    )?;
-    for row in cells {
-        writeln!(out, "{}", line(row))?;
+            .map(|c| format!("[{}]", c.unit))
+            .collect(),
+    );
+    for row in &scaled {
+        table.row(
+            row.iter()
+                .zip(&formats)
+                .map(|(&v, f)| f.format(v))
+                .collect(),
+        );
     }
+    write!(out, "{}", table.render())?;
     write_dead_positions(scene, report, out)?;
     for line in report.dynamics.iter().flat_map(|d| &d.summary) {
         writeln!(out, "{line}")?;
@@ -147,15 +160,35 @@ pub fn write_csv(report: &Report, out: &mut impl Write) -> io::Result<()> {
 
 #[cfg(test)]
 mod tests {
-    use super::format_number;
+    use super::ColumnFormat;
 
+    /// Nine significant digits for the column's largest value, the same decimals in every row.
     #[test]
-    fn numbers_keep_nine_significant_digits() {
-        assert_eq!(format_number(0.0), "0");
-        assert_eq!(format_number(67.975_687_162_957_8), "67.9756872");
-        assert_eq!(format_number(-0.000123456789123), "-1.23456789e-4");
-        assert_eq!(format_number(0.00123456789123), "0.00123456789");
-        assert_eq!(format_number(123456.789), "123456.789");
-        assert_eq!(format_number(1234567.89), "1.23456789e6");
+    fn a_column_shares_one_format() {
+        let f = ColumnFormat::for_column(&[67.975_687_162_957_8, -0.5, 0.0]);
+        assert_eq!(f, ColumnFormat::Fixed(7));
+        assert_eq!(f.format(-0.5), "-0.5000000");
+        assert_eq!(f.format(-1e-9), "0.0000000");
+    }
+
+    /// Drive positions at a round step print without trailing zeros.
+    #[test]
+    fn round_steps_need_no_decimals() {
+        assert_eq!(
+            ColumnFormat::for_column(&[0.0, 5.0, 360.0]),
+            ColumnFormat::Fixed(0)
+        );
+        assert_eq!(
+            ColumnFormat::for_column(&[0.0, 0.5, 1.0]),
+            ColumnFormat::Fixed(1)
+        );
+    }
+
+    /// Magnitudes of 1e6 and more (or below 1e-3) are printed in scientific notation.
+    #[test]
+    fn large_columns_are_scientific() {
+        let f = ColumnFormat::for_column(&[3.085e6, -1.0]);
+        assert_eq!(f, ColumnFormat::Scientific);
+        assert_eq!(f.format(3.085e6), "3.08500000e6");
     }
 }
