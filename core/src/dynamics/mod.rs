@@ -47,6 +47,7 @@
 
 pub mod efficiency;
 pub mod energy;
+mod equilibrium;
 pub mod friction;
 pub mod gravity;
 pub mod inertia;
