@@ -312,17 +312,7 @@ impl Assembly<'_, '_> {
                 joints: self.joints(),
                 reason: "the equilibrium equations with friction are singular".to_owned(),
             })?;
-            // Friction that turns the determinant's sign reverses how the drive acts on the
-            // mechanism: no finite drive torque moves it in the prescribed sense.
-            if lu.determinant().signum() != ideal_sign {
-                return Err(Error::SelfLocking {
-                    phi,
-                    joints: self.joints(),
-                    reason: "friction reverses the sign of the equilibrium determinant: the drive \
-                             cannot move the mechanism in this sense"
-                        .to_owned(),
-                });
-            }
+            let flipped = lu.determinant().signum() != ideal_sign;
             let new_signs = self.signs_of(&next);
             let scale = next.amax().max(f64::MIN_POSITIVE);
             // Settled: the same signs and flows, and λ and the reaction directions unchanged
@@ -338,6 +328,19 @@ impl Assembly<'_, '_> {
                 && (&next - &lambda).amax() <= tol * scale;
             lambda = next;
             if settled {
+                // Consistent signs whose friction turns the determinant's sign: the equations
+                // passed through singularity (infinite drive torque) as friction grew from 0,
+                // so no finite drive torque moves the mechanism in the prescribed sense.
+                if flipped {
+                    return Err(Error::SelfLocking {
+                        phi,
+                        joints: self.joints(),
+                        reason: "with consistent friction forces the equilibrium determinant has \
+                                 the opposite sign of the frictionless one: the drive cannot move \
+                                 the mechanism in this sense"
+                            .to_owned(),
+                    });
+                }
                 return Ok((lambda, Some(signs), it + 1));
             }
             // Sliding signs and flows only: a repeated pattern that is not consistent is a cycle.
