@@ -297,3 +297,75 @@ fn output_that_names_nothing() {
     ]);
     assert_at(&r, "\"shaking_force\"", &["needs masses"]);
 }
+
+/// `mechdiff run` prints the dynamics plan and the shaking-force extremes for the Whitworth
+/// forces scene, and exits with status 0.
+#[test]
+fn mechdiff_run_prints_the_dynamics_plan() {
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_mechdiff"))
+        .args(["run", "scenes/whitworth_forces.toml"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the mechdiff binary runs");
+    let out = String::from_utf8(output.stdout).unwrap();
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    assert!(
+        out.contains(
+            "dynamics plan: order 2; effects: inertia; not computed: gravity, loads, friction, efficiency, motor"
+        ),
+        "{out}"
+    );
+    assert!(
+        out.contains("SumF_x") && out.contains("shaking force over the sweep"),
+        "{out}"
+    );
+}
+
+/// A self-locking position in a scene is an error naming the drive position and the joints.
+#[test]
+fn self_locking_in_a_scene_is_reported_with_its_position() {
+    // The wedge of core/tests/dynamics_errors.rs: a rocker's slot drives a slider on y = 0.2;
+    // at ψ = 20° (below 2·atan 0.3 = 33.4°) friction locks it.
+    let text = r#"[units]
+angle = "deg"
+[points]
+O = [0.0, 0.0]
+S = { from = "O", length = 1.0, angle = 20 }
+P = { from = "O", length = 0.5847608800326175, angle = 20 }   # on y = 0.2
+G0 = [0.0, 0.2]
+G1 = [1.0, 0.2]
+[links]
+ground = ["O", "G0", "G1"]
+rocker = ["O", "S"]
+slider = ["P"]
+[joints]
+O = { type = "revolute", at = "O", links = ["ground", "rocker"] }
+slot = { type = "pin_in_slot", pin = "P", slot = ["O", "S"], links = ["rocker", "slider"] }
+guide = { type = "prismatic", line = ["G0", "G1"], point = "P", links = ["ground", "slider"] }
+[drive]
+joint = "O"
+line = ["O", "S"]
+speed = 1
+[sweep]
+positions = [20]
+[[load]]
+link = "slider"
+point = "P"
+force = [100.0, 0.0]
+[friction]
+slot = { coefficient = 0.3 }
+guide = { coefficient = 0.3 }
+[[dynamics]]
+output = "drive_torque"
+"#;
+    let s = scene::parse("wedge.toml", text).unwrap_or_else(|e| panic!("{e}"));
+    let e = scene::run(&s).unwrap_err().to_string();
+    assert!(
+        e.contains("self-locking at drive position 20 deg") && e.contains("guide, slot"),
+        "{e}"
+    );
+}
