@@ -115,6 +115,9 @@ fn gear_efficiency_and_friction_close_the_balance_in_both_flow_directions() {
         .with_efficiency(Efficiency::new("mesh", 0.9))
         .with_friction(Friction::revolute("A", 0.15, 0.008))
         .with_friction(Friction::revolute("B0", 0.15, 0.008))
+        // The gears' bearings carry the tooth force: their friction depends on it.
+        .with_friction(Friction::revolute("G", 0.1, 0.01))
+        .with_friction(Friction::revolute("A0", 0.1, 0.012))
         .with_motor(Motor {
             rotor_inertia: 1e-4,
             ratio: 0.25,
@@ -152,4 +155,40 @@ fn gear_efficiency_and_friction_close_the_balance_in_both_flow_directions() {
         direct > 0 && reverse > 0,
         "the power flow must reverse during the revolution"
     );
+}
+
+#[test]
+fn the_pinion_bearing_carries_the_tooth_force() {
+    // Pinion at G = (−0.2, 0), crank gear at A0 = (0, 0), ratio −1/2: pitch radii
+    // r1 = 0.2·0.5/1.5 and r2 = 0.2/1.5, pitch point on the x axis. The massless pinion is held
+    // by its bearing against the tangential tooth force |M_drive|/r1, vertical.
+    let m = four_bar(true);
+    let d = loads(Dynamics::new());
+    let model = d.compile(&m).unwrap();
+    let phis: Vec<f64> = revolution(10.0, &[]).iter().map(|p| -2.0 * p).collect();
+    let r1 = 0.2 * 0.5 / 1.5;
+    for k in Solver::default().sweep::<2>(&m, &phis).unwrap() {
+        let s = kinetostatics::solve(
+            &model,
+            &d.available(&m),
+            &k,
+            &DriveState::accelerating(-30.0, 100.0),
+        )
+        .unwrap();
+        let g = s.reactions.iter().find(|r| r.joint == "G").unwrap();
+        let want = s.drive_torque.abs() / r1;
+        // 1e-12 of the tooth force (rounding of one solve).
+        assert!(
+            g.force[0].abs() <= 1e-12 * want,
+            "φ = {}: {:?}",
+            k.phi,
+            g.force
+        );
+        assert!(
+            (g.force[1].abs() - want).abs() <= 1e-12 * want,
+            "φ = {}: {:?} vs {want}",
+            k.phi,
+            g.force
+        );
+    }
 }

@@ -8,7 +8,8 @@ use super::inertia::InertialLoad;
 use super::kinetostatics::{JointReaction, Solution};
 use super::model::CompiledModel;
 use super::plan::{Effects, Trace};
-use super::state::{self, Generalized, LinkState, of};
+use super::state::{Generalized, LinkState, of};
+use super::teeth::{self, Tooth};
 use crate::geometry::JointKind;
 use crate::{DriveState, Error};
 use nalgebra::{DMatrix, DVector};
@@ -44,28 +45,13 @@ pub(super) struct Assembly<'a, 'm> {
     inputs: Vec<Vec<f64>>,
     /// q̇.
     qdot: Vec<f64>,
-    /// Rack-and-pinion meshes whose tooth force passes through the pinion's bearing.
+    /// Meshes whose tooth forces pass through the wheels' bearings (see [`teeth`]).
     teeth: Vec<Tooth>,
-}
-
-/// A rack-and-pinion whose pinion turns on the rack's guide link: the mesh row gives the
-/// pinion only a couple, so the tangential tooth force (pressure angle 0) it also exerts on
-/// the pinion is added to the pinion bearing's reaction, `R = λ_bearing − s_p λ_mesh u`.
-#[derive(Debug, Clone, Copy)]
-struct Tooth {
-    /// The pinion's revolute joint.
-    bearing: usize,
-    /// The mesh's row.
-    row: usize,
-    /// The rack's direction (global).
-    u: [f64; 2],
-    /// The mesh's efficiency (index), when the pinion is its output side.
-    pinion_output: Option<usize>,
 }
 
 impl<'a, 'm> Assembly<'a, 'm> {
     /// The assembly at one position: the friction loads per unit normal force from the
-    /// relative velocities, the meshes' driving sides, the pinion bearings' tooth forces.
+    /// relative velocities, the meshes' driving sides, the wheel bearings' tooth forces.
     pub(super) fn new(
         model: &'a CompiledModel<'m>,
         friction: &'a [CompiledFriction],
@@ -116,33 +102,7 @@ impl<'a, 'm> Assembly<'a, 'm> {
                 e.input_part(&row)
             })
             .collect();
-        let mut teeth = Vec::new();
-        for (j, joint) in m.joints.iter().enumerate() {
-            let JointKind::RackPinion { pinion, rack, .. } = joint.kind else {
-                continue;
-            };
-            let (JointKind::Revolute { link_a, .. }, JointKind::Prismatic { guide, line, .. }) =
-                (&m.joints[pinion].kind, &m.joints[rack].kind)
-            else {
-                continue;
-            };
-            if *link_a != *guide {
-                continue;
-            }
-            let (p, q) = (m.points[line[0]].sketch, m.points[line[1]].sketch);
-            let d = [q[0] - p[0], q[1] - p[1]];
-            let len = d[0].hypot(d[1]);
-            let u = state::of(&states, *guide).arm([d[0] / len, d[1] / len]);
-            let pinion_output = efficiency
-                .iter()
-                .position(|e| e.joint == j && e.driving == super::Driving::Second);
-            teeth.push(Tooth {
-                bearing: pinion,
-                row: model.rows[j],
-                u,
-                pinion_output,
-            });
-        }
+        let teeth = teeth::teeth(m, &model.rows, &states, efficiency);
         Assembly {
             teeth,
             model,
@@ -187,9 +147,10 @@ impl Assembly<'_, '_> {
                         a[(r, row)] -= w[0] * gv;
                         a[(r, row + 1)] -= w[1] * gv;
                     }
-                    // |R| ≈ R̂·(λ_bearing − s_p λ_mesh u) for a pinion's bearing.
+                    // |R| ≈ R̂·(λ_bearing − s λ_mesh F) for a wheel's bearing.
                     for t in self.teeth.iter().filter(|t| t.bearing == joint) {
-                        let c = self.pinion_scale(t, Some(signs)) * (w[0] * t.u[0] + w[1] * t.u[1]);
+                        let c = self.tooth_scale(t, Some(signs))
+                            * (w[0] * t.force[0] + w[1] * t.force[1]);
                         for (r, gv) in g.iter().enumerate() {
                             a[(r, t.row)] += c * gv;
                         }
@@ -234,17 +195,17 @@ impl Assembly<'_, '_> {
         signs
     }
 
-    /// The factor of the mesh's multiplier on the pinion side (κ if the pinion is the
+    /// The factor of the mesh's multiplier on a tooth's side (κ if that side is the
     /// output side of an efficiency, else 1).
-    fn pinion_scale(&self, t: &Tooth, signs: Option<&Signs>) -> f64 {
-        match (t.pinion_output, signs) {
+    fn tooth_scale(&self, t: &Tooth, signs: Option<&Signs>) -> f64 {
+        match (t.output, signs) {
             (Some(i), Some(s)) => s.kappa[i],
             _ => 1.0,
         }
     }
 
     /// The force of link a on link b in revolute joint `joint` (first row `row`), the tooth
-    /// force of a mesh included when `joint` is its pinion's bearing.
+    /// force of a mesh included when `joint` is a wheel's bearing.
     fn bearing_force(
         &self,
         joint: usize,
@@ -254,9 +215,9 @@ impl Assembly<'_, '_> {
     ) -> [f64; 2] {
         let mut f = [lambda[row], lambda[row + 1]];
         for t in self.teeth.iter().filter(|t| t.bearing == joint) {
-            let s = self.pinion_scale(t, signs) * lambda[t.row];
-            f[0] -= s * t.u[0];
-            f[1] -= s * t.u[1];
+            let s = self.tooth_scale(t, signs) * lambda[t.row];
+            f[0] -= s * t.force[0];
+            f[1] -= s * t.force[1];
         }
         f
     }
@@ -483,7 +444,7 @@ impl Assembly<'_, '_> {
         };
         match *kind {
             // Row r_a(p) − r_b(p): the force on link b is +λ.
-            // (plus the tooth force of a mesh whose pinion turns in this joint).
+            // (plus the tooth force of a mesh whose wheel turns in this joint).
             JointKind::Revolute { .. } => {
                 out.force = self.bearing_force(j, r, lambda, signs);
                 out.normal = out.force[0].hypot(out.force[1]);

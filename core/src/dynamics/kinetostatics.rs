@@ -34,11 +34,10 @@ use nalgebra::{DMatrix, DVector};
 /// friction included; the force acts at the joint's point (revolute), measuring point
 /// (prismatic) or pin (pin in slot).
 ///
-/// Tooth forces: a rack-and-pinion's tangential tooth force (pressure angle 0) is included in
-/// its pinion bearing's reaction when the pinion turns on the rack's guide link (the usual
-/// frame-mounted case). A gear pair's constraint acts on the gears as couples only, so the
-/// bearing reactions of gears do not include the tooth force between them (nor would a
-/// friction circle in a gear's bearing see it).
+/// Tooth forces: the tangential tooth force of a rack-and-pinion or gear mesh (pressure
+/// angle 0) is included in the reactions of the wheels' bearings (and in their friction
+/// circles) when the meshing members turn on a common link, a frame or one carrier (see the
+/// `teeth` module); otherwise the mesh acts on the wheels as couples only.
 #[derive(Debug, Clone, PartialEq)]
 pub struct JointReaction {
     /// Joint name.

@@ -59,6 +59,7 @@ pub mod plan;
 pub mod run;
 pub mod shaking;
 mod state;
+mod teeth;
 
 pub use efficiency::{Driving, Efficiency};
 pub use energy::energy;
