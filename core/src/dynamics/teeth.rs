@@ -88,7 +88,7 @@ pub(super) fn teeth(
                 let c1 = s.position(m.local(carrier, m.points[pa].sketch));
                 let c2 = s.position(m.local(carrier, m.points[pb].sketch));
                 let dist = (c2[0] - c1[0]).hypot(c2[1] - c1[1]);
-                if !(dist > 0.0) || ratio == 1.0 {
+                if dist.is_nan() || dist <= 0.0 || ratio == 1.0 {
                     continue;
                 }
                 let e = [(c2[0] - c1[0]) / dist, (c2[1] - c1[1]) / dist];
