@@ -52,7 +52,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let dynamics = Dynamics::new()
         .with_gravity(Gravity::down(9.81))
         .with_load(
-            Load::force("slider", "B", [2000.0, 0.0])
+            Load::force("slider", "B", [-2000.0, 0.0])
                 .active_between(200f64.to_radians(), 330f64.to_radians()),
         )
         .with_friction(Friction::sliding("guide", 0.1))
