@@ -399,3 +399,21 @@ fn whitworth_shaking_force_from_the_scene_equals_the_closed_form_mechanism() {
     // 1e-9 of the largest shaking force (both exact up to rounding; measured ~1e-15).
     assert!(worst <= 1e-9 * scale, "{:e}", worst / scale);
 }
+
+/// The power balance divides by the drive speed: at speed 0 it is an error, not a NaN column.
+#[test]
+fn power_balance_at_rest_is_an_error() {
+    let text = CRANK
+        .replace("speed = 10", "speed = 0")
+        .replace("output = \"drive_torque\"", "output = \"power_balance\"");
+    let s = scene::parse("rest.toml", &text).unwrap();
+    let e = scene::run(&s).unwrap_err().to_string();
+    let line = text[..text.find("[[dynamics]]").unwrap()]
+        .matches('\n')
+        .count()
+        + 1;
+    assert!(
+        e.starts_with(&format!("rest.toml:{line}:")) && e.contains("non-zero drive `speed`"),
+        "{e}"
+    );
+}

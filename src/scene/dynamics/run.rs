@@ -61,6 +61,19 @@ pub(crate) fn run(
         }
         None => DriveState::constant_speed(0.0),
     };
+    if drive.omega == 0.0
+        && let Some(o) = d
+            .outputs
+            .iter()
+            .find(|o| o.quantity == DynamicQuantity::PowerBalance)
+    {
+        return Err(Error::Invalid {
+            location: o.location.clone(),
+            message: "the power balance gives the drive torque as power / speed; it needs a \
+                      non-zero drive `speed`"
+                .to_owned(),
+        });
+    }
     let result =
         run_plan(&plan, &model, &Solver::default(), positions, |_| drive).map_err(|e| match e {
             mechdiff_core::Error::SelfLocking {
