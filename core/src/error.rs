@@ -169,6 +169,38 @@ pub enum Error {
         /// What is wrong.
         problem: String,
     },
+    // ---- dynamics (`dynamics` module) ----
+    /// No friction forces consistent with the relative velocities exist at this drive
+    /// position (the mechanism is self-locking there), or the iteration on the normal forces
+    /// does not settle.
+    #[error(
+        "self-locking at drive position φ = {phi}: no friction forces in joint(s) {} are \
+         consistent with the relative velocities ({reason})",
+        .joints.join(", ")
+    )]
+    SelfLocking {
+        /// Drive position.
+        phi: f64,
+        /// Joints with friction or efficiency whose forces could not be made consistent.
+        joints: Vec<String>,
+        /// Why: a singular equilibrium system, or signs that keep changing.
+        reason: String,
+    },
+    /// The equilibrium equations of the links are singular at this drive position (the
+    /// reactions are not determined by the equations, e.g. at a toggle).
+    #[error("the equilibrium equations are singular at drive position φ = {phi}")]
+    SingularEquilibrium {
+        /// Drive position.
+        phi: f64,
+    },
+    /// An effect or output needs data the model does not have.
+    #[error("{what} needs {missing}")]
+    MissingData {
+        /// What asked for it, e.g. "the shaking force".
+        what: String,
+        /// What is missing, e.g. "mass properties of at least one link".
+        missing: String,
+    },
     // ---- symbolic engine (`symbolic` module) ----
     /// A formula (s-expression or infix) is malformed; `position` is the character offset of
     /// the problem in `input`.

@@ -11,6 +11,7 @@
 #![warn(missing_docs)]
 
 pub mod dead_position;
+pub mod dynamics;
 pub mod error;
 pub mod geometry;
 pub mod jet;

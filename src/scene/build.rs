@@ -23,6 +23,9 @@ pub fn mechanism(scene: &Scene) -> Result<Mechanism> {
             b.link(link.name.as_str(), link.points.iter().map(String::as_str))
         };
     }
+    for (link, inertia) in scene.dynamics.iter().flat_map(|d| &d.masses) {
+        b = b.inertia(link.as_str(), *inertia);
+    }
     for joint in &scene.joints {
         let name = joint.name.as_str();
         b = match &joint.kind {

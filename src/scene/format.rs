@@ -39,6 +39,22 @@ pub struct SceneFile {
     /// What to compute and print, in the order of the columns.
     #[serde(default, rename = "output")]
     pub outputs: Vec<Spanned<OutputDef>>,
+    /// Masses by link (see [`super::dynamics`]).
+    pub masses: Option<Spanned<BTreeMap<Name, Spanned<super::dynamics::MassDef>>>>,
+    /// Gravity.
+    pub gravity: Option<Spanned<super::dynamics::GravityDef>>,
+    /// External loads.
+    #[serde(default, rename = "load")]
+    pub loads: Vec<Spanned<super::dynamics::LoadDef>>,
+    /// Friction by joint.
+    pub friction: Option<Spanned<BTreeMap<Name, Spanned<super::dynamics::FrictionDef>>>>,
+    /// Efficiency by rack-and-pinion or gear joint.
+    pub efficiency: Option<Spanned<BTreeMap<Name, Spanned<super::dynamics::EfficiencyDef>>>>,
+    /// A motor at the drive joint.
+    pub motor: Option<Spanned<super::dynamics::MotorDef>>,
+    /// Dynamic outputs (forces, reactions, drive torque, energy, shaking force).
+    #[serde(default, rename = "dynamics")]
+    pub dynamics: Vec<Spanned<super::dynamics::DynamicsOutputDef>>,
 }
 
 /// `[units]`: every field has an SI default.

@@ -35,6 +35,7 @@
 
 pub mod build;
 mod drive;
+pub mod dynamics;
 mod evaluate;
 pub mod format;
 mod joints;

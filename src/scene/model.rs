@@ -29,6 +29,8 @@ pub struct Scene {
     pub sweep_of: Option<usize>,
     /// The outputs, in column order.
     pub outputs: Vec<Output>,
+    /// Masses, effects and dynamic outputs, if the scene has any.
+    pub dynamics: Option<super::dynamics::SceneDynamics>,
 }
 
 /// A named point at its sketch position.

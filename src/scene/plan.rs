@@ -26,6 +26,8 @@ pub struct Plan {
     pub columns: usize,
     /// Outputs whose dead positions are searched.
     pub dead_positions: Vec<String>,
+    /// The plan of the `[[dynamics]]` outputs: derivative order and effects.
+    pub dynamics: Option<mechdiff_core::dynamics::Plan>,
 }
 
 impl Plan {
@@ -63,6 +65,11 @@ impl Plan {
                 .filter(|o| o.dead_positions)
                 .map(|o| o.name.clone())
                 .collect(),
+            dynamics: scene
+                .dynamics
+                .as_ref()
+                .filter(|d| !d.outputs.is_empty())
+                .and_then(|d| super::build::mechanism(scene).ok().map(|m| d.plan(&m))),
         }
     }
 
@@ -128,9 +135,13 @@ impl Plan {
         } else {
             format!("; dead positions of {}", self.dead_positions.join(", "))
         };
+        let dynamics = match &self.dynamics {
+            Some(p) => format!("\ndynamics plan: {p}"),
+            None => String::new(),
+        };
         format!(
             "plan: {range}; {what} by the geometry solver with implicit differentiation{motion}; \
-            {} columns{dead}",
+            {} columns{dead}{dynamics}",
             self.columns
         )
     }

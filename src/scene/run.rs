@@ -51,6 +51,8 @@ pub struct Report {
     pub rows: Vec<Vec<f64>>,
     /// The dead positions asked for.
     pub dead_positions: Vec<DeadPositions>,
+    /// The dynamic outputs' run (their columns are also in `columns` and `rows`).
+    pub dynamics: Option<super::dynamics::DynamicsReport>,
 }
 
 impl Report {
@@ -120,11 +122,23 @@ pub fn run(scene: &Scene) -> Result<Report> {
             positions: search_dead_positions(scene, &mechanism, output, &positions)?,
         });
     }
+    let mut rows = rows;
+    let dynamics = match &scene.dynamics {
+        Some(d) => super::dynamics::run(scene, d, &mechanism, &positions, scene.drive.speed)?,
+        None => None,
+    };
+    if let Some(d) = &dynamics {
+        all.extend(d.columns.iter().cloned());
+        for (row, extra) in rows.iter_mut().zip(&d.rows) {
+            row.extend_from_slice(extra);
+        }
+    }
     Ok(Report {
         plan,
         columns: all,
         rows,
         dead_positions,
+        dynamics,
     })
 }
 

@@ -93,7 +93,11 @@ pub fn write_table(scene: &Scene, report: &Report, out: &mut impl Write) -> io::
         );
     }
     write!(out, "{}", table.render())?;
-    write_dead_positions(scene, report, out)
+    write_dead_positions(scene, report, out)?;
+    for line in report.dynamics.iter().flat_map(|d| &d.summary) {
+        writeln!(out, "{line}")?;
+    }
+    Ok(())
 }
 
 /// Writes the dead positions found and the stroke between them, to 15 significant digits.

@@ -1,0 +1,62 @@
+//! Inertia: d'Alembert's inertial force `−m·a_G` at the centre of gravity and couple `−J·θ̈`
+//! of every link with mass properties.
+
+use super::state::{Generalized, LinkState, of};
+
+/// Mass properties of one link, compiled: the centre of gravity in link-local coordinates.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Mass {
+    /// Link index in the mechanism.
+    pub link: usize,
+    /// Mass (kg).
+    pub mass: f64,
+    /// Centre of gravity relative to the link's reference point, unrotated (m).
+    pub center: [f64; 2],
+    /// Moment of inertia about the centre of gravity (kg·m²).
+    pub moment: f64,
+}
+
+/// The inertial (d'Alembert) load of one link at an instant.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct InertialLoad {
+    /// Link index in the mechanism.
+    pub link: usize,
+    /// Centre of gravity, global (m).
+    pub center: [f64; 2],
+    /// Velocity of the centre of gravity (m/s).
+    pub velocity: [f64; 2],
+    /// Acceleration of the centre of gravity (m/s²).
+    pub acceleration: [f64; 2],
+    /// Inertial force `−m·a_G` (N).
+    pub force: [f64; 2],
+    /// Inertial couple `−J_G·θ̈` (N·m).
+    pub couple: f64,
+}
+
+/// The inertial loads of every link with mass.
+pub(crate) fn loads(masses: &[Mass], states: &[LinkState]) -> Vec<InertialLoad> {
+    masses
+        .iter()
+        .map(|m| {
+            let s = of(states, m.link);
+            let center = s.position(m.center);
+            let acceleration = s.acceleration_at(center);
+            InertialLoad {
+                link: m.link,
+                center,
+                velocity: s.velocity_at(center),
+                acceleration,
+                force: [-m.mass * acceleration[0], -m.mass * acceleration[1]],
+                couple: -m.moment * s.alpha,
+            }
+        })
+        .collect()
+}
+
+/// Adds the inertial loads to the generalized loads.
+pub(crate) fn load(inertial: &[InertialLoad], states: &[LinkState], q: &mut Generalized) {
+    for l in inertial {
+        q.force(states, l.link, l.center, l.force);
+        q.couple(l.link, l.couple);
+    }
+}

@@ -1,0 +1,157 @@
+//! Kinetostatics: every joint reaction and the drive torque at one drive position.
+//!
+//! The equilibrium of every moving link, `Φ_qᵀ λ = Q` (see [`super`]), is one square linear
+//! system per drive position. Without friction and efficiencies it is solved once. Friction
+//! forces `f·|N|` and efficiency factors depend on the signs of the reactions and on the
+//! direction of power flow, which are not known before solving; they are resolved by
+//! iteration: starting from the ideal solution, the friction columns are linearized with the
+//! current signs (`|N| = σ·N` in sliding joints, `|R| = R̂·R` in revolute joints, `R̂` the
+//! current direction) and each mesh's output side is scaled by `η` or `1/η` for the current
+//! direction of power flow; the system is solved again until the signs, directions and flows
+//! repeat. In sliding joints this is exact once the signs repeat; revolute friction circles
+//! converge geometrically. Signs that never settle mean that no consistent solution exists:
+//! [`Error::SelfLocking`].
+
+use super::efficiency::CompiledEfficiency;
+use super::energy::PowerBalance;
+use super::equilibrium::Assembly;
+use super::friction::CompiledFriction;
+use super::inertia::{self, InertialLoad};
+use super::model::CompiledModel;
+use super::motor::MotorState;
+use super::plan::{Effects, Trace};
+use super::state::{self, Generalized};
+use super::{gravity, loads};
+use crate::geometry::Kinematics;
+use crate::{DriveState, Error, Jet};
+use nalgebra::{DMatrix, DVector};
+
+/// The reaction in one joint.
+///
+/// `force` and `couple` are what link a of the joint (the first link of a revolute or rigid
+/// joint, the guide of a prismatic joint, the slot link of a pin in slot, the pinion's link of
+/// a rack-and-pinion) exerts on link b (the second link, the slider, the pin's link, the rack),
+/// friction included; the force acts at the joint's point (revolute), measuring point
+/// (prismatic) or pin (pin in slot).
+///
+/// Tooth forces: the tangential tooth force of a rack-and-pinion or gear mesh (pressure
+/// angle 0) is included in the reactions of the wheels' bearings (and in their friction
+/// circles) when the meshing members turn on a common link, a frame or one carrier (see the
+/// `teeth` module); otherwise the mesh acts on the wheels as couples only.
+#[derive(Debug, Clone, PartialEq)]
+pub struct JointReaction {
+    /// Joint name.
+    pub joint: String,
+    /// Force on link b (N, global components).
+    pub force: [f64; 2],
+    /// Couple on link b (N·m): the prismatic joint's reaction couple, a rigid joint's couple,
+    /// a revolute joint's friction torque, the torque on a gear's second link.
+    pub couple: f64,
+    /// Normal force on link b along the guide's normal `n` (prismatic, pin in slot), the
+    /// magnitude `|R|` (revolute), the tooth force on the rack along its guide (rack-and-pinion)
+    /// or the torque on the second gear's link (gear) (N or N·m).
+    pub normal: f64,
+    /// Friction force on link b along the guide direction `u` (sliding joints, N) or friction
+    /// torque on link b (revolute, N·m); 0 without friction.
+    pub friction: f64,
+    /// Power lost in the joint by friction or imperfect efficiency (W, ≤ 0).
+    pub power_loss: f64,
+}
+
+/// The equilibrium at one drive position.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Solution {
+    /// Drive position.
+    pub phi: f64,
+    /// Drive state used.
+    pub drive: DriveState,
+    /// The multipliers λ, one per constraint row (joints in order, the drive last).
+    pub multipliers: Vec<f64>,
+    /// Torque (N·m) or force (N) the drive joint must apply, positive in the sense of φ.
+    pub drive_torque: f64,
+    /// The reaction in every joint, in the model's joint order.
+    pub reactions: Vec<JointReaction>,
+    /// The motor, if the model has one and the plan includes it.
+    pub motor: Option<MotorState>,
+    /// Inertial loads of the links with mass (empty when inertia is not evaluated).
+    pub inertial: Vec<InertialLoad>,
+    /// The power balance of this solution.
+    pub balance: PowerBalance,
+    /// Solves of the equilibrium system (1 without friction and efficiency).
+    pub iterations: usize,
+    /// What was evaluated.
+    pub trace: Trace,
+}
+
+/// Solves the equilibrium at the pose of `k` for drive state `drive`, with `effects`.
+pub fn solve(
+    model: &CompiledModel<'_>,
+    effects: &Effects,
+    k: &Kinematics<'_, 2>,
+    drive: &DriveState,
+) -> Result<Solution, Error> {
+    solve_at(model, effects, k.phi, &k.coordinates, drive)
+}
+
+/// [`solve`] at drive position `phi` from the pose coordinates and their first two
+/// φ-derivatives (`Kinematics::coordinates`).
+pub fn solve_at(
+    model: &CompiledModel<'_>,
+    effects: &Effects,
+    phi: f64,
+    coordinates: &[Jet<2>],
+    drive: &DriveState,
+) -> Result<Solution, Error> {
+    let m = model.mechanism;
+    let states = state::link_states(coordinates, drive);
+    let n = model.equations.coordinates();
+    let q: Vec<f64> = coordinates.iter().map(|j| j.value).collect();
+    let qdot: Vec<f64> = coordinates
+        .iter()
+        .map(|j| drive.omega * j.derivatives[0])
+        .collect();
+    let mut jac = DMatrix::zeros(n, n);
+    model.equations.jacobian(&q, &mut jac);
+    let mut trace = Trace::default();
+    let mut load = Generalized::zeros(m.links.len() - 1);
+    let mut inertial = Vec::new();
+    if effects.inertia && !model.masses.is_empty() {
+        inertial = inertia::loads(&model.masses, &states);
+        inertia::load(&inertial, &states, &mut load);
+        trace.inertia += 1;
+    }
+    if effects.gravity
+        && let Some(g) = &model.gravity
+    {
+        gravity::load(g, &model.masses, &states, &mut load);
+        trace.gravity += 1;
+    }
+    if effects.loads && !model.loads.is_empty() {
+        loads::load(&model.loads, phi, &states, &mut load);
+        trace.loads += 1;
+    }
+    let friction: &[CompiledFriction] = if effects.friction {
+        &model.friction
+    } else {
+        &[]
+    };
+    let efficiency: &[CompiledEfficiency] = if effects.efficiency {
+        &model.efficiency
+    } else {
+        &[]
+    };
+    let asm = Assembly::new(
+        model,
+        friction,
+        efficiency,
+        states,
+        jac,
+        DVector::from_vec(load.0),
+        qdot,
+    );
+    let (lambda, signs, iterations) = asm.iterate(phi, &mut trace)?;
+    trace.equilibrium_solves += iterations;
+    asm.finish(
+        effects, phi, drive, lambda, signs, iterations, inertial, trace,
+    )
+}

@@ -1,0 +1,137 @@
+//! Executing a [`Plan`] over a sweep of drive positions: positions only, derivatives of the
+//! order asked, and only the dynamic outputs and effects in the plan.
+
+use super::energy::{Energy, energy};
+use super::kinetostatics::{self, Solution};
+use super::model::CompiledModel;
+use super::plan::{Plan, Trace};
+use super::shaking::{ShakingForce, shaking_force};
+use crate::geometry::Solver;
+use crate::{DriveState, Error, Jet};
+
+/// The results at one drive position; what the plan did not ask for is `None`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Step {
+    /// Drive position.
+    pub phi: f64,
+    /// Drive state.
+    pub drive: DriveState,
+    /// Reactions, drive torque, power balance.
+    pub solution: Option<Solution>,
+    /// Kinetic energy and reduced inertia.
+    pub energy: Option<Energy>,
+    /// Shaking force.
+    pub shaking: Option<ShakingForce>,
+}
+
+/// The results of a planned sweep and what it evaluated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Run {
+    /// One step per drive position.
+    pub steps: Vec<Step>,
+    /// Everything evaluated, summed over the sweep.
+    pub trace: Trace,
+}
+
+/// Runs `plan` for `model` at the drive positions `phis` (in order, from the sketch pose),
+/// with the drive state `drive(φ)` at each.
+///
+/// ```
+/// use mechdiff_core::dynamics::{Dynamics, Plan, Request, run::run};
+/// use mechdiff_core::geometry::{Drive, Inertia, Mechanism, Solver};
+/// use mechdiff_core::DriveState;
+/// let m = Mechanism::builder()
+///     .point("O", [0.0, 0.0]).point("A", [1.0, 0.0])
+///     .ground(["O"]).link("crank", ["O", "A"])
+///     .inertia("crank", Inertia { mass: 2.0, center: [0.5, 0.0], moment: 0.0 })
+///     .revolute("O", "ground", "crank", "O")
+///     .drive(Drive::angle("O"))
+///     .build().unwrap();
+/// let d = Dynamics::new();
+/// let model = d.compile(&m).unwrap();
+/// let plan = Plan::for_requests(&[Request::Positions], d.available(&m));
+/// let r = run(&plan, &model, &Solver::default(), &[0.0, 0.5], |_| DriveState::constant_speed(1.0)).unwrap();
+/// assert_eq!((r.trace.positions, r.trace.derivatives, r.trace.inertia), (2, 0, 0));
+/// ```
+pub fn run(
+    plan: &Plan,
+    model: &CompiledModel<'_>,
+    solver: &Solver,
+    phis: &[f64],
+    drive: impl Fn(f64) -> DriveState,
+) -> Result<Run, Error> {
+    if plan.shaking && model.masses.is_empty() {
+        return Err(Error::MissingData {
+            what: "the shaking force".to_owned(),
+            missing: "mass properties of at least one link".to_owned(),
+        });
+    }
+    let mut tracker = solver.track(model.mechanism)?;
+    let mut trace = Trace::default();
+    let mut steps = Vec::with_capacity(phis.len());
+    for &phi in phis {
+        tracker.move_to(phi)?;
+        trace.positions += 1;
+        let d = drive(phi);
+        let mut step = Step {
+            phi,
+            drive: d,
+            solution: None,
+            energy: None,
+            shaking: None,
+        };
+        match plan.order {
+            0 => {}
+            1 => {
+                let k = tracker.kinematics::<1>()?;
+                trace.derivatives += 1;
+                if plan.energy {
+                    step.energy = Some(energy(model, &k.coordinates, &d));
+                    trace.energy += 1;
+                }
+                if plan.kinetostatics {
+                    // Forces at order 1 are planned only without inertia: the accelerations
+                    // (q″ padded with 0) are then never read.
+                    debug_assert!(!plan.effects.inertia);
+                    let padded: Vec<Jet<2>> = k
+                        .coordinates
+                        .iter()
+                        .map(|j| Jet::new(j.value, [j.derivatives[0], 0.0]))
+                        .collect();
+                    let s = kinetostatics::solve_at(model, &plan.effects, phi, &padded, &d)?;
+                    trace.add(&s.trace);
+                    step.solution = Some(s);
+                }
+            }
+            order => {
+                let coordinates: Vec<Jet<2>> = if order == 2 {
+                    tracker.kinematics::<2>()?.coordinates
+                } else {
+                    tracker
+                        .kinematics::<3>()?
+                        .coordinates
+                        .iter()
+                        .map(|j| j.truncate::<2>())
+                        .collect()
+                };
+                trace.derivatives += 1;
+                if plan.energy {
+                    step.energy = Some(energy(model, &coordinates, &d));
+                    trace.energy += 1;
+                }
+                if plan.shaking {
+                    step.shaking = Some(shaking_force(model, phi, &coordinates, &d));
+                    trace.shaking += 1;
+                    trace.inertia += 1;
+                }
+                if plan.kinetostatics {
+                    let s = kinetostatics::solve_at(model, &plan.effects, phi, &coordinates, &d)?;
+                    trace.add(&s.trace);
+                    step.solution = Some(s);
+                }
+            }
+        }
+        steps.push(step);
+    }
+    Ok(Run { steps, trace })
+}

@@ -1,0 +1,105 @@
+//! The shaking force and moment on the frame: the sum of the links' inertial forces
+//! `Σ −m a_G` and of their moments about the origin, `Σ (r_G × (−m a_G) − J θ̈)` — what the
+//! foundation must carry (reference 000: ΣF_x, ΣF_y).
+
+use super::inertia::{self, InertialLoad};
+use super::model::CompiledModel;
+use super::state::{self, cross};
+use crate::{DriveState, Jet};
+
+/// The shaking force at one drive position.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShakingForce {
+    /// Drive position.
+    pub phi: f64,
+    /// `Σ −m a_G` (N).
+    pub force: [f64; 2],
+    /// Moment of the inertial loads about the global origin (N·m).
+    pub moment: f64,
+    /// The inertial load of each link with mass.
+    pub links: Vec<InertialLoad>,
+}
+
+/// The shaking force of `model` at the pose of `coordinates` for drive state `drive`.
+pub fn shaking_force(
+    model: &CompiledModel<'_>,
+    phi: f64,
+    coordinates: &[Jet<2>],
+    drive: &DriveState,
+) -> ShakingForce {
+    let states = state::link_states(coordinates, drive);
+    let links = inertia::loads(&model.masses, &states);
+    let mut force = [0.0; 2];
+    let mut moment = 0.0;
+    for l in &links {
+        force[0] += l.force[0];
+        force[1] += l.force[1];
+        moment += cross(l.center, l.force) + l.couple;
+    }
+    ShakingForce {
+        phi,
+        force,
+        moment,
+        links,
+    }
+}
+
+/// An extreme value over a sweep and where it occurs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Extreme {
+    /// The value.
+    pub value: f64,
+    /// The drive position where it occurs.
+    pub phi: f64,
+}
+
+/// The extremes of the shaking force over a sweep (over the sampled positions).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShakingSummary {
+    /// Smallest and largest `ΣF_x`.
+    pub force_x: [Extreme; 2],
+    /// Smallest and largest `ΣF_y`.
+    pub force_y: [Extreme; 2],
+    /// Largest magnitude `|ΣF|`.
+    pub magnitude: Extreme,
+    /// Smallest and largest moment.
+    pub moment: [Extreme; 2],
+}
+
+impl ShakingSummary {
+    /// The extremes over `sweep`; `None` if it is empty.
+    pub fn of(sweep: &[ShakingForce]) -> Option<Self> {
+        let first = sweep.first()?;
+        let at = |v: f64| Extreme {
+            value: v,
+            phi: first.phi,
+        };
+        let mut s = ShakingSummary {
+            force_x: [at(first.force[0]); 2],
+            force_y: [at(first.force[1]); 2],
+            magnitude: at(first.force[0].hypot(first.force[1])),
+            moment: [at(first.moment); 2],
+        };
+        let update = |e: &mut [Extreme; 2], v: f64, phi: f64| {
+            if v < e[0].value {
+                e[0] = Extreme { value: v, phi };
+            }
+            if v > e[1].value {
+                e[1] = Extreme { value: v, phi };
+            }
+        };
+        for f in sweep {
+            update(&mut s.force_x, f.force[0], f.phi);
+            update(&mut s.force_y, f.force[1], f.phi);
+            update(&mut s.moment, f.moment, f.phi);
+            let mag = f.force[0].hypot(f.force[1]);
+            if mag > s.magnitude.value {
+                s.magnitude = Extreme {
+                    value: mag,
+                    phi: f.phi,
+                };
+            }
+        }
+        Some(s)
+    }
+}

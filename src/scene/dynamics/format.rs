@@ -1,0 +1,150 @@
+//! The dynamic sections as written (serde, every value with its span).
+
+use std::collections::BTreeMap;
+
+use serde::Deserialize;
+use toml::Spanned;
+
+use crate::scene::format::Name;
+
+/// `[masses.<link>]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MassDef {
+    /// Mass (kg).
+    pub mass: Spanned<f64>,
+    /// Centre of gravity: a point of the link, or `[x, y]` at the sketch (length unit).
+    pub center: Spanned<CenterDef>,
+    /// Moment of inertia about the centre (kg·m²); default 0.
+    pub inertia: Option<Spanned<f64>>,
+}
+
+/// A centre of gravity: a named point or sketch coordinates.
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub enum CenterDef {
+    /// A point of the link.
+    Point(String),
+    /// Sketch coordinates.
+    Xy([f64; 2]),
+}
+
+/// `[gravity]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GravityDef {
+    /// Acceleration of gravity (m/s²), along −y.
+    pub g: Spanned<f64>,
+}
+
+/// One `[[load]]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadDef {
+    /// The loaded link.
+    pub link: Name,
+    /// Point of application of a force (a point of the link).
+    pub point: Option<Name>,
+    /// Force (N), global components.
+    pub force: Option<Spanned<[f64; 2]>>,
+    /// Torque (N·m), counter-clockwise positive.
+    pub torque: Option<Spanned<f64>>,
+    /// Drive range where the load acts, in the drive's unit.
+    pub active: Option<Spanned<[f64; 2]>>,
+}
+
+/// `[friction.<joint>]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrictionDef {
+    /// Coulomb coefficient (≥ 0).
+    pub coefficient: Spanned<f64>,
+    /// Revolute joints: pin radius (length unit).
+    pub pin_radius: Option<Spanned<f64>>,
+    /// Sliding joints: where the friction force acts, along the guide's normal from the
+    /// joint's point (length unit).
+    pub contact_offset: Option<Spanned<f64>>,
+}
+
+/// The nominally driving side of a mesh.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DrivingSide {
+    /// The pinion, or the first gear.
+    First,
+    /// The rack, or the second gear.
+    Second,
+}
+
+/// `[efficiency.<joint>]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EfficiencyDef {
+    /// Efficiency for direct power flow, in (0, 1].
+    pub efficiency: Spanned<f64>,
+    /// The nominally driving side (default `first`).
+    pub driving: Option<Spanned<DrivingSide>>,
+}
+
+/// `[motor]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MotorDef {
+    /// Rotor moment of inertia (kg·m², ≥ 0).
+    pub rotor_inertia: Spanned<f64>,
+    /// Drive-joint speed over motor speed (non-zero).
+    pub ratio: Spanned<f64>,
+    /// Gearbox efficiency in (0, 1]; default 1.
+    pub efficiency: Option<Spanned<f64>>,
+}
+
+/// What a `[[dynamics]]` output reports.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DynamicQuantity {
+    /// ΣF_x, ΣF_y of the inertial forces and their moment about the origin.
+    ShakingForce,
+    /// Each link's inertial force and couple.
+    InertialForces,
+    /// The joint reactions.
+    Reactions,
+    /// The drive torque (or force), and the motor torque with a motor.
+    DriveTorque,
+    /// The kinetic energy.
+    KineticEnergy,
+    /// The reduced moment of inertia and its derivative.
+    ReducedInertia,
+    /// The drive torque from the power balance, its difference, and the power terms.
+    PowerBalance,
+}
+
+/// One `[[dynamics]]` entry.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DynamicsOutputDef {
+    /// What to report.
+    pub output: Spanned<DynamicQuantity>,
+    /// For `reactions`: the joints (default: all).
+    pub joints: Option<Vec<Name>>,
+    /// For `inertial_forces`: the links (default: all with mass).
+    pub links: Option<Vec<Name>>,
+}
+
+/// The dynamic sections of a scene file, as written.
+#[derive(Debug, Default)]
+pub struct DynamicsSections<'a> {
+    /// `[masses]`.
+    pub masses: Option<&'a Spanned<BTreeMap<Name, Spanned<MassDef>>>>,
+    /// `[gravity]`.
+    pub gravity: Option<&'a Spanned<GravityDef>>,
+    /// `[[load]]`.
+    pub loads: &'a [Spanned<LoadDef>],
+    /// `[friction]`.
+    pub friction: Option<&'a Spanned<BTreeMap<Name, Spanned<FrictionDef>>>>,
+    /// `[efficiency]`.
+    pub efficiency: Option<&'a Spanned<BTreeMap<Name, Spanned<EfficiencyDef>>>>,
+    /// `[motor]`.
+    pub motor: Option<&'a Spanned<MotorDef>>,
+    /// `[[dynamics]]`.
+    pub outputs: &'a [Spanned<DynamicsOutputDef>],
+}
