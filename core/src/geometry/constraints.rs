@@ -281,7 +281,8 @@ impl Equations {
         with_frames(q, |f| self.evaluate_with(f, phi, out));
     }
 
-    fn evaluate_with<D: DualNum<Primitive = f64> + Copy>(
+    /// Evaluates Φ at the pose of `f` (its sines and cosines already known) into `out`.
+    pub(crate) fn evaluate_with<D: DualNum<Primitive = f64> + Copy>(
         &self,
         f: &Frames<'_, D>,
         phi: D,
@@ -343,12 +344,16 @@ impl Equations {
 
     /// Evaluates the Jacobian Φ_q at `q` (f64) into `jac` (rows × coordinates), analytically.
     pub fn jacobian(&self, q: &[f64], jac: &mut DMatrix<f64>) {
-        jac.fill(0.0);
         with_frames(q, |f| self.jacobian_with(f, jac));
     }
 
-    fn jacobian_with(&self, f: &Frames<'_, f64>, jac: &mut DMatrix<f64>) {
-        let mut g = Gradient { f, jac };
+    /// Evaluates Φ_q at the pose of `f` (its sines and cosines already known) into `jac`.
+    pub(crate) fn jacobian_with(&self, f: &Frames<'_, f64>, jac: &mut DMatrix<f64>) {
+        // (A slice fill is a memset; nalgebra's `fill` goes entry by entry.)
+        let n = jac.nrows();
+        let jac = jac.as_mut_slice();
+        jac.fill(0.0);
+        let mut g = Gradient { f, jac, n };
         let mut row = 0;
         for t in &self.terms {
             match *t {
@@ -470,6 +475,27 @@ pub(crate) fn with_frames<D: DualNum<Primitive = f64> + Copy, T>(
     }
 }
 
+/// `(sin, cos)` of angle `to`, given `(sin, cos)` of a nearby angle `from`.
+///
+/// Along Newton steps the angles move by ~1e-7 and less; rotating the known pair by the
+/// difference d (exact: the operands are close) with sin d and cos d − 1 from their Taylor
+/// series is then as accurate as `sin_cos` (the first terms left out are below 1e-20 for
+/// |d| ≤ 1e-3; the result differs from the rounded sin/cos of `to` by about one ulp) and
+/// far cheaper. Larger differences use `sin_cos`.
+pub(crate) fn turn((s, c): (f64, f64), from: f64, to: f64) -> (f64, f64) {
+    let d = to - from;
+    if d.abs() > 1e-3 || !d.is_finite() {
+        return to.sin_cos();
+    }
+    let d2 = d * d;
+    let sin_d = d * (1.0 - d2 / 6.0 * (1.0 - d2 / 20.0));
+    let cos_d_minus_1 = -0.5 * d2 * (1.0 - d2 / 12.0);
+    (
+        s + (s * cos_d_minus_1 + c * sin_d),
+        c + (c * cos_d_minus_1 - s * sin_d),
+    )
+}
+
 /// Sine and cosine of every body's angle, for evaluating point positions.
 pub(crate) struct Frames<'a, D> {
     pub q: &'a [D],
@@ -515,24 +541,31 @@ impl<D: DualNum<Primitive = f64> + Copy> Frames<'_, D> {
 /// Accumulates rows of Φ_q from the pieces every equation is made of.
 struct Gradient<'a, 'f, 'q> {
     f: &'f Frames<'q, f64>,
-    jac: &'a mut DMatrix<f64>,
+    /// Φ_q column-major, `n` rows.
+    jac: &'a mut [f64],
+    n: usize,
 }
 
 impl Gradient<'_, '_, '_> {
+    /// Φ_q[row, column].
+    fn entry(&mut self, row: usize, column: usize) -> &mut f64 {
+        &mut self.jac[column * self.n + row]
+    }
+
     /// Adds `w·∂r/∂q` for the point of `b` at local `p` to `row`.
     fn point(&mut self, row: usize, b: Body, p: [f64; 2], w: [f64; 2]) {
         if let Some(k) = b {
             let r = self.f.rotate(b, p);
-            self.jac[(row, 3 * k)] += w[0];
-            self.jac[(row, 3 * k + 1)] += w[1];
-            self.jac[(row, 3 * k + 2)] += w[1] * r[0] - w[0] * r[1];
+            *self.entry(row, 3 * k) += w[0];
+            *self.entry(row, 3 * k + 1) += w[1];
+            *self.entry(row, 3 * k + 2) += w[1] * r[0] - w[0] * r[1];
         }
     }
 
     /// Adds `w·∂θ_b/∂q` to `row`.
     fn angle(&mut self, row: usize, b: Body, w: f64) {
         if let Some(k) = b {
-            self.jac[(row, 3 * k + 2)] += w;
+            *self.entry(row, 3 * k + 2) += w;
         }
     }
 
@@ -544,11 +577,11 @@ impl Gradient<'_, '_, '_> {
         self.point(row, pin, p, w);
         if let Some(k) = line.body {
             let rel = sub(self.f.point(pin, p), self.f.point(line.body, [0.0, 0.0]));
-            self.jac[(row, 3 * k)] -= w[0];
-            self.jac[(row, 3 * k + 1)] -= w[1];
+            *self.entry(row, 3 * k) -= w[0];
+            *self.entry(row, 3 * k + 1) -= w[1];
             // The guide's rotation turns u and moves a: ∂/∂θ_g of c(u, r − r_g(a)) is
             // −u·(r − r_g), of u·(r − r_g(a)) it is c(u, r − r_g), r_g the guide's origin.
-            self.jac[(row, 3 * k + 2)] += if along {
+            *self.entry(row, 3 * k + 2) += if along {
                 cross(u, rel)
             } else {
                 -(u[0] * rel[0] + u[1] * rel[1])
