@@ -138,7 +138,11 @@ impl BlockLu {
         let mut r: [f64; K] = std::array::from_fn(|i| b[rows[i]]);
         self.subtract_coupling(block, jac, x, &mut r);
         let pivots = &self.pivots[block.start..block.start + K];
-        substitute::<K>(&self.lu[block.lu_start..block.lu_start + K * K], pivots, &mut r);
+        substitute::<K>(
+            &self.lu[block.lu_start..block.lu_start + K * K],
+            pivots,
+            &mut r,
+        );
         for (&c, v) in self.columns[block.start..block.start + K].iter().zip(r) {
             x[c] = v;
         }
@@ -184,6 +188,7 @@ fn factor_block(a: &mut [f64], k: usize, pivots: &mut [usize], parity: &mut f64)
 /// [`factor_any`] for K×K.
 fn factor_fixed<const K: usize>(a: &mut [f64], pivots: &mut [usize], parity: &mut f64) -> bool {
     let a: &mut [[f64; K]; K] = a.as_chunks_mut::<K>().0.try_into().expect("a K×K block");
+    let pivots: &mut [usize; K] = pivots.try_into().expect("K pivots");
     *parity = 1.0;
     for d in 0..K {
         let mut p = d;

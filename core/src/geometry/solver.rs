@@ -311,10 +311,11 @@ impl<'m> Tracker<'m> {
                 return Err(self.singular(self.phi));
             }
         }
-        let coordinates = (0..self.q.len())
+        let (q, dq, ddq) = (self.q.as_slice(), self.dq.as_slice(), self.ddq.as_slice());
+        let coordinates = (0..q.len())
             .map(|i| {
-                let d = [self.dq[i], self.ddq[i], dddq.get(i).copied().unwrap_or(0.0)];
-                Jet::new(self.q[i], std::array::from_fn(|k| d[k]))
+                let d = [dq[i], ddq[i], dddq.get(i).copied().unwrap_or(0.0)];
+                Jet::new(q[i], std::array::from_fn(|k| d[k]))
             })
             .collect();
         Ok(Kinematics::new(self.mechanism, self.phi, coordinates))
@@ -354,11 +355,17 @@ impl<'m> Tracker<'m> {
             let h = (phi - self.phi) / f64::powi(2.0, halvings.min(1074) as i32);
             let target = if halvings == 0 { phi } else { self.phi + h };
             // Taylor predictor q + h q′ + h²/2 q″.
-            for i in 0..self.q.len() {
-                self.trial[i] = self.q[i] + h * (self.dq[i] + 0.5 * h * self.ddq[i]);
+            let derivatives = self.dq.as_slice().iter().zip(self.ddq.as_slice());
+            let poses = self.trial.as_mut_slice().iter_mut().zip(self.q.as_slice());
+            for ((x, &q), (&dq, &ddq)) in poses.zip(derivatives) {
+                *x = q + h * (dq + 0.5 * h * ddq);
             }
-            for (k, f) in self.trial_frames.iter_mut().enumerate() {
-                *f = self.trial[3 * k + 2].sin_cos();
+            for (f, pose) in self
+                .trial_frames
+                .iter_mut()
+                .zip(self.trial.as_slice().chunks_exact(3))
+            {
+                *f = pose[2].sin_cos();
             }
             let failure = match self.newton(target) {
                 Ok(iterations) => {
@@ -404,7 +411,7 @@ impl<'m> Tracker<'m> {
             }
         }
         report.phi = self.phi;
-        report.residual = self.residual.amax();
+        report.residual = amax(self.residual.as_slice());
         Ok(report)
     }
 
@@ -414,7 +421,7 @@ impl<'m> Tracker<'m> {
         let limit = self.solver.tolerance * self.size;
         for iteration in 0..=self.solver.max_iterations {
             self.evaluate_trial(phi);
-            let norm = self.trial_residual.amax();
+            let norm = amax(self.trial_residual.as_slice());
             if norm <= limit {
                 return Ok(iteration);
             }
@@ -433,7 +440,7 @@ impl<'m> Tracker<'m> {
             }
             step_pose(&mut self.trial, &mut self.trial_frames, &self.step);
         }
-        Err((self.trial_residual.amax(), self.worst_loop()))
+        Err((amax(self.trial_residual.as_slice()), self.worst_loop()))
     }
 
     /// Φ(trial, φ) into `trial_residual`.
@@ -559,13 +566,31 @@ impl<'m> Tracker<'m> {
     }
 }
 
+/// max |x_i|, NaN if any x_i is NaN.
+fn amax(x: &[f64]) -> f64 {
+    x.iter().fold(0.0, |m, &v| {
+        if v.abs() > m || v.is_nan() {
+            v.abs()
+        } else {
+            m
+        }
+    })
+}
+
 /// `q −= step`, keeping the bodies' `(sin θ, cos θ)` in `frames` up to date.
 fn step_pose(q: &mut DVector<f64>, frames: &mut [(f64, f64)], step: &DVector<f64>) {
-    for (k, f) in frames.iter_mut().enumerate() {
-        let from = q[3 * k + 2];
-        *f = constraints::turn(*f, from, from - step[3 * k + 2]);
+    let poses = q.as_mut_slice().chunks_exact_mut(3);
+    for ((f, pose), step) in frames
+        .iter_mut()
+        .zip(poses)
+        .zip(step.as_slice().chunks_exact(3))
+    {
+        let from = pose[2];
+        for (x, s) in pose.iter_mut().zip(step) {
+            *x -= s;
+        }
+        *f = constraints::turn(*f, from, pose[2]);
     }
-    *q -= step;
 }
 
 /// A factorised Φ_q with the matrix it came from, as a linear solver.
