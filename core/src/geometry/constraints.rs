@@ -503,6 +503,7 @@ pub(crate) struct Frames<'a, D> {
 }
 
 impl<D: DualNum<Primitive = f64> + Copy> Frames<'_, D> {
+    #[inline]
     fn rotate(&self, b: Body, p: [f64; 2]) -> [D; 2] {
         match b {
             None => [D::from(p[0]), D::from(p[1])],
@@ -513,6 +514,7 @@ impl<D: DualNum<Primitive = f64> + Copy> Frames<'_, D> {
         }
     }
 
+    #[inline]
     pub fn point(&self, b: Body, p: [f64; 2]) -> [D; 2] {
         let r = self.rotate(b, p);
         match b {
@@ -521,11 +523,13 @@ impl<D: DualNum<Primitive = f64> + Copy> Frames<'_, D> {
         }
     }
 
+    #[inline]
     pub fn angle(&self, b: Body) -> D {
         b.map_or(D::from(0.0), |k| self.q[3 * k + 2])
     }
 
     /// Unit direction of `line` and the vector from its origin to `r`.
+    #[inline]
     fn along(&self, line: &Line, r: [D; 2]) -> ([D; 2], [D; 2]) {
         let u = self.rotate(line.body, line.direction);
         let a = self.point(line.body, line.origin);
@@ -548,11 +552,13 @@ struct Gradient<'a, 'f, 'q> {
 
 impl Gradient<'_, '_, '_> {
     /// Φ_q[row, column].
+    #[inline]
     fn entry(&mut self, row: usize, column: usize) -> &mut f64 {
         &mut self.jac[column * self.n + row]
     }
 
     /// Adds `w·∂r/∂q` for the point of `b` at local `p` to `row`.
+    #[inline]
     fn point(&mut self, row: usize, b: Body, p: [f64; 2], w: [f64; 2]) {
         if let Some(k) = b {
             let r = self.f.rotate(b, p);
@@ -563,6 +569,7 @@ impl Gradient<'_, '_, '_> {
     }
 
     /// Adds `w·∂θ_b/∂q` to `row`.
+    #[inline]
     fn angle(&mut self, row: usize, b: Body, w: f64) {
         if let Some(k) = b {
             *self.entry(row, 3 * k + 2) += w;
@@ -571,6 +578,7 @@ impl Gradient<'_, '_, '_> {
 
     /// Adds the gradient of `u·(r − r_g(a))` (`along`) or `c(u, r − r_g(a))` to `row`, where
     /// `r` is the point of `pin` at local `p` and `u`, `a` belong to `line`.
+    #[inline]
     fn line(&mut self, row: usize, line: &Line, pin: Body, p: [f64; 2], along: bool) {
         let u = self.f.rotate(line.body, line.direction);
         let w = if along { u } else { [-u[1], u[0]] };
