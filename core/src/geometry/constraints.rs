@@ -18,6 +18,7 @@
 //! where `s = u·(r_s(p) − r_g(a))` is a prismatic displacement. Rows are in joint order, the
 //! drive last. Angular rows are in rad, the others in m.
 
+pub(crate) use super::frames::{Frames, with_frames};
 use super::model::{DriveKind, JointKind, Mechanism};
 use nalgebra::DMatrix;
 use num_dual::DualNum;
@@ -448,97 +449,6 @@ impl Equations {
             }
         }
         out
-    }
-}
-
-/// Calls `body` with the sines and cosines of every body's angle, kept on the stack for up to
-/// 8 moving links (most mechanisms), on the heap beyond.
-pub(crate) fn with_frames<D: DualNum<Primitive = f64> + Copy, T>(
-    q: &[D],
-    body: impl FnOnce(&Frames<'_, D>) -> T,
-) -> T {
-    let n = q.len() / 3;
-    let sin_cos = |k: usize| q[3 * k + 2].sin_cos();
-    if n <= 8 {
-        let zero = D::from(0.0);
-        let mut frames = [(zero, zero); 8];
-        for (k, f) in frames.iter_mut().enumerate().take(n) {
-            *f = sin_cos(k);
-        }
-        body(&Frames {
-            q,
-            frames: &frames[..n],
-        })
-    } else {
-        let frames: Vec<(D, D)> = (0..n).map(sin_cos).collect();
-        body(&Frames { q, frames: &frames })
-    }
-}
-
-/// `(sin, cos)` of angle `to`, given `(sin, cos)` of a nearby angle `from`.
-///
-/// Along Newton steps the angles move by ~1e-7 and less; rotating the known pair by the
-/// difference d (exact: the operands are close) with sin d and cos d − 1 from their Taylor
-/// series is then as accurate as `sin_cos` (the first terms left out are below 1e-20 for
-/// |d| ≤ 1e-3; the result differs from the rounded sin/cos of `to` by about one ulp) and
-/// far cheaper. Larger differences use `sin_cos`.
-pub(crate) fn turn((s, c): (f64, f64), from: f64, to: f64) -> (f64, f64) {
-    let d = to - from;
-    if d.abs() > 1e-3 || !d.is_finite() {
-        return to.sin_cos();
-    }
-    let d2 = d * d;
-    let sin_d = d * (1.0 - d2 / 6.0 * (1.0 - d2 / 20.0));
-    let cos_d_minus_1 = -0.5 * d2 * (1.0 - d2 / 12.0);
-    (
-        s + (s * cos_d_minus_1 + c * sin_d),
-        c + (c * cos_d_minus_1 - s * sin_d),
-    )
-}
-
-/// Sine and cosine of every body's angle, for evaluating point positions.
-pub(crate) struct Frames<'a, D> {
-    pub q: &'a [D],
-    pub frames: &'a [(D, D)],
-}
-
-impl<D: DualNum<Primitive = f64> + Copy> Frames<'_, D> {
-    #[inline]
-    fn rotate(&self, b: Body, p: [f64; 2]) -> [D; 2] {
-        match b {
-            None => [D::from(p[0]), D::from(p[1])],
-            Some(k) => {
-                let (s, c) = self.frames[k];
-                [c * p[0] - s * p[1], s * p[0] + c * p[1]]
-            }
-        }
-    }
-
-    #[inline]
-    pub fn point(&self, b: Body, p: [f64; 2]) -> [D; 2] {
-        let r = self.rotate(b, p);
-        match b {
-            None => r,
-            Some(k) => [self.q[3 * k] + r[0], self.q[3 * k + 1] + r[1]],
-        }
-    }
-
-    #[inline]
-    pub fn angle(&self, b: Body) -> D {
-        b.map_or(D::from(0.0), |k| self.q[3 * k + 2])
-    }
-
-    /// Unit direction of `line` and the vector from its origin to `r`.
-    #[inline]
-    fn along(&self, line: &Line, r: [D; 2]) -> ([D; 2], [D; 2]) {
-        let u = self.rotate(line.body, line.direction);
-        let a = self.point(line.body, line.origin);
-        (u, [r[0] - a[0], r[1] - a[1]])
-    }
-
-    pub fn displacement(&self, slide: &Slide) -> D {
-        let (u, d) = self.along(&slide.line, self.point(slide.slider, slide.point));
-        u[0] * d[0] + u[1] * d[1]
     }
 }
 

@@ -9,6 +9,7 @@
 mod block_lu;
 pub mod branch;
 mod constraints;
+mod frames;
 pub mod implicit;
 mod kinematics;
 mod mobility;

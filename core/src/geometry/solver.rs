@@ -3,7 +3,9 @@
 //! [`Solver`] holds the configuration (builder style); [`Solver::track`] starts a [`Tracker`]
 //! at the sketch pose, and [`Tracker::move_to`] walks it to a new drive position:
 //!
-//! 1. **Predict** with the Taylor polynomial `q + h q′ + h²/2 q″` (q′, q″ from the last pose).
+//! 1. **Predict** with the Taylor polynomial `q + h q′ + h²/2 q″` (q′, q″ from the last pose);
+//!    the links' sines and cosines are computed there once and then turned along the Newton
+//!    steps (see `frames`), so a drive position costs one `sin_cos` per link.
 //! 2. **Correct** with Newton on Φ(q, φ) = 0 (analytic Φ_q, factorised loop by loop, see
 //!    `block_lu`) until the residual is below `tolerance × size` (size: the sketch's
 //!    diagonal).
@@ -16,10 +18,16 @@
 //!    drops from the tolerance to rounding), then q′ = Φ_q⁻¹ e_drive and q″ (see
 //!    [`super::implicit`]) with the same factorisation; they feed the next predictor and
 //!    [`Tracker::kinematics`].
+//!
+//! Nothing is allocated per drive position: the tracker keeps its buffers, and the loop
+//! structure is resolved to storage positions once (see `block_lu`). In a loop, read outputs
+//! through handles resolved once ([`Mechanism::point_output`] and the methods next to it)
+//! rather than by name.
 
 use super::block_lu::BlockLu;
 use super::branch::{self, Loop};
-use super::constraints::{self, Equations, Frames};
+use super::constraints::{Equations, Frames};
+use super::frames;
 use super::implicit::{self, Factorised, SecondOrder};
 use super::kinematics::Kinematics;
 use super::mobility::{self, Mobility};
@@ -589,7 +597,7 @@ fn step_pose(q: &mut DVector<f64>, frames: &mut [(f64, f64)], step: &DVector<f64
         for (x, s) in pose.iter_mut().zip(step) {
             *x -= s;
         }
-        *f = constraints::turn(*f, from, pose[2]);
+        *f = frames::turn(*f, from, pose[2]);
     }
 }
 
