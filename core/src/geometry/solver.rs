@@ -181,7 +181,6 @@ impl Solver {
         let phi = t.phi;
         t.evaluate_trial(phi);
         t.check_trial(phi)?;
-        t.certificates.copy_from_slice(&t.trial_certificates);
         t.accept(phi)?;
         Ok(t)
     }
@@ -547,14 +546,9 @@ impl<'m> Tracker<'m> {
         if !ok {
             return Err(self.singular(phi));
         }
-        self.certificates_refresh();
+        // The certificates of the factorisation just made current (`check_trial`'s).
+        self.certificates.copy_from_slice(&self.trial_certificates);
         Ok(())
-    }
-
-    fn certificates_refresh(&mut self) {
-        for (i, c) in self.certificates.iter_mut().enumerate() {
-            *c = if self.lu.determinant(i) > 0.0 { 1 } else { -1 };
-        }
     }
 
     /// The loop whose equations are furthest from being satisfied by the trial residual.
