@@ -2,7 +2,8 @@
 //!
 //! - `whitworth ψ,ψ′,ψ″ per drive position: geometry solver vs closed-form Dual2` — one
 //!   revolution at 0.5° steps; the geometry path is a warm-started Newton solve plus the
-//!   implicit lift to second order plus reading ψ; the closed form is
+//!   implicit lift to second order plus reading ψ (resolved once with
+//!   `Mechanism::rotation_output`); the closed form is
 //!   ψ = atan2(λ sin φ, 1 − λ cos φ) in `Dual2_64`.
 //! - `whitworth lift q′,q″ at one pose: one LU + Dual2 vs num-dual implicit_derivative_vec`
 //!   — the two exact ways to differentiate the solved pose.
@@ -51,6 +52,7 @@ fn per_drive_position(c: &mut Criterion) {
     let m = whitworth();
     let phis: Vec<f64> = (1..=720).map(|i| (i as f64 * 0.5).to_radians()).collect();
     let start = Solver::default().track(&m).expect("assembles");
+    let rocker = m.rotation_output("rocker").expect("link exists");
     let mut group = c.benchmark_group(
         "whitworth ψ,ψ′,ψ″ per drive position: geometry solver vs closed-form Dual2",
     );
@@ -64,7 +66,7 @@ fn per_drive_position(c: &mut Criterion) {
                 for &phi in &phis {
                     t.move_to(black_box(phi)).expect("assembles");
                     let k = t.kinematics::<2>().expect("regular");
-                    let psi = k.rotation("rocker").expect("link exists");
+                    let psi = k.value(&rocker);
                     acc += psi.value + psi.d1() + psi.d2();
                 }
                 acc

@@ -1,7 +1,7 @@
 //! Reading an output from a solved pose: point jets from the model, angles and slider
 //! displacements computed from them with exact derivatives (third-order dual numbers).
 
-use mechdiff_core::geometry::Kinematics;
+use mechdiff_core::geometry::{Kinematics, Mechanism, PointOutput};
 use mechdiff_core::num_dual::{Dual3_64, DualNum};
 use mechdiff_core::{DriveState, Jet};
 
@@ -23,38 +23,78 @@ pub(crate) fn quantity<const N: usize>(jet: &Jet<N>, q: Quantity, drive: &DriveS
     }
 }
 
+/// An output with its points resolved in the model once, before the sweep, so that reading
+/// it at a drive position costs no name lookups.
+pub(crate) struct Resolved<'s> {
+    /// The output.
+    pub output: &'s Output,
+    /// Its points, in the order of [`point_names`].
+    points: Vec<PointOutput>,
+}
+
+impl<'s> Resolved<'s> {
+    /// Resolves `output`'s points in `mechanism` (built from `scene`).
+    pub fn new(scene: &Scene, mechanism: &Mechanism, output: &'s Output) -> Result<Self> {
+        let points = point_names(output)
+            .into_iter()
+            .map(|name| {
+                let link = scene
+                    .links
+                    .iter()
+                    .find(|l| l.points.iter().any(|p| p == name))
+                    .ok_or_else(|| Error::Invalid {
+                        location: output.location.clone(),
+                        message: format!("output `{}`: point `{name}` is on no link", output.name),
+                    })?;
+                mechanism
+                    .point_output(&link.name, name)
+                    .map_err(|e| solver_error(scene, e))
+            })
+            .collect::<Result<_>>()?;
+        Ok(Resolved { output, points })
+    }
+}
+
+/// The points an output is computed from: the point; the line, then the reference line;
+/// the sliding point, then the line.
+fn point_names(output: &Output) -> Vec<&str> {
+    match &output.kind {
+        OutputKind::Point(name) => vec![name],
+        OutputKind::Angle {
+            line, reference, ..
+        } => line
+            .iter()
+            .chain(reference.iter().flatten())
+            .map(String::as_str)
+            .collect(),
+        OutputKind::Slider { point, line, .. } => std::iter::once(point)
+            .chain(line)
+            .map(String::as_str)
+            .collect(),
+    }
+}
+
 /// The output's jets at the current pose: `[x, y]` for a point, one jet otherwise. Angles are
 /// kept continuous along the sweep through `previous`.
 pub(crate) fn evaluate<const N: usize>(
     scene: &Scene,
     k: &Kinematics<'_, N>,
-    output: &Output,
+    resolved: &Resolved<'_>,
     previous: &mut Option<f64>,
-) -> Result<Vec<Jet<N>>> {
-    let point = |name: &str| -> Result<[Dual3_64; 2]> {
-        let link = scene
-            .links
-            .iter()
-            .find(|l| l.points.iter().any(|p| p == name))
-            .ok_or_else(|| Error::Invalid {
-                location: output.location.clone(),
-                message: format!("output `{}`: point `{name}` is on no link", output.name),
-            })?;
-        let [x, y] = k
-            .point(&link.name, name)
-            .map_err(|e| solver_error(scene, e))?;
-        Ok([dual(&x), dual(&y)])
+) -> Vec<Jet<N>> {
+    let point = |i: usize| -> [Dual3_64; 2] {
+        let [x, y] = k.position(&resolved.points[i]);
+        [dual(&x), dual(&y)]
     };
-    Ok(match &output.kind {
-        OutputKind::Point(name) => point(name)?.iter().map(jet::<N>).collect(),
+    let output = resolved.output;
+    match &output.kind {
+        OutputKind::Point(_) => point(0).iter().map(jet::<N>).collect(),
         OutputKind::Angle {
-            line,
-            reference,
-            sense,
+            reference, sense, ..
         } => {
-            let mut angle = direction(point(&line[0])?, point(&line[1])?);
-            if let Some([a, b]) = reference {
-                angle -= direction(point(a)?, point(b)?);
+            let mut angle = direction(point(0), point(1));
+            if reference.is_some() {
+                angle -= direction(point(2), point(3));
             }
             if *sense == Sense::Cw {
                 angle = -angle;
@@ -65,20 +105,16 @@ pub(crate) fn evaluate<const N: usize>(
             *previous = Some(angle.re);
             vec![jet::<N>(&angle)]
         }
-        OutputKind::Slider {
-            point: p,
-            line: [a, b],
-            ..
-        } => {
+        OutputKind::Slider { .. } => {
             // s = (p − a)·u with u the unit direction a → b of the guide or slot (both points
             // on one link, so |b − a| is constant; it is differentiated anyway, exactly).
-            let (p, a, b) = (point(p)?, point(a)?, point(b)?);
+            let (p, a, b) = (point(0), point(1), point(2));
             let u = [b[0] - a[0], b[1] - a[1]];
             let norm = (u[0] * u[0] + u[1] * u[1]).sqrt();
             let s = ((p[0] - a[0]) * u[0] + (p[1] - a[1]) * u[1]) / norm;
             vec![jet::<N>(&s)]
         }
-    })
+    }
 }
 
 /// The output angle at the sketch pose, where the sweep's angle continuity starts.

@@ -9,7 +9,7 @@ use mechdiff_core::{DeadPosition, DeadPositionSearch, DriveState};
 use crate::error::{Error, Result};
 
 use super::build::{mechanism, model_error};
-use super::evaluate::{evaluate, quantity};
+use super::evaluate::{Resolved, evaluate, quantity};
 use super::model::{DriveKind, Output, Scene};
 use super::outputs::{Column, columns};
 use super::plan::Plan;
@@ -150,7 +150,8 @@ fn drive_positions(scene: &Scene, mechanism: &Mechanism) -> Result<Vec<f64>> {
     let Some(k) = scene.sweep_of else {
         return Ok(scene.positions.clone());
     };
-    let output = &scene.outputs[k];
+    let resolved = Resolved::new(scene, mechanism, &scene.outputs[k])?;
+    let output = resolved.output;
     let mut tracker = Solver::default()
         .track(mechanism)
         .map_err(|e| solver_error(scene, e))?;
@@ -173,7 +174,7 @@ fn drive_positions(scene: &Scene, mechanism: &Mechanism) -> Result<Vec<f64>> {
         let mut reached = false;
         for _ in 0..60 {
             let k = solve::<1>(scene, &mut tracker, phi)?;
-            let jet = evaluate(scene, &k, output, &mut previous)?[0];
+            let jet = evaluate(scene, &k, &resolved, &mut previous)[0];
             let (miss, slope) = (jet.value - target, jet.d1());
             if miss.abs() <= 4.0 * f64::EPSILON * target.abs().max(jet.value.abs()) {
                 reached = true;
@@ -223,14 +224,17 @@ fn sweep<const N: usize>(
         .track(mechanism)
         .map_err(|e| solver_error(scene, e))?;
     let drive = plan.drive.unwrap_or(DriveState::constant_speed(0.0));
+    let outputs = (scene.outputs.iter())
+        .map(|output| Resolved::new(scene, mechanism, output))
+        .collect::<Result<Vec<_>>>()?;
     let mut previous: Vec<Option<f64>> = vec![None; scene.outputs.len()];
     let mut rows = Vec::with_capacity(positions.len());
     for &phi in positions {
         let k = solve::<N>(scene, &mut tracker, phi)?;
         let mut row = vec![phi];
-        for (output, previous) in scene.outputs.iter().zip(previous.iter_mut()) {
-            let values = evaluate(scene, &k, output, previous)?;
-            for q in &output.quantities {
+        for (resolved, previous) in outputs.iter().zip(previous.iter_mut()) {
+            let values = evaluate(scene, &k, resolved, previous);
+            for q in &resolved.output.quantities {
                 for v in &values {
                     row.push(quantity(v, *q, &drive));
                 }
@@ -275,28 +279,16 @@ fn search_dead_positions(
             .track(mechanism)
             .map_err(|e| solver_error(scene, e))?,
     );
+    let resolved = Resolved::new(scene, mechanism, output)?;
     let previous = RefCell::new(None);
-    let failure = RefCell::new(None);
-    let found = DeadPositionSearch::new(lo..=hi)
+    DeadPositionSearch::new(lo..=hi)
         .with_step(step)
         .find_roots(|phi| {
             let mut t = tracker.borrow_mut();
             let k = t.move_to(phi).and_then(|_| t.kinematics::<3>())?;
-            match evaluate(scene, &k, output, &mut previous.borrow_mut()) {
-                Ok(jets) => Ok(jets[0]),
-                Err(e) => {
-                    *failure.borrow_mut() = Some(e);
-                    Err(mechdiff_core::Error::NonFinite {
-                        phi,
-                        quantity: "a dead-position search output",
-                    })
-                }
-            }
-        });
-    if let Some(e) = failure.into_inner() {
-        return Err(e);
-    }
-    found.map_err(|e| solver_error(scene, e))
+            Ok(evaluate(scene, &k, &resolved, &mut previous.borrow_mut())[0])
+        })
+        .map_err(|e| solver_error(scene, e))
 }
 
 /// A core solver error, with drive positions in the scene's units.

@@ -18,6 +18,7 @@
 //! where `s = u·(r_s(p) − r_g(a))` is a prismatic displacement. Rows are in joint order, the
 //! drive last. Angular rows are in rad, the others in m.
 
+pub(crate) use super::frames::{Frames, with_frames};
 use super::model::{DriveKind, JointKind, Mechanism};
 use nalgebra::DMatrix;
 use num_dual::DualNum;
@@ -281,7 +282,8 @@ impl Equations {
         with_frames(q, |f| self.evaluate_with(f, phi, out));
     }
 
-    fn evaluate_with<D: DualNum<Primitive = f64> + Copy>(
+    /// Evaluates Φ at the pose of `f` (its sines and cosines already known) into `out`.
+    pub(crate) fn evaluate_with<D: DualNum<Primitive = f64> + Copy>(
         &self,
         f: &Frames<'_, D>,
         phi: D,
@@ -343,12 +345,16 @@ impl Equations {
 
     /// Evaluates the Jacobian Φ_q at `q` (f64) into `jac` (rows × coordinates), analytically.
     pub fn jacobian(&self, q: &[f64], jac: &mut DMatrix<f64>) {
-        jac.fill(0.0);
         with_frames(q, |f| self.jacobian_with(f, jac));
     }
 
-    fn jacobian_with(&self, f: &Frames<'_, f64>, jac: &mut DMatrix<f64>) {
-        let mut g = Gradient { f, jac };
+    /// Evaluates Φ_q at the pose of `f` (its sines and cosines already known) into `jac`.
+    pub(crate) fn jacobian_with(&self, f: &Frames<'_, f64>, jac: &mut DMatrix<f64>) {
+        // (A slice fill is a memset; nalgebra's `fill` goes entry by entry.)
+        let n = jac.nrows();
+        let jac = jac.as_mut_slice();
+        jac.fill(0.0);
+        let mut g = Gradient { f, jac, n };
         let mut row = 0;
         for t in &self.terms {
             match *t {
@@ -446,109 +452,54 @@ impl Equations {
     }
 }
 
-/// Calls `body` with the sines and cosines of every body's angle, kept on the stack for up to
-/// 8 moving links (most mechanisms), on the heap beyond.
-pub(crate) fn with_frames<D: DualNum<Primitive = f64> + Copy, T>(
-    q: &[D],
-    body: impl FnOnce(&Frames<'_, D>) -> T,
-) -> T {
-    let n = q.len() / 3;
-    let sin_cos = |k: usize| q[3 * k + 2].sin_cos();
-    if n <= 8 {
-        let zero = D::from(0.0);
-        let mut frames = [(zero, zero); 8];
-        for (k, f) in frames.iter_mut().enumerate().take(n) {
-            *f = sin_cos(k);
-        }
-        body(&Frames {
-            q,
-            frames: &frames[..n],
-        })
-    } else {
-        let frames: Vec<(D, D)> = (0..n).map(sin_cos).collect();
-        body(&Frames { q, frames: &frames })
-    }
-}
-
-/// Sine and cosine of every body's angle, for evaluating point positions.
-pub(crate) struct Frames<'a, D> {
-    pub q: &'a [D],
-    pub frames: &'a [(D, D)],
-}
-
-impl<D: DualNum<Primitive = f64> + Copy> Frames<'_, D> {
-    fn rotate(&self, b: Body, p: [f64; 2]) -> [D; 2] {
-        match b {
-            None => [D::from(p[0]), D::from(p[1])],
-            Some(k) => {
-                let (s, c) = self.frames[k];
-                [c * p[0] - s * p[1], s * p[0] + c * p[1]]
-            }
-        }
-    }
-
-    pub fn point(&self, b: Body, p: [f64; 2]) -> [D; 2] {
-        let r = self.rotate(b, p);
-        match b {
-            None => r,
-            Some(k) => [self.q[3 * k] + r[0], self.q[3 * k + 1] + r[1]],
-        }
-    }
-
-    pub fn angle(&self, b: Body) -> D {
-        b.map_or(D::from(0.0), |k| self.q[3 * k + 2])
-    }
-
-    /// Unit direction of `line` and the vector from its origin to `r`.
-    fn along(&self, line: &Line, r: [D; 2]) -> ([D; 2], [D; 2]) {
-        let u = self.rotate(line.body, line.direction);
-        let a = self.point(line.body, line.origin);
-        (u, [r[0] - a[0], r[1] - a[1]])
-    }
-
-    pub fn displacement(&self, slide: &Slide) -> D {
-        let (u, d) = self.along(&slide.line, self.point(slide.slider, slide.point));
-        u[0] * d[0] + u[1] * d[1]
-    }
-}
-
 /// Accumulates rows of Φ_q from the pieces every equation is made of.
 struct Gradient<'a, 'f, 'q> {
     f: &'f Frames<'q, f64>,
-    jac: &'a mut DMatrix<f64>,
+    /// Φ_q column-major, `n` rows.
+    jac: &'a mut [f64],
+    n: usize,
 }
 
 impl Gradient<'_, '_, '_> {
+    /// Φ_q[row, column].
+    #[inline]
+    fn entry(&mut self, row: usize, column: usize) -> &mut f64 {
+        &mut self.jac[column * self.n + row]
+    }
+
     /// Adds `w·∂r/∂q` for the point of `b` at local `p` to `row`.
+    #[inline]
     fn point(&mut self, row: usize, b: Body, p: [f64; 2], w: [f64; 2]) {
         if let Some(k) = b {
             let r = self.f.rotate(b, p);
-            self.jac[(row, 3 * k)] += w[0];
-            self.jac[(row, 3 * k + 1)] += w[1];
-            self.jac[(row, 3 * k + 2)] += w[1] * r[0] - w[0] * r[1];
+            *self.entry(row, 3 * k) += w[0];
+            *self.entry(row, 3 * k + 1) += w[1];
+            *self.entry(row, 3 * k + 2) += w[1] * r[0] - w[0] * r[1];
         }
     }
 
     /// Adds `w·∂θ_b/∂q` to `row`.
+    #[inline]
     fn angle(&mut self, row: usize, b: Body, w: f64) {
         if let Some(k) = b {
-            self.jac[(row, 3 * k + 2)] += w;
+            *self.entry(row, 3 * k + 2) += w;
         }
     }
 
     /// Adds the gradient of `u·(r − r_g(a))` (`along`) or `c(u, r − r_g(a))` to `row`, where
     /// `r` is the point of `pin` at local `p` and `u`, `a` belong to `line`.
+    #[inline]
     fn line(&mut self, row: usize, line: &Line, pin: Body, p: [f64; 2], along: bool) {
         let u = self.f.rotate(line.body, line.direction);
         let w = if along { u } else { [-u[1], u[0]] };
         self.point(row, pin, p, w);
         if let Some(k) = line.body {
             let rel = sub(self.f.point(pin, p), self.f.point(line.body, [0.0, 0.0]));
-            self.jac[(row, 3 * k)] -= w[0];
-            self.jac[(row, 3 * k + 1)] -= w[1];
+            *self.entry(row, 3 * k) -= w[0];
+            *self.entry(row, 3 * k + 1) -= w[1];
             // The guide's rotation turns u and moves a: ∂/∂θ_g of c(u, r − r_g(a)) is
             // −u·(r − r_g), of u·(r − r_g(a)) it is c(u, r − r_g), r_g the guide's origin.
-            self.jac[(row, 3 * k + 2)] += if along {
+            *self.entry(row, 3 * k + 2) += if along {
                 cross(u, rel)
             } else {
                 -(u[0] * rel[0] + u[1] * rel[1])

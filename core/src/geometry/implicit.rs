@@ -15,7 +15,7 @@
 //! arithmetic with a `DualVec` Jacobian and a dual LU per order; the bench
 //! `geometry_solver` measures both (see BENCHMARKS.md) and this one is faster.
 
-use super::constraints::Equations;
+use super::constraints::{Equations, Frames};
 use nalgebra::{DVector, Dyn, LU};
 use num_dual::{Dual2_64, Dual3_64};
 
@@ -47,15 +47,72 @@ pub(crate) fn second_derivative(
     phi: f64,
     ddq: &mut [f64],
 ) -> bool {
-    let x: Vec<Dual2_64> = q
-        .iter()
-        .zip(dq)
-        .map(|(&a, &b)| Dual2_64::new(a, b, 0.0))
-        .collect();
-    let mut out = vec![Dual2_64::from(0.0); eq.rows()];
-    eq.evaluate(&x, Dual2_64::new(phi, 1.0, 0.0), &mut out);
-    let rhs: Vec<f64> = out.iter().map(|r| -r.v2).collect();
-    lu.solve_into(&rhs, ddq)
+    let frames: Vec<(f64, f64)> = (0..q.len() / 3).map(|k| q[3 * k + 2].sin_cos()).collect();
+    let mut residual = vec![0.0; q.len()];
+    SecondOrder::new(q.len()).solve(eq, lu, q, &frames, dq, phi, ddq, &mut residual)
+}
+
+/// Buffers for q″ (see [`SecondOrder::solve`]), kept by the tracker so that lifting a pose
+/// allocates nothing.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct SecondOrder {
+    x: Vec<Dual2_64>,
+    frames: Vec<(Dual2_64, Dual2_64)>,
+    out: Vec<Dual2_64>,
+    rhs: Vec<f64>,
+}
+
+impl SecondOrder {
+    /// Buffers for `n` coordinates (and `n` equations).
+    pub fn new(n: usize) -> Self {
+        let zero = Dual2_64::from(0.0);
+        SecondOrder {
+            x: vec![zero; n],
+            frames: vec![(zero, zero); n / 3],
+            out: vec![zero; n],
+            rhs: vec![0.0; n],
+        }
+    }
+
+    /// q″ into `ddq` and Φ(q, φ) into `residual`, from q, its bodies' `(sin θ, cos θ)`
+    /// `frames`, q′ and the factorised Φ_q at (q, φ); false if singular.
+    ///
+    /// One evaluation of Φ in `Dual2` numbers `q + q′ε`, whose sines and cosines follow
+    /// from `frames` by the chain rule (sin(θ + θ′ε) = s + cθ′ε − sθ′²ε²/2, the second
+    /// derivative part being what `Dual2` stores), so no trigonometric function is called.
+    #[allow(clippy::too_many_arguments)]
+    pub fn solve(
+        &mut self,
+        eq: &Equations,
+        lu: &impl Factorised,
+        q: &[f64],
+        frames: &[(f64, f64)],
+        dq: &[f64],
+        phi: f64,
+        ddq: &mut [f64],
+        residual: &mut [f64],
+    ) -> bool {
+        for ((x, &a), &b) in self.x.iter_mut().zip(q).zip(dq) {
+            *x = Dual2_64::new(a, b, 0.0);
+        }
+        for (k, (f, &(s, c))) in self.frames.iter_mut().zip(frames).enumerate() {
+            let w = dq[3 * k + 2];
+            *f = (
+                Dual2_64::new(s, c * w, -s * w * w),
+                Dual2_64::new(c, -s * w, -c * w * w),
+            );
+        }
+        let f = Frames {
+            q: &self.x,
+            frames: &self.frames,
+        };
+        eq.evaluate_with(&f, Dual2_64::new(phi, 1.0, 0.0), &mut self.out);
+        for ((rhs, r), out) in self.rhs.iter_mut().zip(residual).zip(&self.out) {
+            *rhs = -out.v2;
+            *r = out.re;
+        }
+        lu.solve_into(&self.rhs, ddq)
+    }
 }
 
 /// q‴ from q, q′, q″ and the factorised Φ_q at (q, φ); false if singular.

@@ -1,7 +1,8 @@
 //! The pose and its exact derivatives at one drive position, and the outputs read from it.
 
-use super::constraints::{self, Body, Frames};
-use super::model::{JointKind, Mechanism};
+use super::constraints::Body;
+use super::model::Mechanism;
+use super::output::{PointOutput, Scalar, ScalarOutput};
 use crate::{Error, Jet};
 use num_dual::{Dual3_64, DualNum};
 
@@ -26,15 +27,11 @@ impl<'m, const N: usize> Kinematics<'m, N> {
         }
     }
 
-    /// The coordinates as third-order dual numbers (derivatives above `N` are zero).
-    fn duals(&self) -> Vec<Dual3_64> {
-        self.coordinates
-            .iter()
-            .map(|j| {
-                let d = |k: usize| j.derivatives.get(k).copied().unwrap_or(0.0);
-                Dual3_64::new(j.value, d(0), d(1), d(2))
-            })
-            .collect()
+    /// Coordinate `i` as a third-order dual number (derivatives above `N` are zero).
+    fn dual(&self, i: usize) -> Dual3_64 {
+        let j = &self.coordinates[i];
+        let d = |k: usize| j.derivatives.get(k).copied().unwrap_or(0.0);
+        Dual3_64::new(j.value, d(0), d(1), d(2))
     }
 
     fn jet(x: Dual3_64) -> Jet<N> {
@@ -42,40 +39,64 @@ impl<'m, const N: usize> Kinematics<'m, N> {
         Jet::new(x.re, std::array::from_fn(|k| d[k]))
     }
 
-    fn with_frames<T>(&self, f: impl FnOnce(&Frames<'_, Dual3_64>) -> T) -> T {
-        let q = self.duals();
-        let frames: Vec<_> = (0..q.len() / 3).map(|k| q[3 * k + 2].sin_cos()).collect();
-        f(&Frames {
-            q: &q,
-            frames: &frames,
-        })
-    }
-
-    fn link(&self, name: &str) -> Result<usize, Error> {
-        self.mechanism
-            .link_index(name)
-            .map_err(|_| Error::InvalidOutput {
-                name: name.to_owned(),
-                problem: "no link of this name".to_owned(),
-            })
-    }
-
-    fn point_on(&self, link: usize, point: &str) -> Result<[f64; 2], Error> {
-        let m = self.mechanism;
-        let p = m.point_index(point).map_err(|_| Error::InvalidOutput {
-            name: point.to_owned(),
-            problem: "no point of this name".to_owned(),
-        })?;
-        if !m.carries(link, p) {
-            return Err(Error::InvalidOutput {
-                name: point.to_owned(),
-                problem: format!("point is not on link `{}`", m.links[link].name),
-            });
+    /// `A(θ_b)·v` for a link-local vector `v`.
+    fn rotate(&self, b: Body, v: [f64; 2]) -> [Dual3_64; 2] {
+        match b {
+            None => [Dual3_64::from(v[0]), Dual3_64::from(v[1])],
+            Some(k) => {
+                let (s, c) = self.dual(3 * k + 2).sin_cos();
+                [c * v[0] - s * v[1], s * v[0] + c * v[1]]
+            }
         }
-        Ok(m.points[p].sketch)
     }
 
-    /// Position `[x, y]` of point `point` carried by link `link` (m).
+    /// Position of the point of body `b` at link-local `p`.
+    fn place(&self, b: Body, p: [f64; 2]) -> [Dual3_64; 2] {
+        let r = self.rotate(b, p);
+        match b {
+            None => r,
+            Some(k) => [self.dual(3 * k) + r[0], self.dual(3 * k + 1) + r[1]],
+        }
+    }
+
+    /// Position `[x, y]` of a resolved point (m): see [`Mechanism::point_output`].
+    pub fn position(&self, point: &PointOutput) -> [Jet<N>; 2] {
+        let r = self.place(point.body, point.local);
+        [Self::jet(r[0]), Self::jet(r[1])]
+    }
+
+    /// Value of a resolved angle or displacement (rad or m): see
+    /// [`Mechanism::rotation_output`].
+    pub fn value(&self, output: &ScalarOutput) -> Jet<N> {
+        match output.0 {
+            Scalar::Rotation { body, offset } => {
+                let mut jet = self.rotation_of(body);
+                jet.value += offset;
+                jet
+            }
+            Scalar::Relative { a, b } => {
+                let (a, b) = (self.rotation_of(a), self.rotation_of(b));
+                Jet::new(
+                    b.value - a.value,
+                    std::array::from_fn(|k| b.derivatives[k] - a.derivatives[k]),
+                )
+            }
+            Scalar::Displacement(slide) => {
+                let u = self.rotate(slide.line.body, slide.line.direction);
+                let a = self.place(slide.line.body, slide.line.origin);
+                let r = self.place(slide.slider, slide.point);
+                Self::jet(u[0] * (r[0] - a[0]) + u[1] * (r[1] - a[1]))
+            }
+        }
+    }
+
+    fn rotation_of(&self, b: Body) -> Jet<N> {
+        b.map_or(Jet::from(0.0), |k| self.coordinates[3 * k + 2])
+    }
+
+    /// Position `[x, y]` of point `point` carried by link `link` (m). In a loop over drive
+    /// positions, resolve the point once with [`Mechanism::point_output`] and read it with
+    /// [`Kinematics::position`] instead.
     ///
     /// ```
     /// use mechdiff_core::geometry::{Drive, Mechanism, Solver};
@@ -93,107 +114,39 @@ impl<'m, const N: usize> Kinematics<'m, N> {
     /// assert!((x.d2() + 2.0 * 0.5f64.cos()).abs() < 1e-14); // x″ = −2 cos φ
     /// ```
     pub fn point(&self, link: &str, point: &str) -> Result<[Jet<N>; 2], Error> {
-        let k = self.link(link)?;
-        let at = self.point_on(k, point)?;
-        Ok(self.point_at_index(k, at))
+        Ok(self.position(&self.mechanism.point_output(link, point)?))
     }
 
     /// Position of the point of link `link` that is at `sketch` (global, m) in the sketch.
     pub fn point_at(&self, link: &str, sketch: [f64; 2]) -> Result<[Jet<N>; 2], Error> {
-        Ok(self.point_at_index(self.link(link)?, sketch))
+        Ok(self.position(&self.mechanism.point_at_output(link, sketch)?))
     }
 
     /// Position of link `link`'s centre of gravity (its [`super::Inertia`] must be given).
     pub fn center_of_gravity(&self, link: &str) -> Result<[Jet<N>; 2], Error> {
-        let k = self.link(link)?;
-        let inertia = self.mechanism.links[k]
-            .inertia
-            .ok_or_else(|| Error::InvalidOutput {
-                name: link.to_owned(),
-                problem: "the link has no mass properties".to_owned(),
-            })?;
-        Ok(self.point_at_index(k, inertia.center))
+        Ok(self.position(&self.mechanism.center_of_gravity_output(link)?))
     }
 
-    fn point_at_index(&self, k: usize, sketch: [f64; 2]) -> [Jet<N>; 2] {
-        let local = self.mechanism.local(k, sketch);
-        let r = self.with_frames(|f| f.point(constraints::body(k), local));
-        [Self::jet(r[0]), Self::jet(r[1])]
-    }
-
-    /// Rotation of link `link` since the sketch pose (rad).
+    /// Rotation of link `link` since the sketch pose (rad). In a loop, resolve it once with
+    /// [`Mechanism::rotation_output`] and read it with [`Kinematics::value`].
     pub fn rotation(&self, link: &str) -> Result<Jet<N>, Error> {
-        let k = self.link(link)?;
-        Ok(self.rotation_of(constraints::body(k)))
-    }
-
-    fn rotation_of(&self, b: Body) -> Jet<N> {
-        b.map_or(Jet::from(0.0), |k| self.coordinates[3 * k + 2])
+        Ok(self.value(&self.mechanism.rotation_output(link)?))
     }
 
     /// Direction angle of the segment `from → to` (two points of link `link`), measured
     /// counter-clockwise from +x (rad; continuous from the sketch value, not wrapped).
     pub fn angle(&self, link: &str, from: &str, to: &str) -> Result<Jet<N>, Error> {
-        let k = self.link(link)?;
-        let (a, b) = (self.point_on(k, from)?, self.point_on(k, to)?);
-        if a == b {
-            return Err(Error::InvalidOutput {
-                name: format!("{from}–{to}"),
-                problem: "the two points coincide; the direction is undefined".to_owned(),
-            });
-        }
-        let mut jet = self.rotation_of(constraints::body(k));
-        jet.value += (b[1] - a[1]).atan2(b[0] - a[0]);
-        Ok(jet)
+        Ok(self.value(&self.mechanism.angle_output(link, from, to)?))
     }
 
     /// Displacement in prismatic joint `joint` (m), measured as in the model.
     pub fn displacement(&self, joint: &str) -> Result<Jet<N>, Error> {
-        let m = self.mechanism;
-        let j = m.joint_index(joint).map_err(|e| Error::InvalidOutput {
-            name: joint.to_owned(),
-            problem: e.to_string(),
-        })?;
-        match m.joints[j].kind {
-            JointKind::Prismatic {
-                guide,
-                line,
-                slider,
-                point,
-            } => {
-                let slide = constraints::compile_slide(m, guide, line, slider, point);
-                Ok(Self::jet(self.with_frames(|f| f.displacement(&slide))))
-            }
-            _ => Err(Error::InvalidOutput {
-                name: joint.to_owned(),
-                problem: "a displacement needs a prismatic joint".to_owned(),
-            }),
-        }
+        Ok(self.value(&self.mechanism.displacement_output(joint)?))
     }
 
     /// Relative rotation of link b with respect to link a in revolute joint `joint` since the
     /// sketch (rad).
     pub fn joint_rotation(&self, joint: &str) -> Result<Jet<N>, Error> {
-        let m = self.mechanism;
-        let j = m.joint_index(joint).map_err(|e| Error::InvalidOutput {
-            name: joint.to_owned(),
-            problem: e.to_string(),
-        })?;
-        match m.joints[j].kind {
-            JointKind::Revolute { link_a, link_b, .. } => {
-                let (a, b) = (
-                    self.rotation_of(constraints::body(link_a)),
-                    self.rotation_of(constraints::body(link_b)),
-                );
-                Ok(Jet::new(
-                    b.value - a.value,
-                    std::array::from_fn(|k| b.derivatives[k] - a.derivatives[k]),
-                ))
-            }
-            _ => Err(Error::InvalidOutput {
-                name: joint.to_owned(),
-                problem: "a joint rotation needs a revolute joint".to_owned(),
-            }),
-        }
+        Ok(self.value(&self.mechanism.joint_rotation_output(joint)?))
     }
 }

@@ -9,10 +9,12 @@
 mod block_lu;
 pub mod branch;
 mod constraints;
+mod frames;
 pub mod implicit;
 mod kinematics;
 mod mobility;
 mod model;
+mod output;
 mod solver;
 mod validate;
 
@@ -22,4 +24,5 @@ pub use mobility::{Mobility, check_mobility};
 pub use model::{
     Drive, DriveKind, GROUND, Inertia, Joint, JointKind, Link, Mechanism, MechanismBuilder, Point,
 };
+pub use output::{PointOutput, ScalarOutput};
 pub use solver::{SolveReport, Solver, Tracker};

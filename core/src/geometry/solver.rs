@@ -3,7 +3,9 @@
 //! [`Solver`] holds the configuration (builder style); [`Solver::track`] starts a [`Tracker`]
 //! at the sketch pose, and [`Tracker::move_to`] walks it to a new drive position:
 //!
-//! 1. **Predict** with the Taylor polynomial `q + h q′ + h²/2 q″` (q′, q″ from the last pose).
+//! 1. **Predict** with the Taylor polynomial `q + h q′ + h²/2 q″` (q′, q″ from the last pose);
+//!    the links' sines and cosines are computed there once and then turned along the Newton
+//!    steps (see `frames`), so a drive position costs one `sin_cos` per link.
 //! 2. **Correct** with Newton on Φ(q, φ) = 0 (analytic Φ_q, factorised loop by loop, see
 //!    `block_lu`) until the residual is below `tolerance × size` (size: the sketch's
 //!    diagonal).
@@ -16,11 +18,17 @@
 //!    drops from the tolerance to rounding), then q′ = Φ_q⁻¹ e_drive and q″ (see
 //!    [`super::implicit`]) with the same factorisation; they feed the next predictor and
 //!    [`Tracker::kinematics`].
+//!
+//! Nothing is allocated per drive position: the tracker keeps its buffers, and the loop
+//! structure is resolved to storage positions once (see `block_lu`). In a loop, read outputs
+//! through handles resolved once ([`Mechanism::point_output`] and the methods next to it)
+//! rather than by name.
 
 use super::block_lu::BlockLu;
 use super::branch::{self, Loop};
-use super::constraints::Equations;
-use super::implicit::{self, Factorised};
+use super::constraints::{Equations, Frames};
+use super::frames;
+use super::implicit::{self, Factorised, SecondOrder};
 use super::kinematics::Kinematics;
 use super::mobility::{self, Mobility};
 use super::model::Mechanism;
@@ -122,6 +130,26 @@ impl Solver {
         let row_columns = branch::structure(&eq);
         let mut unit_drive = DVector::zeros(n);
         unit_drive[n - 1] = 1.0;
+        // The Hadamard screen's constants per loop (see `Tracker::check_trial`).
+        let screens = loops
+            .iter()
+            .map(|l| {
+                let k = l.rows.len() as f64;
+                let angular = l.rows.iter().filter(|&&r| eq.angular[r]).count();
+                let weight = |r: usize| if eq.angular[r] { size } else { 1.0 };
+                Screen {
+                    bound: k.powf(0.5 * k),
+                    row_scale: size.powi(angular as i32),
+                    entries: l
+                        .columns
+                        .iter()
+                        .flat_map(|&c| l.rows.iter().map(move |&r| (c * n + r, weight(r))))
+                        .collect(),
+                }
+            })
+            .collect();
+        let q = DVector::from_vec(m.sketch_coordinates());
+        let frames: Vec<(f64, f64)> = (0..n / 3).map(|k| q[3 * k + 2].sin_cos()).collect();
         let mut t = Tracker {
             unit_drive,
             mechanism: m,
@@ -133,21 +161,26 @@ impl Solver {
             work_lu: BlockLu::new(&loops, &row_columns),
             residual: DVector::zeros(n),
             trial: DVector::zeros(n),
+            trial_frames: frames.clone(),
             trial_residual: DVector::zeros(n),
             step: DVector::zeros(n),
-            q: DVector::from_vec(m.sketch_coordinates()),
+            q,
+            frames,
             phi: m.drive_at_sketch,
             dq: DVector::zeros(n),
             ddq: DVector::zeros(n),
-            certificates: Vec::new(),
+            second_order: SecondOrder::new(n),
+            certificates: vec![0; loops.len()],
+            trial_certificates: vec![0; loops.len()],
+            screens,
             loops,
             size,
             eq,
         };
         t.trial.copy_from(&t.q);
         let phi = t.phi;
-        t.eq.evaluate(t.trial.as_slice(), phi, t.trial_residual.as_mut_slice());
-        t.certificates = t.check_trial(phi)?;
+        t.evaluate_trial(phi);
+        t.check_trial(phi)?;
         t.accept(phi)?;
         Ok(t)
     }
@@ -187,15 +220,33 @@ pub struct Tracker<'m> {
     work_lu: BlockLu,
     residual: DVector<f64>,
     trial: DVector<f64>,
+    /// `(sin θ, cos θ)` of every body of `trial`.
+    trial_frames: Vec<(f64, f64)>,
     trial_residual: DVector<f64>,
     step: DVector<f64>,
     /// e_drive = −Φ_φ.
     unit_drive: DVector<f64>,
     q: DVector<f64>,
+    /// `(sin θ, cos θ)` of every body of `q`.
+    frames: Vec<(f64, f64)>,
     phi: f64,
     dq: DVector<f64>,
     ddq: DVector<f64>,
+    second_order: SecondOrder,
     certificates: Vec<i8>,
+    trial_certificates: Vec<i8>,
+    screens: Vec<Screen>,
+}
+
+/// Constants of one loop's singularity screen.
+#[derive(Debug, Clone, PartialEq)]
+struct Screen {
+    /// The block's entries column by column: (position in Φ_q's storage, row scale).
+    entries: Vec<(usize, f64)>,
+    /// k^(k/2) for a k×k block: the condition bound is this over the normalised determinant.
+    bound: f64,
+    /// size^(angular rows of the loop): the row scaling's factor in the determinant.
+    row_scale: f64,
 }
 
 impl<'m> Tracker<'m> {
@@ -255,11 +306,11 @@ impl<'m> Tracker<'m> {
                 "the geometry solver lifts derivatives of order 1 to 3"
             )
         };
-        let mut dddq = vec![0.0; self.q.len()];
+        let mut dddq = Vec::new();
         if N == 3 {
+            dddq.resize(self.q.len(), 0.0);
             let lu = Loops {
                 jac: &self.jac,
-                loops: &self.loops,
                 lu: &self.lu,
             };
             let (q, dq, ddq) = (self.q.as_slice(), self.dq.as_slice(), self.ddq.as_slice());
@@ -267,10 +318,11 @@ impl<'m> Tracker<'m> {
                 return Err(self.singular(self.phi));
             }
         }
-        let coordinates = (0..self.q.len())
+        let (q, dq, ddq) = (self.q.as_slice(), self.dq.as_slice(), self.ddq.as_slice());
+        let coordinates = (0..q.len())
             .map(|i| {
-                let d = [self.dq[i], self.ddq[i], dddq[i]];
-                Jet::new(self.q[i], std::array::from_fn(|k| d[k]))
+                let d = [dq[i], ddq[i], dddq.get(i).copied().unwrap_or(0.0)];
+                Jet::new(q[i], std::array::from_fn(|k| d[k]))
             })
             .collect();
         Ok(Kinematics::new(self.mechanism, self.phi, coordinates))
@@ -310,14 +362,24 @@ impl<'m> Tracker<'m> {
             let h = (phi - self.phi) / f64::powi(2.0, halvings.min(1074) as i32);
             let target = if halvings == 0 { phi } else { self.phi + h };
             // Taylor predictor q + h q′ + h²/2 q″.
-            for i in 0..self.q.len() {
-                self.trial[i] = self.q[i] + h * (self.dq[i] + 0.5 * h * self.ddq[i]);
+            let derivatives = self.dq.as_slice().iter().zip(self.ddq.as_slice());
+            let poses = self.trial.as_mut_slice().iter_mut().zip(self.q.as_slice());
+            for ((x, &q), (&dq, &ddq)) in poses.zip(derivatives) {
+                *x = q + h * (dq + 0.5 * h * ddq);
+            }
+            for (f, pose) in self
+                .trial_frames
+                .iter_mut()
+                .zip(self.trial.as_slice().chunks_exact(3))
+            {
+                *f = pose[2].sin_cos();
             }
             let failure = match self.newton(target) {
                 Ok(iterations) => {
                     report.iterations += iterations;
-                    let certificates = self.check_trial(target)?;
-                    match certificates
+                    self.check_trial(target)?;
+                    match self
+                        .trial_certificates
                         .iter()
                         .zip(&self.certificates)
                         .position(|(a, b)| a != b)
@@ -356,7 +418,7 @@ impl<'m> Tracker<'m> {
             }
         }
         report.phi = self.phi;
-        report.residual = self.residual.amax();
+        report.residual = amax(self.residual.as_slice());
         Ok(report)
     }
 
@@ -365,41 +427,55 @@ impl<'m> Tracker<'m> {
     fn newton(&mut self, phi: f64) -> Result<usize, (f64, usize)> {
         let limit = self.solver.tolerance * self.size;
         for iteration in 0..=self.solver.max_iterations {
-            self.eq.evaluate(
-                self.trial.as_slice(),
-                phi,
-                self.trial_residual.as_mut_slice(),
-            );
-            let norm = self.trial_residual.amax();
+            self.evaluate_trial(phi);
+            let norm = amax(self.trial_residual.as_slice());
             if norm <= limit {
                 return Ok(iteration);
             }
             if !norm.is_finite() || iteration == self.solver.max_iterations {
                 break;
             }
-            self.eq.jacobian(self.trial.as_slice(), &mut self.work);
-            let solved = self.work_lu.factor(&self.work, &self.loops)
+            self.jacobian_trial();
+            let solved = self.work_lu.factor(&self.work)
                 && self.work_lu.solve(
                     &self.work,
-                    &self.loops,
                     self.trial_residual.as_slice(),
                     self.step.as_mut_slice(),
                 );
             if !solved {
                 break;
             }
-            self.trial -= &self.step;
+            step_pose(&mut self.trial, &mut self.trial_frames, &self.step);
         }
-        Err((self.trial_residual.amax(), self.worst_loop()))
+        Err((amax(self.trial_residual.as_slice()), self.worst_loop()))
     }
 
-    /// Φ_q at the converged trial pose: factorises it into `work_lu` and returns every loop's
-    /// branch certificate, or [`Error::Singular`] if a loop's condition exceeds the limit.
-    fn check_trial(&mut self, phi: f64) -> Result<Vec<i8>, Error> {
-        self.eq.jacobian(self.trial.as_slice(), &mut self.work);
-        let factored = self.work_lu.factor(&self.work, &self.loops);
+    /// Φ(trial, φ) into `trial_residual`.
+    fn evaluate_trial(&mut self, phi: f64) {
+        let f = Frames {
+            q: self.trial.as_slice(),
+            frames: &self.trial_frames,
+        };
+        self.eq
+            .evaluate_with(&f, phi, self.trial_residual.as_mut_slice());
+    }
+
+    /// Φ_q(trial) into `work`.
+    fn jacobian_trial(&mut self) {
+        let f = Frames {
+            q: self.trial.as_slice(),
+            frames: &self.trial_frames,
+        };
+        self.eq.jacobian_with(&f, &mut self.work);
+    }
+
+    /// Φ_q at the converged trial pose: factorises it into `work_lu` and sets every loop's
+    /// branch certificate in `trial_certificates`, or returns [`Error::Singular`] if a loop's
+    /// condition exceeds the limit.
+    fn check_trial(&mut self, phi: f64) -> Result<(), Error> {
+        self.jacobian_trial();
+        let factored = self.work_lu.factor(&self.work);
         let limit = self.solver.singular_threshold();
-        let mut certificates = Vec::with_capacity(self.loops.len());
         for (i, l) in self.loops.iter().enumerate() {
             let det = if factored {
                 self.work_lu.determinant(i)
@@ -409,27 +485,18 @@ impl<'m> Tracker<'m> {
             // Hadamard screen on the scaled block with unit columns (see branch::condition):
             // its determinant is det · Π(row scales) / Π(column norms), the column scales
             // cancelling.
-            let mut normalized = det;
-            for &r in &l.rows {
-                if self.eq.angular[r] {
-                    normalized *= self.size;
-                }
-            }
-            for &c in &l.columns {
-                let norm = l
-                    .rows
+            let screen = &self.screens[i];
+            let jac = self.work.as_slice();
+            let mut normalized = det * screen.row_scale;
+            for column in screen.entries.chunks_exact(l.rows.len()) {
+                let norm = column
                     .iter()
-                    .map(|&r| {
-                        let v =
-                            self.work[(r, c)] * if self.eq.angular[r] { self.size } else { 1.0 };
-                        v * v
-                    })
+                    .map(|&(at, scale)| (jac[at] * scale).powi(2))
                     .sum::<f64>()
                     .sqrt();
                 normalized /= norm;
             }
-            let k = l.rows.len() as f64;
-            let bound = k.powf(0.5 * k) / normalized.abs();
+            let bound = screen.bound / normalized.abs();
             if bound.is_nan() || bound > limit {
                 let mut scaled = self.work.clone();
                 mobility::scale(&self.eq, &mut scaled, self.size);
@@ -442,9 +509,9 @@ impl<'m> Tracker<'m> {
                     });
                 }
             }
-            certificates.push(if det > 0.0 { 1 } else { -1 });
+            self.trial_certificates[i] = if det > 0.0 { 1 } else { -1 };
         }
-        Ok(certificates)
+        Ok(())
     }
 
     /// Makes the checked trial pose current: polishes it with one more Newton step (the
@@ -454,38 +521,34 @@ impl<'m> Tracker<'m> {
         std::mem::swap(&mut self.jac, &mut self.work);
         std::mem::swap(&mut self.lu, &mut self.work_lu);
         std::mem::swap(&mut self.q, &mut self.trial);
+        std::mem::swap(&mut self.frames, &mut self.trial_frames);
         self.phi = phi;
         let lu = Loops {
             jac: &self.jac,
-            loops: &self.loops,
             lu: &self.lu,
         };
         if lu.solve_into(self.trial_residual.as_slice(), self.step.as_mut_slice()) {
-            self.q -= &self.step;
+            step_pose(&mut self.q, &mut self.frames, &self.step);
         }
-        self.eq
-            .evaluate(self.q.as_slice(), phi, self.residual.as_mut_slice());
-        // Φ_q q′ = −Φ_φ = e_drive (the drive row, last, is the only one that depends on φ).
+        // Φ_q q′ = −Φ_φ = e_drive (the drive row, last, is the only one that depends on φ);
+        // q″ comes with Φ at the polished pose (the reported residual).
         let ok = lu.solve_into(self.unit_drive.as_slice(), self.dq.as_mut_slice())
-            && implicit::second_derivative(
+            && self.second_order.solve(
                 &self.eq,
                 &lu,
                 self.q.as_slice(),
+                &self.frames,
                 self.dq.as_slice(),
                 phi,
                 self.ddq.as_mut_slice(),
+                self.residual.as_mut_slice(),
             );
         if !ok {
             return Err(self.singular(phi));
         }
-        self.certificates_refresh();
+        // The certificates of the factorisation just made current (`check_trial`'s).
+        self.certificates.copy_from_slice(&self.trial_certificates);
         Ok(())
-    }
-
-    fn certificates_refresh(&mut self) {
-        for (i, c) in self.certificates.iter_mut().enumerate() {
-            *c = if self.lu.determinant(i) > 0.0 { 1 } else { -1 };
-        }
     }
 
     /// The loop whose equations are furthest from being satisfied by the trial residual.
@@ -505,15 +568,41 @@ impl<'m> Tracker<'m> {
     }
 }
 
+/// max |x_i|, NaN if any x_i is NaN.
+fn amax(x: &[f64]) -> f64 {
+    x.iter().fold(0.0, |m, &v| {
+        if v.abs() > m || v.is_nan() {
+            v.abs()
+        } else {
+            m
+        }
+    })
+}
+
+/// `q −= step`, keeping the bodies' `(sin θ, cos θ)` in `frames` up to date.
+fn step_pose(q: &mut DVector<f64>, frames: &mut [(f64, f64)], step: &DVector<f64>) {
+    let poses = q.as_mut_slice().chunks_exact_mut(3);
+    for ((f, pose), step) in frames
+        .iter_mut()
+        .zip(poses)
+        .zip(step.as_slice().chunks_exact(3))
+    {
+        let from = pose[2];
+        for (x, s) in pose.iter_mut().zip(step) {
+            *x -= s;
+        }
+        *f = frames::turn(*f, from, pose[2]);
+    }
+}
+
 /// A factorised Φ_q with the matrix it came from, as a linear solver.
 struct Loops<'a> {
     jac: &'a DMatrix<f64>,
-    loops: &'a [Loop],
     lu: &'a BlockLu,
 }
 
 impl Factorised for Loops<'_> {
     fn solve_into(&self, b: &[f64], x: &mut [f64]) -> bool {
-        self.lu.solve(self.jac, self.loops, b, x)
+        self.lu.solve(self.jac, b, x)
     }
 }
