@@ -1,14 +1,21 @@
 //! # mechdiff
 //!
 //! Kinematics and dynamics of planar mechanisms in which nobody derives a derivative by hand.
-//! This facade re-exports the derivative core ([`core`]) and the closed-form mechanisms
-//! ([`mechanisms`]), and holds what the `mechdiff` command-line tool prints.
+//! This facade re-exports the derivative core ([`core`]), the closed-form mechanisms
+//! ([`mechanisms`]) and the [`derivatives`] attribute, and holds what the `mechdiff`
+//! command-line tool does: scene files ([`scene`]), reports ([`report`]) and code generation
+//! ([`codegen`]).
 #![warn(missing_docs)]
 
 pub mod codegen;
 
 pub use mechdiff_core as core;
 pub use mechdiff_mechanisms as mechanisms;
+
+/// Symbolic derivatives generated at compile time (see `mechdiff_macros::derivatives`). The
+/// generated code names `::mechdiff_core::Jet`, so the calling crate depends on
+/// `mechdiff-core` as well.
+pub use mechdiff_macros::derivatives;
 
 pub mod error;
 pub mod report;
