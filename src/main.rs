@@ -25,7 +25,7 @@ enum Command {
     Run(cli::run::RunArgs),
     /// Check a scene file (syntax, names, units, sketch, mobility) without running it.
     Check(cli::check::CheckArgs),
-    /// Generates the Rust function computing a formula and its derivatives.
+    /// Generate the Rust function that computes a formula and its derivatives (symbolic, with CSE)
     Codegen(mechdiff::codegen::Args),
 }
 
