@@ -26,6 +26,7 @@
 
 use super::block_lu::BlockLu;
 use super::branch::{self, Loop};
+use super::closed_form::{ClosedForm, Failure};
 use super::constraints::{Equations, Frames};
 use super::frames;
 use super::implicit::{self, Factorised, SecondOrder};
@@ -34,6 +35,7 @@ use super::mobility::{self, Mobility};
 use super::model::Mechanism;
 use crate::{Error, Jet};
 use nalgebra::{DMatrix, DVector};
+use num_dual::{Dual2_64, Dual3_64};
 
 /// Configuration of the position solver.
 ///
@@ -56,6 +58,12 @@ pub struct Solver {
     /// 1e-13, measured on a slider-crank driven into its dead centre), ten times above it;
     /// a regular pose that close to a toggle has lost half the digits of q′ anyway.
     pub singular_condition: Option<f64>,
+    /// Solve the loops that match a standard pattern in closed form (default `true`; see
+    /// `closed_form`): when every loop matches, a drive position costs one evaluation of
+    /// the formulas in `Dual2_64`, with no Newton iteration and no LU; otherwise the
+    /// formulas place their loops' links as Newton's predictor. `false` forces the Newton
+    /// path everywhere (the reference the closed forms are tested against).
+    pub closed_form: bool,
 }
 
 impl Default for Solver {
@@ -65,6 +73,7 @@ impl Default for Solver {
             max_iterations: 50,
             max_subdivisions: 24,
             singular_condition: None,
+            closed_form: true,
         }
     }
 }
@@ -91,6 +100,12 @@ impl Solver {
     /// Sets the condition number above which a pose is reported singular.
     pub fn with_singular_condition(mut self, condition: f64) -> Self {
         self.singular_condition = Some(condition);
+        self
+    }
+
+    /// Enables (default) or disables the closed-form solution of standard loops.
+    pub fn with_closed_form(mut self, closed_form: bool) -> Self {
+        self.closed_form = closed_form;
         self
     }
 
@@ -149,6 +164,14 @@ impl Solver {
             })
             .collect();
         let q = DVector::from_vec(m.sketch_coordinates());
+        let closed = ClosedForm::new(
+            &eq,
+            &loops,
+            q.as_slice(),
+            m.drive_at_sketch,
+            size,
+            self.singular_threshold(),
+        );
         let frames: Vec<(f64, f64)> = (0..n / 3).map(|k| q[3 * k + 2].sin_cos()).collect();
         let mut t = Tracker {
             unit_drive,
@@ -173,6 +196,11 @@ impl Solver {
             certificates: vec![0; loops.len()],
             trial_certificates: vec![0; loops.len()],
             screens,
+            closed_only: self.closed_form && closed.complete(),
+            seeding: self.closed_form && !closed.complete() && closed.count() > 0,
+            closed,
+            closed_q: vec![Dual2_64::from(0.0); n],
+            closed_frames: vec![(Dual2_64::from(0.0), Dual2_64::from(0.0)); n / 3],
             loops,
             size,
             eq,
@@ -236,6 +264,15 @@ pub struct Tracker<'m> {
     certificates: Vec<i8>,
     trial_certificates: Vec<i8>,
     screens: Vec<Screen>,
+    /// The loops' closed forms (see `closed_form`).
+    closed: ClosedForm,
+    /// Every loop is solved in closed form (no Newton, no LU).
+    closed_only: bool,
+    /// Some loops are: their formulas seed Newton's predictor.
+    seeding: bool,
+    /// The closed forms' pose and `(sin θ, cos θ)` in `Dual2_64` (buffers).
+    closed_q: Vec<Dual2_64>,
+    closed_frames: Vec<(Dual2_64, Dual2_64)>,
 }
 
 /// Constants of one loop's singularity screen.
@@ -279,6 +316,13 @@ impl<'m> Tracker<'m> {
             .collect()
     }
 
+    /// Per loop (in the order of [`Tracker::loops`]), whether it is solved in closed form
+    /// (see [`Solver::closed_form`]); with some loops not, the others only seed Newton.
+    pub fn closed_form_loops(&self) -> Vec<bool> {
+        let on = self.closed_only || self.seeding;
+        self.closed.matched().map(|m| m && on).collect()
+    }
+
     fn loop_joints(&self, l: &Loop) -> Vec<String> {
         let m = self.mechanism;
         let mut names: Vec<String> = Vec::new();
@@ -307,7 +351,16 @@ impl<'m> Tracker<'m> {
             )
         };
         let mut dddq = Vec::new();
-        if N == 3 {
+        if N == 3 && self.closed_only {
+            let n = self.q.len();
+            let zero = Dual3_64::from(0.0);
+            let (mut q, mut frames) = (vec![zero; n], vec![(zero, zero); n / 3]);
+            let phi = Dual3_64::new(self.phi, 1.0, 0.0, 0.0);
+            self.closed
+                .solve_all(phi, self.q.as_slice(), &mut q, &mut frames)
+                .map_err(|(l, failure)| self.closed_failure(self.phi, l, failure))?;
+            dddq.extend(q.iter().map(|x| x.v3));
+        } else if N == 3 {
             dddq.resize(self.q.len(), 0.0);
             let lu = Loops {
                 jac: &self.jac,
@@ -357,6 +410,9 @@ impl<'m> Tracker<'m> {
             branch_rejections: 0,
             newton_failures: 0,
         };
+        if self.closed_only {
+            return self.move_closed(phi);
+        }
         let mut halvings: usize = 0;
         while self.phi != phi {
             let h = (phi - self.phi) / f64::powi(2.0, halvings.min(1074) as i32);
@@ -373,6 +429,11 @@ impl<'m> Tracker<'m> {
                 .zip(self.trial.as_slice().chunks_exact(3))
             {
                 *f = pose[2].sin_cos();
+            }
+            if self.seeding {
+                let (q, frames) = (self.q.as_slice(), &mut self.trial_frames);
+                self.closed
+                    .seed(target, q, self.trial.as_mut_slice(), frames);
             }
             let failure = match self.newton(target) {
                 Ok(iterations) => {
@@ -420,6 +481,60 @@ impl<'m> Tracker<'m> {
         report.phi = self.phi;
         report.residual = amax(self.residual.as_slice());
         Ok(report)
+    }
+
+    /// Moves to `phi` with every loop in closed form: q, q′, q″ from one evaluation of the
+    /// formulas in `Dual2_64`.
+    fn move_closed(&mut self, phi: f64) -> Result<SolveReport, Error> {
+        let x = Dual2_64::new(phi, 1.0, 0.0);
+        let (q, frames) = (&mut self.closed_q, &mut self.closed_frames);
+        if let Err((l, failure)) = self.closed.solve_all(x, self.q.as_slice(), q, frames) {
+            return Err(self.closed_failure(phi, l, failure));
+        }
+        let poses = self.q.as_mut_slice().iter_mut();
+        let derivatives = self
+            .dq
+            .as_mut_slice()
+            .iter_mut()
+            .zip(self.ddq.as_mut_slice());
+        for ((x, (dx, ddx)), v) in poses.zip(derivatives).zip(&self.closed_q) {
+            (*x, *dx, *ddx) = (v.re, v.v1, v.v2);
+        }
+        for (f, (s, c)) in self.frames.iter_mut().zip(&self.closed_frames) {
+            *f = (s.re, c.re);
+        }
+        self.phi = phi;
+        let f = Frames {
+            q: self.q.as_slice(),
+            frames: &self.frames,
+        };
+        self.eq.evaluate_with(&f, phi, self.residual.as_mut_slice());
+        Ok(SolveReport {
+            phi,
+            iterations: 0,
+            steps: 1,
+            residual: amax(self.residual.as_slice()),
+            branch_rejections: 0,
+            newton_failures: 0,
+        })
+    }
+
+    /// The error for loop `l`'s closed form failing at `phi`.
+    fn closed_failure(&self, phi: f64, l: usize, failure: Failure) -> Error {
+        let joints = self.loop_joints(&self.loops[l]);
+        match failure {
+            Failure::Unassemblable { residual } => Error::Unassemblable {
+                phi,
+                last_assembled: self.phi,
+                joints,
+                residual,
+            },
+            Failure::Singular { condition } => Error::Singular {
+                phi,
+                condition,
+                joints,
+            },
+        }
     }
 
     /// Newton on `trial` at drive position `phi`: the iterations, or the final residual and
