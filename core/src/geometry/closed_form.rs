@@ -37,7 +37,7 @@
 use super::branch::Loop;
 use super::constraints::{Body, Equations, Line, Slide, Term, cross};
 use crate::{Scalar, atan2};
-use std::f64::consts::TAU;
+use std::f64::consts::{PI, TAU};
 
 /// A revolute joint seen from the unknown link: the point of the known link it turns about.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -115,6 +115,7 @@ pub(crate) struct ClosedForm {
     limit: f64,
 }
 
+#[inline]
 fn rotate<D: Scalar>(frames: &[(D, D)], b: Body, p: [f64; 2]) -> [D; 2] {
     match b {
         None => [D::from(p[0]), D::from(p[1])],
@@ -125,6 +126,7 @@ fn rotate<D: Scalar>(frames: &[(D, D)], b: Body, p: [f64; 2]) -> [D; 2] {
     }
 }
 
+#[inline]
 fn place<D: Scalar>(q: &[D], frames: &[(D, D)], b: Body, p: [f64; 2]) -> [D; 2] {
     let r = rotate(frames, b, p);
     match b {
@@ -137,6 +139,7 @@ fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
     [a[0] - b[0], a[1] - b[1]]
 }
 
+#[inline]
 fn cross_d<D: Scalar>(a: [D; 2], b: [D; 2]) -> D {
     a[0] * b[1] - a[1] * b[0]
 }
@@ -322,6 +325,7 @@ impl ClosedForm {
     }
 
     /// Solves one loop: sets its body's coordinates and `(sin θ, cos θ)`.
+    #[inline]
     fn solve<D: Scalar>(
         &self,
         step: &Step,
@@ -373,8 +377,13 @@ impl ClosedForm {
                 let theta = match angle {
                     Angle::Driven { .. } => theta,
                     _ => {
-                        let turns = ((previous[3 * k + 2] - theta.re()) / TAU).round();
-                        theta + turns * TAU
+                        // The turn nearest to the previous pose's angle.
+                        let gap = previous[3 * k + 2] - theta.re();
+                        if gap.abs() > PI {
+                            theta + (gap / TAU).round() * TAU
+                        } else {
+                            theta
+                        }
                     }
                 };
                 let (s, c) = sin_cos;
@@ -433,6 +442,7 @@ impl ClosedForm {
     }
 
     /// `k = σ √(ρ² − c²)`, or why there is none.
+    #[inline]
     fn root<D: Scalar>(&self, rho2: D, c: D, branch: f64) -> Result<D, Failure> {
         let disc = rho2 - c * c;
         let condition = self.size / disc.re().abs().sqrt();
@@ -448,6 +458,7 @@ impl ClosedForm {
     }
 
     /// A slide's slope `cross(v, u)` (both unit vectors), or a toggle if it is too small.
+    #[inline]
     fn slope<D: Scalar>(&self, slope: D) -> Result<D, Failure> {
         let condition = 1.0 / slope.re().abs();
         if condition.is_nan() || condition > self.limit {
