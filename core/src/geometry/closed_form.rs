@@ -86,6 +86,21 @@ enum Pattern {
         offset: f64,
         shift: Shift,
     },
+    /// Two links joined by a revolute (`joint`: its local point on each), the first hinged
+    /// to a known link, the second hinged (RRR) or sliding (RRP) on one.
+    Dyad {
+        hinge: Hinge,
+        joint: [[f64; 2]; 2],
+        second: usize,
+        end: End,
+    },
+}
+
+/// How the second link of a dyad is attached to the known links.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum End {
+    Hinge(Hinge),
+    Slide { slide: Slide, offset: f64 },
 }
 
 /// One loop's closed form: the link it places, the pattern and its branch sign.
@@ -139,6 +154,26 @@ fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
     [a[0] - b[0], a[1] - b[1]]
 }
 
+/// The angle θ of a link (and its sine and cosine) whose local vector `r` (|r|² = `r2`)
+/// points along `v` (|v|² = `r2` too): e^{iθ} = v·conj(r) / |r|².
+#[inline]
+fn turn_to<D: Scalar>(v: [D; 2], r: [f64; 2], r2: f64) -> (D, (D, D)) {
+    let x = v[0] * r[0] + v[1] * r[1];
+    let y = v[1] * r[0] - v[0] * r[1];
+    (atan2(y, x), (y / r2, x / r2))
+}
+
+/// `theta` moved by whole turns to the one nearest to `previous`.
+#[inline]
+fn unwrap<D: Scalar>(theta: D, previous: f64) -> D {
+    let gap = previous - theta.re();
+    if gap.abs() > PI {
+        theta + (gap / TAU).round() * TAU
+    } else {
+        theta
+    }
+}
+
 #[inline]
 fn cross_d<D: Scalar>(a: [D; 2], b: [D; 2]) -> D {
     a[0] * b[1] - a[1] * b[0]
@@ -147,6 +182,9 @@ fn cross_d<D: Scalar>(a: [D; 2], b: [D; 2]) -> D {
 /// Matches loop `l` of `eq` against the patterns (without its branch).
 fn pattern(eq: &Equations, l: &Loop) -> Option<(usize, Pattern)> {
     let k = l.columns.first()? / 3;
+    if l.columns.len() == 6 {
+        return dyad(eq, l);
+    }
     if l.columns.len() != 3 || l.columns.iter().any(|&c| c / 3 != k) {
         return None;
     }
@@ -235,6 +273,84 @@ fn pattern(eq: &Equations, l: &Loop) -> Option<(usize, Pattern)> {
     None
 }
 
+/// Matches a two-link loop: RRR or RRP dyad.
+fn dyad(eq: &Equations, l: &Loop) -> Option<(usize, Pattern)> {
+    let mut bodies: Vec<usize> = l.columns.iter().map(|&c| c / 3).collect();
+    bodies.sort_unstable();
+    bodies.dedup();
+    let [k1, k2] = bodies[..] else { return None };
+    let mut terms: Vec<Term> = Vec::with_capacity(3);
+    for &r in &l.rows {
+        let t = eq.terms[eq.row_joint[r]];
+        if !terms.contains(&t) {
+            terms.push(t);
+        }
+    }
+    if terms.len() != 3 {
+        return None;
+    }
+    let (b1, b2) = (Some(k1), Some(k2));
+    let unknown = |b: Body| b == b1 || b == b2;
+    let mut joint = None;
+    let mut ends: [Option<End>; 2] = [None, None];
+    for t in &terms {
+        match *t {
+            Term::Revolute { a, pa, b, pb } if a == b1 && b == b2 => joint = Some([pa, pb]),
+            Term::Revolute { a, pa, b, pb } if a == b2 && b == b1 => joint = Some([pb, pa]),
+            Term::Revolute { a, pa, b, pb } if unknown(a) != unknown(b) => {
+                let (me, hinge) = if unknown(b) {
+                    (
+                        b,
+                        Hinge {
+                            known: a,
+                            at_known: pa,
+                            at_body: pb,
+                        },
+                    )
+                } else {
+                    (
+                        a,
+                        Hinge {
+                            known: b,
+                            at_known: pb,
+                            at_body: pa,
+                        },
+                    )
+                };
+                ends[usize::from(me == b2)] = Some(End::Hinge(hinge));
+            }
+            Term::Prismatic { slide, offset }
+                if unknown(slide.slider) && !unknown(slide.line.body) =>
+            {
+                ends[usize::from(slide.slider == b2)] = Some(End::Slide { slide, offset });
+            }
+            _ => return None,
+        }
+    }
+    let joint = joint?;
+    match ends {
+        [Some(End::Hinge(hinge)), Some(end)] => Some((
+            k1,
+            Pattern::Dyad {
+                hinge,
+                joint,
+                second: k2,
+                end,
+            },
+        )),
+        [Some(end), Some(End::Hinge(hinge))] => Some((
+            k2,
+            Pattern::Dyad {
+                hinge,
+                joint: [joint[1], joint[0]],
+                second: k1,
+                end,
+            },
+        )),
+        _ => None,
+    }
+}
+
 impl ClosedForm {
     /// Matches every loop of `eq` and chooses each branch so that the formula reproduces
     /// the sketch pose `sketch` at drive position `phi0` (loops it does not reproduce are
@@ -264,10 +380,15 @@ impl ClosedForm {
                     };
                     let (mut q, mut f) = (sketch.to_vec(), frames.clone());
                     cf.solve(&step, phi0, sketch, &mut q, &mut f).ok()?;
-                    let k = 3 * body;
-                    let close = (0..3).all(|i| {
-                        let scale = if i == 2 { 1e-9 } else { tolerance };
-                        (q[k + i] - sketch[k + i]).abs() <= scale
+                    let second = match pattern {
+                        Pattern::Dyad { second, .. } => second,
+                        _ => body,
+                    };
+                    let close = [body, second].iter().all(|&b| {
+                        (0..3).all(|i| {
+                            let scale = if i == 2 { 1e-9 } else { tolerance };
+                            (q[3 * b + i] - sketch[3 * b + i]).abs() <= scale
+                        })
                     });
                     close.then_some(step)
                 })
@@ -336,6 +457,83 @@ impl ClosedForm {
     ) -> Result<(), Failure> {
         let k = step.body;
         let (theta, sin_cos, r) = match step.pattern {
+            Pattern::Dyad {
+                hinge,
+                joint,
+                second,
+                end,
+            } => {
+                let pivot = place(q, frames, hinge.known, hinge.at_known);
+                let r1 = sub(joint[0], hinge.at_body);
+                let l1 = r1[0] * r1[0] + r1[1] * r1[1];
+                // The joint J, then the second link's coordinates.
+                let (j, theta2, sin_cos2, ref2) = match end {
+                    End::Hinge(h2) => {
+                        let pivot2 = place(q, frames, h2.known, h2.at_known);
+                        let r2 = sub(joint[1], h2.at_body);
+                        let l2 = r2[0] * r2[0] + r2[1] * r2[1];
+                        let d = [pivot2[0] - pivot[0], pivot2[1] - pivot[1]];
+                        let d2 = d[0] * d[0] + d[1] * d[1];
+                        // J = K₁ + (g d + σ √(l₁² d² − g²) d⊥) / d², g = (l₁² − l₂² + d²)/2.
+                        let g = (d2 + (l1 - l2)) * 0.5;
+                        let disc = d2 * l1 - g * g;
+                        let dist = d2.re().sqrt();
+                        let (a, b) = (l1.sqrt(), l2.sqrt());
+                        let gap = (dist - (a + b)).max((a - b).abs() - dist);
+                        let h = self.root(disc, dist, gap, step.branch)?;
+                        let inv = d2.recip();
+                        let j = [
+                            pivot[0] + (d[0] * g - d[1] * h) * inv,
+                            pivot[1] + (d[1] * g + d[0] * h) * inv,
+                        ];
+                        let v = [j[0] - pivot2[0], j[1] - pivot2[1]];
+                        let (t2, sc2) = turn_to(v, r2, l2);
+                        let t2 = unwrap(t2, previous[3 * second + 2]);
+                        let (s2, c2) = sc2;
+                        let p = h2.at_body;
+                        let ref2 = [
+                            pivot2[0] - (c2 * p[0] - s2 * p[1]),
+                            pivot2[1] - (s2 * p[0] + c2 * p[1]),
+                        ];
+                        (j, t2, sc2, ref2)
+                    }
+                    End::Slide { slide, offset } => {
+                        let g = slide.line.body;
+                        let t2 = g.map_or(D::from(0.0), |g| q[3 * g + 2]);
+                        let sc2 = g.map_or((D::from(0.0), D::from(1.0)), |g| frames[g]);
+                        let u = rotate(frames, g, slide.line.direction);
+                        let a = place(q, frames, g, slide.line.origin);
+                        // The second link's reference point a + e₀ n − A p at displacement
+                        // 0 along u, and J there.
+                        let rp = rotate(frames, g, slide.point);
+                        let rj = rotate(frames, g, joint[1]);
+                        let base = [a[0] - u[1] * offset - rp[0], a[1] + u[0] * offset - rp[1]];
+                        let j0 = [base[0] + rj[0], base[1] + rj[1]];
+                        let w = [j0[0] - pivot[0], j0[1] - pivot[1]];
+                        let uw = u[0] * w[0] + u[1] * w[1];
+                        let ww = w[0] * w[0] + w[1] * w[1];
+                        // |w + s u| = l₁: s = −u·w ± √((u·w)² − |w|² + l₁²).
+                        let disc = uw * uw - ww + l1;
+                        let gap = (ww.re() - uw.re() * uw.re()).max(0.0).sqrt() - l1.sqrt();
+                        let s = self.root(disc, 1.0, gap, step.branch)? - uw;
+                        let j = [j0[0] + u[0] * s, j0[1] + u[1] * s];
+                        (j, t2, sc2, [base[0] + u[0] * s, base[1] + u[1] * s])
+                    }
+                };
+                q[3 * second] = ref2[0];
+                q[3 * second + 1] = ref2[1];
+                q[3 * second + 2] = theta2;
+                frames[second] = sin_cos2;
+                let v = [j[0] - pivot[0], j[1] - pivot[1]];
+                let (t1, (s1, c1)) = turn_to(v, r1, l1);
+                let t1 = unwrap(t1, previous[3 * k + 2]);
+                let p = hinge.at_body;
+                let r = [
+                    pivot[0] - (c1 * p[0] - s1 * p[1]),
+                    pivot[1] - (s1 * p[0] + c1 * p[1]),
+                ];
+                (t1, (s1, c1), r)
+            }
             Pattern::Hinged { hinge, angle } => {
                 let pivot = place(q, frames, hinge.known, hinge.at_known);
                 let (theta, sin_cos) = match angle {
@@ -353,7 +551,8 @@ impl ClosedForm {
                         let p = place(q, frames, pin, at);
                         let w = [p[0] - pivot[0], p[1] - pivot[1]];
                         let rho2 = w[0] * w[0] + w[1] * w[1];
-                        let root = self.root(rho2, D::from(c), step.branch)?;
+                        let gap = c.abs() - rho2.re().sqrt();
+                        let root = self.root(rho2 - c * c, 1.0, gap, step.branch)?;
                         // e^{i(θ+δ)} ∝ w·(k − i c), then rotated back by δ = arg d.
                         let v = [w[0] * root + w[1] * c, w[1] * root - w[0] * c];
                         let x = v[0] * d[0] + v[1] * d[1];
@@ -366,7 +565,8 @@ impl ClosedForm {
                         let a = place(q, frames, line.body, line.origin);
                         let c = cross_d(u, [a[0] - pivot[0], a[1] - pivot[1]]);
                         let rho2 = r[0] * r[0] + r[1] * r[1];
-                        let root = self.root(D::from(rho2), c, step.branch)?;
+                        let gap = c.re().abs() - rho2.sqrt();
+                        let root = self.root(-c * c + rho2, 1.0, gap, step.branch)?;
                         // e^{i(θ+β)} ∝ u·(k + i c), then rotated back by β = arg r.
                         let v = [u[0] * root - u[1] * c, u[1] * root + u[0] * c];
                         let x = v[0] * r[0] + v[1] * r[1];
@@ -441,18 +641,17 @@ impl ClosedForm {
         }
     }
 
-    /// `k = σ √(ρ² − c²)`, or why there is none.
+    /// `σ √disc`, or why there is none: a toggle if `size · length / √|disc|` (the
+    /// condition estimate; `length` makes it dimensionless) exceeds the limit, else a loop
+    /// that cannot close by `gap` (m) if `disc < 0`.
     #[inline]
-    fn root<D: Scalar>(&self, rho2: D, c: D, branch: f64) -> Result<D, Failure> {
-        let disc = rho2 - c * c;
-        let condition = self.size / disc.re().abs().sqrt();
+    fn root<D: Scalar>(&self, disc: D, length: f64, gap: f64, branch: f64) -> Result<D, Failure> {
+        let condition = self.size * length / disc.re().abs().sqrt();
         if condition.is_nan() || condition > self.limit {
             return Err(Failure::Singular { condition });
         }
         if disc.re() < 0.0 {
-            return Err(Failure::Unassemblable {
-                residual: c.re().abs() - rho2.re().sqrt(),
-            });
+            return Err(Failure::Unassemblable { residual: gap });
         }
         Ok(disc.sqrt() * branch)
     }

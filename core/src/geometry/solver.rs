@@ -227,7 +227,8 @@ pub struct SolveReport {
     pub residual: f64,
     /// Sub-steps rejected because Newton landed on another assembly branch.
     pub branch_rejections: usize,
-    /// Sub-steps rejected because Newton did not converge.
+    /// Sub-steps rejected because Newton did not converge (on the closed-form path:
+    /// because a loop could not assemble).
     pub newton_failures: usize,
 }
 
@@ -484,13 +485,51 @@ impl<'m> Tracker<'m> {
     }
 
     /// Moves to `phi` with every loop in closed form: q, q′, q″ from one evaluation of the
-    /// formulas in `Dual2_64`.
+    /// formulas in `Dual2_64`. Where a loop cannot assemble at `phi`, the step is halved
+    /// (as on the Newton path) so that the tracker ends at the last position that
+    /// assembles, reported in the error.
     fn move_closed(&mut self, phi: f64) -> Result<SolveReport, Error> {
-        let x = Dual2_64::new(phi, 1.0, 0.0);
-        let (q, frames) = (&mut self.closed_q, &mut self.closed_frames);
-        if let Err((l, failure)) = self.closed.solve_all(x, self.q.as_slice(), q, frames) {
-            return Err(self.closed_failure(phi, l, failure));
+        let mut report = SolveReport {
+            phi,
+            iterations: 0,
+            steps: 0,
+            residual: 0.0,
+            branch_rejections: 0,
+            newton_failures: 0,
+        };
+        let mut halvings: usize = 0;
+        while self.phi != phi || report.steps == 0 {
+            let target = if halvings == 0 {
+                phi
+            } else {
+                self.phi + (phi - self.phi) / f64::powi(2.0, halvings.min(1074) as i32)
+            };
+            let x = Dual2_64::new(target, 1.0, 0.0);
+            let (q, frames) = (&mut self.closed_q, &mut self.closed_frames);
+            match self.closed.solve_all(x, self.q.as_slice(), q, frames) {
+                Ok(()) => {
+                    self.accept_closed(target);
+                    report.steps += 1;
+                    halvings = halvings.saturating_sub(1);
+                }
+                Err((l, failure @ Failure::Unassemblable { .. })) => {
+                    report.newton_failures += 1;
+                    halvings += 1;
+                    let next =
+                        self.phi + (phi - self.phi) / f64::powi(2.0, halvings.min(1074) as i32);
+                    if halvings > self.solver.max_subdivisions || next == self.phi {
+                        return Err(self.closed_failure(phi, l, failure));
+                    }
+                }
+                Err((l, failure)) => return Err(self.closed_failure(target, l, failure)),
+            }
         }
+        report.residual = amax(self.residual.as_slice());
+        Ok(report)
+    }
+
+    /// Makes the closed forms' pose (in `closed_q`, `closed_frames`) current at `phi`.
+    fn accept_closed(&mut self, phi: f64) {
         let poses = self.q.as_mut_slice().iter_mut();
         let derivatives = self
             .dq
@@ -509,14 +548,6 @@ impl<'m> Tracker<'m> {
             frames: &self.frames,
         };
         self.eq.evaluate_with(&f, phi, self.residual.as_mut_slice());
-        Ok(SolveReport {
-            phi,
-            iterations: 0,
-            steps: 1,
-            residual: amax(self.residual.as_slice()),
-            branch_rejections: 0,
-            newton_failures: 0,
-        })
     }
 
     /// The error for loop `l`'s closed form failing at `phi`.
