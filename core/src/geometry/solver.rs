@@ -19,6 +19,15 @@
 //!    [`super::implicit`]) with the same factorisation; they feed the next predictor and
 //!    [`Tracker::kinematics`].
 //!
+//! **Closed forms first.** Loops that match a standard pattern (driven crank, slotted
+//! rocker, translating slide, RRR and RRP dyads, …; see `closed_form`) are solved by their
+//! formulas instead: when every loop matches, [`Tracker::move_to`] evaluates them once in
+//! `Dual2_64` (q, q′, q″ at once; q‴ in `Dual3_64` on request) and none of the steps above
+//! runs, except the halving of the step towards a position that does not assemble. When
+//! only some match, they place their links in Newton's predictor. Branches are kept the
+//! same way (each formula's root is fixed at the sketch); [`Solver::with_closed_form`]
+//! turns this off.
+//!
 //! Nothing is allocated per drive position: the tracker keeps its buffers, and the loop
 //! structure is resolved to storage positions once (see `block_lu`). In a loop, read outputs
 //! through handles resolved once ([`Mechanism::point_output`] and the methods next to it)
@@ -373,12 +382,11 @@ impl<'m> Tracker<'m> {
             }
         }
         let (q, dq, ddq) = (self.q.as_slice(), self.dq.as_slice(), self.ddq.as_slice());
-        let coordinates = (0..q.len())
-            .map(|i| {
-                let d = [dq[i], ddq[i], dddq.get(i).copied().unwrap_or(0.0)];
-                Jet::new(q[i], std::array::from_fn(|k| d[k]))
-            })
-            .collect();
+        let mut coordinates = Vec::with_capacity(q.len());
+        for (i, ((&x, &dx), &ddx)) in q.iter().zip(dq).zip(ddq).enumerate() {
+            let d = [dx, ddx, dddq.get(i).copied().unwrap_or(0.0)];
+            coordinates.push(Jet::new(x, std::array::from_fn(|k| d[k])));
+        }
         Ok(Kinematics::new(self.mechanism, self.phi, coordinates))
     }
 

@@ -1,13 +1,15 @@
-//! Closed-form solutions of standard loops (Assur groups of one link), used instead of Newton.
+//! Closed-form solutions of standard loops (Assur groups of one or two links), used
+//! instead of Newton.
 //!
 //! The solver splits Φ(q, φ) = 0 into loops, solved in sequence (see [`super::branch`]); each
-//! loop's unknowns depend only on the loops before it. Many loops are one link attached to
-//! links already placed by two standard pairs, and have a closed-form solution. At
-//! [`super::Solver::track`] every loop is matched against the patterns below, from the
-//! joints of the model (whatever the mechanism is called); a loop that matches is solved by
-//! its formula, written once generic over the scalar: evaluated with `Dual2_64` or
-//! `Dual3_64` in φ it gives q, q′, q″ (q‴) exactly, the derivatives following through the
-//! formula from the earlier loops' dual coordinates, with no Newton iteration and no LU.
+//! loop's unknowns depend only on the loops before it. Many loops are one link, or two
+//! links joined by a revolute (a dyad), attached to links already placed by standard pairs,
+//! and have a closed-form solution. At [`super::Solver::track`] every loop is matched
+//! against the patterns below, from the joints of the model (whatever the mechanism is
+//! called; see `matching`); a loop that matches is solved by its formula, written once
+//! generic over the scalar: evaluated with `Dual2_64` or `Dual3_64` in φ it gives q, q′, q″
+//! (q‴) exactly, the derivatives following through the formula from the earlier loops' dual
+//! coordinates, with no Newton iteration and no LU.
 //!
 //! With `K` the hinge (the point of the link already placed that the unknown link turns
 //! about), `A(θ)` the link's rotation and `p_h` the hinge's link-local coordinates, a hinged
@@ -19,24 +21,32 @@
 //! | slotted rocker | revolute + its slot (direction `d`) through a known pin `P` | `cross(A d, w) = c`, `w = P − K`, `c = cross(d, o − p_h)`: `θ + δ = arg w − ψ` |
 //! | pin in a known slot | revolute + its pin (`p − p_h = r`) on a known line (`a`, `u`) | `cross(u, A r) = cross(u, a − K)`: `θ + arg r = arg u + ψ` |
 //! | translating slide | prismatic on a known guide + a slot through a known pin, a pin in a known slot, or a displacement drive | `θ = θ_guide`, displacement `s` from one linear equation |
+//! | RRR dyad | two links hinged at known `K₁`, `K₂`, joined at `J` (`|J − K₁| = l₁`, `|J − K₂| = l₂`) | `J = K₁ + (g d + σ √(l₁² d² − g²) d⊥) / d²`, `d = K₂ − K₁`, `g = (l₁² − l₂² + d²)/2` |
+//! | RRP dyad | first link hinged at `K`, the second sliding on a known guide (`u`), joined at `J = J₀ + s u` | `s = −u·w + σ √((u·w)² − |w|² + l₁²)`, `w = J₀ − K` |
 //!
-//! For the two square-root patterns, with ρ the radius (`|w|`, resp. `|r|`) and c the
+//! For the square-root patterns, with ρ the radius (`|w|`, resp. `|r|`) and c the
 //! right-hand side, `ρ sin ψ = c` and `ρ cos ψ = k = σ √(ρ² − c²)`: `ψ = arg(k + i c)`, and
 //! one `atan2` of a product of complex numbers gives θ (its sine and cosine follow by a
-//! division, without `sin_cos`). **Branch**: σ = ±1 is the sign of `dot(A d, w)` (resp.
-//! `dot(u, A r)`), the two assembly closures of the loop. It is chosen once, at `track`, as
-//! the sign that reproduces the sketch pose (each pattern is checked against the sketch; a
-//! loop whose formula does not reproduce it is left to Newton), and never changes: the loop
-//! stays on the sketch's branch, as the Newton path's certificates enforce. A negative
-//! discriminant ρ² − c² is a loop that cannot assemble ([`Error::Unassemblable`](crate::Error)
-//! with residual `|c| − ρ`, m); a root near zero is a toggle (`Error::Singular`), with the
-//! condition estimated as `size / √|ρ² − c²|` (resp. `1 / |cross(v, u)|` for a slide whose
-//! slot is parallel to its guide), compared with the solver's singular threshold. Angles are
-//! unwrapped to the nearest turn of the previous pose, so rotations stay continuous.
+//! division, without `sin_cos`); a dyad's link angles follow from J the same way.
+//! **Branch**: σ = ±1 selects one of the loop's two assembly closures (the sign of
+//! `dot(A d, w)`, resp. `dot(u, A r)`; the side of `K₁K₂` that J is on; which of the line's
+//! two intersections with the circle). It is chosen once, at `track`, as the sign that
+//! reproduces the sketch pose (each pattern is checked against the sketch; a loop whose
+//! formula does not reproduce it is left to Newton), and never changes: the loop stays on
+//! the sketch's branch, as the Newton path's certificates enforce. A negative discriminant
+//! is a loop that cannot assemble ([`Error::Unassemblable`](crate::Error), residual: by how
+//! much it misses, m); a root near zero is a toggle (`Error::Singular`), the condition
+//! estimated as `size / √|disc|` (dimensionless; `1 / |cross(v, u)|` for a slide whose
+//! slot is parallel to its guide) and compared with the solver's singular threshold.
+//! Angles are unwrapped to the nearest turn of the previous pose, so rotations stay
+//! continuous.
+
+mod matching;
 
 use super::branch::Loop;
-use super::constraints::{Body, Equations, Line, Slide, Term, cross};
+use super::constraints::{Body, Equations, Line, Slide};
 use crate::{Scalar, atan2};
+use matching::pattern;
 use std::f64::consts::{PI, TAU};
 
 /// A revolute joint seen from the unknown link: the point of the known link it turns about.
@@ -177,178 +187,6 @@ fn unwrap<D: Scalar>(theta: D, previous: f64) -> D {
 #[inline]
 fn cross_d<D: Scalar>(a: [D; 2], b: [D; 2]) -> D {
     a[0] * b[1] - a[1] * b[0]
-}
-
-/// Matches loop `l` of `eq` against the patterns (without its branch).
-fn pattern(eq: &Equations, l: &Loop) -> Option<(usize, Pattern)> {
-    let k = l.columns.first()? / 3;
-    if l.columns.len() == 6 {
-        return dyad(eq, l);
-    }
-    if l.columns.len() != 3 || l.columns.iter().any(|&c| c / 3 != k) {
-        return None;
-    }
-    let me = Some(k);
-    let mut terms: Vec<Term> = Vec::with_capacity(2);
-    for &r in &l.rows {
-        let t = eq.terms[eq.row_joint[r]];
-        if !terms.contains(&t) {
-            terms.push(t);
-        }
-    }
-    if terms.len() != 2 {
-        return None;
-    }
-    let other = |i: usize| terms[1 - i];
-    for (i, t) in terms.iter().enumerate() {
-        match *t {
-            Term::Revolute { a, pa, b, pb } if a != b && (a == me || b == me) => {
-                let hinge = if b == me {
-                    Hinge {
-                        known: a,
-                        at_known: pa,
-                        at_body: pb,
-                    }
-                } else {
-                    Hinge {
-                        known: b,
-                        at_known: pb,
-                        at_body: pa,
-                    }
-                };
-                let angle = match other(i) {
-                    Term::DriveAngle { a, b, phi0 } if a != b && b == me => Angle::Driven {
-                        other: a,
-                        sign: 1.0,
-                        phi0,
-                    },
-                    Term::DriveAngle { a, b, phi0 } if a != b && a == me => Angle::Driven {
-                        other: b,
-                        sign: -1.0,
-                        phi0,
-                    },
-                    Term::PinInSlot { line, pin, p } if line.body == me && pin != me => {
-                        Angle::SlotThroughPin {
-                            direction: line.direction,
-                            c: cross(line.direction, sub(line.origin, hinge.at_body)),
-                            pin,
-                            at: p,
-                        }
-                    }
-                    Term::PinInSlot { line, pin, p } if pin == me && line.body != me => {
-                        Angle::PinInKnownSlot {
-                            line,
-                            r: sub(p, hinge.at_body),
-                        }
-                    }
-                    _ => return None,
-                };
-                return Some((k, Pattern::Hinged { hinge, angle }));
-            }
-            Term::Prismatic { slide, offset } if slide.slider == me && slide.line.body != me => {
-                let shift = match other(i) {
-                    Term::DriveSlide { slide: s, s0, phi0 } if s == slide => {
-                        Shift::Driven { s0, phi0 }
-                    }
-                    Term::PinInSlot { line, pin, p } if line.body == me && pin != me => {
-                        Shift::SlotThroughPin { line, pin, at: p }
-                    }
-                    Term::PinInSlot { line, pin, p } if pin == me && line.body != me => {
-                        Shift::PinInKnownSlot { line, p }
-                    }
-                    _ => return None,
-                };
-                return Some((
-                    k,
-                    Pattern::Sliding {
-                        slide,
-                        offset,
-                        shift,
-                    },
-                ));
-            }
-            _ => {}
-        }
-    }
-    None
-}
-
-/// Matches a two-link loop: RRR or RRP dyad.
-fn dyad(eq: &Equations, l: &Loop) -> Option<(usize, Pattern)> {
-    let mut bodies: Vec<usize> = l.columns.iter().map(|&c| c / 3).collect();
-    bodies.sort_unstable();
-    bodies.dedup();
-    let [k1, k2] = bodies[..] else { return None };
-    let mut terms: Vec<Term> = Vec::with_capacity(3);
-    for &r in &l.rows {
-        let t = eq.terms[eq.row_joint[r]];
-        if !terms.contains(&t) {
-            terms.push(t);
-        }
-    }
-    if terms.len() != 3 {
-        return None;
-    }
-    let (b1, b2) = (Some(k1), Some(k2));
-    let unknown = |b: Body| b == b1 || b == b2;
-    let mut joint = None;
-    let mut ends: [Option<End>; 2] = [None, None];
-    for t in &terms {
-        match *t {
-            Term::Revolute { a, pa, b, pb } if a == b1 && b == b2 => joint = Some([pa, pb]),
-            Term::Revolute { a, pa, b, pb } if a == b2 && b == b1 => joint = Some([pb, pa]),
-            Term::Revolute { a, pa, b, pb } if unknown(a) != unknown(b) => {
-                let (me, hinge) = if unknown(b) {
-                    (
-                        b,
-                        Hinge {
-                            known: a,
-                            at_known: pa,
-                            at_body: pb,
-                        },
-                    )
-                } else {
-                    (
-                        a,
-                        Hinge {
-                            known: b,
-                            at_known: pb,
-                            at_body: pa,
-                        },
-                    )
-                };
-                ends[usize::from(me == b2)] = Some(End::Hinge(hinge));
-            }
-            Term::Prismatic { slide, offset }
-                if unknown(slide.slider) && !unknown(slide.line.body) =>
-            {
-                ends[usize::from(slide.slider == b2)] = Some(End::Slide { slide, offset });
-            }
-            _ => return None,
-        }
-    }
-    let joint = joint?;
-    match ends {
-        [Some(End::Hinge(hinge)), Some(end)] => Some((
-            k1,
-            Pattern::Dyad {
-                hinge,
-                joint,
-                second: k2,
-                end,
-            },
-        )),
-        [Some(end), Some(End::Hinge(hinge))] => Some((
-            k2,
-            Pattern::Dyad {
-                hinge,
-                joint: [joint[1], joint[0]],
-                second: k1,
-                end,
-            },
-        )),
-        _ => None,
-    }
 }
 
 impl ClosedForm {
