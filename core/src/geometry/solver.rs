@@ -317,7 +317,9 @@ impl<'m> Tracker<'m> {
         self.q.as_slice()
     }
 
-    /// The loops (joint names per loop, in solving order) and their branch certificates.
+    /// The loops (joint names per loop, in solving order) and their branch certificates
+    /// (when every loop is in closed form, those of the sketch: the formulas keep its
+    /// branches).
     pub fn loops(&self) -> Vec<(Vec<String>, i8)> {
         self.loops
             .iter()
