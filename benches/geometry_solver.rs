@@ -1,9 +1,11 @@
 //! Cost of the geometry-only Whitworth per drive position against its closed form.
 //!
 //! - `whitworth ψ,ψ′,ψ″ per drive position: geometry solver vs closed-form Dual2` — one
-//!   revolution at 0.5° steps; the geometry path is a warm-started Newton solve plus the
-//!   implicit lift to second order plus reading ψ (resolved once with
-//!   `Mechanism::rotation_output`); the closed form is
+//!   revolution at 0.5° steps; the geometry path solves every loop of the model in closed
+//!   form in `Dual2_64` (the solver's default: all three Whitworth loops match a pattern)
+//!   and reads ψ (resolved once with `Mechanism::rotation_output`); "Newton forced"
+//!   (`Solver::with_closed_form(false)`) is a warm-started Newton solve plus the implicit
+//!   lift to second order; the hand-written closed form is
 //!   ψ = atan2(λ sin φ, 1 − λ cos φ) in `Dual2_64`.
 //! - `whitworth lift q′,q″ at one pose: one LU + Dual2 vs num-dual implicit_derivative_vec`
 //!   — the two exact ways to differentiate the solved pose.
@@ -62,6 +64,26 @@ fn per_drive_position(c: &mut Criterion) {
         |b| {
             b.iter(|| {
                 let mut t = start.clone();
+                let mut acc = 0.0;
+                for &phi in &phis {
+                    t.move_to(black_box(phi)).expect("assembles");
+                    let k = t.kinematics::<2>().expect("regular");
+                    let psi = k.value(&rocker);
+                    acc += psi.value + psi.d1() + psi.d2();
+                }
+                acc
+            })
+        },
+    );
+    let newton = Solver::default()
+        .with_closed_form(false)
+        .track(&m)
+        .expect("assembles");
+    group.bench_function(
+        BenchmarkId::new("geometry solve + lift, Newton forced", "720 positions"),
+        |b| {
+            b.iter(|| {
+                let mut t = newton.clone();
                 let mut acc = 0.0;
                 for &phi in &phis {
                     t.move_to(black_box(phi)).expect("assembles");

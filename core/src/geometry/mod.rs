@@ -8,6 +8,7 @@
 
 mod block_lu;
 pub mod branch;
+mod closed_form;
 mod constraints;
 mod frames;
 pub mod implicit;

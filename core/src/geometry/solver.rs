@@ -19,6 +19,15 @@
 //!    [`super::implicit`]) with the same factorisation; they feed the next predictor and
 //!    [`Tracker::kinematics`].
 //!
+//! **Closed forms first.** Loops that match a standard pattern (driven crank, slotted
+//! rocker, translating slide, RRR and RRP dyads, …; see `closed_form`) are solved by their
+//! formulas instead: when every loop matches, [`Tracker::move_to`] evaluates them once in
+//! `Dual2_64` (q, q′, q″ at once; q‴ in `Dual3_64` on request) and none of the steps above
+//! runs, except the halving of the step towards a position that does not assemble. When
+//! only some match, they place their links in Newton's predictor. Branches are kept the
+//! same way (each formula's root is fixed at the sketch); [`Solver::with_closed_form`]
+//! turns this off.
+//!
 //! Nothing is allocated per drive position: the tracker keeps its buffers, and the loop
 //! structure is resolved to storage positions once (see `block_lu`). In a loop, read outputs
 //! through handles resolved once ([`Mechanism::point_output`] and the methods next to it)
@@ -26,6 +35,7 @@
 
 use super::block_lu::BlockLu;
 use super::branch::{self, Loop};
+use super::closed_form::{ClosedForm, Failure};
 use super::constraints::{Equations, Frames};
 use super::frames;
 use super::implicit::{self, Factorised, SecondOrder};
@@ -34,6 +44,7 @@ use super::mobility::{self, Mobility};
 use super::model::Mechanism;
 use crate::{Error, Jet};
 use nalgebra::{DMatrix, DVector};
+use num_dual::{Dual2_64, Dual3_64};
 
 /// Configuration of the position solver.
 ///
@@ -56,6 +67,12 @@ pub struct Solver {
     /// 1e-13, measured on a slider-crank driven into its dead centre), ten times above it;
     /// a regular pose that close to a toggle has lost half the digits of q′ anyway.
     pub singular_condition: Option<f64>,
+    /// Solve the loops that match a standard pattern in closed form (default `true`; see
+    /// `closed_form`): when every loop matches, a drive position costs one evaluation of
+    /// the formulas in `Dual2_64`, with no Newton iteration and no LU; otherwise the
+    /// formulas place their loops' links as Newton's predictor. `false` forces the Newton
+    /// path everywhere (the reference the closed forms are tested against).
+    pub closed_form: bool,
 }
 
 impl Default for Solver {
@@ -65,6 +82,7 @@ impl Default for Solver {
             max_iterations: 50,
             max_subdivisions: 24,
             singular_condition: None,
+            closed_form: true,
         }
     }
 }
@@ -91,6 +109,12 @@ impl Solver {
     /// Sets the condition number above which a pose is reported singular.
     pub fn with_singular_condition(mut self, condition: f64) -> Self {
         self.singular_condition = Some(condition);
+        self
+    }
+
+    /// Enables (default) or disables the closed-form solution of standard loops.
+    pub fn with_closed_form(mut self, closed_form: bool) -> Self {
+        self.closed_form = closed_form;
         self
     }
 
@@ -149,6 +173,14 @@ impl Solver {
             })
             .collect();
         let q = DVector::from_vec(m.sketch_coordinates());
+        let closed = ClosedForm::new(
+            &eq,
+            &loops,
+            q.as_slice(),
+            m.drive_at_sketch,
+            size,
+            self.singular_threshold(),
+        );
         let frames: Vec<(f64, f64)> = (0..n / 3).map(|k| q[3 * k + 2].sin_cos()).collect();
         let mut t = Tracker {
             unit_drive,
@@ -173,6 +205,11 @@ impl Solver {
             certificates: vec![0; loops.len()],
             trial_certificates: vec![0; loops.len()],
             screens,
+            closed_only: self.closed_form && closed.complete(),
+            seeding: self.closed_form && !closed.complete() && closed.count() > 0,
+            closed,
+            closed_q: vec![Dual2_64::from(0.0); n],
+            closed_frames: vec![(Dual2_64::from(0.0), Dual2_64::from(0.0)); n / 3],
             loops,
             size,
             eq,
@@ -199,7 +236,8 @@ pub struct SolveReport {
     pub residual: f64,
     /// Sub-steps rejected because Newton landed on another assembly branch.
     pub branch_rejections: usize,
-    /// Sub-steps rejected because Newton did not converge.
+    /// Sub-steps rejected because Newton did not converge (on the closed-form path:
+    /// because a loop could not assemble).
     pub newton_failures: usize,
 }
 
@@ -236,6 +274,15 @@ pub struct Tracker<'m> {
     certificates: Vec<i8>,
     trial_certificates: Vec<i8>,
     screens: Vec<Screen>,
+    /// The loops' closed forms (see `closed_form`).
+    closed: ClosedForm,
+    /// Every loop is solved in closed form (no Newton, no LU).
+    closed_only: bool,
+    /// Some loops are: their formulas seed Newton's predictor.
+    seeding: bool,
+    /// The closed forms' pose and `(sin θ, cos θ)` in `Dual2_64` (buffers).
+    closed_q: Vec<Dual2_64>,
+    closed_frames: Vec<(Dual2_64, Dual2_64)>,
 }
 
 /// Constants of one loop's singularity screen.
@@ -270,13 +317,22 @@ impl<'m> Tracker<'m> {
         self.q.as_slice()
     }
 
-    /// The loops (joint names per loop, in solving order) and their branch certificates.
+    /// The loops (joint names per loop, in solving order) and their branch certificates
+    /// (when every loop is in closed form, those of the sketch: the formulas keep its
+    /// branches).
     pub fn loops(&self) -> Vec<(Vec<String>, i8)> {
         self.loops
             .iter()
             .zip(&self.certificates)
             .map(|(l, &c)| (self.loop_joints(l), c))
             .collect()
+    }
+
+    /// Per loop (in the order of [`Tracker::loops`]), whether it is solved in closed form
+    /// (see [`Solver::closed_form`]); with some loops not, the others only seed Newton.
+    pub fn closed_form_loops(&self) -> Vec<bool> {
+        let on = self.closed_only || self.seeding;
+        self.closed.matched().map(|m| m && on).collect()
     }
 
     fn loop_joints(&self, l: &Loop) -> Vec<String> {
@@ -307,7 +363,16 @@ impl<'m> Tracker<'m> {
             )
         };
         let mut dddq = Vec::new();
-        if N == 3 {
+        if N == 3 && self.closed_only {
+            let n = self.q.len();
+            let zero = Dual3_64::from(0.0);
+            let (mut q, mut frames) = (vec![zero; n], vec![(zero, zero); n / 3]);
+            let phi = Dual3_64::new(self.phi, 1.0, 0.0, 0.0);
+            self.closed
+                .solve_all(phi, self.q.as_slice(), &mut q, &mut frames)
+                .map_err(|(l, failure)| self.closed_failure(self.phi, l, failure))?;
+            dddq.extend(q.iter().map(|x| x.v3));
+        } else if N == 3 {
             dddq.resize(self.q.len(), 0.0);
             let lu = Loops {
                 jac: &self.jac,
@@ -319,12 +384,11 @@ impl<'m> Tracker<'m> {
             }
         }
         let (q, dq, ddq) = (self.q.as_slice(), self.dq.as_slice(), self.ddq.as_slice());
-        let coordinates = (0..q.len())
-            .map(|i| {
-                let d = [dq[i], ddq[i], dddq.get(i).copied().unwrap_or(0.0)];
-                Jet::new(q[i], std::array::from_fn(|k| d[k]))
-            })
-            .collect();
+        let mut coordinates = Vec::with_capacity(q.len());
+        for (i, ((&x, &dx), &ddx)) in q.iter().zip(dq).zip(ddq).enumerate() {
+            let d = [dx, ddx, dddq.get(i).copied().unwrap_or(0.0)];
+            coordinates.push(Jet::new(x, std::array::from_fn(|k| d[k])));
+        }
         Ok(Kinematics::new(self.mechanism, self.phi, coordinates))
     }
 
@@ -357,6 +421,9 @@ impl<'m> Tracker<'m> {
             branch_rejections: 0,
             newton_failures: 0,
         };
+        if self.closed_only {
+            return self.move_closed(phi);
+        }
         let mut halvings: usize = 0;
         while self.phi != phi {
             let h = (phi - self.phi) / f64::powi(2.0, halvings.min(1074) as i32);
@@ -373,6 +440,11 @@ impl<'m> Tracker<'m> {
                 .zip(self.trial.as_slice().chunks_exact(3))
             {
                 *f = pose[2].sin_cos();
+            }
+            if self.seeding {
+                let (q, frames) = (self.q.as_slice(), &mut self.trial_frames);
+                self.closed
+                    .seed(target, q, self.trial.as_mut_slice(), frames);
             }
             let failure = match self.newton(target) {
                 Ok(iterations) => {
@@ -420,6 +492,90 @@ impl<'m> Tracker<'m> {
         report.phi = self.phi;
         report.residual = amax(self.residual.as_slice());
         Ok(report)
+    }
+
+    /// Moves to `phi` with every loop in closed form: q, q′, q″ from one evaluation of the
+    /// formulas in `Dual2_64`. Where a loop cannot assemble at `phi`, the step is halved
+    /// (as on the Newton path) so that the tracker ends at the last position that
+    /// assembles, reported in the error.
+    fn move_closed(&mut self, phi: f64) -> Result<SolveReport, Error> {
+        let mut report = SolveReport {
+            phi,
+            iterations: 0,
+            steps: 0,
+            residual: 0.0,
+            branch_rejections: 0,
+            newton_failures: 0,
+        };
+        let mut halvings: usize = 0;
+        while self.phi != phi || report.steps == 0 {
+            let target = if halvings == 0 {
+                phi
+            } else {
+                self.phi + (phi - self.phi) / f64::powi(2.0, halvings.min(1074) as i32)
+            };
+            let x = Dual2_64::new(target, 1.0, 0.0);
+            let (q, frames) = (&mut self.closed_q, &mut self.closed_frames);
+            match self.closed.solve_all(x, self.q.as_slice(), q, frames) {
+                Ok(()) => {
+                    self.accept_closed(target);
+                    report.steps += 1;
+                    halvings = halvings.saturating_sub(1);
+                }
+                Err((l, failure @ Failure::Unassemblable { .. })) => {
+                    report.newton_failures += 1;
+                    halvings += 1;
+                    let next =
+                        self.phi + (phi - self.phi) / f64::powi(2.0, halvings.min(1074) as i32);
+                    if halvings > self.solver.max_subdivisions || next == self.phi {
+                        return Err(self.closed_failure(phi, l, failure));
+                    }
+                }
+                Err((l, failure)) => return Err(self.closed_failure(target, l, failure)),
+            }
+        }
+        report.residual = amax(self.residual.as_slice());
+        Ok(report)
+    }
+
+    /// Makes the closed forms' pose (in `closed_q`, `closed_frames`) current at `phi`.
+    fn accept_closed(&mut self, phi: f64) {
+        let poses = self.q.as_mut_slice().iter_mut();
+        let derivatives = self
+            .dq
+            .as_mut_slice()
+            .iter_mut()
+            .zip(self.ddq.as_mut_slice());
+        for ((x, (dx, ddx)), v) in poses.zip(derivatives).zip(&self.closed_q) {
+            (*x, *dx, *ddx) = (v.re, v.v1, v.v2);
+        }
+        for (f, (s, c)) in self.frames.iter_mut().zip(&self.closed_frames) {
+            *f = (s.re, c.re);
+        }
+        self.phi = phi;
+        let f = Frames {
+            q: self.q.as_slice(),
+            frames: &self.frames,
+        };
+        self.eq.evaluate_with(&f, phi, self.residual.as_mut_slice());
+    }
+
+    /// The error for loop `l`'s closed form failing at `phi`.
+    fn closed_failure(&self, phi: f64, l: usize, failure: Failure) -> Error {
+        let joints = self.loop_joints(&self.loops[l]);
+        match failure {
+            Failure::Unassemblable { residual } => Error::Unassemblable {
+                phi,
+                last_assembled: self.phi,
+                joints,
+                residual,
+            },
+            Failure::Singular { condition } => Error::Singular {
+                phi,
+                condition,
+                joints,
+            },
+        }
     }
 
     /// Newton on `trial` at drive position `phi`: the iterations, or the final residual and

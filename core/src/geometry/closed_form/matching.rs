@@ -1,0 +1,177 @@
+//! Which closed form fits a loop: matched from the joints (terms) of its rows.
+
+use super::{Angle, End, Hinge, Pattern, Shift, sub};
+use crate::geometry::branch::Loop;
+use crate::geometry::constraints::{Body, Equations, Term, cross};
+
+/// Matches loop `l` of `eq` against the patterns (without its branch).
+pub(super) fn pattern(eq: &Equations, l: &Loop) -> Option<(usize, Pattern)> {
+    let k = l.columns.first()? / 3;
+    if l.columns.len() == 6 {
+        return dyad(eq, l);
+    }
+    if l.columns.len() != 3 || l.columns.iter().any(|&c| c / 3 != k) {
+        return None;
+    }
+    let me = Some(k);
+    let mut terms: Vec<Term> = Vec::with_capacity(2);
+    for &r in &l.rows {
+        let t = eq.terms[eq.row_joint[r]];
+        if !terms.contains(&t) {
+            terms.push(t);
+        }
+    }
+    if terms.len() != 2 {
+        return None;
+    }
+    let other = |i: usize| terms[1 - i];
+    for (i, t) in terms.iter().enumerate() {
+        match *t {
+            Term::Revolute { a, pa, b, pb } if a != b && (a == me || b == me) => {
+                let hinge = if b == me {
+                    Hinge {
+                        known: a,
+                        at_known: pa,
+                        at_body: pb,
+                    }
+                } else {
+                    Hinge {
+                        known: b,
+                        at_known: pb,
+                        at_body: pa,
+                    }
+                };
+                let angle = match other(i) {
+                    Term::DriveAngle { a, b, phi0 } if a != b && b == me => Angle::Driven {
+                        other: a,
+                        sign: 1.0,
+                        phi0,
+                    },
+                    Term::DriveAngle { a, b, phi0 } if a != b && a == me => Angle::Driven {
+                        other: b,
+                        sign: -1.0,
+                        phi0,
+                    },
+                    Term::PinInSlot { line, pin, p } if line.body == me && pin != me => {
+                        Angle::SlotThroughPin {
+                            direction: line.direction,
+                            c: cross(line.direction, sub(line.origin, hinge.at_body)),
+                            pin,
+                            at: p,
+                        }
+                    }
+                    Term::PinInSlot { line, pin, p } if pin == me && line.body != me => {
+                        Angle::PinInKnownSlot {
+                            line,
+                            r: sub(p, hinge.at_body),
+                        }
+                    }
+                    _ => return None,
+                };
+                return Some((k, Pattern::Hinged { hinge, angle }));
+            }
+            Term::Prismatic { slide, offset } if slide.slider == me && slide.line.body != me => {
+                let shift = match other(i) {
+                    Term::DriveSlide { slide: s, s0, phi0 } if s == slide => {
+                        Shift::Driven { s0, phi0 }
+                    }
+                    Term::PinInSlot { line, pin, p } if line.body == me && pin != me => {
+                        Shift::SlotThroughPin { line, pin, at: p }
+                    }
+                    Term::PinInSlot { line, pin, p } if pin == me && line.body != me => {
+                        Shift::PinInKnownSlot { line, p }
+                    }
+                    _ => return None,
+                };
+                return Some((
+                    k,
+                    Pattern::Sliding {
+                        slide,
+                        offset,
+                        shift,
+                    },
+                ));
+            }
+            _ => {}
+        }
+    }
+    None
+}
+
+/// Matches a two-link loop: RRR or RRP dyad.
+fn dyad(eq: &Equations, l: &Loop) -> Option<(usize, Pattern)> {
+    let mut bodies: Vec<usize> = l.columns.iter().map(|&c| c / 3).collect();
+    bodies.sort_unstable();
+    bodies.dedup();
+    let [k1, k2] = bodies[..] else { return None };
+    let mut terms: Vec<Term> = Vec::with_capacity(3);
+    for &r in &l.rows {
+        let t = eq.terms[eq.row_joint[r]];
+        if !terms.contains(&t) {
+            terms.push(t);
+        }
+    }
+    if terms.len() != 3 {
+        return None;
+    }
+    let (b1, b2) = (Some(k1), Some(k2));
+    let unknown = |b: Body| b == b1 || b == b2;
+    let mut joint = None;
+    let mut ends: [Option<End>; 2] = [None, None];
+    for t in &terms {
+        match *t {
+            Term::Revolute { a, pa, b, pb } if a == b1 && b == b2 => joint = Some([pa, pb]),
+            Term::Revolute { a, pa, b, pb } if a == b2 && b == b1 => joint = Some([pb, pa]),
+            Term::Revolute { a, pa, b, pb } if unknown(a) != unknown(b) => {
+                let (me, hinge) = if unknown(b) {
+                    (
+                        b,
+                        Hinge {
+                            known: a,
+                            at_known: pa,
+                            at_body: pb,
+                        },
+                    )
+                } else {
+                    (
+                        a,
+                        Hinge {
+                            known: b,
+                            at_known: pb,
+                            at_body: pa,
+                        },
+                    )
+                };
+                ends[usize::from(me == b2)] = Some(End::Hinge(hinge));
+            }
+            Term::Prismatic { slide, offset }
+                if unknown(slide.slider) && !unknown(slide.line.body) =>
+            {
+                ends[usize::from(slide.slider == b2)] = Some(End::Slide { slide, offset });
+            }
+            _ => return None,
+        }
+    }
+    let joint = joint?;
+    match ends {
+        [Some(End::Hinge(hinge)), Some(end)] => Some((
+            k1,
+            Pattern::Dyad {
+                hinge,
+                joint,
+                second: k2,
+                end,
+            },
+        )),
+        [Some(end), Some(End::Hinge(hinge))] => Some((
+            k2,
+            Pattern::Dyad {
+                hinge,
+                joint: [joint[1], joint[0]],
+                second: k1,
+                end,
+            },
+        )),
+        _ => None,
+    }
+}

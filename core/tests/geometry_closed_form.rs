@@ -1,0 +1,423 @@
+//! The closed-form loop solutions (`Solver::with_closed_form`) against the Newton path and
+//! against hand-written closed forms, and their errors.
+
+mod common;
+
+use common::{four_bar, rack_slotted_link, revolution, scaled_error, slider_crank, whitworth};
+use mechdiff_core::geometry::{Drive, Mechanism, Solver};
+use mechdiff_core::{Error, Jet};
+use num_dual::{Dual3_64, DualNum};
+use std::f64::consts::{FRAC_PI_2, PI};
+
+/// Sweeps `m` over `phis` with the closed forms and with Newton forced, and returns the
+/// largest difference over every coordinate and derivative order 0..=3, scaled per order by
+/// the largest magnitude of that order over all coordinates and the sweep (coordinates that
+/// stay zero, like a slider's angle, would make a per-coordinate scale meaningless).
+fn closed_form_vs_newton(m: &Mechanism, phis: &[f64]) -> f64 {
+    let fast = Solver::default().sweep::<3>(m, phis).unwrap();
+    let newton = Solver::default()
+        .with_closed_form(false)
+        .sweep::<3>(m, phis)
+        .unwrap();
+    let pick = |j: &Jet<3>, order: usize| {
+        if order == 0 {
+            j.value
+        } else {
+            j.derivatives[order - 1]
+        }
+    };
+    let mut worst: f64 = 0.0;
+    for order in 0..4 {
+        let pairs: Vec<(f64, f64)> = fast
+            .iter()
+            .zip(&newton)
+            .flat_map(|(a, b)| a.coordinates.iter().zip(&b.coordinates))
+            .map(|(a, b)| (pick(a, order), pick(b, order)))
+            .collect();
+        worst = worst.max(scaled_error(&pairs));
+    }
+    worst
+}
+
+/// Scotch yoke: crank r from O = (0, 0); the yoke translates along the x axis and carries a
+/// vertical slot through the crank pin A. Sketched at crank angle `phi0`. With `drive_yoke`
+/// the yoke's displacement (x of the slot) drives it, else the crank angle.
+fn scotch_yoke(r: f64, phi0: f64, drive_yoke: bool) -> Result<Mechanism, Error> {
+    let a = [r * phi0.cos(), r * phi0.sin()];
+    let b = Mechanism::builder()
+        .point("O", [0.0, 0.0])
+        .point("X", [1.0, 0.0])
+        .point("A", a)
+        .point("Y0", [a[0], 0.0])
+        .point("Y1", [a[0], 1.0])
+        .ground(["O", "X"])
+        .link("crank", ["O", "A"])
+        .link("yoke", ["Y0", "Y1"])
+        .revolute("O", "ground", "crank", "O")
+        .prismatic("guide", "ground", ["O", "X"], "yoke", "Y0")
+        .pin_in_slot("slot", "yoke", ["Y0", "Y1"], "crank", "A");
+    if drive_yoke {
+        b.drive(Drive::displacement("guide")).build()
+    } else {
+        b.drive(Drive::angle("O").at_sketch(phi0)).build()
+    }
+}
+
+/// A crank from O = (0, 0) carrying a slot along itself; a lever hinged at B0 = (0.3, 0)
+/// has its pin P (0.5 m from B0) in the slot. Sketched at φ = π/2 (P = (0, 0.4)). B0 is
+/// inside the pin's circle, so the lever turns fully as the crank does.
+fn crank_with_slot_and_lever() -> Result<Mechanism, Error> {
+    Mechanism::builder()
+        .point("O", [0.0, 0.0])
+        .point("S", [0.0, 1.0])
+        .point("B0", [0.3, 0.0])
+        .point("P", [0.0, 0.4])
+        .ground(["O", "B0"])
+        .link("crank", ["O", "S"])
+        .link("lever", ["B0", "P"])
+        .revolute("O", "ground", "crank", "O")
+        .revolute("B0", "ground", "lever", "B0")
+        .pin_in_slot("slot", "crank", ["O", "S"], "lever", "P")
+        .drive(Drive::angle("O").at_sketch(FRAC_PI_2))
+        .build()
+}
+
+/// A Whitworth-like quick return with the general geometry: the rocker's slot is offset by
+/// 0.05 m from its pivot (c ≠ 0 in the rocker formula), the ram's guide is inclined by 0.2
+/// rad, and the ram's pin C is offset from its guide line.
+fn offset_quick_return() -> Result<Mechanism, Error> {
+    let (l0, l1, e) = (0.4, 0.15, 0.05);
+    // Rocker pivot B0 = (0, 0), slot parallel to y at x = e; crank pivot O = (e, l0); the
+    // crank pin A = (e, l0 − l1) is on the slot.
+    let u = [0.2f64.cos(), 0.2f64.sin()];
+    let c = [e, 0.7];
+    // Guide line through H0 = C − 0.03 n (n ⟂ u), i.e. C is 0.03 m off the line.
+    let h0 = [c[0] + 0.03 * u[1], c[1] - 0.03 * u[0]];
+    Mechanism::builder()
+        .point("O", [e, l0])
+        .point("B0", [0.0, 0.0])
+        .point("A", [e, l0 - l1])
+        .point("S0", [e, 0.0])
+        .point("S", [e, 1.0])
+        .point("C", c)
+        .point("H0", h0)
+        .point("H1", [h0[0] + u[0], h0[1] + u[1]])
+        .ground(["O", "B0", "H0", "H1"])
+        .link("crank", ["O", "A"])
+        .link("rocker", ["B0", "S0", "S"])
+        .link("ram", ["C", "H0"])
+        .revolute("O", "ground", "crank", "O")
+        .revolute("B0", "ground", "rocker", "B0")
+        .pin_in_slot("slot A", "rocker", ["S0", "S"], "crank", "A")
+        .prismatic("ram guide", "ground", ["H0", "H1"], "ram", "C")
+        .pin_in_slot("slot C", "rocker", ["S0", "S"], "ram", "C")
+        .drive(Drive::angle("O"))
+        .build()
+}
+
+#[test]
+fn whitworth_is_solved_in_closed_form_and_matches_newton_over_a_revolution() {
+    let m = whitworth().unwrap();
+    let t = Solver::default().track(&m).unwrap();
+    assert_eq!(t.closed_form_loops(), vec![true, true, true]);
+    let forced = Solver::default().with_closed_form(false).track(&m).unwrap();
+    assert_eq!(forced.closed_form_loops(), vec![false, false, false]);
+    // Both paths are exact up to rounding: 1e-13 of each coordinate's (and derivative's)
+    // largest magnitude over the revolution.
+    let e = closed_form_vs_newton(&m, &revolution(0.5, &[]));
+    assert!(e <= 1e-13, "scaled difference {e:e}");
+}
+
+#[test]
+fn offset_slot_and_inclined_guide_match_newton() {
+    let m = offset_quick_return().unwrap();
+    let t = Solver::default().track(&m).unwrap();
+    assert_eq!(t.closed_form_loops(), vec![true, true, true]);
+    // 1e-13 scaled: both exact up to rounding (see above).
+    let e = closed_form_vs_newton(&m, &revolution(0.5, &[]));
+    assert!(e <= 1e-13, "scaled difference {e:e}");
+}
+
+#[test]
+fn lever_pin_in_a_turning_slot_matches_newton_and_its_own_closed_form() {
+    let m = crank_with_slot_and_lever().unwrap();
+    let t = Solver::default().track(&m).unwrap();
+    assert_eq!(t.closed_form_loops(), vec![true, true]);
+    // Two full turns from the sketch: the lever's angle must stay continuous (unwrapped).
+    let phis: Vec<f64> = (0..=1440)
+        .map(|i| FRAC_PI_2 + i as f64 * PI / 360.0)
+        .collect();
+    let e = closed_form_vs_newton(&m, &phis);
+    assert!(e <= 1e-13, "scaled difference {e:e}");
+    let sweep = Solver::default().sweep::<1>(&m, &phis).unwrap();
+    for k in &sweep {
+        // P on the line through O at angle φ, 0.5 m from B0 = (0.3, 0), on the far side:
+        // t = 0.3 cos φ + √(0.25 − 0.09 sin² φ). 1e-14 m: rounding on 0.5 m.
+        let (s, c) = k.phi.sin_cos();
+        let along = 0.3 * c + (0.25 - 0.09 * s * s).sqrt();
+        let [x, y] = k.point("lever", "P").unwrap();
+        assert!((x.value - along * c).abs() < 1e-14 && (y.value - along * s).abs() < 1e-14);
+    }
+    let last = sweep.last().unwrap().rotation("lever").unwrap().value;
+    // Two turns of the crank turn the lever twice (continuous angle, not wrapped).
+    assert!((last - 2.0 * std::f64::consts::TAU).abs() < 1e-12, "{last}");
+}
+
+#[test]
+fn scotch_yoke_matches_newton_and_x_equals_r_cos_phi() {
+    let r = 0.2;
+    let m = scotch_yoke(r, 0.3, false).unwrap();
+    let t = Solver::default().track(&m).unwrap();
+    assert_eq!(t.closed_form_loops(), vec![true, true]);
+    let phis = revolution(1.0, &[]);
+    let e = closed_form_vs_newton(&m, &phis);
+    assert!(e <= 1e-13, "scaled difference {e:e}");
+    for k in Solver::default().sweep::<3>(&m, &phis).unwrap() {
+        let x = k.displacement("guide").unwrap();
+        let (s, c) = k.phi.sin_cos();
+        // x = r cos φ and its derivatives, to rounding (1e-15 m on 0.2 m).
+        let exact = [r * c, -r * s, -r * c, r * s];
+        let got = [x.value, x.d1(), x.d2(), x.d3()];
+        for (g, e) in got.iter().zip(exact) {
+            assert!((g - e).abs() < 1e-15, "φ = {}: {g} vs {e}", k.phi);
+        }
+    }
+}
+
+#[test]
+fn yoke_driven_crank_matches_newton_and_reports_dead_ends() {
+    let r = 0.2;
+    let m = scotch_yoke(r, 1.0, true).unwrap();
+    let t = Solver::default().track(&m).unwrap();
+    assert_eq!(t.closed_form_loops(), vec![true, true]);
+    // The yoke from x = r cos 1 down to −0.18 m (the crank stays on the upper half; the
+    // derivatives of θ = acos(x/r) grow like 1/sin³θ towards the toggle at x = −r).
+    let x0 = r * 1.0f64.cos();
+    let phis: Vec<f64> = (0..=200)
+        .map(|i| x0 - i as f64 * (x0 + 0.18) / 200.0)
+        .collect();
+    for k in Solver::default().sweep::<2>(&m, &phis).unwrap() {
+        // θ = acos(x/r) − 1 (rotation since the sketch), θ′ = −1/(r sin θ),
+        // θ″ = −cos θ/(r² sin³ θ): to rounding, 1e-13 relative (at least 1e-13 absolute).
+        let th = k.rotation("crank").unwrap();
+        let exact_th = (k.phi / r).acos();
+        let (s, c) = exact_th.sin_cos();
+        let exact = [exact_th - 1.0, -1.0 / (r * s), -c / (r * r * s * s * s)];
+        let got = [th.value, th.d1(), th.d2()];
+        for (g, e) in got.iter().zip(exact) {
+            assert!(
+                (g - e).abs() <= 1e-13 * e.abs().max(1.0),
+                "x = {}: {g} vs {e}",
+                k.phi
+            );
+        }
+    }
+    // Against Newton: here the Newton path itself is off by up to 6e-14 in θ′ and 7e-13 in
+    // θ″ near the sketch (measured against the acos above, where the closed form is within
+    // 2e-15 and 1e-14), so the bound is that of Newton's error: 5e-12 scaled.
+    let e = closed_form_vs_newton(&m, &phis);
+    assert!(e <= 5e-12, "scaled difference {e:e}");
+
+    // Past the crank's reach: the loop (crank hinge + slot) cannot assemble.
+    let mut t = Solver::default().track(&m).unwrap();
+    match t.move_to(0.25).unwrap_err() {
+        Error::Unassemblable {
+            phi,
+            last_assembled,
+            joints,
+            residual,
+        } => {
+            assert_eq!(phi, 0.25);
+            // The step is halved (as on the Newton path) up to the crank's reach x = r
+            // (within 2⁻²⁴ of the 0.14 m step).
+            assert!(
+                last_assembled <= r && r - last_assembled < 1e-6,
+                "{last_assembled}"
+            );
+            assert_eq!(t.phi(), last_assembled);
+            assert_eq!(joints, vec!["O".to_string(), "slot".to_string()]);
+            // The gap |x| − r at the last sub-step tried, just past the reach.
+            assert!(residual > 0.0 && residual < 1e-6, "{residual}");
+        }
+        other => panic!("expected Unassemblable, got {other:?}"),
+    }
+    // The tracker is left at its last pose and still works.
+    t.move_to(0.0).unwrap();
+    // Exactly at the crank's reach the crank is at a toggle (dx/dθ = 0).
+    match t.move_to(r).unwrap_err() {
+        Error::Singular { phi, joints, .. } => {
+            assert_eq!(phi, r);
+            assert_eq!(joints, vec!["O".to_string(), "slot".to_string()]);
+        }
+        other => panic!("expected Singular, got {other:?}"),
+    }
+}
+
+#[test]
+fn rocker_whose_offset_slot_misses_the_pin_is_unassemblable() {
+    // The rocker's slot is the line x = e, at e = 0.06 m from its pivot B0 = (0, 0); the
+    // crank (pivot O = (e, l0), l1 = 0.45 > |O|) brings its pin A to within
+    // l1 − |O| = 0.0455 m of B0, less than e: there the slot cannot reach the pin.
+    let (l0, l1, e) = (0.4, 0.45, 0.06);
+    let m = Mechanism::builder()
+        .point("O", [e, l0])
+        .point("B0", [0.0, 0.0])
+        .point("A", [e, l0 - l1])
+        .point("S0", [e, 0.0])
+        .point("S", [e, 1.0])
+        .ground(["O", "B0"])
+        .link("crank", ["O", "A"])
+        .link("rocker", ["B0", "S0", "S"])
+        .revolute("O", "ground", "crank", "O")
+        .revolute("B0", "ground", "rocker", "B0")
+        .pin_in_slot("slot", "rocker", ["S0", "S"], "crank", "A")
+        .drive(Drive::angle("O"))
+        .build()
+        .unwrap();
+    let mut t = Solver::default().track(&m).unwrap();
+    assert_eq!(t.closed_form_loops(), vec![true, true]);
+    // A = O + l1 (sin φ, −cos φ) is closest to B0 where (sin φ, −cos φ) points from O to B0.
+    let closest = (-e).atan2(l0);
+    match t.move_to(closest).unwrap_err() {
+        Error::Unassemblable {
+            phi,
+            last_assembled,
+            joints,
+            residual,
+        } => {
+            assert_eq!(phi, closest);
+            assert_eq!(joints, vec!["B0".to_string(), "slot".to_string()]);
+            // The gap (pin inside the slot's offset circle) at the last sub-step tried,
+            // just past the limit: positive, below the 0.0145 m at `closest`.
+            let gap = e - (l1 - e.hypot(l0));
+            assert!(residual > 0.0 && residual < gap, "{residual} vs {gap}");
+            assert!(last_assembled > closest && last_assembled < 0.0);
+        }
+        other => panic!("expected Unassemblable, got {other:?}"),
+    }
+}
+
+/// The four-bar's coupler–rocker pin B in closed form (as in geometry_joints.rs), with
+/// third-order dual numbers.
+fn four_bar_pin(a: f64, b: f64, c: f64, d: f64, phi: f64, up: bool) -> [Dual3_64; 2] {
+    let phi = Dual3_64::new(phi, 1.0, 0.0, 0.0);
+    let (ax, ay) = (phi.cos() * a, phi.sin() * a);
+    let (fx, fy) = (-ax + d, -ay);
+    let dist = (fx * fx + fy * fy).sqrt();
+    let along = (dist * dist + b * b - c * c) / (dist * 2.0);
+    let h = (-(along * along) + b * b).sqrt();
+    let h = if up { h } else { -h };
+    let (ex, ey) = (fx / dist, fy / dist);
+    [ax + along * ex - h * ey, ay + along * ey + h * ex]
+}
+
+#[test]
+fn four_bar_rrr_dyad_matches_its_closed_form_and_newton_on_both_closures() {
+    let (a, b, c, d) = (0.1, 0.35, 0.3, 0.3);
+    for up in [true, false] {
+        let m = four_bar(a, b, c, d, 0.4, up).unwrap();
+        let t = Solver::default().track(&m).unwrap();
+        assert_eq!(t.closed_form_loops(), vec![true, true]);
+        // Two revolutions: the rocker's and coupler's angles stay continuous.
+        let phis: Vec<f64> = (0..=720).map(|i| 0.4 + i as f64 * PI / 180.0).collect();
+        let mut pairs = vec![Vec::new(); 8];
+        for k in Solver::default().sweep::<3>(&m, &phis).unwrap() {
+            let got = k.point("rocker", "B").unwrap();
+            let exact = four_bar_pin(a, b, c, d, k.phi, up);
+            for i in 0..2 {
+                let (g, e) = (got[i], exact[i]);
+                pairs[4 * i].push((g.value, e.re));
+                pairs[4 * i + 1].push((g.d1(), e.v1));
+                pairs[4 * i + 2].push((g.d2(), e.v2));
+                pairs[4 * i + 3].push((g.d3(), e.v3));
+            }
+        }
+        // Against the hand-written closed form: 1e-14 scaled (both exact to rounding).
+        for p in &pairs {
+            let e = scaled_error(p);
+            assert!(e <= 1e-14, "up = {up}: scaled error {e:e}");
+        }
+        // Against Newton: the Newton path's q′, q″, q‴ are off by up to 5e-13 scaled here
+        // (the closed form is within 1e-14 of the hand-written one, above).
+        let e = closed_form_vs_newton(&m, &phis);
+        assert!(e <= 1e-12, "up = {up}: scaled difference {e:e}");
+    }
+}
+
+#[test]
+fn slider_crank_rrp_dyad_matches_newton_and_its_closed_form() {
+    let (r, l) = (0.1, 0.35);
+    for phi0 in [0.3, 2.0] {
+        let m = slider_crank(r, l, phi0, false).unwrap();
+        let t = Solver::default().track(&m).unwrap();
+        assert_eq!(t.closed_form_loops(), vec![true, true]);
+        let phis: Vec<f64> = (0..=720).map(|i| phi0 + i as f64 * PI / 180.0).collect();
+        let e = closed_form_vs_newton(&m, &phis);
+        // 1e-13 scaled: both exact up to rounding.
+        assert!(e <= 1e-13, "φ₀ = {phi0}: scaled difference {e:e}");
+        for k in Solver::default().sweep::<1>(&m, &phis).unwrap() {
+            // x_B = r cos φ + √(l² − r² sin² φ), to rounding (1e-15 m on 0.35 m).
+            let (s, c) = k.phi.sin_cos();
+            let x = k.displacement("guide").unwrap();
+            let exact = r * c + (l * l - r * r * s * s).sqrt();
+            assert!((x.value - exact).abs() < 1e-15, "φ = {}", k.phi);
+        }
+    }
+}
+
+#[test]
+fn dyads_report_unassemblable_and_toggle_through_the_closed_form() {
+    // Four-bar whose coupler (0.12) is too short: at φ = π the crank pin is 0.4 m from B0,
+    // more than coupler + rocker = 0.37 m.
+    let m = four_bar(0.1, 0.12, 0.25, 0.3, 0.0, true).unwrap();
+    let mut t = Solver::default().track(&m).unwrap();
+    assert_eq!(t.closed_form_loops(), vec![true, true]);
+    match t.move_to(PI).unwrap_err() {
+        Error::Unassemblable {
+            phi,
+            last_assembled,
+            joints,
+            residual,
+        } => {
+            assert_eq!(phi, PI);
+            assert_eq!(joints, vec!["A", "B", "B0"]);
+            // |A − B0|² = a² + d² − 2ad cos φ reaches 0.37² at the limit; the halved steps
+            // stop within 2⁻²⁴ of the π step below it, and the gap |A − B0| − 0.37 at
+            // the last sub-step tried is tiny and positive.
+            let limit = ((0.01 + 0.09 - 0.37f64 * 0.37) / 0.06).acos();
+            assert!(last_assembled <= limit && limit - last_assembled < 1e-6);
+            assert!(residual > 0.0 && residual < 1e-6, "{residual}");
+        }
+        other => panic!("expected Unassemblable, got {other:?}"),
+    }
+    // Slider-crank driven by its slider into the dead centre x = r + l: the crank and rod
+    // are aligned (the RRR dyad crank–rod, between O and the slider's pin B, is at its
+    // toggle).
+    let (r, l) = (0.1, 0.35);
+    let m = slider_crank(r, l, 1.0, true).unwrap();
+    let mut t = Solver::default().track(&m).unwrap();
+    assert_eq!(t.closed_form_loops(), vec![true, true]);
+    match t.move_to(r + l).unwrap_err() {
+        Error::Singular { phi, joints, .. } => {
+            assert_eq!(phi, r + l);
+            assert_eq!(joints, vec!["O", "A", "B"]);
+        }
+        other => panic!("expected Singular, got {other:?}"),
+    }
+}
+
+#[test]
+fn mixed_closed_form_and_newton_loops_match_newton() {
+    // Mechanism 001: the rack (driven slide) and the rod–slider RRP dyad are closed-form,
+    // the block sliding in the turning slotted link (an RPR dyad, no pattern) is Newton.
+    let m = rack_slotted_link(common::Closure001::Primary, false).unwrap();
+    let t = Solver::default().track(&m).unwrap();
+    assert_eq!(t.closed_form_loops(), vec![true, false, true]);
+    let x0 = common::rack001::RHO4;
+    let phis: Vec<f64> = (0..=100).map(|i| x0 - 0.1 + 0.002 * i as f64).collect();
+    let e = closed_form_vs_newton(&m, &phis);
+    // Both sides lift q′, q″, q‴ by implicit differentiation at poses that differ by
+    // rounding (the seeded and the plain Newton converge to different last bits); the
+    // difference measured is 2.5e-13 scaled, in q‴.
+    assert!(e <= 1e-12, "scaled difference {e:e}");
+}
