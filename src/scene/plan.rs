@@ -140,7 +140,7 @@ impl Plan {
             None => String::new(),
         };
         format!(
-            "plan: {range}; {what} by the geometry solver with implicit differentiation{motion}; \
+            "plan: {range}; {what} by the geometry solver (exact: loops in closed form where they match a standard group, else Newton with implicit differentiation){motion}; \
             {} columns{dead}{dynamics}",
             self.columns
         )
