@@ -6,66 +6,21 @@ mod common;
 #[path = "data/whitworth_inertial_forces.rs"]
 mod reference;
 
-use common::{H, L0, L1, revolution};
+use common::revolution;
 use mechdiff_core::DriveState;
 use mechdiff_core::dynamics::{
     Dynamics, Effects, Friction, Gravity, Load, Plan, Request, ShakingSummary, kinetostatics,
     shaking_force,
 };
-use mechdiff_core::geometry::{Drive, Inertia, Mechanism, Solver};
+use mechdiff_core::geometry::{Mechanism, Solver};
 
 /// ω = 100 rpm = 10π/3 rad/s (whitworth_000.json `given.omega_rad_s`).
 const OMEGA: f64 = 10.471975511965978;
 
-/// The Whitworth of whitworth_000.md with the masses recovered there: crank 15 kg with S1 at
-/// 0.04 m from O, rocker 30 kg with S2 at 0.15 m from B0, ram 50 kg at C (c_x = c_y = 0).
-/// The moments of inertia do not enter the inertial forces of the table; `moments` sets them
-/// (crank, rocker) for the power-balance tests. Sketched at φ = 0 (crank pin below O).
+/// The Whitworth of whitworth_000.md with its masses and the given moments of inertia of
+/// crank and rocker (see `common::whitworth_with_moments`).
 fn whitworth(moments: [f64; 2]) -> Mechanism {
-    Mechanism::builder()
-        .point("O", [0.0, L0])
-        .point("B0", [0.0, 0.0])
-        .point("A", [0.0, L0 - L1])
-        .point("S", [0.0, H])
-        .point("C", [0.0, H])
-        .point("H0", [0.0, H])
-        .point("H1", [1.0, H])
-        .ground(["O", "B0", "H0", "H1"])
-        .link("crank", ["O", "A"])
-        .link("rocker", ["B0", "S"])
-        .link("ram", ["C"])
-        .inertia(
-            "crank",
-            Inertia {
-                mass: 15.0,
-                center: [0.0, L0 - 0.04],
-                moment: moments[0],
-            },
-        )
-        .inertia(
-            "rocker",
-            Inertia {
-                mass: 30.0,
-                center: [0.0, 0.15],
-                moment: moments[1],
-            },
-        )
-        .inertia(
-            "ram",
-            Inertia {
-                mass: 50.0,
-                center: [0.0, H],
-                moment: 0.0,
-            },
-        )
-        .revolute("O", "ground", "crank", "O")
-        .revolute("B0", "ground", "rocker", "B0")
-        .pin_in_slot("slot A", "rocker", ["B0", "S"], "crank", "A")
-        .prismatic("ram guide", "ground", ["H0", "H1"], "ram", "C")
-        .pin_in_slot("slot C", "rocker", ["B0", "S"], "ram", "C")
-        .drive(Drive::angle("O"))
-        .build()
-        .unwrap()
+    common::whitworth_with_moments(moments).expect("the reference geometry assembles")
 }
 
 #[test]

@@ -16,6 +16,18 @@ pub const H: f64 = 0.65;
 /// at height h sliding in the same slot, ram translating along y = h. φ is the crank's
 /// rotation (A = (l1 sin φ, l0 − l1 cos φ)), ψ = −(rocker rotation), x_C = ram displacement.
 pub fn whitworth() -> Result<Mechanism, Error> {
+    whitworth_with_moments([0.0, 0.0])
+}
+
+/// [`whitworth`] with the masses recovered in whitworth_000.md (crank 15 kg with S1 at 0.04 m
+/// from O, rocker 30 kg with S2 at 0.15 m from B0, ram 50 kg at C) and the given moments of
+/// inertia of crank and rocker (kg·m²; the source gives none).
+pub fn whitworth_with_moments(moments: [f64; 2]) -> Result<Mechanism, Error> {
+    let inertia = |mass, center, moment| Inertia {
+        mass,
+        center,
+        moment,
+    };
     Mechanism::builder()
         .point("O", [0.0, L0])
         .point("B0", [0.0, 0.0])
@@ -29,14 +41,9 @@ pub fn whitworth() -> Result<Mechanism, Error> {
         .link("crank", ["O", "A", "S1"])
         .link("rocker", ["B0", "S"])
         .link("ram", ["C"])
-        .inertia(
-            "crank",
-            Inertia {
-                mass: 15.0,
-                center: [0.0, L0 - 0.04],
-                moment: 0.0,
-            },
-        )
+        .inertia("crank", inertia(15.0, [0.0, L0 - 0.04], moments[0]))
+        .inertia("rocker", inertia(30.0, [0.0, 0.15], moments[1]))
+        .inertia("ram", inertia(50.0, [0.0, H], 0.0))
         .revolute("O", "ground", "crank", "O")
         .revolute("B0", "ground", "rocker", "B0")
         .pin_in_slot("slot A", "rocker", ["B0", "S"], "crank", "A")

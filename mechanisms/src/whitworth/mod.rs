@@ -56,6 +56,7 @@
 
 mod forces;
 pub mod hand;
+mod linkage;
 pub mod symbolic;
 
 pub use forces::{CentreAccelerations, InertialForces};
