@@ -120,6 +120,19 @@ fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
     [a[0] - b[0], a[1] - b[1]]
 }
 
+/// The line through two points of `link` (sketch positions), in the link's frame, with a unit
+/// direction from the first point to the second.
+fn compile_line(m: &Mechanism, link: usize, line: [usize; 2]) -> Line {
+    let (a, b) = (m.points[line[0]].sketch, m.points[line[1]].sketch);
+    let d = sub(b, a);
+    let len = d[0].hypot(d[1]);
+    Line {
+        body: body(link),
+        origin: m.local(link, a),
+        direction: [d[0] / len, d[1] / len],
+    }
+}
+
 pub(crate) fn compile_slide(
     m: &Mechanism,
     guide: usize,
@@ -127,15 +140,8 @@ pub(crate) fn compile_slide(
     slider: usize,
     point: usize,
 ) -> Slide {
-    let (a, b) = (m.points[line[0]].sketch, m.points[line[1]].sketch);
-    let d = sub(b, a);
-    let len = d[0].hypot(d[1]);
     Slide {
-        line: Line {
-            body: body(guide),
-            origin: m.local(guide, a),
-            direction: [d[0] / len, d[1] / len],
-        },
+        line: compile_line(m, guide, line),
         slider: body(slider),
         point: m.local(slider, m.points[point].sketch),
     }
@@ -191,20 +197,11 @@ impl Equations {
                     line,
                     pin_link,
                     pin,
-                } => {
-                    let (a, b) = (m.points[line[0]].sketch, m.points[line[1]].sketch);
-                    let d = sub(b, a);
-                    let len = d[0].hypot(d[1]);
-                    Term::PinInSlot {
-                        line: Line {
-                            body: body(slot_link),
-                            origin: m.local(slot_link, a),
-                            direction: [d[0] / len, d[1] / len],
-                        },
-                        pin: body(pin_link),
-                        p: m.local(pin_link, m.points[pin].sketch),
-                    }
-                }
+                } => Term::PinInSlot {
+                    line: compile_line(m, slot_link, line),
+                    pin: body(pin_link),
+                    p: m.local(pin_link, m.points[pin].sketch),
+                },
                 JointKind::RackPinion {
                     pinion,
                     rack,
