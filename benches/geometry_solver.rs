@@ -3,7 +3,8 @@
 //! - `whitworth ψ,ψ′,ψ″ per drive position: geometry solver vs closed-form Dual2` — one
 //!   revolution at 0.5° steps; the geometry path solves every loop of the model in closed
 //!   form in `Dual2_64` (the solver's default: all three Whitworth loops match a pattern)
-//!   and reads ψ (resolved once with `Mechanism::rotation_output`); "Newton forced"
+//!   and reads ψ (resolved once with `Mechanism::rotation_output`, read with
+//!   `Tracker::value`: no `Kinematics` built); "Newton forced"
 //!   (`Solver::with_closed_form(false)`) is a warm-started Newton solve plus the implicit
 //!   lift to second order; the hand-written closed form is
 //!   ψ = atan2(λ sin φ, 1 − λ cos φ) in `Dual2_64`.
@@ -67,8 +68,7 @@ fn per_drive_position(c: &mut Criterion) {
                 let mut acc = 0.0;
                 for &phi in &phis {
                     t.move_to(black_box(phi)).expect("assembles");
-                    let k = t.kinematics::<2>().expect("regular");
-                    let psi = k.value(&rocker);
+                    let psi = t.value(&rocker);
                     acc += psi.value + psi.d1() + psi.d2();
                 }
                 acc
@@ -87,8 +87,7 @@ fn per_drive_position(c: &mut Criterion) {
                 let mut acc = 0.0;
                 for &phi in &phis {
                     t.move_to(black_box(phi)).expect("assembles");
-                    let k = t.kinematics::<2>().expect("regular");
-                    let psi = k.value(&rocker);
+                    let psi = t.value(&rocker);
                     acc += psi.value + psi.d1() + psi.d2();
                 }
                 acc

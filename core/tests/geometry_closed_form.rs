@@ -421,3 +421,36 @@ fn mixed_closed_form_and_newton_loops_match_newton() {
     // difference measured is 2.5e-13 scaled, in q‴.
     assert!(e <= 1e-12, "scaled difference {e:e}");
 }
+
+/// `Tracker::value` and `Tracker::position` (read straight from the tracker) give the same
+/// outputs as a `Kinematics::<2>` built at the same pose, on both paths; on the closed-form
+/// path `move_to` does not evaluate Φ (`residual` is `None`) and `Tracker::residual`
+/// evaluates it on request.
+#[test]
+fn outputs_read_from_the_tracker_equal_the_kinematics() {
+    let m = whitworth().unwrap();
+    let psi = m.rotation_output("rocker").unwrap();
+    let ram = m.displacement_output("ram guide").unwrap();
+    let pin = m.point_output("crank", "A").unwrap();
+    for closed_form in [true, false] {
+        let mut t = Solver::default()
+            .with_closed_form(closed_form)
+            .track(&m)
+            .unwrap();
+        for phi in revolution(7.5, &[]) {
+            let report = t.move_to(phi).unwrap();
+            let k = t.kinematics::<2>().unwrap();
+            // Exactly equal: the same arithmetic on the same q, q′, q″.
+            assert_eq!(t.value(&psi), k.value(&psi));
+            assert_eq!(t.value(&ram), k.value(&ram));
+            assert_eq!(t.position(&pin), k.position(&pin));
+            // The loops close to rounding on either path: lengths of O(1) m and angles of
+            // O(1) rad, a few ulps each, so 1e-14 (m or rad) leaves a margin of ~10.
+            assert!(t.residual() <= 1e-14, "φ = {phi}: Φ = {}", t.residual());
+            match report.residual {
+                None => assert!(closed_form, "Newton reports its residual"),
+                Some(r) => assert!(!closed_form && r <= 1e-14, "φ = {phi}: Φ = {r}"),
+            }
+        }
+    }
+}

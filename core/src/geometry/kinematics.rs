@@ -34,64 +34,15 @@ impl<'m, const N: usize> Kinematics<'m, N> {
         Dual3_64::new(j.value, d(0), d(1), d(2))
     }
 
-    fn jet(x: Dual3_64) -> Jet<N> {
-        let d = [x.v1, x.v2, x.v3];
-        Jet::new(x.re, std::array::from_fn(|k| d[k]))
-    }
-
-    /// `A(θ_b)·v` for a link-local vector `v`.
-    fn rotate(&self, b: Body, v: [f64; 2]) -> [Dual3_64; 2] {
-        match b {
-            None => [Dual3_64::from(v[0]), Dual3_64::from(v[1])],
-            Some(k) => {
-                let (s, c) = self.dual(3 * k + 2).sin_cos();
-                [c * v[0] - s * v[1], s * v[0] + c * v[1]]
-            }
-        }
-    }
-
-    /// Position of the point of body `b` at link-local `p`.
-    fn place(&self, b: Body, p: [f64; 2]) -> [Dual3_64; 2] {
-        let r = self.rotate(b, p);
-        match b {
-            None => r,
-            Some(k) => [self.dual(3 * k) + r[0], self.dual(3 * k + 1) + r[1]],
-        }
-    }
-
     /// Position `[x, y]` of a resolved point (m): see [`Mechanism::point_output`].
     pub fn position(&self, point: &PointOutput) -> [Jet<N>; 2] {
-        let r = self.place(point.body, point.local);
-        [Self::jet(r[0]), Self::jet(r[1])]
+        position(|i| self.dual(i), point).map(jet)
     }
 
     /// Value of a resolved angle or displacement (rad or m): see
     /// [`Mechanism::rotation_output`].
     pub fn value(&self, output: &ScalarOutput) -> Jet<N> {
-        match output.0 {
-            Scalar::Rotation { body, offset } => {
-                let mut jet = self.rotation_of(body);
-                jet.value += offset;
-                jet
-            }
-            Scalar::Relative { a, b } => {
-                let (a, b) = (self.rotation_of(a), self.rotation_of(b));
-                Jet::new(
-                    b.value - a.value,
-                    std::array::from_fn(|k| b.derivatives[k] - a.derivatives[k]),
-                )
-            }
-            Scalar::Displacement(slide) => {
-                let u = self.rotate(slide.line.body, slide.line.direction);
-                let a = self.place(slide.line.body, slide.line.origin);
-                let r = self.place(slide.slider, slide.point);
-                Self::jet(u[0] * (r[0] - a[0]) + u[1] * (r[1] - a[1]))
-            }
-        }
-    }
-
-    fn rotation_of(&self, b: Body) -> Jet<N> {
-        b.map_or(Jet::from(0.0), |k| self.coordinates[3 * k + 2])
+        jet(value(|i| self.dual(i), output))
     }
 
     /// Position `[x, y]` of point `point` carried by link `link` (m). In a loop over drive
@@ -148,5 +99,64 @@ impl<'m, const N: usize> Kinematics<'m, N> {
     /// sketch (rad).
     pub fn joint_rotation(&self, joint: &str) -> Result<Jet<N>, Error> {
         Ok(self.value(&self.mechanism.joint_rotation_output(joint)?))
+    }
+}
+
+/// The first `N` derivatives of `x`.
+#[inline]
+pub(crate) fn jet<const N: usize>(x: Dual3_64) -> Jet<N> {
+    let d = [x.v1, x.v2, x.v3];
+    Jet::new(x.re, std::array::from_fn(|k| d[k]))
+}
+
+/// `A(θ_b)·v` for a link-local vector `v`, coordinate `i` of the pose being `coordinate(i)`.
+#[inline]
+fn rotate(coordinate: &impl Fn(usize) -> Dual3_64, b: Body, v: [f64; 2]) -> [Dual3_64; 2] {
+    match b {
+        None => [Dual3_64::from(v[0]), Dual3_64::from(v[1])],
+        Some(k) => {
+            let (s, c) = coordinate(3 * k + 2).sin_cos();
+            [c * v[0] - s * v[1], s * v[0] + c * v[1]]
+        }
+    }
+}
+
+/// Position of the point of body `b` at link-local `p`.
+#[inline]
+fn place(coordinate: &impl Fn(usize) -> Dual3_64, b: Body, p: [f64; 2]) -> [Dual3_64; 2] {
+    let r = rotate(coordinate, b, p);
+    match b {
+        None => r,
+        Some(k) => [coordinate(3 * k) + r[0], coordinate(3 * k + 1) + r[1]],
+    }
+}
+
+#[inline]
+fn rotation_of(coordinate: &impl Fn(usize) -> Dual3_64, b: Body) -> Dual3_64 {
+    b.map_or(Dual3_64::from(0.0), |k| coordinate(3 * k + 2))
+}
+
+/// A resolved point of the pose whose coordinate `i` (with derivatives) is `coordinate(i)`.
+#[inline]
+pub(crate) fn position(
+    coordinate: impl Fn(usize) -> Dual3_64,
+    point: &PointOutput,
+) -> [Dual3_64; 2] {
+    place(&coordinate, point.body, point.local)
+}
+
+/// A resolved angle or displacement of the pose whose coordinate `i` (with derivatives) is
+/// `coordinate(i)`.
+#[inline]
+pub(crate) fn value(coordinate: impl Fn(usize) -> Dual3_64, output: &ScalarOutput) -> Dual3_64 {
+    match output.0 {
+        Scalar::Rotation { body, offset } => rotation_of(&coordinate, body) + offset,
+        Scalar::Relative { a, b } => rotation_of(&coordinate, b) - rotation_of(&coordinate, a),
+        Scalar::Displacement(slide) => {
+            let u = rotate(&coordinate, slide.line.body, slide.line.direction);
+            let a = place(&coordinate, slide.line.body, slide.line.origin);
+            let r = place(&coordinate, slide.slider, slide.point);
+            u[0] * (r[0] - a[0]) + u[1] * (r[1] - a[1])
+        }
     }
 }

@@ -23,7 +23,9 @@
 //! rocker, translating slide, RRR and RRP dyads, …; see `closed_form`) are solved by their
 //! formulas instead: when every loop matches, [`Tracker::move_to`] evaluates them once in
 //! `Dual2_64` (q, q′, q″ at once; q‴ in `Dual3_64` on request) and none of the steps above
-//! runs, except the halving of the step towards a position that does not assemble. When
+//! runs, except the halving of the step towards a position that does not assemble; Φ is
+//! not evaluated either ([`SolveReport::residual`] is `None`, [`Tracker::residual`]
+//! evaluates it on request). When
 //! only some match, they place their links in Newton's predictor. Branches are kept the
 //! same way (each formula's root is fixed at the sketch); [`Solver::with_closed_form`]
 //! turns this off.
@@ -31,20 +33,24 @@
 //! Nothing is allocated per drive position: the tracker keeps its buffers, and the loop
 //! structure is resolved to storage positions once (see `block_lu`). In a loop, read outputs
 //! through handles resolved once ([`Mechanism::point_output`] and the methods next to it)
-//! rather than by name.
+//! rather than by name, and, to second order, straight from the tracker
+//! ([`Tracker::value`], [`Tracker::position`]: no [`Kinematics`] built).
+
+mod closed_path;
+mod reading;
 
 use super::block_lu::BlockLu;
 use super::branch::{self, Loop};
-use super::closed_form::{ClosedForm, Failure};
+use super::closed_form::ClosedForm;
 use super::constraints::{Equations, Frames};
 use super::frames;
-use super::implicit::{self, Factorised, SecondOrder};
+use super::implicit::{Factorised, SecondOrder};
 use super::kinematics::Kinematics;
 use super::mobility::{self, Mobility};
 use super::model::Mechanism;
-use crate::{Error, Jet};
+use crate::Error;
 use nalgebra::{DMatrix, DVector};
-use num_dual::{Dual2_64, Dual3_64};
+use num_dual::Dual2_64;
 
 /// Configuration of the position solver.
 ///
@@ -232,8 +238,10 @@ pub struct SolveReport {
     pub iterations: usize,
     /// Sub-steps accepted (1 if the whole step was accepted at once).
     pub steps: usize,
-    /// Final max |Φ| (m or rad).
-    pub residual: f64,
+    /// Final max |Φ| (m or rad) on the Newton path. `None` when every loop is solved in
+    /// closed form: the formulas close the loops by construction (up to rounding), so Φ is
+    /// not evaluated per position; [`Tracker::residual`] computes it on request.
+    pub residual: Option<f64>,
     /// Sub-steps rejected because Newton landed on another assembly branch.
     pub branch_rejections: usize,
     /// Sub-steps rejected because Newton did not converge (on the closed-form path:
@@ -352,46 +360,6 @@ impl<'m> Tracker<'m> {
         names
     }
 
-    /// The pose at the current drive position with its first `N` (1 ≤ N ≤ 3) exact
-    /// derivatives with respect to φ, by implicit differentiation with the factorisation
-    /// already computed for the pose (see [`super::implicit`]).
-    pub fn kinematics<const N: usize>(&self) -> Result<Kinematics<'m, N>, Error> {
-        const {
-            assert!(
-                N >= 1 && N <= 3,
-                "the geometry solver lifts derivatives of order 1 to 3"
-            )
-        };
-        let mut dddq = Vec::new();
-        if N == 3 && self.closed_only {
-            let n = self.q.len();
-            let zero = Dual3_64::from(0.0);
-            let (mut q, mut frames) = (vec![zero; n], vec![(zero, zero); n / 3]);
-            let phi = Dual3_64::new(self.phi, 1.0, 0.0, 0.0);
-            self.closed
-                .solve_all(phi, self.q.as_slice(), &mut q, &mut frames)
-                .map_err(|(l, failure)| self.closed_failure(self.phi, l, failure))?;
-            dddq.extend(q.iter().map(|x| x.v3));
-        } else if N == 3 {
-            dddq.resize(self.q.len(), 0.0);
-            let lu = Loops {
-                jac: &self.jac,
-                lu: &self.lu,
-            };
-            let (q, dq, ddq) = (self.q.as_slice(), self.dq.as_slice(), self.ddq.as_slice());
-            if !implicit::third_derivative(&self.eq, &lu, q, dq, ddq, self.phi, &mut dddq) {
-                return Err(self.singular(self.phi));
-            }
-        }
-        let (q, dq, ddq) = (self.q.as_slice(), self.dq.as_slice(), self.ddq.as_slice());
-        let mut coordinates = Vec::with_capacity(q.len());
-        for (i, ((&x, &dx), &ddx)) in q.iter().zip(dq).zip(ddq).enumerate() {
-            let d = [dx, ddx, dddq.get(i).copied().unwrap_or(0.0)];
-            coordinates.push(Jet::new(x, std::array::from_fn(|k| d[k])));
-        }
-        Ok(Kinematics::new(self.mechanism, self.phi, coordinates))
-    }
-
     fn singular(&self, phi: f64) -> Error {
         Error::Singular {
             phi,
@@ -417,7 +385,7 @@ impl<'m> Tracker<'m> {
             phi: self.phi,
             iterations: 0,
             steps: 0,
-            residual: 0.0,
+            residual: None,
             branch_rejections: 0,
             newton_failures: 0,
         };
@@ -490,92 +458,8 @@ impl<'m> Tracker<'m> {
             }
         }
         report.phi = self.phi;
-        report.residual = amax(self.residual.as_slice());
+        report.residual = Some(amax(self.residual.as_slice()));
         Ok(report)
-    }
-
-    /// Moves to `phi` with every loop in closed form: q, q′, q″ from one evaluation of the
-    /// formulas in `Dual2_64`. Where a loop cannot assemble at `phi`, the step is halved
-    /// (as on the Newton path) so that the tracker ends at the last position that
-    /// assembles, reported in the error.
-    fn move_closed(&mut self, phi: f64) -> Result<SolveReport, Error> {
-        let mut report = SolveReport {
-            phi,
-            iterations: 0,
-            steps: 0,
-            residual: 0.0,
-            branch_rejections: 0,
-            newton_failures: 0,
-        };
-        let mut halvings: usize = 0;
-        while self.phi != phi || report.steps == 0 {
-            let target = if halvings == 0 {
-                phi
-            } else {
-                self.phi + (phi - self.phi) / f64::powi(2.0, halvings.min(1074) as i32)
-            };
-            let x = Dual2_64::new(target, 1.0, 0.0);
-            let (q, frames) = (&mut self.closed_q, &mut self.closed_frames);
-            match self.closed.solve_all(x, self.q.as_slice(), q, frames) {
-                Ok(()) => {
-                    self.accept_closed(target);
-                    report.steps += 1;
-                    halvings = halvings.saturating_sub(1);
-                }
-                Err((l, failure @ Failure::Unassemblable { .. })) => {
-                    report.newton_failures += 1;
-                    halvings += 1;
-                    let next =
-                        self.phi + (phi - self.phi) / f64::powi(2.0, halvings.min(1074) as i32);
-                    if halvings > self.solver.max_subdivisions || next == self.phi {
-                        return Err(self.closed_failure(phi, l, failure));
-                    }
-                }
-                Err((l, failure)) => return Err(self.closed_failure(target, l, failure)),
-            }
-        }
-        report.residual = amax(self.residual.as_slice());
-        Ok(report)
-    }
-
-    /// Makes the closed forms' pose (in `closed_q`, `closed_frames`) current at `phi`.
-    fn accept_closed(&mut self, phi: f64) {
-        let poses = self.q.as_mut_slice().iter_mut();
-        let derivatives = self
-            .dq
-            .as_mut_slice()
-            .iter_mut()
-            .zip(self.ddq.as_mut_slice());
-        for ((x, (dx, ddx)), v) in poses.zip(derivatives).zip(&self.closed_q) {
-            (*x, *dx, *ddx) = (v.re, v.v1, v.v2);
-        }
-        for (f, (s, c)) in self.frames.iter_mut().zip(&self.closed_frames) {
-            *f = (s.re, c.re);
-        }
-        self.phi = phi;
-        let f = Frames {
-            q: self.q.as_slice(),
-            frames: &self.frames,
-        };
-        self.eq.evaluate_with(&f, phi, self.residual.as_mut_slice());
-    }
-
-    /// The error for loop `l`'s closed form failing at `phi`.
-    fn closed_failure(&self, phi: f64, l: usize, failure: Failure) -> Error {
-        let joints = self.loop_joints(&self.loops[l]);
-        match failure {
-            Failure::Unassemblable { residual } => Error::Unassemblable {
-                phi,
-                last_assembled: self.phi,
-                joints,
-                residual,
-            },
-            Failure::Singular { condition } => Error::Singular {
-                phi,
-                condition,
-                joints,
-            },
-        }
     }
 
     /// Newton on `trial` at drive position `phi`: the iterations, or the final residual and
