@@ -12,41 +12,21 @@
 //!   — the two exact ways to differentiate the solved pose.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use mechdiff_core::geometry::{Drive, Equations, Mechanism, Solver, implicit};
+use mechdiff_core::geometry::{Equations, Mechanism, Solver, implicit};
+use mechdiff_mechanisms::whitworth::Whitworth;
 use nalgebra::{SVector, U9};
 use num_dual::{Dual2_64, DualNum, DualVec, implicit_derivative_vec};
 use std::hint::black_box;
 
-const L0: f64 = 0.4;
-const L1: f64 = 0.15;
-const H: f64 = 0.65;
-
-/// The Whitworth of whitworth_000.md by geometry only (as in core/tests/common).
+/// The reference Whitworth of whitworth_000.md by geometry only.
 fn whitworth() -> Mechanism {
-    Mechanism::builder()
-        .point("O", [0.0, L0])
-        .point("B0", [0.0, 0.0])
-        .point("A", [0.0, L0 - L1])
-        .point("S", [0.0, H])
-        .point("C", [0.0, H])
-        .point("H0", [0.0, H])
-        .point("H1", [1.0, H])
-        .ground(["O", "B0", "H0", "H1"])
-        .link("crank", ["O", "A"])
-        .link("rocker", ["B0", "S"])
-        .link("ram", ["C"])
-        .revolute("O", "ground", "crank", "O")
-        .revolute("B0", "ground", "rocker", "B0")
-        .pin_in_slot("slot A", "rocker", ["B0", "S"], "crank", "A")
-        .prismatic("ram guide", "ground", ["H0", "H1"], "ram", "C")
-        .pin_in_slot("slot C", "rocker", ["B0", "S"], "ram", "C")
-        .drive(Drive::angle("O"))
-        .build()
-        .expect("valid model")
+    Whitworth::reference()
+        .linkage([0.0, 0.0])
+        .expect("the reference geometry assembles")
 }
 
 fn closed_form_psi(phi: f64) -> Dual2_64 {
-    let lambda = L1 / L0;
+    let lambda = 0.15 / 0.4; // l1/l0 of the reference
     let phi = Dual2_64::new(phi, 1.0, 0.0);
     (phi.sin() * lambda).atan2(-phi.cos() * lambda + 1.0)
 }
