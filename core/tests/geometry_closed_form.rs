@@ -3,10 +3,11 @@
 
 mod common;
 
-use common::{four_bar, rack_slotted_link, revolution, scaled_error, slider_crank, whitworth};
+use common::{
+    four_bar, four_bar_pin, rack_slotted_link, revolution, scaled_error, slider_crank, whitworth,
+};
 use mechdiff_core::geometry::{Drive, Mechanism, Solver};
 use mechdiff_core::{Error, Jet};
-use num_dual::{Dual3_64, DualNum};
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Sweeps `m` over `phis` with the closed forms and with Newton forced, and returns the
@@ -295,20 +296,6 @@ fn rocker_whose_offset_slot_misses_the_pin_is_unassemblable() {
         }
         other => panic!("expected Unassemblable, got {other:?}"),
     }
-}
-
-/// The four-bar's coupler–rocker pin B in closed form (as in geometry_joints.rs), with
-/// third-order dual numbers.
-fn four_bar_pin(a: f64, b: f64, c: f64, d: f64, phi: f64, up: bool) -> [Dual3_64; 2] {
-    let phi = Dual3_64::new(phi, 1.0, 0.0, 0.0);
-    let (ax, ay) = (phi.cos() * a, phi.sin() * a);
-    let (fx, fy) = (-ax + d, -ay);
-    let dist = (fx * fx + fy * fy).sqrt();
-    let along = (dist * dist + b * b - c * c) / (dist * 2.0);
-    let h = (-(along * along) + b * b).sqrt();
-    let h = if up { h } else { -h };
-    let (ex, ey) = (fx / dist, fy / dist);
-    [ax + along * ex - h * ey, ay + along * ey + h * ex]
 }
 
 #[test]

@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{four_bar, four_bar_rocker_pin, revolution, scaled_error, slider_crank};
+use common::{four_bar, four_bar_pin, four_bar_rocker_pin, revolution, scaled_error, slider_crank};
 use mechdiff_core::geometry::{Drive, Equations, Mechanism, Solver};
 use nalgebra::DMatrix;
 use num_dual::{Dual3_64, Dual64, DualNum};
@@ -41,19 +41,6 @@ fn slider_crank_matches_its_closed_form_to_third_order() {
             scaled_error(col)
         );
     }
-}
-
-/// Closed form of the four-bar's rocker pin B(φ) on one branch, with dual numbers.
-fn four_bar_pin(a: f64, b: f64, c: f64, d: f64, phi: f64, up: bool) -> [Dual3_64; 2] {
-    let phi = Dual3_64::new(phi, 1.0, 0.0, 0.0);
-    let (ax, ay) = (phi.cos() * a, phi.sin() * a);
-    let (fx, fy) = (-ax + d, -ay);
-    let dist = (fx * fx + fy * fy).sqrt();
-    let along = (dist * dist + b * b - c * c) / (dist * 2.0);
-    let h = (-(along * along) + b * b).sqrt();
-    let h = if up { h } else { -h };
-    let (ex, ey) = (fx / dist, fy / dist);
-    [ax + along * ex - h * ey, ay + along * ey + h * ex]
 }
 
 #[test]

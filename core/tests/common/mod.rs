@@ -3,6 +3,7 @@
 
 use mechdiff_core::Error;
 use mechdiff_core::geometry::{Drive, Inertia, Mechanism};
+use num_dual::{Dual3_64, DualNum};
 
 /// Whitworth parameters of whitworth_000.md: l0 = 0.400 m, l1 = 0.150 m, h = 0.650 m.
 pub const L0: f64 = 0.4;
@@ -236,4 +237,19 @@ pub fn scaled_error(pairs: &[(f64, f64)]) -> f64 {
     let scale = pairs.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
     let err = pairs.iter().map(|p| (p.0 - p.1).abs()).fold(0.0, f64::max);
     if scale == 0.0 { err } else { err / scale }
+}
+
+/// The four-bar's coupler–rocker pin B(φ) in closed form (crank `a` from the origin, coupler
+/// `b`, rocker `c` hinged at (d, 0), `up`: the closure above the line from A to the rocker
+/// pivot), with third-order dual numbers: the reference the geometry paths are checked against.
+pub fn four_bar_pin(a: f64, b: f64, c: f64, d: f64, phi: f64, up: bool) -> [Dual3_64; 2] {
+    let phi = Dual3_64::new(phi, 1.0, 0.0, 0.0);
+    let (ax, ay) = (phi.cos() * a, phi.sin() * a);
+    let (fx, fy) = (-ax + d, -ay);
+    let dist = (fx * fx + fy * fy).sqrt();
+    let along = (dist * dist + b * b - c * c) / (dist * 2.0);
+    let h = (-(along * along) + b * b).sqrt();
+    let h = if up { h } else { -h };
+    let (ex, ey) = (fx / dist, fy / dist);
+    [ax + along * ex - h * ey, ay + along * ey + h * ex]
 }
