@@ -28,19 +28,7 @@ pub(super) fn pattern(eq: &Equations, l: &Loop) -> Option<(usize, Pattern)> {
     for (i, t) in terms.iter().enumerate() {
         match *t {
             Term::Revolute { a, pa, b, pb } if a != b && (a == me || b == me) => {
-                let hinge = if b == me {
-                    Hinge {
-                        known: a,
-                        at_known: pa,
-                        at_body: pb,
-                    }
-                } else {
-                    Hinge {
-                        known: b,
-                        at_known: pb,
-                        at_body: pa,
-                    }
-                };
+                let hinge = Hinge::seen_from(me, (a, pa), (b, pb));
                 let angle = match other(i) {
                     Term::DriveAngle { a, b, phi0 } if a != b && b == me => Angle::Driven {
                         other: a,
@@ -123,25 +111,8 @@ fn dyad(eq: &Equations, l: &Loop) -> Option<(usize, Pattern)> {
             Term::Revolute { a, pa, b, pb } if a == b1 && b == b2 => joint = Some([pa, pb]),
             Term::Revolute { a, pa, b, pb } if a == b2 && b == b1 => joint = Some([pb, pa]),
             Term::Revolute { a, pa, b, pb } if unknown(a) != unknown(b) => {
-                let (me, hinge) = if unknown(b) {
-                    (
-                        b,
-                        Hinge {
-                            known: a,
-                            at_known: pa,
-                            at_body: pb,
-                        },
-                    )
-                } else {
-                    (
-                        a,
-                        Hinge {
-                            known: b,
-                            at_known: pb,
-                            at_body: pa,
-                        },
-                    )
-                };
+                let me = if unknown(b) { b } else { a };
+                let hinge = Hinge::seen_from(me, (a, pa), (b, pb));
                 ends[usize::from(me == b2)] = Some(End::Hinge(hinge));
             }
             Term::Prismatic { slide, offset }

@@ -57,6 +57,26 @@ struct Hinge {
     at_body: [f64; 2],
 }
 
+impl Hinge {
+    /// The revolute joint between bodies `a` (point `pa`) and `b` (point `pb`) seen from the
+    /// body `me` being solved (one of the two): the other body is the known one.
+    fn seen_from(me: Body, (a, pa): (Body, [f64; 2]), (b, pb): (Body, [f64; 2])) -> Self {
+        if b == me {
+            Self {
+                known: a,
+                at_known: pa,
+                at_body: pb,
+            }
+        } else {
+            Self {
+                known: b,
+                at_known: pb,
+                at_body: pa,
+            }
+        }
+    }
+}
+
 /// How a hinged link's angle is found.
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Angle {
