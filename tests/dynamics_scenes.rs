@@ -19,46 +19,11 @@ fn column(r: &Report, name: &str) -> Vec<f64> {
         .unwrap_or_else(|| panic!("no column `{name}`"))
 }
 
-/// whitworth_000.json `table_recomputed.A_exact_dead_positions`, rows at φ = 0°, 67.976°,
-/// 180°, 292.024° (the scene's order): F_x1, F_y1, F_x2, F_y2, F_x3, ΣF_x, ΣF_y (N).
-const WHITWORTH: [[f64; 7]; 4] = [
-    [
-        0.0,
-        -65.79736267392906,
-        0.0,
-        177.65287921960845,
-        0.0,
-        0.0,
-        111.8555165456794,
-    ],
-    [
-        60.995787689659664,
-        -24.674011002723397,
-        185.0550825204255,
-        -74.85846671003686,
-        1677.6362101751022,
-        1923.6870803851873,
-        -99.53247771276025,
-    ],
-    [
-        0.0,
-        65.79736267392906,
-        0.0,
-        36.705140334629846,
-        0.0,
-        0.0,
-        102.5025030085589,
-    ],
-    [
-        -60.995787689659664,
-        -24.674011002723397,
-        -185.0550825204255,
-        -74.85846671003686,
-        -1677.6362101751022,
-        -1923.6870803851873,
-        -99.53247771276025,
-    ],
-];
+/// whitworth_000.json `table_recomputed.A_exact_dead_positions` (the copy the core tests use;
+/// its source is named there): rows of φ (rad), F_x1, F_y1, F_x2, F_y2, F_x3, ΣF_x, ΣF_y (N).
+#[path = "../core/tests/data/whitworth_inertial_forces.rs"]
+#[allow(dead_code)] // the sweep rows are for the core tests
+mod whitworth_000;
 
 #[test]
 fn whitworth_forces_scene_matches_the_inertial_force_table_to_1e_9() {
@@ -72,10 +37,13 @@ fn whitworth_forces_scene_matches_the_inertial_force_table_to_1e_9() {
         "SumF_x",
         "SumF_y",
     ];
+    // The scene's drive positions are in increasing φ: 0°, 67.976°, 180°, 292.024°.
+    let mut table = whitworth_000::TABLE;
+    table.sort_by(|a, b| a[0].total_cmp(&b[0]));
     for (i, name) in names.iter().enumerate() {
         let got = column(&r, name);
-        for (row, want) in WHITWORTH.iter().enumerate() {
-            let want = want[i];
+        for (row, want) in table.iter().enumerate() {
+            let want = want[i + 1];
             // 1e-9 relative (the criterion); exact zeros are held to 1e-9 of the
             // largest force of the table (1923.7 N). The scene's dead positions are the
             // 18-digit degree values of whitworth_000.json, exact in f64 after conversion.
