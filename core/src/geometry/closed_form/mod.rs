@@ -180,6 +180,19 @@ fn place<D: Scalar>(q: &[D], frames: &[(D, D)], b: Body, p: [f64; 2]) -> [D; 2] 
     }
 }
 
+/// The reference point `K − A p` of a link turned by `(sin θ, cos θ)` about the hinge at
+/// `K`, at `p` in the link (nothing to turn when the hinge is the link's own origin).
+#[inline]
+fn hinged_at<D: Scalar>(pivot: [D; 2], (s, c): (D, D), p: [f64; 2]) -> [D; 2] {
+    if p == [0.0, 0.0] {
+        return pivot;
+    }
+    [
+        pivot[0] - (c * p[0] - s * p[1]),
+        pivot[1] - (s * p[0] + c * p[1]),
+    ]
+}
+
 fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
     [a[0] - b[0], a[1] - b[1]]
 }
@@ -304,7 +317,7 @@ impl ClosedForm {
     }
 
     /// Solves one loop: sets its body's coordinates and `(sin θ, cos θ)`.
-    #[inline]
+    #[inline(always)]
     fn solve<D: Scalar>(
         &self,
         step: &Step,
@@ -347,12 +360,7 @@ impl ClosedForm {
                         let v = [j[0] - pivot2[0], j[1] - pivot2[1]];
                         let (t2, sc2) = turn_to(v, r2, l2);
                         let t2 = unwrap(t2, previous[3 * second + 2]);
-                        let (s2, c2) = sc2;
-                        let p = h2.at_body;
-                        let ref2 = [
-                            pivot2[0] - (c2 * p[0] - s2 * p[1]),
-                            pivot2[1] - (s2 * p[0] + c2 * p[1]),
-                        ];
+                        let ref2 = hinged_at(pivot2, sc2, h2.at_body);
                         (j, t2, sc2, ref2)
                     }
                     End::Slide { slide, offset } => {
@@ -385,12 +393,7 @@ impl ClosedForm {
                 let v = [j[0] - pivot[0], j[1] - pivot[1]];
                 let (t1, (s1, c1)) = turn_to(v, r1, l1);
                 let t1 = unwrap(t1, previous[3 * k + 2]);
-                let p = hinge.at_body;
-                let r = [
-                    pivot[0] - (c1 * p[0] - s1 * p[1]),
-                    pivot[1] - (s1 * p[0] + c1 * p[1]),
-                ];
-                (t1, (s1, c1), r)
+                (t1, (s1, c1), hinged_at(pivot, (s1, c1), hinge.at_body))
             }
             Pattern::Hinged { hinge, angle } => {
                 let pivot = place(q, frames, hinge.known, hinge.at_known);
@@ -444,13 +447,7 @@ impl ClosedForm {
                         }
                     }
                 };
-                let (s, c) = sin_cos;
-                let p = hinge.at_body;
-                let r = [
-                    pivot[0] - (c * p[0] - s * p[1]),
-                    pivot[1] - (s * p[0] + c * p[1]),
-                ];
-                (theta, sin_cos, r)
+                (theta, sin_cos, hinged_at(pivot, sin_cos, hinge.at_body))
             }
             Pattern::Sliding {
                 slide,
