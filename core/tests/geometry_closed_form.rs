@@ -394,18 +394,127 @@ fn dyads_report_unassemblable_and_toggle_through_the_closed_form() {
 }
 
 #[test]
-fn mixed_closed_form_and_newton_loops_match_newton() {
-    // Mechanism 001: the rack (driven slide) and the rod–slider RRP dyad are closed-form,
-    // the block sliding in the turning slotted link (an RPR dyad, no pattern) is Newton.
-    let m = rack_slotted_link(common::Closure001::Primary, false).unwrap();
-    let t = Solver::default().track(&m).unwrap();
-    assert_eq!(t.closed_form_loops(), vec![true, false, true]);
+fn rack_pinion_and_rpr_dyad_of_001_are_closed_form_and_match_newton() {
+    // Mechanism 001 driven by the rack (the pinion follows: a rolling angle) and by the
+    // pinion (the rack follows: a rolling displacement), on both closures of the rod–slider
+    // dyad. The block sliding in the turning slotted link is the RPR dyad: the slotted link
+    // turns like a slotted rocker whose line passes through the block's hinge A, and the
+    // block follows at A.
     let x0 = common::rack001::RHO4;
-    let phis: Vec<f64> = (0..=100).map(|i| x0 - 0.1 + 0.002 * i as f64).collect();
-    let e = closed_form_vs_newton(&m, &phis);
-    // Both sides lift q′, q″, q‴ by implicit differentiation at poses that differ by
-    // rounding (the seeded and the plain Newton converge to different last bits); the
-    // difference measured is 2.5e-13 scaled, in q‴.
+    for closure in [common::Closure001::Primary, common::Closure001::Other] {
+        for pinion in [false, true] {
+            let m = rack_slotted_link(closure, pinion).unwrap();
+            let t = Solver::default().track(&m).unwrap();
+            assert!(
+                t.closed_form_loops().iter().all(|&c| c),
+                "{closure:?} {pinion}"
+            );
+            // ±0.1 m of rack travel about the instant: ±2.5 rad of the 0.04 m pinion.
+            let phis: Vec<f64> = (0..=100)
+                .map(|i| -0.1 + 0.002 * i as f64)
+                .map(|d| if pinion { d / 0.04 } else { x0 + d })
+                .collect();
+            let e = closed_form_vs_newton(&m, &phis);
+            // Both exact: the Newton side lifts q′, q″, q‴ by implicit differentiation at a
+            // pose converged to ~1e-15; the largest difference measured is 1.3e-13 scaled.
+            assert!(e <= 1e-12, "{closure:?} {pinion}: scaled difference {e:e}");
+        }
+    }
+}
+
+/// Two gear wheels (mesh ratio −2), optionally with a plate welded to the second; driven by
+/// either wheel.
+fn gear_pair(drive_second: bool, plate: bool) -> Mechanism {
+    let mut b = Mechanism::builder()
+        .point("O1", [0.0, 0.0])
+        .point("O2", [0.3, 0.0])
+        .point("P", [0.3, 0.3])
+        .ground(["O1", "O2"])
+        .link("wheel 1", ["O1"])
+        .link("wheel 2", ["O2"])
+        .revolute("O1", "ground", "wheel 1", "O1")
+        .revolute("O2", "ground", "wheel 2", "O2")
+        .gear("mesh", "O1", "O2", -2.0)
+        .drive(Drive::angle(if drive_second { "O2" } else { "O1" }));
+    if plate {
+        b = b.link("plate", ["P"]).rigid("weld", "wheel 2", "plate");
+    }
+    b.build().unwrap()
+}
+
+/// A pinion of pitch radius 0.05 m about W = (0, 0.05) on a rack sliding along the x axis,
+/// driven by the rack's travel or by the pinion's angle.
+fn rack_and_pinion(drive_pinion: bool) -> Mechanism {
+    Mechanism::builder()
+        .point("O", [0.0, 0.0])
+        .point("X", [1.0, 0.0])
+        .point("W", [0.0, 0.05])
+        .point("A", [0.2, 0.0])
+        .ground(["O", "X", "W"])
+        .link("pinion", ["W"])
+        .link("rack", ["A"])
+        .revolute("W", "ground", "pinion", "W")
+        .prismatic("guide", "ground", ["O", "X"], "rack", "A")
+        .rack_pinion("mesh", "W", "guide", 0.05)
+        .drive(if drive_pinion {
+            Drive::angle("W")
+        } else {
+            Drive::displacement("guide")
+        })
+        .build()
+        .unwrap()
+}
+
+#[test]
+fn gear_and_rack_pinion_follow_their_ratios_in_closed_form() {
+    for drive_second in [false, true] {
+        let m = gear_pair(drive_second, false);
+        let mut t = Solver::default().track(&m).unwrap();
+        assert_eq!(t.closed_form_loops(), vec![true, true]);
+        // θ₂ = −2 θ₁, whichever wheel is driven: exact linear relations, 1e-15 for the
+        // rounding of one product; the second derivatives are exactly 0.
+        t.move_to(0.7).unwrap();
+        let k = t.kinematics::<3>().unwrap();
+        let (w1, w2) = (
+            k.rotation("wheel 1").unwrap(),
+            k.rotation("wheel 2").unwrap(),
+        );
+        assert!((w2.value + 2.0 * w1.value).abs() < 1e-15);
+        assert!((w2.d1() + 2.0 * w1.d1()).abs() < 1e-15);
+        assert!(w2.d2() == 0.0 && w1.d3() == 0.0);
+        let e = closed_form_vs_newton(&m, &revolution(5.0, &[]));
+        assert!(e <= 1e-12, "scaled difference {e:e}");
+    }
+    for drive_pinion in [false, true] {
+        let m = rack_and_pinion(drive_pinion);
+        let mut t = Solver::default().track(&m).unwrap();
+        assert_eq!(t.closed_form_loops(), vec![true, true]);
+        let travel = m.displacement_output("guide").unwrap();
+        let turn = m.rotation_output("pinion").unwrap();
+        // Δs = 0.05 Δθ (radius 0.05 m): 1e-15, the rounding of one product or quotient.
+        let phis: Vec<f64> = (-20..=20).map(|i| 0.02 * f64::from(i)).collect();
+        for &phi in &phis {
+            t.move_to(phi).unwrap();
+            let (s, theta) = (t.value(&travel), t.value(&turn));
+            assert!((s.value - 0.2 - 0.05 * theta.value).abs() < 1e-15, "{phi}");
+            assert!((s.d1() - 0.05 * theta.d1()).abs() < 1e-15, "{phi}");
+            assert!(s.d2() == 0.0 && theta.d2() == 0.0, "{phi}");
+        }
+        let e = closed_form_vs_newton(&m, &phis);
+        assert!(e <= 1e-12, "scaled difference {e:e}");
+    }
+}
+
+#[test]
+fn mixed_closed_form_and_newton_loops_match_newton() {
+    // The weld has no pattern: it is solved by Newton, the gear loops seed its predictor.
+    let m = gear_pair(false, true);
+    let t = Solver::default().track(&m).unwrap();
+    let closed = t.closed_form_loops();
+    assert_eq!(closed.iter().filter(|&&c| c).count(), 2, "{closed:?}");
+    assert_eq!(closed.len(), 3);
+    let e = closed_form_vs_newton(&m, &revolution(5.0, &[]));
+    // Both exact (the weld is Newton on both sides): 1e-12 scaled.
     assert!(e <= 1e-12, "scaled difference {e:e}");
 }
 

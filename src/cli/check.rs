@@ -31,9 +31,12 @@ pub fn check(args: &CheckArgs) -> Result<(), Error> {
         checked.mobility.degrees_of_freedom,
         checked.mobility.rank,
     );
-    for (k, (joints, branch)) in checked.loops.iter().enumerate() {
+    for (k, ((joints, branch), &closed)) in
+        checked.loops.iter().zip(&checked.closed_form).enumerate()
+    {
+        let how = if closed { "closed form" } else { "Newton" };
         println!(
-            "loop {}: {} (branch certificate {branch:+} in the sketch)",
+            "loop {}: {} (branch certificate {branch:+} in the sketch; solved by {how})",
             k + 1,
             joints.join(", ")
         );

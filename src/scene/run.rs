@@ -73,6 +73,8 @@ pub struct Checked {
     /// The loops the solver closes in turn (joint names, the drive as `drive <joint>`) and
     /// the sign of each loop's assembly branch in the sketch.
     pub loops: Vec<(Vec<String>, i8)>,
+    /// Per loop, whether the solver closes it by a closed form (else by Newton).
+    pub closed_form: Vec<bool>,
     /// The plan a run would carry out.
     pub plan: Plan,
 }
@@ -81,16 +83,21 @@ pub struct Checked {
 /// the sketch's assembly.
 pub fn check(scene: &Scene) -> Result<Checked> {
     let mechanism = mechanism(scene)?;
-    let (mobility, loops) = {
+    let (mobility, loops, closed_form) = {
         let tracker = Solver::default()
             .track(&mechanism)
             .map_err(|e| solver_error(scene, e))?;
-        (tracker.mobility(), tracker.loops())
+        (
+            tracker.mobility(),
+            tracker.loops(),
+            tracker.closed_form_loops(),
+        )
     };
     Ok(Checked {
         mechanism,
         mobility,
         loops,
+        closed_form,
         plan: Plan::of(scene),
     })
 }

@@ -54,9 +54,42 @@ pub(super) fn pattern(eq: &Equations, l: &Loop) -> Option<(usize, Pattern)> {
                             r: sub(p, hinge.at_body),
                         }
                     }
+                    Term::RackPinion {
+                        a,
+                        b,
+                        slide,
+                        s0,
+                        radius,
+                    } if (a == me) != (b == me)
+                        && ![slide.slider, slide.line.body].contains(&me) =>
+                    {
+                        let (other, sign) = if b == me { (a, 1.0) } else { (b, -1.0) };
+                        Angle::Rolling {
+                            other,
+                            sign,
+                            slide,
+                            s0,
+                            radius,
+                        }
+                    }
+                    Term::Gear {
+                        a1,
+                        b1,
+                        a2,
+                        b2,
+                        ratio,
+                    } => geared(me, [(b2, 1.0), (a2, -1.0), (b1, -ratio), (a1, ratio)])?,
                     _ => return None,
                 };
-                return Some((k, Pattern::Hinged { hinge, angle }));
+                let rider = None;
+                return Some((
+                    k,
+                    Pattern::Hinged {
+                        hinge,
+                        angle,
+                        rider,
+                    },
+                ));
             }
             Term::Prismatic { slide, offset } if slide.slider == me && slide.line.body != me => {
                 let shift = match other(i) {
@@ -69,6 +102,13 @@ pub(super) fn pattern(eq: &Equations, l: &Loop) -> Option<(usize, Pattern)> {
                     Term::PinInSlot { line, pin, p } if pin == me && line.body != me => {
                         Shift::PinInKnownSlot { line, p }
                     }
+                    Term::RackPinion {
+                        a,
+                        b,
+                        slide: s,
+                        s0,
+                        radius,
+                    } if s == slide && a != me && b != me => Shift::Rolling { a, b, s0, radius },
                     _ => return None,
                 };
                 return Some((
@@ -86,7 +126,22 @@ pub(super) fn pattern(eq: &Equations, l: &Loop) -> Option<(usize, Pattern)> {
     None
 }
 
-/// Matches a two-link loop: RRR or RRP dyad.
+/// The angle of `me` from the gear condition `Σ cᵢ θᵢ = 0`: `θ = Σ kᵢ θᵢ` over the other
+/// links, or `None` if the condition does not involve `me` (or only through the ground).
+fn geared(me: Body, condition: [(Body, f64); 4]) -> Option<Angle> {
+    let own: f64 = condition
+        .iter()
+        .filter(|(b, _)| *b == me)
+        .map(|(_, c)| c)
+        .sum();
+    if me.is_none() || own == 0.0 {
+        return None;
+    }
+    let terms = condition.map(|(b, c)| if b == me { (None, 0.0) } else { (b, -c / own) });
+    Some(Angle::Geared { terms })
+}
+
+/// Matches a two-link loop: RRR, RRP or RPR dyad.
 fn dyad(eq: &Equations, l: &Loop) -> Option<(usize, Pattern)> {
     let mut bodies: Vec<usize> = l.columns.iter().map(|&c| c / 3).collect();
     bodies.sort_unstable();
@@ -103,6 +158,9 @@ fn dyad(eq: &Equations, l: &Loop) -> Option<(usize, Pattern)> {
         return None;
     }
     let (b1, b2) = (Some(k1), Some(k2));
+    if let Some(found) = sliding_pair(&terms, [b1, b2]) {
+        return Some(found);
+    }
     let unknown = |b: Body| b == b1 || b == b2;
     let mut joint = None;
     let mut ends: [Option<End>; 2] = [None, None];
@@ -145,4 +203,49 @@ fn dyad(eq: &Equations, l: &Loop) -> Option<(usize, Pattern)> {
         )),
         _ => None,
     }
+}
+
+/// The RPR dyad: two links, each hinged to a known link, joined by a prismatic pair (so they
+/// turn together). The link carrying the line turns like a slotted rocker whose line passes
+/// through the other's hinge `K_S`: with `A` their common rotation,
+/// `cross(A d, K_S − K_L) = e − cross(d, p − h_S − o + h_L)` (`d`, `o` the line, `e` its
+/// offset, `p` the slider's point, `h` the hinges' local points); the other link then
+/// follows at its hinge.
+fn sliding_pair(terms: &[Term], unknown: [Body; 2]) -> Option<(usize, Pattern)> {
+    let mut hinges: Vec<(Body, Hinge)> = Vec::with_capacity(2);
+    let mut slide = None;
+    for t in terms {
+        match *t {
+            Term::Revolute { a, pa, b, pb } if unknown.contains(&a) != unknown.contains(&b) => {
+                let me = if unknown.contains(&b) { b } else { a };
+                hinges.push((me, Hinge::seen_from(me, (a, pa), (b, pb))));
+            }
+            Term::Prismatic { slide: s, offset }
+                if s.line.body != s.slider
+                    && unknown.contains(&s.line.body)
+                    && unknown.contains(&s.slider) =>
+            {
+                slide = Some((s, offset));
+            }
+            _ => return None,
+        }
+    }
+    let (slide, offset) = slide?;
+    let hinge_of = |link: Body| hinges.iter().find(|(me, _)| *me == link).map(|&(_, h)| h);
+    let (hl, hs) = (hinge_of(slide.line.body)?, hinge_of(slide.slider)?);
+    let (d, o) = (slide.line.direction, slide.line.origin);
+    let c = offset + cross(d, sub(o, hl.at_body)) - cross(d, sub(slide.point, hs.at_body));
+    Some((
+        slide.line.body?,
+        Pattern::Hinged {
+            hinge: hl,
+            angle: Angle::SlotThroughPin {
+                direction: d,
+                c,
+                pin: hs.known,
+                at: hs.at_known,
+            },
+            rider: Some((slide.slider?, hs)),
+        },
+    ))
 }

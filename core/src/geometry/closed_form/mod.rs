@@ -1,5 +1,5 @@
-//! Closed-form solutions of standard loops (Assur groups of one or two links), used
-//! instead of Newton.
+//! Closed-form solutions of standard loops (Assur groups of one or two links, rolling and
+//! gear contacts), used instead of Newton.
 //!
 //! The solver splits Φ(q, φ) = 0 into loops, solved in sequence (see [`super::branch`]); each
 //! loop's unknowns depend only on the loops before it. Many loops are one link, or two
@@ -23,6 +23,10 @@
 //! | translating slide | prismatic on a known guide + a slot through a known pin, a pin in a known slot, or a displacement drive | `θ = θ_guide`, displacement `s` from one linear equation |
 //! | RRR dyad | two links hinged at known `K₁`, `K₂`, joined at `J` (`|J − K₁| = l₁`, `|J − K₂| = l₂`) | `J = K₁ + (g d + σ √(l₁² d² − g²) d⊥) / d²`, `d = K₂ − K₁`, `g = (l₁² − l₂² + d²)/2` |
 //! | RRP dyad | first link hinged at `K`, the second sliding on a known guide (`u`), joined at `J = J₀ + s u` | `s = −u·w + σ √((u·w)² − |w|² + l₁²)`, `w = J₀ − K` |
+//! | RPR dyad | two links hinged at known `K_L`, `K_S`, joined by a prismatic pair (line on L) | L as a slotted rocker through `K_S`: `cross(A d, K_S − K_L) = e − cross(d, p − h_S − o + h_L)`; S turns with L, hinged at `K_S` |
+//! | rolling pinion | revolute + rack-and-pinion with a known rack | `θ = θ_other ± (s − s₀)/R` |
+//! | rolling rack | prismatic + rack-and-pinion with a known pinion | `s = s₀ + R (θ_b − θ_a)` |
+//! | gear | revolute + gear contact with known wheels | `θ = Σ kᵢ θᵢ` (the mesh's linear relation solved for θ) |
 //!
 //! For the square-root patterns, with ρ the radius (`|w|`, resp. `|r|`) and c the
 //! right-hand side, `ρ sin ψ = c` and `ρ cos ψ = k = σ √(ρ² − c²)`: `ψ = arg(k + i c)`, and
@@ -92,6 +96,17 @@ enum Angle {
     },
     /// The link's pin, at `r` from the hinge (local), lies on a known line.
     PinInKnownSlot { line: Line, r: [f64; 2] },
+    /// A pinion rolling on a known rack: `θ = θ_other + sign·(s − s₀)/radius`, `s` the
+    /// rack's displacement along its guide.
+    Rolling {
+        other: Body,
+        sign: f64,
+        slide: Slide,
+        s0: f64,
+        radius: f64,
+    },
+    /// A gear meshing with known ones: `θ = Σ kᵢ θᵢ` over the other links of the gear pair.
+    Geared { terms: [(Body, f64); 4] },
 }
 
 /// How a sliding link's displacement is found.
@@ -103,13 +118,25 @@ enum Shift {
     SlotThroughPin { line: Line, pin: Body, at: [f64; 2] },
     /// The link's pin (local `p`) lies on a known line.
     PinInKnownSlot { line: Line, p: [f64; 2] },
+    /// A rack driven by a known pinion (joint between `a` and `b`):
+    /// `s = s₀ + radius·(θ_b − θ_a)`.
+    Rolling {
+        a: Body,
+        b: Body,
+        s0: f64,
+        radius: f64,
+    },
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Pattern {
+    /// A link turning about a hinge; with a `rider`, a second link that slides on it (same
+    /// angle) and is hinged to a known link (the RPR dyad: its hinge is the pin the first
+    /// link's line passes through).
     Hinged {
         hinge: Hinge,
         angle: Angle,
+        rider: Option<(usize, Hinge)>,
     },
     Sliding {
         slide: Slide,
@@ -178,6 +205,15 @@ fn place<D: Scalar>(q: &[D], frames: &[(D, D)], b: Body, p: [f64; 2]) -> [D; 2] 
         None => r,
         Some(k) => [q[3 * k] + r[0], q[3 * k + 1] + r[1]],
     }
+}
+
+/// The displacement of a slide's slider along its guide (see `Frames::displacement`).
+#[inline]
+fn displacement<D: Scalar>(q: &[D], frames: &[(D, D)], slide: &Slide) -> D {
+    let u = rotate(frames, slide.line.body, slide.line.direction);
+    let a = place(q, frames, slide.line.body, slide.line.origin);
+    let p = place(q, frames, slide.slider, slide.point);
+    u[0] * (p[0] - a[0]) + u[1] * (p[1] - a[1])
 }
 
 /// The reference point `K − A p` of a link turned by `(sin θ, cos θ)` about the hinge at
@@ -252,7 +288,11 @@ impl ClosedForm {
                     let (mut q, mut f) = (sketch.to_vec(), frames.clone());
                     cf.solve(&step, phi0, sketch, &mut q, &mut f).ok()?;
                     let second = match pattern {
-                        Pattern::Dyad { second, .. } => second,
+                        Pattern::Dyad { second, .. }
+                        | Pattern::Hinged {
+                            rider: Some((second, _)),
+                            ..
+                        } => second,
                         _ => body,
                     };
                     let close = [body, second].iter().all(|&b| {
@@ -395,7 +435,11 @@ impl ClosedForm {
                 let t1 = unwrap(t1, previous[3 * k + 2]);
                 (t1, (s1, c1), hinged_at(pivot, (s1, c1), hinge.at_body))
             }
-            Pattern::Hinged { hinge, angle } => {
+            Pattern::Hinged {
+                hinge,
+                angle,
+                rider,
+            } => {
                 let pivot = place(q, frames, hinge.known, hinge.at_known);
                 let (theta, sin_cos) = match angle {
                     Angle::Driven { other, sign, phi0 } => {
@@ -434,9 +478,27 @@ impl ClosedForm {
                         let y = v[1] * r[0] - v[0] * r[1];
                         (atan2(y, x), (y / rho2, x / rho2))
                     }
+                    Angle::Rolling {
+                        other,
+                        sign,
+                        slide,
+                        s0,
+                        radius,
+                    } => {
+                        let base = other.map_or(D::from(0.0), |o| q[3 * o + 2]);
+                        let s = displacement(q, frames, &slide);
+                        let theta = base + (s - s0) * (sign / radius);
+                        (theta, theta.sin_cos())
+                    }
+                    Angle::Geared { terms } => {
+                        let theta = terms.iter().fold(D::from(0.0), |sum, &(b, k)| {
+                            b.map_or(sum, |b| sum + q[3 * b + 2] * k)
+                        });
+                        (theta, theta.sin_cos())
+                    }
                 };
                 let theta = match angle {
-                    Angle::Driven { .. } => theta,
+                    Angle::Driven { .. } | Angle::Rolling { .. } | Angle::Geared { .. } => theta,
                     _ => {
                         // The turn nearest to the previous pose's angle.
                         let gap = previous[3 * k + 2] - theta.re();
@@ -447,6 +509,14 @@ impl ClosedForm {
                         }
                     }
                 };
+                if let Some((second, h2)) = rider {
+                    let pivot2 = place(q, frames, h2.known, h2.at_known);
+                    let r2 = hinged_at(pivot2, sin_cos, h2.at_body);
+                    q[3 * second] = r2[0];
+                    q[3 * second + 1] = r2[1];
+                    q[3 * second + 2] = theta;
+                    frames[second] = sin_cos;
+                }
                 (theta, sin_cos, hinged_at(pivot, sin_cos, hinge.at_body))
             }
             Pattern::Sliding {
@@ -477,6 +547,10 @@ impl ClosedForm {
                         let pp = rotate(frames, g, p);
                         let d = [base[0] + pp[0] - o[0], base[1] + pp[1] - o[1]];
                         -cross_d(v, d) / self.slope(cross_d(v, u))?
+                    }
+                    Shift::Rolling { a, b, s0, radius } => {
+                        let angle = |x: Body| x.map_or(D::from(0.0), |x| q[3 * x + 2]);
+                        (angle(b) - angle(a)) * radius + s0
                     }
                 };
                 (theta, sin_cos, [base[0] + u[0] * s, base[1] + u[1] * s])
