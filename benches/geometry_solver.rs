@@ -10,6 +10,9 @@
 //!   through the `Dual2` differentiator: ψ alone (`Whitworth::rocker`, the strict
 //!   comparison: the output asked for) and the whole pose (`Whitworth` itself: ψ, A, C,
 //!   S1, S2, S3, as the solver places every link).
+//! - `rack-driven slotted link (001), 720 positions` — `scenes/rack_slotted_link.toml`
+//!   swept over 0.2 m of rack travel reading θ3, θ3′, θ3″: every loop in closed form (the
+//!   default) against Newton forced.
 //! - `whitworth lift q′,q″ at one pose: one LU + Dual2 vs num-dual implicit_derivative_vec`
 //!   — the two exact ways to differentiate the solved pose.
 
@@ -125,6 +128,41 @@ fn per_drive_position(c: &mut Criterion) {
     group.finish();
 }
 
+fn rack_slotted_link(c: &mut Criterion) {
+    let scene = mechdiff::scene::load(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/scenes/rack_slotted_link.toml"
+    ))
+    .expect("the scene loads");
+    let m = mechdiff::scene::check(&scene)
+        .expect("the scene checks")
+        .mechanism;
+    let theta3 = m.rotation_output("slotted_link").expect("link exists");
+    let travel: Vec<f64> = (0..720)
+        .map(|i| 0.32 + 0.2 * f64::from(i) / 720.0)
+        .collect();
+    let mut group = c.benchmark_group("rack-driven slotted link (001), 720 positions");
+    for (name, closed_form) in [("closed forms", true), ("Newton forced", false)] {
+        let start = Solver::default()
+            .with_closed_form(closed_form)
+            .track(&m)
+            .expect("assembles");
+        group.bench_function(BenchmarkId::from_parameter(name), |b| {
+            b.iter(|| {
+                let mut t = start.clone();
+                let mut acc = 0.0;
+                for &x in &travel {
+                    t.move_to(black_box(x)).expect("assembles");
+                    let theta = t.value(&theta3);
+                    acc += theta.value + theta.d1() + theta.d2();
+                }
+                acc
+            })
+        });
+    }
+    group.finish();
+}
+
 fn lift(c: &mut Criterion) {
     let m = whitworth();
     let eq = Equations::new(&m);
@@ -166,5 +204,5 @@ fn lift_num_dual(eq: &Equations, x: SVector<f64, 9>, phi: f64) -> SVector<Dual2_
     )
 }
 
-criterion_group!(benches, per_drive_position, lift);
+criterion_group!(benches, per_drive_position, rack_slotted_link, lift);
 criterion_main!(benches);
