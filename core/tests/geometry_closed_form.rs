@@ -4,7 +4,8 @@
 mod common;
 
 use common::{
-    four_bar, four_bar_pin, rack_slotted_link, revolution, scaled_error, slider_crank, whitworth,
+    four_bar, four_bar_pin, gear_pair, rack_slotted_link, revolution, scaled_error, slider_crank,
+    whitworth,
 };
 use mechdiff_core::geometry::{Drive, Mechanism, Solver};
 use mechdiff_core::{Error, Jet};
@@ -420,26 +421,6 @@ fn rack_pinion_and_rpr_dyad_of_001_are_closed_form_and_match_newton() {
             assert!(e <= 1e-12, "{closure:?} {pinion}: scaled difference {e:e}");
         }
     }
-}
-
-/// Two gear wheels (mesh ratio −2), optionally with a plate welded to the second; driven by
-/// either wheel.
-fn gear_pair(drive_second: bool, plate: bool) -> Mechanism {
-    let mut b = Mechanism::builder()
-        .point("O1", [0.0, 0.0])
-        .point("O2", [0.3, 0.0])
-        .point("P", [0.3, 0.3])
-        .ground(["O1", "O2"])
-        .link("wheel 1", ["O1"])
-        .link("wheel 2", ["O2"])
-        .revolute("O1", "ground", "wheel 1", "O1")
-        .revolute("O2", "ground", "wheel 2", "O2")
-        .gear("mesh", "O1", "O2", -2.0)
-        .drive(Drive::angle(if drive_second { "O2" } else { "O1" }));
-    if plate {
-        b = b.link("plate", ["P"]).rigid("weld", "wheel 2", "plate");
-    }
-    b.build().unwrap()
 }
 
 /// A pinion of pitch radius 0.05 m about W = (0, 0.05) on a rack sliding along the x axis,

@@ -2,7 +2,9 @@
 
 mod common;
 
-use common::{four_bar, four_bar_pin, four_bar_rocker_pin, revolution, scaled_error, slider_crank};
+use common::{
+    four_bar, four_bar_pin, four_bar_rocker_pin, gear_pair, revolution, scaled_error, slider_crank,
+};
 use mechdiff_core::geometry::{Drive, Equations, Mechanism, Solver};
 use nalgebra::DMatrix;
 use num_dual::{Dual3_64, Dual64, DualNum};
@@ -150,21 +152,7 @@ fn shaper_slot_on_a_translating_ram_matches_its_closed_form() {
 fn gear_pair_and_rigid_attachment_follow_their_ratios() {
     // Gear wheel 1 driven about O1; wheel 2 about O2 meshes externally (ratio −2); a plate
     // welded to wheel 2 carries point P at 0.3 m from O2.
-    let m = Mechanism::builder()
-        .point("O1", [0.0, 0.0])
-        .point("O2", [0.3, 0.0])
-        .point("P", [0.3, 0.3])
-        .ground(["O1", "O2"])
-        .link("wheel 1", ["O1"])
-        .link("wheel 2", ["O2"])
-        .link("plate", ["P"])
-        .revolute("O1", "ground", "wheel 1", "O1")
-        .revolute("O2", "ground", "wheel 2", "O2")
-        .gear("mesh", "O1", "O2", -2.0)
-        .rigid("weld", "wheel 2", "plate")
-        .drive(Drive::angle("O1"))
-        .build()
-        .unwrap();
+    let m = gear_pair(false, true);
     let mut t = Solver::default().track(&m).unwrap();
     t.move_to(0.7).unwrap();
     let k = t.kinematics::<3>().unwrap();

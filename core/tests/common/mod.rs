@@ -155,6 +155,26 @@ pub fn rack_slotted_link_incline(
     builder.build()
 }
 
+/// Two gear wheels about O1 = (0, 0) and O2 = (0.3, 0) (mesh ratio −2), optionally with a
+/// plate welded to the second, carrying P = (0.3, 0.3); driven by either wheel.
+pub fn gear_pair(drive_second: bool, plate: bool) -> Mechanism {
+    let mut b = Mechanism::builder()
+        .point("O1", [0.0, 0.0])
+        .point("O2", [0.3, 0.0])
+        .point("P", [0.3, 0.3])
+        .ground(["O1", "O2"])
+        .link("wheel 1", ["O1"])
+        .link("wheel 2", ["O2"])
+        .revolute("O1", "ground", "wheel 1", "O1")
+        .revolute("O2", "ground", "wheel 2", "O2")
+        .gear("mesh", "O1", "O2", -2.0)
+        .drive(Drive::angle(if drive_second { "O2" } else { "O1" }));
+    if plate {
+        b = b.link("plate", ["P"]).rigid("weld", "wheel 2", "plate");
+    }
+    b.build().unwrap()
+}
+
 /// Slider-crank: crank `r` from O = (0, 0), rod `l`, slider on the x axis; sketched at crank
 /// angle `phi0`, φ = crank angle (or slider displacement from O when `drive_slider`).
 pub fn slider_crank(r: f64, l: f64, phi0: f64, drive_slider: bool) -> Result<Mechanism, Error> {
