@@ -17,7 +17,7 @@
 //!   — the two exact ways to differentiate the solved pose.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use mechdiff_core::geometry::{Equations, Mechanism, Solver, implicit};
+use mechdiff_core::geometry::{Equations, Mechanism, ScalarOutput, Solver, Tracker, implicit};
 use mechdiff_core::method::{Differentiator, Dual2};
 use mechdiff_mechanisms::whitworth::Whitworth;
 use nalgebra::{SVector, U9};
@@ -29,6 +29,19 @@ fn whitworth() -> Mechanism {
     Whitworth::reference()
         .linkage([0.0, 0.0])
         .expect("the reference geometry assembles")
+}
+
+/// Walks a copy of `start` through `positions`, reading `output` to second order at each:
+/// the loop every geometry-side measurement times.
+fn walk(start: &Tracker<'_>, positions: &[f64], output: &ScalarOutput) -> f64 {
+    let mut t = start.clone();
+    let mut acc = 0.0;
+    for &phi in positions {
+        t.move_to(black_box(phi)).expect("assembles");
+        let x = t.value(output);
+        acc += x.value + x.d1() + x.d2();
+    }
+    acc
 }
 
 fn per_drive_position(c: &mut Criterion) {
@@ -58,18 +71,7 @@ fn per_drive_position(c: &mut Criterion) {
     group.throughput(Throughput::Elements(phis.len() as u64));
     group.bench_function(
         BenchmarkId::from_parameter("geometry: solve + read ψ"),
-        |b| {
-            b.iter(|| {
-                let mut t = start.clone();
-                let mut acc = 0.0;
-                for &phi in &phis {
-                    t.move_to(black_box(phi)).expect("assembles");
-                    let psi = t.value(&rocker);
-                    acc += psi.value + psi.d1() + psi.d2();
-                }
-                acc
-            })
-        },
+        |b| b.iter(|| walk(&start, &phis, &rocker)),
     );
     let newton = Solver::default()
         .with_closed_form(false)
@@ -77,18 +79,7 @@ fn per_drive_position(c: &mut Criterion) {
         .expect("assembles");
     group.bench_function(
         BenchmarkId::from_parameter("geometry, Newton forced: solve + read ψ"),
-        |b| {
-            b.iter(|| {
-                let mut t = newton.clone();
-                let mut acc = 0.0;
-                for &phi in &phis {
-                    t.move_to(black_box(phi)).expect("assembles");
-                    let psi = t.value(&rocker);
-                    acc += psi.value + psi.d1() + psi.d2();
-                }
-                acc
-            })
-        },
+        |b| b.iter(|| walk(&newton, &phis, &rocker)),
     );
     group.bench_function(BenchmarkId::from_parameter("geometry: solve only"), |b| {
         b.iter(|| {
@@ -148,16 +139,7 @@ fn rack_slotted_link(c: &mut Criterion) {
             .track(&m)
             .expect("assembles");
         group.bench_function(BenchmarkId::from_parameter(name), |b| {
-            b.iter(|| {
-                let mut t = start.clone();
-                let mut acc = 0.0;
-                for &x in &travel {
-                    t.move_to(black_box(x)).expect("assembles");
-                    let theta = t.value(&theta3);
-                    acc += theta.value + theta.d1() + theta.d2();
-                }
-                acc
-            })
+            b.iter(|| walk(&start, &travel, &theta3))
         });
     }
     group.finish();
