@@ -12,7 +12,7 @@ use num_dual::Dual3_64;
 impl<'m> Tracker<'m> {
     /// The pose at the current drive position with its first `N` (1 ≤ N ≤ 3) exact
     /// derivatives with respect to φ, by implicit differentiation with the factorisation
-    /// already computed for the pose (see [`super::implicit`]).
+    /// already computed for the pose (see [`crate::geometry::implicit`]).
     pub fn kinematics<const N: usize>(&self) -> Result<Kinematics<'m, N>, Error> {
         const {
             assert!(

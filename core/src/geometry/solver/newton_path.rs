@@ -1,0 +1,254 @@
+//! The Newton path of [`Tracker::move_to`] (loops without a closed form, or
+//! `Solver::with_closed_form(false)`): Taylor predictor, Newton with the block-factorised
+//! Φ_q, the singularity and branch checks, step halving, and the implicit lift of q′, q″ at
+//! the accepted pose (steps 1–5 of the solver's documentation).
+
+use super::{Loops, SolveReport, Tracker, amax};
+use crate::Error;
+use crate::geometry::constraints::Frames;
+use crate::geometry::implicit::Factorised;
+use crate::geometry::{branch, frames, mobility};
+use nalgebra::DVector;
+
+impl Tracker<'_> {
+    /// Moves to `phi` by predictor, Newton and the checks, halving the step on failure.
+    pub(super) fn move_newton(&mut self, phi: f64) -> Result<SolveReport, Error> {
+        let mut report = SolveReport {
+            phi: self.phi,
+            iterations: 0,
+            steps: 0,
+            residual: None,
+            branch_rejections: 0,
+            newton_failures: 0,
+        };
+        let mut halvings: usize = 0;
+        while self.phi != phi {
+            let h = (phi - self.phi) / f64::powi(2.0, halvings.min(1074) as i32);
+            let target = if halvings == 0 { phi } else { self.phi + h };
+            // Taylor predictor q + h q′ + h²/2 q″.
+            let derivatives = self.dq.as_slice().iter().zip(self.ddq.as_slice());
+            let poses = self.trial.as_mut_slice().iter_mut().zip(self.q.as_slice());
+            for ((x, &q), (&dq, &ddq)) in poses.zip(derivatives) {
+                *x = q + h * (dq + 0.5 * h * ddq);
+            }
+            for (f, pose) in self
+                .trial_frames
+                .iter_mut()
+                .zip(self.trial.as_slice().chunks_exact(3))
+            {
+                *f = pose[2].sin_cos();
+            }
+            if self.seeding {
+                let (q, frames) = (self.q.as_slice(), &mut self.trial_frames);
+                self.closed
+                    .seed(target, q, self.trial.as_mut_slice(), frames);
+            }
+            let failure = match self.newton(target) {
+                Ok(iterations) => {
+                    report.iterations += iterations;
+                    self.check_trial(target)?;
+                    match self
+                        .trial_certificates
+                        .iter()
+                        .zip(&self.certificates)
+                        .position(|(a, b)| a != b)
+                    {
+                        None => {
+                            self.accept(target)?;
+                            report.steps += 1;
+                            halvings = halvings.saturating_sub(1);
+                            continue;
+                        }
+                        Some(l) => {
+                            report.branch_rejections += 1;
+                            Error::BranchFlip {
+                                from: self.phi,
+                                to: target,
+                                joints: self.loop_joints(&self.loops[l]),
+                            }
+                        }
+                    }
+                }
+                Err((residual, l)) => {
+                    report.newton_failures += 1;
+                    Error::Unassemblable {
+                        phi,
+                        last_assembled: self.phi,
+                        joints: self.loop_joints(&self.loops[l]),
+                        residual,
+                    }
+                }
+            };
+            halvings += 1;
+            // Give up after the allowed halvings, or once a halved step no longer moves φ.
+            let next = self.phi + (phi - self.phi) / f64::powi(2.0, halvings.min(1074) as i32);
+            if halvings > self.solver.max_subdivisions || next == self.phi {
+                return Err(failure);
+            }
+        }
+        report.phi = self.phi;
+        report.residual = Some(amax(self.residual.as_slice()));
+        Ok(report)
+    }
+
+    /// Newton on `trial` at drive position `phi`: the iterations, or the final residual and
+    /// the loop with the largest residual. Leaves Φ(trial) in `trial_residual`.
+    fn newton(&mut self, phi: f64) -> Result<usize, (f64, usize)> {
+        let limit = self.solver.tolerance * self.size;
+        for iteration in 0..=self.solver.max_iterations {
+            self.evaluate_trial(phi);
+            let norm = amax(self.trial_residual.as_slice());
+            if norm <= limit {
+                return Ok(iteration);
+            }
+            if !norm.is_finite() || iteration == self.solver.max_iterations {
+                break;
+            }
+            self.jacobian_trial();
+            let solved = self.work_lu.factor(&self.work)
+                && self.work_lu.solve(
+                    &self.work,
+                    self.trial_residual.as_slice(),
+                    self.step.as_mut_slice(),
+                );
+            if !solved {
+                break;
+            }
+            step_pose(&mut self.trial, &mut self.trial_frames, &self.step);
+        }
+        Err((amax(self.trial_residual.as_slice()), self.worst_loop()))
+    }
+
+    /// Φ(trial, φ) into `trial_residual`.
+    pub(super) fn evaluate_trial(&mut self, phi: f64) {
+        let f = Frames {
+            q: self.trial.as_slice(),
+            frames: &self.trial_frames,
+        };
+        self.eq
+            .evaluate_with(&f, phi, self.trial_residual.as_mut_slice());
+    }
+
+    /// Φ_q(trial) into `work`.
+    fn jacobian_trial(&mut self) {
+        let f = Frames {
+            q: self.trial.as_slice(),
+            frames: &self.trial_frames,
+        };
+        self.eq.jacobian_with(&f, &mut self.work);
+    }
+
+    /// Φ_q at the converged trial pose: factorises it into `work_lu` and sets every loop's
+    /// branch certificate in `trial_certificates`, or returns [`Error::Singular`] if a loop's
+    /// condition exceeds the limit.
+    pub(super) fn check_trial(&mut self, phi: f64) -> Result<(), Error> {
+        self.jacobian_trial();
+        let factored = self.work_lu.factor(&self.work);
+        let limit = self.solver.singular_threshold();
+        for (i, l) in self.loops.iter().enumerate() {
+            let det = if factored {
+                self.work_lu.determinant(i)
+            } else {
+                0.0
+            };
+            // Hadamard screen on the scaled block with unit columns (see branch::condition):
+            // its determinant is det · Π(row scales) / Π(column norms), the column scales
+            // cancelling.
+            let screen = &self.screens[i];
+            let jac = self.work.as_slice();
+            let mut normalized = det * screen.row_scale;
+            for column in screen.entries.chunks_exact(l.rows.len()) {
+                let norm = column
+                    .iter()
+                    .map(|&(at, scale)| (jac[at] * scale).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
+                normalized /= norm;
+            }
+            let bound = screen.bound / normalized.abs();
+            if bound.is_nan() || bound > limit {
+                let mut scaled = self.work.clone();
+                mobility::scale(&self.eq, &mut scaled, self.size);
+                let condition = branch::condition(&scaled, l, limit);
+                if condition.is_nan() || condition > limit {
+                    return Err(Error::Singular {
+                        phi,
+                        condition,
+                        joints: self.loop_joints(l),
+                    });
+                }
+            }
+            self.trial_certificates[i] = if det > 0.0 { 1 } else { -1 };
+        }
+        Ok(())
+    }
+
+    /// Makes the checked trial pose current: polishes it with one more Newton step (the
+    /// factorisation is at the pose itself, so this takes the residual from the tolerance
+    /// down to rounding), then q′ and q″.
+    pub(super) fn accept(&mut self, phi: f64) -> Result<(), Error> {
+        std::mem::swap(&mut self.jac, &mut self.work);
+        std::mem::swap(&mut self.lu, &mut self.work_lu);
+        std::mem::swap(&mut self.q, &mut self.trial);
+        std::mem::swap(&mut self.frames, &mut self.trial_frames);
+        self.phi = phi;
+        let lu = Loops {
+            jac: &self.jac,
+            lu: &self.lu,
+        };
+        if lu.solve_into(self.trial_residual.as_slice(), self.step.as_mut_slice()) {
+            step_pose(&mut self.q, &mut self.frames, &self.step);
+        }
+        // Φ_q q′ = −Φ_φ = e_drive (the drive row, last, is the only one that depends on φ);
+        // q″ comes with Φ at the polished pose (the reported residual).
+        let ok = lu.solve_into(self.unit_drive.as_slice(), self.dq.as_mut_slice())
+            && self.second_order.solve(
+                &self.eq,
+                &lu,
+                self.q.as_slice(),
+                &self.frames,
+                self.dq.as_slice(),
+                phi,
+                self.ddq.as_mut_slice(),
+                self.residual.as_mut_slice(),
+            );
+        if !ok {
+            return Err(self.singular(phi));
+        }
+        // The certificates of the factorisation just made current (`check_trial`'s).
+        self.certificates.copy_from_slice(&self.trial_certificates);
+        Ok(())
+    }
+
+    /// The loop whose equations are furthest from being satisfied by the trial residual.
+    fn worst_loop(&self) -> usize {
+        let mut worst = (0.0, 0);
+        for (i, l) in self.loops.iter().enumerate() {
+            let x = l
+                .rows
+                .iter()
+                .map(|&row| self.trial_residual[row].abs())
+                .fold(0.0, f64::max);
+            if x.is_nan() || x > worst.0 {
+                worst = (x, i);
+            }
+        }
+        worst.1
+    }
+}
+
+/// `q −= step`, keeping the bodies' `(sin θ, cos θ)` in `frames` up to date.
+fn step_pose(q: &mut DVector<f64>, frames: &mut [(f64, f64)], step: &DVector<f64>) {
+    let poses = q.as_mut_slice().chunks_exact_mut(3);
+    for ((f, pose), step) in frames
+        .iter_mut()
+        .zip(poses)
+        .zip(step.as_slice().chunks_exact(3))
+    {
+        let from = pose[2];
+        for (x, s) in pose.iter_mut().zip(step) {
+            *x -= s;
+        }
+        *f = frames::turn(*f, from, pose[2]);
+    }
+}
