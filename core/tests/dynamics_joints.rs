@@ -1,6 +1,9 @@
 //! Kinetostatics through the joint kinds not covered by the reference mechanisms: a rigid
 //! (welded) joint and a displacement drive.
 
+mod common;
+
+use common::slider_crank_parts;
 use mechdiff_core::DriveState;
 use mechdiff_core::dynamics::{Dynamics, Gravity, Load, kinetostatics};
 use mechdiff_core::geometry::{Drive, Inertia, Mechanism, Solver};
@@ -91,15 +94,7 @@ fn displacement_drive_force_equals_the_power_balance_force() {
     let phi0: f64 = 1.0;
     let a = [r * phi0.cos(), r * phi0.sin()];
     let x = a[0] + (l * l - a[1] * a[1]).sqrt();
-    let m = Mechanism::builder()
-        .point("O", [0.0, 0.0])
-        .point("A", a)
-        .point("B", [x, 0.0])
-        .point("X", [1.0, 0.0])
-        .ground(["O", "X"])
-        .link("crank", ["O", "A"])
-        .link("rod", ["A", "B"])
-        .link("slider", ["B"])
+    let m = slider_crank_parts(r, l, phi0)
         .inertia(
             "crank",
             Inertia {
@@ -124,10 +119,6 @@ fn displacement_drive_force_equals_the_power_balance_force() {
                 moment: 0.0,
             },
         )
-        .revolute("O", "ground", "crank", "O")
-        .revolute("A", "crank", "rod", "A")
-        .revolute("B", "rod", "slider", "B")
-        .prismatic("guide", "ground", ["O", "X"], "slider", "B")
         .drive(Drive::displacement("guide"))
         .build()
         .unwrap();

@@ -2,21 +2,16 @@
 //! (the run's trace) that nothing else is evaluated.
 
 use mechdiff_core::DriveState;
+mod common;
+
+use common::slider_crank_parts;
 use mechdiff_core::dynamics::run::run;
 use mechdiff_core::dynamics::{Dynamics, Effects, Friction, Gravity, Load, Plan, Request};
 use mechdiff_core::geometry::{Drive, Inertia, Mechanism, Solver};
 
 /// A slider-crank with masses, gravity, a load and friction data: every effect available.
 fn slider_crank() -> (Mechanism, Dynamics) {
-    let m = Mechanism::builder()
-        .point("O", [0.0, 0.0])
-        .point("A", [0.1, 0.0])
-        .point("B", [0.5, 0.0])
-        .point("X", [1.0, 0.0])
-        .ground(["O", "X"])
-        .link("crank", ["O", "A"])
-        .link("rod", ["A", "B"])
-        .link("slider", ["B"])
+    let m = slider_crank_parts(0.1, 0.4, 0.0)
         .inertia(
             "crank",
             Inertia {
@@ -41,10 +36,6 @@ fn slider_crank() -> (Mechanism, Dynamics) {
                 moment: 0.0,
             },
         )
-        .revolute("O", "ground", "crank", "O")
-        .revolute("A", "crank", "rod", "A")
-        .revolute("B", "rod", "slider", "B")
-        .prismatic("guide", "ground", ["O", "X"], "slider", "B")
         .drive(Drive::angle("O"))
         .build()
         .unwrap();

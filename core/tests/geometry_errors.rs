@@ -2,24 +2,9 @@
 
 mod common;
 
-use common::{four_bar, revolution, slider_crank};
+use common::{crank_rod, four_bar, revolution, slider_crank};
 use mechdiff_core::Error;
-use mechdiff_core::geometry::{Drive, Mechanism, MechanismBuilder, Solver, check_mobility};
-
-fn crank_rod() -> MechanismBuilder {
-    Mechanism::builder()
-        .point("O", [0.0, 0.0])
-        .point("A", [0.1, 0.0])
-        .point("B", [0.5, 0.0])
-        .point("X", [1.0, 0.0])
-        .ground(["O", "X"])
-        .link("crank", ["O", "A"])
-        .link("rod", ["A", "B"])
-        .link("slider", ["B"])
-        .revolute("O", "ground", "crank", "O")
-        .revolute("A", "crank", "rod", "A")
-        .revolute("B", "rod", "slider", "B")
-}
+use mechdiff_core::geometry::{Drive, Mechanism, Solver, check_mobility};
 
 #[test]
 fn four_bar_with_a_short_coupler_names_the_drive_position_and_the_loop() {
@@ -98,7 +83,7 @@ fn near_toggle_positions_still_solve() {
 
 #[test]
 fn a_doubled_guide_is_over_constrained_and_named() {
-    let m = crank_rod()
+    let m = crank_rod(0.1, 0.4, 0.0)
         .prismatic("guide", "ground", ["O", "X"], "slider", "B")
         .prismatic("guide 2", "ground", ["O", "X"], "slider", "B")
         .drive(Drive::angle("O"))
@@ -208,21 +193,21 @@ fn builder_errors_name_the_item() {
         }
     );
 
-    let unknown = crank_rod()
+    let unknown = crank_rod(0.1, 0.4, 0.0)
         .revolute("Z", "crank", "wheel", "A")
         .drive(Drive::angle("O"))
         .build();
     assert!(matches!(unknown.unwrap_err(),
         Error::UnknownName { what: "link", name, context } if name == "wheel" && context == "joint `Z`"));
 
-    let off = crank_rod()
+    let off = crank_rod(0.1, 0.4, 0.0)
         .revolute("Z", "crank", "slider", "A")
         .drive(Drive::angle("O"))
         .build();
     assert!(matches!(off.unwrap_err(),
         Error::PointNotOnLink { point, link, .. } if point == "A" && link == "slider"));
 
-    let zero = crank_rod()
+    let zero = crank_rod(0.1, 0.4, 0.0)
         .prismatic("guide", "ground", ["O", "O"], "slider", "B")
         .drive(Drive::angle("O"))
         .build();
@@ -232,12 +217,12 @@ fn builder_errors_name_the_item() {
     let nan = Mechanism::builder().point("A", [f64::NAN, 0.0]).build();
     assert!(matches!(nan.unwrap_err(), Error::InvalidValue { what, .. } if what.contains("`A`")));
 
-    let no_drive = crank_rod()
+    let no_drive = crank_rod(0.1, 0.4, 0.0)
         .prismatic("guide", "ground", ["O", "X"], "slider", "B")
         .build();
     assert_eq!(no_drive.unwrap_err(), Error::MissingDrive);
 
-    let wrong_drive = crank_rod()
+    let wrong_drive = crank_rod(0.1, 0.4, 0.0)
         .prismatic("guide", "ground", ["O", "X"], "slider", "B")
         .drive(Drive::angle("guide"))
         .build();

@@ -2,7 +2,7 @@
 #![allow(dead_code)] // each test binary uses a subset
 
 use mechdiff_core::Error;
-use mechdiff_core::geometry::{Drive, Inertia, Mechanism};
+use mechdiff_core::geometry::{Drive, Inertia, Mechanism, MechanismBuilder};
 use num_dual::{Dual3_64, DualNum};
 
 /// Whitworth parameters of whitworth_000.md: l0 = 0.400 m, l1 = 0.150 m, h = 0.650 m.
@@ -175,12 +175,13 @@ pub fn gear_pair(drive_second: bool, plate: bool) -> Mechanism {
     b.build().unwrap()
 }
 
-/// Slider-crank: crank `r` from O = (0, 0), rod `l`, slider on the x axis; sketched at crank
-/// angle `phi0`, φ = crank angle (or slider displacement from O when `drive_slider`).
-pub fn slider_crank(r: f64, l: f64, phi0: f64, drive_slider: bool) -> Result<Mechanism, Error> {
+/// The links and revolutes of a slider-crank, without its guide and drive: crank `r` from
+/// O = (0, 0), rod `l` to the slider's pin B on the x axis (X = (1, 0) marks the guide's
+/// direction), sketched at crank angle `phi0`.
+pub fn crank_rod(r: f64, l: f64, phi0: f64) -> MechanismBuilder {
     let a = [r * phi0.cos(), r * phi0.sin()];
     let x = a[0] + (l * l - a[1] * a[1]).sqrt();
-    let b = Mechanism::builder()
+    Mechanism::builder()
         .point("O", [0.0, 0.0])
         .point("A", a)
         .point("B", [x, 0.0])
@@ -192,7 +193,18 @@ pub fn slider_crank(r: f64, l: f64, phi0: f64, drive_slider: bool) -> Result<Mec
         .revolute("O", "ground", "crank", "O")
         .revolute("A", "crank", "rod", "A")
         .revolute("B", "rod", "slider", "B")
-        .prismatic("guide", "ground", ["O", "X"], "slider", "B");
+}
+
+/// [`crank_rod`] with the slider's guide (`guide`, along the x axis): add inertia, loads and
+/// a drive.
+pub fn slider_crank_parts(r: f64, l: f64, phi0: f64) -> MechanismBuilder {
+    crank_rod(r, l, phi0).prismatic("guide", "ground", ["O", "X"], "slider", "B")
+}
+
+/// Slider-crank: crank `r` from O = (0, 0), rod `l`, slider on the x axis; sketched at crank
+/// angle `phi0`, φ = crank angle (or slider displacement from O when `drive_slider`).
+pub fn slider_crank(r: f64, l: f64, phi0: f64, drive_slider: bool) -> Result<Mechanism, Error> {
+    let b = slider_crank_parts(r, l, phi0);
     if drive_slider {
         b.drive(Drive::displacement("guide")).build()
     } else {
