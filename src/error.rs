@@ -155,8 +155,8 @@ pub enum Error {
     /// `[sweep] of` (the value is out of the output's range, or at one of its dead positions).
     #[error(
         "{file}: no drive position found where `{output}` = {value} (searched by Newton from \
-         the previous position; last tried {last}); is the value within the output's range and \
-         away from its dead positions?"
+         the previous position; last assembled at {last}{beyond}); is the value within the \
+         output's range and away from its dead positions?"
     )]
     NotReached {
         /// The scene file.
@@ -165,8 +165,11 @@ pub enum Error {
         output: String,
         /// The value asked for, with its unit.
         value: String,
-        /// The last drive position tried, with its unit.
+        /// The last drive position tried that assembled, with its unit.
         last: String,
+        /// Why the search could go no further, when a step left the positions where the
+        /// mechanism assembles (`"; beyond it: …"`), else empty (boxed: keeps `Error` small).
+        beyond: Box<str>,
     },
     /// The solver would jump to the other assembly branch between two drive positions.
     #[error(

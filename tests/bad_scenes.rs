@@ -382,6 +382,34 @@ fn an_output_value_out_of_reach_is_reported_with_the_output() {
     assert!((psi - 100f64.to_radians()).abs() <= 1e-15, "{psi}");
 }
 
+/// In mechanism 001 the slotted link cannot reach θ3 = 250°: before it gets there, the rod
+/// and slider toggle. Newton's search for the drive position steps beyond that toggle; the
+/// step is halved back, and the error says where the search stopped and why, instead of
+/// reporting a drive position the scene never asked for.
+#[test]
+fn sweep_of_past_a_toggle_says_where_and_why_the_search_stopped() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/rack_slotted_link.toml");
+    let text = std::fs::read_to_string(path)
+        .unwrap()
+        .replace("positions = [63]", "positions = [63, 250]");
+    let scene = scene::parse("far.toml", &text).unwrap();
+    let e = scene::run(&scene).unwrap_err();
+    let Error::NotReached {
+        output,
+        value,
+        beyond,
+        ..
+    } = &e
+    else {
+        panic!("{e:?}")
+    };
+    assert_eq!((output.as_str(), value.as_str()), ("theta3", "250 deg"));
+    assert!(
+        beyond.contains("the loop of joints C, D, incline") && !beyond.contains("far.toml"),
+        "{e}"
+    );
+}
+
 #[test]
 fn sweep_of_must_name_an_angle_or_slider_output() {
     let e = parse_with(

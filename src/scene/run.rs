@@ -179,8 +179,25 @@ fn drive_positions(scene: &Scene, mechanism: &Mechanism) -> Result<Vec<f64>> {
     for &target in &scene.positions {
         let mut phi = tracker.phi();
         let mut reached = false;
+        // Why the last trial position failed, if it did: a step that leaves the positions
+        // where the mechanism assembles (or lands on a toggle) is halved back towards the
+        // last position that assembled.
+        let mut beyond: Option<Error> = None;
         for _ in 0..60 {
-            let k = solve::<1>(scene, &mut tracker, phi)?;
+            let k = match solve::<1>(scene, &mut tracker, phi) {
+                Ok(k) => k,
+                Err(e) => {
+                    let good = tracker.phi();
+                    let half = good + 0.5 * (phi - good);
+                    beyond = Some(e);
+                    if half == good || half == phi {
+                        break;
+                    }
+                    phi = half;
+                    continue;
+                }
+            };
+            beyond = None;
             let jet = evaluate(scene, &k, &resolved, &mut previous)[0];
             let (miss, slope) = (jet.value - target, jet.d1());
             if miss.abs() <= 4.0 * f64::EPSILON * target.abs().max(jet.value.abs()) {
@@ -203,6 +220,13 @@ fn drive_positions(scene: &Scene, mechanism: &Mechanism) -> Result<Vec<f64>> {
                 output: output.name.clone(),
                 value: text(target),
                 last: scene.drive_text(tracker.phi()),
+                beyond: beyond
+                    .map_or_else(String::new, |e| {
+                        let e = e.to_string();
+                        let file = format!("{}: ", scene.file);
+                        format!("; beyond it: {}", e.strip_prefix(&file).unwrap_or(&e))
+                    })
+                    .into(),
             });
         }
         drive.push(tracker.phi());
