@@ -81,15 +81,12 @@ pub(super) fn pattern(eq: &Equations, l: &Loop) -> Option<(usize, Pattern)> {
                     } => geared(me, [(b2, 1.0), (a2, -1.0), (b1, -ratio), (a1, ratio)])?,
                     _ => return None,
                 };
-                let rider = None;
-                return Some((
-                    k,
-                    Pattern::Hinged {
-                        hinge,
-                        angle,
-                        rider,
-                    },
-                ));
+                let pattern = Pattern::Hinged {
+                    hinge,
+                    angle,
+                    rider: None,
+                };
+                return Some((k, pattern));
             }
             Term::Prismatic { slide, offset } if slide.slider == me && slide.line.body != me => {
                 let shift = match other(i) {
