@@ -423,6 +423,66 @@ fn rack_pinion_and_rpr_dyad_of_001_are_closed_form_and_match_newton() {
     }
 }
 
+/// A crank O–A (0.15 m, driven) carrying a block hinged at A, and a lever hinged at
+/// B = (0, −0.4); block and lever slide on each other along a direction 0.1 rad off B→A, so
+/// that neither hinge is on the other's line (the RPR dyad with offsets). The prismatic
+/// pair's line is on the lever (through B, the block's point A sliding on it) or on the
+/// block (through A, the lever's point B sliding on it): the same motion either way.
+fn crank_block_lever(line_on_lever: bool) -> Mechanism {
+    // Sketch at φ = 1 rad.
+    let a = [0.15 * 1f64.cos(), 0.15 * 1f64.sin()];
+    let along = (a[1] + 0.4).atan2(a[0]) + 0.1;
+    let u = [along.cos(), along.sin()];
+    let b = Mechanism::builder()
+        .point("O", [0.0, 0.0])
+        .point("B", [0.0, -0.4])
+        .point("A", a)
+        .point("T", [0.5 * u[0], -0.4 + 0.5 * u[1]])
+        .point("U", [a[0] + 0.3 * u[0], a[1] + 0.3 * u[1]])
+        .point("M", [a[0] - 0.05 * u[1], a[1] + 0.05 * u[0]])
+        .point("N", [0.07 * u[1], -0.4 - 0.07 * u[0]])
+        .ground(["O", "B"])
+        .link("crank", ["O", "A"])
+        // Each link's first point is its reference point: here off the line and off the
+        // hinge, so that the hinges' local coordinates enter the dyad's formula.
+        .link("block", ["M", "A", "U"])
+        .link("lever", ["N", "B", "T"])
+        .revolute("O", "ground", "crank", "O")
+        .revolute("A", "crank", "block", "A")
+        .revolute("B", "ground", "lever", "B");
+    let b = if line_on_lever {
+        b.prismatic("slide", "lever", ["B", "T"], "block", "A")
+    } else {
+        b.prismatic("slide", "block", ["A", "U"], "lever", "B")
+    };
+    b.drive(Drive::angle("O").at_sketch(1.0)).build().unwrap()
+}
+
+#[test]
+fn rpr_dyad_with_the_line_on_either_link_matches_newton() {
+    let lever_angle = |m: &Mechanism, phi: f64| {
+        let mut t = Solver::default().track(m).unwrap();
+        t.move_to(phi).unwrap();
+        t.kinematics::<2>().unwrap().rotation("lever").unwrap()
+    };
+    for line_on_lever in [true, false] {
+        let m = crank_block_lever(line_on_lever);
+        let t = Solver::default().track(&m).unwrap();
+        assert_eq!(t.closed_form_loops(), vec![true, true], "{line_on_lever}");
+        let e = closed_form_vs_newton(&m, &revolution(1.0, &[]));
+        // Both exact: 1e-12 scaled (as for mechanism 001's RPR dyad).
+        assert!(e <= 1e-12, "{line_on_lever}: scaled difference {e:e}");
+    }
+    // Which link carries the line does not change the motion: the lever turns alike, to
+    // rounding (1e-14 on values and derivatives of order 1).
+    let (on_lever, on_block) = (crank_block_lever(true), crank_block_lever(false));
+    for phi in [0.0, 1.0, 2.5, 4.0, 5.5] {
+        let (x, y) = (lever_angle(&on_lever, phi), lever_angle(&on_block, phi));
+        let gaps = [x.value - y.value, x.d1() - y.d1(), x.d2() - y.d2()];
+        assert!(gaps.iter().all(|g| g.abs() < 1e-14), "{phi}: {gaps:?}");
+    }
+}
+
 /// A pinion of pitch radius 0.05 m about W = (0, 0.05) on a rack sliding along the x axis,
 /// driven by the rack's travel or by the pinion's angle.
 fn rack_and_pinion(drive_pinion: bool) -> Mechanism {
