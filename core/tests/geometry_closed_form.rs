@@ -484,8 +484,15 @@ fn rpr_dyad_with_the_line_on_either_link_matches_newton() {
 }
 
 /// A pinion of pitch radius 0.05 m about W = (0, 0.05) on a rack sliding along the x axis,
-/// driven by the rack's travel or by the pinion's angle.
-fn rack_and_pinion(drive_pinion: bool) -> Mechanism {
+/// driven by the rack's travel or by the pinion's angle. The mesh relates the travel to the
+/// pinion joint's angle (its second link relative to its first): with the joint's links
+/// `reversed` (pinion first) that angle is minus the pinion's rotation.
+fn rack_and_pinion(drive_pinion: bool, reversed: bool) -> Mechanism {
+    let hinge = if reversed {
+        ["pinion", "ground"]
+    } else {
+        ["ground", "pinion"]
+    };
     Mechanism::builder()
         .point("O", [0.0, 0.0])
         .point("X", [1.0, 0.0])
@@ -494,7 +501,7 @@ fn rack_and_pinion(drive_pinion: bool) -> Mechanism {
         .ground(["O", "X", "W"])
         .link("pinion", ["W"])
         .link("rack", ["A"])
-        .revolute("W", "ground", "pinion", "W")
+        .revolute("W", hinge[0], hinge[1], "W")
         .prismatic("guide", "ground", ["O", "X"], "rack", "A")
         .rack_pinion("mesh", "W", "guide", 0.05)
         .drive(if drive_pinion {
@@ -526,19 +533,24 @@ fn gear_and_rack_pinion_follow_their_ratios_in_closed_form() {
         let e = closed_form_vs_newton(&m, &revolution(5.0, &[]));
         assert!(e <= 1e-12, "scaled difference {e:e}");
     }
-    for drive_pinion in [false, true] {
-        let m = rack_and_pinion(drive_pinion);
+    for (drive_pinion, reversed) in [(false, false), (true, false), (false, true), (true, true)] {
+        let m = rack_and_pinion(drive_pinion, reversed);
+        let sign = if reversed { -1.0 } else { 1.0 };
         let mut t = Solver::default().track(&m).unwrap();
         assert_eq!(t.closed_form_loops(), vec![true, true]);
         let travel = m.displacement_output("guide").unwrap();
         let turn = m.rotation_output("pinion").unwrap();
-        // Δs = 0.05 Δθ (radius 0.05 m): 1e-15, the rounding of one product or quotient.
+        // Δs = ±0.05 Δθ (radius 0.05 m; − with the joint reversed): 1e-15, the rounding of
+        // one product or quotient.
         let phis: Vec<f64> = (-20..=20).map(|i| 0.02 * f64::from(i)).collect();
         for &phi in &phis {
             t.move_to(phi).unwrap();
             let (s, theta) = (t.value(&travel), t.value(&turn));
-            assert!((s.value - 0.2 - 0.05 * theta.value).abs() < 1e-15, "{phi}");
-            assert!((s.d1() - 0.05 * theta.d1()).abs() < 1e-15, "{phi}");
+            assert!(
+                (s.value - 0.2 - sign * 0.05 * theta.value).abs() < 1e-15,
+                "{phi}"
+            );
+            assert!((s.d1() - sign * 0.05 * theta.d1()).abs() < 1e-15, "{phi}");
             assert!(s.d2() == 0.0 && theta.d2() == 0.0, "{phi}");
         }
         let e = closed_form_vs_newton(&m, &phis);
