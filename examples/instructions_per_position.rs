@@ -1,0 +1,96 @@
+//! The loops of the `geometry_solver` bench, run a given number of times, for counting the
+//! instructions they execute with callgrind (independent of the machine's load, unlike the
+//! bench's wall-clock times). BENCHMARKS.md reports instructions per drive position as
+//! (count with 10 repetitions − count with 0) / (10 × 720):
+//!
+//! ```sh
+//! cargo build --release --example instructions_per_position
+//! for reps in 10 0; do
+//!   valgrind --tool=callgrind --callgrind-out-file=/dev/null \
+//!     target/release/examples/instructions_per_position geometry $reps 2>&1 | grep Collected
+//! done
+//! ```
+//!
+//! Loops (the first argument): `geometry` (Whitworth by geometry only: `move_to` + read ψ,
+//! ψ′, ψ″), `newton` (the same with `Solver::with_closed_form(false)`), `psi` (the Whitworth
+//! module's closed-form ψ in `Dual2`), `pose` (its whole pose in `Dual2`), `rack` (mechanism
+//! 001 from `scenes/rack_slotted_link.toml`: `move_to` + read θ3, θ3′, θ3″).
+
+use mechdiff::core::geometry::{ScalarOutput, Solver, Tracker};
+use mechdiff::core::method::{Differentiator, Dual2};
+use mechdiff::mechanisms::whitworth::Whitworth;
+use std::hint::black_box;
+use std::process::ExitCode;
+
+/// Walks a copy of `start` through `positions`, reading `output` to second order.
+fn walk(start: &Tracker<'_>, positions: &[f64], output: &ScalarOutput) -> f64 {
+    let mut t = start.clone();
+    let mut acc = 0.0;
+    for &phi in positions {
+        if t.move_to(black_box(phi)).is_err() {
+            return f64::NAN;
+        }
+        let x = t.value(output);
+        acc += x.value + x.d1() + x.d2();
+    }
+    acc
+}
+
+fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().collect();
+    let (Some(which), Some(reps)) = (args.get(1), args.get(2)) else {
+        eprintln!("usage: instructions_per_position geometry|newton|psi|pose|rack REPETITIONS");
+        return Ok(ExitCode::FAILURE);
+    };
+    let reps: usize = reps.parse()?;
+    let shaper = Whitworth::reference();
+    let linkage = shaper.linkage([0.0, 0.0])?;
+    let rocker = linkage.rotation_output("rocker")?;
+    let phis: Vec<f64> = (1..=720)
+        .map(|i| (f64::from(i) * 0.5).to_radians())
+        .collect();
+    let scene = mechdiff::scene::load(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/scenes/rack_slotted_link.toml"
+    ))?;
+    let rack = mechdiff::scene::check(&scene)?.mechanism;
+    let theta3 = rack.rotation_output("slotted_link")?;
+    let travel: Vec<f64> = (0..720)
+        .map(|i| 0.32 + 0.2 * f64::from(i) / 720.0)
+        .collect();
+    let solver = Solver::default();
+    let (geometry, newton) = (
+        solver.track(&linkage)?,
+        solver.with_closed_form(false).track(&linkage)?,
+    );
+    let rack_start = solver.track(&rack)?;
+    let rocker_angle = shaper.rocker();
+    let mut acc = 0.0;
+    for _ in 0..reps {
+        acc += match which.as_str() {
+            "geometry" => walk(&geometry, &phis, &rocker),
+            "newton" => walk(&newton, &phis, &rocker),
+            "rack" => walk(&rack_start, &travel, &theta3),
+            "psi" => phis
+                .iter()
+                .map(|&phi| {
+                    let psi = Dual2.jets(&rocker_angle, black_box(phi));
+                    psi.value + psi.d1() + psi.d2()
+                })
+                .sum(),
+            "pose" => phis
+                .iter()
+                .map(|&phi| {
+                    let psi = Dual2.jets(&shaper, black_box(phi)).psi;
+                    psi.value + psi.d1() + psi.d2()
+                })
+                .sum(),
+            other => {
+                eprintln!("unknown loop `{other}`: geometry, newton, psi, pose or rack");
+                return Ok(ExitCode::FAILURE);
+            }
+        };
+    }
+    println!("{acc}");
+    Ok(ExitCode::SUCCESS)
+}
