@@ -49,6 +49,23 @@ pub(crate) fn turn((s, c): (f64, f64), from: f64, to: f64) -> (f64, f64) {
     )
 }
 
+/// The vector fixed at `p` in body `b` (link-local), turned with the body: `(sin θ, cos θ)`
+/// of every body in `frames`.
+#[inline]
+pub(crate) fn rotate<D: DualNum<Primitive = f64> + Copy>(
+    frames: &[(D, D)],
+    b: Body,
+    p: [f64; 2],
+) -> [D; 2] {
+    match b {
+        None => [D::from(p[0]), D::from(p[1])],
+        Some(k) => {
+            let (s, c) = frames[k];
+            [c * p[0] - s * p[1], s * p[0] + c * p[1]]
+        }
+    }
+}
+
 /// Sine and cosine of every body's angle, for evaluating point positions.
 pub(crate) struct Frames<'a, D> {
     pub q: &'a [D],
@@ -58,13 +75,7 @@ pub(crate) struct Frames<'a, D> {
 impl<D: DualNum<Primitive = f64> + Copy> Frames<'_, D> {
     #[inline]
     pub fn rotate(&self, b: Body, p: [f64; 2]) -> [D; 2] {
-        match b {
-            None => [D::from(p[0]), D::from(p[1])],
-            Some(k) => {
-                let (s, c) = self.frames[k];
-                [c * p[0] - s * p[1], s * p[0] + c * p[1]]
-            }
-        }
+        rotate(self.frames, b, p)
     }
 
     #[inline]

@@ -249,6 +249,20 @@ pub struct SolveReport {
     pub newton_failures: usize,
 }
 
+impl SolveReport {
+    /// A move to `phi` before any sub-step: nothing counted yet.
+    fn starting(phi: f64) -> Self {
+        SolveReport {
+            phi,
+            iterations: 0,
+            steps: 0,
+            residual: None,
+            branch_rejections: 0,
+            newton_failures: 0,
+        }
+    }
+}
+
 /// A mechanism being walked along its drive, one assembly branch kept.
 #[derive(Debug, Clone)]
 pub struct Tracker<'m> {

@@ -48,7 +48,8 @@
 mod matching;
 
 use super::branch::Loop;
-use super::constraints::{Body, Equations, Line, Slide};
+use super::constraints::{Body, Equations, Frames, Line, Slide};
+use super::frames::rotate;
 use crate::{Scalar, atan2};
 use matching::pattern;
 use std::f64::consts::{PI, TAU};
@@ -187,17 +188,7 @@ pub(crate) struct ClosedForm {
     limit: f64,
 }
 
-#[inline]
-fn rotate<D: Scalar>(frames: &[(D, D)], b: Body, p: [f64; 2]) -> [D; 2] {
-    match b {
-        None => [D::from(p[0]), D::from(p[1])],
-        Some(k) => {
-            let (s, c) = frames[k];
-            [c * p[0] - s * p[1], s * p[0] + c * p[1]]
-        }
-    }
-}
-
+/// The point fixed at `p` in body `b`.
 #[inline]
 fn place<D: Scalar>(q: &[D], frames: &[(D, D)], b: Body, p: [f64; 2]) -> [D; 2] {
     let r = rotate(frames, b, p);
@@ -205,15 +196,6 @@ fn place<D: Scalar>(q: &[D], frames: &[(D, D)], b: Body, p: [f64; 2]) -> [D; 2] 
         None => r,
         Some(k) => [q[3 * k] + r[0], q[3 * k + 1] + r[1]],
     }
-}
-
-/// The displacement of a slide's slider along its guide (see `Frames::displacement`).
-#[inline]
-fn displacement<D: Scalar>(q: &[D], frames: &[(D, D)], slide: &Slide) -> D {
-    let u = rotate(frames, slide.line.body, slide.line.direction);
-    let a = place(q, frames, slide.line.body, slide.line.origin);
-    let p = place(q, frames, slide.slider, slide.point);
-    u[0] * (p[0] - a[0]) + u[1] * (p[1] - a[1])
 }
 
 /// The reference point `K − A p` of a link turned by `(sin θ, cos θ)` about the hinge at
@@ -486,7 +468,7 @@ impl ClosedForm {
                         radius,
                     } => {
                         let base = other.map_or(D::from(0.0), |o| q[3 * o + 2]);
-                        let s = displacement(q, frames, &slide);
+                        let s = Frames { q, frames }.displacement(&slide);
                         let theta = base + (s - s0) * (sign / radius);
                         (theta, theta.sin_cos())
                     }

@@ -12,14 +12,7 @@ impl Tracker<'_> {
     /// (as on the Newton path) so that the tracker ends at the last position that
     /// assembles, reported in the error.
     pub(super) fn move_closed(&mut self, phi: f64) -> Result<SolveReport, Error> {
-        let mut report = SolveReport {
-            phi,
-            iterations: 0,
-            steps: 0,
-            residual: None,
-            branch_rejections: 0,
-            newton_failures: 0,
-        };
+        let mut report = SolveReport::starting(phi);
         let mut halvings: usize = 0;
         while self.phi != phi || report.steps == 0 {
             let target = if halvings == 0 {

@@ -13,14 +13,7 @@ use nalgebra::DVector;
 impl Tracker<'_> {
     /// Moves to `phi` by predictor, Newton and the checks, halving the step on failure.
     pub(super) fn move_newton(&mut self, phi: f64) -> Result<SolveReport, Error> {
-        let mut report = SolveReport {
-            phi: self.phi,
-            iterations: 0,
-            steps: 0,
-            residual: None,
-            branch_rejections: 0,
-            newton_failures: 0,
-        };
+        let mut report = SolveReport::starting(self.phi);
         let mut halvings: usize = 0;
         while self.phi != phi {
             let h = (phi - self.phi) / f64::powi(2.0, halvings.min(1074) as i32);
