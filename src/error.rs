@@ -38,6 +38,42 @@ pub enum Error {
         /// The operating system's reason.
         source: std::io::Error,
     },
+    /// The scene file is larger than [`crate::files::MAX_SCENE_BYTES`].
+    #[error(
+        "cannot read {path}: the file is larger than {limit} bytes, the most a scene file may \
+         have; is it a scene file? (a sweep of many positions is written with `from`, `to` and \
+         `step`)"
+    )]
+    TooLarge {
+        /// The file.
+        path: PathBuf,
+        /// The limit, in bytes.
+        limit: u64,
+    },
+    /// The scene file is not UTF-8 text.
+    #[error(
+        "{location}: the file is not UTF-8 text (invalid byte 0x{byte:02x} at byte offset \
+         {offset}); save the scene as UTF-8"
+    )]
+    NotUtf8 {
+        /// The line and column of the first invalid byte.
+        location: Location,
+        /// Its offset from the start of the file (0-based).
+        offset: usize,
+        /// The byte.
+        byte: u8,
+    },
+    /// The output file is the scene file itself (or a link to it).
+    #[error(
+        "refusing to write {output}: it is the scene file {scene} (the same file on disk); \
+         choose another output file"
+    )]
+    OutputIsInput {
+        /// The output path as given.
+        output: PathBuf,
+        /// The scene path as given.
+        scene: PathBuf,
+    },
     /// An output file (CSV) could not be written.
     #[error("cannot write {path}: {source}")]
     Write {
@@ -101,6 +137,36 @@ pub enum Error {
         what: String,
         /// The value found, in the file's units.
         value: f64,
+    },
+    /// A number is outside the range the engine accepts for its quantity (see
+    /// `docs/scene-format.md`, "Ranges").
+    #[error("{location}: {what} = {value} is out of range; expected {expected}")]
+    OutOfRange {
+        /// Where.
+        location: Location,
+        /// What the number is.
+        what: String,
+        /// The value found, with its unit.
+        value: String,
+        /// The accepted range, with its unit.
+        expected: String,
+    },
+    /// A result is not a finite number: the computation overflowed (or divided by zero) for
+    /// this combination of inputs.
+    #[error(
+        "{file}: {quantity} is {value} at drive position {position}: the computation left the \
+         range of f64; the scene's numbers are too large or too small together (check the drive \
+         speed, masses, lengths and ratios), or the position is singular"
+    )]
+    NotFinite {
+        /// The scene file.
+        file: String,
+        /// The quantity (column name with its unit, or what it is).
+        quantity: String,
+        /// `inf`, `-inf` or `NaN`.
+        value: String,
+        /// The drive position, with its unit.
+        position: String,
     },
     /// Any other inconsistency in the file (a field missing for a joint type, a point off
     /// its slot in the sketch, a link without points, ...).

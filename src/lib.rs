@@ -3,8 +3,8 @@
 //! Kinematics and dynamics of planar mechanisms in which nobody derives a derivative by hand.
 //! This facade re-exports the derivative core ([`core`]), the closed-form mechanisms
 //! ([`mechanisms`]) and the [`derivatives`] attribute, and holds what the `mechdiff`
-//! command-line tool does: scene files ([`scene`]), reports ([`report`]) and code generation
-//! ([`codegen`]).
+//! command-line tool does: scene files ([`scene`]), reports ([`report`]), code generation
+//! ([`codegen`]) and the care of the user's files ([`files`]).
 #![warn(missing_docs)]
 
 pub mod codegen;
@@ -18,6 +18,7 @@ pub use mechdiff_mechanisms as mechanisms;
 pub use mechdiff_macros::derivatives;
 
 pub mod error;
+pub mod files;
 pub mod report;
 pub mod scene;
 

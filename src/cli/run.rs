@@ -1,12 +1,11 @@
 //! `mechdiff run <scene.toml> [--csv out.csv]`: run a scene and print its table.
 
-use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::PathBuf;
 
 use clap::Args;
-use mechdiff::Error;
 use mechdiff::scene::{self, table};
+use mechdiff::{Error, files};
 
 /// Arguments of `mechdiff run`.
 #[derive(Debug, Args)]
@@ -14,24 +13,26 @@ pub struct RunArgs {
     /// The scene file (TOML; see docs/scene-format.md).
     pub scene: PathBuf,
     /// Also write every column at every drive position to this CSV file (header: `name [unit]`).
+    /// The file is written whole or not at all (a temporary file beside it, renamed when
+    /// complete), and never onto the scene file.
     #[arg(long, value_name = "FILE")]
     pub csv: Option<PathBuf>,
 }
 
 /// Reads, checks and runs the scene; prints the plan, the table and the dead positions.
 pub fn run(args: &RunArgs) -> Result<(), Error> {
+    if let Some(csv) = &args.csv
+        && files::same_file(csv, &args.scene)
+    {
+        return Err(Error::OutputIsInput {
+            output: csv.clone(),
+            scene: args.scene.clone(),
+        });
+    }
     let scene = scene::load(&args.scene)?;
     let report = scene::run(&scene)?;
     if let Some(path) = &args.csv {
-        let write = |path: &PathBuf| -> std::io::Result<()> {
-            let mut out = BufWriter::new(File::create(path)?);
-            table::write_csv(&report, &mut out)?;
-            out.flush()
-        };
-        write(path).map_err(|source| Error::Write {
-            path: path.clone(),
-            source,
-        })?;
+        files::write_atomically(path, |mut out| table::write_csv(&report, &mut out))?;
     }
     let stdout = std::io::stdout();
     let mut out = BufWriter::new(stdout.lock());

@@ -181,17 +181,10 @@ impl Context<'_> {
                         "`positions` is empty; expected at least one drive position",
                     ));
                 }
-                list.get_ref()
-                    .iter()
-                    .map(|&v| {
-                        if v.is_finite() {
-                            Ok(self.units.to_si(v, dimension))
-                        } else {
-                            Err(self.invalid(
-                                list,
-                                format!("`positions` must be finite numbers, found {v}"),
-                            ))
-                        }
+                (list.get_ref().iter().enumerate())
+                    .map(|(k, &v)| {
+                        let what = format!("`positions` entry {}", k + 1);
+                        self.number(&Spanned::new(list.span(), v), &what, dimension)
                     })
                     .collect()
             }

@@ -13,6 +13,7 @@ use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
 use toml::Spanned;
 
 use super::units::{AngleUnit, AngularAccelerationUnit, AngularVelocityUnit, LengthUnit};
+use super::values::Number;
 
 /// A name with the place where it is written.
 pub type Name = Spanned<String>;
@@ -88,6 +89,11 @@ pub enum PointDef {
     },
 }
 
+/// A number with its span, as the format's fields keep it.
+fn number(n: Spanned<Number>) -> Spanned<f64> {
+    Spanned::new(n.span(), n.into_inner().0)
+}
+
 const POLAR_KEYS: &[&str] = &["from", "length", "angle"];
 
 impl<'de> Deserialize<'de> for PointDef {
@@ -108,10 +114,10 @@ impl<'de> Visitor<'de> for PointVisitor {
     }
 
     fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<PointDef, A::Error> {
-        let x: f64 = seq
+        let Number(x) = seq
             .next_element()?
             .ok_or_else(|| de::Error::invalid_length(0, &self))?;
-        let y: f64 = seq
+        let Number(y) = seq
             .next_element()?
             .ok_or_else(|| de::Error::invalid_length(1, &self))?;
         if seq.next_element::<de::IgnoredAny>()?.is_some() {
@@ -125,8 +131,8 @@ impl<'de> Visitor<'de> for PointVisitor {
         while let Some(key) = map.next_key::<String>()? {
             match key.as_str() {
                 "from" => from = Some(map.next_value()?),
-                "length" => length = Some(map.next_value()?),
-                "angle" => angle = Some(map.next_value()?),
+                "length" => length = Some(number(map.next_value()?)),
+                "angle" => angle = Some(number(map.next_value()?)),
                 other => return Err(de::Error::unknown_field(other, POLAR_KEYS)),
             }
         }
@@ -167,10 +173,13 @@ pub struct JointDef {
     #[serde(rename = "type")]
     pub kind: Spanned<JointKind>,
     /// The two links joined: `[base, moving]` (for slides and slots the first carries the line).
-    pub links: Option<Spanned<[Name; 2]>>,
+    /// A revolute or weld joint may list more links (`[a, b, c]`): it stands for the
+    /// joints a–b, a–c, … at the same place.
+    pub links: Option<Spanned<Vec<Name>>>,
     /// Revolute: the shared point.
     pub at: Option<Name>,
     /// Prismatic: the guide line, two points of the first link (direction first → second).
+    #[serde(default, deserialize_with = "crate::scene::values::option_name_pair")]
     pub line: Option<Spanned<[Name; 2]>>,
     /// Prismatic: the point of the second link whose travel along `line` is the joint's
     /// displacement (it must lie on the line in the sketch).
@@ -178,16 +187,20 @@ pub struct JointDef {
     /// Pin in slot: the pin, a point of the second link.
     pub pin: Option<Name>,
     /// Pin in slot: the slot's centre line, two points of the first link.
+    #[serde(default, deserialize_with = "crate::scene::values::option_name_pair")]
     pub slot: Option<Spanned<[Name; 2]>>,
     /// Rack and pinion: the pinion's revolute joint.
     pub pinion: Option<Name>,
     /// Rack and pinion: the rack's prismatic joint.
     pub rack: Option<Name>,
     /// Rack and pinion: the pinion's pitch radius (length unit, positive).
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub radius: Option<Spanned<f64>>,
     /// Gear: the two revolute joints in mesh, `[driving, driven]`.
+    #[serde(default, deserialize_with = "crate::scene::values::option_name_pair")]
     pub gears: Option<Spanned<[Name; 2]>>,
     /// Gear: Δθ_driven = ratio · Δθ_driving (negative for an external mesh).
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub ratio: Option<Spanned<f64>>,
 }
 
@@ -198,14 +211,18 @@ pub struct DriveSection {
     /// The driven joint: revolute (the drive is an angle) or prismatic (a displacement).
     pub joint: Name,
     /// Revolute drive: the line of the joint's second link whose angle is the drive.
+    #[serde(default, deserialize_with = "crate::scene::values::option_name_pair")]
     pub line: Option<Spanned<[Name; 2]>>,
     /// Revolute drive: the line of the joint's first link the angle is measured from,
     /// counter-clockwise (default: the +x axis; only when the first link is the ground).
+    #[serde(default, deserialize_with = "crate::scene::values::option_name_pair")]
     pub reference: Option<Spanned<[Name; 2]>>,
     /// The drive speed ω (angular velocity unit) or the slide velocity (length unit per s).
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub speed: Option<Spanned<f64>>,
     /// The drive acceleration α (angular acceleration unit) or slide acceleration
     /// (length unit per s²). Default 0.
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub acceleration: Option<Spanned<f64>>,
 }
 
@@ -214,12 +231,16 @@ pub struct DriveSection {
 #[serde(deny_unknown_fields)]
 pub struct SweepSection {
     /// First drive position (angle or length unit).
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub from: Option<Spanned<f64>>,
     /// Last drive position (included when the step divides the range).
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub to: Option<Spanned<f64>>,
     /// Positive step.
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub step: Option<Spanned<f64>>,
     /// An explicit list of drive positions.
+    #[serde(default, deserialize_with = "crate::scene::values::option_positions")]
     pub positions: Option<Spanned<Vec<f64>>>,
     /// The positions (range or list) are values of this output (an angle or slider output),
     /// in its unit; the drive positions that give them are solved for.
@@ -251,8 +272,10 @@ pub struct OutputDef {
     /// A point's x and y.
     pub point: Option<Name>,
     /// The angle of the line through two points (normally of one link).
+    #[serde(default, deserialize_with = "crate::scene::values::option_name_pair")]
     pub angle: Option<Spanned<[Name; 2]>>,
     /// For `angle`: the line it is measured from (default: the +x axis).
+    #[serde(default, deserialize_with = "crate::scene::values::option_name_pair")]
     pub reference: Option<Spanned<[Name; 2]>>,
     /// For `angle`: `"ccw"` (default) or `"cw"`.
     pub sense: Option<Spanned<Sense>>,

@@ -5,6 +5,7 @@ use toml::Spanned;
 use crate::error::{Error, Result};
 
 use super::format::{JointDef, JointKind as Kind, Name};
+use super::limits;
 use super::model::{Joint, JointKind};
 use super::resolve::{Context, GROUND, Geometry};
 use super::units::Dimension;
@@ -32,15 +33,22 @@ fn type_name(kind: Kind) -> &'static str {
     }
 }
 
+/// The name of the joint that a revolute or weld joint `name` listing more than two links
+/// stands for between its first link and `link` (the first pair keeps `name`).
+pub fn expanded_name(name: &str, link: &str) -> String {
+    format!("{name}:{link}")
+}
+
 /// Resolves joint `name`; `earlier` are the joints defined before it (a rack-and-pinion
-/// refers to them).
+/// refers to them). A revolute or weld joint given links `[a, b, c, …]` stands for the
+/// joints a–b (named `name`), a–c (named by [`expanded_name`]), …: one kind per pair.
 pub(crate) fn resolve(
     cx: &Context,
     name: &str,
     def: &Spanned<JointDef>,
     geometry: &Geometry,
     earlier: &[Joint],
-) -> Result<JointKind> {
+) -> Result<Vec<(String, JointKind)>> {
     let d = def.get_ref();
     let kind = *d.kind.get_ref();
     let context = format!("joint `{name}`");
@@ -81,29 +89,76 @@ pub(crate) fn resolve(
     // A field the type takes (every other one was refused above), or which one is missing.
     let missing =
         |field: &str| cx.invalid(def, format!("{context}: `{field}` is missing; {expected}"));
-    let links = |cx: &Context| -> Result<[String; 2]> {
+    // Every link named, checked to exist and to be listed once.
+    let all_links = |cx: &Context| -> Result<Vec<String>> {
         let links = d.links.as_ref().ok_or_else(|| missing("links"))?;
-        let [a, b] = links.get_ref();
-        let a = cx.link(a, geometry.links, &context)?;
-        let b = cx.link(b, geometry.links, &context)?;
-        if a == b {
+        let list = links.get_ref();
+        if list.len() < 2 {
             return Err(cx.invalid(
                 links,
-                format!("{context} joins link `{a}` to itself; expected two different links"),
+                format!(
+                    "{context} lists {} link(s); expected two: `links = [\"base\", \"moving\"]`",
+                    list.len()
+                ),
             ));
         }
-        Ok([a.to_owned(), b.to_owned()])
+        let mut names: Vec<String> = Vec::with_capacity(list.len());
+        for link in list {
+            let link = cx.link(link, geometry.links, &context)?;
+            if names.iter().any(|n| n == link) {
+                return Err(cx.invalid(
+                    links,
+                    format!("{context} lists link `{link}` twice; expected different links"),
+                ));
+            }
+            names.push(link.to_owned());
+        }
+        Ok(names)
     };
+    // Exactly two links: the joint types that cannot be expanded pairwise.
+    let links = |cx: &Context| -> Result<[String; 2]> {
+        let names = all_links(cx)?;
+        let n = names.len();
+        <[String; 2]>::try_from(names).map_err(|_| {
+            cx.invalid(
+                d.links.as_ref().expect("checked by all_links"),
+                format!(
+                    "{context} lists {n} links; a `{}` joint joins exactly two: `links = \
+                     [\"base\", \"moving\"]` (a revolute or weld joint may list more)",
+                    type_name(kind)
+                ),
+            )
+        })
+    };
+    // The pairs first–k of a revolute or weld joint, named `name`, then `name:k`.
+    let pairs = |names: Vec<String>| -> Vec<(String, [String; 2])> {
+        names[1..]
+            .iter()
+            .enumerate()
+            .map(|(k, link)| {
+                let joint = match k {
+                    0 => name.to_owned(),
+                    _ => expanded_name(name, link),
+                };
+                (joint, [names[0].clone(), link.clone()])
+            })
+            .collect()
+    };
+    let one = |kind: JointKind| vec![(name.to_owned(), kind)];
     Ok(match kind {
         Kind::Revolute => {
-            let links = links(cx)?;
+            let names = all_links(cx)?;
             let at = d.at.as_ref().ok_or_else(|| missing("at"))?;
-            cx.point_on(at, &links[0], geometry, &context)?;
-            let at = cx.point_on(at, &links[1], geometry, &context)?;
-            JointKind::Revolute {
-                links,
-                at: at.to_owned(),
+            for link in &names {
+                cx.point_on(at, link, geometry, &context)?;
             }
+            pairs(names)
+                .into_iter()
+                .map(|(joint, links)| {
+                    let at = at.get_ref().clone();
+                    (joint, JointKind::Revolute { links, at })
+                })
+                .collect()
         }
         Kind::Prismatic => {
             let links = links(cx)?;
@@ -118,7 +173,7 @@ pub(crate) fn resolve(
                 .point_on(point_name, &links[1], geometry, &context)?
                 .to_owned();
             cx.on_line(point_name, geometry, &point, &line, &context)?;
-            JointKind::Prismatic { links, line, point }
+            one(JointKind::Prismatic { links, line, point })
         }
         Kind::PinInSlot => {
             let links = links(cx)?;
@@ -133,7 +188,7 @@ pub(crate) fn resolve(
                 .point_on(pin_name, &links[1], geometry, &context)?
                 .to_owned();
             cx.on_line(pin_name, geometry, &pin, &slot, &context)?;
-            JointKind::PinInSlot { links, slot, pin }
+            one(JointKind::PinInSlot { links, slot, pin })
         }
         Kind::RackPinion => {
             let pinion = joint_of(
@@ -150,17 +205,19 @@ pub(crate) fn resolve(
                 "prismatic",
                 &context,
             )?;
-            let radius = cx.positive(
-                d.radius.as_ref().ok_or_else(|| missing("radius"))?,
-                &format!("`radius` of {context}"),
-                Dimension::Length,
-            )?;
+            let radius_def = d.radius.as_ref().ok_or_else(|| missing("radius"))?;
+            let what = format!("`radius` of {context}");
+            let radius = cx.positive(radius_def, &what, Dimension::Length)?;
+            if radius < limits::SMALLEST_RADIUS {
+                let si = Spanned::new(radius_def.span(), radius);
+                cx.in_range(&si, &what, limits::SMALLEST_RADIUS..=limits::LENGTH, "m")?;
+            }
             let sign = rolling_sense(geometry, pinion, rack);
-            JointKind::RackPinion {
+            one(JointKind::RackPinion {
                 pinion: pinion.name.clone(),
                 rack: rack.name.clone(),
                 radius: sign * radius,
-            }
+            })
         }
         Kind::Gear => {
             let [a, b] = d.gears.as_ref().ok_or_else(|| missing("gears"))?.get_ref();
@@ -168,30 +225,37 @@ pub(crate) fn resolve(
             let b = joint_of(cx, b, earlier, "revolute", &context)?;
             let ratio = d.ratio.as_ref().ok_or_else(|| missing("ratio"))?;
             let value = *ratio.get_ref();
-            if !value.is_finite() || value == 0.0 {
-                return Err(cx.invalid(
-                    ratio,
-                    format!("{context}: `ratio` must be a finite, non-zero number, found {value}"),
-                ));
-            }
-            JointKind::Gear {
+            cx.in_range(
+                &Spanned::new(ratio.span(), value.abs()),
+                &format!("the magnitude of `ratio` of {context}"),
+                limits::RATIO,
+                "",
+            )?;
+            one(JointKind::Gear {
                 joints: [a.name.clone(), b.name.clone()],
                 ratio: value,
-            }
+            })
         }
         Kind::Weld => {
-            let links = links(cx)?;
-            if links[1] == GROUND {
+            let names = all_links(cx)?;
+            if names[1..].iter().any(|l| l == GROUND) {
+                let others: Vec<String> = (names.iter())
+                    .filter(|l| *l != GROUND)
+                    .map(|l| format!("\"{l}\""))
+                    .collect();
                 return Err(cx.invalid(
                     def,
                     format!(
                         "{context}: weld the other link to `{GROUND}` \
-                    with `links = [\"{GROUND}\", \"{}\"]`",
-                        links[0]
+                    with `links = [\"{GROUND}\", {}]`",
+                        others.join(", ")
                     ),
                 ));
             }
-            JointKind::Weld { links }
+            pairs(names)
+                .into_iter()
+                .map(|(joint, links)| (joint, JointKind::Weld { links }))
+                .collect()
         }
     })
 }

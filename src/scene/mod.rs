@@ -39,6 +39,7 @@ pub mod dynamics;
 mod evaluate;
 pub mod format;
 mod joints;
+pub mod limits;
 pub mod model;
 pub mod outputs;
 pub mod plan;
@@ -47,10 +48,11 @@ pub mod run;
 pub mod source;
 pub mod table;
 pub mod units;
+pub mod values;
 
 use std::path::Path;
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 
 pub use model::Scene;
 pub use plan::Plan;
@@ -64,12 +66,9 @@ pub fn parse(file: &str, text: &str) -> Result<Scene> {
     resolve::resolve(raw, &source)
 }
 
-/// Reads, parses and checks a scene file.
+/// Reads, parses and checks a scene file (at most [`crate::files::MAX_SCENE_BYTES`], UTF-8).
 pub fn load(path: impl AsRef<Path>) -> Result<Scene> {
     let path = path.as_ref();
-    let text = std::fs::read_to_string(path).map_err(|source| Error::Read {
-        path: path.to_owned(),
-        source,
-    })?;
+    let text = crate::files::read_scene(path)?;
     parse(&path.display().to_string(), &text)
 }

@@ -11,6 +11,7 @@ use crate::error::{Error, Location, Result};
 
 use super::drive::nearest_turn;
 use super::format::{self, JointDef, Name, PointDef, SceneFile};
+use super::limits;
 use super::model::{DriveKind, Joint, JointKind, Link, Point, Scene};
 use super::outputs;
 use super::source::Source;
@@ -188,7 +189,46 @@ impl<'a> Context<'a> {
         if !v.is_finite() {
             return Err(self.invalid(value, format!("{what} must be a finite number, found {v}")));
         }
-        Ok(self.units.to_si(v, dimension))
+        let si = self.units.to_si(v, dimension);
+        let largest = limits::largest(dimension);
+        if si.abs() > largest {
+            let unit = self.units.symbol(dimension);
+            return Err(Error::OutOfRange {
+                location: self.at(value),
+                what: what.to_owned(),
+                value: format!("{} {unit}", Units::tidy(v)),
+                expected: format!(
+                    "a magnitude of at most {} {unit}",
+                    Units::tidy(self.units.from_si(largest, dimension))
+                ),
+            });
+        }
+        Ok(si)
+    }
+
+    /// A number of a quantity the file writes in SI (kg, N, a ratio), within `range`.
+    pub(crate) fn in_range(
+        &self,
+        value: &Spanned<f64>,
+        what: &str,
+        range: std::ops::RangeInclusive<f64>,
+        unit: &str,
+    ) -> Result<f64> {
+        let v = *value.get_ref();
+        if range.contains(&v) {
+            return Ok(v);
+        }
+        let unit = if unit.is_empty() {
+            String::new()
+        } else {
+            format!(" {unit}")
+        };
+        Err(Error::OutOfRange {
+            location: self.at(value),
+            what: what.to_owned(),
+            value: format!("{}{unit}", Units::tidy(v)),
+            expected: format!("a number from {} to {}{unit}", range.start(), range.end()),
+        })
     }
 
     /// A positive length in the file, converted to SI.
@@ -332,16 +372,13 @@ impl<'a> Context<'a> {
         }
         let def = defs[name];
         let xy = match def.get_ref() {
-            PointDef::Xy([x, y]) => {
-                if !x.is_finite() || !y.is_finite() {
-                    return Err(
-                        self.invalid(def, format!("point `{name}` must have finite coordinates"))
-                    );
-                }
-                [
-                    self.units.to_si(*x, Dimension::Length),
-                    self.units.to_si(*y, Dimension::Length),
-                ]
+            PointDef::Xy(xy) => {
+                let what = |axis: &str| format!("the {axis} coordinate of point `{name}`");
+                let coordinate = |v: f64, axis: &str| {
+                    let v = Spanned::new(def.span(), v);
+                    self.number(&v, &what(axis), Dimension::Length)
+                };
+                [coordinate(xy[0], "x")?, coordinate(xy[1], "y")?]
             }
             PointDef::Polar {
                 from,
@@ -441,13 +478,29 @@ impl<'a> Context<'a> {
         let mut entries: Vec<(&Name, &Spanned<JointDef>)> = table.get_ref().iter().collect();
         entries.sort_by_key(|(name, _)| name.span().start);
         let mut joints: Vec<Joint> = Vec::with_capacity(entries.len());
-        for (name, def) in entries {
-            let kind = super::joints::resolve(self, name.get_ref(), def, geometry, &joints)?;
-            joints.push(Joint {
-                name: name.get_ref().clone(),
-                kind,
-                location: self.at(name),
-            });
+        for (name, def) in &entries {
+            for (joint, kind) in
+                super::joints::resolve(self, name.get_ref(), def, geometry, &joints)?
+            {
+                if let Some((clash, _)) = entries
+                    .iter()
+                    .find(|(n, _)| n.get_ref() != name.get_ref() && *n.get_ref() == joint)
+                {
+                    return Err(self.invalid(
+                        clash,
+                        format!(
+                            "joint `{joint}` is also the name of the joint that `{}`'s links \
+                             stand for (its first link with a further one); rename one of them",
+                            name.get_ref()
+                        ),
+                    ));
+                }
+                joints.push(Joint {
+                    name: joint,
+                    kind,
+                    location: self.at(name),
+                });
+            }
         }
         Ok(joints)
     }

@@ -140,13 +140,52 @@ pub fn run(scene: &Scene) -> Result<Report> {
             row.extend_from_slice(extra);
         }
     }
-    Ok(Report {
+    let report = Report {
         plan,
         columns: all,
         rows,
         dead_positions,
         dynamics,
-    })
+    };
+    all_finite(scene, &report)?;
+    Ok(report)
+}
+
+/// Checks that every number of a report is finite before it is printed or written: an
+/// overflow for some combination of inputs is an error naming the quantity and the drive
+/// position, never an `inf` or `NaN` in the table.
+fn all_finite(scene: &Scene, report: &Report) -> Result<()> {
+    let not_finite = |quantity: String, value: f64, phi: f64| Error::NotFinite {
+        file: scene.file.clone(),
+        quantity,
+        value: value.to_string(),
+        position: if phi.is_finite() {
+            scene.drive_text(phi)
+        } else {
+            phi.to_string()
+        },
+    };
+    for row in &report.rows {
+        for (value, column) in row.iter().zip(&report.columns) {
+            // The printed value is divided by the unit's factor: check that too.
+            if !value.is_finite() || !(value / column.factor).is_finite() {
+                return Err(not_finite(column.header(), *value, row[0]));
+            }
+        }
+    }
+    for dead in &report.dead_positions {
+        for d in &dead.positions {
+            if !(d.value.is_finite() && d.phi.is_finite()) {
+                let quantity = format!("the dead position of {}", dead.output);
+                return Err(not_finite(quantity, d.value, d.phi));
+            }
+        }
+        if let Some(stroke) = dead.stroke().filter(|s| !s.is_finite()) {
+            let quantity = format!("the stroke of {}", dead.output);
+            return Err(not_finite(quantity, stroke, dead.positions[0].phi));
+        }
+    }
+    Ok(())
 }
 
 /// The drive positions of the sweep: as given, or, for `[sweep] of = "output"`, solved so

@@ -61,7 +61,77 @@ impl Source {
         {
             return self.duplicate_key(span, location);
         }
+        if let Some(span) = error.span()
+            && let Some(hint) = self
+                .dotted_key(span.start)
+                .or_else(|| self.formula(span.start))
+        {
+            message = hint;
+        }
         Error::Syntax { location, message }
+    }
+
+    /// The line holding byte `at`, and `at`'s offset in it.
+    fn line_at(&self, at: usize) -> (&str, usize) {
+        let at = floor_char_boundary(&self.text, at.min(self.text.len()));
+        let start = self.text[..at].rfind('\n').map_or(0, |i| i + 1);
+        let end = self.text[at..]
+            .find('\n')
+            .map_or(self.text.len(), |i| at + i);
+        (&self.text[start..end], at - start)
+    }
+
+    /// An error on a line `CoM.AB = …`: TOML read the dotted key as a table `CoM` with a key
+    /// `AB`, whatever the error that followed; say so, and how to quote the name.
+    fn dotted_key(&self, at: usize) -> Option<String> {
+        let (line, _) = self.line_at(at);
+        let (key, value) = line.split_once('=')?;
+        let key = key.trim();
+        let bare = |c: char| c.is_ascii_alphanumeric() || c == '_' || c == '-' || c == '.';
+        if !key.contains('.') || !key.chars().all(bare) {
+            return None;
+        }
+        let (table, rest) = key.split_once('.')?;
+        Some(format!(
+            "`{key} = …` is a dotted key: TOML reads it as a table `{table}` holding the key \
+             `{rest}`, not as one name `{key}`; a name with a dot must be quoted: \
+             `\"{key}\" = {}`",
+            value.split('#').next().unwrap_or("").trim()
+        ))
+    }
+
+    /// An error inside an unquoted formula (`mass = 23.4791*0.86`): say that a formula must
+    /// be a quoted string.
+    fn formula(&self, at: usize) -> Option<String> {
+        let (line, column) = self.line_at(at);
+        let is_start = |c: char| matches!(c, '=' | '[' | ',' | '{');
+        let start = line[..column].rfind(is_start).map_or(0, |i| i + 1);
+        let mut depth = 0i32;
+        let mut end = line.len();
+        for (i, c) in line[start..].char_indices() {
+            match c {
+                '(' => depth += 1,
+                ')' if depth > 0 => depth -= 1,
+                ',' | ']' | '}' | '#' | ')' if depth == 0 => {
+                    end = start + i;
+                    break;
+                }
+                _ => {}
+            }
+        }
+        let text = line.get(start..end)?.trim();
+        let operator = text.char_indices().any(|(i, c)| {
+            matches!(c, '*' | '/' | '^' | '(')
+                || (matches!(c, '+' | '-') && i > 0 && !text[..i].ends_with(['e', 'E']))
+        });
+        if !operator || !text.chars().any(|c| c.is_ascii_digit()) || text.contains(['"', '\'']) {
+            return None;
+        }
+        Some(format!(
+            "`{text}` is a formula, and TOML reads a formula only as a quoted string: write \
+             `\"{text}\"` (a constant formula in quotes is accepted wherever a number is: \
+             numbers, + - * / ^, parentheses, sqrt, sin, cos, atan2, pi)"
+        ))
     }
 
     /// toml says only "duplicate key": name the key and its table, and treat a point defined

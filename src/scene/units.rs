@@ -100,8 +100,10 @@ impl Units {
 
     /// A number for messages and the plan line: at most 15 significant digits, so that the
     /// rounding of a unit conversion does not show (`1500 rpm`, not `1500.0000000000002 rpm`).
+    /// Magnitudes from 1e15 up and below 1e-6 are written with an exponent (`1e200`).
     pub fn tidy(value: f64) -> String {
         match format!("{value:.14e}").parse::<f64>() {
+            Ok(v) if v != 0.0 && !(1e-6..1e15).contains(&v.abs()) => format!("{v:e}"),
             Ok(v) => (v + 0.0).to_string(),
             Err(_) => value.to_string(),
         }

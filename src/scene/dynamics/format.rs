@@ -12,10 +12,12 @@ use crate::scene::format::Name;
 #[serde(deny_unknown_fields)]
 pub struct MassDef {
     /// Mass (kg).
+    #[serde(deserialize_with = "crate::scene::values::number")]
     pub mass: Spanned<f64>,
     /// Centre of gravity: a point of the link, or `[x, y]` at the sketch (length unit).
     pub center: Spanned<CenterDef>,
     /// Moment of inertia about the centre (kg·m²); default 0.
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub inertia: Option<Spanned<f64>>,
 }
 
@@ -26,7 +28,7 @@ pub enum CenterDef {
     /// A point of the link.
     Point(String),
     /// Sketch coordinates.
-    Xy([f64; 2]),
+    Xy([crate::scene::values::Number; 2]),
 }
 
 /// `[gravity]`.
@@ -34,6 +36,7 @@ pub enum CenterDef {
 #[serde(deny_unknown_fields)]
 pub struct GravityDef {
     /// Acceleration of gravity (m/s²), along −y.
+    #[serde(deserialize_with = "crate::scene::values::number")]
     pub g: Spanned<f64>,
 }
 
@@ -46,10 +49,13 @@ pub struct LoadDef {
     /// Point of application of a force (a point of the link).
     pub point: Option<Name>,
     /// Force (N), global components.
+    #[serde(default, deserialize_with = "crate::scene::values::option_number_pair")]
     pub force: Option<Spanned<[f64; 2]>>,
     /// Torque (N·m), counter-clockwise positive.
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub torque: Option<Spanned<f64>>,
     /// Drive range where the load acts, in the drive's unit.
+    #[serde(default, deserialize_with = "crate::scene::values::option_number_pair")]
     pub active: Option<Spanned<[f64; 2]>>,
 }
 
@@ -58,11 +64,14 @@ pub struct LoadDef {
 #[serde(deny_unknown_fields)]
 pub struct FrictionDef {
     /// Coulomb coefficient (≥ 0).
+    #[serde(deserialize_with = "crate::scene::values::number")]
     pub coefficient: Spanned<f64>,
     /// Revolute joints: pin radius (length unit).
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub pin_radius: Option<Spanned<f64>>,
     /// Sliding joints: where the friction force acts, along the guide's normal from the
     /// joint's point (length unit).
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub contact_offset: Option<Spanned<f64>>,
 }
 
@@ -81,6 +90,7 @@ pub enum DrivingSide {
 #[serde(deny_unknown_fields)]
 pub struct EfficiencyDef {
     /// Efficiency for direct power flow, in (0, 1].
+    #[serde(deserialize_with = "crate::scene::values::number")]
     pub efficiency: Spanned<f64>,
     /// The nominally driving side (default `first`).
     pub driving: Option<Spanned<DrivingSide>>,
@@ -91,10 +101,13 @@ pub struct EfficiencyDef {
 #[serde(deny_unknown_fields)]
 pub struct MotorDef {
     /// Rotor moment of inertia (kg·m², ≥ 0).
+    #[serde(deserialize_with = "crate::scene::values::number")]
     pub rotor_inertia: Spanned<f64>,
     /// Drive-joint speed over motor speed (non-zero).
+    #[serde(deserialize_with = "crate::scene::values::number")]
     pub ratio: Spanned<f64>,
     /// Gearbox efficiency in (0, 1]; default 1.
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub efficiency: Option<Spanned<f64>>,
 }
 

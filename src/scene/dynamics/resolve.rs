@@ -8,6 +8,7 @@ use toml::Spanned;
 
 use crate::error::{Error, Location, Result};
 use crate::scene::format::Name;
+use crate::scene::limits;
 use crate::scene::model::{DriveKind, Joint, JointKind};
 use crate::scene::resolve::{Context, Geometry};
 use crate::scene::units::Dimension;
@@ -60,12 +61,8 @@ impl SceneDynamics {
     }
 }
 
-fn non_negative(cx: &Context, v: &Spanned<f64>, what: &str) -> Result<f64> {
-    let x = *v.get_ref();
-    if !(x.is_finite() && x >= 0.0) {
-        return Err(cx.invalid(v, format!("{what} must be a finite number ≥ 0, found {x}")));
-    }
-    Ok(x)
+fn non_negative(cx: &Context, v: &Spanned<f64>, what: &str, largest: f64) -> Result<f64> {
+    cx.in_range(v, what, 0.0..=largest, "")
 }
 
 fn efficiency(cx: &Context, v: &Spanned<f64>, what: &str) -> Result<f64> {
@@ -115,12 +112,18 @@ pub(crate) fn resolve(
     for (name, def) in s.masses.map(|m| m.get_ref().iter()).into_iter().flatten() {
         let link = cx.link(name, geometry.links, "`[masses]`")?;
         let d = def.get_ref();
-        let mass = non_negative(cx, &d.mass, &format!("the mass of link `{link}` (kg)"))?;
+        let mass = non_negative(
+            cx,
+            &d.mass,
+            &format!("the mass of link `{link}` (kg)"),
+            limits::MASS,
+        )?;
         let moment = match &d.inertia {
             Some(i) => non_negative(
                 cx,
                 i,
                 &format!("the moment of inertia of link `{link}` (kg·m²)"),
+                limits::MOMENT_OF_INERTIA,
             )?,
             None => 0.0,
         };
@@ -131,14 +134,12 @@ pub(crate) fn resolve(
                     cx.point_on(&spanned, link, geometry, &format!("`masses.{link}.center`"))?;
                 geometry.sketch(p)
             }
-            CenterDef::Xy([x, y]) => {
-                if !(x.is_finite() && y.is_finite()) {
-                    return Err(cx.invalid(&d.center, "the centre must have finite coordinates"));
-                }
-                [
-                    cx.units.to_si(*x, Dimension::Length),
-                    cx.units.to_si(*y, Dimension::Length),
-                ]
+            CenterDef::Xy(xy) => {
+                let coordinate = |v: f64, axis: &str| {
+                    let what = format!("the {axis} coordinate of the centre of link `{link}`");
+                    cx.number(&Spanned::new(d.center.span(), v), &what, Dimension::Length)
+                };
+                [coordinate(xy[0].0, "x")?, coordinate(xy[1].0, "y")?]
             }
         };
         masses.push((
@@ -152,7 +153,12 @@ pub(crate) fn resolve(
     }
     let mut data = Dynamics::new();
     if let Some(g) = s.gravity {
-        data.gravity = Some(Gravity::down(non_negative(cx, &g.get_ref().g, "g (m/s²)")?));
+        data.gravity = Some(Gravity::down(non_negative(
+            cx,
+            &g.get_ref().g,
+            "g (m/s²)",
+            limits::ACCELERATION,
+        )?));
     }
     for def in s.loads {
         data.loads.push(load(cx, def, geometry, drive)?);
@@ -164,6 +170,7 @@ pub(crate) fn resolve(
             cx,
             &d.coefficient,
             &format!("the friction coefficient of joint `{}`", j.name),
+            limits::FRICTION_COEFFICIENT,
         )?;
         let friction = match &j.kind {
             JointKind::Revolute { .. } => {
@@ -173,12 +180,12 @@ pub(crate) fn resolve(
                         format!("friction in revolute joint `{}` needs `pin_radius`", j.name),
                     )
                 })?;
-                Friction::revolute(
-                    &j.name,
-                    f,
-                    cx.units
-                        .to_si(non_negative(cx, r, "pin_radius")?, Dimension::Length),
-                )
+                let what = format!("`pin_radius` of joint `{}`", j.name);
+                let radius = cx.number(r, &what, Dimension::Length)?;
+                if radius < 0.0 {
+                    return Err(cx.invalid(r, format!("{what} must be ≥ 0, found {}", r.get_ref())));
+                }
+                Friction::revolute(&j.name, f, radius)
             }
             JointKind::Prismatic { .. } | JointKind::PinInSlot { .. } => {
                 let offset = match &d.contact_offset {
@@ -237,17 +244,18 @@ pub(crate) fn resolve(
     if let Some(m) = s.motor {
         let d = m.get_ref();
         let ratio = *d.ratio.get_ref();
-        if !(ratio.is_finite() && ratio != 0.0) {
-            return Err(cx.invalid(
-                &d.ratio,
-                format!("the motor's `ratio` must be finite and non-zero, found {ratio}"),
-            ));
-        }
+        cx.in_range(
+            &Spanned::new(d.ratio.span(), ratio.abs()),
+            "the magnitude of the motor's `ratio`",
+            limits::RATIO,
+            "",
+        )?;
         data.motor = Some(Motor {
             rotor_inertia: non_negative(
                 cx,
                 &d.rotor_inertia,
                 "the motor's `rotor_inertia` (kg·m²)",
+                limits::MOMENT_OF_INERTIA,
             )?,
             ratio,
             efficiency: match &d.efficiency {
@@ -320,15 +328,8 @@ fn load(
 ) -> Result<Load> {
     let d = def.get_ref();
     let link = cx.link(&d.link, geometry.links, "`[[load]]`")?;
-    let finite = |v: f64, at: &Location| -> Result<f64> {
-        if v.is_finite() {
-            Ok(v)
-        } else {
-            Err(Error::Invalid {
-                location: at.clone(),
-                message: format!("a load value must be finite, found {v}"),
-            })
-        }
+    let bounded = |v: f64, at: &Spanned<[f64; 2]>, what: &str, largest: f64| {
+        cx.in_range(&Spanned::new(at.span(), v), what, -largest..=largest, "")
     };
     let mut load = match (&d.force, &d.torque) {
         (Some(f), None) => {
@@ -337,10 +338,14 @@ fn load(
             })?;
             let p = cx.point_on(point, link, geometry, "`[[load]] point`")?;
             let [fx, fy] = *f.get_ref();
-            let at = cx.at(f);
-            Load::force(link, p, [finite(fx, &at)?, finite(fy, &at)?])
+            let fx = bounded(fx, f, "the force's x component (N)", limits::FORCE)?;
+            let fy = bounded(fy, f, "the force's y component (N)", limits::FORCE)?;
+            Load::force(link, p, [fx, fy])
         }
-        (None, Some(t)) => Load::torque(link, finite(*t.get_ref(), &cx.at(t))?),
+        (None, Some(t)) => Load::torque(
+            link,
+            cx.in_range(t, "the torque (N·m)", -limits::TORQUE..=limits::TORQUE, "")?,
+        ),
         _ => {
             return Err(cx.invalid(
                 def,
@@ -351,10 +356,10 @@ fn load(
     if let Some(a) = &d.active {
         let [from, to] = *a.get_ref();
         let dim = drive.dimension();
-        let at = cx.at(a);
+        let end = |v: f64, what: &str| cx.number(&Spanned::new(a.span(), v), what, dim);
         load = load.active_between(
-            cx.units.to_si(finite(from, &at)?, dim),
-            cx.units.to_si(finite(to, &at)?, dim),
+            end(from, "the start of `active`")?,
+            end(to, "the end of `active`")?,
         );
     }
     Ok(load)

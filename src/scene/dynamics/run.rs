@@ -218,6 +218,14 @@ pub(crate) fn run(
             .filter_map(|s| s.shaking.clone())
             .collect();
         if let Some(s) = ShakingSummary::of(&forces) {
+            if !s.magnitude.value.is_finite() {
+                return Err(crate::error::Error::NotFinite {
+                    file: scene.file.clone(),
+                    quantity: "the magnitude of the shaking force |SumF| [N]".to_owned(),
+                    value: s.magnitude.value.to_string(),
+                    position: scene.drive_text(s.magnitude.phi),
+                });
+            }
             summary.push(format!(
                 "shaking force over the sweep: SumF_x from {:.6} N (at {}) to {:.6} N (at {}); SumF_y from {:.6} N (at {}) to {:.6} N (at {}); largest |SumF| {:.6} N (at {})",
                 s.force_x[0].value, scene.drive_text(s.force_x[0].phi), s.force_x[1].value, scene.drive_text(s.force_x[1].phi),

@@ -1,0 +1,295 @@
+//! The values of a scene file as serde reads them: numbers (or quoted constant formulas),
+//! pairs that must have exactly two entries, and lists with a length limit.
+//!
+//! These are `deserialize_with` helpers for [`super::format`]; every error they raise gets
+//! the value's span from toml, so the message is printed at `file:line:column`.
+
+use std::fmt;
+
+use mechdiff_core::symbolic::Graph;
+use serde::Deserialize;
+use serde::de::{self, Deserializer, SeqAccess, Visitor};
+use toml::Spanned;
+
+use super::drive::MAX_POSITIONS;
+use super::format::Name;
+
+/// The longest formula a scene may quote (characters).
+pub const MAX_FORMULA_LENGTH: usize = 200;
+
+/// The deepest nesting of parentheses in a quoted formula.
+pub const MAX_FORMULA_DEPTH: usize = 16;
+
+/// A number as written in a scene: a TOML integer or float, or a quoted constant formula
+/// such as `"23.4791*0.86"` or `"180/7"` (see [`constant_formula`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Number(pub f64);
+
+impl<'de> Deserialize<'de> for Number {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        deserializer.deserialize_any(NumberVisitor)
+    }
+}
+
+struct NumberVisitor;
+
+impl Visitor<'_> for NumberVisitor {
+    type Value = Number;
+
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str("a number, or a constant formula in quotes (`\"23.4791*0.86\"`)")
+    }
+
+    fn visit_f64<E: de::Error>(self, v: f64) -> Result<Number, E> {
+        Ok(Number(v))
+    }
+
+    fn visit_i64<E: de::Error>(self, v: i64) -> Result<Number, E> {
+        Ok(Number(v as f64))
+    }
+
+    fn visit_u64<E: de::Error>(self, v: u64) -> Result<Number, E> {
+        Ok(Number(v as f64))
+    }
+
+    fn visit_str<E: de::Error>(self, v: &str) -> Result<Number, E> {
+        constant_formula(v).map(Number).map_err(E::custom)
+    }
+}
+
+/// The value of a constant formula written in a scene: numbers, `+ - * / ^`, parentheses,
+/// the functions of the symbolic engine (`sqrt`, `sin`, `atan2`, …, angles in radians) and
+/// the constants `pi` and `tau`. It is parsed by the symbolic engine's infix parser.
+///
+/// ```
+/// use mechdiff::scene::values::constant_formula;
+///
+/// assert_eq!(constant_formula("23.4791*0.86").unwrap(), 23.4791 * 0.86);
+/// assert_eq!(constant_formula("2*pi").unwrap(), std::f64::consts::TAU);
+/// assert!(constant_formula("2*x").unwrap_err().contains("`x`"));
+/// ```
+///
+/// # Errors
+/// A message saying what is wrong with the formula (syntax, an unknown name, a result that
+/// is not a finite number) and what a formula may contain.
+pub fn constant_formula(text: &str) -> Result<f64, String> {
+    let quoted = format!("the formula \"{text}\"");
+    let allowed = "a formula may use numbers, + - * / ^, parentheses, functions such as sqrt, \
+                   sin, cos, atan2 (radians) and the constants pi and tau";
+    if text.chars().count() > MAX_FORMULA_LENGTH {
+        return Err(format!(
+            "{quoted} is longer than {MAX_FORMULA_LENGTH} characters; write the number itself"
+        ));
+    }
+    let mut depth = 0usize;
+    for c in text.chars() {
+        match c {
+            '(' => depth += 1,
+            ')' => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+        if depth > MAX_FORMULA_DEPTH {
+            return Err(format!(
+                "{quoted} nests parentheses deeper than {MAX_FORMULA_DEPTH}; simplify it"
+            ));
+        }
+    }
+    // Literals that are not finite f64 (`1e999`) are refused here, before the parser sees
+    // them.
+    if let Some(literal) = literals(text).find(|l| l.parse::<f64>().is_ok_and(|v| !v.is_finite())) {
+        return Err(format!(
+            "{quoted}: the number {literal} is beyond the range of f64 (about 1.8e308)"
+        ));
+    }
+    let mut graph = Graph::new();
+    let id = graph
+        .parse_infix(text)
+        .map_err(|e| format!("{quoted} cannot be read: {e}; {allowed}"))?;
+    let constants = [("pi", std::f64::consts::PI), ("tau", std::f64::consts::TAU)];
+    if let Some(name) = graph
+        .symbols(&[id])
+        .into_iter()
+        .find(|s| constants.iter().all(|(c, _)| c != s))
+    {
+        return Err(format!(
+            "{quoted} uses `{name}`, which is not a constant; {allowed}"
+        ));
+    }
+    let value = graph
+        .evaluate_f64(&[id], &constants)
+        .map_err(|e| format!("{quoted} cannot be evaluated: {e}"))?[0];
+    if !value.is_finite() {
+        return Err(format!(
+            "{quoted} evaluates to {value}; expected a finite number (check for a division \
+             by zero, a square root or logarithm of a negative number, or an overflow)"
+        ));
+    }
+    Ok(value + 0.0)
+}
+
+/// The number literals of a formula (digits, `.`, and an exponent).
+fn literals(text: &str) -> impl Iterator<Item = &str> {
+    let bytes = text.as_bytes();
+    let mut i = 0;
+    std::iter::from_fn(move || {
+        while i < bytes.len() && !(bytes[i].is_ascii_digit() || bytes[i] == b'.') {
+            // Skip names (`atan2`) whole, so their digits are not read as numbers.
+            if bytes[i].is_ascii_alphabetic() || bytes[i] == b'_' {
+                while i < bytes.len() && (bytes[i].is_ascii_alphanumeric() || bytes[i] == b'_') {
+                    i += 1;
+                }
+            } else {
+                i += 1;
+            }
+        }
+        if i >= bytes.len() {
+            return None;
+        }
+        let start = i;
+        while i < bytes.len() && (bytes[i].is_ascii_digit() || bytes[i] == b'.') {
+            i += 1;
+        }
+        if i < bytes.len() && matches!(bytes[i], b'e' | b'E') {
+            let sign = usize::from(matches!(bytes.get(i + 1), Some(b'+' | b'-')));
+            if bytes.get(i + 1 + sign).is_some_and(u8::is_ascii_digit) {
+                i += 1 + sign;
+                while i < bytes.len() && bytes[i].is_ascii_digit() {
+                    i += 1;
+                }
+            }
+        }
+        Some(&text[start..i])
+    })
+}
+
+/// A number field: `Spanned<f64>` read through [`Number`].
+pub fn number<'de, D: Deserializer<'de>>(deserializer: D) -> Result<Spanned<f64>, D::Error> {
+    let n = Spanned::<Number>::deserialize(deserializer)?;
+    Ok(Spanned::new(n.span(), n.into_inner().0))
+}
+
+/// An optional number field (use with `#[serde(default)]`).
+pub fn option_number<'de, D: Deserializer<'de>>(
+    deserializer: D,
+) -> Result<Option<Spanned<f64>>, D::Error> {
+    let n = Option::<Spanned<Number>>::deserialize(deserializer)?;
+    Ok(n.map(|n| Spanned::new(n.span(), n.into_inner().0)))
+}
+
+fn exactly_two<T, E: de::Error>(list: Spanned<Vec<T>>, what: &str) -> Result<Spanned<[T; 2]>, E> {
+    let span = list.span();
+    let list = list.into_inner();
+    let n = list.len();
+    let pair: [T; 2] = list.try_into().map_err(|_| {
+        E::custom(format!(
+            "expected exactly two {what}, found {n}; a pair is written `[first, second]`"
+        ))
+    })?;
+    Ok(Spanned::new(span, pair))
+}
+
+/// An optional pair of names (a line, the links of a slide, two gears): exactly two entries,
+/// never silently the first two of a longer list (use with `#[serde(default)]`).
+pub fn option_name_pair<'de, D: Deserializer<'de>>(
+    deserializer: D,
+) -> Result<Option<Spanned<[Name; 2]>>, D::Error> {
+    Option::<Spanned<Vec<Name>>>::deserialize(deserializer)?
+        .map(|list| exactly_two(list, "names"))
+        .transpose()
+}
+
+/// A required pair of names.
+pub fn name_pair<'de, D: Deserializer<'de>>(
+    deserializer: D,
+) -> Result<Spanned<[Name; 2]>, D::Error> {
+    exactly_two(Spanned::<Vec<Name>>::deserialize(deserializer)?, "names")
+}
+
+/// An optional pair of numbers (a force's components, a drive range): exactly two entries
+/// (use with `#[serde(default)]`).
+pub fn option_number_pair<'de, D: Deserializer<'de>>(
+    deserializer: D,
+) -> Result<Option<Spanned<[f64; 2]>>, D::Error> {
+    let Some(list) = Option::<Spanned<Vec<Number>>>::deserialize(deserializer)? else {
+        return Ok(None);
+    };
+    let span = list.span();
+    let values = list.into_inner().into_iter().map(|n| n.0).collect();
+    exactly_two(Spanned::new(span, values), "numbers").map(Some)
+}
+
+/// `[sweep] positions`: at most [`MAX_POSITIONS`] numbers, counted as they are read (use
+/// with `#[serde(default)]`).
+pub fn option_positions<'de, D: Deserializer<'de>>(
+    deserializer: D,
+) -> Result<Option<Spanned<Vec<f64>>>, D::Error> {
+    let list = Option::<Spanned<Positions>>::deserialize(deserializer)?;
+    Ok(list.map(|l| Spanned::new(l.span(), l.into_inner().0)))
+}
+
+/// A list of drive positions of bounded length.
+struct Positions(Vec<f64>);
+
+impl<'de> Deserialize<'de> for Positions {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        deserializer.deserialize_seq(PositionsVisitor)
+    }
+}
+
+struct PositionsVisitor;
+
+impl<'de> Visitor<'de> for PositionsVisitor {
+    type Value = Positions;
+
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        write!(f, "a list of at most {MAX_POSITIONS} drive positions")
+    }
+
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Positions, A::Error> {
+        let mut values = Vec::with_capacity(seq.size_hint().unwrap_or(0).min(MAX_POSITIONS));
+        while let Some(Number(v)) = seq.next_element()? {
+            if values.len() == MAX_POSITIONS {
+                return Err(de::Error::custom(format!(
+                    "`positions` has more than {MAX_POSITIONS} entries; split the sweep into \
+                     several scenes, or use `from`, `to` and `step`"
+                )));
+            }
+            values.push(v);
+        }
+        Ok(Positions(values))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn literals_skip_function_names() {
+        let found: Vec<&str> = literals("atan2(1e3, .5) + log10(2E-4)").collect();
+        assert_eq!(found, ["1e3", ".5", "2E-4"]);
+    }
+
+    #[test]
+    fn formulas_that_overflow_or_divide_by_zero_are_refused() {
+        for text in [
+            "1e999",
+            "1e200*1e200",
+            "1/0",
+            "0/0",
+            "sqrt(-1)",
+            "exp(1000)",
+        ] {
+            let e = constant_formula(text).unwrap_err();
+            assert!(e.contains(text), "{e}");
+        }
+    }
+
+    #[test]
+    fn deep_or_long_formulas_are_refused_before_parsing() {
+        let deep = format!("{}1{}", "(".repeat(10_000), ")".repeat(10_000));
+        assert!(constant_formula(&deep).unwrap_err().contains("longer"));
+        let deep = format!("{}1{}", "(".repeat(17), ")".repeat(17));
+        assert!(constant_formula(&deep).unwrap_err().contains("deeper"));
+    }
+}
