@@ -227,7 +227,11 @@ impl<'a> Context<'a> {
             location: self.at(value),
             what: what.to_owned(),
             value: format!("{}{unit}", Units::tidy(v)),
-            expected: format!("a number from {} to {}{unit}", range.start(), range.end()),
+            expected: format!(
+                "a number ≥ {}{unit} and ≤ {}{unit}",
+                Units::tidy(*range.start()),
+                Units::tidy(*range.end())
+            ),
         })
     }
 

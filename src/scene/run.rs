@@ -397,3 +397,54 @@ pub(crate) fn solver_error(scene: &Scene, source: mechdiff_core::Error) -> Error
         other => model_error(scene, other),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A report with an overflowed value is refused, naming the column (with its unit) and
+    /// the drive position in the scene's units.
+    #[test]
+    fn a_non_finite_result_is_an_error_naming_the_quantity_and_the_position() {
+        let scene = super::super::parse(
+            "s.toml",
+            r#"
+            [units]
+            angle = "deg"
+            [points]
+            O = [0.0, 0.0]
+            A = [0.1, 0.0]
+            [links]
+            ground = ["O"]
+            crank = ["O", "A"]
+            [joints]
+            O = { type = "revolute", at = "O", links = ["ground", "crank"] }
+            [drive]
+            joint = "O"
+            line = ["O", "A"]
+            [sweep]
+            positions = [0, 90]
+            [[output]]
+            point = "A"
+            quantities = ["position"]
+            "#,
+        )
+        .unwrap();
+        let mut report = run(&scene).unwrap();
+        report.rows[1][2] = f64::INFINITY;
+        let e = all_finite(&scene, &report).unwrap_err();
+        assert!(matches!(e, Error::NotFinite { .. }), "{e:?}");
+        let message = e.to_string();
+        assert!(
+            message.starts_with("s.toml: y_A [m] is inf at drive position 90 deg"),
+            "{message}"
+        );
+        report.rows[1][2] = f64::NAN;
+        assert!(
+            all_finite(&scene, &report)
+                .unwrap_err()
+                .to_string()
+                .contains("is NaN")
+        );
+    }
+}

@@ -1,0 +1,392 @@
+//! Issue 9, "Overflow" and "Scenes": every number is range-checked where it is written, a
+//! quoted constant formula is a number, a joint listing three links stands for two joints,
+//! and the mistakes TOML makes easy (dotted names, unquoted formulas, a non-UTF-8 file, an
+//! endless list) get messages that say what is wrong, where, and how to fix it.
+
+use std::path::Path;
+
+use mechdiff::Error;
+use mechdiff::scene::{self, Report};
+
+/// The text of `scenes/<name>`.
+fn scene_text(name: &str) -> String {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes")
+        .join(name);
+    std::fs::read_to_string(path).unwrap()
+}
+
+/// `scenes/<name>` with `from` replaced by `to` (once), parsed as `bad.toml`; the error and
+/// the 1-based line of `to` in the modified text.
+fn refused(name: &str, from: &str, to: &str) -> (Error, usize) {
+    let text = scene_text(name);
+    assert!(text.contains(from), "test bug: `{from}` is not in {name}");
+    let text = text.replacen(from, to, 1);
+    let line = text[..text.find(to).unwrap()].matches('\n').count() + 1;
+    match scene::parse("bad.toml", &text) {
+        Ok(_) => panic!("`{to}` was accepted"),
+        Err(e) => (e, line),
+    }
+}
+
+/// Asserts the message is placed at `bad.toml:<line>:` and contains every part.
+fn assert_message(error: &Error, line: usize, parts: &[&str]) {
+    let message = error.to_string();
+    assert!(
+        message.starts_with(&format!("bad.toml:{line}:")),
+        "expected line {line}: {message}"
+    );
+    for part in parts {
+        assert!(message.contains(part), "`{part}` missing from: {message}");
+    }
+}
+
+fn assert_all_finite(report: &Report) {
+    for row in &report.rows {
+        assert!(row.iter().all(|v| v.is_finite()), "{row:?}");
+    }
+}
+
+// --- Overflow -------------------------------------------------------------------------
+
+/// The issue's first example: a drive speed ≥ ~1e155 squared overflows. It is refused where
+/// it is written, with the limit in the file's unit (1e6 rad/s = 9549296.58551372 rpm).
+#[test]
+fn a_drive_speed_of_1e155_is_refused_where_it_is_written() {
+    let (e, line) = refused("slider_crank.toml", "speed = 1500 ", "speed = 1e155 ");
+    assert!(matches!(e, Error::OutOfRange { .. }), "{e:?}");
+    assert_message(
+        &e,
+        line,
+        &[
+            "`[drive] speed` = 1e155 rpm",
+            "at most 9549296.58551372 rpm",
+        ],
+    );
+}
+
+/// Variants: the speed written as a formula, as TOML's `inf` and `nan`, and a drive
+/// acceleration far beyond any machine.
+#[test]
+fn non_finite_or_huge_drive_values_are_refused() {
+    for (to, part) in [
+        ("speed = \"1e100*1e100\" ", "out of range"),
+        ("speed = inf ", "must be a finite number"),
+        ("speed = nan ", "must be a finite number"),
+        (
+            "speed = 1500\nacceleration = 1e200 ",
+            "`[drive] acceleration`",
+        ),
+    ] {
+        let (e, line) = refused("slider_crank.toml", "speed = 1500 ", to);
+        let line = line + usize::from(to.contains('\n'));
+        assert_message(&e, line, &[part]);
+    }
+}
+
+/// A mass of 1e308 kg (the issue's second example) is refused at the mass.
+#[test]
+fn a_mass_of_1e308_is_refused() {
+    let (e, line) = refused(
+        "whitworth_forces.toml",
+        "crank = { mass = 15,",
+        "crank = { mass = 1e308,",
+    );
+    assert!(matches!(e, Error::OutOfRange { .. }), "{e:?}");
+    assert_message(&e, line, &["the mass of link `crank` (kg) = 1e308"]);
+}
+
+/// A motor ratio of 5e-324 (the smallest subnormal: its reciprocal is infinite) is refused.
+#[test]
+fn a_motor_ratio_of_5e_324_is_refused() {
+    let (e, line) = refused(
+        "rack_slotted_link_dynamics.toml",
+        "ratio = 0.03333333333333333",
+        "ratio = 5e-324",
+    );
+    assert_message(
+        &e,
+        line,
+        &["the motor's `ratio`", "≥ 0.000001 and ≤ 1000000"],
+    );
+}
+
+/// A rack radius of 1e308 hung `check` and `run`; now it is refused while reading (this test
+/// finishing is part of the fact).
+#[test]
+fn a_rack_radius_of_1e308_is_refused_before_solving() {
+    let (e, line) = refused("rack_slotted_link.toml", "radius = 0.04", "radius = 1e308");
+    assert_message(&e, line, &["`radius` of joint `mesh`", "at most"]);
+}
+
+/// Coordinates, gravity, loads and gear ratios have their ranges too.
+#[test]
+fn coordinates_gravity_and_loads_are_range_checked() {
+    let (e, line) = refused("slider_crank.toml", "B = [384, -12]", "B = [384, 1e300]");
+    assert_message(&e, line, &["the y coordinate of point `B` = 1e300 mm"]);
+    let (e, line) = refused(
+        "whitworth_forces.toml",
+        "[masses]",
+        "[gravity]\ng = 1e308\n\n[masses]",
+    );
+    assert_message(&e, line + 1, &["g (m/s²) = 1e308"]);
+    let (e, line) = refused(
+        "whitworth_forces.toml",
+        "[masses]",
+        "[[load]]\nlink = \"ram\"\npoint = \"C\"\nforce = [1e300, 0]\n\n[masses]",
+    );
+    assert_message(&e, line + 3, &["the force's x component (N) = 1e300"]);
+}
+
+/// Within the limits, the largest drive speed gives finite numbers: the limits are chosen
+/// so that ω²·ψ″ and the like stay inside f64.
+#[test]
+fn the_largest_accepted_speed_gives_finite_results() {
+    let text = scene_text("slider_crank.toml").replacen("speed = 1500 ", "speed = 9549296 ", 1);
+    let report = scene::run(&scene::parse("fast.toml", &text).unwrap()).unwrap();
+    assert_all_finite(&report);
+}
+
+// --- Scenes -----------------------------------------------------------------------------
+
+/// A four-bar O2–A–B–O4 with a slider dyad B–C hung at B: the hinge at B joins three links.
+const SIX_BAR: &str = r#"
+[points]
+O2 = [0, 0]
+A = [0, 1]
+O4 = [4, 0]
+B = [4, 3]
+C = [8, 0]
+G0 = [5, 0]
+G1 = [10, 0]
+
+[links]
+ground = ["O2", "O4", "G0", "G1"]
+crank = ["O2", "A"]
+coupler = ["A", "B"]
+rocker = ["O4", "B"]
+rod = ["B", "C"]
+slider = ["C"]
+
+[joints]
+O2 = { type = "revolute", at = "O2", links = ["ground", "crank"] }
+A = { type = "revolute", at = "A", links = ["crank", "coupler"] }
+HINGE
+O4 = { type = "revolute", at = "O4", links = ["ground", "rocker"] }
+C = { type = "revolute", at = "C", links = ["rod", "slider"] }
+guide = { type = "prismatic", line = ["G0", "G1"], point = "C", links = ["ground", "slider"] }
+
+[drive]
+joint = "O2"
+line = ["O2", "A"]
+speed = 10
+
+[sweep]
+from = 0
+to = 6
+step = 0.25
+
+[[output]]
+name = "s"
+slider = "guide"
+quantities = ["position", "velocity_coefficient", "acceleration_coefficient"]
+
+[[output]]
+name = "rod"
+angle = ["B", "C"]
+quantities = ["position", "velocity_coefficient", "acceleration_coefficient"]
+"#;
+
+/// `links = [rocker, coupler, rod]` at B is expanded into rocker–coupler and rocker–rod, as
+/// Pyslvs and PMKS write a ternary hinge; the results equal those of the two joints written
+/// out. Same equations in the same order: equal to 4 ulp of each column's largest value
+/// (the solver's arithmetic is the same; the bound only allows for a different summation
+/// order).
+#[test]
+fn a_joint_given_three_links_equals_the_two_joints_written_out() {
+    let three = SIX_BAR.replace(
+        "HINGE",
+        r#"B = { type = "revolute", at = "B", links = ["rocker", "coupler", "rod"] }"#,
+    );
+    let two = SIX_BAR.replace(
+        "HINGE",
+        "B = { type = \"revolute\", at = \"B\", links = [\"rocker\", \"coupler\"] }\n\
+         B2 = { type = \"revolute\", at = \"B\", links = [\"rocker\", \"rod\"] }",
+    );
+    let (three, two) = (
+        scene::parse("three.toml", &three).unwrap(),
+        scene::parse("two.toml", &two).unwrap(),
+    );
+    let names: Vec<&str> = three.joints.iter().map(|j| j.name.as_str()).collect();
+    assert_eq!(names, ["O2", "A", "B", "B:rod", "O4", "C", "guide"]);
+    let (a, b) = (scene::run(&three).unwrap(), scene::run(&two).unwrap());
+    assert_eq!(a.rows.len(), 25);
+    for k in 0..a.columns.len() {
+        let scale = b.rows.iter().map(|r| r[k].abs()).fold(0.0, f64::max);
+        for (x, y) in a.rows.iter().zip(&b.rows) {
+            assert!(
+                (x[k] - y[k]).abs() <= 4.0 * f64::EPSILON * scale,
+                "{}: {} vs {}",
+                a.columns[k].name,
+                x[k],
+                y[k]
+            );
+        }
+    }
+}
+
+/// Without the third link, the rod hangs free: proof that the expansion did not just drop it
+/// (the scene is refused as under-constrained).
+#[test]
+fn the_third_link_is_not_dropped() {
+    let dropped = SIX_BAR.replace(
+        "HINGE",
+        r#"B = { type = "revolute", at = "B", links = ["rocker", "coupler"] }"#,
+    );
+    let e = scene::check(&scene::parse("dropped.toml", &dropped).unwrap()).unwrap_err();
+    assert!(e.to_string().contains("under-constrained"), "{e}");
+}
+
+/// Joints that join exactly two links say so when given three.
+#[test]
+fn a_slide_given_three_links_is_refused() {
+    let (e, line) = refused(
+        "slider_crank.toml",
+        "point = \"B\", links = [\"ground\", \"slider\"]",
+        "point = \"B\", links = [\"ground\", \"slider\", \"rod\"]",
+    );
+    assert_message(
+        &e,
+        line,
+        &["lists 3 links", "a `prismatic` joint joins exactly two"],
+    );
+}
+
+/// Every other pair (a line, a slot, two gears, a force) takes exactly two entries.
+#[test]
+fn a_line_of_three_points_is_refused() {
+    let (e, line) = refused(
+        "slider_crank.toml",
+        "line = [\"O\", \"A\"]    #",
+        "line = [\"O\", \"A\", \"B\"]    #",
+    );
+    assert_message(&e, line, &["expected exactly two names, found 3"]);
+}
+
+/// `CoM.AB = [..]` is a TOML table `CoM` with a key `AB`: the message says so and shows the
+/// quoted name; the quoted name works.
+#[test]
+fn a_dotted_point_name_is_explained_and_the_quoted_name_works() {
+    let (e, line) = refused(
+        "slider_crank.toml",
+        "G0 = [0, -12]",
+        "CoM.AB = [1, 1]\nG0 = [0, -12]",
+    );
+    assert!(matches!(e, Error::Syntax { .. }), "{e:?}");
+    assert_message(
+        &e,
+        line,
+        &["dotted key", "table `CoM`", "`\"CoM.AB\" = [1, 1]`"],
+    );
+    let text = scene_text("slider_crank.toml").replacen(
+        "G0 = [0, -12]",
+        "\"CoM.AB\" = [1, 1]\nG0 = [0, -12]",
+        1,
+    );
+    let scene = scene::parse("ok.toml", &text).unwrap();
+    assert!(scene.points.iter().any(|p| p.name == "CoM.AB"));
+}
+
+/// `mass = 23.4791*0.86` is not TOML: the message says a formula must be quoted. Quoted, it
+/// is read by the symbolic engine's infix parser: exactly the f64 product (one rounding, as
+/// in Rust).
+#[test]
+fn an_unquoted_formula_is_explained_and_a_quoted_one_is_a_number() {
+    let (e, line) = refused(
+        "whitworth_forces.toml",
+        "crank = { mass = 15,",
+        "crank = { mass = 23.4791*0.86,",
+    );
+    assert_message(
+        &e,
+        line,
+        &["`23.4791*0.86` is a formula", "write `\"23.4791*0.86\"`"],
+    );
+    let text = scene_text("whitworth_forces.toml").replacen(
+        "crank = { mass = 15,",
+        "crank = { mass = \"23.4791*0.86\",",
+        1,
+    );
+    let scene = scene::parse("ok.toml", &text).unwrap();
+    let dynamics = scene.dynamics.unwrap();
+    let (_, crank) = dynamics.masses.iter().find(|(l, _)| l == "crank").unwrap();
+    assert_eq!(crank.mass, 23.4791 * 0.86);
+}
+
+/// Quoted formulas work in points, lists and angles; a bad one is located at its string.
+#[test]
+fn quoted_formulas_are_numbers_everywhere_and_bad_ones_are_located() {
+    let text = scene_text("slider_crank.toml")
+        .replacen("A = [0, 100]", "A = [0, \"50*2\"]", 1)
+        .replacen("step = 5", "step = \"10/2\"", 1);
+    let a = scene::parse("ok.toml", &text).unwrap();
+    let b = scene::parse("ok.toml", &scene_text("slider_crank.toml")).unwrap();
+    // 50*2 and 10/2 are exact in f64: the scenes are identical.
+    assert_eq!(a.positions, b.positions);
+    assert_eq!(a.points[1].sketch, b.points[1].sketch);
+    for (to, part) in [
+        ("step = \"1/0\"", "evaluates to inf"),
+        ("step = \"5*x\"", "uses `x`, which is not a constant"),
+        ("step = \"5*(\"", "cannot be read"),
+    ] {
+        let (e, line) = refused("slider_crank.toml", "step = 5", to);
+        assert_message(&e, line, &[part]);
+    }
+}
+
+/// A file that is not UTF-8 gets the byte offset, line and column of the first bad byte.
+#[test]
+fn a_scene_that_is_not_utf8_gets_the_place_of_the_bad_byte() {
+    let path = std::env::temp_dir().join(format!("mechdiff-latin1-{}.toml", std::process::id()));
+    // "# Kurbelschwinge, Länge" in Latin-1: ä is the single byte 0xe4.
+    let mut bytes = b"title = \"x\"\n# Kurbelschwinge, L".to_vec();
+    bytes.extend_from_slice(&[0xe4, b'n', b'g', b'e', b'\n']);
+    std::fs::write(&path, &bytes).unwrap();
+    let e = scene::load(&path).unwrap_err();
+    std::fs::remove_file(&path).unwrap();
+    let Error::NotUtf8 {
+        location,
+        offset,
+        byte,
+    } = &e
+    else {
+        panic!("{e:?}")
+    };
+    assert_eq!(
+        (location.line, location.column, *offset, *byte),
+        (2, 20, 31, 0xe4)
+    );
+    assert!(e.to_string().contains("byte offset 31"), "{e}");
+}
+
+/// `/dev/zero` as a scene is read up to the size limit, then refused.
+#[cfg(unix)]
+#[test]
+fn an_endless_file_is_refused_at_the_size_limit() {
+    let e = scene::load("/dev/zero").unwrap_err();
+    assert!(matches!(e, Error::TooLarge { .. }), "{e:?}");
+    assert!(e.to_string().contains("16777216 bytes"), "{e}");
+}
+
+/// The documented limit of 10⁶ drive positions holds for a `positions` list too; the error
+/// is at the list.
+#[test]
+fn a_positions_list_longer_than_the_limit_is_refused() {
+    let list = vec!["0"; 1_000_001].join(",");
+    let (e, line) = refused(
+        "slider_crank.toml",
+        "from = 0\nto = 360\nstep = 5",
+        &format!("positions = [{list}]"),
+    );
+    assert_message(&e, line, &["more than 1000000 entries"]);
+}
