@@ -89,8 +89,8 @@ pub(crate) fn resolve(
     // A field the type takes (every other one was refused above), or which one is missing.
     let missing =
         |field: &str| cx.invalid(def, format!("{context}: `{field}` is missing; {expected}"));
-    // Every link named, checked to exist and to be listed once.
-    let all_links = |cx: &Context| -> Result<Vec<String>> {
+    // Every link named, checked to exist and to be listed once; and the list, for messages.
+    let all_links = |cx: &Context| -> Result<(Vec<String>, &Spanned<Vec<Name>>)> {
         let links = d.links.as_ref().ok_or_else(|| missing("links"))?;
         let list = links.get_ref();
         if list.len() < 2 {
@@ -113,15 +113,15 @@ pub(crate) fn resolve(
             }
             names.push(link.to_owned());
         }
-        Ok(names)
+        Ok((names, links))
     };
     // Exactly two links: the joint types that cannot be expanded pairwise.
     let links = |cx: &Context| -> Result<[String; 2]> {
-        let names = all_links(cx)?;
+        let (names, list) = all_links(cx)?;
         let n = names.len();
         <[String; 2]>::try_from(names).map_err(|_| {
             cx.invalid(
-                d.links.as_ref().expect("checked by all_links"),
+                list,
                 format!(
                     "{context} lists {n} links; a `{}` joint joins exactly two: `links = \
                      [\"base\", \"moving\"]` (a revolute or weld joint may list more)",
@@ -147,7 +147,7 @@ pub(crate) fn resolve(
     let one = |kind: JointKind| vec![(name.to_owned(), kind)];
     Ok(match kind {
         Kind::Revolute => {
-            let names = all_links(cx)?;
+            let (names, _) = all_links(cx)?;
             let at = d.at.as_ref().ok_or_else(|| missing("at"))?;
             for link in &names {
                 cx.point_on(at, link, geometry, &context)?;
@@ -237,7 +237,7 @@ pub(crate) fn resolve(
             })
         }
         Kind::Weld => {
-            let names = all_links(cx)?;
+            let (names, _) = all_links(cx)?;
             if names[1..].iter().any(|l| l == GROUND) {
                 let others: Vec<String> = (names.iter())
                     .filter(|l| *l != GROUND)
