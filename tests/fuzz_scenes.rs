@@ -58,11 +58,17 @@ const EXTREMES: &[&str] = &[
     "\"2*pi\"",
 ];
 
+/// Factors a number is multiplied by.
+const FACTORS: &[f64] = &[0.5, 2.0, -1.0, 1.01, 0.99, 10.0, 0.1, 3.0];
+
 /// One change to a scene's text; the indices are reduced modulo what the text has.
 #[derive(Debug, Clone)]
 enum Mutation {
     /// Replace the k-th number with `EXTREMES[e]`.
     Number(usize, usize),
+    /// Multiply the k-th number by `FACTORS[f]` (a plausible scene with other geometry:
+    /// cases that reach the solver's refusals, toggles and branches).
+    Scale(usize, usize),
     /// Delete the k-th line.
     DeleteLine(usize),
     /// Write the k-th line twice.
@@ -75,7 +81,8 @@ enum Mutation {
 
 fn mutation() -> impl Strategy<Value = Mutation> {
     prop_oneof![
-        6 => (any::<usize>(), 0..EXTREMES.len()).prop_map(|(k, e)| Mutation::Number(k, e)),
+        4 => (any::<usize>(), 0..EXTREMES.len()).prop_map(|(k, e)| Mutation::Number(k, e)),
+        4 => (any::<usize>(), 0..FACTORS.len()).prop_map(|(k, f)| Mutation::Scale(k, f)),
         1 => any::<usize>().prop_map(Mutation::DeleteLine),
         1 => any::<usize>().prop_map(Mutation::DuplicateLine),
         2 => (any::<usize>(), any::<usize>()).prop_map(|(j, k)| Mutation::SwapNames(j, k)),
@@ -146,6 +153,17 @@ fn apply(text: &str, m: &Mutation) -> String {
             }
             let r = found[k % found.len()].clone();
             format!("{}{}{}", &text[..r.start], EXTREMES[e], &text[r.end..])
+        }
+        Mutation::Scale(k, f) => {
+            let found = numbers(text);
+            if found.is_empty() {
+                return text.to_owned();
+            }
+            let r = found[k % found.len()].clone();
+            let Ok(v) = text[r.clone()].parse::<f64>() else {
+                return text.to_owned();
+            };
+            format!("{}{:?}{}", &text[..r.start], v * FACTORS[f], &text[r.end..])
         }
         Mutation::DeleteLine(k) => {
             let k = k % lines.len();
