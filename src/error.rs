@@ -163,7 +163,7 @@ pub enum Error {
         file: String,
         /// The quantity (column name with its unit, or what it is).
         quantity: String,
-        /// `inf`, `-inf` or `NaN`.
+        /// `inf`, `-inf` or `NaN` (or `not finite` when the engine found it).
         value: String,
         /// The drive position, with its unit.
         position: String,

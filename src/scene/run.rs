@@ -388,6 +388,12 @@ pub(crate) fn solver_error(scene: &Scene, source: mechdiff_core::Error) -> Error
             loop_joints: joined(&joints),
             condition,
         },
+        Core::NonFinite { phi, quantity } => Error::NotFinite {
+            file: scene.file.clone(),
+            quantity: quantity.to_owned(),
+            value: "not finite".to_owned(),
+            position: scene.drive_text(phi),
+        },
         Core::BranchFlip { from, to, joints } => Error::BranchFlip {
             file: scene.file.clone(),
             from: scene.drive_text(from),

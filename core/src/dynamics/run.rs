@@ -131,7 +131,92 @@ pub fn run(
                 }
             }
         }
+        all_finite(&step)?;
         steps.push(step);
     }
     Ok(Run { steps, trace })
+}
+
+/// Checks every number of a step: an overflow (or 0/0) for some combination of inputs is
+/// [`Error::NonFinite`] naming the quantity and the drive position, never a NaN passed on.
+fn all_finite(step: &Step) -> Result<(), Error> {
+    let check = |quantity: &'static str, values: &[f64]| {
+        if values.iter().all(|v| v.is_finite()) {
+            Ok(())
+        } else {
+            Err(Error::NonFinite {
+                phi: step.phi,
+                quantity,
+            })
+        }
+    };
+    if let Some(e) = &step.energy {
+        check("the kinetic energy", &[e.kinetic])?;
+        check("the reduced moment of inertia", &[e.reduced_inertia])?;
+        let derivative = e.reduced_inertia_derivative.unwrap_or(0.0);
+        check(
+            "the derivative of the reduced moment of inertia",
+            &[derivative],
+        )?;
+        check(
+            "the rate of the kinetic energy",
+            &[e.kinetic_rate.unwrap_or(0.0)],
+        )?;
+    }
+    if let Some(s) = &step.shaking {
+        check("the shaking force", &s.force)?;
+        check("the moment of the shaking force", &[s.moment])?;
+    }
+    if let Some(s) = &step.solution {
+        check("the drive torque", &[s.drive_torque])?;
+        check("the joint reactions (Lagrange multipliers)", &s.multipliers)?;
+        let b = &s.balance;
+        let terms = [
+            b.drive,
+            b.kinetic_rate,
+            b.gravity,
+            b.loads,
+            b.friction,
+            b.efficiency,
+        ];
+        check("a term of the power balance", &terms)?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A step whose kinetic energy overflowed is an error naming it and the drive position.
+    #[test]
+    fn a_non_finite_step_is_an_error_naming_the_quantity() {
+        let mut step = Step {
+            phi: 0.5,
+            drive: DriveState::constant_speed(1.0),
+            solution: None,
+            energy: Some(Energy {
+                kinetic: 1.0,
+                reduced_inertia: 2.0,
+                reduced_inertia_derivative: None,
+                kinetic_rate: Some(0.0),
+            }),
+            shaking: None,
+        };
+        assert!(all_finite(&step).is_ok());
+        if let Some(e) = step.energy.as_mut() {
+            e.kinetic = f64::INFINITY;
+        }
+        let error = all_finite(&step).unwrap_err();
+        assert!(
+            matches!(
+                error,
+                Error::NonFinite {
+                    phi: 0.5,
+                    quantity: "the kinetic energy"
+                }
+            ),
+            "{error:?}"
+        );
+    }
 }
