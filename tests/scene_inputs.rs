@@ -390,3 +390,22 @@ fn a_positions_list_longer_than_the_limit_is_refused() {
     );
     assert_message(&e, line, &["more than 1000000 entries"]);
 }
+
+/// A bad entry of a `positions` list is located at the entry itself.
+#[test]
+fn a_bad_position_in_a_list_is_located_at_the_entry() {
+    let text = scene_text("slider_crank.toml").replacen(
+        "from = 0\nto = 360\nstep = 5",
+        "positions = [0, 90,\n    180, 1e300]",
+        1,
+    );
+    let e = scene::parse("bad.toml", &text).unwrap_err();
+    let line = text[..text.find("1e300").unwrap()].matches('\n').count() + 1;
+    // Column 10: `    180, ` is nine characters.
+    assert!(
+        e.to_string().starts_with(&format!(
+            "bad.toml:{line}:10: `positions` entry 4 = 1e300 deg"
+        )),
+        "{e}"
+    );
+}

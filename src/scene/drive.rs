@@ -182,9 +182,9 @@ impl Context<'_> {
                     ));
                 }
                 (list.get_ref().iter().enumerate())
-                    .map(|(k, &v)| {
+                    .map(|(k, v)| {
                         let what = format!("`positions` entry {}", k + 1);
-                        self.number(&Spanned::new(list.span(), v), &what, dimension)
+                        self.number(v, &what, dimension)
                     })
                     .collect()
             }

@@ -218,17 +218,17 @@ pub fn option_number_pair<'de, D: Deserializer<'de>>(
     exactly_two(Spanned::new(span, values), "numbers").map(Some)
 }
 
-/// `[sweep] positions`: at most [`MAX_POSITIONS`] numbers, counted as they are read (use
-/// with `#[serde(default)]`).
+/// `[sweep] positions`: at most [`MAX_POSITIONS`] numbers, counted as they are read, each
+/// with its span (use with `#[serde(default)]`).
 pub fn option_positions<'de, D: Deserializer<'de>>(
     deserializer: D,
-) -> Result<Option<Spanned<Vec<f64>>>, D::Error> {
+) -> Result<Option<Spanned<Vec<Spanned<f64>>>>, D::Error> {
     let list = Option::<Spanned<Positions>>::deserialize(deserializer)?;
     Ok(list.map(|l| Spanned::new(l.span(), l.into_inner().0)))
 }
 
 /// A list of drive positions of bounded length.
-struct Positions(Vec<f64>);
+struct Positions(Vec<Spanned<f64>>);
 
 impl<'de> Deserialize<'de> for Positions {
     fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
@@ -247,14 +247,14 @@ impl<'de> Visitor<'de> for PositionsVisitor {
 
     fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Positions, A::Error> {
         let mut values = Vec::with_capacity(seq.size_hint().unwrap_or(0).min(MAX_POSITIONS));
-        while let Some(Number(v)) = seq.next_element()? {
+        while let Some(v) = seq.next_element::<Spanned<Number>>()? {
             if values.len() == MAX_POSITIONS {
                 return Err(de::Error::custom(format!(
                     "`positions` has more than {MAX_POSITIONS} entries; split the sweep into \
                      several scenes, or use `from`, `to` and `step`"
                 )));
             }
-            values.push(v);
+            values.push(Spanned::new(v.span(), v.into_inner().0));
         }
         Ok(Positions(values))
     }
