@@ -409,3 +409,16 @@ fn a_bad_position_in_a_list_is_located_at_the_entry() {
         "{e}"
     );
 }
+
+/// A list far beyond the limit (the 2·10⁶ entries, 2.3 GB) is refused before TOML
+/// parses it, so it costs no memory.
+#[test]
+fn a_list_of_two_million_entries_is_refused_before_parsing() {
+    let list = vec!["0"; 2_000_000].join(",");
+    let (e, line) = refused(
+        "slider_crank.toml",
+        "from = 0\nto = 360\nstep = 5",
+        &format!("positions = [{list}]"),
+    );
+    assert_message(&e, line, &["more than 1100000 list entries"]);
+}

@@ -59,9 +59,25 @@ pub use plan::Plan;
 pub use run::{Checked, Report, check, run};
 pub use source::Source;
 
+/// The most list entries (commas) a scene's text may hold: a `positions` list of
+/// [`drive::MAX_POSITIONS`] and room for the rest. TOML is parsed whole before a list is
+/// read, at about 150 bytes an entry, so a longer list is refused before parsing.
+pub const MAX_LIST_ENTRIES: usize = drive::MAX_POSITIONS + 100_000;
+
 /// Parses and checks a scene given as text; `file` names it in messages.
 pub fn parse(file: &str, text: &str) -> Result<Scene> {
     let source = Source::new(file, text);
+    if let Some((at, _)) = text.match_indices(',').nth(MAX_LIST_ENTRIES) {
+        return Err(crate::error::Error::Invalid {
+            location: source.location(at..at + 1),
+            message: format!(
+                "the file has more than {MAX_LIST_ENTRIES} list entries (commas) before this \
+                 one; a `positions` list holds at most {} drive positions: use `from`, `to` \
+                 and `step`, or split the sweep into several scenes",
+                drive::MAX_POSITIONS
+            ),
+        });
+    }
     let raw: format::SceneFile = toml::from_str(text).map_err(|e| source.syntax_error(&e))?;
     resolve::resolve(raw, &source)
 }
