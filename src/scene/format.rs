@@ -241,7 +241,7 @@ pub struct SweepSection {
     pub step: Option<Spanned<f64>>,
     /// An explicit list of drive positions.
     #[serde(default, deserialize_with = "crate::scene::values::option_positions")]
-    pub positions: Option<Spanned<Vec<Spanned<f64>>>>,
+    pub positions: Option<super::values::PositionList>,
     /// The positions (range or list) are values of this output (an angle or slider output),
     /// in its unit; the drive positions that give them are solved for.
     pub of: Option<Name>,

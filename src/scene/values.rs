@@ -222,10 +222,13 @@ pub fn option_number_pair<'de, D: Deserializer<'de>>(
 /// with its span (use with `#[serde(default)]`).
 pub fn option_positions<'de, D: Deserializer<'de>>(
     deserializer: D,
-) -> Result<Option<Spanned<Vec<Spanned<f64>>>>, D::Error> {
+) -> Result<Option<PositionList>, D::Error> {
     let list = Option::<Spanned<Positions>>::deserialize(deserializer)?;
     Ok(list.map(|l| Spanned::new(l.span(), l.into_inner().0)))
 }
+
+/// `[sweep] positions` as read: the list and each entry with its span.
+pub type PositionList = Spanned<Vec<Spanned<f64>>>;
 
 /// A list of drive positions of bounded length.
 struct Positions(Vec<Spanned<f64>>);
