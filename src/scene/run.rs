@@ -3,7 +3,9 @@
 
 use std::cell::RefCell;
 
-use mechdiff_core::geometry::{Kinematics, Mechanism, Mobility, Solver, Tracker};
+use mechdiff_core::geometry::{
+    Kinematics, LimitKind, Mechanism, Mobility, MotionRange, Solver, Tracker,
+};
 use mechdiff_core::{DeadPosition, DeadPositionSearch, DriveState};
 
 use crate::error::{Error, Result};
@@ -75,6 +77,9 @@ pub struct Checked {
     pub loops: Vec<(Vec<String>, i8)>,
     /// Per loop, whether the solver closes it by a closed form (else by Newton).
     pub closed_form: Vec<bool>,
+    /// How far the drive moves either way from the sketch (limit positions, change points,
+    /// toggles), or why it could not be walked.
+    pub motion_range: std::result::Result<MotionRange, String>,
     /// The plan a run would carry out.
     pub plan: Plan,
 }
@@ -83,7 +88,7 @@ pub struct Checked {
 /// the sketch's assembly.
 pub fn check(scene: &Scene) -> Result<Checked> {
     let mechanism = mechanism(scene)?;
-    let (mobility, loops, closed_form) = {
+    let (mobility, loops, closed_form, motion_range) = {
         let tracker = Solver::default()
             .track(&mechanism)
             .map_err(|e| solver_error(scene, e))?;
@@ -91,6 +96,7 @@ pub fn check(scene: &Scene) -> Result<Checked> {
             tracker.mobility(),
             tracker.loops(),
             tracker.closed_form_loops(),
+            (tracker.motion_range()).map_err(|e| solver_error(scene, e).to_string()),
         )
     };
     Ok(Checked {
@@ -98,6 +104,7 @@ pub fn check(scene: &Scene) -> Result<Checked> {
         mobility,
         loops,
         closed_form,
+        motion_range,
         plan: Plan::of(scene),
     })
 }
@@ -322,6 +329,38 @@ fn search_dead_positions(
         .map_err(|e| solver_error(scene, e))
 }
 
+/// The drive's motion range in words, in the scene's units: `"from … (…) to … (…)"`, or
+/// that no limit was met within the distance searched.
+pub fn describe_motion_range(scene: &Scene, range: &MotionRange) -> String {
+    let end = |limit: &Option<mechdiff_core::geometry::DriveLimit>, sign: f64| match limit {
+        Some(l) => {
+            let what = match l.kind {
+                LimitKind::Limit => "limit position",
+                LimitKind::ChangePoint => "change point",
+                LimitKind::Toggle => "toggle",
+                LimitKind::BranchFlip => "branch flip beyond",
+            };
+            let joints = l.joints.join(", ");
+            format!(
+                "{} ({what}, loop of joints {joints})",
+                scene.drive_text(l.phi)
+            )
+        }
+        None => format!(
+            "beyond {} (no limit met)",
+            scene.drive_text(scene.drive.at_sketch + sign * range.searched)
+        ),
+    };
+    if range.lower.is_none() && range.upper.is_none() && scene.drive.kind == DriveKind::Angle {
+        return "full turns (no limit position, change point or toggle in a turn)".to_owned();
+    }
+    format!(
+        "from {} to {}",
+        end(&range.lower, -1.0),
+        end(&range.upper, 1.0)
+    )
+}
+
 /// A core solver error, with drive positions in the scene's units.
 pub(crate) fn solver_error(scene: &Scene, source: mechdiff_core::Error) -> Error {
     use mechdiff_core::Error as Core;
@@ -348,6 +387,23 @@ pub(crate) fn solver_error(scene: &Scene, source: mechdiff_core::Error) -> Error
             position: scene.drive_text(phi),
             loop_joints: joined(&joints),
             condition,
+        },
+        Core::Blocked {
+            from,
+            to,
+            limit,
+            joints,
+        } => Error::Blocked {
+            file: scene.file.clone(),
+            from: scene.drive_text(from),
+            to: scene.drive_text(to),
+            limit: scene.drive_text(limit),
+            loop_joints: joined(&joints),
+        },
+        Core::ChangePoint { phi, joints } => Error::ChangePoint {
+            file: scene.file.clone(),
+            position: scene.drive_text(phi),
+            loop_joints: joined(&joints),
         },
         Core::BranchFlip { from, to, joints } => Error::BranchFlip {
             file: scene.file.clone(),
