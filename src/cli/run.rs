@@ -22,6 +22,9 @@ pub struct RunArgs {
 pub fn run(args: &RunArgs) -> Result<(), Error> {
     let scene = scene::load(&args.scene)?;
     let report = scene::run(&scene)?;
+    for warning in &report.warnings {
+        eprintln!("warning: {}: {warning}", scene.file);
+    }
     if let Some(path) = &args.csv {
         let write = |path: &PathBuf| -> std::io::Result<()> {
             let mut out = BufWriter::new(File::create(path)?);

@@ -55,7 +55,13 @@ pub struct Report {
     pub dead_positions: Vec<DeadPositions>,
     /// The dynamic outputs' run (their columns are also in `columns` and `rows`).
     pub dynamics: Option<super::dynamics::DynamicsReport>,
+    /// Warnings about the results (ill-conditioned positions: their estimated error).
+    pub warnings: Vec<String>,
 }
+
+/// A pose that amplifies rounding more than this (see `Tracker::amplification`) is
+/// reported as ill-conditioned: its results carry a relative error above ~2e-12.
+const ILL_CONDITIONED: f64 = 1e4;
 
 impl Report {
     /// The SI values of the column named `name` (e.g. `psi'`, `vx_C`), in row order.
@@ -124,10 +130,21 @@ pub fn run(scene: &Scene) -> Result<Report> {
         all.extend(columns(output, &scene.units, drive_dimension));
     }
     let positions = drive_positions(scene, &mechanism)?;
-    let rows = match plan.order {
+    let (rows, worst) = match plan.order {
         0 | 1 => sweep::<1>(scene, &mechanism, &plan, &positions)?,
         _ => sweep::<2>(scene, &mechanism, &plan, &positions)?,
     };
+    let mut warnings = Vec::new();
+    if let Some((amplification, phi, joints)) = worst.filter(|w| w.0 > ILL_CONDITIONED) {
+        warnings.push(format!(
+            "ill-conditioned position at drive position {}: the loop of joints {} amplifies \
+             rounding by {amplification:.1e} (its lever is that much shorter than in the \
+             sketch); expect a relative error of about {:.0e} in the results there",
+            scene.drive_text(phi),
+            joints.join(", "),
+            amplification * f64::EPSILON,
+        ));
+    }
     let mut dead_positions = Vec::new();
     for output in scene.outputs.iter().filter(|o| o.dead_positions) {
         dead_positions.push(DeadPositions {
@@ -153,6 +170,7 @@ pub fn run(scene: &Scene) -> Result<Report> {
         rows,
         dead_positions,
         dynamics,
+        warnings,
     })
 }
 
@@ -257,7 +275,8 @@ fn sweep<const N: usize>(
     mechanism: &Mechanism,
     plan: &Plan,
     positions: &[f64],
-) -> Result<Vec<Vec<f64>>> {
+) -> Result<(Vec<Vec<f64>>, Option<(f64, f64, Vec<String>)>)> {
+    let mut worst: Option<(f64, f64, Vec<String>)> = None;
     let mut tracker = Solver::default()
         .track(mechanism)
         .map_err(|e| solver_error(scene, e))?;
@@ -269,6 +288,10 @@ fn sweep<const N: usize>(
     let mut rows = Vec::with_capacity(positions.len());
     for &phi in positions {
         let k = solve::<N>(scene, &mut tracker, phi)?;
+        let (amplification, joints) = tracker.amplification();
+        if worst.as_ref().is_none_or(|w| amplification > w.0) {
+            worst = Some((amplification, phi, joints));
+        }
         let mut row = vec![phi];
         for (resolved, previous) in outputs.iter().zip(previous.iter_mut()) {
             let values = evaluate(scene, &k, resolved, previous);
@@ -280,7 +303,7 @@ fn sweep<const N: usize>(
         }
         rows.push(row);
     }
-    Ok(rows)
+    Ok((rows, worst))
 }
 
 fn solve<'m, const N: usize>(

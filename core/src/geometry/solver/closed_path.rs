@@ -20,6 +20,8 @@ impl Tracker<'_> {
         let start = self.phi;
         let longest = self.longest_step();
         let mut halvings: usize = 0;
+        // The condition at `phi` itself, if its formula found it a toggle.
+        let mut toggle_at_phi = None;
         while self.phi != phi || report.steps == 0 {
             let remaining = phi - self.phi;
             let full = if remaining.abs() > longest {
@@ -42,13 +44,18 @@ impl Tracker<'_> {
                     }
                     Some(l) => (l, None),
                 },
-                Err((l, failure)) => (l, Some(failure)),
+                Err((l, failure)) => {
+                    if let (true, Failure::Singular { condition }) = (target == phi, failure) {
+                        toggle_at_phi = Some(condition);
+                    }
+                    (l, Some(failure))
+                }
             };
             report.newton_failures += 1;
             halvings += 1;
             let next = self.phi + full / f64::powi(2.0, halvings.min(1074) as i32);
             if halvings > self.solver.max_subdivisions || next == self.phi {
-                match self.end_of_branch(start, phi, target, failed) {
+                match self.end_of_branch(start, phi, target, failed, toggle_at_phi) {
                     // The margin stayed clear of zero: rounding, not the branch's end.
                     None => {
                         self.evaluate_closed(target)

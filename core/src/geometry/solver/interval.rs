@@ -31,7 +31,7 @@
 //! limit position, refined by Newton on `f` (quadratic convergence from the assembling
 //! side) to full precision ([`Error::Blocked`]). Zero within [`TOUCH`]: a change point,
 //! located by Newton on `f′` ([`Error::ChangePoint`]). A blocked range narrower than
-//! `2 √(2 TOUCH / f″)` (≈ 3e-6 rad for `f″ ~ 1`) is indistinguishable from a change point
+//! `2 √(2 TOUCH / f″)` (≈ 3e-7 rad for `f″ ~ 1`) is indistinguishable from a change point
 //! in f64 and reported as one.
 
 use super::Tracker;
@@ -44,9 +44,12 @@ use num_dual::Dual2_64;
 pub(crate) const LONGEST_TURN: f64 = 0.125;
 
 /// A margin whose local minimum is within this of zero touches it (a change point) rather
-/// than crossing it (margins are 1 in the sketch; rounding leaves ~1e-15 near a double
-/// root, and a simple root at slope f′ gives a model minimum −f′²/(2f″)).
-pub(crate) const TOUCH: f64 = 1e-12;
+/// than crossing it or passing above it. Margins are 1 in the sketch; near a double root
+/// a discriminant keeps only rounding (~10 ε: `d² l₁² − g²` cancels terms of size 1 in
+/// the margin's units), and a simple root at slope f′ gives a model minimum −f′²/(2f″).
+/// A loop whose margin truly passes a minimum above this (a slotted lever whose pin
+/// passes 1e-6 of its length from the hinge: 2.5e-13) is regular and computed.
+pub(crate) const TOUCH: f64 = 1e-14;
 
 /// Newton iterations allowed when refining a limit position or a change point.
 const REFINE: usize = 60;
@@ -99,13 +102,15 @@ impl Tracker<'_> {
     /// (the move started at `start`) does so; `tried` is the smallest step's end that
     /// failed, with the loop that failed it (and how, if its formula failed there).
     /// `None`: the margin stays clear of zero up to `tried` (the step's check failed by
-    /// rounding only), so `tried` may be accepted.
+    /// rounding only), so `tried` may be accepted. `toggle_at_phi`: the condition at `phi`
+    /// if its formula found `phi` itself a toggle.
     pub(super) fn end_of_branch(
         &mut self,
         start: f64,
         phi: f64,
         tried: f64,
         (first, failure): (usize, Option<Failure>),
+        toggle_at_phi: Option<f64>,
     ) -> Option<Error> {
         let a = self.phi;
         let at_tried = self.stops_closing(tried);
@@ -161,7 +166,7 @@ impl Tracker<'_> {
             return Some(Error::ChangePoint { phi: at, joints });
         }
         let limit = self.refine(l, lo, false).unwrap_or(lo);
-        if let (true, Some((_, Some(Failure::Singular { condition })))) = (tried == phi, at_tried) {
+        if let Some(condition) = toggle_at_phi {
             // Asked for the limit position itself (within the band where the loop's
             // condition exceeds the threshold): a toggle there.
             if (limit - phi).abs() <= (phi - lo).abs() {
