@@ -83,6 +83,23 @@ fn a_20_degree_sweep_does_not_jump_the_blocked_range_of_an_offset_slider_crank()
 }
 
 #[test]
+fn a_blocked_range_narrower_than_a_sub_step_is_not_jumped() {
+    // l = 1.499: blocked where sin φ < −0.999, 267.44°–272.56° (5.1° wide). The 20° step
+    // from 260° is checked in sub-steps of 1/8 rad (7.16°): 267.16° and 274.33° both
+    // assemble, so only the check of the margin between them finds the range.
+    let m = offset_slider_crank(1.0, 1.499, 0.5, 1.0, None);
+    let err = Solver::default()
+        .sweep::<1>(&m, &degrees(20.0, 360.0))
+        .unwrap_err();
+    let Error::Blocked { limit, .. } = err else {
+        panic!("expected Blocked, got {err:?}")
+    };
+    // The closed form π + asin 0.999, to 1e-12 as above.
+    let exact = PI + 0.999f64.asin();
+    assert!((limit - exact).abs() < 1e-12, "{limit} vs {exact}");
+}
+
+#[test]
 fn the_motion_range_of_an_offset_slider_crank_is_its_two_limit_positions() {
     let m = offset_slider_crank(1.0, 1.49, 0.5, 1.0, None);
     let range = Solver::default().track(&m).unwrap().motion_range().unwrap();
