@@ -137,7 +137,7 @@ pub enum Error {
         residual: f64,
     },
     /// A loop stops closing between two drive positions of the sweep (a limit position
-    /// lies between them).
+    /// lies between them). (Texts boxed: keeps `Error` small.)
     #[error(
         "{file}: cannot assemble between drive positions {from} and {to}: the loop of joints \
          {loop_joints} first fails at {limit} (a limit position: the drive must stop there; \
@@ -147,13 +147,13 @@ pub enum Error {
         /// The scene file.
         file: String,
         /// The last drive position that assembled, with its unit.
-        from: String,
+        from: Box<str>,
         /// The drive position asked for, with its unit.
-        to: String,
+        to: Box<str>,
         /// The limit position, to full precision, with its unit.
-        limit: String,
+        limit: Box<str>,
         /// The joints of the loop that stops closing, comma-separated.
-        loop_joints: String,
+        loop_joints: Box<str>,
     },
     /// A loop reaches a change point (bifurcation) in the sweep.
     #[error(

@@ -229,7 +229,7 @@ fn geometry_that_cannot_assemble_names_the_position_and_the_loop() {
     else {
         panic!("{e:?}")
     };
-    assert_eq!((from.as_str(), to.as_str()), ("100 deg", "110 deg"));
+    assert_eq!((&**from, &**to), ("100 deg", "110 deg"));
     // The limit position: |A − O4| = |AB| + |BO4| = 0.2 + √(0.2² + 0.25²) with
     // |A − O4|² = 0.25² + 0.4² − 2·0.25·0.4 cos φ; printed to 15 digits, compared to
     // 1e-9 deg.

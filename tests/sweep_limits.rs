@@ -55,7 +55,7 @@ fn a_20_degree_sweep_reports_the_blocked_range_not_a_full_turn() {
     else {
         panic!("expected Blocked, got {e:?}")
     };
-    assert_eq!((from.as_str(), to.as_str()), ("260 deg", "280 deg"));
+    assert_eq!((&**from, &**to), ("260 deg", "280 deg"));
     // 180° + asin 0.99, printed to 15 significant digits: 1e-11 deg.
     let exact = 180.0 + 0.99f64.asin().to_degrees();
     assert!((degrees(limit) - exact).abs() < 1e-11, "{limit} vs {exact}");

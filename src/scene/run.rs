@@ -270,13 +270,17 @@ fn sketch_size(scene: &Scene) -> f64 {
     size
 }
 
+/// The most ill-conditioned position of a sweep: its amplification of rounding, drive
+/// position and loop joints.
+type Worst = (f64, f64, Vec<String>);
+
 fn sweep<const N: usize>(
     scene: &Scene,
     mechanism: &Mechanism,
     plan: &Plan,
     positions: &[f64],
-) -> Result<(Vec<Vec<f64>>, Option<(f64, f64, Vec<String>)>)> {
-    let mut worst: Option<(f64, f64, Vec<String>)> = None;
+) -> Result<(Vec<Vec<f64>>, Option<Worst>)> {
+    let mut worst: Option<Worst> = None;
     let mut tracker = Solver::default()
         .track(mechanism)
         .map_err(|e| solver_error(scene, e))?;
@@ -418,10 +422,10 @@ pub(crate) fn solver_error(scene: &Scene, source: mechdiff_core::Error) -> Error
             joints,
         } => Error::Blocked {
             file: scene.file.clone(),
-            from: scene.drive_text(from),
-            to: scene.drive_text(to),
-            limit: scene.drive_text(limit),
-            loop_joints: joined(&joints),
+            from: scene.drive_text(from).into(),
+            to: scene.drive_text(to).into(),
+            limit: scene.drive_text(limit).into(),
+            loop_joints: joined(&joints).into(),
         },
         Core::ChangePoint { phi, joints } => Error::ChangePoint {
             file: scene.file.clone(),

@@ -191,7 +191,7 @@ impl Tracker<'_> {
         match self.evaluate_closed(phi) {
             Err((l, failure)) => Some((l, Some(failure))),
             Ok(()) => (self.closed_margins.iter())
-                .position(|m| !(m.re > 0.0))
+                .position(|m| m.re.is_nan() || m.re <= 0.0)
                 .map(|l| (l, None)),
         }
     }
