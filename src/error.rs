@@ -202,6 +202,39 @@ pub enum Error {
         /// The remaining constraint residual (m).
         residual: f64,
     },
+    /// A loop stops closing between two drive positions of the sweep (a limit position
+    /// lies between them). (Texts boxed: keeps `Error` small.)
+    #[error(
+        "{file}: cannot assemble between drive positions {from} and {to}: the loop of joints \
+         {loop_joints} first fails at {limit} (a limit position: the drive must stop there; \
+         `mechdiff check` prints the drive's motion range)"
+    )]
+    Blocked {
+        /// The scene file.
+        file: String,
+        /// The last drive position that assembled, with its unit.
+        from: Box<str>,
+        /// The drive position asked for, with its unit.
+        to: Box<str>,
+        /// The limit position, to full precision, with its unit.
+        limit: Box<str>,
+        /// The joints of the loop that stops closing, comma-separated.
+        loop_joints: Box<str>,
+    },
+    /// A loop reaches a change point (bifurcation) in the sweep.
+    #[error(
+        "{file}: change point (bifurcation) at drive position {position}: two assembly \
+         branches of the loop of joints {loop_joints} meet there and the drive does not \
+         decide which one the mechanism follows; end the sweep before it"
+    )]
+    ChangePoint {
+        /// The scene file.
+        file: String,
+        /// The change point, to full precision, with its unit.
+        position: String,
+        /// The joints of the loop, comma-separated.
+        loop_joints: String,
+    },
     /// The position is singular: the drive cannot move the mechanism there (toggle).
     #[error(
         "{file}: singular position (toggle) at drive position {position}: the loop of joints \

@@ -219,25 +219,31 @@ fn geometry_that_cannot_assemble_names_the_position_and_the_loop() {
         .replace("from = 0\nto = 360", "from = 90\nto = 180");
     let scene = scene::parse("bad.toml", &text).unwrap();
     let e = scene::run(&scene).unwrap_err();
-    let Error::Unassemblable {
-        position,
-        last,
+    let Error::Blocked {
+        from,
+        to,
+        limit,
         loop_joints,
         ..
     } = &e
     else {
         panic!("{e:?}")
     };
-    assert_eq!(position, "110 deg");
-    let last: f64 = last.trim_end_matches(" deg").parse().unwrap();
-    assert!(last > 100.0 && last < 110.0, "{e}");
+    assert_eq!((&**from, &**to), ("100 deg", "110 deg"));
+    // The limit position: |A − O4| = |AB| + |BO4| = 0.2 + √(0.2² + 0.25²) with
+    // |A − O4|² = 0.25² + 0.4² − 2·0.25·0.4 cos φ; printed to 15 digits, compared to
+    // 1e-9 deg.
+    let limit: f64 = limit.trim_end_matches(" deg").parse().unwrap();
+    let reach = 0.2 + 0.2f64.hypot(0.25);
+    let exact = ((0.0625 + 0.16 - reach * reach) / 0.2).acos().to_degrees();
+    assert!((limit - exact).abs() < 1e-9, "{limit} vs {exact}");
     assert!(
         loop_joints.contains('A') && loop_joints.contains("O4"),
         "{e}"
     );
     assert!(
         e.to_string()
-            .starts_with("bad.toml: cannot assemble at drive position 110 deg"),
+            .starts_with("bad.toml: cannot assemble between drive positions 100 deg and 110 deg"),
         "{e}"
     );
 }

@@ -134,6 +134,41 @@ pub enum Error {
         /// Remaining constraint residual (m).
         residual: f64,
     },
+    /// A loop stops closing between two drive positions: the drive cannot move from `from`
+    /// to `to`. `limit` is the limit position (to full precision) where the loop's
+    /// assembly condition first fails: the drive must stop (or turn back) there.
+    #[error(
+        "cannot assemble between drive positions φ = {from} and φ = {to}: the loop of joints \
+         {} first fails at φ = {limit} (a limit position: the drive must stop there)",
+        .joints.join(", ")
+    )]
+    Blocked {
+        /// Drive position the move started from (it assembles).
+        from: f64,
+        /// Drive position asked for.
+        to: f64,
+        /// The limit position: the first drive position from `from` towards `to` where the
+        /// loop's assembly condition (its discriminant) vanishes.
+        limit: f64,
+        /// Joints of the loop that stops closing.
+        joints: Vec<String>,
+    },
+    /// A loop reaches a change point (bifurcation): two of its assembly branches meet there
+    /// (the Jacobian drops rank with a finite limit, e.g. a parallelogram or kite four-bar
+    /// folded flat), so the drive alone does not say how the mechanism moves on.
+    #[error(
+        "change point (bifurcation) at drive position φ = {phi}: two assembly branches of \
+         the loop of joints {} meet there, and the drive does not decide which one the \
+         mechanism follows beyond it; stop the sweep before it, or add a joint or drive \
+         that fixes the branch",
+        .joints.join(", ")
+    )]
+    ChangePoint {
+        /// The drive position of the change point (to full precision).
+        phi: f64,
+        /// Joints of the loop whose branches meet.
+        joints: Vec<String>,
+    },
     /// The constraint Jacobian is singular (toggle position of the driven chain).
     #[error(
         "singular position at drive position φ = {phi} (condition number {condition:e}); \

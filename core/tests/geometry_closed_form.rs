@@ -222,26 +222,23 @@ fn yoke_driven_crank_matches_newton_and_reports_dead_ends() {
 
     // Past the crank's reach: the loop (crank hinge + slot) cannot assemble.
     let mut t = Solver::default().track(&m).unwrap();
+    let from = t.phi();
     match t.move_to(0.25).unwrap_err() {
-        Error::Unassemblable {
-            phi,
-            last_assembled,
+        Error::Blocked {
+            from: start,
+            to,
+            limit,
             joints,
-            residual,
         } => {
-            assert_eq!(phi, 0.25);
-            // The step is halved (as on the Newton path) up to the crank's reach x = r
-            // (within 2⁻²⁴ of the 0.14 m step).
-            assert!(
-                last_assembled <= r && r - last_assembled < 1e-6,
-                "{last_assembled}"
-            );
-            assert_eq!(t.phi(), last_assembled);
+            assert_eq!((start, to), (from, 0.25));
+            // The limit position is the crank's reach x = r, located by Newton on the
+            // loop's margin: to 4e-16 (two ulps of 0.2; r is exact in the model).
+            assert!((limit - r).abs() <= 4e-16, "{limit}");
+            // The tracker stays at the last position accepted, before the limit.
+            assert!(t.phi() < r && t.phi() > from, "{}", t.phi());
             assert_eq!(joints, vec!["O".to_string(), "slot".to_string()]);
-            // The gap |x| − r at the last sub-step tried, just past the reach.
-            assert!(residual > 0.0 && residual < 1e-6, "{residual}");
         }
-        other => panic!("expected Unassemblable, got {other:?}"),
+        other => panic!("expected Blocked, got {other:?}"),
     }
     // The tracker is left at its last pose and still works.
     t.move_to(0.0).unwrap();
@@ -281,21 +278,21 @@ fn rocker_whose_offset_slot_misses_the_pin_is_unassemblable() {
     // A = O + l1 (sin φ, −cos φ) is closest to B0 where (sin φ, −cos φ) points from O to B0.
     let closest = (-e).atan2(l0);
     match t.move_to(closest).unwrap_err() {
-        Error::Unassemblable {
-            phi,
-            last_assembled,
-            joints,
-            residual,
+        Error::Blocked {
+            to, limit, joints, ..
         } => {
-            assert_eq!(phi, closest);
+            assert_eq!(to, closest);
             assert_eq!(joints, vec!["B0".to_string(), "slot".to_string()]);
-            // The gap (pin inside the slot's offset circle) at the last sub-step tried,
-            // just past the limit: positive, below the 0.0145 m at `closest`.
-            let gap = e - (l1 - e.hypot(l0));
-            assert!(residual > 0.0 && residual < gap, "{residual} vs {gap}");
-            assert!(last_assembled > closest && last_assembled < 0.0);
+            // The limit: |A − B0| = e, i.e. e sin φ − l0 cos φ = −(l0² + l1²)/(2 l1):
+            // φ = β + asin(k), β = atan2(l0, e), k = −(l0² + l1²)/(2 l1 √(e² + l0²)).
+            // 1e-14: the closed form's own rounding (asin near its steep end) and the
+            // solver's Newton both at rounding level.
+            let k = -(l0 * l0 + l1 * l1) / (2.0 * l1 * e.hypot(l0));
+            let exact = l0.atan2(e) + k.asin();
+            assert!((limit - exact).abs() < 1e-14, "{limit} vs {exact}");
+            assert!(t.phi() > limit && t.phi() < 0.0);
         }
-        other => panic!("expected Unassemblable, got {other:?}"),
+        other => panic!("expected Blocked, got {other:?}"),
     }
 }
 
@@ -361,22 +358,22 @@ fn dyads_report_unassemblable_and_toggle_through_the_closed_form() {
     let mut t = Solver::default().track(&m).unwrap();
     assert_eq!(t.closed_form_loops(), vec![true, true]);
     match t.move_to(PI).unwrap_err() {
-        Error::Unassemblable {
-            phi,
-            last_assembled,
+        Error::Blocked {
+            from,
+            to,
+            limit,
             joints,
-            residual,
         } => {
-            assert_eq!(phi, PI);
+            assert_eq!((from, to), (0.0, PI));
             assert_eq!(joints, vec!["A", "B", "B0"]);
-            // |A − B0|² = a² + d² − 2ad cos φ reaches 0.37² at the limit; the halved steps
-            // stop within 2⁻²⁴ of the π step below it, and the gap |A − B0| − 0.37 at
-            // the last sub-step tried is tiny and positive.
-            let limit = ((0.01 + 0.09 - 0.37f64 * 0.37) / 0.06).acos();
-            assert!(last_assembled <= limit && limit - last_assembled < 1e-6);
-            assert!(residual > 0.0 && residual < 1e-6, "{residual}");
+            // |A − B0|² = a² + d² − 2ad cos φ reaches 0.37² at the limit position; 1e-14:
+            // acos of a value rounded to 1e-16 near cos = −0.6 (slope 1.25), and the
+            // solver's Newton on the margin at rounding level.
+            let exact = ((0.01 + 0.09 - 0.37f64 * 0.37) / 0.06).acos();
+            assert!((limit - exact).abs() < 1e-14, "{limit} vs {exact}");
+            assert!(t.phi() < exact);
         }
-        other => panic!("expected Unassemblable, got {other:?}"),
+        other => panic!("expected Blocked, got {other:?}"),
     }
     // Slider-crank driven by its slider into the dead centre x = r + l: the crank and rod
     // are aligned (the RRR dyad crank–rod, between O and the slider's pin B, is at its

@@ -16,27 +16,26 @@ fn four_bar_with_a_short_coupler_names_the_drive_position_and_the_loop() {
         .sweep::<1>(&m, &revolution(1.0, &[]))
         .unwrap_err();
     match &err {
-        Error::Unassemblable {
-            phi,
-            last_assembled,
+        Error::Blocked {
+            from,
+            to,
+            limit: found,
             joints,
-            ..
         } => {
-            // The first drive position of the sweep beyond the limit, 96°.
-            assert_eq!(*phi, 96f64.to_radians());
-            // The subdivision walks up to the limit (within 2⁻²⁴ of the 1° step).
-            assert!(
-                *last_assembled <= limit && limit - last_assembled < 1e-6,
-                "{last_assembled}"
-            );
+            // The sweep's step from 95° to the first drive position beyond the limit, 96°.
+            assert_eq!((*from, *to), (95f64.to_radians(), 96f64.to_radians()));
+            // The limit position to 1e-13 (acos near −0.09, slope 1: rounding).
+            assert!((found - limit).abs() < 1e-13, "{found} vs {limit}");
             // The coupler–rocker loop, not the crank.
             assert_eq!(joints, &["A", "B", "B0"]);
         }
-        other => panic!("expected Unassemblable, got {other:?}"),
+        other => panic!("expected Blocked, got {other:?}"),
     }
     let text = err.to_string();
     assert!(
-        text.contains("φ = 1.67") && text.contains("A, B, B0"),
+        text.contains("φ = 1.67")
+            && text.contains("first fails at φ = 1.659")
+            && text.contains("A, B, B0"),
         "{text}"
     );
 }
@@ -299,6 +298,9 @@ fn unlimited_subdivision_still_ends_with_an_error() {
         .unwrap();
     match t.move_to(2.0) {
         Err(Error::Unassemblable { phi, .. }) => assert_eq!(phi, 2.0),
+        // The closed form locates the limit itself (to rounding: acos of a value near
+        // −0.09, 1e-13).
+        Err(Error::Blocked { limit: found, .. }) => assert!((found - limit).abs() < 1e-13),
         // The limit position is a toggle of the coupler–rocker loop (1e-6 rad: the
         // condition reaches the threshold ~1e-11 rad before it).
         Err(Error::Singular { phi, joints, .. }) => {

@@ -41,6 +41,13 @@ pub fn check(args: &CheckArgs) -> Result<(), Error> {
             joints.join(", ")
         );
     }
+    match &checked.motion_range {
+        Ok(range) => println!(
+            "drive motion range: {}",
+            scene::run::describe_motion_range(&scene, range)
+        ),
+        Err(why) => println!("drive motion range: not found ({why})"),
+    }
     println!("{}", checked.plan.describe(&scene));
     Ok(())
 }

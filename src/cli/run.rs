@@ -31,6 +31,9 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
     }
     let scene = scene::load(&args.scene)?;
     let report = scene::run(&scene)?;
+    for warning in &report.warnings {
+        eprintln!("warning: {}: {warning}", scene.file);
+    }
     if let Some(path) = &args.csv {
         files::write_atomically(path, |mut out| table::write_csv(&report, &mut out))?;
     }

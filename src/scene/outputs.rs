@@ -228,7 +228,7 @@ fn line(
     let b = cx.point(b, geometry.names, context)?;
     let (pa, pb) = (geometry.sketch(a), geometry.sketch(b));
     let length = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
-    if length <= 1e-9 * geometry.scale {
+    if super::resolve::coincident(pa, pb) {
         return Err(Error::NonPositiveLength {
             location: cx.at(line),
             what: format!("the line `{a}`–`{b}` of {context} (distance between its points)"),

@@ -23,6 +23,15 @@ pub const GROUND: &str = "ground";
 /// Relative tolerance (of the sketch's size) for "this point lies on that line".
 const ON_LINE_TOLERANCE: f64 = 1e-9;
 
+/// Whether two sketch points are the same to the rounding of their own coordinates (not
+/// of the sketch's extent: a point far away elsewhere must not make a 1 m line "not
+/// positive").
+pub(crate) fn coincident(pa: [f64; 2], pb: [f64; 2]) -> bool {
+    let apart =
+        |i: usize| (pb[i] - pa[i]).abs() > 64.0 * f64::EPSILON * pa[i].abs().max(pb[i].abs());
+    !(apart(0) || apart(1))
+}
+
 /// Checks a parsed file and resolves it into a [`Scene`].
 pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
     let cx = Context::new(source, units(&file.units));
@@ -310,7 +319,7 @@ impl<'a> Context<'a> {
         let b = self.point_on(b, link, geometry, context)?;
         let (pa, pb) = (geometry.sketch(a), geometry.sketch(b));
         let length = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
-        if length <= ON_LINE_TOLERANCE * geometry.scale {
+        if coincident(pa, pb) {
             return Err(Error::NonPositiveLength {
                 location: self.at(line),
                 what: format!("the line `{a}`–`{b}` in {context} (distance between its points)"),

@@ -3,7 +3,9 @@
 
 use std::cell::RefCell;
 
-use mechdiff_core::geometry::{Kinematics, Mechanism, Mobility, Solver, Tracker};
+use mechdiff_core::geometry::{
+    Kinematics, LimitKind, Mechanism, Mobility, MotionRange, Solver, Tracker,
+};
 use mechdiff_core::{DeadPosition, DeadPositionSearch, DriveState};
 
 use crate::error::{Error, Result};
@@ -53,7 +55,13 @@ pub struct Report {
     pub dead_positions: Vec<DeadPositions>,
     /// The dynamic outputs' run (their columns are also in `columns` and `rows`).
     pub dynamics: Option<super::dynamics::DynamicsReport>,
+    /// Warnings about the results (ill-conditioned positions: their estimated error).
+    pub warnings: Vec<String>,
 }
+
+/// A pose that amplifies rounding more than this (see `Tracker::amplification`) is
+/// reported as ill-conditioned: its results carry a relative error above ~2e-12.
+const ILL_CONDITIONED: f64 = 1e4;
 
 impl Report {
     /// The SI values of the column named `name` (e.g. `psi'`, `vx_C`), in row order.
@@ -75,6 +83,9 @@ pub struct Checked {
     pub loops: Vec<(Vec<String>, i8)>,
     /// Per loop, whether the solver closes it by a closed form (else by Newton).
     pub closed_form: Vec<bool>,
+    /// How far the drive moves either way from the sketch (limit positions, change points,
+    /// toggles), or why it could not be walked.
+    pub motion_range: std::result::Result<MotionRange, String>,
     /// The plan a run would carry out.
     pub plan: Plan,
 }
@@ -83,7 +94,7 @@ pub struct Checked {
 /// the sketch's assembly.
 pub fn check(scene: &Scene) -> Result<Checked> {
     let mechanism = mechanism(scene)?;
-    let (mobility, loops, closed_form) = {
+    let (mobility, loops, closed_form, motion_range) = {
         let tracker = Solver::default()
             .track(&mechanism)
             .map_err(|e| solver_error(scene, e))?;
@@ -91,6 +102,7 @@ pub fn check(scene: &Scene) -> Result<Checked> {
             tracker.mobility(),
             tracker.loops(),
             tracker.closed_form_loops(),
+            (tracker.motion_range()).map_err(|e| solver_error(scene, e).to_string()),
         )
     };
     Ok(Checked {
@@ -98,6 +110,7 @@ pub fn check(scene: &Scene) -> Result<Checked> {
         mobility,
         loops,
         closed_form,
+        motion_range,
         plan: Plan::of(scene),
     })
 }
@@ -117,10 +130,21 @@ pub fn run(scene: &Scene) -> Result<Report> {
         all.extend(columns(output, &scene.units, drive_dimension));
     }
     let positions = drive_positions(scene, &mechanism)?;
-    let rows = match plan.order {
+    let (rows, worst) = match plan.order {
         0 | 1 => sweep::<1>(scene, &mechanism, &plan, &positions)?,
         _ => sweep::<2>(scene, &mechanism, &plan, &positions)?,
     };
+    let mut warnings = Vec::new();
+    if let Some((amplification, phi, joints)) = worst.filter(|w| w.0 > ILL_CONDITIONED) {
+        warnings.push(format!(
+            "ill-conditioned position at drive position {}: the loop of joints {} amplifies \
+             rounding by {amplification:.1e} (its lever is that much shorter than in the \
+             sketch); expect a relative error of about {:.0e} in the results there",
+            scene.drive_text(phi),
+            joints.join(", "),
+            amplification * f64::EPSILON,
+        ));
+    }
     let mut dead_positions = Vec::new();
     for output in scene.outputs.iter().filter(|o| o.dead_positions) {
         dead_positions.push(DeadPositions {
@@ -146,6 +170,7 @@ pub fn run(scene: &Scene) -> Result<Report> {
         rows,
         dead_positions,
         dynamics,
+        warnings,
     };
     all_finite(scene, &report)?;
     Ok(report)
@@ -284,12 +309,17 @@ fn sketch_size(scene: &Scene) -> f64 {
     size
 }
 
+/// The most ill-conditioned position of a sweep: its amplification of rounding, drive
+/// position and loop joints.
+type Worst = (f64, f64, Vec<String>);
+
 fn sweep<const N: usize>(
     scene: &Scene,
     mechanism: &Mechanism,
     plan: &Plan,
     positions: &[f64],
-) -> Result<Vec<Vec<f64>>> {
+) -> Result<(Vec<Vec<f64>>, Option<Worst>)> {
+    let mut worst: Option<Worst> = None;
     let mut tracker = Solver::default()
         .track(mechanism)
         .map_err(|e| solver_error(scene, e))?;
@@ -301,6 +331,10 @@ fn sweep<const N: usize>(
     let mut rows = Vec::with_capacity(positions.len());
     for &phi in positions {
         let k = solve::<N>(scene, &mut tracker, phi)?;
+        let (amplification, joints) = tracker.amplification();
+        if worst.as_ref().is_none_or(|w| amplification > w.0) {
+            worst = Some((amplification, phi, joints));
+        }
         let mut row = vec![phi];
         for (resolved, previous) in outputs.iter().zip(previous.iter_mut()) {
             let values = evaluate(scene, &k, resolved, previous);
@@ -312,7 +346,7 @@ fn sweep<const N: usize>(
         }
         rows.push(row);
     }
-    Ok(rows)
+    Ok((rows, worst))
 }
 
 fn solve<'m, const N: usize>(
@@ -361,6 +395,38 @@ fn search_dead_positions(
         .map_err(|e| solver_error(scene, e))
 }
 
+/// The drive's motion range in words, in the scene's units: `"from … (…) to … (…)"`, or
+/// that no limit was met within the distance searched.
+pub fn describe_motion_range(scene: &Scene, range: &MotionRange) -> String {
+    let end = |limit: &Option<mechdiff_core::geometry::DriveLimit>, sign: f64| match limit {
+        Some(l) => {
+            let what = match l.kind {
+                LimitKind::Limit => "limit position",
+                LimitKind::ChangePoint => "change point",
+                LimitKind::Toggle => "toggle",
+                LimitKind::BranchFlip => "branch flip beyond",
+            };
+            let joints = l.joints.join(", ");
+            format!(
+                "{} ({what}, loop of joints {joints})",
+                scene.drive_text(l.phi)
+            )
+        }
+        None => format!(
+            "beyond {} (no limit met)",
+            scene.drive_text(scene.drive.at_sketch + sign * range.searched)
+        ),
+    };
+    if range.lower.is_none() && range.upper.is_none() && scene.drive.kind == DriveKind::Angle {
+        return "full turns (no limit position, change point or toggle in a turn)".to_owned();
+    }
+    format!(
+        "from {} to {}",
+        end(&range.lower, -1.0),
+        end(&range.upper, 1.0)
+    )
+}
+
 /// A core solver error, with drive positions in the scene's units.
 pub(crate) fn solver_error(scene: &Scene, source: mechdiff_core::Error) -> Error {
     use mechdiff_core::Error as Core;
@@ -393,6 +459,23 @@ pub(crate) fn solver_error(scene: &Scene, source: mechdiff_core::Error) -> Error
             quantity: quantity.to_owned(),
             value: "not finite".to_owned(),
             position: scene.drive_text(phi),
+        },
+        Core::Blocked {
+            from,
+            to,
+            limit,
+            joints,
+        } => Error::Blocked {
+            file: scene.file.clone(),
+            from: scene.drive_text(from).into(),
+            to: scene.drive_text(to).into(),
+            limit: scene.drive_text(limit).into(),
+            loop_joints: joined(&joints).into(),
+        },
+        Core::ChangePoint { phi, joints } => Error::ChangePoint {
+            file: scene.file.clone(),
+            position: scene.drive_text(phi),
+            loop_joints: joined(&joints),
         },
         Core::BranchFlip { from, to, joints } => Error::BranchFlip {
             file: scene.file.clone(),

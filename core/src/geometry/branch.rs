@@ -187,7 +187,10 @@ pub(crate) fn condition(jac: &DMatrix<f64>, l: &Loop, limit: f64) -> f64 {
     if bound <= limit {
         return bound;
     }
-    let s = b.singular_values();
+    let Some(svd) = b.try_svd(false, false, f64::EPSILON, super::mobility::SVD_ITERATIONS) else {
+        return f64::INFINITY;
+    };
+    let s = svd.singular_values;
     let condition = s.max() / s.min();
     if condition.is_nan() {
         f64::INFINITY

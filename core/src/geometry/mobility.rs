@@ -23,6 +23,9 @@ use nalgebra::DMatrix;
 /// stays well above).
 const RANK_TOLERANCE: f64 = 1e-9;
 
+/// Sweeps allowed to an SVD (a few tens suffice for the small matrices of a mechanism).
+pub(crate) const SVD_ITERATIONS: usize = 10_000;
+
 /// The outcome of a successful mobility check.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Mobility {
@@ -80,7 +83,21 @@ pub fn check_mobility(m: &Mechanism) -> Result<Mobility, Error> {
     let size = rows.max(cols);
     let mut square = DMatrix::zeros(size, size);
     square.view_mut((0, 0), (rows, cols)).copy_from(&jac);
-    let svd = square.svd(true, true);
+    // Bounded: an SVD of a matrix with non-finite entries (a radius of 1e308 squared)
+    // would iterate forever.
+    let svd = square
+        .iter()
+        .all(|x| x.is_finite())
+        .then(|| {
+            square
+                .clone()
+                .try_svd(true, true, f64::EPSILON, SVD_ITERATIONS)
+        })
+        .flatten()
+        .ok_or(Error::NonFinite {
+            phi: m.drive_at_sketch,
+            quantity: "the constraint Jacobian at the sketch (a length too large for f64?)",
+        })?;
     let (u, v_t) = (svd.u.expect("requested"), svd.v_t.expect("requested"));
     let sigma_max = svd.singular_values.max();
     let null: Vec<usize> = (0..size)

@@ -26,4 +26,4 @@ pub use model::{
     Drive, DriveKind, GROUND, Inertia, Joint, JointKind, Link, Mechanism, MechanismBuilder, Point,
 };
 pub use output::{PointOutput, ScalarOutput};
-pub use solver::{SolveReport, Solver, Tracker};
+pub use solver::{DriveLimit, LimitKind, MotionRange, SolveReport, Solver, Tracker};

@@ -37,8 +37,12 @@
 //! ([`Tracker::value`], [`Tracker::position`]: no [`Kinematics`] built).
 
 mod closed_path;
+mod interval;
 mod newton_path;
+mod range;
 mod reading;
+
+pub use range::{DriveLimit, LimitKind, MotionRange};
 
 use super::block_lu::BlockLu;
 use super::branch::{self, Loop};
@@ -216,6 +220,8 @@ impl Solver {
             closed,
             closed_q: vec![Dual2_64::from(0.0); n],
             closed_frames: vec![(Dual2_64::from(0.0), Dual2_64::from(0.0)); n / 3],
+            margins: vec![Dual2_64::from(1.0); loops.len()],
+            closed_margins: vec![Dual2_64::from(1.0); loops.len()],
             loops,
             size,
             eq,
@@ -225,6 +231,12 @@ impl Solver {
         t.evaluate_trial(phi);
         t.check_trial(phi)?;
         t.accept(phi)?;
+        if t.closed_only {
+            // The margins (and their derivatives) at the sketch, for the first step's check.
+            t.evaluate_closed(phi)
+                .map_err(|(l, failure)| t.closed_failure(phi, l, failure))?;
+            t.margins.copy_from_slice(&t.closed_margins);
+        }
         Ok(t)
     }
 }
@@ -305,6 +317,10 @@ pub struct Tracker<'m> {
     /// The closed forms' pose and `(sin θ, cos θ)` in `Dual2_64` (buffers).
     closed_q: Vec<Dual2_64>,
     closed_frames: Vec<(Dual2_64, Dual2_64)>,
+    /// Every closed-form loop's margin (see `closed_form`) at the current pose, with its
+    /// derivatives in φ, and at the trial position (buffer).
+    margins: Vec<Dual2_64>,
+    closed_margins: Vec<Dual2_64>,
 }
 
 /// Constants of one loop's singularity screen.
@@ -355,6 +371,27 @@ impl<'m> Tracker<'m> {
     pub fn closed_form_loops(&self) -> Vec<bool> {
         let on = self.closed_only || self.seeding;
         self.closed.matched().map(|m| m && on).collect()
+    }
+
+    /// How much the current pose amplifies rounding, and in which loop (its joints): for
+    /// each closed-form loop, its lever's length in the sketch over its length now (see
+    /// `closed_form`: `1/√margin`, 1 in the sketch's shape). A pose is
+    /// ill-conditioned when this is large: its coordinates and coefficients carry a
+    /// relative error of about `amplification × f64::EPSILON` (e.g. a slotted lever whose
+    /// pin passes 1e-6 of its length from the hinge: ψ′ ≈ 1e6, amplification 1e6, error
+    /// ~2e-10). Loops on the Newton path count 1 (their conditioning is checked against
+    /// [`Solver::singular_threshold`] instead).
+    pub fn amplification(&self) -> (f64, Vec<String>) {
+        let mut worst = (1.0, 0);
+        if self.closed_only {
+            for (l, m) in self.margins.iter().enumerate() {
+                let k = self.closed.amplification(l, m.re);
+                if k > worst.0 || k.is_nan() {
+                    worst = (k, l);
+                }
+            }
+        }
+        (worst.0, self.loop_joints(&self.loops[worst.1]))
     }
 
     fn loop_joints(&self, l: &Loop) -> Vec<String> {

@@ -40,8 +40,19 @@
 //! the sketch's branch, as the Newton path's certificates enforce. A negative discriminant
 //! is a loop that cannot assemble ([`Error::Unassemblable`](crate::Error), residual: by how
 //! much it misses, m); a root near zero is a toggle (`Error::Singular`), the condition
-//! estimated as `size / √|disc|` (dimensionless; `1 / |cross(v, u)|` for a slide whose
-//! slot is parallel to its guide) and compared with the solver's singular threshold.
+//! estimated in the loop's own length scale as `√(size / |disc|)` with `size` what `disc`
+//! is at most for the loop's lengths now (`l₁² l₂²` for an RRR dyad: the condition is
+//! `1 / |sin γ|`, γ the angle between its links; `l₁²` for an RRP dyad; `ρ²` for a slot
+//! through a pin), and `1 / |cross(v, u)|` for a slide whose slot is parallel to its
+//! guide, compared with the solver's singular threshold. No sketch size enters, so points
+//! elsewhere in the mechanism (or its scale) change no verdict.
+//!
+//! **Margins.** Each loop also reports its *margin*: `disc` (or the slope) divided by its
+//! value's size in the sketch, so it is 1 in the sketch's shape, positive wherever the loop
+//! closes on its branch, and vanishes at a limit position (a simple root: beyond it the
+//! loop cannot close), at a change point (a double root: two branches meet) or at a toggle
+//! of a slide. The solver checks the margins between drive positions (see
+//! `solver::interval`); `1/√margin` is how much the loop amplifies rounding.
 //! Angles are unwrapped to the nearest turn of the previous pose, so rotations stay
 //! continuous.
 
@@ -167,6 +178,33 @@ struct Step {
     body: usize,
     pattern: Pattern,
     branch: f64,
+    /// The margin's factor: sign / size of the loop's raw margin at the sketch (see
+    /// [`Margin`]), so that the loop's margin is 1 in the sketch's shape and positive
+    /// wherever the loop closes regularly.
+    inv_scale: f64,
+}
+
+/// A loop's distance from the end of its branch, as computed by its formula: the value
+/// (`disc` of a square-root pattern, in the units of `size`; the slope of a slide,
+/// dimensionless) and the size it is measured against at this pose (`size = 1` for a
+/// slope, `1` and `1` for a pattern that always closes).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Margin<D> {
+    pub value: D,
+    pub size: f64,
+    /// Whether the value is a discriminant (its square root is the loop's lever) rather
+    /// than a slope; `None`: the loop always closes.
+    pub root: Option<bool>,
+}
+
+impl<D: Scalar> Margin<D> {
+    fn none() -> Self {
+        Margin {
+            value: D::from(1.0),
+            size: 1.0,
+            root: None,
+        }
+    }
 }
 
 /// Why a loop's closed form has no solution at a drive position.
@@ -182,10 +220,10 @@ pub(crate) enum Failure {
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct ClosedForm {
     steps: Vec<Option<Step>>,
-    /// Sketch size (m), the length scale of the condition estimates.
-    size: f64,
     /// The singular threshold (see [`super::Solver::singular_threshold`]).
     limit: f64,
+    /// Per loop: `Some(true)` a discriminant margin, `Some(false)` a slope, `None` none.
+    kinds: Vec<Option<bool>>,
 }
 
 /// The point fixed at `p` in body `b`.
@@ -254,21 +292,26 @@ impl ClosedForm {
     ) -> Self {
         let mut cf = ClosedForm {
             steps: Vec::with_capacity(loops.len()),
-            size,
             limit,
+            kinds: Vec::with_capacity(loops.len()),
         };
         let frames: Vec<(f64, f64)> = sketch.chunks_exact(3).map(|p| p[2].sin_cos()).collect();
         let tolerance = 1e-9 * size.max(f64::MIN_POSITIVE);
         for l in loops {
             let found = pattern(eq, l).and_then(|(body, pattern)| {
                 [1.0, -1.0].into_iter().find_map(|branch| {
-                    let step = Step {
+                    let mut step = Step {
                         body,
                         pattern,
                         branch,
+                        inv_scale: 1.0,
                     };
                     let (mut q, mut f) = (sketch.to_vec(), frames.clone());
-                    cf.solve(&step, phi0, sketch, &mut q, &mut f).ok()?;
+                    let mut margin = Margin::none();
+                    cf.solve(&step, phi0, sketch, &mut q, &mut f, &mut margin)
+                        .ok()?;
+                    let sign = if margin.value < 0.0 { -1.0 } else { 1.0 };
+                    step.inv_scale = sign / margin.size;
                     let second = match pattern {
                         Pattern::Dyad { second, .. }
                         | Pattern::Hinged {
@@ -283,10 +326,11 @@ impl ClosedForm {
                             (q[3 * b + i] - sketch[3 * b + i]).abs() <= scale
                         })
                     });
-                    close.then_some(step)
+                    close.then_some((step, margin.root))
                 })
             });
-            cf.steps.push(found);
+            cf.kinds.push(found.and_then(|(_, kind)| kind));
+            cf.steps.push(found.map(|(step, _)| step));
         }
         cf
     }
@@ -310,12 +354,15 @@ impl ClosedForm {
     /// derivative parts are those of φ itself), writing the pose and its bodies' `(sin, cos)`
     /// into `q`, `frames`. `previous` (the last pose, f64) picks the turn of each angle.
     /// All loops must have a closed form ([`ClosedForm::complete`]).
+    /// `margins` receives every loop's margin (see [`ClosedForm::amplification`]) up to
+    /// the failing loop included.
     pub fn solve_all<D: Scalar>(
         &self,
         phi: D,
         previous: &[f64],
         q: &mut [D],
         frames: &mut [(D, D)],
+        margins: &mut [D],
     ) -> Result<(), (usize, Failure)> {
         for (i, step) in self.steps.iter().enumerate() {
             let step = step.as_ref().ok_or((
@@ -324,21 +371,46 @@ impl ClosedForm {
                     condition: f64::NAN,
                 },
             ))?;
-            self.solve(step, phi, previous, q, frames)
-                .map_err(|f| (i, f))?;
+            let mut margin = Margin::none();
+            let solved = self.solve(step, phi, previous, q, frames, &mut margin);
+            margins[i] = margin.value * step.inv_scale;
+            solved.map_err(|f| (i, f))?;
         }
         Ok(())
+    }
+
+    /// How much loop `l` amplifies rounding at a pose where its margin is `margin`
+    /// (1 in the sketch's shape): `1/√margin` for a square-root pattern (the lever's
+    /// length in the sketch over its length now), `1/|margin|` for a slide's slope, 1 for
+    /// a loop that always closes.
+    pub fn amplification(&self, l: usize, margin: f64) -> f64 {
+        match self.kinds.get(l).copied().flatten() {
+            Some(true) => 1.0 / margin.abs().sqrt(),
+            Some(false) => 1.0 / margin.abs(),
+            None => 1.0,
+        }
+    }
+
+    /// Whether loop `l` has a margin that can vanish (a square root or a slope).
+    pub fn has_margin(&self, l: usize) -> bool {
+        self.kinds.get(l).copied().flatten().is_some()
+    }
+
+    /// Whether loop `l`'s margin is a discriminant (it ends at a limit position or a
+    /// change point) rather than a slope (a toggle of a slide).
+    pub fn is_root(&self, l: usize) -> bool {
+        self.kinds.get(l).copied().flatten() == Some(true)
     }
 
     /// Places the links of the loops that have a closed form, in f64, leaving the others
     /// (and any loop whose formula fails) as they are: a predictor for Newton.
     pub fn seed(&self, phi: f64, previous: &[f64], q: &mut [f64], frames: &mut [(f64, f64)]) {
         for step in self.steps.iter().flatten() {
-            let _ = self.solve(step, phi, previous, q, frames);
+            let _ = self.solve(step, phi, previous, q, frames, &mut Margin::none());
         }
     }
 
-    /// Solves one loop: sets its body's coordinates and `(sin θ, cos θ)`.
+    /// Solves one loop: sets its body's coordinates and `(sin θ, cos θ)`, and its margin.
     #[inline(always)]
     fn solve<D: Scalar>(
         &self,
@@ -347,6 +419,7 @@ impl ClosedForm {
         previous: &[f64],
         q: &mut [D],
         frames: &mut [(D, D)],
+        margin: &mut Margin<D>,
     ) -> Result<(), Failure> {
         let k = step.body;
         let (theta, sin_cos, r) = match step.pattern {
@@ -373,7 +446,8 @@ impl ClosedForm {
                         let dist = d2.re().sqrt();
                         let (a, b) = (l1.sqrt(), l2.sqrt());
                         let gap = (dist - (a + b)).max((a - b).abs() - dist);
-                        let h = self.root(disc, dist, gap, step.branch)?;
+                        // √disc = l₁ l₂ |sin γ|, γ the angle between the links at J.
+                        let h = self.root(disc, l1 * l2, gap, step.branch, margin)?;
                         let inv = d2.recip();
                         let j = [
                             pivot[0] + (d[0] * g - d[1] * h) * inv,
@@ -403,7 +477,8 @@ impl ClosedForm {
                         // |w + s u| = l₁: s = −u·w ± √((u·w)² − |w|² + l₁²).
                         let disc = uw * uw - ww + l1;
                         let gap = (ww.re() - uw.re() * uw.re()).max(0.0).sqrt() - l1.sqrt();
-                        let s = self.root(disc, 1.0, gap, step.branch)? - uw;
+                        // √disc = l₁ |cos| of the link's angle to the guide's normal.
+                        let s = self.root(disc, l1, gap, step.branch, margin)? - uw;
                         let j = [j0[0] + u[0] * s, j0[1] + u[1] * s];
                         (j, t2, sc2, [base[0] + u[0] * s, base[1] + u[1] * s])
                     }
@@ -439,7 +514,10 @@ impl ClosedForm {
                         let w = [p[0] - pivot[0], p[1] - pivot[1]];
                         let rho2 = w[0] * w[0] + w[1] * w[1];
                         let gap = c.abs() - rho2.re().sqrt();
-                        let root = self.root(rho2 - c * c, 1.0, gap, step.branch)?;
+                        // √disc = ρ |cos ψ|; its size is ρ² now (and the lever ρ itself
+                        // shrinks as the pin nears the hinge: the margin is measured
+                        // against ρ² in the sketch).
+                        let root = self.root(rho2 - c * c, rho2.re(), gap, step.branch, margin)?;
                         // e^{i(θ+δ)} ∝ w·(k − i c), then rotated back by δ = arg d.
                         let v = [w[0] * root + w[1] * c, w[1] * root - w[0] * c];
                         let x = v[0] * d[0] + v[1] * d[1];
@@ -453,7 +531,7 @@ impl ClosedForm {
                         let c = cross_d(u, [a[0] - pivot[0], a[1] - pivot[1]]);
                         let rho2 = r[0] * r[0] + r[1] * r[1];
                         let gap = c.re().abs() - rho2.sqrt();
-                        let root = self.root(-c * c + rho2, 1.0, gap, step.branch)?;
+                        let root = self.root(-c * c + rho2, rho2, gap, step.branch, margin)?;
                         // e^{i(θ+β)} ∝ u·(k + i c), then rotated back by β = arg r.
                         let v = [u[0] * root - u[1] * c, u[1] * root + u[0] * c];
                         let x = v[0] * r[0] + v[1] * r[1];
@@ -521,14 +599,14 @@ impl ClosedForm {
                         let o = rotate(frames, g, line.origin);
                         let p = place(q, frames, pin, at);
                         let d = [p[0] - base[0] - o[0], p[1] - base[1] - o[1]];
-                        cross_d(v, d) / self.slope(cross_d(v, u))?
+                        cross_d(v, d) / self.slope(cross_d(v, u), margin)?
                     }
                     Shift::PinInKnownSlot { line, p } => {
                         let v = rotate(frames, line.body, line.direction);
                         let o = place(q, frames, line.body, line.origin);
                         let pp = rotate(frames, g, p);
                         let d = [base[0] + pp[0] - o[0], base[1] + pp[1] - o[1]];
-                        -cross_d(v, d) / self.slope(cross_d(v, u))?
+                        -cross_d(v, d) / self.slope(cross_d(v, u), margin)?
                     }
                     Shift::Rolling { a, b, s0, radius } => {
                         let angle = |x: Body| x.map_or(D::from(0.0), |x| q[3 * x + 2]);
@@ -552,12 +630,25 @@ impl ClosedForm {
         }
     }
 
-    /// `σ √disc`, or why there is none: a toggle if `size · length / √|disc|` (the
-    /// condition estimate; `length` makes it dimensionless) exceeds the limit, else a loop
-    /// that cannot close by `gap` (m) if `disc < 0`.
+    /// `σ √disc`, or why there is none: a toggle if `√(size / |disc|)` (the condition
+    /// estimate, in the loop's own length scale: `size` is the square of what `√disc`
+    /// is measured against now, e.g. `l₁² l₂²` for a dyad) exceeds the limit, else a loop
+    /// that cannot close by `gap` (m) if `disc < 0`. Records the margin.
     #[inline]
-    fn root<D: Scalar>(&self, disc: D, length: f64, gap: f64, branch: f64) -> Result<D, Failure> {
-        let condition = self.size * length / disc.re().abs().sqrt();
+    fn root<D: Scalar>(
+        &self,
+        disc: D,
+        size: f64,
+        gap: f64,
+        branch: f64,
+        margin: &mut Margin<D>,
+    ) -> Result<D, Failure> {
+        *margin = Margin {
+            value: disc,
+            size,
+            root: Some(true),
+        };
+        let condition = (size / disc.re().abs()).sqrt();
         if condition.is_nan() || condition > self.limit {
             return Err(Failure::Singular { condition });
         }
@@ -569,7 +660,12 @@ impl ClosedForm {
 
     /// A slide's slope `cross(v, u)` (both unit vectors), or a toggle if it is too small.
     #[inline]
-    fn slope<D: Scalar>(&self, slope: D) -> Result<D, Failure> {
+    fn slope<D: Scalar>(&self, slope: D, margin: &mut Margin<D>) -> Result<D, Failure> {
+        *margin = Margin {
+            value: slope,
+            size: 1.0,
+            root: Some(false),
+        };
         let condition = 1.0 / slope.re().abs();
         if condition.is_nan() || condition > self.limit {
             return Err(Failure::Singular { condition });

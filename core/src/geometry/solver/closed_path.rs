@@ -1,6 +1,8 @@
 //! The all-closed-form path of [`Tracker::move_to`]: one evaluation of the loops' formulas
-//! in `Dual2_64` per drive position, written into the tracker's q, q′, q″.
+//! in `Dual2_64` per drive position, written into the tracker's q, q′, q″, with every step
+//! between two positions checked by the loops' margins (see [`super::interval`]).
 
+use super::interval;
 use super::{SolveReport, Tracker};
 use crate::Error;
 use crate::geometry::closed_form::Failure;
@@ -8,43 +10,96 @@ use num_dual::Dual2_64;
 
 impl Tracker<'_> {
     /// Moves to `phi` with every loop in closed form: q, q′, q″ from one evaluation of the
-    /// formulas in `Dual2_64`. Where a loop cannot assemble at `phi`, the step is halved
-    /// (as on the Newton path) so that the tracker ends at the last position that
-    /// assembles, reported in the error.
+    /// formulas in `Dual2_64`. A step is accepted only when every loop's margin is shown
+    /// positive over the whole step ([`interval::passes`]); otherwise it is halved, and
+    /// once the halvings are used up the end of the branch is located and reported
+    /// ([`Error::Blocked`], [`Error::ChangePoint`], [`Error::Singular`]); the tracker is
+    /// left at the last position accepted.
     pub(super) fn move_closed(&mut self, phi: f64) -> Result<SolveReport, Error> {
         let mut report = SolveReport::starting(phi);
+        let start = self.phi;
+        let longest = self.longest_step();
         let mut halvings: usize = 0;
+        // The condition at `phi` itself, if its formula found it a toggle.
+        let mut toggle_at_phi = None;
         while self.phi != phi || report.steps == 0 {
-            let target = if halvings == 0 {
+            let remaining = phi - self.phi;
+            let full = if remaining.abs() > longest {
+                longest.copysign(remaining)
+            } else {
+                remaining
+            };
+            let target = if halvings == 0 && full == remaining {
                 phi
             } else {
-                self.phi + (phi - self.phi) / f64::powi(2.0, halvings.min(1074) as i32)
+                self.phi + full / f64::powi(2.0, halvings.min(1074) as i32)
             };
-            let x = Dual2_64::new(target, 1.0, 0.0);
-            let (q, frames) = (&mut self.closed_q, &mut self.closed_frames);
-            match self.closed.solve_all(x, self.q.as_slice(), q, frames) {
-                Ok(()) => {
-                    self.accept_closed(target);
-                    report.steps += 1;
-                    halvings = halvings.saturating_sub(1);
-                }
-                Err((l, failure @ Failure::Unassemblable { .. })) => {
-                    report.newton_failures += 1;
-                    halvings += 1;
-                    let next =
-                        self.phi + (phi - self.phi) / f64::powi(2.0, halvings.min(1074) as i32);
-                    if halvings > self.solver.max_subdivisions || next == self.phi {
-                        return Err(self.closed_failure(phi, l, failure));
+            let failed = match self.evaluate_closed(target) {
+                Ok(()) => match self.unproven(target) {
+                    None => {
+                        self.accept_closed(target);
+                        report.steps += 1;
+                        halvings = halvings.saturating_sub(1);
+                        continue;
                     }
+                    Some(l) => (l, None),
+                },
+                Err((l, failure)) => {
+                    if let (true, Failure::Singular { condition }) = (target == phi, failure) {
+                        toggle_at_phi = Some(condition);
+                    }
+                    (l, Some(failure))
                 }
-                Err((l, failure)) => return Err(self.closed_failure(target, l, failure)),
+            };
+            report.newton_failures += 1;
+            halvings += 1;
+            let next = self.phi + full / f64::powi(2.0, halvings.min(1074) as i32);
+            if halvings > self.solver.max_subdivisions || next == self.phi {
+                match self.end_of_branch(start, phi, target, failed, toggle_at_phi) {
+                    // The margin stayed clear of zero: rounding, not the branch's end.
+                    None => {
+                        self.evaluate_closed(target)
+                            .map_err(|(l, f)| self.closed_failure(target, l, f))?;
+                        self.accept_closed(target);
+                        report.steps += 1;
+                        halvings = 0;
+                    }
+                    Some(e) => return Err(e),
+                }
             }
         }
         Ok(report)
     }
 
+    /// The formulas at `target`, into `closed_q`, `closed_frames`, `closed_margins`.
+    pub(super) fn evaluate_closed(&mut self, target: f64) -> Result<(), (usize, Failure)> {
+        let x = Dual2_64::new(target, 1.0, 0.0);
+        let (q, frames) = (&mut self.closed_q, &mut self.closed_frames);
+        self.closed
+            .solve_all(x, self.q.as_slice(), q, frames, &mut self.closed_margins)
+    }
+
+    /// The first loop whose margin is not shown positive between the current position and
+    /// `target` (evaluated into `closed_margins`).
+    fn unproven(&self, target: f64) -> Option<usize> {
+        let h = target - self.phi;
+        (0..self.margins.len()).find(|&l| {
+            self.closed.has_margin(l)
+                && !interval::passes(self.margins[l], self.closed_margins[l], h)
+        })
+    }
+
+    /// The longest step checked at once: 1/8 rad for an angle, 1/8 of the sketch for a
+    /// displacement (see [`interval::passes`]).
+    fn longest_step(&self) -> f64 {
+        match self.mechanism.drive_kind() {
+            crate::geometry::DriveKind::Angle => interval::LONGEST_TURN,
+            crate::geometry::DriveKind::Displacement => interval::LONGEST_TURN * self.size,
+        }
+    }
+
     /// Makes the closed forms' pose (in `closed_q`, `closed_frames`) current at `phi`.
-    fn accept_closed(&mut self, phi: f64) {
+    pub(super) fn accept_closed(&mut self, phi: f64) {
         let poses = self.q.as_mut_slice().iter_mut();
         let derivatives = self
             .dq
@@ -57,6 +112,7 @@ impl Tracker<'_> {
         for (f, (s, c)) in self.frames.iter_mut().zip(&self.closed_frames) {
             *f = (s.re, c.re);
         }
+        self.margins.copy_from_slice(&self.closed_margins);
         // Φ is not evaluated: the formulas close the loops by construction (see
         // `SolveReport::residual`, and `Tracker::residual` to check it).
         self.phi = phi;

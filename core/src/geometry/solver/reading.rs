@@ -25,9 +25,10 @@ impl<'m> Tracker<'m> {
             let n = self.q.len();
             let zero = Dual3_64::from(0.0);
             let (mut q, mut frames) = (vec![zero; n], vec![(zero, zero); n / 3]);
+            let mut margins = vec![zero; self.margins.len()];
             let phi = Dual3_64::new(self.phi, 1.0, 0.0, 0.0);
             self.closed
-                .solve_all(phi, self.q.as_slice(), &mut q, &mut frames)
+                .solve_all(phi, self.q.as_slice(), &mut q, &mut frames, &mut margins)
                 .map_err(|(l, failure)| self.closed_failure(self.phi, l, failure))?;
             dddq.extend(q.iter().map(|x| x.v3));
         } else if N == 3 {

@@ -1,0 +1,189 @@
+//! Scenes whose sweeps meet a limit position, a change point or an ill-conditioned pose:
+//! `run` reports them (never a table that jumps them), `check` prints the drive's motion
+//! range, and unrelated far points change nothing.
+
+use mechdiff::Error;
+use mechdiff::scene;
+
+/// Offset slider-crank r = 1 m, e = 0.5 m (guide above the crank pivot), l = 1.49 m,
+/// sketched at φ = 0 (B = (1 + √(l² − e²), e), 17 digits); swept 0–360° at 20°. The crank
+/// cannot pass sin φ < (e − l)/r = −0.99: ≈ 261.89°–278.11°.
+const BLOCKED: &str = r#"
+[units]
+length = "m"
+angle = "deg"
+[points]
+O = [0, 0]
+A = [1, 0]
+B = [2.4036025078347505, 0.5]
+G0 = [0, 0.5]
+G1 = [1, 0.5]
+[links]
+ground = ["O", "G0", "G1"]
+crank = ["O", "A"]
+rod = ["A", "B"]
+slider = ["B"]
+[joints]
+O = { type = "revolute", at = "O", links = ["ground", "crank"] }
+A = { type = "revolute", at = "A", links = ["crank", "rod"] }
+B = { type = "revolute", at = "B", links = ["rod", "slider"] }
+guide = { type = "prismatic", line = ["G0", "G1"], point = "B", links = ["ground", "slider"] }
+[drive]
+joint = "O"
+line = ["O", "A"]
+[sweep]
+from = 0
+to = 360
+step = 20
+[[output]]
+name = "s"
+slider = "guide"
+quantities = ["position", "velocity_coefficient"]
+"#;
+
+fn degrees(text: &str) -> f64 {
+    text.trim_end_matches(" deg").parse().unwrap()
+}
+
+#[test]
+fn a_20_degree_sweep_reports_the_blocked_range_not_a_full_turn() {
+    let s = scene::parse("blocked.toml", BLOCKED).unwrap();
+    let e = scene::run(&s).unwrap_err();
+    let Error::Blocked {
+        from, to, limit, ..
+    } = &e
+    else {
+        panic!("expected Blocked, got {e:?}")
+    };
+    assert_eq!((&**from, &**to), ("260 deg", "280 deg"));
+    // 180° + asin 0.99, printed to 15 significant digits: 1e-11 deg.
+    let exact = 180.0 + 0.99f64.asin().to_degrees();
+    assert!((degrees(limit) - exact).abs() < 1e-11, "{limit} vs {exact}");
+    assert!(
+        e.to_string().starts_with(
+            "blocked.toml: cannot assemble between drive positions 260 deg and 280 deg: the \
+             loop of joints A, B, guide first fails at 261.89"
+        ),
+        "{e}"
+    );
+}
+
+#[test]
+fn check_reports_the_motion_range_between_the_limit_positions() {
+    let s = scene::parse("blocked.toml", BLOCKED).unwrap();
+    let range = scene::check(&s).unwrap().motion_range.unwrap();
+    let (lower, upper) = (range.lower.clone().unwrap(), range.upper.clone().unwrap());
+    // SI radians, to 1e-12: the limit positions r sin φ − e = −l.
+    let limit = 0.99f64.asin();
+    assert!((upper.phi - (std::f64::consts::PI + limit)).abs() < 1e-12);
+    assert!((lower.phi + limit).abs() < 1e-12);
+    let text = scene::run::describe_motion_range(&s, &range);
+    assert!(
+        text.starts_with("from -81.89") && text.contains("to 261.89"),
+        "{text}"
+    );
+}
+
+#[test]
+fn an_unrelated_point_far_away_changes_no_verdict() {
+    // A ground point 3e4 m or 1e9 m away: the same check and the same blocked range (it
+    // used to make φ = 0 a "toggle", and at 1e9 the guide "not positive").
+    for far in ["3e4", "1e9"] {
+        let text = BLOCKED
+            .replace("G1 = [1, 0.5]", &format!("G1 = [1, 0.5]\nFAR = [{far}, 0]"))
+            .replace(
+                r#"ground = ["O", "G0", "G1"]"#,
+                r#"ground = ["O", "G0", "G1", "FAR"]"#,
+            );
+        let s = scene::parse("far.toml", &text).unwrap();
+        scene::check(&s).unwrap();
+        let Error::Blocked { limit, .. } = scene::run(&s).unwrap_err() else {
+            panic!("{far}")
+        };
+        let exact = 180.0 + 0.99f64.asin().to_degrees();
+        assert!((degrees(&limit) - exact).abs() < 1e-11, "{far}: {limit}");
+    }
+}
+
+#[test]
+fn an_ill_conditioned_position_is_computed_with_a_warning() {
+    // Slotted lever: crank l1 = 0.999999 m about O = (0, 1), pin A in the slot of a lever
+    // hinged at B0 = (0, 0). At φ = 0 (crank pointing down) the pin passes 1e-6 m from B0
+    // and ψ′ = −l1/(l0 − l1) ≈ −1e6: regular, computed, flagged.
+    let text = r#"
+[units]
+length = "m"
+angle = "deg"
+[points]
+O = [0, 1]
+B0 = [0, 0]
+A = [0, 1.999999]
+S = [0, 1]
+[links]
+ground = ["O", "B0"]
+crank = ["O", "A"]
+lever = ["B0", "S"]
+[joints]
+O = { type = "revolute", at = "O", links = ["ground", "crank"] }
+B0 = { type = "revolute", at = "B0", links = ["ground", "lever"] }
+slot = { type = "pin_in_slot", pin = "A", slot = ["B0", "S"], links = ["lever", "crank"] }
+[drive]
+joint = "O"
+line = ["O", "A"]
+[sweep]
+positions = [-90]
+[[output]]
+name = "psi"
+angle = ["B0", "S"]
+quantities = ["position", "velocity_coefficient"]
+"#;
+    let s = scene::parse("lever.toml", text).unwrap();
+    let report = scene::run(&s).unwrap();
+    let psi1 = report.column("psi'").unwrap()[0];
+    // −l1/(l0 − l1) to 1e-8 relative (expected error ~ amplification·ε ≈ 4e-10).
+    let exact = -0.999999 / (1.0 - 0.999999);
+    assert!((psi1 / exact - 1.0).abs() < 1e-8, "{psi1} vs {exact}");
+    assert_eq!(report.warnings.len(), 1, "{:?}", report.warnings);
+    assert!(
+        report.warnings[0].contains("ill-conditioned position at drive position -90 deg"),
+        "{}",
+        report.warnings[0]
+    );
+}
+
+#[test]
+fn a_rack_radius_of_1e308_is_an_error_not_a_hang() {
+    // The pinion's centre at 1e308 m and its radius 1e308 m: the Jacobian overflows. The
+    // SVD of the mobility check used to iterate forever on it; now its iterations are
+    // bounded and a non-finite Jacobian is refused.
+    let text = r#"
+[points]
+O = [0.0, 0.0]
+X = [1.0, 0.0]
+A = [0.5, 0.0]
+W = [0.0, 1e308]
+W1 = [1.0, 1e308]
+[links]
+ground = ["O", "X", "W"]
+wheel = ["W", "W1"]
+rack = ["A"]
+[joints]
+wheel_hinge = { type = "revolute", at = "W", links = ["ground", "wheel"] }
+rack_guide = { type = "prismatic", line = ["O", "X"], point = "A", links = ["ground", "rack"] }
+mesh = { type = "rack_pinion", pinion = "wheel_hinge", rack = "rack_guide", radius = 1e308 }
+[drive]
+joint = "rack_guide"
+[sweep]
+from = 0
+to = 1
+step = 0.5
+[[output]]
+name = "w"
+angle = ["W", "W1"]
+quantities = ["position"]
+"#;
+    let s = scene::parse("rack.toml", text).unwrap();
+    let e = scene::check(&s).unwrap_err();
+    assert!(e.to_string().contains("not finite"), "{e}");
+    assert!(scene::run(&s).is_err());
+}
