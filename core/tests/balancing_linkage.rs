@@ -23,7 +23,10 @@ fn mul(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
 }
 fn div(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
     let d = b[0] * b[0] + b[1] * b[1];
-    [(a[0] * b[0] + a[1] * b[1]) / d, (a[1] * b[0] - a[0] * b[1]) / d]
+    [
+        (a[0] * b[0] + a[1] * b[1]) / d,
+        (a[1] * b[0] - a[0] * b[1]) / d,
+    ]
 }
 fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
     [a[0] - b[0], a[1] - b[1]]
@@ -123,7 +126,10 @@ fn four_bar_full_force_balance_matches_berkof_lowen() {
         // kinematics (≈ 1e-15) times the condition number of its matrix: 1e-12 relative leaves
         // a margin that a wrong formula (off by the size of the terms) cannot meet.
         let size = expected[0].hypot(expected[1]);
-        assert!(err[0].hypot(err[1]) <= 1e-12 * size, "{placed:?} vs {expected:?}");
+        assert!(
+            err[0].hypot(err[1]) <= 1e-12 * size,
+            "{placed:?} vs {expected:?}"
+        );
         assert!((placed.mass - size / placed.request.radius).abs() <= 1e-12 * placed.mass);
     }
     assert!(r.full_force_balance());
@@ -131,7 +137,10 @@ fn four_bar_full_force_balance_matches_berkof_lowen() {
     // counterweights added as point masses: ≤ 1e-10 of before at every drive position.
     let before = r.before.max_force();
     for (phi, force) in r.after.phi.iter().zip(&r.after.force) {
-        assert!(force[0].hypot(force[1]) <= 1e-10 * before, "φ = {phi}: {force:?}");
+        assert!(
+            force[0].hypot(force[1]) <= 1e-10 * before,
+            "φ = {phi}: {force:?}"
+        );
     }
     // The price, reported: shaking moment and drive torque before and after.
     println!(
@@ -227,7 +236,11 @@ fn slider_crank_least_squares_is_the_half_balance() {
     // at φ = 90° (where the slider's own force is the secondary's −m_rec(r²/l)ω²·(−1) plus
     // higher harmonics, along the line), and the mean square force is smaller than before.
     assert!((half.primary_across - 250.0).abs() < 1e-12 * 250.0);
-    let at_90 = r.after.phi.iter().position(|p| (p - 90f64.to_radians()).abs() < 1e-12);
+    let at_90 = r
+        .after
+        .phi
+        .iter()
+        .position(|p| (p - 90f64.to_radians()).abs() < 1e-12);
     let across = r.after.force[at_90.unwrap()][1];
     // Across the line only the crank and its counterweight act: −(0.03 − 0.13)·ω² with the
     // crank at 90°, i.e. the half-balance's 250 N (1e-9 relative: kinematics rounding).

@@ -33,6 +33,7 @@
 //! assert_eq!(scene.order(), 0);
 //! ```
 
+pub mod balancing;
 pub mod build;
 mod drive;
 pub mod dynamics;

@@ -31,6 +31,8 @@ pub struct Scene {
     pub outputs: Vec<Output>,
     /// Masses, effects and dynamic outputs, if the scene has any.
     pub dynamics: Option<super::dynamics::SceneDynamics>,
+    /// The rotor and counterweights to balance, if the scene has them.
+    pub balancing: Option<super::balancing::SceneBalancing>,
 }
 
 /// A named point at its sketch position.

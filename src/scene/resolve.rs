@@ -52,6 +52,8 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
         outputs: &file.dynamics,
     };
     let dynamics = super::dynamics::resolve(&cx, &sections, &geometry, &joints, drive.kind)?;
+    let balancing =
+        super::balancing::resolve(&cx, file.rotor.as_ref(), file.balancing.as_ref(), &geometry)?;
     let sweep_of = cx.sweep_of(&file.sweep, &outputs)?;
     let dimension = match sweep_of {
         Some(k) => outputs[k].kind.dimension(),
@@ -90,6 +92,7 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
         sweep_of,
         outputs,
         dynamics,
+        balancing,
     })
 }
 

@@ -53,6 +53,8 @@ pub struct Report {
     pub dead_positions: Vec<DeadPositions>,
     /// The dynamic outputs' run (their columns are also in `columns` and `rows`).
     pub dynamics: Option<super::dynamics::DynamicsReport>,
+    /// The balancing answers (their columns are also in `columns` and `rows`).
+    pub balancing: Option<super::balancing::BalancingReport>,
 }
 
 impl Report {
@@ -140,12 +142,23 @@ pub fn run(scene: &Scene) -> Result<Report> {
             row.extend_from_slice(extra);
         }
     }
+    let balancing = match &scene.balancing {
+        Some(b) => Some(super::balancing::run(scene, b, &mechanism, &positions)?),
+        None => None,
+    };
+    if let Some(b) = balancing.as_ref().filter(|b| !b.columns.is_empty()) {
+        all.extend(b.columns.iter().cloned());
+        for (row, extra) in rows.iter_mut().zip(&b.rows) {
+            row.extend_from_slice(extra);
+        }
+    }
     Ok(Report {
         plan,
         columns: all,
         rows,
         dead_positions,
         dynamics,
+        balancing,
     })
 }
 

@@ -97,6 +97,9 @@ pub fn write_table(scene: &Scene, report: &Report, out: &mut impl Write) -> io::
     for line in report.dynamics.iter().flat_map(|d| &d.summary) {
         writeln!(out, "{line}")?;
     }
+    for line in report.balancing.iter().flat_map(|b| &b.lines) {
+        writeln!(out, "{line}")?;
+    }
     Ok(())
 }
 

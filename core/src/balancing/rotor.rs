@@ -189,6 +189,10 @@ fn sum(vs: impl IntoIterator<Item = [f64; 2]>) -> [f64; 2] {
 }
 
 impl Rotor {
+    /// Relative size (of the largest term of a polygon) below which a resultant or a
+    /// correction is rounding noise: its angle means nothing and it counts as zero.
+    pub const NEGLIGIBLE: f64 = 1e-12;
+
     /// A rotor with these masses. Every number must be finite, masses positive and radii
     /// non-negative; the error names the mass (counted from 1).
     pub fn new(masses: Vec<RotorMass>) -> Result<Self, Error> {
