@@ -31,8 +31,9 @@ pub struct SceneRotor {
 pub struct SceneBalancing {
     /// `[rotor]`.
     pub rotor: Option<SceneRotor>,
-    /// `[balancing]` counterweights (SI), with the section's place.
-    pub counterweights: Option<(Vec<Counterweight>, Location)>,
+    /// `[balancing]` counterweights (SI), each with its place in the file, and the section's
+    /// place.
+    pub counterweights: Option<(Vec<(Counterweight, Location)>, Location)>,
 }
 
 /// Checks `[rotor]` and `[balancing]`; `None` when the scene has neither.
@@ -49,17 +50,20 @@ pub(crate) fn resolve(
     let counterweights = match balancing {
         Some(b) => {
             let mut out = Vec::new();
-            for c in b.get_ref().counterweights.get_ref() {
-                let c = c.get_ref();
+            for entry in b.get_ref().counterweights.get_ref() {
+                let c = entry.get_ref();
                 let link = cx.link(&c.link, geometry.links, "`[balancing]`")?;
                 let line = cx.line(&c.line, link, geometry, "a counterweight's `line`")?;
                 let radius =
                     cx.positive(&c.radius, "the counterweight's radius", Dimension::Length)?;
-                out.push(Counterweight {
-                    link: link.to_owned(),
-                    line,
-                    radius,
-                });
+                out.push((
+                    Counterweight {
+                        link: link.to_owned(),
+                        line,
+                        radius,
+                    },
+                    cx.at(entry),
+                ));
             }
             if out.is_empty() {
                 return Err(cx.invalid(

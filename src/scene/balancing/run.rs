@@ -72,10 +72,18 @@ pub(crate) fn run(
             .as_ref()
             .map_or_else(Dynamics::new, |d| d.data.clone());
         let drive = DriveState::accelerating(omega, scene.drive.acceleration);
+        let requests: Vec<_> = counterweights.iter().map(|(c, _)| c.clone()).collect();
+        // A core error naming a counterweight's link is located at that counterweight.
+        let at = |link: &str| {
+            counterweights
+                .iter()
+                .rfind(|(c, _)| c.link == link)
+                .map_or(location, |(_, at)| at)
+        };
         let result = balance_linkage(
             mechanism,
             &data,
-            counterweights,
+            &requests,
             positions,
             drive,
             &Solver::default(),
@@ -84,6 +92,8 @@ pub(crate) fn run(
             mechdiff_core::Error::Unassemblable { .. }
             | mechdiff_core::Error::Singular { .. }
             | mechdiff_core::Error::BranchFlip { .. } => crate::scene::run::solver_error(scene, e),
+            mechdiff_core::Error::NotPivoted { ref link, .. } => core_error(at(link), e),
+            mechdiff_core::Error::DuplicateName { ref name, .. } => core_error(at(name), e),
             other => core_error(location, other),
         })?;
         let torque = if scene.drive.kind == DriveKind::Angle {
