@@ -311,6 +311,8 @@ impl Diagram {
             .light_line_style(RGBColor(0xee, 0xee, 0xee))
             .x_labels(10)
             .y_labels(5)
+            .x_label_formatter(&tick)
+            .y_label_formatter(&tick)
             .draw()
             .map_err(draw_error)?;
         for marker in &self.markers {
@@ -348,6 +350,11 @@ impl Diagram {
                     drawn.label(series.name.as_str()).legend(move |(x, y)| {
                         PathElement::new([(x, y), (x + 16, y)], colour.stroke_width(2))
                     });
+                }
+                if run.len() == 1 {
+                    chart
+                        .draw_series([Circle::new((run[0][0], run[0][1]), 3, colour.filled())])
+                        .map_err(draw_error)?;
                 }
             }
         }
@@ -416,6 +423,8 @@ fn draw_polar(area: &DrawingArea<SVGBackend, Shift>, polar: &Polar) -> Result<()
         .y_desc(format!("y [{}]", polar.unit))
         .label_style(text(11))
         .axis_desc_style(text(12))
+        .x_label_formatter(&tick)
+        .y_label_formatter(&tick)
         .light_line_style(RGBColor(0xf0, 0xf0, 0xf0))
         .draw()
         .map_err(draw_error)?;
@@ -434,9 +443,23 @@ fn draw_polar(area: &DrawingArea<SVGBackend, Shift>, polar: &Polar) -> Result<()
                     colour.stroke_width(2),
                 ))
                 .map_err(draw_error)?;
+            if run.len() == 1 {
+                chart
+                    .draw_series([Circle::new((run[0][0], run[0][1]), 3, colour.filled())])
+                    .map_err(draw_error)?;
+            }
         }
     }
     Ok(())
+}
+
+/// A tick label: six significant digits at most, no trailing zeros, no `-0`.
+fn tick(v: &f64) -> String {
+    match format!("{v:.5e}").parse::<f64>() {
+        Ok(r) if r.abs() < 1e-12 * v.abs().max(1e-300) || r == 0.0 => "0".to_owned(),
+        Ok(r) => (r + 0.0).to_string(),
+        Err(_) => v.to_string(),
+    }
 }
 
 /// The smallest and largest finite value, or `0..1` if there is none.

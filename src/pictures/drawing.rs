@@ -183,6 +183,9 @@ pub struct Drawing {
     /// Extra points the frame must include (e.g. the whole sweep's extent, so that every
     /// frame of an animation shares one framing).
     pub extent: Vec<[f64; 2]>,
+    /// Animation bindings: shape index and key, written as `data-bind` (see
+    /// [`Drawing::bind`]).
+    pub binds: Vec<(usize, String)>,
 }
 
 /// Margin around the framed shapes, as a fraction of the picture's smaller side.
@@ -201,6 +204,7 @@ impl Drawing {
             width: 800,
             height: 600,
             extent: Vec::new(),
+            binds: Vec::new(),
         }
     }
 
@@ -287,6 +291,17 @@ impl Drawing {
             at,
             text: text.to_owned(),
         });
+        self
+    }
+
+    /// Tags the shape added last with `key`, written as its `data-bind` attribute: the HTML
+    /// report moves tagged shapes from frame to frame (`"p i j k"`: a polyline through points
+    /// i, j, k; `"c i"`: a circle at point i; `"t i"`: a label at point i; `"b i a b"`: a block at
+    /// point i along the line a → b).
+    pub fn bind(mut self, key: &str) -> Self {
+        if let Some(last) = self.shapes.len().checked_sub(1) {
+            self.binds.push((last, key.to_owned()));
+        }
         self
     }
 
@@ -403,8 +418,16 @@ impl Drawing {
         let (last, first): (Vec<_>, Vec<_>) = self
             .shapes
             .iter()
-            .partition(|shape| matches!(shape, Shape::Joint { .. } | Shape::Label { .. }));
-        for shape in first.into_iter().chain(last) {
+            .enumerate()
+            .partition(|(_, shape)| matches!(shape, Shape::Joint { .. } | Shape::Label { .. }));
+        for (k, shape) in first.into_iter().chain(last) {
+            let bind = self
+                .binds
+                .iter()
+                .find(|(i, _)| *i == k)
+                .map_or_else(String::new, |(_, key)| {
+                    format!(r#" data-bind="{}""#, escape(key))
+                });
             match shape {
                 Shape::Polyline {
                     points,
@@ -415,7 +438,7 @@ impl Drawing {
                     let tag = if *closed { "polygon" } else { "polyline" };
                     let _ = writeln!(
                         out,
-                        r#"<{tag} class="{class}" points="{}" {}/>"#,
+                        r#"<{tag} class="{class}"{bind} points="{}" {}/>"#,
                         points_attribute(points.iter().map(|&p| px(p))),
                         style.attributes()
                     );
@@ -428,7 +451,7 @@ impl Drawing {
                     let [x, y] = px(*center);
                     let _ = writeln!(
                         out,
-                        r#"<circle class="pitch" cx="{x}" cy="{y}" r="{}" {}/>"#,
+                        r#"<circle class="pitch"{bind} cx="{x}" cy="{y}" r="{}" {}/>"#,
                         radius.abs() * frame.scale,
                         style.attributes()
                     );
@@ -437,7 +460,7 @@ impl Drawing {
                     let [x, y] = px(*at);
                     let _ = writeln!(
                         out,
-                        r##"<circle class="joint" data-point="{}" data-x="{:e}" data-y="{:e}" cx="{x}" cy="{y}" r="{}" stroke="#1f4e79" stroke-width="2" fill="white"/>"##,
+                        r##"<circle class="joint"{bind} data-point="{}" data-x="{:e}" data-y="{:e}" cx="{x}" cy="{y}" r="{}" stroke="#1f4e79" stroke-width="2" fill="white"/>"##,
                         escape(name),
                         at[0],
                         at[1],
@@ -448,7 +471,7 @@ impl Drawing {
                     let [x, y] = px(*at);
                     let _ = writeln!(
                         out,
-                        r#"<text class="label" x="{}" y="{}" font-size="13" fill="black">{}</text>"#,
+                        r#"<text class="label"{bind} x="{}" y="{}" font-size="13" fill="black">{}</text>"#,
                         x + 7.0,
                         y - 7.0,
                         escape(text)
@@ -457,7 +480,7 @@ impl Drawing {
                 Shape::Ground { at } => ground(&mut out, px(*at), s * frame.scale),
                 Shape::Guide { from, to } => guide(&mut out, px(*from), px(*to), s * frame.scale),
                 Shape::Block { center, direction } => {
-                    block(&mut out, px(*center), *direction, s * frame.scale)
+                    block(&mut out, px(*center), *direction, s * frame.scale, &bind)
                 }
             }
         }
@@ -541,12 +564,12 @@ fn guide(out: &mut String, a: [f64; 2], b: [f64; 2], s: f64) {
 
 /// A slider block: a rectangle `2s × 1.2s` pixels centred at `c`, its long side along
 /// `direction` (model angle, counter-clockwise; pixel y is down).
-fn block(out: &mut String, [x, y]: [f64; 2], direction: f64, s: f64) {
+fn block(out: &mut String, [x, y]: [f64; 2], direction: f64, s: f64, bind: &str) {
     let degrees = -direction.to_degrees();
     let (w, h) = (2.0 * s, 1.2 * s);
     let _ = writeln!(
         out,
-        r##"<rect class="block" x="{:.3}" y="{:.3}" width="{w:.3}" height="{h:.3}" transform="rotate({degrees:.6} {x:.3} {y:.3})" fill="#f4d58d" stroke="black" stroke-width="1.2"/>"##,
+        r##"<rect class="block"{bind} x="{:.3}" y="{:.3}" width="{w:.3}" height="{h:.3}" transform="rotate({degrees:.6} {x:.3} {y:.3})" fill="#f4d58d" stroke="black" stroke-width="1.2"/>"##,
         x - 0.5 * w,
         y - 0.5 * h,
     );

@@ -38,13 +38,18 @@
 //! assert!(pixels.width > 0);
 //! ```
 //!
-//! Scenes are drawn by [`scene`] (drawings at chosen drive positions with traced paths, and
-//! diagrams of every output column), and a whole run becomes one self-contained HTML file in
-//! [`report`].
+//! Scenes are drawn by [`scene`] (the poses and how a mechanism is drawn) and [`run`] (the
+//! diagram of every column, the drawings at the sketch pose and the `[plot]` positions with
+//! the traced paths, all written to a folder); a whole run becomes one self-contained HTML
+//! file in [`report`]. Long sweeps are drawn through [`decimate`] (never the CSV or JSON).
 
+pub mod decimate;
 pub mod diagram;
 pub mod drawing;
 pub mod raster;
+pub mod report;
+pub mod run;
+pub mod scene;
 
 use std::path::Path;
 
