@@ -134,6 +134,9 @@ pub struct Diagram {
 const TITLE: u32 = 30;
 /// Height of a row of polar panels (px).
 const POLAR_HEIGHT: u32 = 380;
+/// Curves of at most this many points are drawn with a dot at every point (a sweep of a
+/// few positions is not a smooth curve).
+const SPARSE: usize = 60;
 /// Series colours, in order (the Tableau 10 palette).
 const PALETTE: [RGBColor; 6] = [
     RGBColor(0x1f, 0x77, 0xb4),
@@ -311,8 +314,8 @@ impl Diagram {
             .light_line_style(RGBColor(0xee, 0xee, 0xee))
             .x_labels(10)
             .y_labels(5)
-            .x_label_formatter(&tick)
-            .y_label_formatter(&tick)
+            .x_label_formatter(&|v| tick(*v, x.end - x.start))
+            .y_label_formatter(&|v| tick(*v, y.end - y.start))
             .draw()
             .map_err(draw_error)?;
         for marker in &self.markers {
@@ -351,9 +354,12 @@ impl Diagram {
                         PathElement::new([(x, y), (x + 16, y)], colour.stroke_width(2))
                     });
                 }
-                if run.len() == 1 {
+                if series.points.len() <= SPARSE {
                     chart
-                        .draw_series([Circle::new((run[0][0], run[0][1]), 3, colour.filled())])
+                        .draw_series(
+                            run.iter()
+                                .map(|p| Circle::new((p[0], p[1]), 3, colour.filled())),
+                        )
                         .map_err(draw_error)?;
                 }
             }
@@ -423,8 +429,8 @@ fn draw_polar(area: &DrawingArea<SVGBackend, Shift>, polar: &Polar) -> Result<()
         .y_desc(format!("y [{}]", polar.unit))
         .label_style(text(11))
         .axis_desc_style(text(12))
-        .x_label_formatter(&tick)
-        .y_label_formatter(&tick)
+        .x_label_formatter(&|v| tick(*v, rx))
+        .y_label_formatter(&|v| tick(*v, ry))
         .light_line_style(RGBColor(0xf0, 0xf0, 0xf0))
         .draw()
         .map_err(draw_error)?;
@@ -443,9 +449,12 @@ fn draw_polar(area: &DrawingArea<SVGBackend, Shift>, polar: &Polar) -> Result<()
                     colour.stroke_width(2),
                 ))
                 .map_err(draw_error)?;
-            if run.len() == 1 {
+            if series.points.len() <= SPARSE {
                 chart
-                    .draw_series([Circle::new((run[0][0], run[0][1]), 3, colour.filled())])
+                    .draw_series(
+                        run.iter()
+                            .map(|p| Circle::new((p[0], p[1]), 3, colour.filled())),
+                    )
                     .map_err(draw_error)?;
             }
         }
@@ -453,10 +462,13 @@ fn draw_polar(area: &DrawingArea<SVGBackend, Shift>, polar: &Polar) -> Result<()
     Ok(())
 }
 
-/// A tick label: six significant digits at most, no trailing zeros, no `-0`.
-fn tick(v: &f64) -> String {
+/// A tick label on an axis spanning `span`: six significant digits at most, no trailing
+/// zeros, and `0` for what is zero but for rounding (1e-9 of the span).
+fn tick(v: f64, span: f64) -> String {
+    if v.abs() <= 1e-9 * span.abs() {
+        return "0".to_owned();
+    }
     match format!("{v:.5e}").parse::<f64>() {
-        Ok(r) if r.abs() < 1e-12 * v.abs().max(1e-300) || r == 0.0 => "0".to_owned(),
         Ok(r) => (r + 0.0).to_string(),
         Err(_) => v.to_string(),
     }
