@@ -59,6 +59,8 @@ pub struct SceneFile {
     pub rotor: Option<Spanned<super::balancing::RotorDef>>,
     /// Counterweights to size for the linkage (see [`super::balancing`]).
     pub balancing: Option<Spanned<super::balancing::BalancingDef>>,
+    /// What the pictures show (see [`super::plot`]).
+    pub plot: Option<Spanned<super::plot::PlotDef>>,
 }
 
 /// `[units]`: every field has an SI default.

@@ -33,6 +33,8 @@ pub struct Scene {
     pub dynamics: Option<super::dynamics::SceneDynamics>,
     /// The rotor and counterweights to balance, if the scene has them.
     pub balancing: Option<super::balancing::SceneBalancing>,
+    /// What the pictures show (`[plot]`; empty when the file has none).
+    pub plot: super::plot::Plot,
 }
 
 /// A named point at its sketch position.

@@ -54,6 +54,7 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
     let dynamics = super::dynamics::resolve(&cx, &sections, &geometry, &joints, drive.kind)?;
     let balancing =
         super::balancing::resolve(&cx, file.rotor.as_ref(), file.balancing.as_ref(), &geometry)?;
+    let plot = super::plot::resolve(&cx, file.plot.as_ref(), &geometry, drive.kind)?;
     let sweep_of = cx.sweep_of(&file.sweep, &outputs)?;
     let dimension = match sweep_of {
         Some(k) => outputs[k].kind.dimension(),
@@ -93,6 +94,7 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
         outputs,
         dynamics,
         balancing,
+        plot,
     })
 }
 
