@@ -237,3 +237,36 @@ fn bad_balancing_input_is_located() {
     ));
     assert!(e.to_string().contains("coincide"), "{e}");
 }
+
+/// The balancing pictures: the rotor's polygons with their corrections drawn in red, and the
+/// shaking force locus before and after; each SVG renders, and the correction colour
+/// (#c0392b) is on the rendered polygon.
+#[test]
+fn balancing_pictures_are_drawn() {
+    let load = |name: &str| {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("scenes")
+            .join(name);
+        let scene = scene::load(path).unwrap();
+        let report = scene::run(&scene).unwrap();
+        mechdiff::pictures::balancing::pictures(&scene, &report).unwrap()
+    };
+    let rotor = load("rotor_balancing.toml");
+    let names: Vec<&str> = rotor.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(names, ["rotor_force_polygon", "rotor_couple_polygon"]);
+    for (_, svg) in &rotor {
+        let raster = mechdiff::pictures::raster::render(svg).unwrap();
+        let red = (0..raster.width)
+            .flat_map(|x| (0..raster.height).map(move |y| (x, y)))
+            .filter(|&(x, y)| {
+                raster
+                    .pixel(x, y)
+                    .is_some_and(|p| p[0] > 150 && p[1] < 100 && p[2] < 100)
+            })
+            .count();
+        assert!(red > 50, "{red} red pixels");
+    }
+    let linkage = load("whitworth_balancing.toml");
+    assert_eq!(linkage.len(), 1);
+    assert!(linkage[0].1.contains("locus"));
+}

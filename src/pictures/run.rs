@@ -302,6 +302,9 @@ pub fn write_dir(scene: &Scene, report: &Report, dir: &Path) -> Result<Vec<PathB
     for (name, drawing) in drawings(scene, report, &animation)? {
         save(name, &drawing.to_svg())?;
     }
+    for (name, svg) in super::balancing::pictures(scene, report)? {
+        save(name, &svg)?;
+    }
     let html = super::report::html(scene, report, &animation, &svg)?;
     let path = dir.join("report.html");
     super::write_file(&path, html.as_bytes())?;
