@@ -156,7 +156,8 @@ fn four_bar_full_force_balance_matches_berkof_lowen() {
     assert!(r.after.drive_torque.iter().all(|t| t.is_finite()));
 }
 
-fn slider_crank(rod_mass: Option<f64>) -> MechanismBuilder {
+/// With `rod = Some((mass, centre))` the rod has mass data, else none.
+fn slider_crank(rod: Option<(f64, [f64; 2])>) -> MechanismBuilder {
     let r = 0.1;
     let l = 0.4;
     let b = Mechanism::builder()
@@ -184,12 +185,12 @@ fn slider_crank(rod_mass: Option<f64>) -> MechanismBuilder {
                 moment: 0.0,
             },
         );
-    let b = match rod_mass {
-        Some(mass) => b.inertia(
+    let b = match rod {
+        Some((mass, center)) => b.inertia(
             "rod",
             Inertia {
                 mass,
-                center: [r, 0.0],
+                center,
                 moment: 0.0,
             },
         ),
@@ -211,7 +212,7 @@ fn slider_crank(rod_mass: Option<f64>) -> MechanismBuilder {
 /// partial balance with c = ½.
 #[test]
 fn slider_crank_least_squares_is_the_half_balance() {
-    let m = slider_crank(Some(0.0)).build().unwrap();
+    let m = slider_crank(Some((0.0, [0.1, 0.0]))).build().unwrap();
     let mut phis = revolution(5.0, &[]);
     phis.pop(); // 360° repeats 0°
     let omega = 50.0;
@@ -246,6 +247,31 @@ fn slider_crank_least_squares_is_the_half_balance() {
     // crank at 90°, i.e. the half-balance's 250 N (1e-9 relative: kinematics rounding).
     assert!((across.abs() - 250.0).abs() <= 1e-9 * 250.0, "{across}");
     assert!(r.after.rms_force() < r.before.rms_force());
+}
+
+/// The two-mass split of a rod of 0.6 kg with its centre of gravity at mid-length: 0.3 kg
+/// to the wrist pin, 0.3 kg to the crank pin. By hand: m_rec = 2 + 0.3 = 2.3 kg,
+/// m_rot r = 1·0.03 + 0.3·0.1 = 0.06 kg·m; at ω = 100 rad/s the primary is
+/// 2.3·0.1·1e4 = 2300 N and the secondary 2300·0.1/0.4 = 575 N.
+#[test]
+fn slider_crank_unbalance_from_the_mechanism() {
+    let m = slider_crank(Some((0.6, [0.3, 0.0]))).build().unwrap();
+    let u = SliderCrankUnbalance::from_mechanism(&m, "crank", "rod", "slider").unwrap();
+    // 1e-15: sums and ratios of a few numbers exact to 1 ulp.
+    assert!((u.crank - 0.1).abs() < 1e-15 && (u.rod - 0.4).abs() < 1e-15);
+    assert!((u.reciprocating_mass - 2.3).abs() < 1e-15);
+    assert!((u.rotating_mass_radius - 0.06).abs() < 1e-15);
+    assert!((u.primary(100.0) - 2300.0).abs() < 1e-11);
+    assert!((u.secondary(100.0) - 575.0).abs() < 1e-11);
+    let no_rod = slider_crank(None).build().unwrap();
+    assert!(matches!(
+        SliderCrankUnbalance::from_mechanism(&no_rod, "crank", "rod", "slider"),
+        Err(Error::MissingData { .. })
+    ));
+    assert!(matches!(
+        SliderCrankUnbalance::from_mechanism(&m, "rod", "crank", "slider"),
+        Err(Error::InvalidJoint { .. })
+    ));
 }
 
 #[test]

@@ -22,6 +22,7 @@
 //! ```
 
 use crate::Error;
+use crate::geometry::{JointKind, Mechanism};
 
 /// The unbalance data of a slider-crank.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -32,7 +33,8 @@ pub struct SliderCrankUnbalance {
     pub rod: f64,
     /// Reciprocating mass `m_rec` (kg).
     pub reciprocating_mass: f64,
-    /// Rotating mass-radius `m_rot r` at the crank pin (kg·m).
+    /// Rotating mass-radius `m_rot r` at the crank pin (kg·m), signed: positive when the
+    /// rotating masses' centre is on the crank pin's side of the pivot.
     pub rotating_mass_radius: f64,
 }
 
@@ -42,7 +44,8 @@ pub struct SliderCrankUnbalance {
 pub struct PartialBalance {
     /// The fraction `c` of `m_rec r` balanced.
     pub fraction: f64,
-    /// Counterweight mass-radius `m_rot r + c m_rec r` (kg·m), opposite the crank pin.
+    /// Counterweight mass-radius `m_rot r + c m_rec r` (kg·m), opposite the crank pin
+    /// (negative: on the pin's side).
     pub counterweight_mass_radius: f64,
     /// Primary force left along the line of stroke, amplitude `(1 − c) m_rec r ω²` (N).
     pub primary_along: f64,
@@ -53,7 +56,8 @@ pub struct PartialBalance {
 }
 
 impl SliderCrankUnbalance {
-    /// Checks the data: lengths positive, `l > r`, masses finite and ≥ 0.
+    /// Checks the data: lengths positive, `l > r`, the reciprocating mass finite and ≥ 0,
+    /// the rotating mass-radius finite.
     pub fn new(
         crank: f64,
         rod: f64,
@@ -77,16 +81,17 @@ impl SliderCrankUnbalance {
                 value: rod,
             });
         }
-        for (v, what) in [
-            (reciprocating_mass, "reciprocating mass (kg, ≥ 0)"),
-            (rotating_mass_radius, "rotating mass-radius (kg m, ≥ 0)"),
-        ] {
-            if !(v.is_finite() && v >= 0.0) {
-                return Err(Error::InvalidValue {
-                    what: what.to_owned(),
-                    value: v,
-                });
-            }
+        if !(reciprocating_mass.is_finite() && reciprocating_mass >= 0.0) {
+            return Err(Error::InvalidValue {
+                what: "reciprocating mass (kg, ≥ 0)".to_owned(),
+                value: reciprocating_mass,
+            });
+        }
+        if !rotating_mass_radius.is_finite() {
+            return Err(Error::InvalidValue {
+                what: "rotating mass-radius (kg m)".to_owned(),
+                value: rotating_mass_radius,
+            });
         }
         Ok(SliderCrankUnbalance {
             crank,
@@ -125,5 +130,115 @@ impl SliderCrankUnbalance {
             primary_across: fraction * p,
             secondary: self.secondary(omega),
         })
+    }
+}
+
+/// The revolute joint point between links `a` and `b`, if there is one.
+fn revolute_between(m: &Mechanism, a: usize, b: usize) -> Option<usize> {
+    m.joints.iter().find_map(|j| match j.kind {
+        JointKind::Revolute {
+            link_a,
+            link_b,
+            point,
+        } if (link_a, link_b) == (a, b) || (link_a, link_b) == (b, a) => Some(point),
+        _ => None,
+    })
+}
+
+impl SliderCrankUnbalance {
+    /// The unbalance data of the slider-crank formed by `crank` (turning about a fixed pivot
+    /// O), `rod` (hinged to the crank at A) and `slider` (hinged to the rod at B, on a
+    /// straight ground guide through O): r = |OA|, l = |AB| at the sketch, and the masses
+    /// split by the two-mass equivalent of the rod (its mass shared between A and B by the
+    /// position of its centre of gravity along AB): `m_rec = m_slider + m_rod·|AG|/l`,
+    /// `m_rot r = m_crank·(OG_crank · OA)/r + m_rod·(1 − |AG|/l)·r` (the crank's centre of
+    /// gravity projected on the crank line).
+    ///
+    /// Errors: unknown links, links that are not joined in that way, links without mass
+    /// data, a guide that does not pass through O (an offset slider-crank, for which these
+    /// formulas do not hold).
+    pub fn from_mechanism(
+        m: &Mechanism,
+        crank: &str,
+        rod: &str,
+        slider: &str,
+    ) -> Result<Self, Error> {
+        let index = |name: &str| {
+            m.link_index(name).map_err(|_| Error::UnknownName {
+                what: "link",
+                name: name.to_owned(),
+                context: "the slider-crank's unbalance".to_owned(),
+            })
+        };
+        let (c, r, s) = (index(crank)?, index(rod)?, index(slider)?);
+        let joint = |a: usize, b: usize, what: &str| {
+            revolute_between(m, a, b).ok_or_else(|| Error::InvalidJoint {
+                joint: what.to_owned(),
+                problem: format!(
+                    "the slider-crank's unbalance needs a revolute joint between `{}` and `{}`",
+                    m.links[a].name, m.links[b].name
+                ),
+            })
+        };
+        let o = m.points[joint(0, c, "crank pivot")?].sketch;
+        let a = m.points[joint(c, r, "crank pin")?].sketch;
+        let b = m.points[joint(r, s, "wrist pin")?].sketch;
+        let guide = m.joints.iter().find_map(|j| match j.kind {
+            JointKind::Prismatic {
+                guide: 0,
+                line,
+                slider: k,
+                ..
+            } if k == s => Some(line),
+            _ => None,
+        });
+        let Some(line) = guide else {
+            return Err(Error::InvalidJoint {
+                joint: format!("guide of `{slider}`"),
+                problem: format!("`{slider}` must slide on a prismatic joint on the ground"),
+            });
+        };
+        let (p, q) = (m.points[line[0]].sketch, m.points[line[1]].sketch);
+        let length = |u: [f64; 2], v: [f64; 2]| (v[0] - u[0]).hypot(v[1] - u[1]);
+        let cross = |u: [f64; 2], v: [f64; 2], w: [f64; 2]| {
+            (v[0] - u[0]) * (w[1] - u[1]) - (v[1] - u[1]) * (w[0] - u[0])
+        };
+        let (crank_r, rod_l) = (length(o, a), length(a, b));
+        let offset = cross(p, q, o) / length(p, q);
+        if offset.abs() > 1e-9 * (crank_r + rod_l) {
+            return Err(Error::InvalidValue {
+                what: format!(
+                    "offset of the guide of `{slider}` from the crank pivot (m; the primary and \
+                     secondary unbalance formulas are for an in-line slider-crank)"
+                ),
+                value: offset,
+            });
+        }
+        let inertia = |k: usize| {
+            m.links[k].inertia.ok_or_else(|| Error::MissingData {
+                what: "the slider-crank's unbalance".to_owned(),
+                missing: format!("mass data for link `{}`", m.links[k].name),
+            })
+        };
+        let (ic, ir, is) = (inertia(c)?, inertia(r)?, inertia(s)?);
+        let dot = |u: [f64; 2], v: [f64; 2], w: [f64; 2]| {
+            (v[0] - u[0]) * (w[0] - u[0]) + (v[1] - u[1]) * (w[1] - u[1])
+        };
+        let share_b = if rod_l > 0.0 {
+            dot(a, b, ir.center) / (rod_l * rod_l)
+        } else {
+            0.0
+        };
+        let crank_mr = if crank_r > 0.0 {
+            ic.mass * dot(o, a, ic.center) / crank_r
+        } else {
+            0.0
+        };
+        Self::new(
+            crank_r,
+            rod_l,
+            is.mass + ir.mass * share_b,
+            crank_mr + ir.mass * (1.0 - share_b) * crank_r,
+        )
     }
 }
