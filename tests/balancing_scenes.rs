@@ -270,3 +270,60 @@ fn balancing_pictures_are_drawn() {
     assert_eq!(linkage.len(), 1);
     assert!(linkage[0].1.contains("locus"));
 }
+
+/// An in-line slider-crank (r = 0.1 m, l = 0.4 m) with a crank of 1 kg at 0.03 m, a rod of
+/// 0.6 kg at mid-length and a slider of 2 kg, at 100 rad/s. By hand: m_rec = 2.3 kg,
+/// m_rot r = 0.06 kg·m, primary 2.3·0.1·100² = 2300 N, secondary 575 N; the half balance
+/// needs 0.06 + 0.5·2.3·0.1 = 0.175 kg·m and leaves 1150 N along and 1150 N across.
+const SLIDER_CRANK: &str = r#"[points]
+O = [0.0, 0.0]
+A = [0.1, 0.0]
+B = [0.5, 0.0]
+X = [1.0, 0.0]
+[links]
+ground = ["O", "X"]
+crank = ["O", "A"]
+rod = ["A", "B"]
+slider = ["B"]
+[joints]
+O = { type = "revolute", at = "O", links = ["ground", "crank"] }
+A = { type = "revolute", at = "A", links = ["crank", "rod"] }
+B = { type = "revolute", at = "B", links = ["rod", "slider"] }
+guide = { type = "prismatic", line = ["O", "X"], point = "B", links = ["ground", "slider"] }
+[drive]
+joint = "O"
+line = ["O", "A"]
+speed = 100
+[sweep]
+positions = [0]
+[masses]
+crank = { mass = 1, center = [0.03, 0.0] }
+rod = { mass = 0.6, center = [0.3, 0.0] }
+slider = { mass = 2, center = "B" }
+[balancing]
+slider_crank = { crank = "crank", rod = "rod", slider = "slider" }
+"#;
+
+#[test]
+fn slider_crank_unbalance_is_printed() {
+    let scene = scene::parse("sc.toml", SLIDER_CRANK).unwrap();
+    let r = scene::run(&scene).unwrap();
+    let text = r.balancing.unwrap().lines.join("\n");
+    assert!(text.contains("reciprocating mass 2.300000000 kg"), "{text}");
+    assert!(text.contains("rotating m r 0.060000000 kg m"), "{text}");
+    assert!(text.contains("primary unbalance 2300.000000 N"), "{text}");
+    assert!(text.contains("secondary 575.000000 N"), "{text}");
+    assert!(text.contains("m r = 0.175000000 kg m"), "{text}");
+    assert!(
+        text.contains("1150.000000 N along the line, 1150.000000 N across"),
+        "{text}"
+    );
+    // An offset guide: the formulas do not apply, and the error says so.
+    let offset = SLIDER_CRANK
+        .replace("B = [0.5, 0.0]", "B = [0.5, -0.01]")
+        .replace("X = [1.0, 0.0]", "X = [1.0, -0.01]\nG = [0.0, -0.01]")
+        .replace("ground = [\"O\", \"X\"]", "ground = [\"O\", \"X\", \"G\"]")
+        .replace("line = [\"O\", \"X\"]", "line = [\"G\", \"X\"]");
+    let e = error(&offset);
+    assert!(e.to_string().contains("in-line"), "{e}");
+}

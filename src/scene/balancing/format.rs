@@ -47,10 +47,27 @@ pub struct CounterweightDef {
     pub radius: Spanned<f64>,
 }
 
+/// `[balancing] slider_crank`: the primary and secondary unbalance of an in-line
+/// slider-crank and its partial balance.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SliderCrankDef {
+    /// The crank (turning about a fixed pivot).
+    pub crank: Name,
+    /// The connecting rod.
+    pub rod: Name,
+    /// The slider, on a straight ground guide through the crank pivot.
+    pub slider: Name,
+    /// Fraction of the reciprocating mass to balance, in [0, 1] (default 0.5).
+    pub fraction: Option<Spanned<f64>>,
+}
+
 /// `[balancing]`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BalancingDef {
     /// The counterweights to size.
-    pub counterweights: Spanned<Vec<Spanned<CounterweightDef>>>,
+    pub counterweights: Option<Spanned<Vec<Spanned<CounterweightDef>>>>,
+    /// A slider-crank's unbalance.
+    pub slider_crank: Option<Spanned<SliderCrankDef>>,
 }

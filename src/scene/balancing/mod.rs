@@ -16,14 +16,15 @@
 //!
 //! [balancing]                  # needs [masses] for every moving link and the drive speed
 //! counterweights = [ { link = "crank", line = ["A0", "A"], radius = 0.1 } ]
+//! slider_crank = { crank = "crank", rod = "rod", slider = "slider", fraction = 0.5 }
 //! ```
 
 mod format;
 mod resolve;
 mod run;
 
-pub use format::{BalancingDef, CounterweightDef, RotorDef, RotorMassDef};
+pub use format::{BalancingDef, CounterweightDef, RotorDef, RotorMassDef, SliderCrankDef};
 pub(crate) use resolve::resolve;
-pub use resolve::{SceneBalancing, SceneRotor};
+pub use resolve::{SceneBalancing, SceneRotor, SceneSliderCrank};
 pub use run::BalancingReport;
 pub(crate) use run::run;

@@ -34,6 +34,19 @@ pub struct SceneBalancing {
     /// `[balancing]` counterweights (SI), each with its place in the file, and the section's
     /// place.
     pub counterweights: Option<(Vec<(Counterweight, Location)>, Location)>,
+    /// `[balancing] slider_crank`: crank, rod and slider links, the fraction, and its place.
+    pub slider_crank: Option<SceneSliderCrank>,
+}
+
+/// A checked `[balancing] slider_crank`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneSliderCrank {
+    /// Crank, rod and slider links.
+    pub links: [String; 3],
+    /// Fraction of the reciprocating mass balanced, in [0, 1].
+    pub fraction: f64,
+    /// Where it is.
+    pub location: Location,
 }
 
 /// Checks `[rotor]` and `[balancing]`; `None` when the scene has neither.
@@ -47,10 +60,19 @@ pub(crate) fn resolve(
         return Ok(None);
     }
     let rotor = rotor.map(|r| resolve_rotor(cx, r)).transpose()?;
-    let counterweights = match balancing {
-        Some(b) => {
+    let mut counterweights = None;
+    let mut slider_crank = None;
+    if let Some(b) = balancing {
+        let def = b.get_ref();
+        if def.counterweights.is_none() && def.slider_crank.is_none() {
+            return Err(cx.invalid(
+                b,
+                "`[balancing]` asks for nothing: give `counterweights` or `slider_crank`",
+            ));
+        }
+        if let Some(list) = &def.counterweights {
             let mut out = Vec::new();
-            for entry in b.get_ref().counterweights.get_ref() {
+            for entry in list.get_ref() {
                 let c = entry.get_ref();
                 let link = cx.link(&c.link, geometry.links, "`[balancing]`")?;
                 let line = cx.line(&c.line, link, geometry, "a counterweight's `line`")?;
@@ -67,17 +89,43 @@ pub(crate) fn resolve(
             }
             if out.is_empty() {
                 return Err(cx.invalid(
-                    &b.get_ref().counterweights,
+                    list,
                     "`[balancing] counterweights` is empty: name at least one link",
                 ));
             }
-            Some((out, cx.at(b)))
+            counterweights = Some((out, cx.at(b)));
         }
-        None => None,
-    };
+        if let Some(sc) = &def.slider_crank {
+            let d = sc.get_ref();
+            let context = "`[balancing] slider_crank`";
+            let links = [
+                cx.link(&d.crank, geometry.links, context)?.to_owned(),
+                cx.link(&d.rod, geometry.links, context)?.to_owned(),
+                cx.link(&d.slider, geometry.links, context)?.to_owned(),
+            ];
+            let fraction = match &d.fraction {
+                Some(f) => {
+                    let x = *f.get_ref();
+                    if !(0.0..=1.0).contains(&x) {
+                        return Err(
+                            cx.invalid(f, format!("`fraction` must be in [0, 1], found {x}"))
+                        );
+                    }
+                    x
+                }
+                None => 0.5,
+            };
+            slider_crank = Some(SceneSliderCrank {
+                links,
+                fraction,
+                location: cx.at(sc),
+            });
+        }
+    }
     Ok(Some(SceneBalancing {
         rotor,
         counterweights,
+        slider_crank,
     }))
 }
 

@@ -2,7 +2,9 @@
 //! and what they change.
 
 use mechdiff_core::DriveState;
-use mechdiff_core::balancing::{LinkageBalance, Polygons, Rotor, balance_linkage};
+use mechdiff_core::balancing::{
+    LinkageBalance, Polygons, Rotor, SliderCrankUnbalance, balance_linkage,
+};
 use mechdiff_core::dynamics::Dynamics;
 use mechdiff_core::geometry::{Mechanism, Solver};
 
@@ -57,6 +59,34 @@ pub(crate) fn run(
     };
     if let Some(r) = &b.rotor {
         report.lines.extend(rotor_lines(scene, r)?);
+    }
+    if let Some(sc) = &b.slider_crank {
+        let [crank, rod, slider] = &sc.links;
+        let u = SliderCrankUnbalance::from_mechanism(mechanism, crank, rod, slider)
+            .map_err(|e| core_error(&sc.location, e))?;
+        let omega = scene.drive.speed.unwrap_or(0.0);
+        let p = u
+            .partial_balance(sc.fraction, omega)
+            .map_err(|e| core_error(&sc.location, e))?;
+        report.lines.push(String::new());
+        report.lines.push(format!(
+            "slider-crank `{crank}`–`{rod}`–`{slider}`: r = {}, l = {}, reciprocating mass {:.9} kg, \
+             rotating m r {:.9} kg m (rod split between its pins by its centre of gravity)",
+            length_text(scene, u.crank),
+            length_text(scene, u.rod),
+            u.reciprocating_mass,
+            u.rotating_mass_radius
+        ));
+        report.lines.push(format!(
+            "  at ω = {omega:.6} rad/s: primary unbalance {:.6} N (cos φ), secondary {:.6} N (cos 2φ)",
+            u.primary(omega),
+            u.secondary(omega)
+        ));
+        report.lines.push(format!(
+            "  partial balance of {} of the reciprocating mass: crank counterweight m r = {:.9} kg m \
+             opposite the crank pin; primary left {:.6} N along the line, {:.6} N across it",
+            p.fraction, p.counterweight_mass_radius, p.primary_along, p.primary_across
+        ));
     }
     if let Some((counterweights, location)) = &b.counterweights {
         let Some(omega) = scene.drive.speed else {
