@@ -307,7 +307,7 @@ fn bad_requests_give_typed_errors() {
     assert!(matches!(e, Error::MissingData { .. }), "{e}");
     assert!(matches!(
         solve(&m, &crank, &[], drive),
-        Err(Error::InvalidSweep { .. })
+        Err(Error::MissingData { .. })
     ));
     // A rod without mass data: named in the error.
     let no_rod = slider_crank(None).build().unwrap();

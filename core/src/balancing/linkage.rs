@@ -137,8 +137,9 @@ impl LinkageBalance {
 /// Errors: a moving link without mass data ([`Error::MissingData`]: give `mass = 0` for a
 /// massless link), a counterweight on a link not pivoted to the ground at `line[0]`
 /// ([`Error::NotPivoted`]), a radius that is not positive or coincident line points
-/// ([`Error::NonPositiveLength`]), two counterweights on one link, an empty sweep, and
-/// counterweights the sweep does not determine (a link that never turns, a zero speed).
+/// ([`Error::NonPositiveLength`]), two counterweights on one link
+/// ([`Error::DuplicateName`]), and an empty sweep or one that does not determine the
+/// counterweights (a link that never turns, a zero speed: [`Error::MissingData`]).
 pub fn balance_linkage(
     mechanism: &Mechanism,
     dynamics: &Dynamics,
@@ -162,11 +163,9 @@ pub fn balance_linkage(
         });
     }
     if phis.is_empty() {
-        return Err(Error::InvalidSweep {
-            start: f64::NAN,
-            end: f64::NAN,
-            step: f64::NAN,
-            reason: "balancing needs at least one drive position",
+        return Err(Error::MissingData {
+            what: "balancing a linkage".to_owned(),
+            missing: "at least one drive position (sweep one whole cycle)".to_owned(),
         });
     }
     let sites = counterweights
