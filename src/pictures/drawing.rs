@@ -408,9 +408,13 @@ impl Drawing {
             r#"<rect width="{}" height="{}" fill="white"/>"#,
             frame.width, frame.height
         );
+        // A long title gets a smaller font, so that it fits (DejaVu Sans: ~0.62 em per
+        // character on average).
+        let characters = self.title.chars().count().max(1) as f64;
+        let size = ((frame.width - 16.0) / (0.62 * characters)).clamp(7.0, 14.0);
         let _ = writeln!(
             out,
-            r#"<text x="8" y="18" font-size="14" fill="black">{}</text>"#,
+            r#"<text x="8" y="18" font-size="{size:.1}" fill="black">{}</text>"#,
             escape(&self.title)
         );
         let s = self.symbol();

@@ -311,7 +311,7 @@ fn hull(points: &[usize], pose: &[[f64; 2]]) -> Vec<usize> {
     lower.pop();
     upper.pop();
     lower.extend(upper);
-    if lower.len() == 2 || lower.len() < 2 {
+    if lower.len() <= 2 {
         // Collinear: the two extremes.
         return vec![p[0], p[p.len() - 1]];
     }
