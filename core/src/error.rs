@@ -236,6 +236,38 @@ pub enum Error {
         /// What is missing, e.g. "mass properties of at least one link".
         missing: String,
     },
+    // ---- balancing (`balancing` module) ----
+    /// The two correction planes of a two-plane balance are at the same axial position (or
+    /// too close to determine the corrections).
+    #[error(
+        "the correction planes at axial positions {left} m and {right} m coincide: two-plane \
+         balancing needs two distinct planes (move one of them along the shaft)"
+    )]
+    CoincidentPlanes {
+        /// Axial position of the first plane (m).
+        left: f64,
+        /// Axial position of the second plane (m).
+        right: f64,
+    },
+    /// A balancing question has no answer because there is nothing to balance.
+    #[error("{what} is already zero: no correction is determined")]
+    AlreadyBalanced {
+        /// What is already balanced, e.g. "the couple about the reference plane".
+        what: String,
+    },
+    /// A counterweight is asked for on a link that does not turn about a fixed pivot at the
+    /// given point.
+    #[error(
+        "counterweight on link `{link}`: it must turn about a fixed pivot, and `{point}` is not \
+         a revolute joint between `{link}` and the ground (give the line from the link's \
+         ground pivot)"
+    )]
+    NotPivoted {
+        /// The link.
+        link: String,
+        /// The point named as its pivot.
+        point: String,
+    },
     // ---- symbolic engine (`symbolic` module) ----
     /// A formula (s-expression or infix) is malformed; `position` is the character offset of
     /// the problem in `input`.

@@ -1,11 +1,12 @@
-//! `mechdiff run <scene.toml> [--csv out.csv]`: run a scene and print its table.
+//! `mechdiff run <scene.toml> [--csv out.csv] [--json out.json] [--plot DIR] [--report
+//! out.html]`: run a scene, print its table, and write the outputs asked for.
 
 use std::io::{BufWriter, Write};
 use std::path::PathBuf;
 
 use clap::Args;
 use mechdiff::scene::{self, table};
-use mechdiff::{Error, files};
+use mechdiff::{Error, files, pictures};
 
 /// Arguments of `mechdiff run`.
 #[derive(Debug, Args)]
@@ -17,17 +18,26 @@ pub struct RunArgs {
     /// complete), and never onto the scene file.
     #[arg(long, value_name = "FILE")]
     pub csv: Option<PathBuf>,
+    /// Also write the columns, rows and dead positions to this JSON file.
+    #[arg(long, value_name = "FILE")]
+    pub json: Option<PathBuf>,
+    /// Draw the run into this folder: diagram.svg/png, mechanism_*.svg/png, report.html.
+    #[arg(long, value_name = "DIR")]
+    pub plot: Option<PathBuf>,
+    /// Write the animated HTML report of the run to this file (self-contained).
+    #[arg(long, value_name = "FILE")]
+    pub report: Option<PathBuf>,
 }
 
 /// Reads, checks and runs the scene; prints the plan, the table and the dead positions.
 pub fn run(args: &RunArgs) -> Result<(), Error> {
-    if let Some(csv) = &args.csv
-        && files::same_file(csv, &args.scene)
-    {
-        return Err(Error::OutputIsInput {
-            output: csv.clone(),
-            scene: args.scene.clone(),
-        });
+    for output in [&args.csv, &args.json, &args.report].into_iter().flatten() {
+        if files::same_file(output, &args.scene) {
+            return Err(Error::OutputIsInput {
+                output: output.clone(),
+                scene: args.scene.clone(),
+            });
+        }
     }
     let scene = scene::load(&args.scene)?;
     let report = scene::run(&scene)?;
@@ -36,6 +46,15 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
     }
     if let Some(path) = &args.csv {
         files::write_atomically(path, |mut out| table::write_csv(&report, &mut out))?;
+    }
+    if let Some(path) = &args.json {
+        files::write_atomically(path, |mut out| table::write_json(&scene, &report, &mut out))?;
+    }
+    if let Some(dir) = &args.plot {
+        pictures::run::write_dir(&scene, &report, dir)?;
+    }
+    if let Some(path) = &args.report {
+        pictures::report::write(&scene, &report, path)?;
     }
     let stdout = std::io::stdout();
     let mut out = BufWriter::new(stdout.lock());

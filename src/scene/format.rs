@@ -56,6 +56,12 @@ pub struct SceneFile {
     /// Dynamic outputs (forces, reactions, drive torque, energy, shaking force).
     #[serde(default, rename = "dynamics")]
     pub dynamics: Vec<Spanned<super::dynamics::DynamicsOutputDef>>,
+    /// A rotor to balance (see [`super::balancing`]).
+    pub rotor: Option<Spanned<super::balancing::RotorDef>>,
+    /// Counterweights to size for the linkage (see [`super::balancing`]).
+    pub balancing: Option<Spanned<super::balancing::BalancingDef>>,
+    /// What the pictures show (see [`super::plot`]).
+    pub plot: Option<Spanned<super::plot::PlotDef>>,
 }
 
 /// `[units]`: every field has an SI default.

@@ -33,6 +33,7 @@
 //! assert_eq!(scene.order(), 0);
 //! ```
 
+pub mod balancing;
 pub mod build;
 mod drive;
 pub mod dynamics;
@@ -43,6 +44,7 @@ pub mod limits;
 pub mod model;
 pub mod outputs;
 pub mod plan;
+pub mod plot;
 pub mod resolve;
 pub mod run;
 pub mod source;

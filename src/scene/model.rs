@@ -31,6 +31,10 @@ pub struct Scene {
     pub outputs: Vec<Output>,
     /// Masses, effects and dynamic outputs, if the scene has any.
     pub dynamics: Option<super::dynamics::SceneDynamics>,
+    /// The rotor and counterweights to balance, if the scene has them.
+    pub balancing: Option<super::balancing::SceneBalancing>,
+    /// What the pictures show (`[plot]`; empty when the file has none).
+    pub plot: super::plot::Plot,
 }
 
 /// A named point at its sketch position.

@@ -62,6 +62,9 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
         outputs: &file.dynamics,
     };
     let dynamics = super::dynamics::resolve(&cx, &sections, &geometry, &joints, drive.kind)?;
+    let balancing =
+        super::balancing::resolve(&cx, file.rotor.as_ref(), file.balancing.as_ref(), &geometry)?;
+    let plot = super::plot::resolve(&cx, file.plot.as_ref(), &geometry, drive.kind)?;
     let sweep_of = cx.sweep_of(&file.sweep, &outputs)?;
     let dimension = match sweep_of {
         Some(k) => outputs[k].kind.dimension(),
@@ -100,6 +103,8 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
         sweep_of,
         outputs,
         dynamics,
+        balancing,
+        plot,
     })
 }
 

@@ -57,6 +57,8 @@ pub struct Report {
     pub dynamics: Option<super::dynamics::DynamicsReport>,
     /// Warnings about the results (ill-conditioned positions: their estimated error).
     pub warnings: Vec<String>,
+    /// The balancing answers (their columns are also in `columns` and `rows`).
+    pub balancing: Option<super::balancing::BalancingReport>,
 }
 
 /// A pose that amplifies rounding more than this (see `Tracker::amplification`) is
@@ -164,6 +166,16 @@ pub fn run(scene: &Scene) -> Result<Report> {
             row.extend_from_slice(extra);
         }
     }
+    let balancing = match &scene.balancing {
+        Some(b) => Some(super::balancing::run(scene, b, &mechanism, &positions)?),
+        None => None,
+    };
+    if let Some(b) = balancing.as_ref().filter(|b| !b.columns.is_empty()) {
+        all.extend(b.columns.iter().cloned());
+        for (row, extra) in rows.iter_mut().zip(&b.rows) {
+            row.extend_from_slice(extra);
+        }
+    }
     let report = Report {
         plan,
         columns: all,
@@ -171,6 +183,7 @@ pub fn run(scene: &Scene) -> Result<Report> {
         dead_positions,
         dynamics,
         warnings,
+        balancing,
     };
     all_finite(scene, &report)?;
     Ok(report)

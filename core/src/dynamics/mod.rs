@@ -58,7 +58,7 @@ pub mod motor;
 pub mod plan;
 pub mod run;
 pub mod shaking;
-mod state;
+pub(crate) mod state;
 mod teeth;
 
 pub use efficiency::{Driving, Efficiency};

@@ -1,0 +1,407 @@
+//! Counterweights for linkages, from the shaking force.
+//!
+//! A counterweight on a link that turns about a fixed pivot `O` is a point mass `m` at
+//! `O + A(θ)·c`, with `θ` the link's rotation since the sketch. Its inertial force is
+//! `−m·d²/dt²(A(θ)c) = (ω² A(θ) − α J A(θ))·b` with `b = m c` its **mass-radius vector**
+//! (kg·m, at the sketch) and `J` the quarter turn — linear in `b`. The shaking force of the
+//! balanced linkage at drive position `φⱼ` is therefore
+//!
+//! ```text
+//! F(φⱼ) = F₀(φⱼ) + Σₖ Mₖ(φⱼ) bₖ,   Mₖ = ω²ₖ A(θₖ) − αₖ J A(θₖ)
+//! ```
+//!
+//! and the counterweights that minimise `Σⱼ |F(φⱼ)|²` over the sweep solve a linear
+//! least-squares problem (by SVD). Where full force balance is possible — the total centre of
+//! mass made stationary, as for a four-bar with counterweights on crank and rocker
+//! (Berkof–Lowen) — the minimum is zero and the least-squares solution is that balance; the
+//! result says which case it is ([`LinkageBalance::full_force_balance`]). Full force balance
+//! raises the shaking moment and the drive torque's swing, so both are reported before and
+//! after, computed by the [`crate::dynamics`] code on the mechanism with the counterweights
+//! added to the links' mass properties.
+
+use nalgebra::{DMatrix, DVector};
+
+use crate::dynamics::run::run;
+use crate::dynamics::state::link_states;
+use crate::dynamics::{Dynamics, Plan, Request};
+use crate::geometry::{Inertia, JointKind, Mechanism, Solver};
+use crate::{DriveState, Error};
+
+/// A counterweight to size: on `link`, at `radius` from its fixed pivot `line[0]`, its angle
+/// measured from the link's line `line[0] → line[1]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Counterweight {
+    /// The link (it must turn about a fixed pivot).
+    pub link: String,
+    /// The pivot (a revolute joint between the link and the ground) and a second point of
+    /// the link: the line angles are measured from.
+    pub line: [String; 2],
+    /// Distance of the counterweight's centre from the pivot (m, > 0).
+    pub radius: f64,
+}
+
+/// A sized counterweight.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlacedCounterweight {
+    /// The request.
+    pub request: Counterweight,
+    /// Mass-radius vector at the sketch pose, global axes, from the pivot (kg·m).
+    pub vector: [f64; 2],
+    /// Its magnitude `m r` (kg·m).
+    pub mass_radius: f64,
+    /// Its angle from the link's line, counter-clockwise (rad, in (−π, π]).
+    pub angle: f64,
+    /// The mass at the requested radius (kg).
+    pub mass: f64,
+    /// Its centre at the sketch pose (m).
+    pub center: [f64; 2],
+}
+
+/// Shaking force, shaking moment and drive torque over the sweep.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LinkageSweep {
+    /// Drive positions.
+    pub phi: Vec<f64>,
+    /// Shaking force `Σ −m a_G` (N).
+    pub force: Vec<[f64; 2]>,
+    /// Shaking moment about the origin (N·m).
+    pub moment: Vec<f64>,
+    /// Drive torque (N·m) or force (N).
+    pub drive_torque: Vec<f64>,
+}
+
+impl LinkageSweep {
+    /// Largest `|ΣF|` over the sweep (N).
+    pub fn max_force(&self) -> f64 {
+        self.force
+            .iter()
+            .map(|f| f[0].hypot(f[1]))
+            .fold(0.0, f64::max)
+    }
+
+    /// Largest `|M|` of the shaking moment (N·m).
+    pub fn max_moment(&self) -> f64 {
+        self.moment.iter().map(|m| m.abs()).fold(0.0, f64::max)
+    }
+
+    /// Largest `|M_drive|` (N·m or N).
+    pub fn max_drive_torque(&self) -> f64 {
+        self.drive_torque
+            .iter()
+            .map(|m| m.abs())
+            .fold(0.0, f64::max)
+    }
+
+    /// Root mean square of `|ΣF|` over the sweep (N).
+    pub fn rms_force(&self) -> f64 {
+        let n = self.force.len().max(1) as f64;
+        (self
+            .force
+            .iter()
+            .map(|f| f[0] * f[0] + f[1] * f[1])
+            .sum::<f64>()
+            / n)
+            .sqrt()
+    }
+}
+
+/// The counterweights and the linkage's shaking before and after.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LinkageBalance {
+    /// The counterweights, in the order asked.
+    pub counterweights: Vec<PlacedCounterweight>,
+    /// Without counterweights.
+    pub before: LinkageSweep,
+    /// With them.
+    pub after: LinkageSweep,
+    /// The mechanism with the counterweights added to the links' mass properties.
+    pub balanced: Mechanism,
+}
+
+impl LinkageBalance {
+    /// Relative tolerance below which the shaking force counts as cancelled: the largest
+    /// `|ΣF|` after is at most this fraction of the largest before.
+    pub const FULL_BALANCE: f64 = 1e-9;
+
+    /// Whether the counterweights cancel the shaking force at every position of the sweep
+    /// (to [`Self::FULL_BALANCE`] of its largest value before): full force balance.
+    pub fn full_force_balance(&self) -> bool {
+        self.after.max_force() <= Self::FULL_BALANCE * self.before.max_force()
+    }
+}
+
+/// Sizes `counterweights` for `mechanism` (with the effect data `dynamics`) so that the
+/// shaking force over the drive positions `phis` at drive state `drive` is cancelled, or
+/// smallest in the least-squares sense.
+///
+/// Errors: a moving link without mass data ([`Error::MissingData`]: give `mass = 0` for a
+/// massless link), a counterweight on a link not pivoted to the ground at `line[0]`
+/// ([`Error::NotPivoted`]), a radius that is not positive or coincident line points
+/// ([`Error::NonPositiveLength`]), two counterweights on one link
+/// ([`Error::DuplicateName`]), and an empty sweep or one that does not determine the
+/// counterweights (a link that never turns, a zero speed: [`Error::MissingData`]).
+pub fn balance_linkage(
+    mechanism: &Mechanism,
+    dynamics: &Dynamics,
+    counterweights: &[Counterweight],
+    phis: &[f64],
+    drive: DriveState,
+    solver: &Solver,
+) -> Result<LinkageBalance, Error> {
+    let massless: Vec<&str> = (mechanism.links.iter().skip(1))
+        .filter(|l| l.inertia.is_none())
+        .map(|l| l.name.as_str())
+        .collect();
+    if !massless.is_empty() {
+        return Err(Error::MissingData {
+            what: "balancing a linkage".to_owned(),
+            missing: format!(
+                "mass data for every moving link; link(s) {} have none (give `mass = 0` for a \
+                 massless link)",
+                massless.join(", ")
+            ),
+        });
+    }
+    if phis.is_empty() {
+        return Err(Error::MissingData {
+            what: "balancing a linkage".to_owned(),
+            missing: "at least one drive position (sweep one whole cycle)".to_owned(),
+        });
+    }
+    let sites = counterweights
+        .iter()
+        .enumerate()
+        .map(|(i, c)| {
+            if counterweights[..i].iter().any(|d| d.link == c.link) {
+                return Err(Error::DuplicateName {
+                    what: "counterweight link",
+                    name: c.link.clone(),
+                });
+            }
+            site(mechanism, c)
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let before = sweep(mechanism, dynamics, phis, drive, solver)?;
+    // The least-squares matrix: two rows per drive position, two columns per counterweight.
+    let (n, k) = (phis.len(), sites.len());
+    let mut a = DMatrix::<f64>::zeros(2 * n, 2 * k);
+    let mut rhs = DVector::<f64>::zeros(2 * n);
+    let mut tracker = solver.track(mechanism)?;
+    for (j, &phi) in phis.iter().enumerate() {
+        tracker.move_to(phi)?;
+        let kin = tracker.kinematics::<2>()?;
+        let states = link_states(&kin.coordinates, &drive);
+        for (i, s) in sites.iter().enumerate() {
+            let st = states[s.link - 1];
+            let (sn, cs) = st.theta.sin_cos();
+            let (w2, al) = (st.omega * st.omega, st.alpha);
+            a[(2 * j, 2 * i)] = w2 * cs + al * sn;
+            a[(2 * j, 2 * i + 1)] = -w2 * sn + al * cs;
+            a[(2 * j + 1, 2 * i)] = w2 * sn - al * cs;
+            a[(2 * j + 1, 2 * i + 1)] = w2 * cs + al * sn;
+        }
+        rhs[2 * j] = -before.force[j][0];
+        rhs[2 * j + 1] = -before.force[j][1];
+    }
+    let x = if k == 0 {
+        DVector::zeros(0)
+    } else {
+        let svd = a.clone().svd(true, true);
+        let largest = svd.singular_values.max();
+        let smallest = svd.singular_values.min();
+        if !(largest > 0.0 && smallest > 1e-10 * largest) {
+            return Err(Error::MissingData {
+                what: "sizing counterweights".to_owned(),
+                missing: "a sweep in which every counterweight's link turns at a non-zero speed \
+                          (the shaking force does not determine them: sweep a whole revolution \
+                          with a drive speed)"
+                    .to_owned(),
+            });
+        }
+        svd.solve(&rhs, 0.0).map_err(|_| Error::NonFinite {
+            phi: phis[0],
+            quantity: "counterweight least squares",
+        })?
+    };
+    let mut balanced = mechanism.clone();
+    let mut placed = Vec::with_capacity(k);
+    for (i, (s, c)) in sites.iter().zip(counterweights).enumerate() {
+        let vector = [x[2 * i], x[2 * i + 1]];
+        let mass_radius = vector[0].hypot(vector[1]);
+        if !mass_radius.is_finite() {
+            return Err(Error::NonFinite {
+                phi: phis[0],
+                quantity: "counterweight mass-radius",
+            });
+        }
+        let mass = mass_radius / c.radius;
+        let (center, angle) = if mass_radius > 0.0 {
+            let u = [vector[0] / mass_radius, vector[1] / mass_radius];
+            let angle = wrap(vector[1].atan2(vector[0]) - s.line_angle);
+            (
+                [s.pivot[0] + c.radius * u[0], s.pivot[1] + c.radius * u[1]],
+                angle,
+            )
+        } else {
+            (s.pivot, 0.0)
+        };
+        let link = &mut balanced.links[s.link];
+        link.inertia = Some(combine(link.inertia.expect("checked above"), mass, center));
+        placed.push(PlacedCounterweight {
+            request: c.clone(),
+            vector,
+            mass_radius,
+            angle,
+            mass,
+            center,
+        });
+    }
+    let after = sweep(&balanced, dynamics, phis, drive, solver)?;
+    Ok(LinkageBalance {
+        counterweights: placed,
+        before,
+        after,
+        balanced,
+    })
+}
+
+/// A counterweight's link, pivot and line direction, checked.
+struct Site {
+    link: usize,
+    pivot: [f64; 2],
+    line_angle: f64,
+}
+
+fn site(m: &Mechanism, c: &Counterweight) -> Result<Site, Error> {
+    let context = format!("counterweight on `{}`", c.link);
+    let link = m.link_index(&c.link).map_err(|_| Error::UnknownName {
+        what: "link",
+        name: c.link.clone(),
+        context: context.clone(),
+    })?;
+    let point = |name: &str| {
+        m.point_index(name).map_err(|_| Error::UnknownName {
+            what: "point",
+            name: name.to_owned(),
+            context: context.clone(),
+        })
+    };
+    let (p0, p1) = (point(&c.line[0])?, point(&c.line[1])?);
+    if link == 0 {
+        return Err(Error::NotPivoted {
+            link: c.link.clone(),
+            point: c.line[0].clone(),
+        });
+    }
+    if !m.carries(link, p1) {
+        return Err(Error::PointNotOnLink {
+            point: c.line[1].clone(),
+            link: c.link.clone(),
+            context,
+        });
+    }
+    let pivoted = m.joints.iter().any(|j| match j.kind {
+        JointKind::Revolute {
+            link_a,
+            link_b,
+            point,
+        } => point == p0 && ((link_a, link_b) == (0, link) || (link_a, link_b) == (link, 0)),
+        _ => false,
+    });
+    if !pivoted {
+        return Err(Error::NotPivoted {
+            link: c.link.clone(),
+            point: c.line[0].clone(),
+        });
+    }
+    if !(c.radius.is_finite() && c.radius > 0.0) {
+        return Err(Error::NonPositiveLength {
+            what: format!("the radius of the counterweight on `{}`", c.link),
+            length: c.radius,
+        });
+    }
+    let (a, b) = (m.points[p0].sketch, m.points[p1].sketch);
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let length = d[0].hypot(d[1]);
+    if length == 0.0 {
+        return Err(Error::NonPositiveLength {
+            what: format!(
+                "the line {} → {} of the counterweight on `{}`",
+                c.line[0], c.line[1], c.link
+            ),
+            length,
+        });
+    }
+    Ok(Site {
+        link,
+        pivot: a,
+        line_angle: d[1].atan2(d[0]),
+    })
+}
+
+/// An angle wrapped into (−π, π].
+fn wrap(angle: f64) -> f64 {
+    let w = angle.sin().atan2(angle.cos());
+    if w == -std::f64::consts::PI {
+        std::f64::consts::PI
+    } else {
+        w
+    }
+}
+
+/// `inertia` with a point mass `mass` at `center` added (parallel-axis theorem).
+fn combine(inertia: Inertia, mass: f64, center: [f64; 2]) -> Inertia {
+    let total = inertia.mass + mass;
+    if mass == 0.0 || total == 0.0 {
+        return if mass == 0.0 {
+            inertia
+        } else {
+            Inertia {
+                mass,
+                center,
+                moment: 0.0,
+            }
+        };
+    }
+    let c = [
+        (inertia.mass * inertia.center[0] + mass * center[0]) / total,
+        (inertia.mass * inertia.center[1] + mass * center[1]) / total,
+    ];
+    let d2 = |p: [f64; 2]| (p[0] - c[0]).powi(2) + (p[1] - c[1]).powi(2);
+    Inertia {
+        mass: total,
+        center: c,
+        moment: inertia.moment + inertia.mass * d2(inertia.center) + mass * d2(center),
+    }
+}
+
+/// The shaking force, moment and drive torque of `m` over the sweep (the dynamics' code).
+fn sweep(
+    m: &Mechanism,
+    dynamics: &Dynamics,
+    phis: &[f64],
+    drive: DriveState,
+    solver: &Solver,
+) -> Result<LinkageSweep, Error> {
+    let model = dynamics.compile(m)?;
+    let plan = Plan::for_requests(
+        &[Request::ShakingForce, Request::DriveTorque],
+        dynamics.available(m),
+    );
+    let r = run(&plan, &model, solver, phis, |_| drive)?;
+    let mut out = LinkageSweep {
+        phi: Vec::with_capacity(phis.len()),
+        force: Vec::with_capacity(phis.len()),
+        moment: Vec::with_capacity(phis.len()),
+        drive_torque: Vec::with_capacity(phis.len()),
+    };
+    for s in &r.steps {
+        let shaking = s.shaking.as_ref().expect("planned");
+        let solution = s.solution.as_ref().expect("planned");
+        out.phi.push(s.phi);
+        out.force.push(shaking.force);
+        out.moment.push(shaking.moment);
+        out.drive_torque.push(solution.drive_torque);
+    }
+    Ok(out)
+}

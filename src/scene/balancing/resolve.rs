@@ -1,0 +1,208 @@
+//! Checking the balancing sections: units applied, names resolved, every error located.
+
+use mechdiff_core::balancing::{Counterweight, Rotor, RotorMass};
+use toml::Spanned;
+
+use crate::error::{Location, Result};
+use crate::scene::resolve::{Context, Geometry};
+use crate::scene::units::Dimension;
+
+use super::format::{BalancingDef, RotorDef};
+
+/// A checked `[rotor]` (SI).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneRotor {
+    /// The rotor.
+    pub rotor: Rotor,
+    /// Two correction planes (m).
+    pub planes: Option<[f64; 2]>,
+    /// The couple polygon's plane (m).
+    pub reference: f64,
+    /// Radius of the correcting masses (m).
+    pub correction_radius: Option<f64>,
+    /// Mass-radius of one correcting mass that cancels the couple (kg·m).
+    pub couple_mass_radius: Option<f64>,
+    /// Where `[rotor]` is.
+    pub location: Location,
+}
+
+/// The checked balancing sections of a scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneBalancing {
+    /// `[rotor]`.
+    pub rotor: Option<SceneRotor>,
+    /// `[balancing]` counterweights (SI), each with its place in the file, and the section's
+    /// place.
+    pub counterweights: Option<(Vec<(Counterweight, Location)>, Location)>,
+    /// `[balancing] slider_crank`: crank, rod and slider links, the fraction, and its place.
+    pub slider_crank: Option<SceneSliderCrank>,
+}
+
+/// A checked `[balancing] slider_crank`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneSliderCrank {
+    /// Crank, rod and slider links.
+    pub links: [String; 3],
+    /// Fraction of the reciprocating mass balanced, in [0, 1].
+    pub fraction: f64,
+    /// Where it is.
+    pub location: Location,
+}
+
+/// Checks `[rotor]` and `[balancing]`; `None` when the scene has neither.
+pub(crate) fn resolve(
+    cx: &Context,
+    rotor: Option<&Spanned<RotorDef>>,
+    balancing: Option<&Spanned<BalancingDef>>,
+    geometry: &Geometry,
+) -> Result<Option<SceneBalancing>> {
+    if rotor.is_none() && balancing.is_none() {
+        return Ok(None);
+    }
+    let rotor = rotor.map(|r| resolve_rotor(cx, r)).transpose()?;
+    let mut counterweights = None;
+    let mut slider_crank = None;
+    if let Some(b) = balancing {
+        let def = b.get_ref();
+        if def.counterweights.is_none() && def.slider_crank.is_none() {
+            return Err(cx.invalid(
+                b,
+                "`[balancing]` asks for nothing: give `counterweights` or `slider_crank`",
+            ));
+        }
+        if let Some(list) = &def.counterweights {
+            let mut out = Vec::new();
+            for entry in list.get_ref() {
+                let c = entry.get_ref();
+                let link = cx.link(&c.link, geometry.links, "`[balancing]`")?;
+                let line = cx.line(&c.line, link, geometry, "a counterweight's `line`")?;
+                let radius =
+                    cx.positive(&c.radius, "the counterweight's radius", Dimension::Length)?;
+                out.push((
+                    Counterweight {
+                        link: link.to_owned(),
+                        line,
+                        radius,
+                    },
+                    cx.at(entry),
+                ));
+            }
+            if out.is_empty() {
+                return Err(cx.invalid(
+                    list,
+                    "`[balancing] counterweights` is empty: name at least one link",
+                ));
+            }
+            counterweights = Some((out, cx.at(b)));
+        }
+        if let Some(sc) = &def.slider_crank {
+            let d = sc.get_ref();
+            let context = "`[balancing] slider_crank`";
+            let links = [
+                cx.link(&d.crank, geometry.links, context)?.to_owned(),
+                cx.link(&d.rod, geometry.links, context)?.to_owned(),
+                cx.link(&d.slider, geometry.links, context)?.to_owned(),
+            ];
+            let fraction = match &d.fraction {
+                Some(f) => {
+                    let x = *f.get_ref();
+                    if !(0.0..=1.0).contains(&x) {
+                        return Err(
+                            cx.invalid(f, format!("`fraction` must be in [0, 1], found {x}"))
+                        );
+                    }
+                    x
+                }
+                None => 0.5,
+            };
+            slider_crank = Some(SceneSliderCrank {
+                links,
+                fraction,
+                location: cx.at(sc),
+            });
+        }
+    }
+    Ok(Some(SceneBalancing {
+        rotor,
+        counterweights,
+        slider_crank,
+    }))
+}
+
+fn resolve_rotor(cx: &Context, r: &Spanned<RotorDef>) -> Result<SceneRotor> {
+    let def = r.get_ref();
+    let mut masses = Vec::new();
+    for (i, m) in def.masses.get_ref().iter().enumerate() {
+        let n = i + 1;
+        let d = m.get_ref();
+        let mass = *d.mass.get_ref();
+        if !(mass.is_finite() && mass > 0.0) {
+            return Err(cx.invalid(
+                &d.mass,
+                format!("rotor mass {n}: `mass` must be a finite number > 0 (kg), found {mass}"),
+            ));
+        }
+        let radius = cx.number(&d.radius, "the radius", Dimension::Length)?;
+        if radius < 0.0 {
+            return Err(cx.invalid(&d.radius, format!("rotor mass {n}: `radius` must be ≥ 0")));
+        }
+        masses.push(RotorMass {
+            mass,
+            radius,
+            angle: cx.number(&d.angle, "the angle", Dimension::Angle)?,
+            axial: cx.number(&d.plane, "the plane", Dimension::Length)?,
+        });
+    }
+    if masses.is_empty() {
+        return Err(cx.invalid(&def.masses, "`[rotor] masses` is empty"));
+    }
+    let rotor = Rotor::new(masses).map_err(|e| cx.invalid(&def.masses, e.to_string()))?;
+    let planes = match &def.planes {
+        Some(p) => {
+            let [a, b] = *p.get_ref();
+            let (a, b) = (
+                cx.units.to_si(a, Dimension::Length),
+                cx.units.to_si(b, Dimension::Length),
+            );
+            if !(a.is_finite() && b.is_finite()) || a == b {
+                return Err(cx.invalid(
+                    p,
+                    "`planes` must be two different finite axial positions: two-plane balancing \
+                     needs two distinct correction planes",
+                ));
+            }
+            Some([a, b])
+        }
+        None => None,
+    };
+    let reference = match &def.reference {
+        Some(v) => cx.number(v, "`reference`", Dimension::Length)?,
+        None => 0.0,
+    };
+    let correction_radius = def
+        .correction_radius
+        .as_ref()
+        .map(|v| cx.positive(v, "`correction_radius`", Dimension::Length))
+        .transpose()?;
+    let couple_mass_radius = match &def.couple_mass_radius {
+        Some(v) => {
+            let x = *v.get_ref();
+            if !(x.is_finite() && x > 0.0) {
+                return Err(cx.invalid(
+                    v,
+                    format!("`couple_mass_radius` must be a finite number > 0 (kg m), found {x}"),
+                ));
+            }
+            Some(x)
+        }
+        None => None,
+    };
+    Ok(SceneRotor {
+        rotor,
+        planes,
+        reference,
+        correction_radius,
+        couple_mass_radius,
+        location: cx.at(r),
+    })
+}

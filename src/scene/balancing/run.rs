@@ -1,0 +1,290 @@
+//! Running the balancing sections: the rotor's corrections, the linkage's counterweights,
+//! and what they change.
+
+use mechdiff_core::DriveState;
+use mechdiff_core::balancing::{
+    LinkageBalance, Polygons, Rotor, SliderCrankUnbalance, balance_linkage,
+};
+use mechdiff_core::dynamics::Dynamics;
+use mechdiff_core::geometry::{Mechanism, Solver};
+
+use crate::error::{Error, Location, Result};
+use crate::scene::model::{DriveKind, Scene};
+use crate::scene::outputs::Column;
+use crate::scene::units::Dimension;
+
+use super::resolve::{SceneBalancing, SceneRotor};
+
+/// The balancing answers: lines printed after the table, and the linkage's columns after
+/// balancing (one row per drive position).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BalancingReport {
+    /// Columns (SI, factor 1): shaking force, moment and drive torque with counterweights.
+    pub columns: Vec<Column>,
+    /// One row per drive position (empty without `[balancing]`).
+    pub rows: Vec<Vec<f64>>,
+    /// Lines printed after the table.
+    pub lines: Vec<String>,
+    /// The counterweights and the sweeps before and after.
+    pub linkage: Option<LinkageBalance>,
+}
+
+fn column(name: &str, unit: &str) -> Column {
+    Column {
+        name: name.to_owned(),
+        unit: unit.to_owned(),
+        factor: 1.0,
+    }
+}
+
+fn core_error(location: &Location, e: mechdiff_core::Error) -> Error {
+    Error::Invalid {
+        location: location.clone(),
+        message: e.to_string(),
+    }
+}
+
+/// Runs the balancing sections of `scene` at the drive positions `positions`.
+pub(crate) fn run(
+    scene: &Scene,
+    b: &SceneBalancing,
+    mechanism: &Mechanism,
+    positions: &[f64],
+) -> Result<BalancingReport> {
+    let mut report = BalancingReport {
+        columns: Vec::new(),
+        rows: Vec::new(),
+        lines: Vec::new(),
+        linkage: None,
+    };
+    if let Some(r) = &b.rotor {
+        report.lines.extend(rotor_lines(scene, r)?);
+    }
+    if let Some(sc) = &b.slider_crank {
+        let [crank, rod, slider] = &sc.links;
+        let u = SliderCrankUnbalance::from_mechanism(mechanism, crank, rod, slider)
+            .map_err(|e| core_error(&sc.location, e))?;
+        let omega = scene.drive.speed.unwrap_or(0.0);
+        let p = u
+            .partial_balance(sc.fraction, omega)
+            .map_err(|e| core_error(&sc.location, e))?;
+        report.lines.push(String::new());
+        report.lines.push(format!(
+            "slider-crank `{crank}`–`{rod}`–`{slider}`: r = {}, l = {}, reciprocating mass {:.9} kg, \
+             rotating m r {:.9} kg m (rod split between its pins by its centre of gravity)",
+            length_text(scene, u.crank),
+            length_text(scene, u.rod),
+            u.reciprocating_mass,
+            u.rotating_mass_radius
+        ));
+        report.lines.push(format!(
+            "  at ω = {omega:.6} rad/s: primary unbalance {:.6} N (cos φ), secondary {:.6} N (cos 2φ)",
+            u.primary(omega),
+            u.secondary(omega)
+        ));
+        report.lines.push(format!(
+            "  partial balance of {} of the reciprocating mass: crank counterweight m r = {:.9} kg m \
+             opposite the crank pin; primary left {:.6} N along the line, {:.6} N across it",
+            p.fraction, p.counterweight_mass_radius, p.primary_along, p.primary_across
+        ));
+    }
+    if let Some((counterweights, location)) = &b.counterweights {
+        let Some(omega) = scene.drive.speed else {
+            return Err(Error::Invalid {
+                location: location.clone(),
+                message: "`[balancing]` sizes counterweights from the shaking force: give the \
+                          drive's `speed`"
+                    .to_owned(),
+            });
+        };
+        let data = scene
+            .dynamics
+            .as_ref()
+            .map_or_else(Dynamics::new, |d| d.data.clone());
+        let drive = DriveState::accelerating(omega, scene.drive.acceleration);
+        let requests: Vec<_> = counterweights.iter().map(|(c, _)| c.clone()).collect();
+        // A core error naming a counterweight's link is located at that counterweight.
+        let at = |link: &str| {
+            counterweights
+                .iter()
+                .rfind(|(c, _)| c.link == link)
+                .map_or(location, |(_, at)| at)
+        };
+        let result = balance_linkage(
+            mechanism,
+            &data,
+            &requests,
+            positions,
+            drive,
+            &Solver::default(),
+        )
+        .map_err(|e| match e {
+            mechdiff_core::Error::Unassemblable { .. }
+            | mechdiff_core::Error::Singular { .. }
+            | mechdiff_core::Error::BranchFlip { .. } => crate::scene::run::solver_error(scene, e),
+            mechdiff_core::Error::NotPivoted { ref link, .. } => core_error(at(link), e),
+            mechdiff_core::Error::DuplicateName { ref name, .. } => core_error(at(name), e),
+            other => core_error(location, other),
+        })?;
+        let torque = if scene.drive.kind == DriveKind::Angle {
+            ("M_drive_bal", "N m")
+        } else {
+            ("F_drive_bal", "N")
+        };
+        report.columns = vec![
+            column("SumF_x_bal", "N"),
+            column("SumF_y_bal", "N"),
+            column("M_shaking_bal", "N m"),
+            column(torque.0, torque.1),
+        ];
+        let a = &result.after;
+        report.rows = (0..a.phi.len())
+            .map(|j| vec![a.force[j][0], a.force[j][1], a.moment[j], a.drive_torque[j]])
+            .collect();
+        report.lines.extend(linkage_lines(scene, &result, torque.1));
+        report.linkage = Some(result);
+    }
+    Ok(report)
+}
+
+fn angle_text(scene: &Scene, rad: f64) -> String {
+    let u = scene.units.for_outputs();
+    format!(
+        "{:.6} {}",
+        u.from_si(rad, Dimension::Angle),
+        u.symbol(Dimension::Angle)
+    )
+}
+
+fn length_text(scene: &Scene, m: f64) -> String {
+    let u = scene.units.for_outputs();
+    format!(
+        "{} {}",
+        crate::scene::units::Units::tidy(u.from_si(m, Dimension::Length)),
+        u.symbol(Dimension::Length)
+    )
+}
+
+fn polar(v: [f64; 2]) -> (f64, f64) {
+    (v[0].hypot(v[1]), v[1].atan2(v[0]))
+}
+
+fn rotor_lines(scene: &Scene, r: &SceneRotor) -> Result<Vec<String>> {
+    let rotor: &Rotor = &r.rotor;
+    let [force_scale, couple_scale] = rotor.largest_terms(r.reference);
+    // A vector as magnitude and angle, or as zero when it is rounding noise.
+    let vector = |v: [f64; 2], scale: f64, unit: &str| {
+        let (m, a) = polar(v);
+        if m <= Rotor::NEGLIGIBLE * scale {
+            format!("0 {unit}")
+        } else {
+            format!("{m:.12} {unit} at {}", angle_text(scene, a))
+        }
+    };
+    let mut lines = vec![String::new()];
+    let p = rotor.polygons(r.reference);
+    lines.push(format!(
+        "rotor polygons (couple about the plane at {}): mass, m r [kg m], angle, m r d [kg m^2], angle",
+        length_text(scene, r.reference)
+    ));
+    for (i, (f, c)) in p.force.iter().zip(&p.couple).enumerate() {
+        lines.push(format!(
+            "  {}: {}; {}",
+            i + 1,
+            vector(*f, force_scale, "kg m"),
+            vector(*c, couple_scale, "kg m^2")
+        ));
+    }
+    let gap = |sides: &[[f64; 2]]| *Polygons::vertices(sides).last().expect("one vertex");
+    lines.push(format!(
+        "  gap: {}; {}",
+        vector(gap(&p.force), force_scale, "kg m"),
+        vector(gap(&p.couple), couple_scale, "kg m^2")
+    ));
+    let with_mass = |mr: f64| match r.correction_radius {
+        Some(radius) => format!(
+            " ({:.9} kg at radius {})",
+            mr / radius,
+            length_text(scene, radius)
+        ),
+        None => String::new(),
+    };
+    let s = rotor.static_balance(r.reference);
+    lines.push(if s.mass_radius <= Rotor::NEGLIGIBLE * force_scale {
+        "rotor static balance: none needed (the mr polygon closes)".to_owned()
+    } else {
+        format!(
+            "rotor static balance: m r = {}{}",
+            vector(s.vector, force_scale, "kg m"),
+            with_mass(s.mass_radius)
+        )
+    });
+    if let Some([left, right]) = r.planes {
+        let two = rotor
+            .two_plane_balance(left, right)
+            .map_err(|e| core_error(&r.location, e))?;
+        for c in two.corrections() {
+            lines.push(format!(
+                "rotor two-plane balance, plane at {}: m r = {}{}",
+                length_text(scene, c.axial),
+                vector(c.vector, force_scale, "kg m"),
+                with_mass(c.mass_radius)
+            ));
+        }
+    }
+    if let Some(mr) = r.couple_mass_radius {
+        let c = rotor
+            .couple_plane(mr, r.reference)
+            .map_err(|e| core_error(&r.location, e))?;
+        lines.push(format!(
+            "rotor couple balance with one m r = {mr} kg m: plane at {} ({} from the reference), \
+             angle {}; force polygon gap after: {}",
+            length_text(scene, c.correction.axial),
+            length_text(scene, c.distance),
+            angle_text(scene, c.correction.angle),
+            vector(c.force_after, force_scale.max(mr), "kg m")
+        ));
+    }
+    Ok(lines)
+}
+
+fn linkage_lines(scene: &Scene, r: &LinkageBalance, torque_unit: &str) -> Vec<String> {
+    let mut lines = vec![String::new()];
+    for c in &r.counterweights {
+        lines.push(format!(
+            "counterweight on `{}`: m r = {:.9} kg m at {} from {}→{}; {:.9} kg at radius {}",
+            c.request.link,
+            c.mass_radius,
+            angle_text(scene, c.angle),
+            c.request.line[0],
+            c.request.line[1],
+            c.mass,
+            length_text(scene, c.request.radius)
+        ));
+    }
+    let kind = if r.full_force_balance() {
+        "full force balance"
+    } else {
+        "least squares over the sweep (full force balance is not possible with these links)"
+    };
+    let (b, a) = (&r.before, &r.after);
+    lines.push(format!("balancing: {kind}"));
+    lines.push(format!(
+        "  largest |SumF| (foundation load): {:.6} N before, {:.6} N after; rms {:.6} N → {:.6} N",
+        b.max_force(),
+        a.max_force(),
+        b.rms_force(),
+        a.rms_force()
+    ));
+    lines.push(format!(
+        "  largest |M_shaking|: {:.6} N m before, {:.6} N m after",
+        b.max_moment(),
+        a.max_moment()
+    ));
+    lines.push(format!(
+        "  largest |drive torque|: {:.6} {torque_unit} before, {:.6} {torque_unit} after",
+        b.max_drive_torque(),
+        a.max_drive_torque()
+    ));
+    lines
+}

@@ -1,0 +1,329 @@
+//! The balancing sections of scenes: the Whitworth's crank counterweight against the
+//! closed-form least squares of one rotating vector, the crankshaft rotor's printed answers,
+//! CSV columns, and bad balancing input with `file:line:column`.
+
+use std::path::Path;
+use std::process::Command;
+
+use mechdiff::Error;
+use mechdiff::scene::{self, Report};
+
+fn run(name: &str) -> Report {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes")
+        .join(name);
+    let scene = scene::load(path).unwrap_or_else(|e| panic!("{e}"));
+    scene::run(&scene).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn column(r: &Report, name: &str) -> Vec<f64> {
+    r.column(name)
+        .unwrap_or_else(|| panic!("no column `{name}`"))
+}
+
+/// At constant speed ω a crank counterweight b (global, at the sketch) adds the force
+/// ω² R(θ) b, θ the crank's rotation (= φ here: the sketch is at φ = 0). With N positions
+/// evenly over a revolution, Σ R(θ)ᵀ R(θ) = N I, so the least squares has the closed form
+/// b = −Σ R(θ)ᵀ F₀ / (N ω²), computed here from the scene's own shaking-force columns
+/// (the dynamics code, not the balancing code).
+#[test]
+fn whitworth_crank_counterweight_is_the_closed_form_least_squares() {
+    let r = run("whitworth_balancing.toml");
+    let phi = column(&r, "phi");
+    let (fx, fy) = (column(&r, "SumF_x"), column(&r, "SumF_y"));
+    let omega = 100.0 * std::f64::consts::TAU / 60.0;
+    let n = phi.len() as f64;
+    assert_eq!(phi.len(), 72);
+    let mut b = [0.0, 0.0];
+    for ((p, x), y) in phi.iter().zip(&fx).zip(&fy) {
+        let (s, c) = p.sin_cos();
+        b[0] -= (c * x + s * y) / (n * omega * omega);
+        b[1] -= (-s * x + c * y) / (n * omega * omega);
+    }
+    let linkage = r.balancing.as_ref().unwrap().linkage.as_ref().unwrap();
+    let cw = &linkage.counterweights[0];
+    // 1e-12 relative: both sum 72 terms of the same size; the SVD adds its rounding.
+    let size = b[0].hypot(b[1]);
+    assert!((cw.vector[0] - b[0]).hypot(cw.vector[1] - b[1]) <= 1e-12 * size);
+    // The mechanism is symmetric about the vertical through A0 and B0: the counterweight
+    // lies opposite the crank pin (180° from A0→A, to the rounding of the sums).
+    assert!((cw.angle.abs() - std::f64::consts::PI).abs() < 1e-12);
+    // After = before + ω² R(θ) b at every position: the dynamics of the mechanism with the
+    // counterweight added as a point mass agree with the linear model (1e-9 of the largest
+    // force: rounding of the dynamics, two sweeps).
+    let (ax, ay) = (column(&r, "SumF_x_bal"), column(&r, "SumF_y_bal"));
+    let scale = linkage.before.max_force();
+    for j in 0..phi.len() {
+        let (s, c) = phi[j].sin_cos();
+        let w2 = omega * omega;
+        let ex = fx[j] + w2 * (c * cw.vector[0] - s * cw.vector[1]);
+        let ey = fy[j] + w2 * (s * cw.vector[0] + c * cw.vector[1]);
+        assert!(
+            (ax[j] - ex).hypot(ay[j] - ey) <= 1e-9 * scale,
+            "φ = {}",
+            phi[j]
+        );
+    }
+    // The foundation load goes down (the numbers are in the README).
+    assert!(linkage.after.max_force() < linkage.before.max_force());
+    assert!(linkage.after.rms_force() < linkage.before.rms_force());
+}
+
+#[test]
+fn rotor_scene_prints_the_stated_variant() {
+    let r = run("rotor_balancing.toml");
+    let lines = &r.balancing.as_ref().unwrap().lines;
+    let text = lines.join("\n");
+    // √0.19 m = 435.889894354067 mm (core/tests/balancing_rotor.rs derives it by hand).
+    assert!(text.contains("plane at 435.889894354067 mm"), "{text}");
+    assert!(
+        text.contains("none needed (the mr polygon closes)"),
+        "{text}"
+    );
+    assert!(text.contains("plane at -400 mm: m r = "), "{text}");
+}
+
+fn mechdiff(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_mechdiff"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn run_prints_counterweights_and_writes_the_columns_after_to_csv() {
+    let csv = std::env::temp_dir().join(format!("mechdiff-bal-{}.csv", std::process::id()));
+    let out = mechdiff(&[
+        "run",
+        "scenes/whitworth_balancing.toml",
+        "--csv",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("counterweight on `crank`: m r = "), "{text}");
+    assert!(
+        text.contains("largest |SumF| (foundation load): "),
+        "{text}"
+    );
+    let csv_text = std::fs::read_to_string(&csv).unwrap();
+    std::fs::remove_file(&csv).unwrap();
+    let header = csv_text.lines().next().unwrap();
+    assert!(
+        header.ends_with("SumF_x_bal [N],SumF_y_bal [N],M_shaking_bal [N m],M_drive_bal [N m]"),
+        "{header}"
+    );
+    assert_eq!(csv_text.lines().count(), 73);
+}
+
+/// The four-bar of bad_scenes.rs with masses, a speed and one full revolution.
+const FOUR_BAR: &str = r#"[points]
+O2 = [0.0, 0.0]
+O4 = [0.4, 0.0]
+A = [0.0, 0.1]
+B = [0.4, 0.3]
+[links]
+ground = ["O2", "O4"]
+crank = ["O2", "A"]
+coupler = ["A", "B"]
+rocker = ["O4", "B"]
+[joints]
+O2 = { type = "revolute", at = "O2", links = ["ground", "crank"] }
+A = { type = "revolute", at = "A", links = ["crank", "coupler"] }
+B = { type = "revolute", at = "B", links = ["coupler", "rocker"] }
+O4 = { type = "revolute", at = "O4", links = ["ground", "rocker"] }
+[drive]
+joint = "O2"
+line = ["O2", "A"]
+speed = 10
+[sweep]
+from = 0
+to = 6
+step = 0.5
+"#;
+
+const MASSES: &str = r#"[masses]
+crank = { mass = 1, center = [0.0, 0.05] }
+coupler = { mass = 2, center = [0.2, 0.2] }
+rocker = { mass = 1.5, center = [0.4, 0.15] }
+"#;
+
+fn error(text: &str) -> Error {
+    let scene = match scene::parse("bal.toml", text) {
+        Ok(s) => s,
+        Err(e) => return e,
+    };
+    scene::run(&scene).expect_err("a bad balancing request")
+}
+
+#[test]
+fn four_bar_scene_is_fully_force_balanced_by_crank_and_rocker() {
+    let text = format!(
+        "{FOUR_BAR}{MASSES}[balancing]\ncounterweights = [\n  {{ link = \"crank\", line = [\"O2\", \"A\"], radius = 0.05 }},\n  {{ link = \"rocker\", line = [\"O4\", \"B\"], radius = 0.05 }},\n]\n"
+    );
+    let scene = scene::parse("fb.toml", &text).unwrap();
+    let r = scene::run(&scene).unwrap();
+    let b = r.balancing.unwrap();
+    let linkage = b.linkage.unwrap();
+    // Berkof–Lowen: crank and rocker counterweights make the centre of mass stationary
+    // (core/tests/balancing_linkage.rs checks the counterweights against their formula).
+    assert!(linkage.full_force_balance());
+    assert!(b.lines.iter().any(|l| l.contains("full force balance")));
+}
+
+#[test]
+fn bad_balancing_input_is_located() {
+    let cw = |c: &str| format!("[balancing]\ncounterweights = [{c}]\n");
+    // Zero radius.
+    let e = error(&format!(
+        "{FOUR_BAR}{MASSES}{}",
+        cw(r#"{ link = "crank", line = ["O2", "A"], radius = 0 }"#)
+    ));
+    assert!(
+        matches!(&e, Error::NonPositiveLength { location, .. } if location.line == 29 && location.column == 66),
+        "{e}"
+    );
+    // A coupler counterweight: no fixed pivot.
+    let e = error(&format!(
+        "{FOUR_BAR}{MASSES}{}",
+        cw(r#"{ link = "coupler", line = ["A", "B"], radius = 0.05 }"#)
+    ));
+    assert!(e.to_string().contains("fixed pivot"), "{e}");
+    assert!(e.to_string().starts_with("bal.toml:29:19"), "{e}");
+    // Links without mass data.
+    let e = error(&format!(
+        "{FOUR_BAR}{}",
+        cw(r#"{ link = "crank", line = ["O2", "A"], radius = 0.05 }"#)
+    ));
+    assert!(e.to_string().contains("mass data"), "{e}");
+    // A line point that is not on the link.
+    let e = error(&format!(
+        "{FOUR_BAR}{MASSES}{}",
+        cw(r#"{ link = "crank", line = ["O2", "B"], radius = 0.05 }"#)
+    ));
+    assert!(
+        e.to_string().contains("must be a point of link `crank`"),
+        "{e}"
+    );
+    // No drive speed.
+    let e = error(&format!(
+        "{}{MASSES}{}",
+        FOUR_BAR.replace("speed = 10\n", ""),
+        cw(r#"{ link = "crank", line = ["O2", "A"], radius = 0.05 }"#)
+    ));
+    assert!(e.to_string().contains("speed"), "{e}");
+    // Rotor: coincident correction planes, zero correction radius, no masses.
+    let rotor = |extra: &str| {
+        format!(
+            "{FOUR_BAR}[rotor]\nmasses = [{{ mass = 1, radius = 0.1, angle = 0, plane = 0.2 }}]\n{extra}"
+        )
+    };
+    let e = error(&rotor("planes = [0.3, 0.3]\n"));
+    assert!(
+        e.to_string().contains("two distinct correction planes"),
+        "{e}"
+    );
+    let e = error(&rotor("correction_radius = 0\n"));
+    assert!(matches!(e, Error::NonPositiveLength { .. }), "{e}");
+    let e = error(&format!("{FOUR_BAR}[rotor]\nmasses = []\n"));
+    assert!(e.to_string().contains("empty"), "{e}");
+    let e = error(&format!(
+        "{FOUR_BAR}[rotor]\nmasses = [{{ mass = 1, radius = 0.1, angle = 0, plane = 0.2 }}]\nplanes = [0.3, 0.30000000000000004]\n"
+    ));
+    assert!(e.to_string().contains("coincide"), "{e}");
+}
+
+/// The balancing pictures: the rotor's polygons with their corrections drawn in red, and the
+/// shaking force locus before and after; each SVG renders, and the correction colour
+/// (#c0392b) is on the rendered polygon.
+#[test]
+fn balancing_pictures_are_drawn() {
+    let load = |name: &str| {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("scenes")
+            .join(name);
+        let scene = scene::load(path).unwrap();
+        let report = scene::run(&scene).unwrap();
+        mechdiff::pictures::balancing::pictures(&scene, &report).unwrap()
+    };
+    let rotor = load("rotor_balancing.toml");
+    let names: Vec<&str> = rotor.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(names, ["rotor_force_polygon", "rotor_couple_polygon"]);
+    for (_, svg) in &rotor {
+        let raster = mechdiff::pictures::raster::render(svg).unwrap();
+        let red = (0..raster.width)
+            .flat_map(|x| (0..raster.height).map(move |y| (x, y)))
+            .filter(|&(x, y)| {
+                raster
+                    .pixel(x, y)
+                    .is_some_and(|p| p[0] > 150 && p[1] < 100 && p[2] < 100)
+            })
+            .count();
+        assert!(red > 50, "{red} red pixels");
+    }
+    let linkage = load("whitworth_balancing.toml");
+    assert_eq!(linkage.len(), 1);
+    assert!(linkage[0].1.contains("locus"));
+}
+
+/// An in-line slider-crank (r = 0.1 m, l = 0.4 m) with a crank of 1 kg at 0.03 m, a rod of
+/// 0.6 kg at mid-length and a slider of 2 kg, at 100 rad/s. By hand: m_rec = 2.3 kg,
+/// m_rot r = 0.06 kg·m, primary 2.3·0.1·100² = 2300 N, secondary 575 N; the half balance
+/// needs 0.06 + 0.5·2.3·0.1 = 0.175 kg·m and leaves 1150 N along and 1150 N across.
+const SLIDER_CRANK: &str = r#"[points]
+O = [0.0, 0.0]
+A = [0.1, 0.0]
+B = [0.5, 0.0]
+X = [1.0, 0.0]
+[links]
+ground = ["O", "X"]
+crank = ["O", "A"]
+rod = ["A", "B"]
+slider = ["B"]
+[joints]
+O = { type = "revolute", at = "O", links = ["ground", "crank"] }
+A = { type = "revolute", at = "A", links = ["crank", "rod"] }
+B = { type = "revolute", at = "B", links = ["rod", "slider"] }
+guide = { type = "prismatic", line = ["O", "X"], point = "B", links = ["ground", "slider"] }
+[drive]
+joint = "O"
+line = ["O", "A"]
+speed = 100
+[sweep]
+positions = [0]
+[masses]
+crank = { mass = 1, center = [0.03, 0.0] }
+rod = { mass = 0.6, center = [0.3, 0.0] }
+slider = { mass = 2, center = "B" }
+[balancing]
+slider_crank = { crank = "crank", rod = "rod", slider = "slider" }
+"#;
+
+#[test]
+fn slider_crank_unbalance_is_printed() {
+    let scene = scene::parse("sc.toml", SLIDER_CRANK).unwrap();
+    let r = scene::run(&scene).unwrap();
+    let text = r.balancing.unwrap().lines.join("\n");
+    assert!(text.contains("reciprocating mass 2.300000000 kg"), "{text}");
+    assert!(text.contains("rotating m r 0.060000000 kg m"), "{text}");
+    assert!(text.contains("primary unbalance 2300.000000 N"), "{text}");
+    assert!(text.contains("secondary 575.000000 N"), "{text}");
+    assert!(text.contains("m r = 0.175000000 kg m"), "{text}");
+    assert!(
+        text.contains("1150.000000 N along the line, 1150.000000 N across"),
+        "{text}"
+    );
+    // An offset guide: the formulas do not apply, and the error says so.
+    let offset = SLIDER_CRANK
+        .replace("B = [0.5, 0.0]", "B = [0.5, -0.01]")
+        .replace("X = [1.0, 0.0]", "X = [1.0, -0.01]\nG = [0.0, -0.01]")
+        .replace("ground = [\"O\", \"X\"]", "ground = [\"O\", \"X\", \"G\"]")
+        .replace("line = [\"O\", \"X\"]", "line = [\"G\", \"X\"]");
+    let e = error(&offset);
+    assert!(e.to_string().contains("in-line"), "{e}");
+}
