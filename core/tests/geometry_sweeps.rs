@@ -316,3 +316,19 @@ fn the_newton_path_does_not_jump_a_blocked_range_wider_than_its_step_cap() {
         other => panic!("expected an error at the limit, got {other:?}"),
     }
 }
+
+#[test]
+fn a_move_of_1e12_radians_is_refused_not_run_for_hours() {
+    // 1e12 rad in checked steps of 1/8 rad would take 8e12 steps: refused after 10⁵.
+    let m = offset_slider_crank(0.1, 0.35, 0.0, 1.0, None);
+    for closed_form in [true, false] {
+        let mut t = Solver::default()
+            .with_closed_form(closed_form)
+            .track(&m)
+            .unwrap();
+        match t.move_to(1e12).unwrap_err() {
+            Error::MoveTooLong { to, steps, .. } => assert_eq!((to, steps), (1e12, 100_000)),
+            other => panic!("expected MoveTooLong, got {other:?}"),
+        }
+    }
+}

@@ -23,6 +23,7 @@ impl Tracker<'_> {
         // The condition at `phi` itself, if its formula found it a toggle.
         let mut toggle_at_phi = None;
         while self.phi != phi || report.steps == 0 {
+            self.bounded(start, phi, report.steps + report.newton_failures)?;
             let remaining = phi - self.phi;
             let full = if remaining.abs() > longest {
                 longest.copysign(remaining)
@@ -69,6 +70,20 @@ impl Tracker<'_> {
             }
         }
         Ok(report)
+    }
+
+    /// [`Error::MoveTooLong`] once a move from `start` to `phi` has taken `substeps`
+    /// beyond [`interval::MAX_SUBSTEPS`].
+    pub(super) fn bounded(&self, start: f64, phi: f64, substeps: usize) -> Result<(), Error> {
+        if substeps < interval::MAX_SUBSTEPS {
+            return Ok(());
+        }
+        Err(Error::MoveTooLong {
+            from: start,
+            to: phi,
+            steps: interval::MAX_SUBSTEPS,
+            longest: self.longest_step(),
+        })
     }
 
     /// The formulas at `target`, into `closed_q`, `closed_frames`, `closed_margins`.

@@ -18,7 +18,10 @@ impl Tracker<'_> {
         // Steps of at most 1/8 rad (or 1/8 of the sketch), as on the closed-form path:
         // Newton's landing is checked (branch certificates) at least that often.
         let longest = self.longest_step();
+        let start = self.phi;
         while self.phi != phi {
+            let substeps = report.steps + report.newton_failures + report.branch_rejections;
+            self.bounded(start, phi, substeps)?;
             let remaining = phi - self.phi;
             let full = if remaining.abs() > longest {
                 longest.copysign(remaining)
