@@ -153,6 +153,23 @@ pub enum Error {
         /// Joints of the loop that stops closing.
         joints: Vec<String>,
     },
+    /// A move between two drive positions needs more checked sub-steps than allowed (steps
+    /// are at most 1/8 rad, or 1/8 of the mechanism's size, so a move of 1e12 rad would
+    /// never end).
+    #[error(
+        "the move from drive position φ = {from} to φ = {to} needs more than {steps} checked \
+         steps of at most {longest}; ask for drive positions closer together"
+    )]
+    MoveTooLong {
+        /// Drive position the move started from.
+        from: f64,
+        /// Drive position asked for.
+        to: f64,
+        /// The sub-steps allowed per move.
+        steps: usize,
+        /// The longest sub-step (rad or m).
+        longest: f64,
+    },
     /// A loop reaches a change point (bifurcation): two of its assembly branches meet there
     /// (the Jacobian drops rank with a finite limit, e.g. a parallelogram or kite four-bar
     /// folded flat), so the drive alone does not say how the mechanism moves on.

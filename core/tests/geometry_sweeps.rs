@@ -295,3 +295,40 @@ fn a_slotted_lever_whose_pin_passes_near_its_hinge_is_computed_and_flagged() {
     let phis = degrees(10.0, 360.0);
     assert!(Solver::default().sweep::<1>(&m, &phis).is_ok());
 }
+
+#[test]
+fn the_newton_path_does_not_jump_a_blocked_range_wider_than_its_step_cap() {
+    // Newton forced: steps are capped at 1/8 rad (7.16°) as on the closed-form path, so a
+    // sub-step of the 20° step from 260° lands inside the 16° blocked range and the sweep
+    // ends in an error at it (Newton's loops are not located to full precision).
+    let m = offset_slider_crank(1.0, 1.49, 0.5, 1.0, None);
+    let err = Solver::default()
+        .with_closed_form(false)
+        .sweep::<1>(&m, &degrees(20.0, 360.0))
+        .unwrap_err();
+    match err {
+        Error::Unassemblable { last_assembled, .. } => {
+            // The halvings stop within 2⁻²⁴ of the 7.16° sub-step before the limit.
+            let limit = PI + 0.99f64.asin();
+            assert!(last_assembled <= limit && limit - last_assembled < 1e-6);
+        }
+        Error::Singular { phi, .. } => assert!((phi - (PI + 0.99f64.asin())).abs() < 1e-6),
+        other => panic!("expected an error at the limit, got {other:?}"),
+    }
+}
+
+#[test]
+fn a_move_of_1e12_radians_is_refused_not_run_for_hours() {
+    // 1e12 rad in checked steps of 1/8 rad would take 8e12 steps: refused after 10⁵.
+    let m = offset_slider_crank(0.1, 0.35, 0.0, 1.0, None);
+    for closed_form in [true, false] {
+        let mut t = Solver::default()
+            .with_closed_form(closed_form)
+            .track(&m)
+            .unwrap();
+        match t.move_to(1e12).unwrap_err() {
+            Error::MoveTooLong { to, steps, .. } => assert_eq!((to, steps), (1e12, 100_000)),
+            other => panic!("expected MoveTooLong, got {other:?}"),
+        }
+    }
+}

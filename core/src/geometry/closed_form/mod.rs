@@ -56,12 +56,14 @@
 //! Angles are unwrapped to the nearest turn of the previous pose, so rotations stay
 //! continuous.
 
+mod margin;
 mod matching;
 
 use super::branch::Loop;
 use super::constraints::{Body, Equations, Frames, Line, Slide};
 use super::frames::rotate;
 use crate::{Scalar, atan2};
+pub(crate) use margin::Margin;
 use matching::pattern;
 use std::f64::consts::{PI, TAU};
 
@@ -182,29 +184,6 @@ struct Step {
     /// [`Margin`]), so that the loop's margin is 1 in the sketch's shape and positive
     /// wherever the loop closes regularly.
     inv_scale: f64,
-}
-
-/// A loop's distance from the end of its branch, as computed by its formula: the value
-/// (`disc` of a square-root pattern, in the units of `size`; the slope of a slide,
-/// dimensionless) and the size it is measured against at this pose (`size = 1` for a
-/// slope, `1` and `1` for a pattern that always closes).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Margin<D> {
-    pub value: D,
-    pub size: f64,
-    /// Whether the value is a discriminant (its square root is the loop's lever) rather
-    /// than a slope; `None`: the loop always closes.
-    pub root: Option<bool>,
-}
-
-impl<D: Scalar> Margin<D> {
-    fn none() -> Self {
-        Margin {
-            value: D::from(1.0),
-            size: 1.0,
-            root: None,
-        }
-    }
 }
 
 /// Why a loop's closed form has no solution at a drive position.
@@ -377,29 +356,6 @@ impl ClosedForm {
             solved.map_err(|f| (i, f))?;
         }
         Ok(())
-    }
-
-    /// How much loop `l` amplifies rounding at a pose where its margin is `margin`
-    /// (1 in the sketch's shape): `1/√margin` for a square-root pattern (the lever's
-    /// length in the sketch over its length now), `1/|margin|` for a slide's slope, 1 for
-    /// a loop that always closes.
-    pub fn amplification(&self, l: usize, margin: f64) -> f64 {
-        match self.kinds.get(l).copied().flatten() {
-            Some(true) => 1.0 / margin.abs().sqrt(),
-            Some(false) => 1.0 / margin.abs(),
-            None => 1.0,
-        }
-    }
-
-    /// Whether loop `l` has a margin that can vanish (a square root or a slope).
-    pub fn has_margin(&self, l: usize) -> bool {
-        self.kinds.get(l).copied().flatten().is_some()
-    }
-
-    /// Whether loop `l`'s margin is a discriminant (it ends at a limit position or a
-    /// change point) rather than a slope (a toggle of a slide).
-    pub fn is_root(&self, l: usize) -> bool {
-        self.kinds.get(l).copied().flatten() == Some(true)
     }
 
     /// Places the links of the loops that have a closed form, in f64, leaving the others
@@ -628,48 +584,5 @@ impl ClosedForm {
                 condition: f64::INFINITY,
             })
         }
-    }
-
-    /// `σ √disc`, or why there is none: a toggle if `√(size / |disc|)` (the condition
-    /// estimate, in the loop's own length scale: `size` is the square of what `√disc`
-    /// is measured against now, e.g. `l₁² l₂²` for a dyad) exceeds the limit, else a loop
-    /// that cannot close by `gap` (m) if `disc < 0`. Records the margin.
-    #[inline]
-    fn root<D: Scalar>(
-        &self,
-        disc: D,
-        size: f64,
-        gap: f64,
-        branch: f64,
-        margin: &mut Margin<D>,
-    ) -> Result<D, Failure> {
-        *margin = Margin {
-            value: disc,
-            size,
-            root: Some(true),
-        };
-        let condition = (size / disc.re().abs()).sqrt();
-        if condition.is_nan() || condition > self.limit {
-            return Err(Failure::Singular { condition });
-        }
-        if disc.re() < 0.0 {
-            return Err(Failure::Unassemblable { residual: gap });
-        }
-        Ok(disc.sqrt() * branch)
-    }
-
-    /// A slide's slope `cross(v, u)` (both unit vectors), or a toggle if it is too small.
-    #[inline]
-    fn slope<D: Scalar>(&self, slope: D, margin: &mut Margin<D>) -> Result<D, Failure> {
-        *margin = Margin {
-            value: slope,
-            size: 1.0,
-            root: Some(false),
-        };
-        let condition = 1.0 / slope.re().abs();
-        if condition.is_nan() || condition > self.limit {
-            return Err(Failure::Singular { condition });
-        }
-        Ok(slope)
     }
 }

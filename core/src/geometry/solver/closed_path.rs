@@ -23,6 +23,7 @@ impl Tracker<'_> {
         // The condition at `phi` itself, if its formula found it a toggle.
         let mut toggle_at_phi = None;
         while self.phi != phi || report.steps == 0 {
+            self.bounded(start, phi, report.steps + report.newton_failures)?;
             let remaining = phi - self.phi;
             let full = if remaining.abs() > longest {
                 longest.copysign(remaining)
@@ -71,6 +72,20 @@ impl Tracker<'_> {
         Ok(report)
     }
 
+    /// [`Error::MoveTooLong`] once a move from `start` to `phi` has taken `substeps`
+    /// beyond [`interval::MAX_SUBSTEPS`].
+    pub(super) fn bounded(&self, start: f64, phi: f64, substeps: usize) -> Result<(), Error> {
+        if substeps < interval::MAX_SUBSTEPS {
+            return Ok(());
+        }
+        Err(Error::MoveTooLong {
+            from: start,
+            to: phi,
+            steps: interval::MAX_SUBSTEPS,
+            longest: self.longest_step(),
+        })
+    }
+
     /// The formulas at `target`, into `closed_q`, `closed_frames`, `closed_margins`.
     pub(super) fn evaluate_closed(&mut self, target: f64) -> Result<(), (usize, Failure)> {
         let x = Dual2_64::new(target, 1.0, 0.0);
@@ -91,7 +106,7 @@ impl Tracker<'_> {
 
     /// The longest step checked at once: 1/8 rad for an angle, 1/8 of the sketch for a
     /// displacement (see [`interval::passes`]).
-    fn longest_step(&self) -> f64 {
+    pub(super) fn longest_step(&self) -> f64 {
         match self.mechanism.drive_kind() {
             crate::geometry::DriveKind::Angle => interval::LONGEST_TURN,
             crate::geometry::DriveKind::Displacement => interval::LONGEST_TURN * self.size,

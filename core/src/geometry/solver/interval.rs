@@ -51,6 +51,11 @@ pub(crate) const LONGEST_TURN: f64 = 0.125;
 /// passes 1e-6 of its length from the hinge: 2.5e-13) is regular and computed.
 pub(crate) const TOUCH: f64 = 1e-14;
 
+/// Sub-steps (accepted or not) allowed in one move: 10⁵ steps of 1/8 rad are ~2 000
+/// turns; a move asking for more is refused ([`Error::MoveTooLong`]) rather than run for
+/// hours.
+pub(crate) const MAX_SUBSTEPS: usize = 100_000;
+
 /// Newton iterations allowed when refining a limit position or a change point.
 const REFINE: usize = 60;
 

@@ -15,9 +15,25 @@ impl Tracker<'_> {
     pub(super) fn move_newton(&mut self, phi: f64) -> Result<SolveReport, Error> {
         let mut report = SolveReport::starting(self.phi);
         let mut halvings: usize = 0;
+        // Steps of at most 1/8 rad (or 1/8 of the sketch), as on the closed-form path:
+        // Newton's landing is checked (branch certificates) at least that often.
+        let longest = self.longest_step();
+        let start = self.phi;
         while self.phi != phi {
-            let h = (phi - self.phi) / f64::powi(2.0, halvings.min(1074) as i32);
-            let target = if halvings == 0 { phi } else { self.phi + h };
+            let substeps = report.steps + report.newton_failures + report.branch_rejections;
+            self.bounded(start, phi, substeps)?;
+            let remaining = phi - self.phi;
+            let full = if remaining.abs() > longest {
+                longest.copysign(remaining)
+            } else {
+                remaining
+            };
+            let h = full / f64::powi(2.0, halvings.min(1074) as i32);
+            let target = if halvings == 0 && full == remaining {
+                phi
+            } else {
+                self.phi + h
+            };
             // Taylor predictor q + h q′ + h²/2 q″.
             let derivatives = self.dq.as_slice().iter().zip(self.ddq.as_slice());
             let poses = self.trial.as_mut_slice().iter_mut().zip(self.q.as_slice());
@@ -74,7 +90,7 @@ impl Tracker<'_> {
             };
             halvings += 1;
             // Give up after the allowed halvings, or once a halved step no longer moves φ.
-            let next = self.phi + (phi - self.phi) / f64::powi(2.0, halvings.min(1074) as i32);
+            let next = self.phi + full / f64::powi(2.0, halvings.min(1074) as i32);
             if halvings > self.solver.max_subdivisions || next == self.phi {
                 return Err(failure);
             }
