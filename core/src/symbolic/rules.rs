@@ -10,6 +10,13 @@
 
 use super::graph::{Graph, Id, Node};
 use super::ops::{Binary, Comparison, Unary};
+use crate::error::Error;
+
+/// The highest derivative order [`Graph::try_derivatives`] computes.
+pub const MAX_DERIVATIVE_ORDER: usize = 32;
+
+/// The default size limit of [`Graph::try_derivatives`]: one million nodes (about 150 MB).
+pub const MAX_NODES: usize = 1_000_000;
 
 /// `d op(u)` given `u`, `du` and the node `f = op(u)`.
 fn unary_differential(g: &mut Graph, op: Unary, u: Id, du: Id, f: Id) -> Id {
@@ -160,6 +167,12 @@ impl Graph {
     /// assert_eq!(graph.to_sexpr(df), "(+ (sin x) (* x (cos x)))");
     /// ```
     pub fn derivative(&mut self, f: Id, variable: &str) -> Id {
+        self.derivative_within(f, variable, usize::MAX)
+            .expect("no limit on the number of nodes")
+    }
+
+    /// The derivative of `f`, or `None` as soon as the graph holds more than `max_nodes`.
+    fn derivative_within(&mut self, f: Id, variable: &str, max_nodes: usize) -> Option<Id> {
         // children before parents: differentiate every reachable node in arena order
         let reachable = self.reachable(&[f]);
         let mut derivative = vec![None; f.index() + 1];
@@ -185,12 +198,59 @@ impl Graph {
                         }
                     }
                 };
+                if self.len() > max_nodes {
+                    return None;
+                }
                 self.derivative_cache.insert(key, d);
                 d
             };
             derivative[index] = Some(d);
         }
-        derivative[f.index()].expect("f is reachable from itself")
+        derivative[f.index()]
+    }
+
+    /// Like [`Graph::derivatives`], within the engine's limits: `order` at most
+    /// [`MAX_DERIVATIVE_ORDER`], the graph at most `max_nodes` nodes (see [`MAX_NODES`]).
+    ///
+    /// ```
+    /// use mechdiff_core::symbolic::{Graph, rules::MAX_NODES};
+    ///
+    /// let mut graph = Graph::new();
+    /// let f = graph.parse_infix("exp(sin(x))").unwrap();
+    /// assert_eq!(graph.try_derivatives(f, "x", 3, MAX_NODES).unwrap().len(), 4);
+    /// assert!(graph.try_derivatives(f, "x", 1_000_000_000, MAX_NODES).is_err());
+    /// assert!(graph.try_derivatives(f, "x", 30, 500).is_err());
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::DerivativeOrderTooHigh`] above [`MAX_DERIVATIVE_ORDER`];
+    /// [`Error::ExpressionTooLarge`] when the graph outgrows `max_nodes` (it then holds
+    /// partial derivatives that no output uses: emit only what was returned).
+    pub fn try_derivatives(
+        &mut self,
+        f: Id,
+        variable: &str,
+        order: usize,
+        max_nodes: usize,
+    ) -> Result<Vec<Id>, Error> {
+        if order > MAX_DERIVATIVE_ORDER {
+            return Err(Error::DerivativeOrderTooHigh {
+                order,
+                limit: MAX_DERIVATIVE_ORDER,
+            });
+        }
+        let mut all = vec![f];
+        for k in 1..=order {
+            let last = *all.last().expect("not empty");
+            let next = self.derivative_within(last, variable, max_nodes).ok_or(
+                Error::ExpressionTooLarge {
+                    order: k,
+                    limit: max_nodes,
+                },
+            )?;
+            all.push(next);
+        }
+        Ok(all)
     }
 
     /// `f` and its derivatives of order 1 to `order` with respect to `variable`:
