@@ -170,6 +170,11 @@ fn generate_code(expression: &str, args: &Args) -> Result<String, mechdiff_core:
     let mut graph = Graph::new();
     let value = graph.parse_infix(expression)?;
     let outputs = graph.try_derivatives(value, &args.wrt, args.order, rules::MAX_NODES)?;
+    for (order, output) in outputs.iter().enumerate() {
+        if let Some((_, value)) = graph.non_finite_constant(&[*output]) {
+            return Err(mechdiff_core::Error::NonFiniteConstant { order, value });
+        }
+    }
     let mut parameters = vec![args.wrt.as_str()];
     parameters.extend(
         graph

@@ -246,6 +246,17 @@ pub enum Error {
         /// The largest number of nodes the graph may hold.
         limit: usize,
     },
+    /// A derivative has a part without variables whose value is not finite (`0 / 0`).
+    #[error(
+        "the derivative of order {order} has a constant part equal to {value}: the formula is \
+         not differentiable as written; rewrite it"
+    )]
+    NonFiniteConstant {
+        /// The derivative order (0: the value).
+        order: usize,
+        /// The constant's `f64` value.
+        value: f64,
+    },
     /// Emitted Rust did not parse back (a bug in the emitter).
     #[error("emitted Rust is not valid: {reason}")]
     InvalidEmittedRust {

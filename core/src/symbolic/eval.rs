@@ -129,6 +129,36 @@ impl<D: DualNum<Primitive = f64> + Copy> Arithmetic for DualArithmetic<D> {
 }
 
 impl Graph {
+    /// The first node needed by `outputs` that has no variables (named constants aside) and
+    /// whose `f64` value is not finite (`0 / 0`), with that value; `None` if there is none.
+    pub fn non_finite_constant(&self, outputs: &[Id]) -> Option<(Id, f64)> {
+        let needed = self.reachable(outputs);
+        let mut values: Vec<Option<f64>> = vec![None; needed.len()];
+        let mut f64s = DualArithmetic::<f64>::new();
+        for (index, node) in self.nodes().iter().enumerate() {
+            if !needed[index] {
+                continue;
+            }
+            let of = |id: &Id| values[id.index()];
+            let value = match node {
+                Node::Num(n) => Some(n.value()),
+                Node::Sym(name) => f64s.named_constant(name),
+                Node::Unary(op, a) => of(a).map(|a| f64s.unary(*op, &a)),
+                Node::Binary(op, a, b) => of(a).zip(of(b)).map(|(a, b)| f64s.binary(*op, &a, &b)),
+                Node::Powi(a, n) => of(a).map(|a| a.powi(*n)),
+                Node::Select(cmp, [a, b, t, e]) => match (of(a), of(b)) {
+                    (Some(a), Some(b)) => of(if cmp.holds(&a, &b) { t } else { e }),
+                    _ => None,
+                },
+            };
+            if let Some(v) = value.filter(|v| !v.is_finite()) {
+                return Some((Id::at(index), v));
+            }
+            values[index] = value;
+        }
+        None
+    }
+
     /// Evaluates `outputs` with `arithmetic`; `value_of` gives the value of each symbol.
     ///
     /// # Errors

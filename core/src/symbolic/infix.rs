@@ -230,6 +230,13 @@ impl Parser<'_, '_> {
     }
 
     fn binary_at(&mut self, op: Binary, a: Id, b: Id, at: usize) -> Result<Id, Error> {
+        if op == Binary::Div && self.constant(b) == Some(0.0) {
+            return Err(self.error(
+                at,
+                "division by zero: the divisor is the constant 0; change the formula so that \
+                 it is finite",
+            ));
+        }
         let built = self.graph.binary(op, a, b);
         self.checked(built, at, op.name(), &[a, b])
     }
