@@ -62,9 +62,12 @@ fn unary_differential(g: &mut Graph, op: Unary, u: Id, du: Id, f: Id) -> Id {
         }
         Unary::Sinh => g.cosh(u),
         Unary::Cosh => g.sinh(u),
+        // sech²(u) = 1 / cosh²(u), not 1 - tanh²(u): that difference cancels to 0 (all
+        // digits lost) for |u| > 19, where sech² is still 1e-16 and more
         Unary::Tanh => {
-            let square = g.powi(f, 2);
-            g.sub(one, square)
+            let cosh = g.cosh(u);
+            let square = g.powi(cosh, 2);
+            return g.div(du, square);
         }
         Unary::Abs => {
             let zero = g.number(0.0);
@@ -93,6 +96,21 @@ fn binary_differential(g: &mut Graph, op: Binary, [a, b, da, db]: [Id; 4], f: Id
             let numerator = g.sub(left, right);
             let square = g.powi(b, 2);
             g.div(numerator, square)
+        }
+        // a constant exponent: (aᶜ)' = c aᶜ⁻¹ a' (finite at a = 0 for c ≥ 1, where
+        // aᶜ · c a' / a is 0 / 0)
+        Binary::Powf if g.is_number(db, 0.0) => {
+            let one = g.number(1.0);
+            let lower = g.sub(b, one);
+            let power = g.powf(a, lower);
+            let scaled = g.mul(b, power);
+            g.mul(scaled, da)
+        }
+        // a constant base: (cᵇ)' = cᵇ ln c b'
+        Binary::Powf if g.is_number(da, 0.0) => {
+            let log = g.ln(a);
+            let rate = g.mul(f, log);
+            g.mul(rate, db)
         }
         // (aᵇ)' = aᵇ (b' ln a + b a' / a)
         Binary::Powf => {
