@@ -63,7 +63,10 @@ fn wrt_must_be_an_identifier() {
 #[test]
 fn constant_too_large_for_f64_is_an_error_at_its_column() {
     let message = error_of("1e309*phi");
-    assert!(message.contains("`1e309` is too large for an f64"), "{message}");
+    assert!(
+        message.contains("`1e309` is too large for an f64"),
+        "{message}"
+    );
     assert_eq!(caret_column(&message), 1, "{message}");
 }
 
@@ -91,7 +94,10 @@ fn nesting_beyond_the_limit_is_an_error_and_within_it_compiles_to_a_let_chain() 
     let limit = mechdiff_core::symbolic::infix::MAX_NESTING;
     let deep = |n: usize| format!("{}phi{}", "sin(".repeat(n), ")".repeat(n));
     let message = error_of(&deep(limit + 1));
-    assert!(message.contains("nests deeper than the limit of 1024"), "{message}");
+    assert!(
+        message.contains("nests deeper than the limit of 1024"),
+        "{message}"
+    );
     // 1000 nested sin at order 3 (crashed rustc's parser as one expression): every emitted
     // expression nests at most 16 operations deep, so the source has no long `((((` runs
     let text = generate(&args(&deep(1000), 3)).unwrap();
@@ -137,7 +143,10 @@ fn temporary_file(name: &str, contents: &[u8]) -> std::path::PathBuf {
 
 #[test]
 fn formula_from_a_file_equals_the_formula_from_expr() {
-    let path = temporary_file("psi.txt", b"atan2(lambda*sin(phi),\n  1 - lambda*cos(phi))\n");
+    let path = temporary_file(
+        "psi.txt",
+        b"atan2(lambda*sin(phi),\n  1 - lambda*cos(phi))\n",
+    );
     let mut from_file = args("", 2);
     from_file.expression = None;
     from_file.file = Some(path.clone());
@@ -162,7 +171,10 @@ fn formula_file_errors_name_the_file() {
     let path = temporary_file("latin1.txt", b"phi * \xe9");
     from_file.file = Some(path.clone());
     let message = generate(&from_file).unwrap_err().to_string();
-    assert!(message.contains("not UTF-8 text (invalid byte at offset 6)"), "{message}");
+    assert!(
+        message.contains("not UTF-8 text (invalid byte at offset 6)"),
+        "{message}"
+    );
     std::fs::remove_file(path).unwrap();
     // longer than the limit (as /dev/zero would be): refused after reading the limit
     let path = temporary_file("huge.txt", b"");
@@ -174,7 +186,10 @@ fn formula_file_errors_name_the_file() {
         .unwrap();
     from_file.file = Some(path.clone());
     let message = generate(&from_file).unwrap_err().to_string();
-    assert!(message.contains("longer than the limit of 16777216 bytes"), "{message}");
+    assert!(
+        message.contains("longer than the limit of 16777216 bytes"),
+        "{message}"
+    );
     std::fs::remove_file(path).unwrap();
 }
 
@@ -193,7 +208,10 @@ fn formula_from_standard_input() {
     let output = child.wait_with_output().unwrap();
     let text = String::from_utf8(output.stdout).unwrap();
     assert!(output.status.success(), "{text}");
-    assert!(text.contains("pub fn derivatives(x: f64) -> [f64; 3]"), "{text}");
+    assert!(
+        text.contains("pub fn derivatives(x: f64) -> [f64; 3]"),
+        "{text}"
+    );
     // x³, 3x², 6x
     assert!(text.contains("6.0 * x"), "{text}");
 }

@@ -44,9 +44,18 @@ fn generated_constants_have_the_values_of_the_formulas() {
         // each derivative written by hand; 4 ulp relative: the same f64 operations up to
         // the order of a product or two
         let cases: [([f64; 3], [f64; 3]); 7] = [
-            (generated::constants_1(phi), [third.sin() * phi, third.sin(), 0.0]),
-            (generated::constants_2(phi), [third.exp() * phi, third.exp(), 0.0]),
-            (generated::constants_3(phi), [phi * third.sqrt(), third.sqrt(), 0.0]),
+            (
+                generated::constants_1(phi),
+                [third.sin() * phi, third.sin(), 0.0],
+            ),
+            (
+                generated::constants_2(phi),
+                [third.exp() * phi, third.exp(), 0.0],
+            ),
+            (
+                generated::constants_3(phi),
+                [phi * third.sqrt(), third.sqrt(), 0.0],
+            ),
             (
                 generated::constants_4(phi),
                 [

@@ -35,9 +35,15 @@ fn a_sum_of_distinct_terms_costs_linear_memory() {
     // every partial sum's tokens: quadratic). 2.1: linear plus the few shared nodes.
     let (nodes_1, text_1, longest_1) = cost_of_sum(400);
     let (nodes_2, text_2, longest_2) = cost_of_sum(800);
-    assert!(nodes_2 as f64 / nodes_1 as f64 <= 2.1, "{nodes_1} -> {nodes_2} nodes");
+    assert!(
+        nodes_2 as f64 / nodes_1 as f64 <= 2.1,
+        "{nodes_1} -> {nodes_2} nodes"
+    );
     // the code's text grows a little faster: its temporaries' names get longer (t99, t999)
-    assert!(text_2 as f64 / text_1 as f64 <= 2.3, "{text_1} -> {text_2} characters");
+    assert!(
+        text_2 as f64 / text_1 as f64 <= 2.3,
+        "{text_1} -> {text_2} characters"
+    );
     // no statement grows with the sum (the emitter held every partial sum's tokens while
     // writing one n-term expression: memory ~n²); 1.2: longer temporary names only
     assert!(

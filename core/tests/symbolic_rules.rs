@@ -37,7 +37,8 @@ rules! {
     d_sub: "(d x (- y x))" => "-1";
     d_mul: "(d x (* y x))" => "y";
     d_div: "(d x (/ x y))" => "(/ 1 y)";
-    d_div_denominator: "(d x (/ y x))" => "(neg (/ y (powi x 2)))";
+    // (a' − f b′)/b with f = a/b: no b², which leaves f64 for |b| beyond 1e±154
+    d_div_denominator: "(d x (/ y x))" => "(neg (/ (/ y x) x))";
     d_neg: "(d x (neg x))" => "-1";
     d_powi: "(d x (powi x 3))" => "(* 3 (powi x 2))";
     // c xᶜ⁻¹, not xᶜ c / x (0 / 0 at x = 0)

@@ -88,14 +88,13 @@ fn binary_differential(g: &mut Graph, op: Binary, [a, b, da, db]: [Id; 4], f: Id
             let right = g.mul(a, db);
             g.add(left, right)
         }
-        // (a/b)' = (a' b - a b') / b²: no dependency on the division f = a/b, so that the
-        // divisions of the value and of each derivative can run in parallel
+        // (a/b)' = (a' - f b') / b with f = a/b: no b² (which overflows for |b| > 1e154 and
+        // underflows for |b| < 1e-154 while the derivative itself is of ordinary size)
+        Binary::Div if g.is_number(db, 0.0) => g.div(da, b),
         Binary::Div => {
-            let left = g.mul(da, b);
-            let right = g.mul(a, db);
-            let numerator = g.sub(left, right);
-            let square = g.powi(b, 2);
-            g.div(numerator, square)
+            let right = g.mul(f, db);
+            let numerator = g.sub(da, right);
+            g.div(numerator, b)
         }
         // a constant exponent: (aᶜ)' = c aᶜ⁻¹ a' (finite at a = 0 for c ≥ 1, where
         // aᶜ · c a' / a is 0 / 0)
@@ -131,12 +130,14 @@ fn binary_differential(g: &mut Graph, op: Binary, [a, b, da, db]: [Id; 4], f: Id
             let denominator = g.add(a2, b2);
             g.div(numerator, denominator)
         }
-        // hypot(a, b)' = (a a' + b b') / f
+        // hypot(a, b)' = (a/f) a' + (b/f) b': direction cosines times rates, never a product
+        // of two lengths (which leaves f64 for lengths beyond 1e±154)
         Binary::Hypot => {
-            let left = g.mul(a, da);
-            let right = g.mul(b, db);
-            let numerator = g.add(left, right);
-            g.div(numerator, f)
+            let cos_a = g.div(a, f);
+            let left = g.mul(cos_a, da);
+            let cos_b = g.div(b, f);
+            let right = g.mul(cos_b, db);
+            g.add(left, right)
         }
     }
 }
