@@ -187,12 +187,9 @@ fn generate_code(expression: &str, args: &Args) -> Result<String, mechdiff_core:
     let names: Vec<&str> = names.iter().map(String::as_str).collect();
     let tokens = graph.emit_function(&args.name, &parameters, &outputs, &names);
     let source = mechdiff_core::symbolic::format_rust(tokens)?;
-    let shown = if expression.len() > 200 {
-        format!(
-            "{}… ({} characters)",
-            &expression[..expression.floor_char_boundary(200)],
-            expression.len()
-        )
+    let shown = if expression.chars().count() > 200 {
+        let start: String = expression.chars().take(200).collect();
+        format!("{start}… ({} characters)", expression.chars().count())
     } else {
         expression.to_owned()
     };

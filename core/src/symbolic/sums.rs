@@ -56,16 +56,25 @@ impl Linear {
             }
         }
         constants.retain(|c| *c != 0.0);
-        let mut terms: Vec<(f64, Id)> = Vec::new();
-        // the position in `terms` of the last entry of each term (where a new one merges)
+        let mut terms: Vec<(f64, Id)> = Vec::with_capacity(self.terms.len());
+        // the position in `terms` of the last entry of each term (where a new one merges):
+        // found by a scan for a few terms (most sums), by a hash map for many
         let mut position: HashMap<Id, usize> = HashMap::new();
+        let hashed = self.terms.len() > 16;
         for (c, id) in self.terms {
-            let merged = position.get(&id).and_then(|&i| {
+            let at = if hashed {
+                position.get(&id).copied()
+            } else {
+                terms.iter().rposition(|(_, t)| *t == id)
+            };
+            let merged = at.and_then(|i| {
                 let k = &mut terms[i].0;
                 exact_add(*k, c).map(|s| *k = s)
             });
             if merged.is_none() {
-                position.insert(id, terms.len());
+                if hashed {
+                    position.insert(id, terms.len());
+                }
                 terms.push((c, id));
             }
         }
