@@ -90,14 +90,18 @@ fn hyperbolic_dual(x: D, a: D) -> D {
 /// type (`f64::sin(1.0 / 3.0)`), or rustc rejects it (E0689) and this file does not compile.
 #[derivatives(wrt = x, order = 3)]
 fn constants(x: f64, a: f64) -> f64 {
+    let k = if x < a { 0.5 } else { 2.0 };
     (1.0_f64 / 3.0).sin() * x + (1.0_f64 / 3.0).powf(x) * a + x * (1.0_f64 / 3.0).sqrt()
         - (2.0_f64).ln() * std::f64::consts::PI
+        + k.sin() * x
 }
 
 fn constants_dual(x: D, a: D) -> D {
     let third: f64 = 1.0 / 3.0;
+    let k: f64 = if x.re < a.re { 0.5 } else { 2.0 };
     x * third.sin() + c(third).powd(x) * a + x * third.sqrt()
         - c(2.0_f64.ln() * std::f64::consts::PI)
+        + x * k.sin()
 }
 
 #[derivatives(wrt = x, order = 3)]

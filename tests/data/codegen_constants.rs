@@ -5,7 +5,7 @@
 // operations: 0 add, 1 mul, 1 div, 1 sin
 // without common-subexpression elimination: 0 add, 1 mul, 2 div, 2 sin
 pub fn constants_1(phi: f64) -> [f64; 3] {
-    let d1: f64 = f64::sin(1.0 / 3.0);
+    let d1 = f64::sin(1.0 / 3.0);
     let value = d1 * phi;
     [value, d1, 0.0]
 }
@@ -14,7 +14,7 @@ pub fn constants_1(phi: f64) -> [f64; 3] {
 // operations: 0 add, 1 mul, 1 div, 1 exp
 // without common-subexpression elimination: 0 add, 1 mul, 2 div, 2 exp
 pub fn constants_2(phi: f64) -> [f64; 3] {
-    let d1: f64 = f64::exp(1.0 / 3.0);
+    let d1 = f64::exp(1.0 / 3.0);
     let value = d1 * phi;
     [value, d1, 0.0]
 }
@@ -23,7 +23,7 @@ pub fn constants_2(phi: f64) -> [f64; 3] {
 // operations: 0 add, 1 mul, 1 div, 1 sqrt
 // without common-subexpression elimination: 0 add, 1 mul, 2 div, 2 sqrt
 pub fn constants_3(phi: f64) -> [f64; 3] {
-    let d1: f64 = f64::sqrt(1.0 / 3.0);
+    let d1 = f64::sqrt(1.0 / 3.0);
     let value = phi * d1;
     [value, d1, 0.0]
 }
@@ -34,7 +34,7 @@ pub fn constants_3(phi: f64) -> [f64; 3] {
 pub fn constants_4(phi: f64) -> [f64; 3] {
     let t0: f64 = 1.0 / 3.0;
     let value = f64::powf(t0, phi);
-    let t1: f64 = f64::ln(t0);
+    let t1 = f64::ln(t0);
     let d1 = value * t1;
     let d2 = t1 * d1;
     [value, d1, d2]
@@ -54,11 +54,11 @@ pub fn constants_5(phi: f64) -> [f64; 3] {
 // operations: 2 add, 3 mul, 1 div, 1 cosh, 1 ln, 1 powf, 1 powi
 // without common-subexpression elimination: 2 add, 4 mul, 2 div, 6 cosh, 3 ln, 3 powf, 2 powi
 pub fn constants_6(phi: f64) -> [f64; 3] {
-    let t0: f64 = f64::powi(1.0 / 3.0, 3);
-    let t1: f64 = f64::cosh(0.1);
-    let t2 = f64::powf(t1, phi);
+    let t0 = f64::powi(1.0 / 3.0, 3);
+    let t1 = f64::cosh(0.1);
+    let t2 = t1.powf(phi);
     let value = t0 * phi + t2;
-    let t3: f64 = f64::ln(t1);
+    let t3 = t1.ln();
     let t4 = t2 * t3;
     let d1 = t0 + t4;
     let d2 = t3 * t4;

@@ -60,10 +60,11 @@ fn symbol_tokens(name: &str) -> TokenStream {
 
 struct Emitter<'g> {
     graph: &'g Graph,
-    /// Whether each node is free of symbols: a constant whose float type Rust cannot infer
-    /// from a method call (`(1.0 / 3.0).sin()` is error E0689), so such receivers are written
-    /// `f64::sin(1.0 / 3.0)` and such values are bound as `let t: f64 = …`.
-    constant: Vec<bool>,
+    /// Whether each node's Rust expression has no float type of its own: literals and
+    /// arithmetic or branches of them (`1.0 / 3.0`, `if x < a { 0.5 } else { 2.0 }`).
+    /// `(1.0 / 3.0).sin()` is error E0689, so such a receiver is written
+    /// `f64::sin(1.0 / 3.0)` (a typed value) and such a value is bound as `let t: f64 = …`.
+    untyped: Vec<bool>,
     emitted: HashMap<Id, Emitted>,
     bound: HashSet<Id>,
     statements: Vec<TokenStream>,
@@ -142,7 +143,7 @@ impl Emitter<'_> {
         arguments: &[TokenStream],
     ) -> (TokenStream, usize) {
         let method = Ident::new(method, Span::call_site());
-        if self.constant[receiver.index()] {
+        if self.untyped[receiver.index()] {
             let (r, depth) = self.operand(receiver, Precedence::Block);
             (quote!(f64::#method(#r #(, #arguments)*)), depth)
         } else {
@@ -211,7 +212,7 @@ impl Emitter<'_> {
     }
 
     fn bind(&mut self, id: Id, name: Ident, value: TokenStream) {
-        if self.constant[id.index()] {
+        if self.untyped[id.index()] {
             self.statements.push(quote!(let #name: f64 = #value;));
         } else {
             self.statements.push(quote!(let #name = #value;));
@@ -279,17 +280,22 @@ impl Graph {
     pub fn emit(&self, outputs: &[Id], output_names: &[&str]) -> Emission {
         let (reachable, uses) = use_counts(self, outputs);
         let pairs = sin_cos_pairs(self, &reachable);
-        let mut constant: Vec<bool> = Vec::with_capacity(self.len());
+        let mut untyped: Vec<bool> = Vec::with_capacity(self.len());
         for node in self.nodes() {
-            let free = match node {
+            let of = |id: &Id| untyped[id.index()];
+            untyped.push(match node {
+                Node::Num(_) => true,
                 Node::Sym(_) => false,
-                node => node.children().iter().all(|c| constant[c.index()]),
-            };
-            constant.push(free);
+                Node::Unary(Unary::Neg, a) => of(a),
+                Node::Binary(op, a, b) if op.is_infix() => of(a) && of(b),
+                Node::Select(_, [_, _, then, otherwise]) => of(then) && of(otherwise),
+                // method calls: on a typed receiver, or written `f64::method(…)`
+                Node::Unary(..) | Node::Binary(..) | Node::Powi(..) => false,
+            });
         }
         let mut emitter = Emitter {
             graph: self,
-            constant,
+            untyped,
             emitted: HashMap::new(),
             bound: HashSet::new(),
             statements: Vec::new(),
