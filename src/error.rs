@@ -270,6 +270,15 @@ pub enum Error {
         /// mechanism assembles (`"; beyond it: …"`), else empty (boxed: keeps `Error` small).
         beyond: Box<str>,
     },
+    /// `mechdiff codegen` cannot generate the code: the formula is malformed or not finite
+    /// (with its column), or its derivatives exceed the engine's limits.
+    #[error("{origin}: {source}")]
+    Codegen {
+        /// Where the formula came from: `--expr`, the file, or standard input.
+        origin: String,
+        /// The engine's reason.
+        source: mechdiff_core::Error,
+    },
     /// The solver would jump to the other assembly branch between two drive positions.
     #[error(
         "{file}: the loop of joints {loop_joints} would change assembly branch between drive \

@@ -309,6 +309,38 @@ pub enum Error {
         /// The string as given.
         text: String,
     },
+    /// A derivative order above the engine's limit was asked for.
+    #[error(
+        "derivative order {order} is above the limit of {limit}; ask for order {limit} or less"
+    )]
+    DerivativeOrderTooHigh {
+        /// The order asked for.
+        order: usize,
+        /// The highest order the engine computes.
+        limit: usize,
+    },
+    /// The derivatives grew beyond the size limit of the expression graph.
+    #[error(
+        "the derivative of order {order} needs more than {limit} expression nodes; ask for a \
+         lower order or split the formula into smaller parts"
+    )]
+    ExpressionTooLarge {
+        /// The order whose derivative outgrew the limit.
+        order: usize,
+        /// The largest number of nodes the graph may hold.
+        limit: usize,
+    },
+    /// A derivative has a part without variables whose value is not finite (`0 / 0`).
+    #[error(
+        "the derivative of order {order} has a constant part equal to {value}: the formula is \
+         not differentiable as written; rewrite it"
+    )]
+    NonFiniteConstant {
+        /// The derivative order (0: the value).
+        order: usize,
+        /// The constant's `f64` value.
+        value: f64,
+    },
     /// Emitted Rust did not parse back (a bug in the emitter).
     #[error("emitted Rust is not valid: {reason}")]
     InvalidEmittedRust {
@@ -317,10 +349,24 @@ pub enum Error {
     },
 }
 
-/// `message` followed by the input with a caret under character `position`.
+/// `message` followed by the input with a caret under character `position` (a long input is
+/// shown as the 60 characters either side of the position).
 fn show_position(input: &str, position: usize, message: &str) -> String {
+    const CONTEXT: usize = 60;
     let column = position + 1;
-    format!("{message} (column {column})\n  {input}\n  {:>column$}", "^")
+    let chars: Vec<char> = input.chars().collect();
+    let start = position.saturating_sub(CONTEXT).min(chars.len());
+    let end = (position + CONTEXT).min(chars.len());
+    let (before, after) = (
+        if start > 0 { "…" } else { "" },
+        if end < chars.len() { "…" } else { "" },
+    );
+    let shown: String = chars[start..end].iter().collect();
+    let caret = position - start + 1 + before.chars().count();
+    format!(
+        "{message} (column {column})\n  {before}{shown}{after}\n  {:>caret$}",
+        "^"
+    )
 }
 
 impl Error {

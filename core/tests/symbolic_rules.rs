@@ -37,10 +37,14 @@ rules! {
     d_sub: "(d x (- y x))" => "-1";
     d_mul: "(d x (* y x))" => "y";
     d_div: "(d x (/ x y))" => "(/ 1 y)";
-    d_div_denominator: "(d x (/ y x))" => "(neg (/ y (powi x 2)))";
+    // (a' − f b′)/b with f = a/b: no b², which leaves f64 for |b| beyond 1e±154
+    d_div_denominator: "(d x (/ y x))" => "(neg (/ (/ y x) x))";
     d_neg: "(d x (neg x))" => "-1";
     d_powi: "(d x (powi x 3))" => "(* 3 (powi x 2))";
-    d_powf_constant_exponent: "(d x (powf x 2.5))" => "(* (powf x 2.5) (* 2.5 (/ 1 x)))";
+    // c xᶜ⁻¹, not xᶜ c / x (0 / 0 at x = 0)
+    d_powf_constant_exponent: "(d x (powf x 2.5))" => "(* 2.5 (powf x 1.5))";
+    d_powf_parameter_exponent: "(d x (powf x n))" => "(* n (powf x (- n 1)))";
+    d_powf_both: "(d x (powf x x))" => "(* (powf x x) (+ (ln x) (* x (/ 1 x))))";
     d_powf_variable_exponent: "(d x (powf 2 x))" => "(* (powf 2 x) (ln 2))";
     d_sqrt: "(d x (sqrt x))" => "(/ 1 (* 2 (sqrt x)))";
     d_cbrt: "(d x (cbrt x))" => "(/ 1 (* 3 (powi (cbrt x) 2)))";
@@ -57,7 +61,8 @@ rules! {
     d_atan2_denominator: "(d x (atan2 y x))" => "(neg (/ y (+ (powi y 2) (powi x 2))))";
     d_sinh: "(d x (sinh x))" => "(cosh x)";
     d_cosh: "(d x (cosh x))" => "(sinh x)";
-    d_tanh: "(d x (tanh x))" => "(- 1 (powi (tanh x) 2))";
+    // sech², not 1 - tanh² (which cancels to 0 for |x| > 19)
+    d_tanh: "(d x (tanh x))" => "(/ 1 (powi (cosh x) 2))";
     d_hypot: "(d x (hypot x y))" => "(/ x (hypot x y))";
     d_abs: "(d x (abs x))" => "(if (< x 0) -1 1)";
     d_select_takes_the_branch: "(d x (if (< x 1) (sin x) (* 2 x)))" => "(if (< x 1) (cos x) 2)";
@@ -84,6 +89,12 @@ rules! {
     powi_merging: "(* (powi x 2) x)" => "(powi x 3)";
     powi_negative_exponent: "(powi x -2)" => "(/ 1 (powi x 2))";
     powf_integer_is_powi: "(powf x 3)" => "(powi x 3)";
+    ln_of_exp: "(ln (exp (sin x)))" => "(sin x)";
+    ln_of_odd_power: "(ln (powi x 3))" => "(* 3 (ln x))";
+    ln_of_even_power: "(ln (powi x 2))" => "(* 2 (ln (abs x)))";
+    ln_of_constant_power: "(ln (powf x 2.5))" => "(* 2.5 (ln x))";
+    ln_of_power_of_positive_base: "(ln (powf (exp y) x))" => "(* x y)";
+    ln_of_power_of_unknown_sign_kept: "(ln (powf y x))" => "(ln (powf y x))";
     constant_factors_merge: "(* 2 (* 3 x))" => "(* 6 x)";
     quotient_cancels_a_factor: "(/ (* a u) u)" => "a";
     quotient_cancels_into_a_power: "(/ (* a u) (powi u 3))" => "(/ a (powi u 2))";

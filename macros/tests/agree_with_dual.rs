@@ -86,6 +86,24 @@ fn hyperbolic_dual(x: D, a: D) -> D {
     (a * x).sinh() + x.cosh() * a - x.tanh()
 }
 
+/// Constant subexpressions (`sin(1/3)`, `(1/3)^x`): the generated code must name their float
+/// type (`f64::sin(1.0 / 3.0)`), or rustc rejects it (E0689) and this file does not compile.
+#[derivatives(wrt = x, order = 3)]
+fn constants(x: f64, a: f64) -> f64 {
+    let k = if x < a { 0.5 } else { 2.0 };
+    (1.0_f64 / 3.0).sin() * x + (1.0_f64 / 3.0).powf(x) * a + x * (1.0_f64 / 3.0).sqrt()
+        - (2.0_f64).ln() * std::f64::consts::PI
+        + k.sin() * x
+}
+
+fn constants_dual(x: D, a: D) -> D {
+    let third: f64 = 1.0 / 3.0;
+    let k: f64 = if x.re < a.re { 0.5 } else { 2.0 };
+    x * third.sin() + c(third).powd(x) * a + x * third.sqrt()
+        - c(2.0_f64.ln() * std::f64::consts::PI)
+        + x * k.sin()
+}
+
 #[derivatives(wrt = x, order = 3)]
 fn piecewise(x: f64, a: f64) -> f64 {
     if x < a {
@@ -182,6 +200,11 @@ proptest! {
     }
 
     #[test]
+    fn constants_agree(x in -2.0f64..2.0, a in -1.0f64..1.0) {
+        assert_agree("constants", constants_derivatives(x, a), constants_dual(derivative_seed(x), c(a)));
+    }
+
+    #[test]
     fn piecewise_takes_the_derivative_of_the_branch(x in 0.0f64..3.0, a in 0.5f64..1.0) {
         assert_agree("piecewise", piecewise_derivatives(x, a), piecewise_dual(derivative_seed(x), c(a)));
     }
@@ -193,7 +216,7 @@ fn the_original_function_is_kept_and_agrees_with_the_value() {
     // moving negations, x + x = 2x) except merged powers (x·x·x = x.powi(3)), which may
     // round differently: 4 ulp of the value.
     type Pair = (fn(f64, f64) -> f64, fn(f64, f64) -> Jet<3>);
-    let pairs: [(&str, Pair); 8] = [
+    let pairs: [(&str, Pair); 9] = [
         ("rational", (rational, rational_derivatives)),
         ("roots", (roots, roots_derivatives)),
         ("exp_ln", (exp_ln, exp_ln_derivatives)),
@@ -208,6 +231,7 @@ fn the_original_function_is_kept_and_agrees_with_the_value() {
         ),
         ("hyperbolic", (hyperbolic, hyperbolic_derivatives)),
         ("piecewise", (piecewise, piecewise_derivatives)),
+        ("constants", (constants, constants_derivatives)),
     ];
     for (name, (original, generated)) in pairs {
         for x in [0.3, 0.6, 0.9] {

@@ -26,11 +26,28 @@ enum Precedence {
     Postfix,
 }
 
-/// An emitted expression and how strongly it binds.
+/// How deeply operations may nest in one emitted expression before a value is bound with
+/// `let`: deep formulas (1000 nested `sin`, a sum of 8000 terms) become `let` chains that
+/// rustc parses without exhausting its stack, and each token is copied a bounded number of
+/// times (emission stays linear in the size of the graph).
+const MAX_INLINE_DEPTH: usize = 16;
+
+/// An emitted expression, how strongly it binds and how deeply its operations nest.
 #[derive(Clone)]
 struct Emitted {
     tokens: TokenStream,
     precedence: Precedence,
+    depth: usize,
+}
+
+impl Emitted {
+    fn name(tokens: TokenStream) -> Self {
+        Emitted {
+            tokens,
+            precedence: Precedence::Postfix,
+            depth: 0,
+        }
+    }
 }
 
 /// The tokens of a symbol: an identifier or a path.
@@ -43,6 +60,11 @@ fn symbol_tokens(name: &str) -> TokenStream {
 
 struct Emitter<'g> {
     graph: &'g Graph,
+    /// Whether each node's Rust expression has no float type of its own: literals and
+    /// arithmetic or branches of them (`1.0 / 3.0`, `if x < a { 0.5 } else { 2.0 }`).
+    /// `(1.0 / 3.0).sin()` is error E0689, so such a receiver is written
+    /// `f64::sin(1.0 / 3.0)` (a typed value) and such a value is bound as `let t: f64 = …`.
+    untyped: Vec<bool>,
     emitted: HashMap<Id, Emitted>,
     bound: HashSet<Id>,
     statements: Vec<TokenStream>,
@@ -81,34 +103,52 @@ impl Emitter<'_> {
                     Emitted {
                         tokens: quote!(-#positive),
                         precedence: Precedence::Prefix,
+                        depth: 0,
                     }
                 } else {
-                    let tokens = literal(c).to_token_stream();
-                    Emitted {
-                        tokens,
-                        precedence: Precedence::Postfix,
-                    }
+                    Emitted::name(literal(c).to_token_stream())
                 })
             }
-            Node::Sym(name) => Some(Emitted {
-                tokens: symbol_tokens(name),
-                precedence: Precedence::Postfix,
-            }),
+            Node::Sym(name) => Some(Emitted::name(symbol_tokens(name))),
             _ => None,
         }
     }
 
-    /// The expression of child `id`, parenthesized if it binds weaker than `at_least`.
-    fn operand(&self, id: Id, at_least: Precedence) -> TokenStream {
+    /// The expression of child `id`, parenthesized if it binds weaker than `at_least`, and
+    /// its nesting depth. An expression written inline is used once: it is taken out.
+    fn operand(&mut self, id: Id, at_least: Precedence) -> (TokenStream, usize) {
         let receiver = at_least == Precedence::Postfix;
-        let emitted = self
-            .leaf(id, receiver)
-            .unwrap_or_else(|| self.emitted[&id].clone());
+        let emitted = match self.leaf(id, receiver) {
+            Some(leaf) => leaf,
+            None if self.bound.contains(&id) => self.emitted[&id].clone(),
+            None => self
+                .emitted
+                .remove(&id)
+                .expect("children are emitted before their parents"),
+        };
         if emitted.precedence < at_least {
             let tokens = emitted.tokens;
-            quote!((#tokens))
+            (quote!((#tokens)), emitted.depth)
         } else {
-            emitted.tokens
+            (emitted.tokens, emitted.depth)
+        }
+    }
+
+    /// `receiver.method(arguments)`, or `f64::method(receiver, arguments)` when the
+    /// receiver is a constant (whose float type a method call cannot infer).
+    fn call(
+        &mut self,
+        receiver: Id,
+        method: &str,
+        arguments: &[TokenStream],
+    ) -> (TokenStream, usize) {
+        let method = Ident::new(method, Span::call_site());
+        if self.untyped[receiver.index()] {
+            let (r, depth) = self.operand(receiver, Precedence::Block);
+            (quote!(f64::#method(#r #(, #arguments)*)), depth)
+        } else {
+            let (r, depth) = self.operand(receiver, Precedence::Postfix);
+            (quote!(#r.#method(#(#arguments),*)), depth)
         }
     }
 
@@ -116,20 +156,17 @@ impl Emitter<'_> {
         self.graph.node(id).is_leaf() || self.bound.contains(&id)
     }
 
-    fn expression(&self, node: &Node) -> Emitted {
+    fn expression(&mut self, node: &Node) -> Emitted {
         use Precedence::{Block, Postfix, Prefix, Product, Sum};
-        let (tokens, precedence) = match *node {
+        let (tokens, precedence, depth) = match *node {
             Node::Num(_) | Node::Sym(_) => unreachable!("leaves are not bound"),
             Node::Unary(Unary::Neg, a) => {
-                let a = self.operand(a, Prefix);
-                (quote!(-#a), Prefix)
+                let (a, depth) = self.operand(a, Prefix);
+                (quote!(-#a), Prefix, depth)
             }
             Node::Unary(op, a) => {
-                let (a, method) = (
-                    self.operand(a, Postfix),
-                    Ident::new(op.name(), Span::call_site()),
-                );
-                (quote!(#a.#method()), Postfix)
+                let (tokens, depth) = self.call(a, op.name(), &[]);
+                (tokens, Postfix, depth)
             }
             Node::Binary(op, a, b) if op.is_infix() => {
                 let (level, symbol) = match op {
@@ -139,43 +176,50 @@ impl Emitter<'_> {
                     _ => (Product, quote!(/)),
                 };
                 let right_level = if level == Sum { Product } else { Prefix };
-                let (a, b) = (self.operand(a, level), self.operand(b, right_level));
-                (quote!(#a #symbol #b), level)
+                let (a, depth_a) = self.operand(a, level);
+                let (b, depth_b) = self.operand(b, right_level);
+                (quote!(#a #symbol #b), level, depth_a.max(depth_b))
             }
             Node::Binary(op, a, b) => {
-                let method = Ident::new(op.name(), Span::call_site());
-                let (a, b) = (self.operand(a, Postfix), self.operand(b, Block));
-                (quote!(#a.#method(#b)), Postfix)
+                let (b, depth_b) = self.operand(b, Block);
+                let (tokens, depth_a) = self.call(a, op.name(), &[b]);
+                (tokens, Postfix, depth_a.max(depth_b))
             }
             Node::Powi(a, 2) if self.is_named(a) => {
-                let a = self.operand(a, Postfix);
-                (quote!(#a * #a), Product)
+                let (a, depth) = self.operand(a, Postfix);
+                (quote!(#a * #a), Product, depth)
             }
             Node::Powi(a, n) => {
-                let a = self.operand(a, Postfix);
-                let n = Literal::i32_unsuffixed(n);
-                (quote!(#a.powi(#n)), Postfix)
+                let n = Literal::i32_unsuffixed(n).to_token_stream();
+                let (tokens, depth) = self.call(a, "powi", &[n]);
+                (tokens, Postfix, depth)
             }
             Node::Select(cmp, [a, b, t, e]) => {
                 let cmp: TokenStream = cmp.name().parse().expect("a comparison operator");
-                let (a, b) = (self.operand(a, Sum), self.operand(b, Sum));
-                let (t, e) = (self.operand(t, Block), self.operand(e, Block));
-                (quote!(if #a #cmp #b { #t } else { #e }), Block)
+                let (a, depth_a) = self.operand(a, Sum);
+                let (b, depth_b) = self.operand(b, Sum);
+                let (t, depth_t) = self.operand(t, Block);
+                let (e, depth_e) = self.operand(e, Block);
+                let depth = depth_a.max(depth_b).max(depth_t).max(depth_e);
+                (quote!(if #a #cmp #b { #t } else { #e }), Block, depth)
             }
         };
-        Emitted { tokens, precedence }
+        Emitted {
+            tokens,
+            precedence,
+            depth: depth + 1,
+        }
     }
 
     fn bind(&mut self, id: Id, name: Ident, value: TokenStream) {
-        self.statements.push(quote!(let #name = #value;));
+        if self.untyped[id.index()] {
+            self.statements.push(quote!(let #name: f64 = #value;));
+        } else {
+            self.statements.push(quote!(let #name = #value;));
+        }
         self.bound.insert(id);
-        self.emitted.insert(
-            id,
-            Emitted {
-                tokens: name.into_token_stream(),
-                precedence: Precedence::Postfix,
-            },
-        );
+        self.emitted
+            .insert(id, Emitted::name(name.into_token_stream()));
     }
 }
 
@@ -236,8 +280,22 @@ impl Graph {
     pub fn emit(&self, outputs: &[Id], output_names: &[&str]) -> Emission {
         let (reachable, uses) = use_counts(self, outputs);
         let pairs = sin_cos_pairs(self, &reachable);
+        let mut untyped: Vec<bool> = Vec::with_capacity(self.len());
+        for node in self.nodes() {
+            let of = |id: &Id| untyped[id.index()];
+            untyped.push(match node {
+                Node::Num(_) => true,
+                Node::Sym(_) => false,
+                Node::Unary(Unary::Neg, a) => of(a),
+                Node::Binary(op, a, b) if op.is_infix() => of(a) && of(b),
+                Node::Select(_, [_, _, then, otherwise]) => of(then) && of(otherwise),
+                // method calls: on a typed receiver, or written `f64::method(…)`
+                Node::Unary(..) | Node::Binary(..) | Node::Powi(..) => false,
+            });
+        }
         let mut emitter = Emitter {
             graph: self,
+            untyped,
             emitted: HashMap::new(),
             bound: HashSet::new(),
             statements: Vec::new(),
@@ -262,21 +320,14 @@ impl Graph {
             if let Node::Unary(Unary::Sin | Unary::Cos, u) = node
                 && let Some(&(sin, cos)) = pairs.get(u)
             {
-                let argument = emitter.operand(*u, Precedence::Postfix);
+                let (call, _) = emitter.call(*u, "sin_cos", &[]);
                 let (s, c) = (emitter.temporary(), emitter.temporary());
-                emitter
-                    .statements
-                    .push(quote!(let (#s, #c) = #argument.sin_cos();));
+                emitter.statements.push(quote!(let (#s, #c) = #call;));
                 for (node, name) in [(sin, s), (cos, c)] {
                     emitter.bound.insert(node);
-                    let tokens = name.into_token_stream();
-                    emitter.emitted.insert(
-                        node,
-                        Emitted {
-                            tokens,
-                            precedence: Precedence::Postfix,
-                        },
-                    );
+                    emitter
+                        .emitted
+                        .insert(node, Emitted::name(name.into_token_stream()));
                 }
                 continue;
             }
@@ -284,7 +335,7 @@ impl Graph {
             if let Some(name) = output_name.get(&id) {
                 let name = emitter.fresh(name);
                 emitter.bind(id, name, expression.tokens);
-            } else if uses[index] >= 2 {
+            } else if uses[index] >= 2 || expression.depth > MAX_INLINE_DEPTH {
                 let name = emitter.temporary();
                 emitter.bind(id, name, expression.tokens);
             } else {
@@ -293,7 +344,7 @@ impl Graph {
         }
         let results: Vec<TokenStream> = outputs
             .iter()
-            .map(|&id| emitter.operand(id, Precedence::Block))
+            .map(|&id| emitter.operand(id, Precedence::Block).0)
             .collect();
         Emission {
             statements: emitter.statements,

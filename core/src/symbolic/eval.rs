@@ -7,6 +7,7 @@ use std::marker::PhantomData;
 
 use num_dual::DualNum;
 
+use super::constants::{self, Formula};
 use super::graph::{Graph, Id, Node};
 use super::ops::{Binary, Comparison, Unary};
 use crate::error::Error;
@@ -27,6 +28,34 @@ pub trait Arithmetic {
     /// Whether `a <cmp> b` holds (on the real part: a piecewise function takes the branch
     /// of its value).
     fn compare(&mut self, cmp: Comparison, a: &Self::Value, b: &Self::Value) -> bool;
+
+    /// The named constant `name` (`std::f64::consts::PI`, …; see [`super::constants`]),
+    /// computed from its formula in this arithmetic's precision; `None` if `name` is not one.
+    fn named_constant(&mut self, name: &str) -> Option<Self::Value> {
+        let (_, formula) = constants::lookup(name)?;
+        Some(match formula {
+            Formula::PiTimes(a, b) => {
+                let one = self.constant(1.0);
+                let quarter = self.unary(Unary::Atan, &one);
+                let scale = self.constant(4.0 * a);
+                let pi_a = self.binary(Binary::Mul, &scale, &quarter);
+                let b = self.constant(b);
+                self.binary(Binary::Div, &pi_a, &b)
+            }
+            Formula::Exp(a) => {
+                let a = self.constant(a);
+                self.unary(Unary::Exp, &a)
+            }
+            Formula::Sqrt(a) => {
+                let a = self.constant(a);
+                self.unary(Unary::Sqrt, &a)
+            }
+            Formula::Ln(a) => {
+                let a = self.constant(a);
+                self.unary(Unary::Ln, &a)
+            }
+        })
+    }
 }
 
 /// Evaluation in a num-dual type `D` (and in `f64`, which is one).
@@ -92,9 +121,44 @@ impl<D: DualNum<Primitive = f64> + Copy> Arithmetic for DualArithmetic<D> {
     fn compare(&mut self, cmp: Comparison, a: &D, b: &D) -> bool {
         cmp.holds(&a.re(), &b.re())
     }
+
+    /// The `f64` value of the constant (as the emitted code's `std::f64::consts` path).
+    fn named_constant(&mut self, name: &str) -> Option<D> {
+        constants::lookup(name).map(|(value, _)| D::from(value))
+    }
 }
 
 impl Graph {
+    /// The first node needed by `outputs` that has no variables (named constants aside) and
+    /// whose `f64` value is not finite (`0 / 0`), with that value; `None` if there is none.
+    pub fn non_finite_constant(&self, outputs: &[Id]) -> Option<(Id, f64)> {
+        let needed = self.reachable(outputs);
+        let mut values: Vec<Option<f64>> = vec![None; needed.len()];
+        let mut f64s = DualArithmetic::<f64>::new();
+        for (index, node) in self.nodes().iter().enumerate() {
+            if !needed[index] {
+                continue;
+            }
+            let of = |id: &Id| values[id.index()];
+            let value = match node {
+                Node::Num(n) => Some(n.value()),
+                Node::Sym(name) => f64s.named_constant(name),
+                Node::Unary(op, a) => of(a).map(|a| f64s.unary(*op, &a)),
+                Node::Binary(op, a, b) => of(a).zip(of(b)).map(|(a, b)| f64s.binary(*op, &a, &b)),
+                Node::Powi(a, n) => of(a).map(|a| a.powi(*n)),
+                Node::Select(cmp, [a, b, t, e]) => match (of(a), of(b)) {
+                    (Some(a), Some(b)) => of(if cmp.holds(&a, &b) { t } else { e }),
+                    _ => None,
+                },
+            };
+            if let Some(v) = value.filter(|v| !v.is_finite()) {
+                return Some((Id::at(index), v));
+            }
+            values[index] = value;
+        }
+        None
+    }
+
     /// Evaluates `outputs` with `arithmetic`; `value_of` gives the value of each symbol.
     ///
     /// # Errors
@@ -118,9 +182,11 @@ impl Graph {
             }
             let value = match node {
                 Node::Num(n) => arithmetic.constant(n.value()),
-                Node::Sym(name) => value_of(name).ok_or_else(|| Error::UnboundSymbol {
-                    symbol: name.to_string(),
-                })?,
+                Node::Sym(name) => value_of(name)
+                    .or_else(|| arithmetic.named_constant(name))
+                    .ok_or_else(|| Error::UnboundSymbol {
+                        symbol: name.to_string(),
+                    })?,
                 Node::Unary(op, a) => arithmetic.unary(*op, &get(&values, *a)),
                 Node::Binary(op, a, b) => {
                     arithmetic.binary(*op, &get(&values, *a), &get(&values, *b))

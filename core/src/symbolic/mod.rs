@@ -4,6 +4,7 @@
 //! - [`graph`]: the IR, a flat hash-consed arena ([`Graph`], [`Id`], [`Node`]);
 //! - [`sexpr`] and [`infix`]: text forms, with positioned parse errors;
 //! - [`simplify`] and [`sums`]: the simplifying constructors every node is built with;
+//! - [`constants`]: named constants (`std::f64::consts::PI`, `pi`);
 //! - [`rules`]: the one table of derivative rules and the differentiation driver;
 //! - [`eval`] and [`bigfloat`]: evaluation in `f64`, in num-dual types, in arbitrary
 //!   precision;
@@ -23,6 +24,7 @@
 //! See `docs/symbolic.md` for the rules table and how to add a primitive.
 
 pub mod bigfloat;
+pub mod constants;
 pub mod count;
 pub mod emit;
 pub mod eval;

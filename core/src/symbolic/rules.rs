@@ -10,6 +10,13 @@
 
 use super::graph::{Graph, Id, Node};
 use super::ops::{Binary, Comparison, Unary};
+use crate::error::Error;
+
+/// The highest derivative order [`Graph::try_derivatives`] computes.
+pub const MAX_DERIVATIVE_ORDER: usize = 32;
+
+/// The default size limit of [`Graph::try_derivatives`]: one million nodes (about 150 MB).
+pub const MAX_NODES: usize = 1_000_000;
 
 /// `d op(u)` given `u`, `du` and the node `f = op(u)`.
 fn unary_differential(g: &mut Graph, op: Unary, u: Id, du: Id, f: Id) -> Id {
@@ -55,9 +62,12 @@ fn unary_differential(g: &mut Graph, op: Unary, u: Id, du: Id, f: Id) -> Id {
         }
         Unary::Sinh => g.cosh(u),
         Unary::Cosh => g.sinh(u),
+        // sech²(u) = 1 / cosh²(u), not 1 - tanh²(u): that difference cancels to 0 (all
+        // digits lost) for |u| > 19, where sech² is still 1e-16 and more
         Unary::Tanh => {
-            let square = g.powi(f, 2);
-            g.sub(one, square)
+            let cosh = g.cosh(u);
+            let square = g.powi(cosh, 2);
+            return g.div(du, square);
         }
         Unary::Abs => {
             let zero = g.number(0.0);
@@ -78,14 +88,28 @@ fn binary_differential(g: &mut Graph, op: Binary, [a, b, da, db]: [Id; 4], f: Id
             let right = g.mul(a, db);
             g.add(left, right)
         }
-        // (a/b)' = (a' b - a b') / b²: no dependency on the division f = a/b, so that the
-        // divisions of the value and of each derivative can run in parallel
+        // (a/b)' = (a' - f b') / b with f = a/b: no b² (which overflows for |b| > 1e154 and
+        // underflows for |b| < 1e-154 while the derivative itself is of ordinary size)
+        Binary::Div if g.is_number(db, 0.0) => g.div(da, b),
         Binary::Div => {
-            let left = g.mul(da, b);
-            let right = g.mul(a, db);
-            let numerator = g.sub(left, right);
-            let square = g.powi(b, 2);
-            g.div(numerator, square)
+            let right = g.mul(f, db);
+            let numerator = g.sub(da, right);
+            g.div(numerator, b)
+        }
+        // a constant exponent: (aᶜ)' = c aᶜ⁻¹ a' (finite at a = 0 for c ≥ 1, where
+        // aᶜ · c a' / a is 0 / 0)
+        Binary::Powf if g.is_number(db, 0.0) => {
+            let one = g.number(1.0);
+            let lower = g.sub(b, one);
+            let power = g.powf(a, lower);
+            let scaled = g.mul(b, power);
+            g.mul(scaled, da)
+        }
+        // a constant base: (cᵇ)' = cᵇ ln c b'
+        Binary::Powf if g.is_number(da, 0.0) => {
+            let log = g.ln(a);
+            let rate = g.mul(f, log);
+            g.mul(rate, db)
         }
         // (aᵇ)' = aᵇ (b' ln a + b a' / a)
         Binary::Powf => {
@@ -106,12 +130,14 @@ fn binary_differential(g: &mut Graph, op: Binary, [a, b, da, db]: [Id; 4], f: Id
             let denominator = g.add(a2, b2);
             g.div(numerator, denominator)
         }
-        // hypot(a, b)' = (a a' + b b') / f
+        // hypot(a, b)' = (a/f) a' + (b/f) b': direction cosines times rates, never a product
+        // of two lengths (which leaves f64 for lengths beyond 1e±154)
         Binary::Hypot => {
-            let left = g.mul(a, da);
-            let right = g.mul(b, db);
-            let numerator = g.add(left, right);
-            g.div(numerator, f)
+            let cos_a = g.div(a, f);
+            let left = g.mul(cos_a, da);
+            let cos_b = g.div(b, f);
+            let right = g.mul(cos_b, db);
+            g.add(left, right)
         }
     }
 }
@@ -160,6 +186,12 @@ impl Graph {
     /// assert_eq!(graph.to_sexpr(df), "(+ (sin x) (* x (cos x)))");
     /// ```
     pub fn derivative(&mut self, f: Id, variable: &str) -> Id {
+        self.derivative_within(f, variable, usize::MAX)
+            .expect("no limit on the number of nodes")
+    }
+
+    /// The derivative of `f`, or `None` as soon as the graph holds more than `max_nodes`.
+    fn derivative_within(&mut self, f: Id, variable: &str, max_nodes: usize) -> Option<Id> {
         // children before parents: differentiate every reachable node in arena order
         let reachable = self.reachable(&[f]);
         let mut derivative = vec![None; f.index() + 1];
@@ -185,12 +217,59 @@ impl Graph {
                         }
                     }
                 };
+                if self.len() > max_nodes {
+                    return None;
+                }
                 self.derivative_cache.insert(key, d);
                 d
             };
             derivative[index] = Some(d);
         }
-        derivative[f.index()].expect("f is reachable from itself")
+        derivative[f.index()]
+    }
+
+    /// Like [`Graph::derivatives`], within the engine's limits: `order` at most
+    /// [`MAX_DERIVATIVE_ORDER`], the graph at most `max_nodes` nodes (see [`MAX_NODES`]).
+    ///
+    /// ```
+    /// use mechdiff_core::symbolic::{Graph, rules::MAX_NODES};
+    ///
+    /// let mut graph = Graph::new();
+    /// let f = graph.parse_infix("exp(sin(x))").unwrap();
+    /// assert_eq!(graph.try_derivatives(f, "x", 3, MAX_NODES).unwrap().len(), 4);
+    /// assert!(graph.try_derivatives(f, "x", 1_000_000_000, MAX_NODES).is_err());
+    /// assert!(graph.try_derivatives(f, "x", 30, 500).is_err());
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::DerivativeOrderTooHigh`] above [`MAX_DERIVATIVE_ORDER`];
+    /// [`Error::ExpressionTooLarge`] when the graph outgrows `max_nodes` (it then holds
+    /// partial derivatives that no output uses: emit only what was returned).
+    pub fn try_derivatives(
+        &mut self,
+        f: Id,
+        variable: &str,
+        order: usize,
+        max_nodes: usize,
+    ) -> Result<Vec<Id>, Error> {
+        if order > MAX_DERIVATIVE_ORDER {
+            return Err(Error::DerivativeOrderTooHigh {
+                order,
+                limit: MAX_DERIVATIVE_ORDER,
+            });
+        }
+        let mut all = vec![f];
+        for k in 1..=order {
+            let last = *all.last().expect("not empty");
+            let next = self.derivative_within(last, variable, max_nodes).ok_or(
+                Error::ExpressionTooLarge {
+                    order: k,
+                    limit: max_nodes,
+                },
+            )?;
+            all.push(next);
+        }
+        Ok(all)
     }
 
     /// `f` and its derivatives of order 1 to `order` with respect to `variable`:

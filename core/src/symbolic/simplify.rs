@@ -12,6 +12,8 @@
 //!   derivative of a constant is then 0, not `0 * inf = NaN`);
 //! - negation is pulled out of products and quotients, negative factors become `neg`;
 //! - `tan(atan2(a, b)) = a / b`, `tan(atan(x)) = x`;
+//! - `ln(exp(s)) = s`, `ln(uⁿ) = n ln u` (n odd) or `n ln |u|` (n even), `ln(u^c) = c ln u`
+//!   for a constant c, `ln(u^v) = v ln u` for u known positive;
 //! - common factors of a quotient cancel: `(x·u)/u = x`, `x·u/uⁿ = x/uⁿ⁻¹`;
 //! - integer powers: `x * x = x²`, `xᵐ · xⁿ = xᵐ⁺ⁿ`, `(xᵐ)ⁿ = xᵐⁿ`, `x⁰ = 1`, `x¹ = x`,
 //!   `x⁻ⁿ = 1 / xⁿ`, `(-x)ⁿ = ±xⁿ`, `x.powf(n)` with an integer constant `n` is `x.powi(n)`;
@@ -289,6 +291,11 @@ impl Graph {
                 _ => {}
             }
         }
+        if op == Unary::Ln
+            && let Some(log) = self.log_of_power(u)
+        {
+            return log;
+        }
         if op == Unary::Abs {
             match *self.node(u) {
                 Node::Unary(Unary::Abs | Unary::Neg, x) => return self.abs(x),
@@ -297,6 +304,42 @@ impl Graph {
             }
         }
         self.intern(Node::Unary(op, u))
+    }
+
+    /// `ln(u)` when `u` is an exponential or a power: `ln(exp(s)) = s`; `ln(uⁿ) = n ln u`
+    /// for odd n and `n ln |u|` for even n; `ln(u^c) = c ln u` for a constant c (where
+    /// `u^c` is real and positive, so is `u`, and at u = 0 both sides are the same
+    /// infinity); `ln(u^v) = v ln u` when u is known positive (an exponential, a positive
+    /// constant). `None` otherwise (`ln(u^v)` with u < 0 and v an even integer at run time
+    /// is real while `v ln u` is not).
+    fn log_of_power(&mut self, u: Id) -> Option<Id> {
+        match *self.node(u) {
+            Node::Unary(Unary::Exp, s) => Some(s),
+            Node::Powi(base, n) => {
+                let inner = if n % 2 == 0 { self.abs(base) } else { base };
+                let log = self.ln(inner);
+                let n = self.number(f64::from(n));
+                Some(self.mul(n, log))
+            }
+            Node::Binary(Binary::Powf, base, exponent)
+                if self.as_number(exponent).is_some() || self.is_positive(base) =>
+            {
+                let log = self.ln(base);
+                Some(self.mul(exponent, log))
+            }
+            _ => None,
+        }
+    }
+
+    /// Whether `id` is positive wherever it is defined: a positive constant, an exponential,
+    /// a `cosh`, a named constant (all of `std::f64::consts` are positive).
+    fn is_positive(&self, id: Id) -> bool {
+        match self.node(id) {
+            Node::Num(n) => n.value() > 0.0,
+            Node::Unary(Unary::Exp | Unary::Cosh, _) => true,
+            Node::Sym(name) => super::constants::is_named_constant(name),
+            _ => false,
+        }
     }
 
     /// `op(a, b)`, simplified.

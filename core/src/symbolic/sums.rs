@@ -8,6 +8,8 @@
 //! never makes code longer. Coefficients are combined only where the `f64` arithmetic is
 //! exact (see [`super::simplify`]).
 
+use std::collections::{HashMap, VecDeque};
+
 use super::graph::{Graph, Id, Node};
 use super::ops::{Binary, Unary};
 
@@ -21,6 +23,12 @@ fn exact_mul(x: f64, y: f64) -> Option<f64> {
     let p = x * y;
     (p.is_finite() && x.mul_add(y, -p) == 0.0).then_some(p)
 }
+
+/// How many sum nodes one simplification looks through, and how many factors of a product
+/// it looks at: the nearest ones first (breadth first from the top), so that a long sum
+/// built term by term costs a bounded amount of work per term (near-linear in the size of
+/// the expression) while like terms that are close together still cancel.
+const LOOK_THROUGH: usize = 64;
 
 /// A constant part plus coefficient × term pairs.
 #[derive(Default)]
@@ -48,18 +56,26 @@ impl Linear {
             }
         }
         constants.retain(|c| *c != 0.0);
-        let mut terms: Vec<(f64, Id)> = Vec::new();
+        let mut terms: Vec<(f64, Id)> = Vec::with_capacity(self.terms.len());
+        // the position in `terms` of the last entry of each term (where a new one merges):
+        // found by a scan for a few terms (most sums), by a hash map for many
+        let mut position: HashMap<Id, usize> = HashMap::new();
+        let hashed = self.terms.len() > 16;
         for (c, id) in self.terms {
-            let merged = terms.iter_mut().find_map(|(k, t)| {
-                if *t == id {
-                    exact_add(*k, c).map(|s| (k, s))
-                } else {
-                    None
-                }
+            let at = if hashed {
+                position.get(&id).copied()
+            } else {
+                terms.iter().rposition(|(_, t)| *t == id)
+            };
+            let merged = at.and_then(|i| {
+                let k = &mut terms[i].0;
+                exact_add(*k, c).map(|s| *k = s)
             });
-            match merged {
-                Some((k, s)) => *k = s,
-                None => terms.push((c, id)),
+            if merged.is_none() {
+                if hashed {
+                    position.insert(id, terms.len());
+                }
+                terms.push((c, id));
             }
         }
         terms.retain(|(c, _)| *c != 0.0);
@@ -70,46 +86,50 @@ impl Linear {
 impl Graph {
     /// `id` as coefficient × term, looking through negation and constant factors.
     fn split_coefficient(&self, id: Id) -> (f64, Id) {
-        match *self.node(id) {
-            Node::Unary(Unary::Neg, x) => {
-                let (c, t) = self.split_coefficient(x);
-                (-c, t)
-            }
-            Node::Binary(Binary::Mul, a, x) => match self.as_number(a) {
-                Some(k) => {
-                    let (c, t) = self.split_coefficient(x);
-                    exact_mul(k, c).map_or((1.0, id), |p| (p, t))
+        let (mut coefficient, mut term) = (1.0, id);
+        loop {
+            match *self.node(term) {
+                Node::Unary(Unary::Neg, x) => {
+                    coefficient = -coefficient;
+                    term = x;
                 }
-                None => (1.0, id),
-            },
-            _ => (1.0, id),
+                Node::Binary(Binary::Mul, a, x) => {
+                    match self.as_number(a).and_then(|k| exact_mul(coefficient, k)) {
+                        Some(product) => {
+                            coefficient = product;
+                            term = x;
+                        }
+                        None => return (coefficient, term),
+                    }
+                }
+                _ => return (coefficient, term),
+            }
         }
     }
 
-    /// Adds `coefficient × id` to `out`, flattening nested sums.
+    /// Adds `coefficient × id` to `out`, flattening nested sums: breadth first, through at
+    /// most [`LOOK_THROUGH`] sums (a sum further down stays one term).
     fn flatten(&self, id: Id, coefficient: f64, out: &mut Linear) {
-        match *self.node(id) {
-            Node::Num(n) => match exact_mul(coefficient, n.value()) {
-                Some(c) => out.constants.push(c),
-                None => out.terms.push((coefficient, id)),
-            },
-            Node::Binary(op @ (Binary::Add | Binary::Sub), a, b) => {
-                self.flatten(a, coefficient, out);
-                self.flatten(
-                    b,
-                    if op == Binary::Add {
-                        coefficient
-                    } else {
-                        -coefficient
-                    },
-                    out,
-                );
-            }
-            _ => {
-                let (c, term) = self.split_coefficient(id);
-                match exact_mul(coefficient, c) {
-                    Some(k) if term != id => self.flatten(term, k, out),
-                    _ => out.terms.push((coefficient, id)),
+        let mut queue = VecDeque::from([(coefficient, id)]);
+        let mut opened = 0;
+        while let Some((coefficient, id)) = queue.pop_front() {
+            match *self.node(id) {
+                Node::Num(n) => match exact_mul(coefficient, n.value()) {
+                    Some(c) => out.constants.push(c),
+                    None => out.terms.push((coefficient, id)),
+                },
+                Node::Binary(op @ (Binary::Add | Binary::Sub), a, b) if opened < LOOK_THROUGH => {
+                    opened += 1;
+                    let sign = if op == Binary::Add { 1.0 } else { -1.0 };
+                    queue.push_back((coefficient, a));
+                    queue.push_back((sign * coefficient, b));
+                }
+                _ => {
+                    let (c, term) = self.split_coefficient(id);
+                    match exact_mul(coefficient, c) {
+                        Some(k) if term != id => queue.push_back((k, term)),
+                        _ => out.terms.push((coefficient, id)),
+                    }
                 }
             }
         }
@@ -147,23 +167,27 @@ impl Graph {
     }
 
     /// The nodes of the product tree of `id`: itself and, through products, every sub-product
-    /// and factor (`a·(b·c)` → `[a·(b·c), a, b·c, b, c]`).
-    fn product_nodes(&self, id: Id, out: &mut Vec<Id>) {
-        out.push(id);
-        match *self.node(id) {
-            Node::Binary(Binary::Mul, a, b) => {
-                self.product_nodes(a, out);
-                self.product_nodes(b, out);
+    /// and factor (`a·(b·c)` → `[a·(b·c), a, b·c, b, c]`), breadth first, at most
+    /// [`LOOK_THROUGH`] of them.
+    fn product_nodes(&self, id: Id) -> Vec<Id> {
+        let mut out = vec![id];
+        let mut next = 0;
+        while next < out.len() && out.len() < LOOK_THROUGH {
+            match *self.node(out[next]) {
+                Node::Binary(Binary::Mul, a, b) => out.extend([a, b]),
+                // the base of a power is a factor (but not its own factors: `without` takes
+                // one power of the base, it does not split it)
+                Node::Powi(base, n) if n >= 2 => out.push(base),
+                _ => {}
             }
-            // the base of a power is a factor (but not its own factors: `without` takes one
-            // power of the base, it does not split it)
-            Node::Powi(base, n) if n >= 2 => out.push(base),
-            _ => {}
+            next += 1;
         }
+        out
     }
 
     /// The product `id` with one occurrence of the sub-product `factor` replaced by 1
-    /// (`xⁿ` counts as a product of n factors x).
+    /// (`xⁿ` counts as a product of n factors x); `None` if `factor` is not among the first
+    /// [`LOOK_THROUGH`] nodes of the product tree.
     pub(super) fn without(&mut self, id: Id, factor: Id) -> Option<Id> {
         if id == factor {
             return Some(self.number(1.0));
@@ -171,14 +195,52 @@ impl Graph {
         if let Node::Powi(base, n) = *self.node(id) {
             return (base == factor && n >= 1).then(|| self.powi(base, n - 1));
         }
-        let Node::Binary(Binary::Mul, a, b) = *self.node(id) else {
-            return None;
+        // the path from `id` down to the factor, through products (breadth first)
+        let mut parent: Vec<(Id, usize)> = vec![(id, usize::MAX)];
+        let mut next = 0;
+        let found = loop {
+            if next >= parent.len() || parent.len() >= LOOK_THROUGH {
+                return None;
+            }
+            let (node, _) = parent[next];
+            if let Node::Binary(Binary::Mul, a, b) = *self.node(node) {
+                for child in [a, b] {
+                    parent.push((child, next));
+                }
+                if let Some(at) = parent[parent.len() - 2..].iter().position(|(c, _)| {
+                    *c == factor
+                        || matches!(*self.node(*c), Node::Powi(base, n) if base == factor && n >= 1)
+                }) {
+                    break parent.len() - 2 + at;
+                }
+            }
+            next += 1;
         };
-        if let Some(rest) = self.without(a, factor) {
-            return Some(self.mul(rest, b));
+        // rebuild the products along the path, bottom up
+        let (leaf, mut up) = parent[found];
+        let mut rest = if leaf == factor {
+            self.number(1.0)
+        } else {
+            let Node::Powi(base, n) = *self.node(leaf) else {
+                unreachable!("matched above")
+            };
+            self.powi(base, n - 1)
+        };
+        let mut child = leaf;
+        while up != usize::MAX {
+            let (node, grand) = parent[up];
+            let Node::Binary(Binary::Mul, a, b) = *self.node(node) else {
+                unreachable!("only products are opened")
+            };
+            rest = if a == child {
+                self.mul(rest, b)
+            } else {
+                self.mul(a, rest)
+            };
+            child = node;
+            up = grand;
         }
-        let rest = self.without(b, factor)?;
-        Some(self.mul(a, rest))
+        Some(rest)
     }
 
     /// Takes the largest sub-product shared by every term out: `a·b + a·c = a·(b + c)`,
@@ -190,11 +252,7 @@ impl Graph {
         let node_lists: Vec<Vec<Id>> = linear
             .terms
             .iter()
-            .map(|(_, t)| {
-                let mut list = Vec::new();
-                self.product_nodes(*t, &mut list);
-                list
-            })
+            .map(|(_, t)| self.product_nodes(*t))
             .collect();
         // the largest common sub-product: parents are stored after their children, so the
         // highest id is the largest
@@ -205,11 +263,13 @@ impl Graph {
             })
             .max()
             .copied()?;
+        let cofactors: Option<Vec<Id>> = linear
+            .terms
+            .iter()
+            .map(|(_, t)| self.without(*t, common))
+            .collect();
         let mut inner: Option<Id> = None;
-        for (coefficient, t) in &linear.terms {
-            let cofactor = self
-                .without(*t, common)
-                .expect("the common factor is in every term");
+        for ((coefficient, _), cofactor) in linear.terms.iter().zip(cofactors?) {
             let c = self.number(*coefficient);
             let term = self.mul(c, cofactor);
             inner = Some(match inner {
