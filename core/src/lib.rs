@@ -10,6 +10,7 @@
 //! drive.
 #![warn(missing_docs)]
 
+pub mod cams;
 pub mod dead_position;
 pub mod dynamics;
 pub mod error;
