@@ -212,10 +212,10 @@ mod tests {
     fn laws_run_from_zero_to_one_and_pieces_join() {
         for &law in MotionLaw::ALL {
             let end = if law == MotionLaw::Dwell { 0.0 } else { 1.0 };
-            assert!(law.rise(0.0, Side::Right).abs() < 1e-15, "{law}");
-            assert!((law.rise(1.0, Side::Left) - end).abs() < 1e-15, "{law}");
+            assert!(law.rise(0.0_f64, Side::Right).abs() < 1e-15, "{law}");
+            assert!((law.rise(1.0_f64, Side::Left) - end).abs() < 1e-15, "{law}");
             for &b in law.breaks() {
-                let (l, r) = (law.rise(b, Side::Left), law.rise(b, Side::Right));
+                let (l, r): (f64, f64) = (law.rise(b, Side::Left), law.rise(b, Side::Right));
                 assert!((l - r).abs() < 1e-15, "{law} at {b}: {l} vs {r}");
             }
         }

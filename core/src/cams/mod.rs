@@ -14,11 +14,16 @@
 
 pub mod continuity;
 pub mod extrema;
+pub mod follower;
 pub mod law;
 pub mod peaks;
+pub mod profile;
 pub mod program;
+pub mod sizing;
 
 pub use continuity::{Boundary, BoundaryKind, ContinuityReport};
+pub use follower::{Dimensions, Follower};
 pub use law::{MotionLaw, Side};
 pub use peaks::PeakCoefficients;
+pub use profile::{CamAnalysis, CamMechanism, Contact, Extreme};
 pub use program::{CamProgram, Formula, Segment, SegmentMotion};
