@@ -16,10 +16,16 @@ pub struct RunArgs {
     /// Also write every column at every drive position to this CSV file (header: `name [unit]`).
     #[arg(long, value_name = "FILE")]
     pub csv: Option<PathBuf>,
+    /// Cam scenes: write the cam profile (pitch and profile points, normals) to this CSV.
+    #[arg(long, value_name = "FILE")]
+    pub profile_csv: Option<PathBuf>,
 }
 
 /// Reads, checks and runs the scene; prints the plan, the table and the dead positions.
 pub fn run(args: &RunArgs) -> Result<(), Error> {
+    if super::cam::is_cam_scene(&args.scene) {
+        return super::cam::run(args);
+    }
     let scene = scene::load(&args.scene)?;
     let report = scene::run(&scene)?;
     if let Some(path) = &args.csv {

@@ -34,6 +34,7 @@
 //! ```
 
 pub mod build;
+pub mod cam;
 mod drive;
 pub mod dynamics;
 mod evaluate;

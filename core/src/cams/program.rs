@@ -191,7 +191,7 @@ impl CamProgram {
         for (index, segment) in segments.into_iter().enumerate() {
             let problem = |problem: String| Error::CamSegment {
                 segment: index + 1,
-                start_deg: start.to_degrees(),
+                start_deg: degrees(start),
                 problem,
             };
             if !(segment.extent.is_finite() && segment.extent > 0.0) {
@@ -225,7 +225,7 @@ impl CamProgram {
                             return Err(problem(format!(
                                 "the formula `{}` is {v} at cam angle {}°",
                                 f.text(),
-                                x.to_degrees()
+                                degrees(x)
                             )));
                         }
                         Err(e) => {
@@ -245,7 +245,7 @@ impl CamProgram {
         }
         if (start - TAU).abs() > JOIN_TOLERANCE * TAU {
             return Err(Error::CamTurn {
-                total_deg: start.to_degrees(),
+                total_deg: degrees(start),
             });
         }
         let program = CamProgram { placed };
@@ -271,7 +271,7 @@ impl CamProgram {
                     angle_deg: if after == 0 {
                         360.0
                     } else {
-                        self.placed[after].start.to_degrees()
+                        degrees(self.placed[after].start)
                     },
                     before: before + 1,
                     after: after + 1,
@@ -401,6 +401,12 @@ impl CamProgram {
         };
         Jet::new(s.re, [s.v1, s.v2, s.v3])
     }
+}
+
+/// An angle in degrees for messages, rounded to 1e-9° so that the rounding of a conversion
+/// from the user's unit does not show (120°, not 119.99999999999999°).
+fn degrees(radians: f64) -> f64 {
+    (radians.to_degrees() * 1e9).round() / 1e9
 }
 
 impl Placed {
