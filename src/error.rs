@@ -186,6 +186,12 @@ pub enum Error {
         /// The joints of the loop, comma-separated.
         loop_joints: String,
     },
+    /// A picture could not be drawn or rendered (see [`crate::pictures`]).
+    #[error("cannot draw the picture: {message}")]
+    Picture {
+        /// What went wrong.
+        message: String,
+    },
 }
 
 /// Result with the facade's [`enum@Error`].
