@@ -279,3 +279,37 @@ fn run_writes_the_svaj_and_profile_csv() {
     std::fs::remove_file(svaj).ok();
     std::fs::remove_file(profile).ok();
 }
+
+/// The pictures of every cam scene: the SVAJ diagram and the profile drawing render to
+/// pixels with ink in them, and the drawn contact point carries the exact model position of
+/// the contact (`data-x`, `data-y`, written with all digits): equal to the library's to
+/// 1e-12 of the base radius.
+#[test]
+fn cam_pictures_render_and_the_contact_is_drawn_where_it_is() {
+    use mechdiff::pictures::{cam as cam_pictures, raster};
+    use mechdiff_core::cams::Side;
+    for entry in std::fs::read_dir(scene_path("")).unwrap() {
+        let path = entry.unwrap().path();
+        let scene = cam_scene::load(&path).unwrap();
+        for svg in [
+            cam_pictures::svaj_diagram(&scene).to_svg().unwrap(),
+            cam_pictures::profile_drawing(&scene, 0.0).to_svg(),
+        ] {
+            let image = raster::render(&svg).unwrap();
+            let inked = image.rgba.chunks(4).filter(|p| p[0] < 128 && p[3] > 0).count();
+            assert!(inked > 500, "{}: {inked} dark pixels", path.display());
+        }
+        let svg = cam_pictures::profile_drawing(&scene, 0.0).to_svg();
+        let at = svg.find("data-point=\"contact\"").unwrap();
+        let attribute = |name: &str| -> f64 {
+            let start = svg[at..].find(&format!("{name}=\"")).unwrap() + at + name.len() + 2;
+            let end = svg[start..].find('"').unwrap() + start;
+            svg[start..end].parse().unwrap()
+        };
+        let contact = scene.mechanism.contact(0.0, Side::Right).profile;
+        let mm = 1.0 / scene.units.factor(mechdiff::scene::units::Dimension::Length);
+        let base = scene.mechanism.dimensions.base_radius * mm;
+        assert!((attribute("data-x") - contact[0] * mm).abs() <= 1e-12 * base);
+        assert!((attribute("data-y") - contact[1] * mm).abs() <= 1e-12 * base);
+    }
+}

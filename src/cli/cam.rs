@@ -36,6 +36,9 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
     if let Some(path) = &args.profile_csv {
         write(path, &|out| cam::write_profile_csv(&scene, out))?;
     }
+    if let Some(dir) = &args.plot {
+        mechdiff::pictures::cam::write_dir(&scene, dir)?;
+    }
     let stdout = std::io::stdout();
     let mut out = BufWriter::new(stdout.lock());
     match cam::write_report(&scene, &mut out).and_then(|()| out.flush()) {

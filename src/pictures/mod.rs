@@ -43,6 +43,7 @@
 //! the traced paths, all written to a folder); a whole run becomes one self-contained HTML
 //! file in [`report`]. Long sweeps are drawn through [`decimate`] (never the CSV or JSON).
 
+pub mod cam;
 pub mod decimate;
 pub mod diagram;
 pub mod drawing;
