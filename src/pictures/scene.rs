@@ -245,7 +245,7 @@ impl Rig {
 fn guide_extent(a: [f64; 2], b: [f64; 2], extent: &[[f64; 2]]) -> ([f64; 2], [f64; 2]) {
     let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
     let length = dx.hypot(dy);
-    if !(length > 0.0) {
+    if length.is_nan() || length <= 0.0 {
         return (a, b);
     }
     let (ux, uy) = (dx / length, dy / length);
