@@ -296,7 +296,11 @@ fn cam_pictures_render_and_the_contact_is_drawn_where_it_is() {
             cam_pictures::profile_drawing(&scene, 0.0).to_svg(),
         ] {
             let image = raster::render(&svg).unwrap();
-            let inked = image.rgba.chunks(4).filter(|p| p[0] < 128 && p[3] > 0).count();
+            let inked = image
+                .rgba
+                .chunks(4)
+                .filter(|p| p[0] < 128 && p[3] > 0)
+                .count();
             assert!(inked > 500, "{}: {inked} dark pixels", path.display());
         }
         let svg = cam_pictures::profile_drawing(&scene, 0.0).to_svg();
@@ -307,7 +311,10 @@ fn cam_pictures_render_and_the_contact_is_drawn_where_it_is() {
             svg[start..end].parse().unwrap()
         };
         let contact = scene.mechanism.contact(0.0, Side::Right).profile;
-        let mm = 1.0 / scene.units.factor(mechdiff::scene::units::Dimension::Length);
+        let mm = 1.0
+            / scene
+                .units
+                .factor(mechdiff::scene::units::Dimension::Length);
         let base = scene.mechanism.dimensions.base_radius * mm;
         assert!((attribute("data-x") - contact[0] * mm).abs() <= 1e-12 * base);
         assert!((attribute("data-y") - contact[1] * mm).abs() <= 1e-12 * base);

@@ -189,3 +189,38 @@ fn boundary_report_finds_exactly_the_reference_jumps() {
         assert!(matches!(b.kind, BoundaryKind::InsideSegment { .. }));
     }
 }
+
+/// The parabolic law as one piecewise formula over the whole turn (`if`, the symbolic
+/// engine's piecewise form): the reference values, with the right-hand values at the jumps
+/// (a formula takes the branch of its condition: x < π/2 is false at π/2). 1e-12 as above.
+#[test]
+fn a_piecewise_formula_reproduces_the_parabolic_law() {
+    let formula = Formula::parse(
+        "if(x < pi/2, 160*x^2/pi^2, if(x < 3*pi/2, -160*x^2/pi^2 + 320*x/pi - 80, \
+         160*x^2/pi^2 - 640*x/pi + 640))",
+    )
+    .unwrap();
+    let program = CamProgram::new(vec![Segment::formula(formula, 2.0 * PI)], 0.0).unwrap();
+    let data = reference();
+    for row in data["cams"]["uniform_acceleration_retardation"]["table"]
+        .as_array()
+        .unwrap()
+    {
+        let x = row["x_rad"].as_f64().unwrap();
+        let suffix = if row.get("y_p_right_mm_per_rad").is_some() {
+            "_right"
+        } else {
+            ""
+        };
+        let want = |key: &str, unit: &str| row[format!("{key}{suffix}_{unit}")].as_f64().unwrap();
+        let svaj = program.svaj(x, Side::Right);
+        assert_close(
+            "piecewise y",
+            svaj.value,
+            row["y_mm"].as_f64().unwrap(),
+            80.0,
+        );
+        assert_close("piecewise y′", svaj.d1(), want("y_p", "mm_per_rad"), 80.0);
+        assert_close("piecewise y″", svaj.d2(), want("y_pp", "mm_per_rad2"), 80.0);
+    }
+}

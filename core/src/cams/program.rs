@@ -25,7 +25,10 @@ pub const JOIN_TOLERANCE: f64 = 1e-9;
 const AT_BOUNDARY: f64 = 16.0 * f64::EPSILON * TAU;
 
 /// A displacement given as a formula in the symbolic engine's infix syntax, of the cam angle
-/// `x` (rad, from the start of the turn), or of `u` (0 to 1 over the segment); `pi` is π.
+/// `x` (rad, from the start of the turn), or of `u` (0 to 1 over the segment); `pi` is π;
+/// `if(x < a, then, otherwise)` makes it piecewise (see [`crate::symbolic::piecewise`]).
+/// The continuity report looks at segment boundaries only: a jump made by an `if` inside one
+/// formula segment is not located (split the segment there to have it reported).
 ///
 /// ```
 /// use mechdiff_core::cams::Formula;
@@ -46,7 +49,7 @@ impl Formula {
     /// [`Error::Formula`] with the position of the problem if the text does not parse.
     pub fn parse(text: &str) -> Result<Self> {
         let mut graph = Graph::new();
-        let root = graph.parse_infix(text)?;
+        let root = graph.parse_infix_piecewise(text)?;
         Ok(Formula {
             text: text.to_owned(),
             graph,
