@@ -212,6 +212,20 @@ fn bad_cam_input_is_refused_with_file_line_and_cam_angle() {
     assert!(e.contains("in the formula"), "{e}");
     let e = error_for("extent = 120", "extent = nan");
     assert!(e.starts_with("bad.toml:"), "{e}");
+    // Numbers whose results overflow: the place of the number, never an inf in the table.
+    let e = error_for("base_radius = 40", "base_radius = 40\nspeed = 1e300");
+    assert!(
+        e.starts_with(&format!("bad.toml:{}:", line_of("base_radius") + 1)),
+        "{e}"
+    );
+    assert!(e.contains("overflows"), "{e}");
+    let e = error_for("rise = 20", "rise = 1e308");
+    assert!(e.starts_with("bad.toml:"), "{e}");
+    let e = error_for("radius = 8", "radius = inf");
+    assert!(
+        e.starts_with(&format!("bad.toml:{}:", line_of("radius = 8"))),
+        "{e}"
+    );
 }
 
 /// A roller larger than the smallest radius of curvature of the pitch curve: a warning with

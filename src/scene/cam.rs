@@ -9,6 +9,7 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use mechdiff_core::DriveState;
+use mechdiff_core::cams::continuity::derivative_peaks;
 use mechdiff_core::cams::{
     CamMechanism, CamProgram, Follower, Formula, MotionLaw, Segment, sizing,
 };
@@ -253,17 +254,61 @@ fn resolve(file: CamFile, source: &Source) -> Result<CamScene> {
         }
         None => 10f64.to_radians(),
     };
+    let drive = DriveState::accelerating(speed, acceleration);
+    check_finite_results(cam, &mechanism, &drive, source)?;
     let sizing = sizing_request(cam, &mechanism, &units, source)?;
     Ok(CamScene {
         file: source.file.clone(),
         title: file.title,
         units,
         mechanism,
-        drive: DriveState::accelerating(speed, acceleration),
+        drive,
         step,
         sizing,
         roller_at: follower_def.radius.as_ref().map(|r| at(r.span())),
     })
+}
+
+/// No printed result may overflow: the peaks of s′, s″, s‴, of the follower's velocity,
+/// acceleration and jerk, and the cam's geometry are checked once, and an overflow is
+/// reported at the number that causes it.
+fn check_finite_results(
+    cam: &CamSection,
+    mechanism: &CamMechanism,
+    drive: &DriveState,
+    source: &Source,
+) -> Result<()> {
+    let overflow = |span: std::ops::Range<usize>, what: &str| Error::Invalid {
+        location: source.location(span),
+        message: format!("{what} overflows (is not a finite number); reduce this value"),
+    };
+    let [_, v, a, j] = derivative_peaks(&mechanism.program);
+    if ![v, a, j].iter().all(|x| x.is_finite()) {
+        return Err(overflow(
+            cam.segments.span(),
+            "a derivative of the displacement",
+        ));
+    }
+    let (w, al) = (drive.omega.abs(), drive.alpha.abs());
+    let motion = [w * v, al * v + w * w * a, 3.0 * w * al * a + w * w * w * j];
+    if !motion.iter().all(|x| x.is_finite()) {
+        let span = cam
+            .speed
+            .as_ref()
+            .or(cam.acceleration.as_ref())
+            .map_or_else(|| cam.segments.span(), Spanned::span);
+        return Err(overflow(
+            span,
+            "the follower's velocity, acceleration or jerk",
+        ));
+    }
+    let analysis = mechanism.analyse();
+    if !(analysis.max_pressure_angle.value.is_finite()
+        && analysis.min_profile_radius.value.is_finite())
+    {
+        return Err(overflow(cam.base_radius.span(), "the cam's geometry"));
+    }
+    Ok(())
 }
 
 /// The engine's message with lengths in the file's unit where it names one.
@@ -293,7 +338,18 @@ fn segment(
         location: source.location(span),
         message: message.to_owned(),
     };
-    let extent = units.to_si(*d.extent.get_ref(), Dimension::Angle);
+    let finite = |v: &Spanned<f64>, dimension: Dimension| -> Result<f64> {
+        let si = units.to_si(*v.get_ref(), dimension);
+        if si.is_finite() {
+            Ok(si)
+        } else {
+            Err(invalid(
+                v.span(),
+                &format!("{} is not a finite number", v.get_ref()),
+            ))
+        }
+    };
+    let extent = finite(&d.extent, Dimension::Angle)?;
     if !(extent.is_finite() && extent > 0.0) {
         return Err(invalid(
             d.extent.span(),
@@ -311,8 +367,8 @@ fn segment(
                 "a segment has a `rise` or a `return`, not both",
             ));
         }
-        (Some(r), None) => units.to_si(*r.get_ref(), lift_dimension),
-        (None, Some(f)) => -units.to_si(*f.get_ref(), lift_dimension),
+        (Some(r), None) => finite(r, lift_dimension)?,
+        (None, Some(f)) => -finite(f, lift_dimension)?,
         (None, None) => 0.0,
     };
     match (&d.law, &d.formula) {
@@ -356,9 +412,20 @@ fn segment(
 
 fn follower(def: &FollowerDef, units: &Units, source: &Source) -> Result<Follower> {
     let kind = *def.kind.get_ref();
+    let finite = |v: &Spanned<f64>| -> Result<f64> {
+        let si = units.to_si(*v.get_ref(), Dimension::Length);
+        if si.is_finite() {
+            Ok(si)
+        } else {
+            Err(Error::Invalid {
+                location: source.location(v.span()),
+                message: format!("{} is not a finite number", v.get_ref()),
+            })
+        }
+    };
     let length = |v: &Option<Spanned<f64>>, name: &str| -> Result<f64> {
         match v {
-            Some(v) => Ok(units.to_si(*v.get_ref(), Dimension::Length)),
+            Some(v) => finite(v),
             None => Err(Error::Invalid {
                 location: source.location(def.kind.span()),
                 message: format!("a `{}` follower needs `{name} = …`", kind.name()),
@@ -366,7 +433,7 @@ fn follower(def: &FollowerDef, units: &Units, source: &Source) -> Result<Followe
         }
     };
     let offset = match &def.offset {
-        Some(v) => units.to_si(*v.get_ref(), Dimension::Length),
+        Some(v) => finite(v)?,
         None => 0.0,
     };
     Ok(match kind {
