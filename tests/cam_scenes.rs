@@ -189,8 +189,9 @@ fn bad_cam_input_is_refused_with_file_line_and_cam_angle() {
     );
     let line = line_of("law = \"dwell\"") - 1;
     assert!(e.starts_with(&format!("bad.toml:{line}:")), "{e}");
+    assert!(e.contains("cam angle 120°"), "{e}");
     assert!(
-        e.contains("cam angle 120°") && e.contains("20") && e.contains("5"),
+        e.contains("ends at 20 mm") && e.contains("starts at 5 mm"),
         "{e}"
     );
     // An offset not smaller than the prime circle.
@@ -333,4 +334,54 @@ fn cam_pictures_render_and_the_contact_is_drawn_where_it_is() {
         assert!((attribute("data-x") - contact[0] * mm).abs() <= 1e-12 * base);
         assert!((attribute("data-y") - contact[1] * mm).abs() <= 1e-12 * base);
     }
+}
+
+/// A formula that is not a number inside its segment only (√ of a negative number between
+/// its finite ends) is refused,
+/// never printed as NaN.
+#[test]
+fn a_formula_that_is_nan_inside_its_segment_is_refused() {
+    let text = GOOD.replacen(
+        "law = \"dwell\"\nextent = 60",
+        "formula = \"20 + 1e-9*sqrt((x - 2.5)^2 - 0.01)\"\nextent = 60",
+        1,
+    );
+    match cam_scene::parse("nan.toml", &text) {
+        Ok(scene) => panic!("accepted:\n{}", report(&scene)),
+        Err(e) => assert!(e.to_string().starts_with("nan.toml:"), "{e}"),
+    }
+}
+
+/// Formula segments are written in the file's units (mm here, x in rad): reference 002's
+/// parabolic pieces as formulas give its table (80 mm at 180°, 40 mm and y′ = 160/π mm/rad
+/// at 90°), 1e-12 relative.
+#[test]
+fn formula_segments_are_in_the_files_units() {
+    let text = r#"
+[units]
+length = "mm"
+angle = "deg"
+[cam]
+base_radius = 50
+[cam.follower]
+type = "knife_edge"
+[[cam.segment]]
+formula = "160*x^2/pi^2"
+extent = 90
+[[cam.segment]]
+formula = "-160*x^2/pi^2 + 320*x/pi - 80"
+extent = 180
+[[cam.segment]]
+formula = "160*x^2/pi^2 - 640*x/pi + 640"
+extent = 90
+"#;
+    let scene = cam_scene::parse("formulas.toml", text).unwrap();
+    let program = &scene.mechanism.program;
+    let mm = 1e3;
+    let pi = std::f64::consts::PI;
+    let at = |x: f64| program.svaj(x, mechdiff_core::cams::Side::Right);
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs();
+    assert!(close(at(pi).value * mm, 80.0));
+    assert!(close(at(pi / 2.0).value * mm, 40.0));
+    assert!(close(at(pi / 2.0).d1() * mm, 160.0 / pi));
 }

@@ -188,8 +188,12 @@ fn decimals(values: impl Iterator<Item = f64>) -> usize {
     (7 - largest.log10().floor() as i64).clamp(0, 12) as usize
 }
 
+/// A number of the table; an infinite radius of curvature (κ = 0) is a straight profile.
+/// (The scene refuses programs with non-finite values before anything is printed.)
 fn number(value: f64, decimals: usize) -> String {
-    if value.is_finite() && value.abs() < 1e12 {
+    if value.is_nan() {
+        "NaN".to_owned()
+    } else if value.is_finite() && value.abs() < 1e12 {
         fixed(value, decimals)
     } else {
         "straight".to_owned()

@@ -212,7 +212,7 @@ fn resolve(file: CamFile, source: &Source) -> Result<CamScene> {
             mechdiff_core::Error::CamJoin { after, .. } => cam.segments.get_ref()[after - 1].span(),
             _ => cam.segments.span(),
         };
-        invalid(span, engine_message(&e, &units))
+        invalid(span, engine_message(&e, &units, lift_dimension))
     })?;
     let follower = follower(follower_def, &units, source)?;
     let base_radius = value(&cam.base_radius, Dimension::Length, "base_radius")?;
@@ -230,7 +230,7 @@ fn resolve(file: CamFile, source: &Source) -> Result<CamScene> {
         };
         invalid(
             span.unwrap_or_else(|| cam.follower.span()),
-            engine_message(&e, &units),
+            engine_message(&e, &units, lift_dimension),
         )
     })?;
     let speed = match &cam.speed {
@@ -284,10 +284,13 @@ fn check_finite_results(
     };
     let [_, v, a, j] = derivative_peaks(&mechanism.program);
     if ![v, a, j].iter().all(|x| x.is_finite()) {
-        return Err(overflow(
-            cam.segments.span(),
-            "a derivative of the displacement",
-        ));
+        return Err(Error::Invalid {
+            location: source.location(cam.segments.span()),
+            message: "the displacement or one of its derivatives is not a finite number \
+                      somewhere in the turn (a formula outside its domain, or too large a \
+                      lift); check the formulas and lifts of the segments"
+                .to_owned(),
+        });
     }
     let (w, al) = (drive.omega.abs(), drive.alpha.abs());
     let motion = [w * v, al * v + w * w * a, 3.0 * w * al * a + w * w * w * j];
@@ -312,7 +315,11 @@ fn check_finite_results(
 }
 
 /// The engine's message with lengths in the file's unit where it names one.
-fn engine_message(error: &mechdiff_core::Error, units: &Units) -> String {
+fn engine_message(
+    error: &mechdiff_core::Error,
+    units: &Units,
+    lift_dimension: Dimension,
+) -> String {
     match error {
         mechdiff_core::Error::CamDimension {
             what,
@@ -323,6 +330,22 @@ fn engine_message(error: &mechdiff_core::Error, units: &Units) -> String {
             Units::tidy(units.from_si(*value, Dimension::Length)),
             units.symbol(Dimension::Length)
         ),
+        mechdiff_core::Error::CamJoin {
+            angle_deg,
+            before,
+            after,
+            left,
+            right,
+        } => {
+            let unit = units.symbol(lift_dimension);
+            let shown = |v: f64| Units::tidy(units.from_si(v, lift_dimension));
+            format!(
+                "the follower displacement does not join at cam angle {angle_deg}° between \
+                 segment {before} (ends at {} {unit}) and segment {after} (starts at {} {unit})",
+                shown(*left),
+                shown(*right)
+            )
+        }
         other => other.to_string(),
     }
 }
@@ -399,8 +422,10 @@ fn segment(
                     "a formula gives the displacement itself; remove `rise`/`return`",
                 ));
             }
+            // The formula is written in the file's unit of displacement.
             let formula = Formula::parse(text.get_ref())
-                .map_err(|e| invalid(text.span(), &format!("in the formula: {e}")))?;
+                .map_err(|e| invalid(text.span(), &format!("in the formula: {e}")))?
+                .scaled(units.factor(lift_dimension));
             Ok(Segment::formula(formula, extent))
         }
         _ => Err(invalid(
@@ -462,7 +487,7 @@ fn sizing_request(
     let follower = mechanism.dimensions.follower;
     let fail = |span: std::ops::Range<usize>, e: mechdiff_core::Error| Error::Invalid {
         location: source.location(span),
-        message: engine_message(&e, units),
+        message: engine_message(&e, units, Dimension::Length),
     };
     if let Some(limit) = &cam.pressure_angle_limit {
         let radians = units.to_si(*limit.get_ref(), Dimension::Angle);

@@ -153,7 +153,7 @@ impl ContinuityReport {
 }
 
 /// The largest |s|, |s′|, |s″|, |s‴| over the turn: per segment (and per piece of its law),
-/// ends included as one-sided values.
+/// ends included as one-sided values; NaN if a formula is not a number somewhere.
 pub fn derivative_peaks(program: &CamProgram) -> [f64; 4] {
     let mut peaks = [0.0f64; 4];
     for index in 0..program.len() {
@@ -176,7 +176,12 @@ pub fn derivative_peaks(program: &CamProgram) -> [f64; 4] {
             };
             for (k, peak) in peaks.iter_mut().enumerate() {
                 let (_, value) = maximize(|t| at(t, k), lo, hi, 32);
-                *peak = peak.max(value);
+                // A NaN anywhere is the answer (f64::max would drop it).
+                *peak = if value.is_nan() || peak.is_nan() {
+                    f64::NAN
+                } else {
+                    peak.max(value)
+                };
             }
         }
     }

@@ -5,7 +5,8 @@
 //! smooth on the interval (the callers split at breaks and segment boundaries) is sampled at
 //! `samples + 1` points including both ends; the best sample's neighbourhood is refined by
 //! golden-section search to the resolution of `f64` (the abscissa to ~1e-8 of the interval,
-//! the value, at a smooth maximum, to rounding).
+//! the value, at a smooth maximum, to rounding). A NaN among the samples is returned as the
+//! result, never skipped.
 
 /// Golden-section iterations: 0.618⁸⁰ ≈ 2e-17 of the bracket.
 const GOLDEN_ITERATIONS: usize = 80;
@@ -21,8 +22,12 @@ pub fn maximize(f: impl Fn(f64) -> f64, a: f64, b: f64, samples: usize) -> (f64,
         }
     };
     let (mut best_k, mut best) = (0, f(a));
-    for k in 1..=samples {
-        let value = f(at(k));
+    for k in 0..=samples {
+        let value = if k == 0 { best } else { f(at(k)) };
+        if value.is_nan() {
+            // A NaN is not a number to compare: return it, so the caller sees it.
+            return (at(k), value);
+        }
         if value > best {
             (best_k, best) = (k, value);
         }
@@ -68,6 +73,13 @@ mod tests {
         let (x, value) = maximize(f64::sin, 0.0, 3.0, 16);
         assert!((value - 1.0).abs() < 1e-15);
         assert!((x - std::f64::consts::FRAC_PI_2).abs() < 1e-7);
+    }
+
+    /// A NaN inside the interval is the answer, not skipped (callers check it).
+    #[test]
+    fn a_nan_sample_is_returned() {
+        let (_, value) = maximize(|x| if x > 0.5 { f64::NAN } else { x }, 0.0, 1.0, 8);
+        assert!(value.is_nan());
     }
 
     /// An increasing function peaks at the right end, exactly.

@@ -40,6 +40,7 @@ pub struct Formula {
     text: String,
     graph: Graph,
     root: Id,
+    scale: f64,
 }
 
 impl Formula {
@@ -54,7 +55,17 @@ impl Formula {
             text: text.to_owned(),
             graph,
             root,
+            scale: 1.0,
         })
+    }
+
+    /// The same formula with its value multiplied by `factor` (a formula written in
+    /// millimetres is `scaled(1e-3)` to give metres).
+    pub fn scaled(self, factor: f64) -> Self {
+        Formula {
+            scale: self.scale * factor,
+            ..self
+        }
     }
 
     /// The formula as written.
@@ -69,7 +80,7 @@ impl Formula {
     pub fn evaluate<D: Scalar>(&self, x: D, u: D) -> Result<D> {
         let pi = D::from(PI);
         let bindings = [("x", x), ("u", u), ("pi", pi), ("PI", pi)];
-        Ok(self.graph.evaluate_dual(&[self.root], &bindings)?[0])
+        Ok(self.graph.evaluate_dual(&[self.root], &bindings)?[0] * self.scale)
     }
 
     /// The value at cam angle `x`, segment fraction `u` (NaN if a name is unbound: the
