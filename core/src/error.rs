@@ -285,6 +285,55 @@ pub enum Error {
         /// The point named as its pivot.
         point: String,
     },
+    // ---- cams (`cams` module) ----
+    /// The segments of a cam program do not add up to one turn.
+    #[error(
+        "the cam segments cover {total_deg}° instead of 360°; adjust the extents so that they \
+         add up to one turn"
+    )]
+    CamTurn {
+        /// Sum of the segments' extents (degrees).
+        total_deg: f64,
+    },
+    /// A segment of a cam program is not valid (extent not positive, lift not finite, a
+    /// dwell with a lift, a formula that does not evaluate).
+    #[error("cam segment {segment} (starting at cam angle {start_deg}°): {problem}")]
+    CamSegment {
+        /// Index of the segment, from 1.
+        segment: usize,
+        /// Cam angle where the segment starts (degrees).
+        start_deg: f64,
+        /// What is wrong and how to fix it.
+        problem: String,
+    },
+    /// Two consecutive segments do not meet in displacement.
+    #[error(
+        "the follower displacement does not join at cam angle {angle_deg}° between segment \
+         {before} (ends at {left}) and segment {after} (starts at {right})"
+    )]
+    CamJoin {
+        /// Cam angle of the boundary (degrees).
+        angle_deg: f64,
+        /// The segment that ends there, from 1.
+        before: usize,
+        /// The segment that starts there, from 1.
+        after: usize,
+        /// Displacement at the end of `before`.
+        left: f64,
+        /// Displacement at the start of `after`.
+        right: f64,
+    },
+    /// A dimension of the cam or follower is out of its range (roller radius not positive,
+    /// offset not smaller than the prime circle radius, ...).
+    #[error("{what} = {value}: {problem}")]
+    CamDimension {
+        /// Which dimension.
+        what: String,
+        /// Its value.
+        value: f64,
+        /// What is wrong and how to fix it.
+        problem: String,
+    },
     // ---- symbolic engine (`symbolic` module) ----
     /// A formula (s-expression or infix) is malformed; `position` is the character offset of
     /// the problem in `input`.

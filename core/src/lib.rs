@@ -11,6 +11,7 @@
 #![warn(missing_docs)]
 
 pub mod balancing;
+pub mod cams;
 pub mod dead_position;
 pub mod dynamics;
 pub mod error;

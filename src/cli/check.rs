@@ -16,6 +16,17 @@ pub struct CheckArgs {
 /// Reads the scene, builds its model and checks its mobility at the sketch pose; prints a
 /// summary and the plan a run would carry out.
 pub fn check(args: &CheckArgs) -> Result<(), Error> {
+    if super::cam::is_cam_scene(&args.scene) {
+        let cam = scene::cam::load(&args.scene)?;
+        let m = &cam.mechanism;
+        println!(
+            "{}: ok: cam program of {} segment(s) over 360°, {} follower",
+            cam.file,
+            m.program.len(),
+            m.dimensions.follower.describe()
+        );
+        return Ok(());
+    }
     let scene = scene::load(&args.scene)?;
     let checked = scene::check(&scene)?;
     let m = &checked.mechanism;

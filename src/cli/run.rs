@@ -27,17 +27,24 @@ pub struct RunArgs {
     /// Write the animated HTML report of the run to this file (self-contained).
     #[arg(long, value_name = "FILE")]
     pub report: Option<PathBuf>,
+    /// Cam scenes: write the cam profile (pitch and profile points, normals) to this CSV.
+    #[arg(long, value_name = "FILE")]
+    pub profile_csv: Option<PathBuf>,
 }
 
 /// Reads, checks and runs the scene; prints the plan, the table and the dead positions.
 pub fn run(args: &RunArgs) -> Result<(), Error> {
-    for output in [&args.csv, &args.json, &args.report].into_iter().flatten() {
+    let outputs = [&args.csv, &args.json, &args.report, &args.profile_csv];
+    for output in outputs.into_iter().flatten() {
         if files::same_file(output, &args.scene) {
             return Err(Error::OutputIsInput {
                 output: output.clone(),
                 scene: args.scene.clone(),
             });
         }
+    }
+    if super::cam::is_cam_scene(&args.scene) {
+        return super::cam::run(args);
     }
     let scene = scene::load(&args.scene)?;
     let report = scene::run(&scene)?;

@@ -44,6 +44,7 @@
 //! file in [`report`]. Long sweeps are drawn through [`decimate`] (never the CSV or JSON).
 
 pub mod balancing;
+pub mod cam;
 pub mod decimate;
 pub mod diagram;
 pub mod drawing;

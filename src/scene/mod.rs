@@ -35,6 +35,7 @@
 
 pub mod balancing;
 pub mod build;
+pub mod cam;
 mod drive;
 pub mod dynamics;
 mod evaluate;

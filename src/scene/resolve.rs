@@ -108,7 +108,7 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
     })
 }
 
-fn units(section: &format::UnitsSection) -> Units {
+pub(super) fn units(section: &format::UnitsSection) -> Units {
     Units {
         length: section
             .length

@@ -31,6 +31,7 @@ pub mod eval;
 pub mod graph;
 pub mod infix;
 pub mod ops;
+pub mod piecewise;
 pub mod rules;
 pub mod sexpr;
 pub mod simplify;

@@ -1,0 +1,39 @@
+//! `mechdiff run <cam.toml>`: the report of a cam scene (a file with a `[cam]` section).
+
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+use mechdiff::report::cam;
+use mechdiff::scene;
+use mechdiff::{Error, files};
+
+use super::run::RunArgs;
+
+/// Whether the file given to `run` is a cam scene (unreadable files are left to the usual
+/// path, which reports them).
+pub fn is_cam_scene(path: &Path) -> bool {
+    files::read_scene(path).is_ok_and(|text| scene::cam::is_cam_scene(&text))
+}
+
+/// Runs a cam scene: the report on stdout, the SVAJ table and the profile as CSV if asked.
+pub fn run(args: &RunArgs) -> Result<(), Error> {
+    let scene = scene::cam::load(&args.scene)?;
+    if let Some(path) = &args.csv {
+        files::write_atomically(path, |mut out| cam::write_svaj_csv(&scene, &mut out))?;
+    }
+    if let Some(path) = &args.profile_csv {
+        files::write_atomically(path, |mut out| cam::write_profile_csv(&scene, &mut out))?;
+    }
+    if let Some(dir) = &args.plot {
+        mechdiff::pictures::cam::write_dir(&scene, dir)?;
+    }
+    let stdout = std::io::stdout();
+    let mut out = BufWriter::new(stdout.lock());
+    match cam::write_report(&scene, &mut out).and_then(|()| out.flush()) {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        result => result.map_err(|source| Error::Write {
+            path: PathBuf::from("<stdout>"),
+            source,
+        }),
+    }
+}
