@@ -1,4 +1,5 @@
 //! The `run` and `check` subcommands of the `mechdiff` tool (scene files).
 
+pub mod accuracy;
 pub mod check;
 pub mod run;
