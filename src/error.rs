@@ -190,7 +190,7 @@ pub enum Error {
     /// it claims a derivative: a silent failure of the method at that drive position.
     #[error(
         "accuracy: method `{method}` returned {value} for `{output}` (derivative order \
-         {order}) at φ = {phi} rad; the method fails there (report it, or leave the \
+         {order}) at φ = {phi:e} rad; the method fails there (report it, or leave the \
          position out of the sweep)"
     )]
     NotFinite {

@@ -67,10 +67,7 @@ impl Scheme {
         match self {
             Scheme::Central => {
                 for (o, v) in out.iter_mut().enumerate() {
-                    let d = CentralDifference::stencil(
-                        [0, 1, 2, 3, 4].map(|s| scratch[s][o]),
-                        h,
-                    );
+                    let d = CentralDifference::stencil([0, 1, 2, 3, 4].map(|s| scratch[s][o]), h);
                     *v = [scratch[2][o], d[0], d[1], d[2]];
                 }
             }
@@ -133,7 +130,13 @@ pub fn steps() -> Vec<f64> {
 }
 
 /// A finite-difference method of `scheme` with step `h` over `f`.
-pub fn method<'a>(f: &'a Positions<'a>, scheme: Scheme, h: f64, outputs: usize, name: String) -> Method<'a> {
+pub fn method<'a>(
+    f: &'a Positions<'a>,
+    scheme: Scheme,
+    h: f64,
+    outputs: usize,
+    name: String,
+) -> Method<'a> {
     let mut scratch: [Vec<f64>; 5] = std::array::from_fn(|_| vec![0.0; outputs]);
     Method {
         name,
@@ -161,10 +164,7 @@ pub fn scan(case: &Case<'_>, scales: &[[f64; MAX_ORDER + 1]]) -> Result<Vec<Step
                 // an infinite error of that step, not a failure of the report.
                 let (per_position, _) = case.errors(&mut method, scales)?;
                 let worst = std::array::from_fn(|k| {
-                    per_position
-                        .iter()
-                        .map(|e| e[k + 1])
-                        .fold(0.0, f64::max)
+                    per_position.iter().map(|e| e[k + 1]).fold(0.0, f64::max)
                 });
                 errors.push(worst);
             }
@@ -188,7 +188,11 @@ pub fn scan(case: &Case<'_>, scales: &[[f64; MAX_ORDER + 1]]) -> Result<Vec<Step
 
 /// The methods at each scheme's best steps: one per distinct best step, named after the
 /// orders it is best for ("central h=1e-5 (best ′)").
-pub fn best_methods<'a>(f: &'a Positions<'a>, scans: &[StepScan], outputs: usize) -> Vec<Method<'a>> {
+pub fn best_methods<'a>(
+    f: &'a Positions<'a>,
+    scans: &[StepScan],
+    outputs: usize,
+) -> Vec<Method<'a>> {
     let mut methods = Vec::new();
     for scan in scans {
         let mut done: Vec<f64> = Vec::new();
@@ -201,7 +205,11 @@ pub fn best_methods<'a>(f: &'a Positions<'a>, scans: &[StepScan], outputs: usize
                 .filter(|&j| scan.best[j].0 == h)
                 .map(|j| ["′", "″", "‴"][j])
                 .collect();
-            let name = format!("{} h={h:.1e} (best {})", scan.scheme.name(), primes.join(""));
+            let name = format!(
+                "{} h={h:.1e} (best {})",
+                scan.scheme.name(),
+                primes.join("")
+            );
             methods.push(method(f, scan.scheme, h, outputs, name));
         }
     }

@@ -18,6 +18,9 @@
 //! at = ["acos(lambda)"]   # extra drive positions (rad), formulas of the parameters
 //! ```
 //!
+//! An optional top-level `error = "relative"` measures errors relative to each reference
+//! value instead of scaled by the output's largest value over the sweep.
+//!
 //! Every output is differentiated to order 3 by the symbolic engine. The methods compared
 //! are the engine's own evaluations of the same graph — the derivative formulas in `f64`
 //! ("symbolic (evaluator)") and the formula in `Dual1`, `Dual2`, `HyperDual`, `Dual3`
@@ -34,8 +37,8 @@ use serde::Deserialize;
 
 use super::reference::Formulas;
 use super::{Case, MAX_ORDER, Method, Values};
-use crate::error::Location;
 use crate::Error;
+use crate::error::Location;
 
 /// A formula scene as written in the file.
 #[derive(Debug, Clone, Deserialize)]
@@ -50,6 +53,10 @@ pub struct FormulaScene {
     pub outputs: BTreeMap<String, String>,
     /// The drive positions.
     pub sweep: Sweep,
+    /// `"scaled"` (the default: |error| / max over the sweep of |reference|) or
+    /// `"relative"` (|error| / |reference| at each position).
+    #[serde(default)]
+    pub error: Option<String>,
 }
 
 /// The drive positions of a formula scene.
@@ -118,7 +125,10 @@ pub fn parse(text: &str, file: &str) -> Result<FormulaScene, Error> {
     let s = &scene.sweep;
     let unit_ok = matches!(s.unit.as_deref(), None | Some("deg" | "rad"));
     if !unit_ok {
-        return Err(syntax(file, "[sweep] unit: expected \"deg\" or \"rad\"".into()));
+        return Err(syntax(
+            file,
+            "[sweep] unit: expected \"deg\" or \"rad\"".into(),
+        ));
     }
     if !(s.from.is_finite() && s.to.is_finite() && s.step.is_finite() && s.step > 0.0)
         || s.to < s.from
@@ -131,8 +141,17 @@ pub fn parse(text: &str, file: &str) -> Result<FormulaScene, Error> {
                 .into(),
         ));
     }
+    if !matches!(scene.error.as_deref(), None | Some("scaled" | "relative")) {
+        return Err(syntax(
+            file,
+            "error: expected \"scaled\" or \"relative\"".into(),
+        ));
+    }
     if scene.outputs.is_empty() {
-        return Err(syntax(file, "[outputs]: at least one formula is needed".into()));
+        return Err(syntax(
+            file,
+            "[outputs]: at least one formula is needed".into(),
+        ));
     }
     Ok(scene)
 }
@@ -173,7 +192,8 @@ pub fn case(scene: &FormulaScene, file: &str) -> Result<Case<'static>, Error> {
     let mut positions = sweep_positions(&scene.sweep);
     for text in &scene.sweep.at {
         let id = parse(&mut graph, "[sweep] at", text)?;
-        let bindings: Vec<(&str, f64)> = names.iter().copied().zip(values.iter().copied()).collect();
+        let bindings: Vec<(&str, f64)> =
+            names.iter().copied().zip(values.iter().copied()).collect();
         let phi = graph
             .evaluate_f64(&[id], &bindings)
             .map_err(|e| syntax(file, format!("[sweep] at = \"{text}\": {e}")))?[0];
@@ -205,6 +225,7 @@ pub fn case(scene: &FormulaScene, file: &str) -> Result<Case<'static>, Error> {
         positions,
         reference,
         condition: Some(condition),
+        relative: scene.error.as_deref() == Some("relative"),
         methods,
         positions_f64: Box::new(move |phi, out| {
             let v = f.evaluate(phi)?;

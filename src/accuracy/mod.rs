@@ -38,8 +38,8 @@ pub mod reference;
 mod report;
 pub mod whitworth;
 
-pub use reference::Reference;
 pub use differences::StepScan;
+pub use reference::Reference;
 pub use report::{Measurement, Report};
 
 use std::time::Instant;
@@ -122,6 +122,10 @@ pub struct Case<'a> {
     pub methods: Vec<Method<'a>>,
     /// The outputs' values in `f64` at a drive position, for finite differences.
     pub positions_f64: Positions<'a>,
+    /// Errors relative to each reference value (absolute where it is 0) instead of scaled by
+    /// the output's max over the sweep: for outputs whose small values matter (a saturating
+    /// function's derivative, 4e^−2x for tanh′ at large x).
+    pub relative: bool,
 }
 
 /// How long to time each method.
@@ -171,23 +175,85 @@ impl Case<'_> {
             .collect()
     }
 
-    /// The bound every exact method must meet at each position, output and order, as a
-    /// scaled error: 16 ε (condition / scale + 1) — the error a few roundings of every input
-    /// and of the result cause, by the computed condition number. `None` without one.
+    /// The bound every exact method must meet at each position, output and order, in the
+    /// case's error measure (scaled, or relative): 16 ε (condition / scale + 1) — the error
+    /// that a few roundings of every input and of the result cause, by the computed
+    /// condition number. `None` without one.
     pub fn bounds(&self) -> Option<Vec<Vec<[f64; MAX_ORDER + 1]>>> {
         let scales = self.scales();
         let condition = self.condition.as_ref()?;
         Some(
             condition
                 .iter()
-                .map(|row| {
+                .zip(&self.reference)
+                .map(|(row, reference)| {
                     row.iter()
                         .zip(&scales)
-                        .map(|(c, s)| std::array::from_fn(|k| 16.0 * EPSILON * (c[k] / s[k] + 1.0)))
+                        .zip(reference)
+                        .map(|((c, s), r)| {
+                            std::array::from_fn(|k| {
+                                let scale = if self.relative {
+                                    Some(r[k].hi.abs()).filter(|&r| r > 0.0).unwrap_or(1.0)
+                                } else {
+                                    s[k]
+                                };
+                                16.0 * EPSILON * (c[k] / scale + 1.0)
+                            })
+                        })
                         .collect()
                 })
                 .collect(),
         )
+    }
+
+    /// Every exact method's errors checked against [`Case::bounds`], per position, output
+    /// and order: the violations as (method, output, order, φ, error, bound). Uses the
+    /// methods (they are run once each).
+    ///
+    /// # Errors
+    /// A method's own error if it fails at a position.
+    pub fn bound_violations(
+        &mut self,
+    ) -> Result<Vec<(String, String, usize, f64, f64, f64)>, Error> {
+        let Some(bounds) = self.bounds() else {
+            return Ok(Vec::new());
+        };
+        let scales = self.scales();
+        let mut violations = Vec::new();
+        let mut methods = std::mem::take(&mut self.methods);
+        for method in methods.iter_mut().filter(|m| m.kind == Kind::Exact) {
+            let mut values = vec![[f64::NAN; MAX_ORDER + 1]; self.outputs.len()];
+            for (i, &phi) in self.positions.iter().enumerate() {
+                (method.evaluate)(phi, &mut values)?;
+                for (o, value) in values.iter().enumerate() {
+                    for k in 0..=method.order {
+                        let r = &self.reference[i][o][k];
+                        let scale = if self.relative {
+                            Some(r.hi.abs()).filter(|&r| r > 0.0).unwrap_or(1.0)
+                        } else {
+                            scales[o][k]
+                        };
+                        let error = if value[k].is_finite() {
+                            r.error(value[k]) / scale
+                        } else {
+                            f64::INFINITY
+                        };
+                        if !(error <= bounds[i][o][k]) {
+                            violations.push((
+                                method.name.clone(),
+                                self.outputs[o].clone(),
+                                k,
+                                phi,
+                                error,
+                                bounds[i][o][k],
+                            ));
+                        }
+                    }
+                }
+            }
+        }
+        self.methods = methods;
+        Ok(violations)
     }
 
     /// Runs every method over the sweep: errors against the reference, then times. Finite
@@ -242,8 +308,15 @@ impl Case<'_> {
             let mut worst = [f64::NAN; MAX_ORDER + 1];
             for (o, (value, reference)) in values.iter().zip(reference).enumerate() {
                 for k in 0..=method.order {
+                    let scale = if self.relative {
+                        Some(reference[k].hi.abs())
+                            .filter(|&r| r > 0.0)
+                            .unwrap_or(1.0)
+                    } else {
+                        scales[o][k]
+                    };
                     let error = if value[k].is_finite() {
-                        reference[k].error(value[k]) / scales[o][k]
+                        reference[k].error(value[k]) / scale
                     } else {
                         failure.get_or_insert(Failure {
                             output: self.outputs[o].clone(),
@@ -311,5 +384,9 @@ fn time_method(
     }
     per_position.sort_by(f64::total_cmp);
     let median = per_position[per_position.len() / 2];
-    Ok([median, per_position[0], per_position[per_position.len() - 1]])
+    Ok([
+        median,
+        per_position[0],
+        per_position[per_position.len() - 1],
+    ])
 }

@@ -74,11 +74,18 @@ fn pareto<'a>(report: &Report, area: &Area<'a>) -> Result<(), Box<dyn std::error
     Ok(())
 }
 
-fn along_sweep<'a>(report: &Report, area: &Area<'a>) -> Result<(), Box<dyn std::error::Error + 'a>> {
+fn along_sweep<'a>(
+    report: &Report,
+    area: &Area<'a>,
+) -> Result<(), Box<dyn std::error::Error + 'a>> {
     let degrees: Vec<f64> = report.positions.iter().map(|p| p.to_degrees()).collect();
     let (x0, x1) = (
         degrees.first().copied().unwrap_or(0.0),
-        degrees.last().copied().unwrap_or(1.0).max(degrees.first().copied().unwrap_or(0.0) + 1.0),
+        degrees
+            .last()
+            .copied()
+            .unwrap_or(1.0)
+            .max(degrees.first().copied().unwrap_or(0.0) + 1.0),
     );
     let error_at = |m: &super::Measurement, i: usize| {
         clamp(
@@ -95,7 +102,10 @@ fn along_sweep<'a>(report: &Report, area: &Area<'a>) -> Result<(), Box<dyn std::
             .chain([EPSILON]),
     );
     let mut chart = ChartBuilder::on(area)
-        .caption("scaled error (max of value, ′, ″) vs drive", ("sans-serif", 16))
+        .caption(
+            "scaled error (max of value, ′, ″) vs drive",
+            ("sans-serif", 16),
+        )
         .margin(10)
         .x_label_area_size(40)
         .y_label_area_size(60)
@@ -109,7 +119,10 @@ fn along_sweep<'a>(report: &Report, area: &Area<'a>) -> Result<(), Box<dyn std::
         let color = Palette99::pick(k);
         chart
             .draw_series(LineSeries::new(
-                degrees.iter().enumerate().map(|(i, &d)| (d, error_at(m, i))),
+                degrees
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &d)| (d, error_at(m, i))),
                 &color,
             ))?
             .label(m.name.clone())
@@ -126,7 +139,9 @@ fn along_sweep<'a>(report: &Report, area: &Area<'a>) -> Result<(), Box<dyn std::
 
 /// A log axis range holding every value, padded by a factor 2 each side.
 fn bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
-    let (lo, hi) = values.fold((f64::INFINITY, 0.0f64), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    let (lo, hi) = values.fold((f64::INFINITY, 0.0f64), |(lo, hi), v| {
+        (lo.min(v), hi.max(v))
+    });
     if lo.is_finite() && hi > 0.0 {
         (lo / 2.0, hi * 2.0)
     } else {

@@ -130,7 +130,11 @@ impl Report {
     /// # Errors
     /// [`Error::NotFinite`] naming the method, output, order and drive position.
     pub fn check_finite(&self) -> Result<(), Error> {
-        match self.measurements.iter().find_map(|m| Some((m, m.failure.as_ref()?))) {
+        match self
+            .measurements
+            .iter()
+            .find_map(|m| Some((m, m.failure.as_ref()?)))
+        {
             None => Ok(()),
             Some((m, f)) => Err(Error::NotFinite {
                 method: m.name.clone(),
@@ -229,7 +233,7 @@ impl Report {
             if let Some(f) = &m.failure {
                 let _ = writeln!(
                     out,
-                    "FAILED: {} returned {} for {} (order {}) at φ = {} rad; its errors there \
+                    "FAILED: {} returned {} for {} (order {}) at φ = {:e} rad; its errors there \
                      count as infinite",
                     m.name, f.value, f.output, f.order, f.phi
                 );
@@ -292,7 +296,13 @@ impl Report {
             "method,kind,step,order,time_median_s,time_min_s,time_max_s,ratio,\
              max_value,max_d1,max_d2,max_d3,rms_value,rms_d1,rms_d2,rms_d3,digits_lost\n",
         );
-        let number = |x: f64| if x.is_nan() { String::new() } else { format!("{x:e}") };
+        let number = |x: f64| {
+            if x.is_nan() {
+                String::new()
+            } else {
+                format!("{x:e}")
+            }
+        };
         for m in &self.measurements {
             let (kind, step) = match m.kind {
                 Kind::Exact => ("exact", String::new()),

@@ -87,10 +87,13 @@ fn geometry<'a>(name: &str, linkage: &'a Mechanism, closed_form: bool) -> Method
         tracker.move_to(phi + turns).map_err(fail)?;
         let kinematics = tracker.kinematics::<3>().map_err(fail)?;
         let rocker = kinematics.rotation("rocker").map_err(fail)?;
-        // ψ is measured from +y towards +x: the rocker's rotation is −ψ (plus whole turns
-        // it never makes: the rocker swings).
+        // ψ is measured from +y towards +x: the rocker's rotation is −ψ, up to whole
+        // turns: the Newton path can land on the rocker's pose one or two turns away when
+        // its predictor overshoots (λ = 0.99, where ψ′(0) = 99), the same pose with a
+        // rotation 4π off. Compared as an angle, in (−π, π].
+        let angle = -rocker.value;
         out[0] = [
-            -rocker.value,
+            angle - TAU * (angle / TAU).round(),
             -rocker.derivatives[0],
             -rocker.derivatives[1],
             -rocker.derivatives[2],
@@ -172,6 +175,7 @@ pub fn case<'a>(shaper: &Whitworth, linkage: &'a Mechanism) -> Result<Case<'a>, 
         positions,
         reference,
         condition: Some(condition),
+        relative: false,
         methods,
         positions_f64: Box::new(move |phi, out| {
             let pose = shaper.evaluate(phi);
