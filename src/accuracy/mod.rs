@@ -207,8 +207,9 @@ impl Case<'_> {
     }
 
     /// Every exact method's errors checked against [`Case::bounds`], per position, output
-    /// and order: the violations as (method, output, order, φ, error, bound). Uses the
-    /// methods (they are run once each).
+    /// and order: the violations as (method, output, order, φ, error, bound); a NaN, an
+    /// infinite value or an error of the method is an infinite error. The methods are run
+    /// once each.
     ///
     /// # Errors
     /// A method's own error if it fails at a position.
@@ -224,7 +225,9 @@ impl Case<'_> {
         for method in methods.iter_mut().filter(|m| m.kind == Kind::Exact) {
             let mut values = vec![[f64::NAN; MAX_ORDER + 1]; self.outputs.len()];
             for (i, &phi) in self.positions.iter().enumerate() {
-                (method.evaluate)(phi, &mut values)?;
+                if (method.evaluate)(phi, &mut values).is_err() {
+                    values.iter_mut().for_each(|v| v.fill(f64::NAN));
+                }
                 for (o, value) in values.iter().enumerate() {
                     for k in 0..=method.order {
                         let r = &self.reference[i][o][k];
@@ -260,25 +263,38 @@ impl Case<'_> {
     /// differences are scanned over steps h from 1e-1 to 1e-10 (four per decade) and the
     /// step minimising each order's max error is reported.
     ///
-    /// A method that returns NaN or an infinite value is not stopped: its error there is
-    /// infinite and the first such position is kept ([`Measurement::failure`]).
+    /// A method that returns NaN or an infinite value, or fails with an error, is not
+    /// stopped: its error there is infinite and the first such position is kept
+    /// ([`Measurement::failure`]); a method that fails with an error is not timed.
     ///
     /// # Errors
-    /// The method's own error if it fails at a position.
+    /// Only if the reference's own `f64` evaluation fails during the step scan.
     pub fn measure(mut self, timing: &Timing) -> Result<Report, Error> {
         let scales = self.scales();
         let mut measurements = Vec::new();
         let methods = std::mem::take(&mut self.methods);
         for mut method in methods {
             let (errors, failure) = self.errors(&mut method, &scales)?;
-            let time = time_method(&mut method, &self.positions, self.outputs.len(), timing)?;
+            // A method that fails somewhere is not timed (its time would be the failure's).
+            let time = match failure {
+                Some(Failure {
+                    reason: Some(_), ..
+                }) => [f64::NAN; 3],
+                _ => time_method(&mut method, &self.positions, self.outputs.len(), timing)?,
+            };
             measurements.push(Measurement::new(&method, errors, failure, time));
         }
         let scans = differences::scan(&self, &scales)?;
         for method in differences::best_methods(&self.positions_f64, &scans, self.outputs.len()) {
             let mut method = method;
             let (errors, failure) = self.errors(&mut method, &scales)?;
-            let time = time_method(&mut method, &self.positions, self.outputs.len(), timing)?;
+            // A method that fails somewhere is not timed (its time would be the failure's).
+            let time = match failure {
+                Some(Failure {
+                    reason: Some(_), ..
+                }) => [f64::NAN; 3],
+                _ => time_method(&mut method, &self.positions, self.outputs.len(), timing)?,
+            };
             measurements.push(Measurement::new(&method, errors, failure, time));
         }
         Ok(Report::new(
@@ -304,7 +320,19 @@ impl Case<'_> {
         let mut errors = Vec::with_capacity(self.positions.len());
         let mut failure = None;
         for (&phi, reference) in self.positions.iter().zip(&self.reference) {
-            (method.evaluate)(phi, &mut values)?;
+            if let Err(error) = (method.evaluate)(phi, &mut values) {
+                failure.get_or_insert(Failure {
+                    output: self.outputs.join(", "),
+                    order: 0,
+                    phi,
+                    value: f64::NAN,
+                    reason: Some(error.to_string()),
+                });
+                let mut worst = [f64::NAN; MAX_ORDER + 1];
+                worst[..=method.order].fill(f64::INFINITY);
+                errors.push(worst);
+                continue;
+            }
             let mut worst = [f64::NAN; MAX_ORDER + 1];
             for (o, (value, reference)) in values.iter().zip(reference).enumerate() {
                 for k in 0..=method.order {
@@ -323,6 +351,7 @@ impl Case<'_> {
                             order: k,
                             phi,
                             value: value[k],
+                            reason: None,
                         });
                         f64::INFINITY
                     };
@@ -348,8 +377,10 @@ pub struct Failure {
     pub order: usize,
     /// The drive position (rad).
     pub phi: f64,
-    /// What the method returned.
+    /// What the method returned (NaN where it returned an error).
     pub value: f64,
+    /// The method's error, where it returned one instead of a value.
+    pub reason: Option<String>,
 }
 
 /// The time per drive position (s) of `method` over `positions`: median, fastest and

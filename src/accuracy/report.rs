@@ -230,13 +230,28 @@ impl Report {
              method's time, all timed in this one process.\n",
         );
         for m in &self.measurements {
-            if let Some(f) = &m.failure {
-                let _ = writeln!(
-                    out,
-                    "FAILED: {} returned {} for {} (order {}) at φ = {:e} rad; its errors there \
-                     count as infinite",
-                    m.name, f.value, f.output, f.order, f.phi
-                );
+            match &m.failure {
+                Some(Failure {
+                    reason: Some(reason),
+                    phi,
+                    ..
+                }) => {
+                    let _ = writeln!(
+                        out,
+                        "FAILED: {} at φ = {phi:e} rad: {reason}; its errors there count as \
+                         infinite, and it is not timed",
+                        m.name
+                    );
+                }
+                Some(f) => {
+                    let _ = writeln!(
+                        out,
+                        "FAILED: {} returned {} for {} (order {}) at φ = {:e} rad; its errors \
+                         there count as infinite",
+                        m.name, f.value, f.output, f.order, f.phi
+                    );
+                }
+                None => {}
             }
         }
         out.push_str(&self.scan_table());
