@@ -207,15 +207,13 @@ impl Case<'_> {
     }
 
     /// Every exact method's errors checked against [`Case::bounds`], per position, output
-    /// and order: the violations as (method, output, order, φ, error, bound); a NaN, an
+    /// and order: the [`Violation`]s; a NaN, an
     /// infinite value or an error of the method is an infinite error. The methods are run
     /// once each.
     ///
     /// # Errors
     /// A method's own error if it fails at a position.
-    pub fn bound_violations(
-        &mut self,
-    ) -> Result<Vec<(String, String, usize, f64, f64, f64)>, Error> {
+    pub fn bound_violations(&mut self) -> Result<Vec<Violation>, Error> {
         let Some(bounds) = self.bounds() else {
             return Ok(Vec::new());
         };
@@ -241,15 +239,18 @@ impl Case<'_> {
                         } else {
                             f64::INFINITY
                         };
-                        if !(error <= bounds[i][o][k]) {
-                            violations.push((
-                                method.name.clone(),
-                                self.outputs[o].clone(),
-                                k,
+                        // NaN errors (never, as written) would count as violations too.
+                        if error.partial_cmp(&bounds[i][o][k]) != Some(std::cmp::Ordering::Less)
+                            && error != bounds[i][o][k]
+                        {
+                            violations.push(Violation {
+                                method: method.name.clone(),
+                                output: self.outputs[o].clone(),
+                                order: k,
                                 phi,
                                 error,
-                                bounds[i][o][k],
-                            ));
+                                bound: bounds[i][o][k],
+                            });
                         }
                     }
                 }
@@ -366,6 +367,23 @@ impl Case<'_> {
         }
         Ok((errors, failure))
     }
+}
+
+/// An exact method's error above its bound ([`Case::bound_violations`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Violation {
+    /// The method.
+    pub method: String,
+    /// The output.
+    pub output: String,
+    /// The derivative order (0: the value).
+    pub order: usize,
+    /// The drive position (rad).
+    pub phi: f64,
+    /// The error (scaled or relative, as the case measures it; ∞ for NaN, ∞ or an error).
+    pub error: f64,
+    /// The bound it exceeds.
+    pub bound: f64,
 }
 
 /// Where a method first returned NaN or an infinite value.

@@ -69,7 +69,7 @@ fn pareto<'a>(report: &Report, area: &Area<'a>) -> Result<(), Box<dyn std::error
     front.sort_by(|a, b| a.0.total_cmp(&b.0));
     chart.draw_series(LineSeries::new(front.iter().map(|p| (p.0, p.1)), &GREEN))?;
     chart.draw_series(front.iter().map(|&(t, e, name)| {
-        Text::new(format!("{name}"), (t, e), ("sans-serif", 11).into_font())
+        Text::new(name.to_string(), (t, e), ("sans-serif", 11).into_font())
     }))?;
     Ok(())
 }
