@@ -1,7 +1,7 @@
 //! The hard cases of `scenes/hard/`: near-singular mechanisms, dead positions, saturating
 //! and overflowing functions. Each runs through `mechdiff accuracy`'s machinery; where the
-//! exact methods are expected to hold, every one meets the bound 16 ε (condition / scale
-//! + 1) at every position, output and order, the condition number Σ|x ∂f/∂x| computed from
+//! exact methods are expected to hold, every one meets the bound
+//! 16 ε × (condition / scale + 1) at every position, output and order, the condition number Σ|x ∂f/∂x| computed from
 //! the 256-bit reference; where a method is known to fail (overflow, saturation), the test
 //! checks that the failure is reported with its position, never silent.
 
@@ -47,9 +47,12 @@ fn dwell_derivatives_vanish_exactly_and_only_the_cancelling_orders_exceed_the_bo
     let mut values = vec![[f64::NAN; 4]];
     for method in &mut case.methods {
         (method.evaluate)(case.positions[zero], &mut values).unwrap();
-        for k in 1..=method.order.min(2) {
-            assert_eq!(values[0][k], 0.0, "{} order {k}", method.name);
-        }
+        let derivatives = &values[0][1..=method.order.min(2)];
+        assert!(
+            derivatives.iter().all(|&d| d == 0.0),
+            "{}: {derivatives:?}",
+            method.name
+        );
     }
 }
 
