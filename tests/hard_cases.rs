@@ -1,8 +1,8 @@
 //! The hard cases of `scenes/hard/`: near-singular mechanisms, dead positions, saturating
 //! and overflowing functions. Each runs through `mechdiff accuracy`'s machinery; where the
 //! exact methods are expected to hold, every one meets the bound
-//! 16 ε × (condition / scale + 1) at every position, output and order, the condition number Σ|x ∂f/∂x| computed from
-//! the 256-bit reference; where a method is known to fail (overflow, saturation), the test
+//! 16 ε × (condition / scale + 1) at every position, output and order, the condition number
+//! Σ|x ∂f/∂x| computed from the 256-bit reference; where a method is known to fail (overflow, saturation), the test
 //! checks that the failure is reported with its position, never silent.
 
 use mechdiff::accuracy::{Timing, formula};

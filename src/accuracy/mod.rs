@@ -275,27 +275,15 @@ impl Case<'_> {
         let mut measurements = Vec::new();
         let methods = std::mem::take(&mut self.methods);
         for mut method in methods {
-            let (errors, failure) = self.errors(&mut method, &scales)?;
-            // A method that fails somewhere is not timed (its time would be the failure's).
-            let time = match failure {
-                Some(Failure {
-                    reason: Some(_), ..
-                }) => [f64::NAN; 3],
-                _ => time_method(&mut method, &self.positions, self.outputs.len(), timing)?,
-            };
+            let (errors, mut failure) = self.errors(&mut method, &scales)?;
+            let time = self.time(&mut method, &mut failure, timing);
             measurements.push(Measurement::new(&method, errors, failure, time));
         }
         let scans = differences::scan(&self, &scales)?;
         for method in differences::best_methods(&self.positions_f64, &scans, self.outputs.len()) {
             let mut method = method;
-            let (errors, failure) = self.errors(&mut method, &scales)?;
-            // A method that fails somewhere is not timed (its time would be the failure's).
-            let time = match failure {
-                Some(Failure {
-                    reason: Some(_), ..
-                }) => [f64::NAN; 3],
-                _ => time_method(&mut method, &self.positions, self.outputs.len(), timing)?,
-            };
+            let (errors, mut failure) = self.errors(&mut method, &scales)?;
+            let time = self.time(&mut method, &mut failure, timing);
             measurements.push(Measurement::new(&method, errors, failure, time));
         }
         Ok(Report::new(
@@ -304,6 +292,44 @@ impl Case<'_> {
             measurements,
             scans,
         ))
+    }
+
+    /// The time per position of `method` (see [`time_method`]); NaN if it failed with an
+    /// error in the error pass (its time would be the failure's) or fails while timed (a
+    /// repeated sweep carries the drive on by whole turns, see the geometry methods): that
+    /// failure is then recorded if none was.
+    fn time(
+        &self,
+        method: &mut Method<'_>,
+        failure: &mut Option<Failure>,
+        timing: &Timing,
+    ) -> [f64; 3] {
+        if matches!(
+            failure,
+            Some(Failure {
+                reason: Some(_),
+                ..
+            })
+        ) {
+            return [f64::NAN; 3];
+        }
+        match time_method(method, &self.positions, self.outputs.len(), timing) {
+            Ok(time) => time,
+            Err(error) => {
+                let phi = match &error {
+                    Error::Method { phi, .. } => *phi,
+                    _ => f64::NAN,
+                };
+                failure.get_or_insert(Failure {
+                    output: self.outputs.join(", "),
+                    order: 0,
+                    phi,
+                    value: f64::NAN,
+                    reason: Some(format!("while timed (repeated sweeps): {error}")),
+                });
+                [f64::NAN; 3]
+            }
+        }
     }
 
     /// The scaled errors of `method` at every position: `[position][order]`, the maximum

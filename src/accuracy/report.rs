@@ -147,11 +147,14 @@ impl Report {
     }
 
     /// The methods (indices) on the Pareto front of time against the max error over value,
-    /// ′ and ″, among the methods computing at least ″: no other is both faster and more
-    /// accurate.
+    /// ′ and ″, among the methods computing at least ″ that were timed: no other is both
+    /// faster and more accurate.
     pub fn pareto_front(&self) -> Vec<usize> {
         let candidates: Vec<usize> = (0..self.measurements.len())
-            .filter(|&i| self.measurements[i].order >= PARETO_ORDER)
+            .filter(|&i| {
+                let m = &self.measurements[i];
+                m.order >= PARETO_ORDER && m.time[0].is_finite()
+            })
             .collect();
         let point = |i: usize| {
             let m = &self.measurements[i];
