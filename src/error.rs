@@ -223,6 +223,12 @@ pub enum Error {
         /// Why.
         reason: String,
     },
+    /// A picture could not be drawn or rendered (see [`crate::pictures`]).
+    #[error("cannot draw the picture: {message}")]
+    Picture {
+        /// What went wrong.
+        message: String,
+    },
 }
 
 /// Result with the facade's [`enum@Error`].

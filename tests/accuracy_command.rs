@@ -43,7 +43,8 @@ fn whitworth_table_lists_every_method_and_the_best_steps() {
 }
 
 /// A formula scene with `--csv` and `--svg`: both files are written (CSV: the header and one
-/// row per method and per scanned step, 17 columns each; SVG: an `<svg` document).
+/// row per method and per scanned step, 17 columns each; SVG: two `<svg` documents, the
+/// second named `…-angle.svg`).
 #[test]
 fn formula_scene_writes_csv_and_svg() {
     let (csv, svg) = (temp_file("dwell.csv"), temp_file("dwell.svg"));
@@ -75,7 +76,16 @@ fn formula_scene_writes_csv_and_svg() {
     assert!(rows.len() >= 5 + 3 + 3 * 37, "{} rows", rows.len());
     assert!(rows.iter().all(|r| r.matches(',').count() == 16), "{table}");
     assert!(std::fs::read_to_string(&svg).unwrap().contains("<svg"));
-    let _ = (std::fs::remove_file(csv), std::fs::remove_file(svg));
+    let angle = svg.with_file_name(format!(
+        "{}-angle.svg",
+        svg.file_stem().unwrap().to_string_lossy()
+    ));
+    assert!(std::fs::read_to_string(&angle).unwrap().contains("<svg"));
+    let _ = (
+        std::fs::remove_file(csv),
+        std::fs::remove_file(svg),
+        std::fs::remove_file(angle),
+    );
 }
 
 /// A mechanism scene (points, links, joints) is refused with a message saying what the

@@ -4,6 +4,7 @@
 use mechdiff::accuracy::{Timing, plot, whitworth};
 use mechdiff::mechanisms::Whitworth;
 use mechdiff::mechanisms::whitworth::Parameters;
+use mechdiff::pictures::raster;
 use mechdiff_core::symbolic::BigReal;
 use serde_json::Value;
 
@@ -165,28 +166,26 @@ fn newton_failure_near_the_pivot_is_reported_with_its_position() {
     }
 }
 
-/// The SVG plot renders (resvg) to an image that is not blank: more than 1 % of its pixels
-/// are not white (axes, points, curves).
+/// Both pictures render (resvg, through `mechdiff::pictures::raster`) to images that are not
+/// blank: more than 1 % of their pixels are not white (axes, dots, curves, text).
 #[test]
-fn plot_renders_to_a_non_empty_image() {
+fn plots_render_to_non_empty_images() {
     let shaper = Whitworth::reference();
     let linkage = whitworth::linkage(&shaper).unwrap();
     let report = whitworth::case(&shaper, &linkage)
         .unwrap()
         .measure(&Timing::quick())
         .unwrap();
-    let svg = plot::svg(&report, 1000, 400).unwrap();
-    let tree = resvg::usvg::Tree::from_str(&svg, &resvg::usvg::Options::default()).unwrap();
-    let mut pixmap = resvg::tiny_skia::Pixmap::new(1000, 400).unwrap();
-    resvg::render(
-        &tree,
-        resvg::tiny_skia::Transform::default(),
-        &mut pixmap.as_mut(),
-    );
-    let inked = pixmap
-        .pixels()
-        .iter()
-        .filter(|p| p.alpha() > 0 && (p.red() < 240 || p.green() < 240 || p.blue() < 240))
-        .count();
-    assert!(inked * 100 > 1000 * 400, "{inked} inked pixels");
+    let pareto = plot::pareto_svg(&report, 900, 600).unwrap();
+    let along = plot::along_sweep(&report).to_svg().unwrap();
+    for svg in [pareto, along] {
+        let raster = raster::render(&svg).unwrap();
+        let inked = raster
+            .rgba
+            .chunks(4)
+            .filter(|p| p[3] > 0 && (p[0] < 240 || p[1] < 240 || p[2] < 240))
+            .count();
+        let pixels = (raster.width * raster.height) as usize;
+        assert!(inked * 100 > pixels, "{inked} inked pixels of {pixels}");
+    }
 }

@@ -20,7 +20,8 @@ pub struct AccuracyArgs {
     /// Write the report as CSV to this file instead of printing the table.
     #[arg(long, value_name = "FILE")]
     pub csv: Option<PathBuf>,
-    /// Write the SVG plot (error vs time with the Pareto front; error vs drive angle).
+    /// Write the SVG plot of error against time (Pareto front labelled) to this file, and
+    /// the error against the drive angle per method to the same name ending `-angle.svg`.
     #[arg(long, value_name = "FILE")]
     pub svg: Option<PathBuf>,
     /// Timed repeats per method (the median and spread are over these).
@@ -78,11 +79,8 @@ fn write(args: &AccuracyArgs, report: &accuracy::Report) -> Result<(), Error> {
             })
     };
     if let Some(path) = &args.svg {
-        let svg = accuracy::plot::svg(report, 1400, 600).map_err(|reason| Error::Reference {
-            what: "the plot".into(),
-            reason,
-        })?;
-        save(path, &svg)?;
+        save(path, &accuracy::plot::pareto_svg(report, 900, 600)?)?;
+        accuracy::plot::along_sweep(report).write_svg(&angle_path(path))?;
     }
     match &args.csv {
         Some(path) => save(path, &report.csv()),
@@ -91,4 +89,12 @@ fn write(args: &AccuracyArgs, report: &accuracy::Report) -> Result<(), Error> {
             Ok(())
         }
     }
+}
+
+/// `out.svg` → `out-angle.svg`: where the error-against-angle diagram goes.
+fn angle_path(path: &std::path::Path) -> PathBuf {
+    let stem = path
+        .file_stem()
+        .map_or_else(|| "accuracy".into(), |s| s.to_string_lossy().into_owned());
+    path.with_file_name(format!("{stem}-angle.svg"))
 }

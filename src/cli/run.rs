@@ -1,12 +1,13 @@
-//! `mechdiff run <scene.toml> [--csv out.csv]`: run a scene and print its table.
+//! `mechdiff run <scene.toml> [--csv out.csv] [--json out.json] [--plot DIR] [--report
+//! out.html]`: run a scene, print its table, and write the outputs asked for.
 
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::PathBuf;
 
 use clap::Args;
-use mechdiff::Error;
 use mechdiff::scene::{self, table};
+use mechdiff::{Error, pictures};
 
 /// Arguments of `mechdiff run`.
 #[derive(Debug, Args)]
@@ -16,6 +17,15 @@ pub struct RunArgs {
     /// Also write every column at every drive position to this CSV file (header: `name [unit]`).
     #[arg(long, value_name = "FILE")]
     pub csv: Option<PathBuf>,
+    /// Also write the columns, rows and dead positions to this JSON file.
+    #[arg(long, value_name = "FILE")]
+    pub json: Option<PathBuf>,
+    /// Draw the run into this folder: diagram.svg/png, mechanism_*.svg/png, report.html.
+    #[arg(long, value_name = "DIR")]
+    pub plot: Option<PathBuf>,
+    /// Write the animated HTML report of the run to this file (self-contained).
+    #[arg(long, value_name = "FILE")]
+    pub report: Option<PathBuf>,
 }
 
 /// Reads, checks and runs the scene; prints the plan, the table and the dead positions.
@@ -32,6 +42,23 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
             path: path.clone(),
             source,
         })?;
+    }
+    if let Some(path) = &args.json {
+        let write = |path: &PathBuf| -> std::io::Result<()> {
+            let mut out = BufWriter::new(File::create(path)?);
+            table::write_json(&scene, &report, &mut out)?;
+            out.flush()
+        };
+        write(path).map_err(|source| Error::Write {
+            path: path.clone(),
+            source,
+        })?;
+    }
+    if let Some(dir) = &args.plot {
+        pictures::run::write_dir(&scene, &report, dir)?;
+    }
+    if let Some(path) = &args.report {
+        pictures::report::write(&scene, &report, path)?;
     }
     let stdout = std::io::stdout();
     let mut out = BufWriter::new(stdout.lock());

@@ -55,6 +55,8 @@ pub struct SceneFile {
     /// Dynamic outputs (forces, reactions, drive torque, energy, shaking force).
     #[serde(default, rename = "dynamics")]
     pub dynamics: Vec<Spanned<super::dynamics::DynamicsOutputDef>>,
+    /// What the pictures show (see [`super::plot`]).
+    pub plot: Option<Spanned<super::plot::PlotDef>>,
 }
 
 /// `[units]`: every field has an SI default.

@@ -42,6 +42,7 @@ mod joints;
 pub mod model;
 pub mod outputs;
 pub mod plan;
+pub mod plot;
 pub mod resolve;
 pub mod run;
 pub mod source;

@@ -31,6 +31,8 @@ pub struct Scene {
     pub outputs: Vec<Output>,
     /// Masses, effects and dynamic outputs, if the scene has any.
     pub dynamics: Option<super::dynamics::SceneDynamics>,
+    /// What the pictures show (`[plot]`; empty when the file has none).
+    pub plot: super::plot::Plot,
 }
 
 /// A named point at its sketch position.

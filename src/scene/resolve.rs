@@ -52,6 +52,7 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
         outputs: &file.dynamics,
     };
     let dynamics = super::dynamics::resolve(&cx, &sections, &geometry, &joints, drive.kind)?;
+    let plot = super::plot::resolve(&cx, file.plot.as_ref(), &geometry, drive.kind)?;
     let sweep_of = cx.sweep_of(&file.sweep, &outputs)?;
     let dimension = match sweep_of {
         Some(k) => outputs[k].kind.dimension(),
@@ -90,6 +91,7 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
         sweep_of,
         outputs,
         dynamics,
+        plot,
     })
 }
 

@@ -158,6 +158,39 @@ pub fn write_csv(report: &Report, out: &mut impl Write) -> io::Result<()> {
     Ok(())
 }
 
+/// Writes the report as JSON: `{"columns": [{"name", "unit"}], "rows": [[...]], "dead_positions":
+/// [{"output", "phi", "value"}]}`, every value in the scene's units with all the digits of an
+/// `f64`; a non-finite value is written as `null`.
+pub fn write_json(scene: &Scene, report: &Report, out: &mut impl Write) -> io::Result<()> {
+    let columns: Vec<_> = (report.columns.iter())
+        .map(|c| serde_json::json!({"name": c.name, "unit": c.unit}))
+        .collect();
+    let rows: Vec<Vec<f64>> = (report.rows.iter())
+        .map(|row| {
+            row.iter()
+                .zip(&report.columns)
+                .map(|(v, c)| v / c.factor + 0.0)
+                .collect()
+        })
+        .collect();
+    let u = scene.units.for_outputs();
+    let drive = scene.drive.kind.dimension();
+    let dead: Vec<_> = (report.dead_positions.iter())
+        .flat_map(|d| d.positions.iter().map(move |p| (d, p)))
+        .map(|(d, p)| {
+            serde_json::json!({
+                "output": d.output,
+                "phi": scene.units.from_si(p.phi, drive),
+                "value": u.from_si(p.value, d.dimension),
+                "unit": u.symbol(d.dimension),
+            })
+        })
+        .collect();
+    let value = serde_json::json!({"columns": columns, "rows": rows, "dead_positions": dead});
+    serde_json::to_writer(&mut *out, &value)?;
+    writeln!(out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::ColumnFormat;

@@ -1,0 +1,538 @@
+//! [`Diagram`]: panels of y(x) curves over the drive position, with markers and polar panels,
+//! drawn by plotters' SVG backend with the bundled font.
+//!
+//! Every cartesian panel's plotting rectangle is written into the SVG as an invisible
+//! `<rect class="plot-frame">` with its data range (`data-x0`, `data-x1`, `data-y0`,
+//! `data-y1`), so that the HTML report can draw a cursor at a drive position.
+
+use std::fmt::Write as _;
+use std::ops::Range;
+use std::path::Path;
+use std::sync::OnceLock;
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::FontStyle;
+
+use super::{FONT, FONT_FAMILY, raster, write_file};
+use crate::error::{Error, Result};
+
+/// One curve: `[x, y]` points in drawing order; non-finite points break the curve.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Series {
+    /// Legend text.
+    pub name: String,
+    /// The points.
+    pub points: Vec<[f64; 2]>,
+}
+
+/// One panel: one quantity (one unit) against the shared x axis.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Panel {
+    /// The y axis label with its unit, e.g. `"a_C [m/s²]"`.
+    pub y_label: String,
+    /// The curves.
+    pub series: Vec<Series>,
+}
+
+impl Panel {
+    /// An empty panel labelled `y_label` (name and unit).
+    pub fn new(y_label: &str) -> Self {
+        Panel {
+            y_label: y_label.to_owned(),
+            series: Vec::new(),
+        }
+    }
+
+    /// Adds a curve.
+    pub fn series(mut self, name: &str, points: Vec<[f64; 2]>) -> Self {
+        self.series.push(Series {
+            name: name.to_owned(),
+            points,
+        });
+        self
+    }
+}
+
+/// What a vertical marker marks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MarkerKind {
+    /// A dead position (an output's velocity coefficient changes sign): red, dashed.
+    Dead,
+    /// A limit position (the mechanism cannot go further, or a toggle): purple, solid.
+    Limit,
+    /// A segment boundary (cam program segments, sweep pieces): grey, dashed.
+    Boundary,
+}
+
+impl MarkerKind {
+    fn colour(self) -> RGBColor {
+        match self {
+            MarkerKind::Dead => RGBColor(0xd6, 0x27, 0x28),
+            MarkerKind::Limit => RGBColor(0x94, 0x67, 0xbd),
+            MarkerKind::Boundary => RGBColor(0x88, 0x88, 0x88),
+        }
+    }
+}
+
+/// A vertical line at `x` across every cartesian panel, labelled in the first.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Marker {
+    /// Position on the x axis.
+    pub x: f64,
+    /// Short label, e.g. `"dead 67.98°"`.
+    pub label: String,
+    /// Colour and dash by kind.
+    pub kind: MarkerKind,
+}
+
+impl Marker {
+    /// A marker at `x`.
+    pub fn new(x: f64, label: &str, kind: MarkerKind) -> Self {
+        Marker {
+            x,
+            label: label.to_owned(),
+            kind,
+        }
+    }
+}
+
+/// A polar panel: the tip of a vector over the sweep (a force's components), on equal axes
+/// through the origin.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Polar {
+    /// Panel title, e.g. `"reaction in joint A on the ground"`.
+    pub title: String,
+    /// Unit of both components, e.g. `"N"`.
+    pub unit: String,
+    /// The curves of `[x, y]` components.
+    pub series: Vec<Series>,
+}
+
+/// A diagram: cartesian panels sharing one x axis, then polar panels two per row.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Diagram {
+    /// Printed at the top.
+    pub title: String,
+    /// The x axis label with its unit, e.g. `"φ [deg]"`.
+    pub x_label: String,
+    /// Cartesian panels, top to bottom.
+    pub panels: Vec<Panel>,
+    /// Vertical markers.
+    pub markers: Vec<Marker>,
+    /// A cursor line at this x (an exported animation frame), if any.
+    pub cursor: Option<f64>,
+    /// Polar panels.
+    pub polars: Vec<Polar>,
+    /// Width (px).
+    pub width: u32,
+    /// Height of one cartesian panel (px).
+    pub panel_height: u32,
+}
+
+/// Room for the title (px).
+const TITLE: u32 = 30;
+/// Height of a row of polar panels (px).
+const POLAR_HEIGHT: u32 = 380;
+/// Curves of at most this many points are drawn with a dot at every point (a sweep of a
+/// few positions is not a smooth curve).
+const SPARSE: usize = 60;
+/// Series colours, in order (the Tableau 10 palette).
+const PALETTE: [RGBColor; 6] = [
+    RGBColor(0x1f, 0x77, 0xb4),
+    RGBColor(0xff, 0x7f, 0x0e),
+    RGBColor(0x2c, 0xa0, 0x2c),
+    RGBColor(0x8c, 0x56, 0x4b),
+    RGBColor(0xe3, 0x77, 0xc2),
+    RGBColor(0x17, 0xbe, 0xcf),
+];
+
+/// Registers the bundled font with plotters once.
+fn font() -> Result<()> {
+    static REGISTERED: OnceLock<bool> = OnceLock::new();
+    let ok = *REGISTERED.get_or_init(|| {
+        plotters::style::register_font(FONT_FAMILY, FontStyle::Normal, FONT).is_ok()
+    });
+    if ok {
+        Ok(())
+    } else {
+        Err(Error::Picture {
+            message: "the bundled font could not be read".to_owned(),
+        })
+    }
+}
+
+fn draw_error(e: impl std::fmt::Debug) -> Error {
+    Error::Picture {
+        message: format!("plotters: {e:?}"),
+    }
+}
+
+/// The pixel rectangle and data range of one cartesian panel.
+#[derive(Debug, Clone, PartialEq)]
+struct PlotFrame {
+    pixels: (Range<i32>, Range<i32>),
+    x: Range<f64>,
+    y: Range<f64>,
+}
+
+impl Diagram {
+    /// An empty diagram, 900 px wide, 220 px per panel.
+    pub fn new(title: &str, x_label: &str) -> Self {
+        Diagram {
+            title: title.to_owned(),
+            x_label: x_label.to_owned(),
+            panels: Vec::new(),
+            markers: Vec::new(),
+            cursor: None,
+            polars: Vec::new(),
+            width: 900,
+            panel_height: 220,
+        }
+    }
+
+    /// Adds a cartesian panel.
+    pub fn panel(mut self, panel: Panel) -> Self {
+        self.panels.push(panel);
+        self
+    }
+
+    /// Adds a vertical marker.
+    pub fn marker(mut self, marker: Marker) -> Self {
+        self.markers.push(marker);
+        self
+    }
+
+    /// Adds a polar panel.
+    pub fn polar(mut self, polar: Polar) -> Self {
+        self.polars.push(polar);
+        self
+    }
+
+    /// Draws a cursor line at `x` in every cartesian panel.
+    pub fn with_cursor(mut self, x: f64) -> Self {
+        self.cursor = Some(x);
+        self
+    }
+
+    /// The picture's height (px).
+    pub fn height(&self) -> u32 {
+        let rows = self.polars.len().div_ceil(2) as u32;
+        TITLE + self.panel_height * self.panels.len() as u32 + POLAR_HEIGHT * rows
+    }
+
+    /// The x range shared by the panels: every finite x of every curve and marker.
+    fn x_range(&self) -> Range<f64> {
+        let xs = self
+            .panels
+            .iter()
+            .flat_map(|p| p.series.iter().flat_map(|s| s.points.iter().map(|q| q[0])))
+            .chain(self.markers.iter().map(|m| m.x));
+        padded(finite_range(xs), 0.0)
+    }
+
+    /// The diagram as an SVG document.
+    pub fn to_svg(&self) -> Result<String> {
+        font()?;
+        let mut svg = String::new();
+        let mut frames = Vec::new();
+        {
+            let size = (self.width.max(200), self.height());
+            let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
+            root.fill(&WHITE).map_err(draw_error)?;
+            let (top, mut rest) = root.split_vertically(TITLE);
+            top.draw_text(
+                &self.title,
+                &(FONT_FAMILY, 16).into_font().color(&BLACK),
+                (10, 8),
+            )
+            .map_err(draw_error)?;
+            let x = self.x_range();
+            for (k, panel) in self.panels.iter().enumerate() {
+                let (area, below) = rest.split_vertically(self.panel_height);
+                rest = below;
+                frames.push(self.draw_panel(&area, panel, x.clone(), k == 0)?);
+            }
+            for pair in self.polars.chunks(2) {
+                let (row, below) = rest.split_vertically(POLAR_HEIGHT);
+                rest = below;
+                for (area, polar) in row.split_evenly((1, 2)).iter().zip(pair) {
+                    draw_polar(area, polar)?;
+                }
+            }
+            root.present().map_err(draw_error)?;
+        }
+        let mut extra = String::from("<g class=\"plot-frames\">\n");
+        for (k, f) in frames.iter().enumerate() {
+            let (px, py) = &f.pixels;
+            let _ = writeln!(
+                extra,
+                r#"<rect class="plot-frame" data-panel="{k}" data-x0="{:e}" data-x1="{:e}" data-y0="{:e}" data-y1="{:e}" x="{}" y="{}" width="{}" height="{}" fill="none" stroke="none"/>"#,
+                f.x.start,
+                f.x.end,
+                f.y.start,
+                f.y.end,
+                px.start,
+                py.start,
+                px.end - px.start,
+                py.end - py.start
+            );
+        }
+        extra.push_str("</g>\n</svg>");
+        if let Some(end) = svg.rfind("</svg>") {
+            svg.replace_range(end.., &extra);
+        }
+        Ok(svg)
+    }
+
+    fn draw_panel(
+        &self,
+        area: &DrawingArea<SVGBackend, Shift>,
+        panel: &Panel,
+        x: Range<f64>,
+        first: bool,
+    ) -> Result<PlotFrame> {
+        let ys = panel
+            .series
+            .iter()
+            .flat_map(|s| s.points.iter().map(|q| q[1]));
+        let y = padded(finite_range(ys), 0.05);
+        let mut chart = ChartBuilder::on(area)
+            .margin(6)
+            .margin_right(20)
+            .x_label_area_size(36)
+            .y_label_area_size(80)
+            .build_cartesian_2d(x.clone(), y.clone())
+            .map_err(draw_error)?;
+        let text = |size| (FONT_FAMILY, size).into_font();
+        chart
+            .configure_mesh()
+            .x_desc(self.x_label.as_str())
+            .y_desc(panel.y_label.as_str())
+            .label_style(text(12))
+            .axis_desc_style(text(13))
+            .light_line_style(RGBColor(0xee, 0xee, 0xee))
+            .x_labels(10)
+            .y_labels(5)
+            .x_label_formatter(&|v| tick(*v, x.end - x.start))
+            .y_label_formatter(&|v| tick(*v, y.end - y.start))
+            .draw()
+            .map_err(draw_error)?;
+        for marker in &self.markers {
+            let style = marker.kind.colour().stroke_width(1);
+            let line = [(marker.x, y.start), (marker.x, y.end)];
+            if marker.kind == MarkerKind::Limit {
+                chart
+                    .draw_series(LineSeries::new(line, style))
+                    .map_err(draw_error)?;
+            } else {
+                chart
+                    .draw_series(DashedLineSeries::new(line, 6, 4, style))
+                    .map_err(draw_error)?;
+            }
+            if first {
+                let at = chart.backend_coord(&(marker.x, y.end));
+                area.draw_text(
+                    &marker.label,
+                    &text(11).color(&marker.kind.colour()),
+                    (at.0 + 3, at.1 + 2),
+                )
+                .map_err(draw_error)?;
+            }
+        }
+        for (k, series) in panel.series.iter().enumerate() {
+            let colour = PALETTE[k % PALETTE.len()];
+            for run in finite_runs(&series.points) {
+                let drawn = chart
+                    .draw_series(LineSeries::new(
+                        run.iter().map(|p| (p[0], p[1])),
+                        colour.stroke_width(2),
+                    ))
+                    .map_err(draw_error)?;
+                if run.as_ptr() == first_run_start(&series.points) {
+                    drawn.label(series.name.as_str()).legend(move |(x, y)| {
+                        PathElement::new([(x, y), (x + 16, y)], colour.stroke_width(2))
+                    });
+                }
+                if series.points.len() <= SPARSE {
+                    chart
+                        .draw_series(
+                            run.iter()
+                                .map(|p| Circle::new((p[0], p[1]), 3, colour.filled())),
+                        )
+                        .map_err(draw_error)?;
+                }
+            }
+        }
+        if panel.series.len() > 1 {
+            chart
+                .configure_series_labels()
+                .label_font(text(12))
+                .background_style(WHITE.mix(0.8))
+                .border_style(RGBColor(0xcc, 0xcc, 0xcc))
+                .position(SeriesLabelPosition::UpperRight)
+                .draw()
+                .map_err(draw_error)?;
+        }
+        if let Some(c) = self.cursor {
+            chart
+                .draw_series(LineSeries::new([(c, y.start), (c, y.end)], BLACK))
+                .map_err(draw_error)?;
+        }
+        Ok(PlotFrame {
+            pixels: chart.plotting_area().get_pixel_range(),
+            x,
+            y,
+        })
+    }
+
+    /// Writes the SVG to `path` (through a temporary file).
+    pub fn write_svg(&self, path: &Path) -> Result<()> {
+        write_file(path, self.to_svg()?.as_bytes())
+    }
+
+    /// Renders the SVG with the bundled font and writes it as PNG to `path`.
+    pub fn write_png(&self, path: &Path) -> Result<()> {
+        raster::write_png(&self.to_svg()?, path)
+    }
+}
+
+fn draw_polar(area: &DrawingArea<SVGBackend, Shift>, polar: &Polar) -> Result<()> {
+    let radius = polar
+        .series
+        .iter()
+        .flat_map(|s| s.points.iter())
+        .filter(|p| p[0].is_finite() && p[1].is_finite())
+        .fold(0.0_f64, |r, p| r.max(p[0].hypot(p[1])));
+    let r = if radius > 0.0 { 1.08 * radius } else { 1.0 };
+    // Equal scales: stretch the longer side's range to the plotting rectangle's aspect.
+    let (margin, left, bottom, top) = (8, 80, 36, 24);
+    let (w, h) = area.dim_in_pixel();
+    let pw = f64::from(w.saturating_sub(2 * margin + left).max(1));
+    let ph = f64::from(h.saturating_sub(2 * margin + bottom + top).max(1));
+    let (rx, ry) = if pw > ph {
+        (r * pw / ph, r)
+    } else {
+        (r, r * ph / pw)
+    };
+    let text = |size| (FONT_FAMILY, size).into_font();
+    let mut chart = ChartBuilder::on(area)
+        .margin(margin)
+        .caption(polar.title.as_str(), text(13))
+        .x_label_area_size(bottom)
+        .y_label_area_size(left)
+        .build_cartesian_2d(-rx..rx, -ry..ry)
+        .map_err(draw_error)?;
+    chart
+        .configure_mesh()
+        .x_desc(format!("x [{}]", polar.unit))
+        .y_desc(format!("y [{}]", polar.unit))
+        .label_style(text(11))
+        .axis_desc_style(text(12))
+        .x_label_formatter(&|v| tick(*v, rx))
+        .y_label_formatter(&|v| tick(*v, ry))
+        .light_line_style(RGBColor(0xf0, 0xf0, 0xf0))
+        .draw()
+        .map_err(draw_error)?;
+    let grey = RGBColor(0xbb, 0xbb, 0xbb);
+    for line in [[(-rx, 0.0), (rx, 0.0)], [(0.0, -ry), (0.0, ry)]] {
+        chart
+            .draw_series(LineSeries::new(line, grey))
+            .map_err(draw_error)?;
+    }
+    for (k, series) in polar.series.iter().enumerate() {
+        let colour = PALETTE[k % PALETTE.len()];
+        for run in finite_runs(&series.points) {
+            chart
+                .draw_series(LineSeries::new(
+                    run.iter().map(|p| (p[0], p[1])),
+                    colour.stroke_width(2),
+                ))
+                .map_err(draw_error)?;
+            if series.points.len() <= SPARSE {
+                chart
+                    .draw_series(
+                        run.iter()
+                            .map(|p| Circle::new((p[0], p[1]), 3, colour.filled())),
+                    )
+                    .map_err(draw_error)?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A tick label on an axis spanning `span`: six significant digits at most, no trailing
+/// zeros, and `0` for what is zero but for rounding (1e-9 of the span).
+fn tick(v: f64, span: f64) -> String {
+    if v.abs() <= 1e-9 * span.abs() {
+        return "0".to_owned();
+    }
+    match format!("{v:.5e}").parse::<f64>() {
+        Ok(r) => (r + 0.0).to_string(),
+        Err(_) => v.to_string(),
+    }
+}
+
+/// The smallest and largest finite value, or `0..1` if there is none.
+fn finite_range(values: impl Iterator<Item = f64>) -> Range<f64> {
+    let (lo, hi) = values
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+    if lo > hi { 0.0..1.0 } else { lo..hi }
+}
+
+/// The range widened by `fraction` of its length on each side; an empty range is widened to
+/// a unit (or 10 % of its value) so that a constant curve is still drawn.
+fn padded(range: Range<f64>, fraction: f64) -> Range<f64> {
+    let length = range.end - range.start;
+    if length > 1e-12 * range.start.abs().max(range.end.abs()) && length > 0.0 {
+        let pad = fraction * length;
+        return range.start - pad..range.end + pad;
+    }
+    let half = if range.start == 0.0 {
+        1.0
+    } else {
+        0.1 * range.start.abs()
+    };
+    range.start - half..range.end + half
+}
+
+/// The runs of consecutive finite points.
+fn finite_runs(points: &[[f64; 2]]) -> impl Iterator<Item = &[[f64; 2]]> {
+    points
+        .split(|p| !(p[0].is_finite() && p[1].is_finite()))
+        .filter(|run| !run.is_empty())
+}
+
+/// Where the first finite run starts (the run that carries the legend entry).
+fn first_run_start(points: &[[f64; 2]]) -> *const [f64; 2] {
+    finite_runs(points)
+        .next()
+        .map_or(std::ptr::null(), <[_]>::as_ptr)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A constant curve still gets a y range of positive length around its value.
+    #[test]
+    fn constant_curves_get_a_range() {
+        let r = padded(finite_range([2.0, 2.0].into_iter()), 0.05);
+        assert!(r.start < 2.0 && r.end > 2.0);
+        let r = padded(finite_range([f64::NAN].into_iter()), 0.05);
+        assert!(r.end > r.start);
+    }
+
+    /// NaN splits a curve into runs and is never drawn.
+    #[test]
+    fn non_finite_points_break_curves() {
+        let p = [[0.0, 1.0], [1.0, f64::NAN], [2.0, 3.0], [3.0, 4.0]];
+        let runs: Vec<_> = finite_runs(&p).collect();
+        assert_eq!(runs.len(), 2);
+        assert_eq!(runs[1].len(), 2);
+    }
+}

@@ -1,0 +1,310 @@
+//! The pictures of one run of a scene: the diagram of its columns, the drawings of its
+//! mechanism, written to a folder (`mechdiff run scene.toml --plot DIR`).
+
+use std::path::{Path, PathBuf};
+
+use super::decimate::{decimate, sample};
+use super::diagram::{Diagram, Marker, MarkerKind, Panel, Polar, Series};
+use super::drawing::Drawing;
+use super::scene::{Poses, Rig, plot_positions, poses, sketch_pose};
+use crate::error::{Error, Result};
+use crate::scene::Scene;
+use crate::scene::build::mechanism;
+use crate::scene::model::OutputKind;
+use crate::scene::outputs::Column;
+use crate::scene::run::Report;
+
+/// Drawn points per curve: about four per bucket, one bucket per pixel column or two.
+pub const BUCKETS: usize = 800;
+/// Poses solved for the traced paths and the report's animation, at most.
+pub const FRAMES: usize = 721;
+
+/// A group of columns drawn in one panel, with the names that select it in `[plot] panels`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Group {
+    /// Column indices (into the report's columns).
+    pub columns: Vec<usize>,
+    /// The output (or dynamic output) it belongs to.
+    pub output: String,
+}
+
+/// The report's columns after the drive, grouped into panels: one per quantity of each output
+/// (x and y of a point together), then the dynamic columns, consecutive columns of one unit
+/// together.
+pub fn groups(scene: &Scene, report: &Report) -> Vec<Group> {
+    let mut groups = Vec::new();
+    let mut k = 1;
+    for output in &scene.outputs {
+        let per = if matches!(output.kind, OutputKind::Point(_)) {
+            2
+        } else {
+            1
+        };
+        for _ in &output.quantities {
+            groups.push(Group {
+                columns: (k..k + per).collect(),
+                output: output.name.clone(),
+            });
+            k += per;
+        }
+    }
+    let columns = &report.columns;
+    while k < columns.len() {
+        let start = k;
+        while k + 1 < columns.len()
+            && columns[k + 1].unit == columns[start].unit
+            && k + 1 - start < 3
+        {
+            k += 1;
+        }
+        groups.push(Group {
+            columns: (start..=k).collect(),
+            output: "dynamics".to_owned(),
+        });
+        k += 1;
+    }
+    groups
+}
+
+/// The groups chosen by `[plot] panels` (every group without it): a name selects the groups
+/// of the output of that name and the group holding the column of that name.
+pub fn selected(scene: &Scene, report: &Report) -> Result<Vec<Group>> {
+    let all = groups(scene, report);
+    let Some(panels) = &scene.plot.panels else {
+        return Ok(all);
+    };
+    let mut chosen: Vec<Group> = Vec::new();
+    for (name, location) in panels {
+        let matching: Vec<&Group> = all
+            .iter()
+            .filter(|g| {
+                g.output == *name || g.columns.iter().any(|&c| report.columns[c].name == *name)
+            })
+            .collect();
+        if matching.is_empty() {
+            let mut known: Vec<String> = scene.outputs.iter().map(|o| o.name.clone()).collect();
+            known.extend(report.columns.iter().skip(1).map(|c| c.name.clone()));
+            known.dedup();
+            return Err(Error::Invalid {
+                location: location.clone(),
+                message: format!(
+                    "`[plot] panels` names `{name}`, which is neither an output nor a column; \
+                     the outputs and columns are: {}",
+                    known.join(", ")
+                ),
+            });
+        }
+        for g in matching {
+            if !chosen.contains(g) {
+                chosen.push(g.clone());
+            }
+        }
+    }
+    Ok(chosen)
+}
+
+/// The values of column `c` against the drive, in printed units, decimated for drawing.
+fn curve(report: &Report, c: usize) -> Vec<[f64; 2]> {
+    let (x, y) = (&report.columns[0], &report.columns[c]);
+    decimate(
+        report
+            .rows
+            .iter()
+            .map(|r| [r[0] / x.factor, r[c] / y.factor]),
+        report.rows.len(),
+        BUCKETS,
+    )
+}
+
+/// `name [unit]` for a panel's y axis: the column names joined, one unit.
+fn label(columns: &[&Column]) -> String {
+    let names: Vec<&str> = columns.iter().map(|c| c.name.as_str()).collect();
+    format!("{} [{}]", names.join(", "), columns[0].unit)
+}
+
+/// The diagram of a run: the selected panels against the drive position, the dead positions
+/// marked, and polar panels for every force given by its x and y components (joint reactions
+/// `Fx_j`/`Fy_j`, inertial forces, the shaking force `SumF_x`/`SumF_y`).
+pub fn diagram(scene: &Scene, report: &Report) -> Result<Diagram> {
+    let drive = &report.columns[0];
+    let title = scene.title.clone().unwrap_or_else(|| scene.file.clone());
+    let mut d = Diagram::new(&title, &format!("φ [{}]", drive.unit));
+    let groups = selected(scene, report)?;
+    for g in &groups {
+        let columns: Vec<&Column> = g.columns.iter().map(|&c| &report.columns[c]).collect();
+        let mut panel = Panel::new(&label(&columns));
+        for &c in &g.columns {
+            panel = panel.series(&report.columns[c].name, curve(report, c));
+        }
+        d = d.panel(panel);
+    }
+    for dead in &report.dead_positions {
+        for p in &dead.positions {
+            let label = format!("{}: dead", dead.output);
+            d = d.marker(Marker::new(p.phi / drive.factor, &label, MarkerKind::Dead));
+        }
+    }
+    for g in &groups {
+        for pair in g.columns.windows(2) {
+            let (a, b) = (&report.columns[pair[0]], &report.columns[pair[1]]);
+            let title = if a.name == "SumF_x" && b.name == "SumF_y" {
+                Some("shaking force ΣF on the frame".to_owned())
+            } else {
+                match (a.name.strip_prefix("Fx_"), b.name.strip_prefix("Fy_")) {
+                    (Some(s), Some(t)) if s == t => Some(format!("force {s}")),
+                    _ => None,
+                }
+            };
+            if let Some(title) = title {
+                let points = decimate(
+                    report
+                        .rows
+                        .iter()
+                        .map(|r| [r[pair[0]] / a.factor, r[pair[1]] / b.factor]),
+                    report.rows.len(),
+                    BUCKETS,
+                );
+                d = d.polar(Polar {
+                    title,
+                    unit: a.unit.clone(),
+                    series: vec![Series {
+                        name: a.name.clone(),
+                        points,
+                    }],
+                });
+            }
+        }
+    }
+    Ok(d)
+}
+
+/// Everything the pictures of a run need: the poses over the sweep (at most [`FRAMES`]), the
+/// rig, the traced points, the framing extent.
+#[derive(Debug, Clone)]
+pub struct Animation {
+    /// Row indices of the report that are drawn.
+    pub rows: Vec<usize>,
+    /// The poses at those rows.
+    pub poses: Poses,
+    /// How the mechanism is drawn.
+    pub rig: Rig,
+    /// Traced points (indices into the scene's points).
+    pub traced: Vec<usize>,
+}
+
+impl Animation {
+    /// Solves the poses of the run at up to [`FRAMES`] rows spread over the sweep.
+    pub fn of(scene: &Scene, report: &Report) -> Result<Animation> {
+        let m = mechanism(scene)?;
+        let rows = sample(report.rows.len(), FRAMES);
+        let phi: Vec<f64> = rows.iter().map(|&r| report.rows[r][0]).collect();
+        let poses = poses(scene, &m, &phi)?;
+        let index = |name: &str| scene.points.iter().position(|p| p.name == name);
+        let traced = match &scene.plot.trace {
+            Some(names) => names.iter().filter_map(|n| index(n)).collect(),
+            None => scene
+                .outputs
+                .iter()
+                .filter_map(|o| match &o.kind {
+                    OutputKind::Point(p) => index(p),
+                    _ => None,
+                })
+                .collect(),
+        };
+        Ok(Animation {
+            rows,
+            poses,
+            rig: Rig::of(scene),
+            traced,
+        })
+    }
+
+    /// Every point of every pose and of the sketch: the extent every drawing is framed to.
+    pub fn extent(&self, scene: &Scene) -> Vec<[f64; 2]> {
+        let mut all: Vec<[f64; 2]> = self.poses.xy.iter().flatten().copied().collect();
+        all.extend(sketch_pose(scene));
+        all
+    }
+
+    /// The traced paths over the sweep.
+    pub fn paths(&self) -> Vec<(usize, Vec<[f64; 2]>)> {
+        self.traced
+            .iter()
+            .map(|&k| (k, self.poses.path(k)))
+            .collect()
+    }
+
+    /// The drawing of the mechanism at `pose`, with the traced paths, titled `title`.
+    pub fn drawing(&self, scene: &Scene, title: &str, pose: &[[f64; 2]]) -> Drawing {
+        self.rig
+            .drawing(scene, title, pose, &self.extent(scene), &self.paths())
+    }
+}
+
+/// The drawings of a run: at the sketch pose, then at each `[plot]` position (checked to lie
+/// inside the sweep), each with the traced paths; with the names of their files.
+pub fn drawings(
+    scene: &Scene,
+    report: &Report,
+    animation: &Animation,
+) -> Result<Vec<(String, Drawing)>> {
+    let name = scene.title.clone().unwrap_or_else(|| scene.file.clone());
+    let mut out = vec![(
+        "mechanism_sketch".to_owned(),
+        animation.drawing(scene, &format!("{name} — sketch pose"), &sketch_pose(scene)),
+    )];
+    let (lo, hi) = report
+        .rows
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), r| {
+            (lo.min(r[0]), hi.max(r[0]))
+        });
+    let positions = plot_positions(scene, lo, hi)?;
+    if !positions.is_empty() {
+        let m = mechanism(scene)?;
+        // Solved in sweep order from the sketch, as the run went.
+        let mut order: Vec<usize> = (0..positions.len()).collect();
+        order.sort_by(|&a, &b| positions[a].total_cmp(&positions[b]));
+        let sorted: Vec<f64> = order.iter().map(|&k| positions[k]).collect();
+        let poses = poses(scene, &m, &sorted)?;
+        for (k, pose) in poses.xy.iter().enumerate() {
+            let text = scene.drive_text(sorted[k]);
+            out.push((
+                format!("mechanism_at_{}", text.replace(' ', "_")),
+                animation.drawing(scene, &format!("{name} — φ = {text}"), pose),
+            ));
+        }
+    }
+    Ok(out)
+}
+
+/// Writes the pictures of a run into `dir` (created if missing): `diagram.svg/png`, one
+/// `mechanism_*.svg/png` per drawing, and `report.html`. Returns the files written.
+pub fn write_dir(scene: &Scene, report: &Report, dir: &Path) -> Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir).map_err(|source| Error::Write {
+        path: dir.to_owned(),
+        source,
+    })?;
+    let mut written = Vec::new();
+    let diagram = diagram(scene, report)?;
+    let svg = diagram.to_svg()?;
+    let mut save = |name: String, svg: &str| -> Result<()> {
+        let path = dir.join(format!("{name}.svg"));
+        super::write_file(&path, svg.as_bytes())?;
+        written.push(path);
+        let path = dir.join(format!("{name}.png"));
+        super::raster::write_png(svg, &path)?;
+        written.push(path);
+        Ok(())
+    };
+    save("diagram".to_owned(), &svg)?;
+    let animation = Animation::of(scene, report)?;
+    for (name, drawing) in drawings(scene, report, &animation)? {
+        save(name, &drawing.to_svg())?;
+    }
+    let html = super::report::html(scene, report, &animation, &svg)?;
+    let path = dir.join("report.html");
+    super::write_file(&path, html.as_bytes())?;
+    written.push(path);
+    Ok(written)
+}

@@ -1,0 +1,98 @@
+//! `[plot]`: what the pictures of a run show (see [`crate::pictures`]).
+//!
+//! This module only translates the section: point names are checked here; the drive
+//! positions and the panels are checked against the run's own sweep and columns when the
+//! pictures are drawn (a `[sweep] of` scene knows its drive positions only then), with the
+//! places kept here for the messages.
+
+use serde::Deserialize;
+use toml::Spanned;
+
+use crate::error::{Location, Result};
+
+use super::format::Name;
+use super::model::DriveKind;
+use super::resolve::{Context, Geometry};
+
+/// `[plot]` as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlotDef {
+    /// Points whose paths over the sweep are drawn (coupler curves).
+    pub trace: Option<Spanned<Vec<Name>>>,
+    /// Drive positions (drive unit) at which the mechanism is drawn, inside the sweep.
+    pub positions: Option<Spanned<Vec<Spanned<f64>>>>,
+    /// The diagram's panels: output names (every column of the output) or column names.
+    pub panels: Option<Spanned<Vec<Name>>>,
+}
+
+/// `[plot]` checked: names resolved, numbers in SI, places kept.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Plot {
+    /// Points whose paths are traced; `None`: the points of the `[[output]] point` entries.
+    pub trace: Option<Vec<String>>,
+    /// Drive positions (SI) to draw the mechanism at, each with its place in the file.
+    pub positions: Vec<(f64, Location)>,
+    /// Panel selection (output or column names, with their places); `None`: every column.
+    pub panels: Option<Vec<(String, Location)>>,
+}
+
+/// Checks `[plot]`: every traced point exists and moves, no list is empty, every position
+/// is a finite number.
+pub(crate) fn resolve(
+    cx: &Context,
+    def: Option<&Spanned<PlotDef>>,
+    geometry: &Geometry,
+    drive: DriveKind,
+) -> Result<Plot> {
+    let Some(def) = def else {
+        return Ok(Plot::default());
+    };
+    let d = def.get_ref();
+    let nonempty = |what: &str, empty: bool, at: Location| -> Result<()> {
+        if empty {
+            return Err(crate::Error::Invalid {
+                location: at,
+                message: format!("`[plot] {what}` is empty: name at least one, or leave it out"),
+            });
+        }
+        Ok(())
+    };
+    let trace = match &d.trace {
+        None => None,
+        Some(list) => {
+            nonempty("trace", list.get_ref().is_empty(), cx.at(list))?;
+            let mut names = Vec::new();
+            for name in list.get_ref() {
+                let point = cx.point(name, geometry.names, "`[plot] trace`")?;
+                names.push(point.to_owned());
+            }
+            Some(names)
+        }
+    };
+    let mut positions = Vec::new();
+    if let Some(list) = &d.positions {
+        nonempty("positions", list.get_ref().is_empty(), cx.at(list))?;
+        for value in list.get_ref() {
+            let si = cx.number(value, "a `[plot]` position", drive.dimension())?;
+            positions.push((si, cx.at(value)));
+        }
+    }
+    let panels = match &d.panels {
+        None => None,
+        Some(list) => {
+            nonempty("panels", list.get_ref().is_empty(), cx.at(list))?;
+            Some(
+                list.get_ref()
+                    .iter()
+                    .map(|n| (n.get_ref().clone(), cx.at(n)))
+                    .collect(),
+            )
+        }
+    };
+    Ok(Plot {
+        trace,
+        positions,
+        panels,
+    })
+}

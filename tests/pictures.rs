@@ -1,0 +1,340 @@
+//! Pictures of every scene: diagrams, drawings and the HTML report are produced, render to
+//! pixels that are not blank, frame the whole mechanism, and draw each joint where the
+//! solver puts it; `[plot]` errors are located; a long sweep is drawn within a bounded size.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use mechdiff::pictures::raster::{self, Raster};
+use mechdiff::pictures::report::{MAX_BYTES, html};
+use mechdiff::pictures::run::{Animation, diagram, drawings};
+use mechdiff::pictures::{Frame, scene::sketch_pose};
+use mechdiff::scene::{self, Report, Scene};
+
+fn scenes() -> Vec<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 8, "the scenes folder has its scenes");
+    files
+}
+
+fn load(path: &Path) -> (Scene, Report) {
+    let scene = scene::load(path).unwrap();
+    let report = scene::run(&scene).unwrap();
+    (scene, report)
+}
+
+/// The value of attribute `name` in the element text `tag` (`name="value"`).
+fn attribute<'a>(tag: &'a str, name: &str) -> Option<&'a str> {
+    let key = format!(" {name}=\"");
+    let start = tag.find(&key)? + key.len();
+    let end = tag[start..].find('"')? + start;
+    Some(&tag[start..end])
+}
+
+fn number(tag: &str, name: &str) -> f64 {
+    attribute(tag, name)
+        .unwrap_or_else(|| panic!("{name} in {tag}"))
+        .parse()
+        .unwrap()
+}
+
+/// The frame written on the `<svg>` element of a drawing.
+fn frame(svg: &str) -> Frame {
+    let head = &svg[..svg.find('>').unwrap()];
+    Frame {
+        scale: number(head, "data-scale"),
+        origin_x: number(head, "data-origin-x"),
+        origin_y: number(head, "data-origin-y"),
+        width: number(head, "width"),
+        height: number(head, "height"),
+    }
+}
+
+/// Every drawn joint: its name and its model position read back from its pixel centre.
+fn joints(svg: &str) -> Vec<(String, [f64; 2])> {
+    let f = frame(svg);
+    svg.match_indices("<circle class=\"joint\"")
+        .map(|(at, _)| {
+            let tag = &svg[at..at + svg[at..].find("/>").unwrap()];
+            let name = attribute(tag, "data-point").unwrap().to_owned();
+            (name, f.model([number(tag, "cx"), number(tag, "cy")]))
+        })
+        .collect()
+}
+
+/// The share of pixels that are not white.
+fn inked(r: &Raster) -> f64 {
+    let n = r
+        .rgba
+        .chunks(4)
+        .filter(|p| p[..3] != [255, 255, 255])
+        .count();
+    n as f64 / (r.width as f64 * r.height as f64)
+}
+
+/// Whether the outermost `band` pixels of every side are all white (nothing cut off).
+fn clear_border(r: &Raster, band: u32) -> bool {
+    (0..r.height).all(|y| {
+        (0..r.width).all(|x| {
+            let edge = x < band || y < band || x >= r.width - band || y >= r.height - band;
+            !edge || r.pixel(x, y).unwrap()[..3] == [255, 255, 255]
+        })
+    })
+}
+
+/// For every scene: the diagram, each drawing and the report are produced; the diagram and
+/// drawings render to pixels of which a fair share is ink (at least 0.5 %: axes, curves and
+/// bars; a blank or failed render has none); every point of the mechanism at every drawn pose
+/// maps inside the picture and the outer band of pixels is white (the mechanism is not cut
+/// off); the report is self-contained (no address it would load) and under its stated bound.
+#[test]
+fn every_scene_gets_its_diagram_drawings_and_report() {
+    for path in scenes() {
+        let (scene, report) = load(&path);
+        let name = path.display().to_string();
+        let d = diagram(&scene, &report).unwrap();
+        assert!(!d.panels.is_empty(), "{name}: panels");
+        let svg = d.to_svg().unwrap();
+        let pixels = raster::render(&svg).unwrap();
+        assert!(inked(&pixels) > 0.005, "{name}: the diagram is blank");
+        let animation = Animation::of(&scene, &report).unwrap();
+        let drawn = drawings(&scene, &report, &animation).unwrap();
+        assert_eq!(drawn.len(), 1 + scene.plot.positions.len(), "{name}");
+        for (title, drawing) in &drawn {
+            let svg = drawing.to_svg();
+            let pixels = raster::render(&svg).unwrap();
+            assert!(inked(&pixels) > 0.005, "{name} {title}: blank");
+            assert!(
+                clear_border(&pixels, 2),
+                "{name} {title}: cut off at the border"
+            );
+            let f = frame(&svg);
+            let sketch = sketch_pose(&scene);
+            let poses = animation.poses.xy.iter().chain([&sketch]);
+            for p in poses.flatten() {
+                let [x, y] = f.pixel(*p);
+                assert!(
+                    x > 0.0 && x < f.width && y > 0.0 && y < f.height,
+                    "{name} {title}"
+                );
+            }
+        }
+        let page = html(&scene, &report, &animation, &svg).unwrap();
+        assert!(
+            page.len() < MAX_BYTES,
+            "{name}: report of {} bytes",
+            page.len()
+        );
+        for network in ["src=", "<link", "@import", "url("] {
+            assert!(
+                !page.contains(network),
+                "{name}: the report loads `{network}`"
+            );
+        }
+        let addresses = page.matches("http").count();
+        let namespaces = page.matches("http://www.w3.org/2000/svg").count();
+        assert_eq!(
+            addresses, namespaces,
+            "{name}: only SVG namespaces, no addresses"
+        );
+    }
+}
+
+/// The joints of the drawings are where the solver puts them: at the sketch pose, every point
+/// at its sketch coordinates; at the first, a middle and the last frame of the sweep, every
+/// `[[output]] point` at the run's own x and y columns. Read back from the pixel centres
+/// through the frame on the `<svg>`, they agree to 1e-9 of the frame's width in model units
+/// (the pixel coordinates are written with every digit; the mapping is a few f64 operations;
+/// the run and the drawing solve the same positions on the same branch).
+#[test]
+fn drawn_joints_are_at_the_solver_positions() {
+    for path in scenes() {
+        let (scene, report) = load(&path);
+        let name = path.display().to_string();
+        let animation = Animation::of(&scene, &report).unwrap();
+        let sketch = animation
+            .drawing(&scene, "sketch", &sketch_pose(&scene))
+            .to_svg();
+        let tolerance = 1e-9 * frame(&sketch).width / frame(&sketch).scale;
+        let drawn = joints(&sketch);
+        assert_eq!(
+            drawn.len(),
+            scene.points.len(),
+            "{name}: one ring per point"
+        );
+        for (point, at) in drawn {
+            let p = scene.points.iter().find(|p| p.name == point).unwrap();
+            let miss = (at[0] - p.sketch[0]).hypot(at[1] - p.sketch[1]);
+            assert!(
+                miss <= tolerance,
+                "{name}: {point} off by {miss:e} at the sketch"
+            );
+        }
+        let frames = animation.rows.len();
+        for k in [0, frames / 2, frames - 1] {
+            let svg = animation
+                .drawing(&scene, "frame", &animation.poses.xy[k])
+                .to_svg();
+            let row = &report.rows[animation.rows[k]];
+            for (point, at) in joints(&svg) {
+                let column = |prefix: &str| {
+                    let c =
+                        (report.columns.iter()).position(|c| c.name == format!("{prefix}_{point}"));
+                    c.map(|c| row[c])
+                };
+                if let (Some(x), Some(y)) = (column("x"), column("y")) {
+                    let miss = (at[0] - x).hypot(at[1] - y);
+                    assert!(
+                        miss <= tolerance,
+                        "{name}: {point} off by {miss:e} in frame {k}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+const FOUR_BAR: &str = include_str!("../scenes/four_bar.toml");
+
+fn with_plot(plot: &str) -> mechdiff::Error {
+    let text = format!("{FOUR_BAR}\n[plot]\n{plot}\n");
+    let scene = match scene::parse("four_bar.toml", &text) {
+        Err(e) => return e,
+        Ok(scene) => scene,
+    };
+    let report = scene::run(&scene).unwrap();
+    let animation = Animation::of(&scene, &report).unwrap();
+    let error = drawings(&scene, &report, &animation).err();
+    error
+        .or_else(|| diagram(&scene, &report).err())
+        .expect("an error")
+}
+
+/// The line of the `[plot]` entry in the test's text: after the scene's own lines.
+fn plot_line() -> usize {
+    FOUR_BAR.lines().count() + 3
+}
+
+/// Bad `[plot]` input is refused with `file:line:col` and what is wrong.
+#[test]
+fn bad_plot_input_is_located() {
+    let line = plot_line();
+    let cases = [
+        (
+            "trace = [\"P\", \"Z\"]",
+            "unknown point `Z` in `[plot] trace`",
+        ),
+        ("trace = []", "`[plot] trace` is empty"),
+        ("panels = []", "`[plot] panels` is empty"),
+        (
+            "panels = [\"psi\", \"speed\"]",
+            "`speed`, which is neither an output nor a column",
+        ),
+        (
+            "positions = [90, 400]",
+            "drive position 400 deg is outside the sweep (0 deg to 360 deg)",
+        ),
+    ];
+    for (plot, message) in cases {
+        let text = with_plot(plot).to_string();
+        assert!(
+            text.starts_with(&format!("four_bar.toml:{line}:")),
+            "{plot}: {text}"
+        );
+        assert!(text.contains(message), "{plot}: {text}");
+    }
+    let text = with_plot("colour = \"red\"").to_string();
+    assert!(text.contains("unknown field `colour`"), "{text}");
+}
+
+/// A sweep of a million positions is drawn from at most `FRAMES` poses and decimated curves:
+/// the diagram and the report stay under the stated bound whatever the length. (The rows are
+/// the four-bar's, refined by interpolation: the pictures only read them.)
+#[test]
+fn a_million_positions_are_drawn_within_a_bounded_size() {
+    let (scene, short) = load(&scenes()[0]);
+    let n = 1_000_000;
+    let width = short.rows[0].len();
+    let (first, last) = (short.rows[0][0], short.rows[short.rows.len() - 1][0]);
+    let rows: Vec<Vec<f64>> = (0..n)
+        .map(|k| {
+            let t = k as f64 / (n - 1) as f64;
+            let phi = first + t * (last - first);
+            let source = &short.rows[((short.rows.len() - 1) as f64 * t) as usize];
+            std::iter::once(phi)
+                .chain(source[1..width].iter().copied())
+                .collect()
+        })
+        .collect();
+    let report = Report { rows, ..short };
+    let svg = diagram(&scene, &report).unwrap().to_svg().unwrap();
+    let animation = Animation::of(&scene, &report).unwrap();
+    assert_eq!(animation.rows.len(), mechdiff::pictures::run::FRAMES);
+    let page = html(&scene, &report, &animation, &svg).unwrap();
+    assert!(page.len() < MAX_BYTES, "report of {} bytes", page.len());
+    assert!(svg.len() < MAX_BYTES / 2, "diagram of {} bytes", svg.len());
+}
+
+/// `mechdiff run --plot DIR --report FILE --json FILE`: the files are written; the JSON has
+/// every row of the CSV with the same numbers (both print the shortest round-trip form).
+#[test]
+fn the_command_writes_pictures_report_and_json() {
+    let dir = std::env::temp_dir().join(format!("mechdiff-pictures-{}", std::process::id()));
+    let (plot, report, json, csv) = (
+        dir.join("plot"),
+        dir.join("run.html"),
+        dir.join("run.json"),
+        dir.join("run.csv"),
+    );
+    std::fs::create_dir_all(&dir).unwrap();
+    let output = Command::new(env!("CARGO_BIN_EXE_mechdiff"))
+        .args(["run", "scenes/four_bar.toml", "--plot"])
+        .args([
+            &plot,
+            Path::new("--report"),
+            &report,
+            Path::new("--json"),
+            &json,
+        ])
+        .args([Path::new("--csv"), &csv])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .unwrap();
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    for file in [
+        "diagram.svg",
+        "diagram.png",
+        "mechanism_sketch.svg",
+        "report.html",
+    ] {
+        assert!(plot.join(file).is_file(), "{file}");
+    }
+    assert!(report.is_file());
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let csv = std::fs::read_to_string(&csv).unwrap();
+    let rows = json["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), csv.lines().count() - 1);
+    for (row, line) in rows.iter().zip(csv.lines().skip(1)) {
+        let from_csv: Vec<f64> = line.split(',').map(|v| v.parse().unwrap()).collect();
+        let from_json: Vec<f64> = row
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect();
+        assert_eq!(from_csv, from_json);
+    }
+    assert_eq!(json["dead_positions"].as_array().unwrap().len(), 2);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
