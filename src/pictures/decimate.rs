@@ -15,7 +15,7 @@ pub fn sample(rows: usize, max: usize) -> Vec<usize> {
     picked
 }
 
-/// A curve of `len` points thinned to at most about `4 · buckets` points for drawing: the
+/// A curve of `len` points thinned to at most `5 · buckets` points for drawing: the
 /// points are cut into `buckets` runs of consecutive points, and each run keeps its first and
 /// last points and its lowest and highest y, in their order, so that no peak is lost at the
 /// drawing's resolution. A non-finite y inside a run is kept (it breaks the drawn line).
@@ -31,16 +31,15 @@ pub fn decimate(
     }
     let per = len.div_ceil(buckets);
     let mut out = Vec::with_capacity(4 * buckets + 4);
-    let mut run: Vec<[f64; 2]> = Vec::with_capacity(4);
     let mut state = Bucket::default();
     for (k, p) in points.enumerate() {
         state.add(k, p);
         if (k + 1) % per == 0 {
-            state.flush(&mut run, &mut out);
+            state.flush(&mut out);
             state = Bucket::default();
         }
     }
-    state.flush(&mut run, &mut out);
+    state.flush(&mut out);
     out
 }
 
@@ -71,7 +70,7 @@ impl Bucket {
         }
     }
 
-    fn flush(&self, run: &mut Vec<[f64; 2]>, out: &mut Vec<[f64; 2]>) {
+    fn flush(&self, out: &mut Vec<[f64; 2]>) {
         let mut kept: Vec<(usize, [f64; 2])> =
             [self.first, self.low, self.high, self.broken, self.last]
                 .into_iter()
@@ -79,9 +78,7 @@ impl Bucket {
                 .collect();
         kept.sort_by_key(|(k, _)| *k);
         kept.dedup_by_key(|(k, _)| *k);
-        run.clear();
-        run.extend(kept.into_iter().map(|(_, p)| p));
-        out.extend_from_slice(run);
+        out.extend(kept.into_iter().map(|(_, p)| p));
     }
 }
 

@@ -536,7 +536,7 @@ fn hatch(out: &mut String, a: [f64; 2], b: [f64; 2], depth: f64) {
         return;
     }
     let (ux, uy) = (dx / length, dy / length);
-    // Right of the direction in pixel space (y down) is (−uy, ux) rotated: (uy·−1, ux)...
+    // In pixel space (y down), (−uy, ux) points to the right of the direction of travel.
     let (nx, ny) = (-uy, ux);
     let count = (length / (0.8 * depth)).floor().clamp(1.0, 400.0) as usize;
     for k in 0..=count {

@@ -245,7 +245,7 @@ impl Rig {
 fn guide_extent(a: [f64; 2], b: [f64; 2], extent: &[[f64; 2]]) -> ([f64; 2], [f64; 2]) {
     let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
     let length = dx.hypot(dy);
-    if !(length > 0.0) {
+    if length.is_nan() || length <= 0.0 {
         return (a, b);
     }
     let (ux, uy) = (dx / length, dy / length);
@@ -311,7 +311,7 @@ fn hull(points: &[usize], pose: &[[f64; 2]]) -> Vec<usize> {
     lower.pop();
     upper.pop();
     lower.extend(upper);
-    if lower.len() == 2 || lower.len() < 2 {
+    if lower.len() <= 2 {
         // Collinear: the two extremes.
         return vec![p[0], p[p.len() - 1]];
     }
