@@ -294,6 +294,43 @@ pub enum Error {
         /// The joints of the loop, comma-separated.
         loop_joints: String,
     },
+    /// A derivative method returned NaN or an infinite value in the accuracy report, where
+    /// it claims a derivative: a silent failure of the method at that drive position.
+    #[error(
+        "accuracy: method `{method}` returned {value} for `{output}` (derivative order \
+         {order}) at φ = {phi:e} rad; the method fails there (report it, or leave the \
+         position out of the sweep)"
+    )]
+    NotFinite {
+        /// The method.
+        method: String,
+        /// The output.
+        output: String,
+        /// The derivative order (0: the value).
+        order: usize,
+        /// The drive position (rad).
+        phi: f64,
+        /// What it returned.
+        value: f64,
+    },
+    /// A derivative method of the accuracy report failed at a drive position.
+    #[error("accuracy: method `{method}` failed at φ = {phi} rad: {source}")]
+    Method {
+        /// The method.
+        method: String,
+        /// The drive position (rad).
+        phi: f64,
+        /// The engine's reason.
+        source: mechdiff_core::Error,
+    },
+    /// The extended-precision reference of an accuracy case could not be computed.
+    #[error("accuracy: no reference for {what}: {reason}")]
+    Reference {
+        /// What the reference was for.
+        what: String,
+        /// Why.
+        reason: String,
+    },
     /// A picture could not be drawn or rendered (see [`crate::pictures`]).
     #[error("cannot draw the picture: {message}")]
     Picture {

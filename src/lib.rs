@@ -7,6 +7,7 @@
 //! ([`codegen`]) and the care of the user's files ([`files`]).
 #![warn(missing_docs)]
 
+pub mod accuracy;
 pub mod codegen;
 
 pub use mechdiff_core as core;

@@ -25,6 +25,9 @@ enum Command {
     Run(cli::run::RunArgs),
     /// Check a scene file (syntax, names, units, sketch, mobility) without running it.
     Check(cli::check::CheckArgs),
+    /// Every derivative method against an extended-precision reference: error per order and
+    /// time per drive position, side by side (`whitworth` or a formula scene).
+    Accuracy(cli::accuracy::AccuracyArgs),
     /// Generate the Rust function that computes a formula and its derivatives (symbolic, with CSE)
     Codegen(mechdiff::codegen::Args),
 }
@@ -35,6 +38,7 @@ fn main() -> ExitCode {
         None | Some(Command::Whitworth) => whitworth(),
         Some(Command::Run(args)) => cli::run::run(&args).map_err(Into::into),
         Some(Command::Check(args)) => cli::check::check(&args).map_err(Into::into),
+        Some(Command::Accuracy(args)) => cli::accuracy::accuracy(&args).map_err(Into::into),
         Some(Command::Codegen(args)) => mechdiff::codegen::run(&args).map_err(Into::into),
     };
     match result {

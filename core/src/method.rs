@@ -111,8 +111,10 @@ impl CentralDifference {
         Self { step }
     }
 
-    /// The derivative stencil: x₋₂, x₋₁, x₀, x₁, x₂ → the first three derivatives.
-    fn stencil([m2, m1, x0, p1, p2]: [f64; 5], h: f64) -> [f64; 3] {
+    /// The derivative stencil: samples x₋₂, x₋₁, x₀, x₁, x₂ at φ + kh → the first three
+    /// derivatives (what [`Differentiator::jets`] applies to each output; public for callers
+    /// that sample a function themselves, such as the accuracy report).
+    pub fn stencil([m2, m1, x0, p1, p2]: [f64; 5], h: f64) -> [f64; 3] {
         [
             (p1 - m1) / (2.0 * h),
             (p1 - 2.0 * x0 + m1) / (h * h),

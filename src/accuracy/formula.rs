@@ -1,0 +1,339 @@
+//! Accuracy cases written as formulas of the drive: the hard cases of `scenes/hard/`.
+//!
+//! A formula scene is a small TOML file:
+//!
+//! ```toml
+//! title = "Whitworth ψ with λ = 0.999999: near the frame, 1 − λ cos φ cancels"
+//!
+//! [parameters]            # name = number; each is rounded to f64 once, as the methods see it
+//! lambda = 0.999999
+//!
+//! [outputs]               # name = formula of `phi` and the parameters (infix, see `mechdiff codegen`)
+//! psi = "atan2(lambda*sin(phi), 1 - lambda*cos(phi))"
+//!
+//! [sweep]                 # from, to, step in `unit` ("deg", the default, or "rad")
+//! from = 0
+//! to = 350
+//! step = 10
+//! at = ["acos(lambda)"]   # extra drive positions (rad), formulas of the parameters
+//! ```
+//!
+//! An optional top-level `error = "relative"` measures errors relative to each reference
+//! value instead of scaled by the output's largest value over the sweep.
+//!
+//! Every output is differentiated to order 3 by the symbolic engine. The methods compared
+//! are the engine's own evaluations of the same graph — the derivative formulas in `f64`
+//! ("symbolic (evaluator)") and the formula in `Dual1`, `Dual2`, `HyperDual`, `Dual3`
+//! (num-dual through the evaluator) — and finite differences of the formula in `f64`. The
+//! reference is the derivative formulas at 256 bits; the condition numbers follow from their
+//! gradients (see [`super::reference`]).
+
+use std::collections::BTreeMap;
+use std::sync::Arc;
+
+use mechdiff_core::num_dual::{Dual2_64, Dual3_64, Dual64, DualNum, HyperDual64};
+use mechdiff_core::symbolic::{Graph, Id};
+use serde::Deserialize;
+
+use super::reference::Formulas;
+use super::{Case, MAX_ORDER, Method, Values};
+use crate::Error;
+use crate::error::Location;
+
+/// A formula scene as written in the file.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FormulaScene {
+    /// What the case shows.
+    pub title: String,
+    /// Parameter values.
+    #[serde(default)]
+    pub parameters: BTreeMap<String, f64>,
+    /// Output formulas of `phi` and the parameters.
+    pub outputs: BTreeMap<String, String>,
+    /// The drive positions.
+    pub sweep: Sweep,
+    /// `"scaled"` (the default: |error| / max over the sweep of |reference|) or
+    /// `"relative"` (|error| / |reference| at each position).
+    #[serde(default)]
+    pub error: Option<String>,
+}
+
+/// The drive positions of a formula scene.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Sweep {
+    /// First position (in `unit`).
+    pub from: f64,
+    /// Last position (in `unit`), included.
+    pub to: f64,
+    /// Step (in `unit`), positive.
+    pub step: f64,
+    /// `"deg"` (the default) or `"rad"`.
+    #[serde(default)]
+    pub unit: Option<String>,
+    /// Extra positions (rad), formulas of the parameters.
+    #[serde(default)]
+    pub at: Vec<String>,
+}
+
+/// Whether a TOML text is a formula scene (it has `[outputs]` as a table of formulas)
+/// rather than a mechanism scene.
+pub fn is_formula_scene(text: &str) -> bool {
+    text.parse::<toml::Table>()
+        .ok()
+        .and_then(|t| t.get("outputs").map(toml::Value::is_table))
+        .unwrap_or(false)
+}
+
+fn syntax(file: &str, message: String) -> Error {
+    Error::Syntax {
+        location: Location {
+            file: Arc::from(file),
+            line: 1,
+            column: 1,
+        },
+        message,
+    }
+}
+
+/// Parses a formula scene; `file` names it in errors.
+///
+/// # Errors
+/// [`Error::Syntax`] for invalid TOML, an unknown key, a formula that does not parse or
+/// names an unknown symbol, or a sweep that is empty or not finite.
+pub fn parse(text: &str, file: &str) -> Result<FormulaScene, Error> {
+    let scene: FormulaScene = toml::from_str(text).map_err(|e| {
+        let (line, column) = e
+            .span()
+            .map(|span| {
+                let before = &text[..span.start.min(text.len())];
+                let line = before.matches('\n').count() + 1;
+                let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+                (line, column)
+            })
+            .unwrap_or((1, 1));
+        Error::Syntax {
+            location: Location {
+                file: Arc::from(file),
+                line,
+                column,
+            },
+            message: e.message().to_owned(),
+        }
+    })?;
+    let s = &scene.sweep;
+    let unit_ok = matches!(s.unit.as_deref(), None | Some("deg" | "rad"));
+    if !unit_ok {
+        return Err(syntax(
+            file,
+            "[sweep] unit: expected \"deg\" or \"rad\"".into(),
+        ));
+    }
+    if !(s.from.is_finite() && s.to.is_finite() && s.step.is_finite() && s.step > 0.0)
+        || s.to < s.from
+        || (s.to - s.from) / s.step > 100_000.0
+    {
+        return Err(syntax(
+            file,
+            "[sweep]: expected finite from ≤ to and a positive step giving at most 100000 \
+             positions"
+                .into(),
+        ));
+    }
+    if !matches!(scene.error.as_deref(), None | Some("scaled" | "relative")) {
+        return Err(syntax(
+            file,
+            "error: expected \"scaled\" or \"relative\"".into(),
+        ));
+    }
+    if scene.outputs.is_empty() {
+        return Err(syntax(
+            file,
+            "[outputs]: at least one formula is needed".into(),
+        ));
+    }
+    Ok(scene)
+}
+
+/// The accuracy case of a formula scene.
+///
+/// # Errors
+/// [`Error::Syntax`] if a formula does not parse or uses a symbol that is neither `phi` nor
+/// a parameter; [`Error::Reference`] if the reference does not evaluate.
+pub fn case(scene: &FormulaScene, file: &str) -> Result<Case<'static>, Error> {
+    let mut graph = Graph::new();
+    let names: Vec<&str> = scene.parameters.keys().map(String::as_str).collect();
+    let values: Vec<f64> = scene.parameters.values().copied().collect();
+    let parse = |graph: &mut Graph, what: &str, text: &str| -> Result<Id, Error> {
+        let id = graph
+            .parse_infix(text)
+            .map_err(|e| syntax(file, format!("{what} = \"{text}\": {e}")))?;
+        if let Some(unknown) = graph
+            .symbols(&[id])
+            .into_iter()
+            .find(|s| *s != "phi" && !names.contains(s))
+        {
+            return Err(syntax(
+                file,
+                format!(
+                    "{what} = \"{text}\": unknown symbol `{unknown}`; the drive is `phi` and \
+                     the parameters are: {}",
+                    names.join(", ")
+                ),
+            ));
+        }
+        Ok(id)
+    };
+    let mut roots = Vec::new();
+    for (name, text) in &scene.outputs {
+        roots.push(parse(&mut graph, &format!("[outputs] {name}"), text)?);
+    }
+    let mut positions = sweep_positions(&scene.sweep);
+    for text in &scene.sweep.at {
+        let id = parse(&mut graph, "[sweep] at", text)?;
+        let bindings: Vec<(&str, f64)> =
+            names.iter().copied().zip(values.iter().copied()).collect();
+        let phi = graph
+            .evaluate_f64(&[id], &bindings)
+            .map_err(|e| syntax(file, format!("[sweep] at = \"{text}\": {e}")))?[0];
+        if !phi.is_finite() {
+            return Err(syntax(file, format!("[sweep] at = \"{text}\" is {phi}")));
+        }
+        positions.push(phi);
+    }
+    positions.sort_by(f64::total_cmp);
+    positions.dedup();
+    let formulas = Formulas::new(graph, &roots, "phi", &names);
+    let mut reference = Vec::new();
+    let mut condition = Vec::new();
+    for &phi in &positions {
+        let (r, c) = formulas.reference(phi, &values)?;
+        reference.push(r);
+        condition.push(c);
+    }
+    let evaluator = Arc::new(Evaluator {
+        formulas,
+        names: names.iter().map(|s| s.to_string()).collect(),
+        values,
+    });
+    let methods = evaluator.methods();
+    let f = evaluator.clone();
+    Ok(Case {
+        title: scene.title.clone(),
+        outputs: scene.outputs.keys().cloned().collect(),
+        positions,
+        reference,
+        condition: Some(condition),
+        relative: scene.error.as_deref() == Some("relative"),
+        methods,
+        positions_f64: Box::new(move |phi, out| {
+            let v = f.evaluate(phi)?;
+            out.copy_from_slice(&v);
+            Ok(())
+        }),
+    })
+}
+
+/// The positions from, from + step, …, to (in radians).
+fn sweep_positions(s: &Sweep) -> Vec<f64> {
+    let to_rad = |x: f64| {
+        if s.unit.as_deref() == Some("rad") {
+            x
+        } else {
+            x.to_radians()
+        }
+    };
+    let n = ((s.to - s.from) / s.step + 1e-9).floor() as usize;
+    (0..=n)
+        .map(|k| to_rad(s.from + k as f64 * s.step))
+        .collect()
+}
+
+/// The formulas and parameter values, evaluated by each method.
+struct Evaluator {
+    formulas: Formulas,
+    names: Vec<String>,
+    values: Vec<f64>,
+}
+
+impl Evaluator {
+    /// The outputs in the num-dual type `D` (`f64` included) at the drive `phi`.
+    fn evaluate<D: DualNum<Primitive = f64> + Copy>(&self, phi: D) -> Result<Vec<D>, Error> {
+        let roots: Vec<Id> = self.formulas.jets().iter().map(|j| j[0]).collect();
+        let mut bindings: Vec<(&str, D)> = vec![("phi", phi)];
+        bindings.extend(
+            self.names
+                .iter()
+                .map(String::as_str)
+                .zip(self.values.iter().map(|&v| D::from(v))),
+        );
+        self.formulas
+            .graph()
+            .evaluate_dual(&roots, &bindings)
+            .map_err(|e| Error::Reference {
+                what: "the formulas".into(),
+                reason: e.to_string(),
+            })
+    }
+
+    fn methods(self: &Arc<Self>) -> Vec<Method<'static>> {
+        let symbolic = self.clone();
+        let ids: Vec<Id> = self.formulas.jets().iter().flatten().copied().collect();
+        let d1 = self.clone();
+        let d2 = self.clone();
+        let hd = self.clone();
+        let d3 = self.clone();
+        vec![
+            Method::exact("symbolic (evaluator)", MAX_ORDER, move |phi, out| {
+                let mut bindings: Vec<(&str, f64)> = vec![("phi", phi)];
+                bindings.extend(
+                    symbolic
+                        .names
+                        .iter()
+                        .map(String::as_str)
+                        .zip(symbolic.values.iter().copied()),
+                );
+                let v = symbolic
+                    .formulas
+                    .graph()
+                    .evaluate_f64(&ids, &bindings)
+                    .map_err(|e| Error::Reference {
+                        what: "the formulas".into(),
+                        reason: e.to_string(),
+                    })?;
+                for (o, jet) in out.iter_mut().zip(v.chunks(MAX_ORDER + 1)) {
+                    o.copy_from_slice(jet);
+                }
+                Ok(())
+            }),
+            Method::exact("Dual1 (evaluator)", 1, move |phi, out| {
+                let v = d1.evaluate(Dual64::from(phi).derivative())?;
+                write(out, v.iter().map(|x| [x.re, x.eps, f64::NAN, f64::NAN]));
+                Ok(())
+            }),
+            Method::exact("Dual2 (evaluator)", 2, move |phi, out| {
+                let v = d2.evaluate(Dual2_64::from(phi).derivative())?;
+                write(out, v.iter().map(|x| [x.re, x.v1, x.v2, f64::NAN]));
+                Ok(())
+            }),
+            Method::exact("HyperDual (evaluator)", 2, move |phi, out| {
+                let seed = HyperDual64::from(phi).derivative1().derivative2();
+                let v = hd.evaluate(seed)?;
+                write(out, v.iter().map(|x| [x.re, x.eps1, x.eps1eps2, f64::NAN]));
+                Ok(())
+            }),
+            Method::exact("Dual3 (evaluator)", 3, move |phi, out| {
+                let v = d3.evaluate(Dual3_64::from(phi).derivative())?;
+                write(out, v.iter().map(|x| [x.re, x.v1, x.v2, x.v3]));
+                Ok(())
+            }),
+        ]
+    }
+}
+
+fn write(out: &mut [Values], values: impl Iterator<Item = Values>) {
+    for (o, v) in out.iter_mut().zip(values) {
+        *o = v;
+    }
+}

@@ -1,0 +1,100 @@
+//! `mechdiff accuracy <scene.toml | whitworth>`: every derivative method against an
+//! extended-precision reference, timed side by side.
+
+use std::path::PathBuf;
+
+use clap::Args;
+use mechdiff::Error;
+use mechdiff::accuracy::{self, Timing, formula, whitworth};
+use mechdiff::mechanisms::Whitworth;
+use mechdiff::mechanisms::whitworth::Parameters;
+
+/// Arguments of `mechdiff accuracy`.
+#[derive(Debug, Args)]
+pub struct AccuracyArgs {
+    /// `whitworth` (the reference machine), or a formula scene (see scenes/hard/).
+    pub subject: String,
+    /// For `whitworth`: the crank ratio λ = l1/l0 (l0 kept at 0.4 m), in (0, 1).
+    #[arg(long)]
+    pub lambda: Option<f64>,
+    /// Write the report as CSV to this file instead of printing the table.
+    #[arg(long, value_name = "FILE")]
+    pub csv: Option<PathBuf>,
+    /// Write the SVG plot of error against time (Pareto front labelled) to this file, and
+    /// the error against the drive angle per method to the same name ending `-angle.svg`.
+    #[arg(long, value_name = "FILE")]
+    pub svg: Option<PathBuf>,
+    /// Timed repeats per method (the median and spread are over these).
+    #[arg(long, default_value_t = 15)]
+    pub repeats: usize,
+}
+
+/// Measures and prints (or writes) the report.
+pub fn accuracy(args: &AccuracyArgs) -> Result<(), Error> {
+    let timing = Timing {
+        repeats: args.repeats,
+        ..Timing::default()
+    };
+    let report = if args.subject == "whitworth" {
+        let mut parameters = Parameters::reference();
+        if let Some(lambda) = args.lambda {
+            parameters.l1 = lambda * parameters.l0;
+        }
+        let shaper = Whitworth::new(parameters).map_err(|e| Error::Reference {
+            what: "the Whitworth machine".into(),
+            reason: e.to_string(),
+        })?;
+        let linkage = whitworth::linkage(&shaper)?;
+        whitworth::case(&shaper, &linkage)?.measure(&timing)?
+    } else {
+        let path = PathBuf::from(&args.subject);
+        let text = std::fs::read_to_string(&path).map_err(|source| Error::Read {
+            path: path.clone(),
+            source,
+        })?;
+        if !formula::is_formula_scene(&text) {
+            return Err(Error::Reference {
+                what: args.subject.clone(),
+                reason: "the extended-precision reference is built for `whitworth` and for \
+                         formula scenes (an `[outputs]` table of formulas, see scenes/hard/); \
+                         mechanism scenes are not supported by `mechdiff accuracy` yet"
+                    .into(),
+            });
+        }
+        let scene = formula::parse(&text, &args.subject)?;
+        formula::case(&scene, &args.subject)?.measure(&timing)?
+    };
+    write(args, &report)
+}
+
+fn write(args: &AccuracyArgs, report: &accuracy::Report) -> Result<(), Error> {
+    let save = |path: &PathBuf, text: &str| -> Result<(), Error> {
+        // Written to a temporary name and renamed when complete.
+        let temporary = path.with_extension("partial");
+        std::fs::write(&temporary, text)
+            .and_then(|()| std::fs::rename(&temporary, path))
+            .map_err(|source| Error::Write {
+                path: path.clone(),
+                source,
+            })
+    };
+    if let Some(path) = &args.svg {
+        save(path, &accuracy::plot::pareto_svg(report, 900, 600)?)?;
+        accuracy::plot::along_sweep(report).write_svg(&angle_path(path))?;
+    }
+    match &args.csv {
+        Some(path) => save(path, &report.csv()),
+        None => {
+            print!("{}", report.table());
+            Ok(())
+        }
+    }
+}
+
+/// `out.svg` → `out-angle.svg`: where the error-against-angle diagram goes.
+fn angle_path(path: &std::path::Path) -> PathBuf {
+    let stem = path
+        .file_stem()
+        .map_or_else(|| "accuracy".into(), |s| s.to_string_lossy().into_owned());
+    path.with_file_name(format!("{stem}-angle.svg"))
+}

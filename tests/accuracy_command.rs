@@ -1,0 +1,118 @@
+//! `mechdiff accuracy` as a user calls it: the table, the CSV and SVG files, the errors.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn mechdiff(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_mechdiff"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the mechdiff binary runs")
+}
+
+fn temp_file(name: &str) -> PathBuf {
+    std::env::temp_dir().join(format!("mechdiff-accuracy-{}-{name}", std::process::id()))
+}
+
+/// `mechdiff accuracy whitworth` prints one row per method — every exact method and the
+/// finite differences at their best steps — and the step scans with the best step of each
+/// scheme.
+#[test]
+fn whitworth_table_lists_every_method_and_the_best_steps() {
+    let output = mechdiff(&["accuracy", "whitworth", "--repeats", "1"]);
+    assert!(output.status.success());
+    let text = String::from_utf8(output.stdout).unwrap();
+    for method in [
+        "hand-derived",
+        "symbolic (generated)",
+        "Dual1",
+        "Dual2",
+        "HyperDual",
+        "Dual3",
+        "geometry closed form",
+        "geometry Newton + implicit",
+        "central h=",
+        "forward h=",
+        "Richardson h=",
+        "central: best h",
+    ] {
+        assert!(text.contains(method), "{method} missing:\n{text}");
+    }
+    assert!(!text.contains("FAILED"), "{text}");
+}
+
+/// A formula scene with `--csv` and `--svg`: both files are written (CSV: the header and one
+/// row per method and per scanned step, 17 columns each; SVG: two `<svg` documents, the
+/// second named `…-angle.svg`).
+#[test]
+fn formula_scene_writes_csv_and_svg() {
+    let (csv, svg) = (temp_file("dwell.csv"), temp_file("dwell.svg"));
+    let output = mechdiff(&[
+        "accuracy",
+        "scenes/hard/dwell_dead_position.toml",
+        "--repeats",
+        "1",
+        "--csv",
+        csv.to_str().unwrap(),
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let table = std::fs::read_to_string(&csv).unwrap();
+    let mut lines = table.lines();
+    assert!(
+        lines
+            .next()
+            .unwrap()
+            .starts_with("method,kind,step,order,time_median_s")
+    );
+    let rows: Vec<&str> = lines.collect();
+    // 5 exact methods, at least one row per scheme, 3 × 37 scanned steps.
+    assert!(rows.len() >= 5 + 3 + 3 * 37, "{} rows", rows.len());
+    assert!(rows.iter().all(|r| r.matches(',').count() == 16), "{table}");
+    assert!(std::fs::read_to_string(&svg).unwrap().contains("<svg"));
+    let angle = svg.with_file_name(format!(
+        "{}-angle.svg",
+        svg.file_stem().unwrap().to_string_lossy()
+    ));
+    assert!(std::fs::read_to_string(&angle).unwrap().contains("<svg"));
+    let _ = (
+        std::fs::remove_file(csv),
+        std::fs::remove_file(svg),
+        std::fs::remove_file(angle),
+    );
+}
+
+/// A mechanism scene (points, links, joints) is refused with a message saying what the
+/// command takes instead.
+#[test]
+fn mechanism_scene_is_refused_with_what_is_supported() {
+    let output = mechdiff(&["accuracy", "scenes/slider_crank.toml"]);
+    assert!(!output.status.success());
+    let message = String::from_utf8(output.stderr).unwrap();
+    assert!(message.contains("formula scenes"), "{message}");
+}
+
+/// A formula with an unknown symbol names the file, the output and the symbol.
+#[test]
+fn unknown_symbol_is_named_with_the_file() {
+    let path = temp_file("bad.toml");
+    std::fs::write(
+        &path,
+        "title = \"t\"\n[outputs]\ny = \"sin(phi)*k\"\n[sweep]\nfrom = 0\nto = 10\nstep = 5\n",
+    )
+    .unwrap();
+    let output = mechdiff(&["accuracy", path.to_str().unwrap()]);
+    assert!(!output.status.success());
+    let message = String::from_utf8(output.stderr).unwrap();
+    assert!(
+        message.contains("bad.toml") && message.contains("[outputs] y") && message.contains("`k`"),
+        "{message}"
+    );
+    let _ = std::fs::remove_file(path);
+}
