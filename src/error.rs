@@ -301,7 +301,7 @@ pub enum Error {
          {order}) at φ = {phi:e} rad; the method fails there (report it, or leave the \
          position out of the sweep)"
     )]
-    NotFinite {
+    MethodNotFinite {
         /// The method.
         method: String,
         /// The output.

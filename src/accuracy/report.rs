@@ -128,7 +128,7 @@ impl Report {
     /// `Ok` if no method returned NaN or an infinite value, else the first that did.
     ///
     /// # Errors
-    /// [`Error::NotFinite`] naming the method, output, order and drive position.
+    /// [`Error::MethodNotFinite`] naming the method, output, order and drive position.
     pub fn check_finite(&self) -> Result<(), Error> {
         match self
             .measurements
@@ -136,7 +136,7 @@ impl Report {
             .find_map(|m| Some((m, m.failure.as_ref()?)))
         {
             None => Ok(()),
-            Some((m, f)) => Err(Error::NotFinite {
+            Some((m, f)) => Err(Error::MethodNotFinite {
                 method: m.name.clone(),
                 output: f.output.clone(),
                 order: f.order,

@@ -102,15 +102,13 @@ pub fn constant_formula(text: &str) -> Result<f64, String> {
         ));
     }
     let mut graph = Graph::new();
-    let id = graph
-        .parse_infix(text)
-        .map_err(|e| {
-            // The scene's error is located at the string; of the engine's message keep the
-            // first line (its column in the formula), not the caret drawn under it.
-            let e = e.to_string();
-            let first = e.lines().next().unwrap_or_default();
-            format!("{quoted} cannot be read: {first}; {allowed}")
-        })?;
+    let id = graph.parse_infix(text).map_err(|e| {
+        // The scene's error is located at the string; of the engine's message keep the
+        // first line (its column in the formula), not the caret drawn under it.
+        let e = e.to_string();
+        let first = e.lines().next().unwrap_or_default();
+        format!("{quoted} cannot be read: {first}; {allowed}")
+    })?;
     let constants = [("pi", std::f64::consts::PI), ("tau", std::f64::consts::TAU)];
     if let Some(name) = graph
         .symbols(&[id])
