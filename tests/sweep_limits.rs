@@ -182,8 +182,8 @@ name = "w"
 angle = ["W", "W1"]
 quantities = ["position"]
 "#;
-    let s = scene::parse("rack.toml", text).unwrap();
-    let e = scene::check(&s).unwrap_err();
-    assert!(e.to_string().contains("not finite"), "{e}");
-    assert!(scene::run(&s).is_err());
+    // The scene reader refuses 1e308 m where it is written (beyond the 1e9 m length limit);
+    // the solver's own refusal of a non-finite Jacobian is tested in core.
+    let e = scene::parse("rack.toml", text).unwrap_err();
+    assert!(e.to_string().contains("at most"), "{e}");
 }

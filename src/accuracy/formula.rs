@@ -32,6 +32,7 @@ use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use mechdiff_core::num_dual::{Dual2_64, Dual3_64, Dual64, DualNum, HyperDual64};
+use mechdiff_core::symbolic::constants::is_named_constant;
 use mechdiff_core::symbolic::{Graph, Id};
 use serde::Deserialize;
 
@@ -172,7 +173,7 @@ pub fn case(scene: &FormulaScene, file: &str) -> Result<Case<'static>, Error> {
         if let Some(unknown) = graph
             .symbols(&[id])
             .into_iter()
-            .find(|s| *s != "phi" && !names.contains(s))
+            .find(|s| *s != "phi" && !names.contains(s) && !is_named_constant(s))
         {
             return Err(syntax(
                 file,

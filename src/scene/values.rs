@@ -7,6 +7,7 @@
 use std::fmt;
 
 use mechdiff_core::symbolic::Graph;
+use mechdiff_core::symbolic::constants::is_named_constant;
 use serde::Deserialize;
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
 use toml::Spanned;
@@ -113,7 +114,7 @@ pub fn constant_formula(text: &str) -> Result<f64, String> {
     if let Some(name) = graph
         .symbols(&[id])
         .into_iter()
-        .find(|s| constants.iter().all(|(c, _)| c != s))
+        .find(|s| !is_named_constant(s) && constants.iter().all(|(c, _)| c != s))
     {
         return Err(format!(
             "{quoted} uses `{name}`, which is not a constant; {allowed}"
