@@ -11,12 +11,16 @@ use mechdiff::scene;
 pub struct CheckArgs {
     /// The scene file (TOML; see docs/scene-format.md).
     pub scene: PathBuf,
+    /// Replace the value of a parameter of the scene's `[parameters]` (repeatable):
+    /// `--set l1=0.16`; the value may be a formula of the other parameters.
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    pub set: Vec<scene::parameters::Setting>,
 }
 
 /// Reads the scene, builds its model and checks its mobility at the sketch pose; prints a
 /// summary and the plan a run would carry out.
 pub fn check(args: &CheckArgs) -> Result<(), Error> {
-    let scene = scene::load(&args.scene)?;
+    let scene = scene::load_with(&args.scene, &args.set)?;
     let checked = scene::check(&scene)?;
     let m = &checked.mechanism;
     println!(
