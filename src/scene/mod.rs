@@ -34,6 +34,7 @@
 //! ```
 
 pub mod build;
+pub mod construct;
 mod drive;
 pub mod dynamics;
 mod evaluate;
@@ -43,6 +44,7 @@ pub mod limits;
 pub mod model;
 pub mod outputs;
 pub mod parameters;
+mod placement;
 pub mod plan;
 pub mod resolve;
 pub mod run;

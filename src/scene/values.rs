@@ -94,7 +94,8 @@ pub fn formula(text: &str, bindings: &[(String, f64)]) -> Result<f64, String> {
         let parameters = if bindings.is_empty() {
             "the scene has no `[parameters]`".to_owned()
         } else {
-            let names: Vec<&str> = bindings.iter().map(|(n, _)| n.as_str()).collect();
+            let mut names: Vec<&str> = bindings.iter().map(|(n, _)| n.as_str()).collect();
+            names.sort_unstable();
             format!("the parameters are: {}", names.join(", "))
         };
         return Err(format!(

@@ -1,0 +1,249 @@
+//! Issue 14, "Writing a mechanism as a designer thinks of it": `[parameters]` and `--set`,
+//! points built from lengths, masses from a density, and inch scenes.
+//!
+//! The four-bar is Norton's (Design of Machinery, the non-Grashof four-bar with
+//! a = 0.86, b = 1.85, c = 0.86, d = 2.22 m as given in issue 14): crank O2–A = a,
+//! coupler A–B = b, rocker O4–B = c, ground O2–O4 = d. s + l = 3.08 > p + q = 2.71, so the
+//! crank rocks: |A O4| ≤ b + c holds for crank angles within ±116.0°, and the sweep stays
+//! within 0°…100°.
+
+use mechdiff::Error;
+use mechdiff::scene::{self, Report, parameters::Setting};
+
+const A: f64 = 0.86;
+const B: f64 = 1.85;
+const C: f64 = 0.86;
+const D: f64 = 2.22;
+/// The crank angle of the sketch (deg).
+const SKETCH: f64 = 30.0;
+
+/// Everything after `[points]` that the two versions of the four-bar share.
+const REST: &str = r#"
+[links]
+ground = ["O2", "O4"]
+crank = ["O2", "A"]
+coupler = ["A", "B"]
+rocker = ["O4", "B"]
+
+[joints]
+O2 = { type = "revolute", at = "O2", links = ["ground", "crank"] }
+A = { type = "revolute", at = "A", links = ["crank", "coupler"] }
+B = { type = "revolute", at = "B", links = ["coupler", "rocker"] }
+O4 = { type = "revolute", at = "O4", links = ["ground", "rocker"] }
+
+[drive]
+joint = "O2"
+line = ["O2", "A"]
+speed = 10
+acceleration = 5
+
+[sweep]
+from = 0
+to = 100
+step = 10
+
+[[output]]
+name = "psi"
+angle = ["O4", "B"]
+quantities = ["position", "velocity_coefficient", "acceleration_coefficient", "velocity", "acceleration"]
+
+[[output]]
+point = "B"
+"#;
+
+/// The four-bar written with its lengths only.
+fn from_lengths() -> String {
+    format!(
+        r#"[parameters]
+a = 0.86
+b = 1.85
+c = 0.86
+d = 2.22
+theta = {SKETCH}
+
+[units]
+angle = "deg"
+
+[points]
+O2 = [0, 0]
+O4 = ["d", 0]
+A = {{ from = "O2", length = "a", angle = "theta" }}
+B = {{ circles = ["A", "O4"], radii = ["b", "c"], side = "left" }}
+{REST}"#
+    )
+}
+
+/// The four-bar with coordinates computed here, independently of the scene's construction:
+/// B from the triangle A–O4–B by the law of cosines at O4, the branch left of A → O4.
+fn from_coordinates() -> String {
+    let theta = SKETCH.to_radians();
+    let a = [A * theta.cos(), A * theta.sin()];
+    let e = (a[0] - D).hypot(a[1]);
+    let gamma = ((C * C + e * e - B * B) / (2.0 * C * e)).acos();
+    let towards_a = a[1].atan2(a[0] - D);
+    let candidates = [towards_a + gamma, towards_a - gamma].map(|t| [D + C * t.cos(), C * t.sin()]);
+    let left = |p: [f64; 2]| (D - a[0]) * (p[1] - a[1]) - (0.0 - a[1]) * (p[0] - a[0]) > 0.0;
+    let b = candidates.into_iter().find(|&p| left(p)).unwrap();
+    format!(
+        "[units]\nangle = \"deg\"\n\n[points]\nO2 = [0, 0]\nO4 = [{D:e}, 0]\nA = [{:e}, {:e}]\n\
+         B = [{:e}, {:e}]\n{REST}",
+        a[0], a[1], b[0], b[1]
+    )
+}
+
+fn run(text: &str, settings: &[Setting]) -> Report {
+    let scene = scene::parse_with("test.toml", text, settings).unwrap_or_else(|e| panic!("{e}"));
+    scene::run(&scene).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Asserts two reports have the same columns and agree to `tol` (absolute, SI).
+fn assert_same(got: &Report, want: &Report, tol: f64) {
+    assert_eq!(got.columns.len(), want.columns.len());
+    for (g, w) in got.rows.iter().zip(&want.rows) {
+        for (k, (x, y)) in g.iter().zip(w).enumerate() {
+            assert!(
+                (x - y).abs() <= tol,
+                "column {}: {x} vs {y}",
+                got.columns[k].name
+            );
+        }
+    }
+    assert_eq!(got.rows.len(), want.rows.len());
+}
+
+/// The 1-based line of the first occurrence of `what` in `text`.
+fn line_of(text: &str, what: &str) -> usize {
+    text[..text.find(what).unwrap()].matches('\n').count() + 1
+}
+
+#[test]
+fn nortons_four_bar_from_its_lengths_moves_as_its_coordinate_version() {
+    let lengths = run(&from_lengths(), &[]);
+    let coordinates = run(&from_coordinates(), &[]);
+    // 1e-12 absolute on values of order 1–100 (rad, m, rad/s²): the two sketches differ by
+    // a few ulps (two derivations of B), and both sweeps solve the same loop from them.
+    assert_same(&lengths, &coordinates, 1e-12);
+    // The crank length really is a: |A| at every row is checked through B's distance to O4.
+    let (bx, by) = (
+        lengths.column("x_B").unwrap(),
+        lengths.column("y_B").unwrap(),
+    );
+    for (x, y) in bx.iter().zip(&by) {
+        // 1e-12: the rocker length is held by the solver to its convergence tolerance.
+        assert!(((x - D).hypot(*y) - C).abs() < 1e-12);
+    }
+}
+
+#[test]
+fn set_replaces_a_parameter_and_formulas_follow_it() {
+    // The ground twice as long with the crank and rocker scaled with it: every length × 2,
+    // so angles are unchanged and positions double (exact: scaling by 2 is exact in f64, and
+    // the construction and the solver commute with it up to rounding, 1e-12).
+    let text = from_lengths()
+        .replace("a = 0.86", "s = 1\na = \"0.86*s\"")
+        .replace("b = 1.85", "b = \"1.85*s\"")
+        .replace("c = 0.86", "c = \"0.86*s\"")
+        .replace("d = 2.22", "d = \"2.22*s\"");
+    let one = run(&text, &[]);
+    let two = run(&text, &["s=2".parse().unwrap()]);
+    let (psi1, psi2) = (one.column("psi").unwrap(), two.column("psi").unwrap());
+    for (p1, p2) in psi1.iter().zip(&psi2) {
+        assert!((p1 - p2).abs() < 1e-12, "{p1} vs {p2}");
+    }
+    let (x1, x2) = (one.column("x_B").unwrap(), two.column("x_B").unwrap());
+    for (a, b) in x1.iter().zip(&x2) {
+        assert!((2.0 * a - b).abs() < 1e-12, "{a} vs {b}");
+    }
+    let e = scene::parse_with("test.toml", &text, &["q=2".parse().unwrap()]).unwrap_err();
+    assert!(matches!(e, Error::Setting { .. }), "{e:?}");
+    assert!(
+        e.to_string()
+            .contains("no parameter `q`; its parameters are: "),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_formula_naming_an_unknown_parameter_is_refused_at_its_column() {
+    let text = from_lengths().replace("radii = [\"b\", \"c\"]", "radii = [\"b\", \"2*cc\"]");
+    let e = scene::parse("bad.toml", &text).unwrap_err();
+    let message = e.to_string();
+    assert!(
+        message.starts_with(&format!("bad.toml:{}:", line_of(&text, "B = {"))),
+        "{message}"
+    );
+    assert!(
+        message.contains("uses `cc` (column 3 of the formula)"),
+        "{message}"
+    );
+    assert!(message.contains("the parameters are: "), "{message}");
+}
+
+#[test]
+fn circles_that_do_not_meet_are_refused_naming_the_construction_and_its_lengths() {
+    // b + c = 2.71 < |A O4| once the coupler is 0.5: the circles are apart.
+    let text = from_lengths().replace("b = 1.85", "b = 0.5");
+    let e = scene::parse("bad.toml", &text).unwrap_err();
+    assert!(matches!(e, Error::Unconstructible { .. }), "{e:?}");
+    let message = e.to_string();
+    assert!(
+        message.starts_with(&format!("bad.toml:{}:", line_of(&text, "B = {"))),
+        "{message}"
+    );
+    for part in [
+        "point `B`",
+        "`A` of radius 0.5 m",
+        "`O4` of radius 0.86 m",
+        "more than the sum",
+    ] {
+        assert!(message.contains(part), "`{part}` missing from: {message}");
+    }
+}
+
+#[test]
+fn a_slider_crank_built_from_a_circle_and_a_line_moves_as_its_coordinate_version() {
+    // Crank 0.1 at 60°, connecting rod 0.35, the slider on the x axis ahead of the crank.
+    let rest = r#"
+[links]
+ground = ["O", "G"]
+crank = ["O", "A"]
+rod = ["A", "C"]
+slider = ["C"]
+
+[joints]
+O = { type = "revolute", at = "O", links = ["ground", "crank"] }
+A = { type = "revolute", at = "A", links = ["crank", "rod"] }
+C = { type = "revolute", at = "C", links = ["rod", "slider"] }
+S = { type = "prismatic", links = ["ground", "slider"], line = ["O", "G"], point = "C" }
+
+[drive]
+joint = "O"
+line = ["O", "A"]
+speed = 1
+
+[sweep]
+from = 0
+to = 360
+step = 30
+
+[[output]]
+slider = "S"
+"#;
+    let built = format!(
+        "[units]\nangle = \"deg\"\n[points]\nO = [0, 0]\nG = [1, 0]\n\
+         A = {{ from = \"O\", length = 0.1, angle = 60 }}\n\
+         C = {{ circle = \"A\", radius = 0.35, line = [\"O\", \"G\"], along = \"forward\" }}\n{rest}"
+    );
+    // C = A_x + sqrt(0.35² − A_y²) on the x axis.
+    let (ax, ay) = (
+        0.1 * 60f64.to_radians().cos(),
+        0.1 * 60f64.to_radians().sin(),
+    );
+    let c = ax + (0.35f64 * 0.35 - ay * ay).sqrt();
+    let coordinates = format!(
+        "[units]\nangle = \"deg\"\n[points]\nO = [0, 0]\nG = [1, 0]\nA = [{ax:e}, {ay:e}]\n\
+         C = [{c:e}, 0]\n{rest}"
+    );
+    // 1e-12 absolute on slider travel of order 0.1 m: the two sketches agree to rounding.
+    assert_same(&run(&built, &[]), &run(&coordinates, &[]), 1e-12);
+}
