@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use clap::Args;
 use mechdiff::Error;
 use mechdiff::scene;
+use mechdiff::scene::units::{Dimension, Units};
 
 /// Arguments of `mechdiff check`.
 #[derive(Debug, Args)]
@@ -18,7 +19,8 @@ pub struct CheckArgs {
 }
 
 /// Reads the scene, builds its model and checks its mobility at the sketch pose; prints a
-/// summary and the plan a run would carry out.
+/// summary, every link's lengths (which the solver holds) and the plan a run would carry
+/// out.
 pub fn check(args: &CheckArgs) -> Result<(), Error> {
     let scene = scene::load_with(&args.scene, &args.set)?;
     let checked = scene::check(&scene)?;
@@ -44,6 +46,12 @@ pub fn check(args: &CheckArgs) -> Result<(), Error> {
             k + 1,
             joints.join(", ")
         );
+    }
+    let units = scene.units;
+    let unit = units.symbol(Dimension::Length);
+    for (link, a, b, length) in scene.link_lengths() {
+        let length = Units::tidy(units.from_si(length, Dimension::Length));
+        println!("length {link}: {a}–{b} = {length} {unit}");
     }
     println!("{}", checked.plan.describe(&scene));
     Ok(())
