@@ -247,3 +247,78 @@ slider = "S"
     // 1e-12 absolute on slider travel of order 0.1 m: the two sketches agree to rounding.
     assert_same(&run(&built, &[]), &run(&coordinates, &[]), 1e-12);
 }
+
+/// Mass per length of the Norton four-bar's moving links (kg/m), as a steel bar of about
+/// 10 cm² section.
+const RHO: f64 = 7.8;
+
+/// The dynamic sections: masses from the density, or as written by `masses`.
+fn with_dynamics(text: &str, masses: &str) -> String {
+    format!(
+        "{text}\n[gravity]\ng = 9.81\n\n[masses]\n{masses}\n[[dynamics]]\noutput = \"drive_torque\"\n"
+    )
+}
+
+#[test]
+fn nortons_drive_torque_from_a_density_matches_explicit_masses() {
+    let density = format!(
+        "crank = {{ density = {RHO} }}\ncoupler = {{ density = {RHO} }}\nrocker = {{ density = \"{RHO}\" }}\n"
+    );
+    let built = run(&with_dynamics(&from_lengths(), &density), &[]);
+    // The explicit version: coordinates as in `from_coordinates`, each link a uniform bar
+    // written out here (m = ρL at the midpoint, I = mL²/12), with L the link's length.
+    let coordinates = from_coordinates();
+    let xy = |name: &str| -> [f64; 2] {
+        let line = coordinates
+            .lines()
+            .find(|l| l.starts_with(&format!("{name} = [")))
+            .unwrap();
+        let inner = line.split('[').nth(1).unwrap().trim_end_matches(']');
+        let v: Vec<f64> = inner
+            .split(',')
+            .map(|t| t.trim().parse().unwrap())
+            .collect();
+        [v[0], v[1]]
+    };
+    let mut masses = String::new();
+    for (link, p, q, length) in [
+        ("crank", "O2", "A", A),
+        ("coupler", "A", "B", B),
+        ("rocker", "O4", "B", C),
+    ] {
+        let (p, q) = (xy(p), xy(q));
+        let m = RHO * length;
+        masses.push_str(&format!(
+            "{link} = {{ mass = {m:e}, center = [{:e}, {:e}], inertia = {:e} }}\n",
+            0.5 * (p[0] + q[0]),
+            0.5 * (p[1] + q[1]),
+            m * length * length / 12.0
+        ));
+    }
+    let explicit = run(&with_dynamics(&coordinates, &masses), &[]);
+    let torque = |r: &Report| r.column("M_drive").expect("a drive torque column");
+    let (got, want) = (torque(&built), torque(&explicit));
+    let largest = want.iter().fold(0.0f64, |m, t| m.max(t.abs()));
+    assert!(
+        largest > 1.0,
+        "the torque is not trivially small: {largest}"
+    );
+    for (g, w) in got.iter().zip(&want) {
+        // 1e-12 of the largest torque: the two sketches and the two bar lengths (from the
+        // sketch, and the parameter) differ by a few ulps.
+        assert!((g - w).abs() <= 1e-12 * largest, "{g} vs {w}");
+    }
+}
+
+#[test]
+fn a_mass_needs_exactly_one_of_mass_and_density() {
+    let text = with_dynamics(
+        &from_lengths(),
+        "crank = { mass = 1, density = 2, center = \"A\" }\n",
+    );
+    let e = scene::parse("bad.toml", &text).unwrap_err();
+    assert!(e.to_string().contains("exactly one of `mass`"), "{e}");
+    let text = with_dynamics(&from_lengths(), "crank = { mass = 1 }\n");
+    let e = scene::parse("bad.toml", &text).unwrap_err();
+    assert!(e.to_string().contains("without its `center`"), "{e}");
+}

@@ -13,7 +13,7 @@ use crate::scene::model::{DriveKind, Joint, JointKind};
 use crate::scene::resolve::{Context, Geometry};
 use crate::scene::units::Dimension;
 
-use super::format::{CenterDef, DrivingSide, DynamicQuantity, DynamicsSections, LoadDef};
+use super::format::{CenterDef, DrivingSide, DynamicQuantity, DynamicsSections, LoadDef, MassDef};
 
 /// One checked `[[dynamics]]` output.
 #[derive(Debug, Clone, PartialEq)]
@@ -111,45 +111,7 @@ pub(crate) fn resolve(
     let mut masses = Vec::new();
     for (name, def) in s.masses.map(|m| m.get_ref().iter()).into_iter().flatten() {
         let link = cx.link(name, geometry.links, "`[masses]`")?;
-        let d = def.get_ref();
-        let mass = non_negative(
-            cx,
-            &d.mass,
-            &format!("the mass of link `{link}` (kg)"),
-            limits::MASS,
-        )?;
-        let moment = match &d.inertia {
-            Some(i) => non_negative(
-                cx,
-                i,
-                &format!("the moment of inertia of link `{link}` (kg·m²)"),
-                limits::MOMENT_OF_INERTIA,
-            )?,
-            None => 0.0,
-        };
-        let center = match d.center.get_ref() {
-            CenterDef::Point(p) => {
-                let spanned = Spanned::new(d.center.span(), p.clone());
-                let p =
-                    cx.point_on(&spanned, link, geometry, &format!("`masses.{link}.center`"))?;
-                geometry.sketch(p)
-            }
-            CenterDef::Xy(xy) => {
-                let coordinate = |v: f64, axis: &str| {
-                    let what = format!("the {axis} coordinate of the centre of link `{link}`");
-                    cx.number(&Spanned::new(d.center.span(), v), &what, Dimension::Length)
-                };
-                [coordinate(xy[0].0, "x")?, coordinate(xy[1].0, "y")?]
-            }
-        };
-        masses.push((
-            link.to_owned(),
-            Inertia {
-                mass,
-                center,
-                moment,
-            },
-        ));
+        masses.push((link.to_owned(), mass_properties(cx, link, def, geometry)?));
     }
     let mut data = Dynamics::new();
     if let Some(g) = s.gravity {
@@ -363,4 +325,104 @@ fn load(
         );
     }
     Ok(load)
+}
+
+/// A link's mass, centre and moment: given, or from a density per length (uniform bar).
+fn mass_properties(
+    cx: &Context,
+    link: &str,
+    def: &Spanned<MassDef>,
+    geometry: &Geometry,
+) -> Result<Inertia> {
+    let d = def.get_ref();
+    let (mass, bar) = match (&d.mass, &d.density) {
+        (Some(_), Some(_)) | (None, None) => {
+            return Err(cx.invalid(
+                def,
+                format!(
+                    "`masses.{link}` needs exactly one of `mass` (kg, with `center`) and \
+                     `density` (kg/m, a uniform bar)"
+                ),
+            ));
+        }
+        (None, Some(density)) => {
+            let density = non_negative(
+                cx,
+                density,
+                &format!("the density of link `{link}` (kg/m)"),
+                limits::MASS,
+            )?;
+            let [a, b] = bar_ends(cx, link, def, geometry)?;
+            let bar = Inertia::uniform_bar(density, geometry.sketch(&a), geometry.sketch(&b));
+            (bar.mass, Some(bar))
+        }
+        (Some(m), None) => {
+            let what = format!("the mass of link `{link}` (kg)");
+            (non_negative(cx, m, &what, limits::MASS)?, None)
+        }
+    };
+    let moment = match (&d.inertia, &bar) {
+        (Some(i), _) => non_negative(
+            cx,
+            i,
+            &format!("the moment of inertia of link `{link}` (kg·m²)"),
+            limits::MOMENT_OF_INERTIA,
+        )?,
+        (None, Some(bar)) => bar.moment,
+        (None, None) => 0.0,
+    };
+    let center = match (&d.center, &bar) {
+        (Some(center), _) => match center.get_ref() {
+            CenterDef::Point(p) => {
+                let spanned = Spanned::new(center.span(), p.clone());
+                let p =
+                    cx.point_on(&spanned, link, geometry, &format!("`masses.{link}.center`"))?;
+                geometry.sketch(p)
+            }
+            CenterDef::Xy(xy) => {
+                let coordinate = |v: f64, axis: &str| {
+                    let what = format!("the {axis} coordinate of the centre of link `{link}`");
+                    cx.number(&Spanned::new(center.span(), v), &what, Dimension::Length)
+                };
+                [coordinate(xy[0].0, "x")?, coordinate(xy[1].0, "y")?]
+            }
+        },
+        (None, Some(bar)) => bar.center,
+        (None, None) => {
+            return Err(cx.invalid(
+                def,
+                format!(
+                    "`masses.{link}` gives a `mass` without its `center`; add `center = \"P\"` \
+                     (a point of the link) or `center = [x, y]`"
+                ),
+            ));
+        }
+    };
+    Ok(Inertia {
+        mass,
+        center,
+        moment,
+    })
+}
+
+/// The ends of a uniform bar: `bar`, or the link's two points.
+fn bar_ends(
+    cx: &Context,
+    link: &str,
+    def: &Spanned<MassDef>,
+    geometry: &Geometry,
+) -> Result<[String; 2]> {
+    if let Some(bar) = &def.get_ref().bar {
+        return cx.line(bar, link, geometry, &format!("`masses.{link}.bar`"));
+    }
+    match geometry.link(link).map(|l| l.points.as_slice()) {
+        Some([a, b]) => Ok([a.clone(), b.clone()]),
+        _ => Err(cx.invalid(
+            def,
+            format!(
+                "link `{link}` does not have exactly two points, so its bar is not known; give \
+                 its ends with `bar = [\"P\", \"Q\"]`"
+            ),
+        )),
+    }
 }
