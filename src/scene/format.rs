@@ -65,7 +65,7 @@ pub struct SceneFile {
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct UnitsSection {
-    /// `"m"` (default) or `"mm"`; velocities and accelerations of points follow (per s, s²).
+    /// `"m"` (default), `"mm"`, `"in"` or `"ft"`; velocities and accelerations of points follow (per s, s²).
     pub length: Option<Spanned<LengthUnit>>,
     /// `"rad"` (default) or `"deg"`.
     pub angle: Option<Spanned<AngleUnit>>,
@@ -73,6 +73,14 @@ pub struct UnitsSection {
     pub angular_velocity: Option<Spanned<AngularVelocityUnit>>,
     /// `"rad/s^2"` (default) or `"deg/s^2"`.
     pub angular_acceleration: Option<Spanned<AngularAccelerationUnit>>,
+    /// `"kg"` (default), `"lb"` or `"slug"`: masses; densities are per length unit.
+    pub mass: Option<Spanned<super::units::MassUnit>>,
+    /// `"N"` (default) or `"lbf"`: load forces.
+    pub force: Option<Spanned<super::units::ForceUnit>>,
+    /// `"N*m"` (default), `"N*mm"`, `"lbf*in"` or `"lbf*ft"`: load torques.
+    pub torque: Option<Spanned<super::units::TorqueUnit>>,
+    /// `"kg*m^2"` (default), `"kg*mm^2"`, `"lb*in^2"` or `"slug*ft^2"`: moments of inertia.
+    pub inertia: Option<Spanned<super::units::InertiaUnit>>,
 }
 
 /// How a point is placed in the sketch.

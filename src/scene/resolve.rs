@@ -95,27 +95,18 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
 }
 
 fn units(section: &format::UnitsSection) -> Units {
+    fn or_default<T: Copy + Default>(unit: &Option<Spanned<T>>) -> T {
+        unit.as_ref().map(|u| *u.get_ref()).unwrap_or_default()
+    }
     Units {
-        length: section
-            .length
-            .as_ref()
-            .map(|u| *u.get_ref())
-            .unwrap_or_default(),
-        angle: section
-            .angle
-            .as_ref()
-            .map(|u| *u.get_ref())
-            .unwrap_or_default(),
-        angular_velocity: section
-            .angular_velocity
-            .as_ref()
-            .map(|u| *u.get_ref())
-            .unwrap_or_default(),
-        angular_acceleration: section
-            .angular_acceleration
-            .as_ref()
-            .map(|u| *u.get_ref())
-            .unwrap_or_default(),
+        length: or_default(&section.length),
+        angle: or_default(&section.angle),
+        angular_velocity: or_default(&section.angular_velocity),
+        angular_acceleration: or_default(&section.angular_acceleration),
+        mass: or_default(&section.mass),
+        force: or_default(&section.force),
+        torque: or_default(&section.torque),
+        inertia: or_default(&section.inertia),
     }
 }
 

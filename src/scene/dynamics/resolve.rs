@@ -65,6 +65,18 @@ fn non_negative(cx: &Context, v: &Spanned<f64>, what: &str, largest: f64) -> Res
     cx.in_range(v, what, 0.0..=largest, "")
 }
 
+/// A non-negative quantity in the file's unit of `dimension`, converted to SI.
+fn non_negative_in(
+    cx: &Context,
+    v: &Spanned<f64>,
+    what: &str,
+    dimension: Dimension,
+) -> Result<f64> {
+    let si = cx.number(v, what, dimension)?;
+    cx.in_range(v, what, 0.0..=f64::MAX, cx.units.symbol(dimension))?;
+    Ok(si)
+}
+
 fn efficiency(cx: &Context, v: &Spanned<f64>, what: &str) -> Result<f64> {
     let x = *v.get_ref();
     if !(x.is_finite() && x > 0.0 && x <= 1.0) {
@@ -213,11 +225,11 @@ pub(crate) fn resolve(
             "",
         )?;
         data.motor = Some(Motor {
-            rotor_inertia: non_negative(
+            rotor_inertia: non_negative_in(
                 cx,
                 &d.rotor_inertia,
-                "the motor's `rotor_inertia` (kg·m²)",
-                limits::MOMENT_OF_INERTIA,
+                "the motor's `rotor_inertia`",
+                Dimension::MomentOfInertia,
             )?,
             ratio,
             efficiency: match &d.efficiency {
@@ -290,8 +302,8 @@ fn load(
 ) -> Result<Load> {
     let d = def.get_ref();
     let link = cx.link(&d.link, geometry.links, "`[[load]]`")?;
-    let bounded = |v: f64, at: &Spanned<[f64; 2]>, what: &str, largest: f64| {
-        cx.in_range(&Spanned::new(at.span(), v), what, -largest..=largest, "")
+    let bounded = |v: f64, at: &Spanned<[f64; 2]>, what: &str| {
+        cx.number(&Spanned::new(at.span(), v), what, Dimension::Force)
     };
     let mut load = match (&d.force, &d.torque) {
         (Some(f), None) => {
@@ -300,14 +312,11 @@ fn load(
             })?;
             let p = cx.point_on(point, link, geometry, "`[[load]] point`")?;
             let [fx, fy] = *f.get_ref();
-            let fx = bounded(fx, f, "the force's x component (N)", limits::FORCE)?;
-            let fy = bounded(fy, f, "the force's y component (N)", limits::FORCE)?;
+            let fx = bounded(fx, f, "the force's x component")?;
+            let fy = bounded(fy, f, "the force's y component")?;
             Load::force(link, p, [fx, fy])
         }
-        (None, Some(t)) => Load::torque(
-            link,
-            cx.in_range(t, "the torque (N·m)", -limits::TORQUE..=limits::TORQUE, "")?,
-        ),
+        (None, Some(t)) => Load::torque(link, cx.number(t, "the torque", Dimension::Torque)?),
         _ => {
             return Err(cx.invalid(
                 def,
@@ -340,33 +349,33 @@ fn mass_properties(
             return Err(cx.invalid(
                 def,
                 format!(
-                    "`masses.{link}` needs exactly one of `mass` (kg, with `center`) and \
-                     `density` (kg/m, a uniform bar)"
+                    "`masses.{link}` needs exactly one of `mass` (with `center`) and \
+                     `density` (mass per length of a uniform bar)"
                 ),
             ));
         }
         (None, Some(density)) => {
-            let density = non_negative(
+            let density = non_negative_in(
                 cx,
                 density,
-                &format!("the density of link `{link}` (kg/m)"),
-                limits::MASS,
+                &format!("the density of link `{link}`"),
+                Dimension::Density,
             )?;
             let [a, b] = bar_ends(cx, link, def, geometry)?;
             let bar = Inertia::uniform_bar(density, geometry.sketch(&a), geometry.sketch(&b));
             (bar.mass, Some(bar))
         }
         (Some(m), None) => {
-            let what = format!("the mass of link `{link}` (kg)");
-            (non_negative(cx, m, &what, limits::MASS)?, None)
+            let what = format!("the mass of link `{link}`");
+            (non_negative_in(cx, m, &what, Dimension::Mass)?, None)
         }
     };
     let moment = match (&d.inertia, &bar) {
-        (Some(i), _) => non_negative(
+        (Some(i), _) => non_negative_in(
             cx,
             i,
-            &format!("the moment of inertia of link `{link}` (kg·m²)"),
-            limits::MOMENT_OF_INERTIA,
+            &format!("the moment of inertia of link `{link}`"),
+            Dimension::MomentOfInertia,
         )?,
         (None, Some(bar)) => bar.moment,
         (None, None) => 0.0,
