@@ -322,3 +322,130 @@ fn a_mass_needs_exactly_one_of_mass_and_density() {
     let e = scene::parse("bad.toml", &text).unwrap_err();
     assert!(e.to_string().contains("without its `center`"), "{e}");
 }
+
+/// Norton's four-bar in a unit system: every number written in it, converted from the
+/// inch-native values here. `length`, `mass`, `force` and `torque` are SI per file unit.
+fn in_units(units: &str, length: f64, mass: f64, force: f64, torque: f64) -> String {
+    let l = |inches: f64| format!("{:e}", inches * 0.0254 / length);
+    // Densities, masses and moments in pound-inch terms, converted.
+    let pound = 0.45359237;
+    let density = format!("{:e}", 0.28 * pound / 0.0254 / (mass / length));
+    let coupler_mass = format!("{:e}", 20.0 * pound / mass);
+    let inertia = format!(
+        "{:e}",
+        9000.0 * pound * 0.0254 * 0.0254 / (mass * length * length)
+    );
+    let lbf = 0.45359237 * 9.80665;
+    let force = format!("{:e}", 15.0 * lbf / force);
+    let torque = format!("{:e}", 40.0 * lbf * 0.0254 / torque);
+    format!(
+        r#"[parameters]
+a = {a}
+b = {b}
+c = {c}
+d = {d}
+
+[units]
+{units}
+angle = "deg"
+angular_velocity = "rpm"
+
+[points]
+O2 = [0, 0]
+O4 = ["d", 0]
+A = {{ from = "O2", length = "a", angle = 30 }}
+B = {{ circles = ["A", "O4"], radii = ["b", "c"], side = "left" }}
+M = {{ from = "A", length = "b/2", angle = 0 }}
+
+[links]
+ground = ["O2", "O4"]
+crank = ["O2", "A"]
+coupler = ["A", "B", "M"]
+rocker = ["O4", "B"]
+
+[joints]
+O2 = {{ type = "revolute", at = "O2", links = ["ground", "crank"] }}
+A = {{ type = "revolute", at = "A", links = ["crank", "coupler"] }}
+B = {{ type = "revolute", at = "B", links = ["coupler", "rocker"] }}
+O4 = {{ type = "revolute", at = "O4", links = ["ground", "rocker"] }}
+
+[drive]
+joint = "O2"
+line = ["O2", "A"]
+speed = 60
+
+[sweep]
+from = 0
+to = 100
+step = 10
+
+[[output]]
+point = "B"
+
+[gravity]
+g = 9.81
+
+[masses]
+crank = {{ density = {density} }}
+rocker = {{ density = {density} }}
+coupler = {{ mass = {coupler_mass}, center = "M", inertia = {inertia} }}
+
+[[load]]
+link = "coupler"
+point = "B"
+force = [0, "-{force}"]
+
+[[load]]
+link = "rocker"
+torque = {torque}
+
+[[dynamics]]
+output = "drive_torque"
+
+[[dynamics]]
+output = "reactions"
+"#,
+        a = l(34.0),
+        b = l(73.0),
+        c = l(34.0),
+        d = l(87.0),
+    )
+}
+
+#[test]
+fn an_inch_scene_gives_the_si_results_of_its_metric_twin() {
+    let lbf = 0.45359237 * 9.80665;
+    let inch = in_units(
+        "length = \"in\"\nmass = \"lb\"\nforce = \"lbf\"\ntorque = \"lbf*in\"\ninertia = \"lb*in^2\"",
+        0.0254,
+        0.45359237,
+        lbf,
+        lbf * 0.0254,
+    );
+    let metric = in_units("length = \"m\"", 1.0, 1.0, 1.0, 1.0);
+    let slug = 0.45359237 * 9.80665 / 0.3048;
+    let feet = in_units(
+        "length = \"ft\"\nmass = \"slug\"\ntorque = \"lbf*ft\"\ninertia = \"slug*ft^2\"",
+        0.3048,
+        slug,
+        1.0,
+        lbf * 0.3048,
+    );
+    let (inch, metric, feet) = (run(&inch, &[]), run(&metric, &[]), run(&feet, &[]));
+    let largest = metric
+        .rows
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, v| m.max(v.abs()));
+    // 1e-12 of the largest value (a reaction of some hundred N): each number of the twins
+    // is the same SI value up to two roundings (written in the unit, converted back).
+    assert_same(&inch, &metric, 1e-12 * largest);
+    assert_same(&feet, &metric, 1e-12 * largest);
+    assert!(
+        metric
+            .column("M_drive")
+            .unwrap()
+            .iter()
+            .any(|t| t.abs() > 1.0)
+    );
+}
