@@ -449,3 +449,44 @@ fn an_inch_scene_gives_the_si_results_of_its_metric_twin() {
             .any(|t| t.abs() > 1.0)
     );
 }
+
+#[test]
+fn constructions_in_a_cycle_are_refused() {
+    let text = from_lengths().replace(
+        "A = { from = \"O2\", length = \"a\", angle = \"theta\" }",
+        "A = { circles = [\"O2\", \"B\"], radii = [\"a\", \"b\"], side = \"left\" }",
+    );
+    let e = scene::parse("bad.toml", &text).unwrap_err();
+    assert!(e.to_string().contains("(a cycle)"), "{e}");
+}
+
+#[test]
+fn a_long_chain_of_points_is_placed_without_recursion() {
+    // 5000 polar points, each from the next one written after it, so that the first one
+    // written needs the whole chain; read on a thread with a 256 KiB stack, which a
+    // recursion over the chain would overflow.
+    let n = 5000;
+    let mut text = String::from("[points]\n");
+    for i in 0..n {
+        text.push_str(&format!(
+            "P{i} = {{ from = \"P{}\", length = 1, angle = 0 }}\n",
+            i + 1
+        ));
+    }
+    text.push_str(&format!("P{n} = [0, 0]\n"));
+    text.push_str(
+        "[links]\nground = [\"P0\"]\ncrank = [\"P0\", \"P1\"]\n[joints]\n\
+         O = { type = \"revolute\", at = \"P0\", links = [\"ground\", \"crank\"] }\n\
+         [drive]\njoint = \"O\"\nline = [\"P0\", \"P1\"]\n[sweep]\npositions = [0]\n\
+         [[output]]\npoint = \"P1\"\nquantities = [\"position\"]\n",
+    );
+    let scene = std::thread::Builder::new()
+        .stack_size(256 * 1024)
+        .spawn(move || scene::parse("chain.toml", &text).map_err(|e| e.to_string()))
+        .unwrap()
+        .join()
+        .unwrap()
+        .unwrap();
+    // P0 is n unit steps along +x from P_n = (0, 0): exact (sums of integers).
+    assert_eq!(scene.points[0].sketch, [n as f64, 0.0]);
+}

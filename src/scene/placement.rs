@@ -2,7 +2,7 @@
 //! or a construction from lengths ([`super::construct`]) — after the points it is built
 //! from, with a message naming the construction and its lengths when it has no solution.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::{BTreeMap, HashMap, HashSet};
 
 use toml::Spanned;
 
@@ -32,53 +32,96 @@ impl Context<'_> {
             .iter()
             .map(|(n, d)| (n.get_ref().as_str(), *d))
             .collect();
-        let mut placed: HashMap<String, [f64; 2]> = HashMap::new();
-        let mut points = Vec::with_capacity(entries.len());
+        let mut placed: HashMap<&str, [f64; 2]> = HashMap::with_capacity(entries.len());
         for (name, _) in &entries {
-            let sketch = self.place(name.get_ref(), &defs, &mut placed, &mut Vec::new())?;
-            points.push(Point {
-                name: name.get_ref().clone(),
-                sketch,
-                location: self.at(name),
-            });
+            self.place(name.get_ref(), &defs, &mut placed)?;
         }
-        Ok(points)
+        Ok(entries
+            .iter()
+            .map(|(name, _)| Point {
+                name: name.get_ref().clone(),
+                sketch: placed[name.get_ref().as_str()],
+                location: self.at(name),
+            })
+            .collect())
     }
 
-    /// Sketch coordinates of a point, placing the points it is built from first.
-    fn place(
+    /// Places `name` after the points it is built from, depth first with a stack of its
+    /// own (so a chain of any length is placed without recursion).
+    fn place<'d>(
+        &self,
+        name: &'d str,
+        defs: &Defs<'d>,
+        placed: &mut HashMap<&'d str, [f64; 2]>,
+    ) -> Result<()> {
+        let mut path: Vec<&'d str> = vec![name];
+        let mut on_path: HashSet<&'d str> = HashSet::from([name]);
+        while let Some(&top) = path.last() {
+            if placed.contains_key(top) {
+                path.pop();
+                on_path.remove(top);
+                continue;
+            }
+            let def = defs[top];
+            let mut next = None;
+            for (used, what) in sources(def.get_ref()) {
+                let context = format!("the {what} of point `{top}`");
+                let origin = self.point_of(used, defs, &context)?;
+                if on_path.contains(origin) {
+                    return Err(self.invalid(
+                        used,
+                        format!(
+                            "point `{top}` is built from `{origin}`, which is built from \
+                             `{top}` (a cycle); place one of them by `[x, y]`"
+                        ),
+                    ));
+                }
+                if !placed.contains_key(origin) {
+                    next = Some(origin);
+                    break;
+                }
+            }
+            match next {
+                Some(origin) => {
+                    path.push(origin);
+                    on_path.insert(origin);
+                }
+                None => {
+                    let xy = self.construct(top, def, placed)?;
+                    placed.insert(top, xy);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// A point name that must be defined in `[points]`.
+    fn point_of<'d>(&self, used: &'d Name, defs: &Defs<'d>, context: &str) -> Result<&'d str> {
+        if defs.contains_key(used.get_ref().as_str()) {
+            return Ok(used.get_ref());
+        }
+        let mut known: Vec<&str> = defs.keys().copied().collect();
+        known.sort_unstable();
+        Err(Error::UnknownPoint {
+            location: self.at(used),
+            name: used.get_ref().clone(),
+            context: context.to_owned(),
+            known: known.join(", "),
+        })
+    }
+
+    /// Sketch coordinates of a point whose sources are placed.
+    fn construct(
         &self,
         name: &str,
-        defs: &Defs,
-        placed: &mut HashMap<String, [f64; 2]>,
-        chain: &mut Vec<String>,
+        def: &Spanned<PointDef>,
+        placed: &HashMap<&str, [f64; 2]>,
     ) -> Result<[f64; 2]> {
-        if let Some(&xy) = placed.get(name) {
-            return Ok(xy);
-        }
-        let def = defs[name];
-        // Places a point this one is built from, refusing a cycle.
-        let mut from = |other: &Name, what: &str, placed: &mut HashMap<String, [f64; 2]>| {
-            let names: HashMap<&str, usize> = defs.keys().map(|&k| (k, 0)).collect();
-            let origin = self.point(other, &names, &format!("the {what} of point `{name}`"))?;
-            if chain.iter().any(|c| c == origin) || origin == name {
-                return Err(self.invalid(
-                    other,
-                    format!(
-                        "point `{name}` is built from `{origin}`, which is built from `{name}` \
-                        (a cycle); place one of them by `[x, y]`"
-                    ),
-                ));
-            }
-            chain.push(name.to_owned());
-            let xy = self.place(origin, defs, placed, chain);
-            chain.pop();
-            xy
-        };
+        let at = |p: &Name| placed[p.get_ref().as_str()];
         let length = |v: &Spanned<f64>, what: &str| {
             self.positive(v, &format!("{what} of point `{name}`"), Dimension::Length)
         };
-        let xy = match def.get_ref() {
+        Ok(match def.get_ref() {
             PointDef::Xy(xy) => {
                 let what = |axis: &str| format!("the {axis} coordinate of point `{name}`");
                 let coordinate = |v: f64, axis: &str| {
@@ -88,7 +131,7 @@ impl Context<'_> {
                 [coordinate(xy[0], "x")?, coordinate(xy[1], "y")?]
             }
             PointDef::Polar {
-                from: origin,
+                from,
                 length: l,
                 angle,
             } => {
@@ -98,8 +141,7 @@ impl Context<'_> {
                     &format!("`angle` of point `{name}`"),
                     Dimension::Angle,
                 )?;
-                let o = from(origin, "polar definition", placed)?;
-                construct::polar(o, l, angle)
+                construct::polar(at(from), l, angle)
             }
             PointDef::Circles {
                 circles,
@@ -109,9 +151,7 @@ impl Context<'_> {
                 let [a, b] = circles.get_ref();
                 let r1 = length(&radii[0], "the first radius")?;
                 let r2 = length(&radii[1], "the second radius")?;
-                let ca = from(a, "circles", placed)?;
-                let cb = from(b, "circles", placed)?;
-                construct::circles(ca, r1, cb, r2, *side.get_ref()).map_err(|why| {
+                construct::circles(at(a), r1, at(b), r2, *side.get_ref()).map_err(|why| {
                     let what = format!(
                         "point `{name}`: the circle about `{}` of radius {} and the circle \
                          about `{}` of radius {}",
@@ -131,23 +171,21 @@ impl Context<'_> {
             } => {
                 let r = length(radius, "`radius`")?;
                 let [p, q] = line.get_ref();
-                let c = from(circle, "circle", placed)?;
-                let ends = [from(p, "line", placed)?, from(q, "line", placed)?];
-                construct::circle_line(c, r, ends, *along.get_ref()).map_err(|why| {
-                    let what = format!(
-                        "point `{name}`: the circle about `{}` of radius {} and the line \
-                         `{}`–`{}`",
-                        circle.get_ref(),
-                        self.length_text(r),
-                        p.get_ref(),
-                        q.get_ref()
-                    );
-                    self.no_solution(def, &what, why)
-                })?
+                construct::circle_line(at(circle), r, [at(p), at(q)], *along.get_ref()).map_err(
+                    |why| {
+                        let what = format!(
+                            "point `{name}`: the circle about `{}` of radius {} and the line \
+                             `{}`–`{}`",
+                            circle.get_ref(),
+                            self.length_text(r),
+                            p.get_ref(),
+                            q.get_ref()
+                        );
+                        self.no_solution(def, &what, why)
+                    },
+                )?
             }
-        };
-        placed.insert(name.to_owned(), xy);
-        Ok(xy)
+        })
     }
 
     /// An SI length in the file's unit, with the unit.
@@ -186,6 +224,22 @@ impl Context<'_> {
         Error::Unconstructible {
             location: self.at(def),
             message: format!("{what} {reason}"),
+        }
+    }
+}
+
+/// The points a definition is built from, each with what it is for (for messages).
+fn sources(def: &PointDef) -> Vec<(&Name, &'static str)> {
+    match def {
+        PointDef::Xy(_) => Vec::new(),
+        PointDef::Polar { from, .. } => vec![(from, "polar definition")],
+        PointDef::Circles { circles, .. } => {
+            let [a, b] = circles.get_ref();
+            vec![(a, "circles"), (b, "circles")]
+        }
+        PointDef::CircleLine { circle, line, .. } => {
+            let [p, q] = line.get_ref();
+            vec![(circle, "circle"), (p, "line"), (q, "line")]
         }
     }
 }
