@@ -4,7 +4,9 @@
 //! Parameters are read first (a pass over the file that looks at `[parameters]` only) and
 //! evaluated in the order of their dependencies; while the rest of the file is read, every
 //! quoted formula may use them (see [`super::values::constant_formula`]). A parameter is a
-//! plain number in the unit of the field that uses it, like any number of the file.
+//! plain number in the unit of the field that uses it, like any number of the file, unless
+//! it is given with a unit of its own (`{ value = 6, unit = "in" }`): then it is converted
+//! to the file's unit of that dimension. A `--set` value is in the parameter's unit.
 
 use std::cell::RefCell;
 use std::collections::{BTreeMap, HashMap};
@@ -17,6 +19,7 @@ use crate::error::{Error, Result};
 
 use super::format::Name;
 use super::source::Source;
+use super::units::unit_factor;
 use super::values::{formula, formula_names};
 
 thread_local! {
@@ -43,14 +46,105 @@ pub(crate) fn with_scope<R>(bindings: Vec<(String, f64)>, read: impl FnOnce() ->
     read()
 }
 
-/// A parameter's value as written: a number or a quoted formula.
-#[derive(Debug, Clone, Deserialize)]
-#[serde(untagged)]
+/// A parameter's value as written: a number or a quoted formula, in the unit of the
+/// fields that use it, or either with its own unit (`{ value = 6, unit = "in" }`).
+#[derive(Debug, Clone)]
 pub enum ParameterValue {
+    /// A number or a formula of numbers, constants and other parameters (`"2*l1"`).
+    Plain(Plain),
+    /// A value with its unit, converted to the file's unit of that dimension.
+    WithUnit {
+        /// The value.
+        value: Plain,
+        /// A unit as `[units]` writes it (`"mm"`, `"in"`, `"deg"`, `"lb"`, `"lbf"`, …).
+        unit: Spanned<String>,
+    },
+}
+
+/// A number or a formula.
+#[derive(Debug, Clone)]
+pub enum Plain {
     /// A number.
     Number(f64),
-    /// A formula of numbers, constants and other parameters (`"2*l1"`).
+    /// A formula.
     Formula(String),
+}
+
+impl Plain {
+    fn text(&self) -> String {
+        match self {
+            Plain::Number(v) => format!("{v:e}"),
+            Plain::Formula(f) => f.clone(),
+        }
+    }
+}
+
+const EXPECTED: &str =
+    "a number, a formula in quotes (`\"2*a\"`), or `{ value = 6, unit = \"in\" }`";
+
+impl<'de> Deserialize<'de> for Plain {
+    fn deserialize<D: serde::Deserializer<'de>>(
+        deserializer: D,
+    ) -> std::result::Result<Self, D::Error> {
+        match ParameterValue::deserialize(deserializer)? {
+            ParameterValue::Plain(p) => Ok(p),
+            ParameterValue::WithUnit { .. } => Err(serde::de::Error::custom(
+                "`value` is a number or a formula in quotes, without a unit of its own",
+            )),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for ParameterValue {
+    fn deserialize<D: serde::Deserializer<'de>>(
+        deserializer: D,
+    ) -> std::result::Result<Self, D::Error> {
+        deserializer.deserialize_any(ValueVisitor)
+    }
+}
+
+struct ValueVisitor;
+
+impl<'de> serde::de::Visitor<'de> for ValueVisitor {
+    type Value = ParameterValue;
+
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str(EXPECTED)
+    }
+
+    fn visit_f64<E: serde::de::Error>(self, v: f64) -> std::result::Result<ParameterValue, E> {
+        Ok(ParameterValue::Plain(Plain::Number(v)))
+    }
+
+    fn visit_i64<E: serde::de::Error>(self, v: i64) -> std::result::Result<ParameterValue, E> {
+        Ok(ParameterValue::Plain(Plain::Number(v as f64)))
+    }
+
+    fn visit_u64<E: serde::de::Error>(self, v: u64) -> std::result::Result<ParameterValue, E> {
+        Ok(ParameterValue::Plain(Plain::Number(v as f64)))
+    }
+
+    fn visit_str<E: serde::de::Error>(self, v: &str) -> std::result::Result<ParameterValue, E> {
+        Ok(ParameterValue::Plain(Plain::Formula(v.to_owned())))
+    }
+
+    fn visit_map<A: serde::de::MapAccess<'de>>(
+        self,
+        mut map: A,
+    ) -> std::result::Result<ParameterValue, A::Error> {
+        let (mut value, mut unit) = (None, None);
+        while let Some(key) = map.next_key::<String>()? {
+            match key.as_str() {
+                "value" => value = Some(map.next_value::<Plain>()?),
+                "unit" => unit = Some(map.next_value::<Spanned<String>>()?),
+                other => return Err(serde::de::Error::unknown_field(other, &["value", "unit"])),
+            }
+        }
+        Ok(ParameterValue::WithUnit {
+            value: value.ok_or_else(|| serde::de::Error::missing_field("value"))?,
+            unit: unit.ok_or_else(|| serde::de::Error::missing_field("unit"))?,
+        })
+    }
 }
 
 /// `[parameters]` as written.
@@ -60,6 +154,8 @@ pub type ParameterTable = Spanned<BTreeMap<Name, Spanned<ParameterValue>>>;
 #[derive(Deserialize)]
 struct ParametersOnly {
     parameters: Option<ParameterTable>,
+    #[serde(default)]
+    units: super::format::UnitsSection,
 }
 
 /// `--set name=value`: a parameter's value from the command line (a number or a formula of
@@ -96,6 +192,8 @@ struct Pending<'a> {
     text: String,
     /// The value's span in the file; `None` for a `--set` value.
     span: Option<std::ops::Range<usize>>,
+    /// The file's units per unit of the value (1 without a unit of its own).
+    scale: f64,
 }
 
 /// Reads and evaluates the `[parameters]` of `text`, with `settings` replacing the values
@@ -108,6 +206,7 @@ struct Pending<'a> {
 /// parameters; a `--set` naming no parameter of the file.
 pub fn read(text: &str, source: &Source, settings: &[Setting]) -> Result<Vec<(String, f64)>> {
     let first: ParametersOnly = toml::from_str(text).map_err(|e| source.syntax_error(&e))?;
+    let file_units = super::resolve::units(&first.units);
     let table = first
         .parameters
         .map(Spanned::into_inner)
@@ -125,14 +224,29 @@ pub fn read(text: &str, source: &Source, settings: &[Setting]) -> Result<Vec<(St
                 ),
             });
         }
-        let text = match value.get_ref() {
-            ParameterValue::Number(v) => format!("{v:e}"),
-            ParameterValue::Formula(f) => f.clone(),
+        let (text, scale) = match value.get_ref() {
+            ParameterValue::Plain(value) => (value.text(), 1.0),
+            ParameterValue::WithUnit { value, unit } => {
+                let Some((dimension, factor)) = unit_factor(unit.get_ref()) else {
+                    return Err(Error::Invalid {
+                        location: source.location(unit.span()),
+                        message: format!(
+                            "`{}` is not a unit; a parameter's unit is one that `[units]` \
+                             accepts: m, mm, in, ft, rad, deg, rad/s, deg/s, rpm, rad/s^2, \
+                             deg/s^2, kg, lb, slug, N, lbf, N*m, N*mm, lbf*in, lbf*ft, kg*m^2, \
+                             kg*mm^2, lb*in^2, slug*ft^2",
+                            unit.get_ref()
+                        ),
+                    });
+                };
+                (value.text(), factor / file_units.factor(dimension))
+            }
         };
         pending.push(Pending {
             name: name.get_ref(),
             text,
             span: Some(value.span()),
+            scale,
         });
     }
     for setting in settings {
@@ -196,7 +310,7 @@ fn evaluate(pending: &[Pending], source: &Source) -> Result<Vec<(String, f64)>> 
     let mut values: Vec<(String, f64)> = Vec::with_capacity(pending.len());
     while let Some(i) = ready.pop() {
         let p = &pending[i];
-        let value = formula(&p.text, &values).map_err(|e| fail(p, e))?;
+        let value = formula(&p.text, &values).map_err(|e| fail(p, e))? * p.scale;
         values.push((p.name.to_owned(), value));
         for &k in &used_by[i] {
             waiting[k] -= 1;
@@ -244,6 +358,22 @@ mod tests {
         let set = [Setting::from_str("a=0.25").unwrap()];
         let values = read_str("[parameters]\nb = \"2*a\"\na = 0.5\n", &set).unwrap();
         assert_eq!(values[1], ("b".to_owned(), 0.5));
+    }
+
+    #[test]
+    fn a_parameter_with_a_unit_is_converted_to_the_files_unit() {
+        let text = "[units]\nlength = \"mm\"\n[parameters]\nl = { value = 2, unit = \"in\" }\n\
+                    m = \"l/2\"\n";
+        let values = read_str(text, &[]).unwrap();
+        // 2 in = 50.8 mm: 2 × (0.0254 / 0.001), one rounding in the quotient, one in the
+        // product: 1e-13 relative.
+        assert!((values[0].1 - 50.8).abs() < 50.8e-13, "{values:?}");
+        let e = read_str("[parameters]\nl = { value = 2, unit = \"furlong\" }\n", &[]);
+        assert!(
+            e.unwrap_err()
+                .to_string()
+                .contains("`furlong` is not a unit")
+        );
     }
 
     #[test]

@@ -94,7 +94,8 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
     })
 }
 
-fn units(section: &format::UnitsSection) -> Units {
+/// The units a `[units]` section declares (SI where it is silent).
+pub(crate) fn units(section: &format::UnitsSection) -> Units {
     fn or_default<T: Copy + Default>(unit: &Option<Spanned<T>>) -> T {
         unit.as_ref().map(|u| *u.get_ref()).unwrap_or_default()
     }

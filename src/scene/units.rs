@@ -185,6 +185,57 @@ pub enum Dimension {
     MomentOfInertia,
 }
 
+/// The dimension of a unit symbol as `[units]` writes it (`"in"`, `"deg"`, `"lbf"`,
+/// `"kg*mm^2"`) and its value in SI.
+///
+/// ```
+/// use mechdiff::scene::units::{Dimension, unit_factor};
+///
+/// assert_eq!(unit_factor("in"), Some((Dimension::Length, 0.0254)));
+/// assert_eq!(unit_factor("furlong"), None);
+/// ```
+pub fn unit_factor(symbol: &str) -> Option<(Dimension, f64)> {
+    use serde::de::IntoDeserializer;
+    use serde::de::value::{Error, StrDeserializer};
+    fn read<T: for<'de> Deserialize<'de>>(symbol: &str) -> Option<T> {
+        let deserializer: StrDeserializer<Error> = symbol.into_deserializer();
+        T::deserialize(deserializer).ok()
+    }
+    let d = Units::default();
+    let units = if let Some(length) = read(symbol) {
+        (Dimension::Length, Units { length, ..d })
+    } else if let Some(angle) = read(symbol) {
+        (Dimension::Angle, Units { angle, ..d })
+    } else if let Some(angular_velocity) = read(symbol) {
+        let units = Units {
+            angular_velocity,
+            ..d
+        };
+        (Dimension::AngularVelocity, units)
+    } else if let Some(angular_acceleration) = read(symbol) {
+        let units = Units {
+            angular_acceleration,
+            ..d
+        };
+        (Dimension::AngularAcceleration, units)
+    } else if let Some(mass) = read(symbol) {
+        (Dimension::Mass, Units { mass, ..d })
+    } else if let Some(force) = read(symbol) {
+        (Dimension::Force, Units { force, ..d })
+    } else if let Some(torque) = read(symbol) {
+        (Dimension::Torque, Units { torque, ..d })
+    } else {
+        (
+            Dimension::MomentOfInertia,
+            Units {
+                inertia: read(symbol)?,
+                ..d
+            },
+        )
+    };
+    Some((units.0, units.1.factor(units.0)))
+}
+
 impl Units {
     /// The units of printed results: the same, except that angular velocities given in rpm
     /// (a unit for a drive speed) are printed in rad/s.
