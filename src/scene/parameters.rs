@@ -24,25 +24,25 @@ use super::values::{formula, formula_names};
 
 thread_local! {
     /// The parameters of the scene being read on this thread.
-    static IN_SCOPE: RefCell<Vec<(String, f64)>> = const { RefCell::new(Vec::new()) };
+    static IN_SCOPE: RefCell<HashMap<String, f64>> = RefCell::new(HashMap::new());
 }
 
-/// The parameters in scope while a scene is read (empty otherwise).
-pub(crate) fn in_scope() -> Vec<(String, f64)> {
-    IN_SCOPE.with(|s| s.borrow().clone())
+/// Calls `f` with the parameters in scope while a scene is read (empty otherwise).
+pub(crate) fn with_in_scope<R>(f: impl FnOnce(&HashMap<String, f64>) -> R) -> R {
+    IN_SCOPE.with(|s| f(&s.borrow()))
 }
 
 /// Runs `read` with `bindings` in scope for the formulas it reads, then restores the
 /// previous scope.
 pub(crate) fn with_scope<R>(bindings: Vec<(String, f64)>, read: impl FnOnce() -> R) -> R {
-    struct Restore(Vec<(String, f64)>);
+    struct Restore(HashMap<String, f64>);
     impl Drop for Restore {
         fn drop(&mut self) {
             let previous = std::mem::take(&mut self.0);
             IN_SCOPE.with(|s| *s.borrow_mut() = previous);
         }
     }
-    let _restore = Restore(IN_SCOPE.with(|s| s.replace(bindings)));
+    let _restore = Restore(IN_SCOPE.with(|s| s.replace(bindings.into_iter().collect())));
     read()
 }
 
@@ -308,9 +308,11 @@ fn evaluate(pending: &[Pending], source: &Source) -> Result<Vec<(String, f64)>> 
     }
     let mut ready: Vec<usize> = (0..pending.len()).filter(|&i| waiting[i] == 0).collect();
     let mut values: Vec<(String, f64)> = Vec::with_capacity(pending.len());
+    let mut known: HashMap<String, f64> = HashMap::with_capacity(pending.len());
     while let Some(i) = ready.pop() {
         let p = &pending[i];
-        let value = formula(&p.text, &values).map_err(|e| fail(p, e))? * p.scale;
+        let value = formula(&p.text, &known).map_err(|e| fail(p, e))? * p.scale;
+        known.insert(p.name.to_owned(), value);
         values.push((p.name.to_owned(), value));
         for &k in &used_by[i] {
             waiting[k] -= 1;

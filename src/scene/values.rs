@@ -4,6 +4,7 @@
 //! These are `deserialize_with` helpers for [`super::format`]; every error they raise gets
 //! the value's span from toml, so the message is printed at `file:line:column`.
 
+use std::collections::HashMap;
 use std::fmt;
 
 use mechdiff_core::symbolic::Graph;
@@ -74,8 +75,7 @@ impl Visitor<'_> for NumberVisitor {
 /// A message saying what is wrong with the formula (syntax, an unknown name and its column,
 /// a result that is not a finite number) and what a formula may contain.
 pub fn constant_formula(text: &str) -> Result<f64, String> {
-    let bindings = super::parameters::in_scope();
-    formula(text, &bindings)
+    super::parameters::with_in_scope(|bindings| formula(text, bindings))
 }
 
 /// The value of a formula whose names are `pi`, `tau` and the given `bindings` (see
@@ -83,18 +83,18 @@ pub fn constant_formula(text: &str) -> Result<f64, String> {
 ///
 /// # Errors
 /// As [`constant_formula`].
-pub fn formula(text: &str, bindings: &[(String, f64)]) -> Result<f64, String> {
+pub fn formula(text: &str, bindings: &HashMap<String, f64>) -> Result<f64, String> {
     let quoted = format!("the formula \"{text}\"");
     let (graph, id) = parse_formula(text)?;
     let constants = [("pi", std::f64::consts::PI), ("tau", std::f64::consts::TAU)];
-    let known =
-        |s: &str| constants.iter().any(|(c, _)| *c == s) || bindings.iter().any(|(b, _)| b == s);
-    if let Some(name) = graph.symbols(&[id]).into_iter().find(|s| !known(s)) {
+    let known = |s: &str| constants.iter().any(|(c, _)| *c == s) || bindings.contains_key(s);
+    let symbols = graph.symbols(&[id]);
+    if let Some(name) = symbols.iter().copied().find(|s| !known(s)) {
         let column = name_column(text, name);
         let parameters = if bindings.is_empty() {
             "the scene has no `[parameters]`".to_owned()
         } else {
-            let mut names: Vec<&str> = bindings.iter().map(|(n, _)| n.as_str()).collect();
+            let mut names: Vec<&str> = bindings.keys().map(String::as_str).collect();
             names.sort_unstable();
             format!("the parameters are: {}", names.join(", "))
         };
@@ -103,8 +103,13 @@ pub fn formula(text: &str, bindings: &[(String, f64)]) -> Result<f64, String> {
              parameter nor a constant; {parameters}; {ALLOWED}"
         ));
     }
+    // Only the names the formula uses are bound (a scene may have many parameters).
     let mut all: Vec<(&str, f64)> = constants.to_vec();
-    all.extend(bindings.iter().map(|(n, v)| (n.as_str(), *v)));
+    all.extend(
+        symbols
+            .iter()
+            .filter_map(|s| bindings.get(*s).map(|v| (*s, *v))),
+    );
     let value = graph
         .evaluate_f64(&[id], &all)
         .map_err(|e| format!("{quoted} cannot be evaluated: {e}"))?[0];
