@@ -134,6 +134,7 @@ fn check_lists_every_links_lengths_with_set_applied() {
     // The lengths are the parameters, tidied to 15 digits (the construction rounds them
     // by a few ulps).
     for line in [
+        "parameter b = 1.9",
         "length ground: O2–O4 = 2.22 m",
         "length crank: O2–A = 0.86 m",
         "length coupler: A–B = 1.9 m",

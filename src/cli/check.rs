@@ -47,6 +47,9 @@ pub fn check(args: &CheckArgs) -> Result<(), Error> {
             joints.join(", ")
         );
     }
+    for (name, value) in &scene.parameters {
+        println!("parameter {name} = {}", Units::tidy(*value));
+    }
     let units = scene.units;
     let unit = units.symbol(Dimension::Length);
     for (link, a, b, length) in scene.link_lengths() {

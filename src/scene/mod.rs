@@ -88,9 +88,11 @@ pub fn parse_with(file: &str, text: &str, settings: &[parameters::Setting]) -> R
         });
     }
     let bindings = parameters::read(text, &source, settings)?;
-    let raw: format::SceneFile = parameters::with_scope(bindings, || toml::from_str(text))
+    let raw: format::SceneFile = parameters::with_scope(bindings.clone(), || toml::from_str(text))
         .map_err(|e| source.syntax_error(&e))?;
-    resolve::resolve(raw, &source)
+    let mut scene = resolve::resolve(raw, &source)?;
+    scene.parameters = bindings;
+    Ok(scene)
 }
 
 /// Reads, parses and checks a scene file (at most [`crate::files::MAX_SCENE_BYTES`], UTF-8).

@@ -31,6 +31,9 @@ pub struct Scene {
     pub outputs: Vec<Output>,
     /// Masses, effects and dynamic outputs, if the scene has any.
     pub dynamics: Option<super::dynamics::SceneDynamics>,
+    /// The values of `[parameters]` (after `--set`), in the order they were evaluated, in
+    /// the units of the fields that use them.
+    pub parameters: Vec<(String, f64)>,
 }
 
 /// A named point at its sketch position.

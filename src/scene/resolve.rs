@@ -91,6 +91,7 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
         sweep_of,
         outputs,
         dynamics,
+        parameters: Vec::new(),
     })
 }
 
