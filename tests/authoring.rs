@@ -170,8 +170,11 @@ fn a_formula_naming_an_unknown_parameter_is_refused_at_its_column() {
     let text = from_lengths().replace("radii = [\"b\", \"c\"]", "radii = [\"b\", \"2*cc\"]");
     let e = scene::parse("bad.toml", &text).unwrap_err();
     let message = e.to_string();
+    // The location is the name itself: its line and column in the file.
+    let line = line_of(&text, "B = {");
+    let column = text.lines().nth(line - 1).unwrap().find("cc\"").unwrap() + 1;
     assert!(
-        message.starts_with(&format!("bad.toml:{}:", line_of(&text, "B = {"))),
+        message.starts_with(&format!("bad.toml:{line}:{column}:")),
         "{message}"
     );
     assert!(

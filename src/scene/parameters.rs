@@ -275,7 +275,7 @@ pub fn read(text: &str, source: &Source, settings: &[Setting]) -> Result<Vec<(St
 fn evaluate(pending: &[Pending], source: &Source) -> Result<Vec<(String, f64)>> {
     let fail = |p: &Pending, message: String| match &p.span {
         Some(span) => Error::Invalid {
-            location: source.location(span.clone()),
+            location: source.location(source.inside_formula(span.clone(), &message)),
             message: format!("parameter `{}`: {message}", p.name),
         },
         None => Error::Setting {
@@ -384,7 +384,8 @@ mod tests {
         assert!(e.to_string().contains("cycle"), "{e}");
         let e = read_str("[parameters]\na = \"1 + bb\"\n", &[]).unwrap_err();
         assert!(e.to_string().contains("`bb` (column 5"), "{e}");
-        assert!(e.to_string().starts_with("t.toml:2:5"), "{e}");
+        // At `bb` itself: column 5 is the quote, `bb` is the 5th character inside it.
+        assert!(e.to_string().starts_with("t.toml:2:10"), "{e}");
         let e = read_str(
             "[parameters]\na = 1\n",
             &[Setting::from_str("z=1").unwrap()],
