@@ -168,6 +168,23 @@ pub enum Error {
         /// The drive position, with its unit.
         position: String,
     },
+    /// A `--set NAME=VALUE` that names no parameter of the scene or whose value cannot be
+    /// evaluated.
+    #[error("--set {setting}: {message}")]
+    Setting {
+        /// The setting as given.
+        setting: String,
+        /// What is wrong and what is expected.
+        message: String,
+    },
+    /// A point built from lengths (two circles, a circle and a line) has no solution.
+    #[error("{location}: {message}")]
+    Unconstructible {
+        /// The point's definition.
+        location: Location,
+        /// The construction, its lengths, why it has no point and how to fix it.
+        message: String,
+    },
     /// Any other inconsistency in the file (a field missing for a joint type, a point off
     /// its slot in the sketch, a link without points, ...).
     #[error("{location}: {message}")]

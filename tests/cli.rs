@@ -125,3 +125,24 @@ fn a_missing_scene_file_is_an_error_not_a_panic() {
         stderr(&output)
     );
 }
+
+#[test]
+fn check_lists_every_links_lengths_with_set_applied() {
+    let output = mechdiff(&["check", "scenes/norton_four_bar.toml", "--set", "b=1.9"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = stdout(&output);
+    // The lengths are the parameters, tidied to 15 digits (the construction rounds them
+    // by a few ulps).
+    for line in [
+        "parameter b = 1.9",
+        "length ground: O2–O4 = 2.22 m",
+        "length crank: O2–A = 0.86 m",
+        "length coupler: A–B = 1.9 m",
+        "length rocker: O4–B = 0.86 m",
+    ] {
+        assert!(text.contains(line), "`{line}` missing from: {text}");
+    }
+    let output = mechdiff(&["check", "scenes/norton_four_bar.toml", "--set", "e=1"]);
+    assert!(!output.status.success());
+    assert!(stderr(&output).contains("--set e=1: the scene has no parameter `e`"));
+}

@@ -145,6 +145,10 @@ fn names(text: &str) -> Vec<std::ops::Range<usize>> {
 
 fn apply(text: &str, m: &Mutation) -> String {
     let lines: Vec<&str> = text.split_inclusive('\n').collect();
+    if lines.is_empty() {
+        // A scene truncated to nothing has no line to delete or duplicate.
+        return text.to_owned();
+    }
     match *m {
         Mutation::Number(k, e) => {
             let found = numbers(text);

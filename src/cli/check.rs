@@ -5,16 +5,22 @@ use std::path::PathBuf;
 use clap::Args;
 use mechdiff::Error;
 use mechdiff::scene;
+use mechdiff::scene::units::{Dimension, Units};
 
 /// Arguments of `mechdiff check`.
 #[derive(Debug, Args)]
 pub struct CheckArgs {
     /// The scene file (TOML; see docs/scene-format.md).
     pub scene: PathBuf,
+    /// Replace the value of a parameter of the scene's `[parameters]` (repeatable):
+    /// `--set l1=0.16`; the value may be a formula of the other parameters.
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    pub set: Vec<scene::parameters::Setting>,
 }
 
 /// Reads the scene, builds its model and checks its mobility at the sketch pose; prints a
-/// summary and the plan a run would carry out.
+/// summary, every link's lengths (which the solver holds) and the plan a run would carry
+/// out.
 pub fn check(args: &CheckArgs) -> Result<(), Error> {
     if super::cam::is_cam_scene(&args.scene) {
         let cam = scene::cam::load(&args.scene)?;
@@ -27,7 +33,7 @@ pub fn check(args: &CheckArgs) -> Result<(), Error> {
         );
         return Ok(());
     }
-    let scene = scene::load(&args.scene)?;
+    let scene = scene::load_with(&args.scene, &args.set)?;
     let checked = scene::check(&scene)?;
     let m = &checked.mechanism;
     println!(
@@ -58,6 +64,15 @@ pub fn check(args: &CheckArgs) -> Result<(), Error> {
             scene::run::describe_motion_range(&scene, range)
         ),
         Err(why) => println!("drive motion range: not found ({why})"),
+    }
+    for (name, value) in &scene.parameters {
+        println!("parameter {name} = {}", Units::tidy(*value));
+    }
+    let units = scene.units;
+    let unit = units.symbol(Dimension::Length);
+    for (link, a, b, length) in scene.link_lengths() {
+        let length = Units::tidy(units.from_si(length, Dimension::Length));
+        println!("length {link}: {a}–{b} = {length} {unit}");
     }
     println!("{}", checked.plan.describe(&scene));
     Ok(())

@@ -13,6 +13,10 @@ use mechdiff::{Error, files, pictures};
 pub struct RunArgs {
     /// The scene file (TOML; see docs/scene-format.md).
     pub scene: PathBuf,
+    /// Replace the value of a parameter of the scene's `[parameters]` (repeatable):
+    /// `--set l1=0.16`; the value may be a formula of the other parameters.
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    pub set: Vec<scene::parameters::Setting>,
     /// Also write every column at every drive position to this CSV file (header: `name [unit]`).
     /// The file is written whole or not at all (a temporary file beside it, renamed when
     /// complete), and never onto the scene file.
@@ -46,7 +50,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
     if super::cam::is_cam_scene(&args.scene) {
         return super::cam::run(args);
     }
-    let scene = scene::load(&args.scene)?;
+    let scene = scene::load_with(&args.scene, &args.set)?;
     let report = scene::run(&scene)?;
     for warning in &report.warnings {
         eprintln!("warning: {}: {warning}", scene.file);

@@ -12,6 +12,7 @@ use serde::Deserialize;
 use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
 use toml::Spanned;
 
+use super::construct::{Along, Side};
 use super::units::{AngleUnit, AngularAccelerationUnit, AngularVelocityUnit, LengthUnit};
 use super::values::Number;
 
@@ -24,6 +25,8 @@ pub type Name = Spanned<String>;
 pub struct SceneFile {
     /// A one-line title printed above the table.
     pub title: Option<String>,
+    /// Named values for formulas; read before the rest (see [`super::parameters`]).
+    pub parameters: Option<de::IgnoredAny>,
     /// Units of every number in the file (and of the printed results).
     #[serde(default)]
     pub units: UnitsSection,
@@ -68,7 +71,7 @@ pub struct SceneFile {
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct UnitsSection {
-    /// `"m"` (default) or `"mm"`; velocities and accelerations of points follow (per s, s²).
+    /// `"m"` (default), `"mm"`, `"in"` or `"ft"`; velocities and accelerations of points follow (per s, s²).
     pub length: Option<Spanned<LengthUnit>>,
     /// `"rad"` (default) or `"deg"`.
     pub angle: Option<Spanned<AngleUnit>>,
@@ -76,6 +79,14 @@ pub struct UnitsSection {
     pub angular_velocity: Option<Spanned<AngularVelocityUnit>>,
     /// `"rad/s^2"` (default) or `"deg/s^2"`.
     pub angular_acceleration: Option<Spanned<AngularAccelerationUnit>>,
+    /// `"kg"` (default), `"lb"` or `"slug"`: masses; densities are per length unit.
+    pub mass: Option<Spanned<super::units::MassUnit>>,
+    /// `"N"` (default) or `"lbf"`: load forces.
+    pub force: Option<Spanned<super::units::ForceUnit>>,
+    /// `"N*m"` (default), `"N*mm"`, `"lbf*in"` or `"lbf*ft"`: load torques.
+    pub torque: Option<Spanned<super::units::TorqueUnit>>,
+    /// `"kg*m^2"` (default), `"kg*mm^2"`, `"lb*in^2"` or `"slug*ft^2"`: moments of inertia.
+    pub inertia: Option<Spanned<super::units::InertiaUnit>>,
 }
 
 /// How a point is placed in the sketch.
@@ -93,6 +104,29 @@ pub enum PointDef {
         /// Direction, counter-clockwise from +x.
         angle: Spanned<f64>,
     },
+    /// `{ circles = ["A", "D"], radii = [b, c], side = "left" }`: the intersection of the
+    /// circles about two points (the RRR dyad), on the given side of the directed line from
+    /// the first centre to the second.
+    Circles {
+        /// The two centres.
+        circles: Spanned<[Name; 2]>,
+        /// The two radii (positive).
+        radii: [Spanned<f64>; 2],
+        /// Which intersection.
+        side: Spanned<Side>,
+    },
+    /// `{ circle = "A", radius = b, line = ["P", "Q"], along = "forward" }`: the intersection
+    /// of a circle and a line (the RRP dyad), the one farther along P → Q or behind.
+    CircleLine {
+        /// The centre.
+        circle: Name,
+        /// The radius (positive).
+        radius: Spanned<f64>,
+        /// The line, through two points.
+        line: Spanned<[Name; 2]>,
+        /// Which intersection.
+        along: Spanned<Along>,
+    },
 }
 
 /// A number with its span, as the format's fields keep it.
@@ -100,7 +134,9 @@ fn number(n: Spanned<Number>) -> Spanned<f64> {
     Spanned::new(n.span(), n.into_inner().0)
 }
 
-const POLAR_KEYS: &[&str] = &["from", "length", "angle"];
+const POINT_KEYS: &[&str] = &[
+    "from", "length", "angle", "circles", "radii", "side", "circle", "radius", "line", "along",
+];
 
 impl<'de> Deserialize<'de> for PointDef {
     fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
@@ -115,7 +151,9 @@ impl<'de> Visitor<'de> for PointVisitor {
 
     fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
         f.write_str(
-            "a point: `[x, y]` or `{ from = \"P\", length = L, angle = a }` (polar from point P)",
+            "a point: `[x, y]`, `{ from = \"P\", length = L, angle = a }` (polar from point P), \
+             `{ circles = [\"A\", \"B\"], radii = [r1, r2], side = \"left\" }` or \
+             `{ circle = \"A\", radius = r, line = [\"P\", \"Q\"], along = \"forward\" }`",
         )
     }
 
@@ -133,20 +171,97 @@ impl<'de> Visitor<'de> for PointVisitor {
     }
 
     fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<PointDef, A::Error> {
-        let (mut from, mut length, mut angle) = (None, None, None);
+        let mut keys = PointKeys::default();
         while let Some(key) = map.next_key::<String>()? {
             match key.as_str() {
-                "from" => from = Some(map.next_value()?),
-                "length" => length = Some(number(map.next_value()?)),
-                "angle" => angle = Some(number(map.next_value()?)),
-                other => return Err(de::Error::unknown_field(other, POLAR_KEYS)),
+                "from" => keys.from = Some(map.next_value()?),
+                "length" => keys.length = Some(number(map.next_value()?)),
+                "angle" => keys.angle = Some(number(map.next_value()?)),
+                "circles" => keys.circles = Some(map.next_value::<NamePair>()?.0),
+                "radii" => keys.radii = Some(map.next_value::<NumberPair>()?.0),
+                "side" => keys.side = Some(map.next_value()?),
+                "circle" => keys.circle = Some(map.next_value()?),
+                "radius" => keys.radius = Some(number(map.next_value()?)),
+                "line" => keys.line = Some(map.next_value::<NamePair>()?.0),
+                "along" => keys.along = Some(map.next_value()?),
+                other => return Err(de::Error::unknown_field(other, POINT_KEYS)),
             }
         }
+        keys.point()
+    }
+}
+
+/// The keys of a point written as a table, before the kind of point is known.
+#[derive(Default)]
+struct PointKeys {
+    from: Option<Name>,
+    length: Option<Spanned<f64>>,
+    angle: Option<Spanned<f64>>,
+    circles: Option<Spanned<[Name; 2]>>,
+    radii: Option<[Spanned<f64>; 2]>,
+    side: Option<Spanned<Side>>,
+    circle: Option<Name>,
+    radius: Option<Spanned<f64>>,
+    line: Option<Spanned<[Name; 2]>>,
+    along: Option<Spanned<Along>>,
+}
+
+impl PointKeys {
+    /// The point these keys describe: `circles` makes a dyad, `circle` a circle–line
+    /// intersection, otherwise a polar point; every key of that kind is required.
+    fn point<E: de::Error>(self) -> Result<PointDef, E> {
+        let missing = |key: &'static str, kind: &str| {
+            E::custom(format!("missing field `{key}` (a point {kind})"))
+        };
+        if let Some(circles) = self.circles {
+            let kind = "`{ circles = [\"A\", \"B\"], radii = [r1, r2], side = \"left\" }`";
+            return Ok(PointDef::Circles {
+                circles,
+                radii: self.radii.ok_or_else(|| missing("radii", kind))?,
+                side: self.side.ok_or_else(|| missing("side", kind))?,
+            });
+        }
+        if let Some(circle) = self.circle {
+            let kind =
+                "`{ circle = \"A\", radius = r, line = [\"P\", \"Q\"], along = \"forward\" }`";
+            return Ok(PointDef::CircleLine {
+                circle,
+                radius: self.radius.ok_or_else(|| missing("radius", kind))?,
+                line: self.line.ok_or_else(|| missing("line", kind))?,
+                along: self.along.ok_or_else(|| missing("along", kind))?,
+            });
+        }
+        let kind = "`{ from = \"P\", length = L, angle = a }`";
         Ok(PointDef::Polar {
-            from: from.ok_or_else(|| de::Error::missing_field("from"))?,
-            length: length.ok_or_else(|| de::Error::missing_field("length"))?,
-            angle: angle.ok_or_else(|| de::Error::missing_field("angle"))?,
+            from: self.from.ok_or_else(|| missing("from", kind))?,
+            length: self.length.ok_or_else(|| missing("length", kind))?,
+            angle: self.angle.ok_or_else(|| missing("angle", kind))?,
         })
+    }
+}
+
+/// Exactly two names.
+struct NamePair(Spanned<[Name; 2]>);
+
+impl<'de> Deserialize<'de> for NamePair {
+    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
+        crate::scene::values::name_pair(deserializer).map(NamePair)
+    }
+}
+
+/// Exactly two numbers, each with its span.
+struct NumberPair([Spanned<f64>; 2]);
+
+impl<'de> Deserialize<'de> for NumberPair {
+    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
+        let list = Vec::<Spanned<Number>>::deserialize(deserializer)?;
+        let n = list.len();
+        let pair: [Spanned<Number>; 2] = list.try_into().map_err(|_| {
+            de::Error::custom(format!(
+                "expected exactly two numbers, found {n}; a pair is written `[first, second]`"
+            ))
+        })?;
+        Ok(NumberPair(pair.map(number)))
     }
 }
 

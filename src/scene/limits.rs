@@ -48,5 +48,10 @@ pub fn largest(dimension: Dimension) -> f64 {
         Dimension::Acceleration => ACCELERATION,
         Dimension::AngularVelocity => ANGULAR_VELOCITY,
         Dimension::AngularAcceleration => ANGULAR_ACCELERATION,
+        Dimension::Mass => MASS,
+        Dimension::Density => MASS,
+        Dimension::Force => FORCE,
+        Dimension::Torque => TORQUE,
+        Dimension::MomentOfInertia => MOMENT_OF_INERTIA,
     }
 }

@@ -36,6 +36,7 @@
 pub mod balancing;
 pub mod build;
 pub mod cam;
+pub mod construct;
 mod drive;
 pub mod dynamics;
 mod evaluate;
@@ -44,6 +45,8 @@ mod joints;
 pub mod limits;
 pub mod model;
 pub mod outputs;
+pub mod parameters;
+mod placement;
 pub mod plan;
 pub mod plot;
 pub mod resolve;
@@ -69,6 +72,12 @@ pub const MAX_LIST_ENTRIES: usize = drive::MAX_POSITIONS + 100_000;
 
 /// Parses and checks a scene given as text; `file` names it in messages.
 pub fn parse(file: &str, text: &str) -> Result<Scene> {
+    parse_with(file, text, &[])
+}
+
+/// Parses and checks a scene given as text, with `settings` (`--set`) replacing values of
+/// its `[parameters]`.
+pub fn parse_with(file: &str, text: &str, settings: &[parameters::Setting]) -> Result<Scene> {
     let source = Source::new(file, text);
     if let Some((at, _)) = text.match_indices(',').nth(MAX_LIST_ENTRIES) {
         return Err(crate::error::Error::Invalid {
@@ -81,13 +90,23 @@ pub fn parse(file: &str, text: &str) -> Result<Scene> {
             ),
         });
     }
-    let raw: format::SceneFile = toml::from_str(text).map_err(|e| source.syntax_error(&e))?;
-    resolve::resolve(raw, &source)
+    let bindings = parameters::read(text, &source, settings)?;
+    let raw: format::SceneFile = parameters::with_scope(bindings.clone(), || toml::from_str(text))
+        .map_err(|e| source.syntax_error(&e))?;
+    let mut scene = resolve::resolve(raw, &source)?;
+    scene.parameters = bindings;
+    Ok(scene)
 }
 
 /// Reads, parses and checks a scene file (at most [`crate::files::MAX_SCENE_BYTES`], UTF-8).
 pub fn load(path: impl AsRef<Path>) -> Result<Scene> {
+    load_with(path, &[])
+}
+
+/// Reads, parses and checks a scene file with `settings` (`--set`) replacing values of its
+/// `[parameters]`.
+pub fn load_with(path: impl AsRef<Path>, settings: &[parameters::Setting]) -> Result<Scene> {
     let path = path.as_ref();
     let text = crate::files::read_scene(path)?;
-    parse(&path.display().to_string(), &text)
+    parse_with(&path.display().to_string(), &text, settings)
 }

@@ -35,6 +35,9 @@ pub struct Scene {
     pub balancing: Option<super::balancing::SceneBalancing>,
     /// What the pictures show (`[plot]`; empty when the file has none).
     pub plot: super::plot::Plot,
+    /// The values of `[parameters]` (after `--set`), in the order they were evaluated, in
+    /// the units of the fields that use them.
+    pub parameters: Vec<(String, f64)>,
 }
 
 /// A named point at its sketch position.
@@ -243,6 +246,29 @@ impl Quantity {
 }
 
 impl Scene {
+    /// Every link's lengths at the sketch, which the solver holds rigid: the distance
+    /// between each pair of its points (SI), as `(link, point, point, length)`.
+    pub fn link_lengths(&self) -> Vec<(&str, &str, &str, f64)> {
+        let at = |name: &str| {
+            self.points
+                .iter()
+                .find(|p| p.name == name)
+                .map(|p| p.sketch)
+        };
+        let mut lengths = Vec::new();
+        for link in &self.links {
+            for (i, a) in link.points.iter().enumerate() {
+                for b in &link.points[i + 1..] {
+                    if let (Some(p), Some(q)) = (at(a), at(b)) {
+                        let length = (q[0] - p[0]).hypot(q[1] - p[1]);
+                        lengths.push((link.name.as_str(), a.as_str(), b.as_str(), length));
+                    }
+                }
+            }
+        }
+        lengths
+    }
+
     /// The highest derivative order any output needs (0: positions only).
     pub fn order(&self) -> usize {
         let asked = self

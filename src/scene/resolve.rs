@@ -10,7 +10,7 @@ use toml::Spanned;
 use crate::error::{Error, Location, Result};
 
 use super::drive::nearest_turn;
-use super::format::{self, JointDef, Name, PointDef, SceneFile};
+use super::format::{self, JointDef, Name, SceneFile};
 use super::limits;
 use super::model::{DriveKind, Joint, JointKind, Link, Point, Scene};
 use super::outputs;
@@ -105,31 +105,24 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
         dynamics,
         balancing,
         plot,
+        parameters: Vec::new(),
     })
 }
 
-pub(super) fn units(section: &format::UnitsSection) -> Units {
+/// The units a `[units]` section declares (SI where it is silent).
+pub(crate) fn units(section: &format::UnitsSection) -> Units {
+    fn or_default<T: Copy + Default>(unit: &Option<Spanned<T>>) -> T {
+        unit.as_ref().map(|u| *u.get_ref()).unwrap_or_default()
+    }
     Units {
-        length: section
-            .length
-            .as_ref()
-            .map(|u| *u.get_ref())
-            .unwrap_or_default(),
-        angle: section
-            .angle
-            .as_ref()
-            .map(|u| *u.get_ref())
-            .unwrap_or_default(),
-        angular_velocity: section
-            .angular_velocity
-            .as_ref()
-            .map(|u| *u.get_ref())
-            .unwrap_or_default(),
-        angular_acceleration: section
-            .angular_acceleration
-            .as_ref()
-            .map(|u| *u.get_ref())
-            .unwrap_or_default(),
+        length: or_default(&section.length),
+        angle: or_default(&section.angle),
+        angular_velocity: or_default(&section.angular_velocity),
+        angular_acceleration: or_default(&section.angular_acceleration),
+        mass: or_default(&section.mass),
+        force: or_default(&section.force),
+        torque: or_default(&section.torque),
+        inertia: or_default(&section.inertia),
     }
 }
 
@@ -352,87 +345,6 @@ impl<'a> Context<'a> {
             context: context.to_owned(),
             known: known.join(", "),
         })
-    }
-
-    fn points(&self, table: &Spanned<BTreeMap<Name, Spanned<PointDef>>>) -> Result<Vec<Point>> {
-        let mut entries: Vec<(&Name, &Spanned<PointDef>)> = table.get_ref().iter().collect();
-        entries.sort_by_key(|(name, _)| name.span().start);
-        if entries.is_empty() {
-            return Err(self.invalid(table, "`[points]` is empty; expected `NAME = [x, y]` lines"));
-        }
-        let defs: HashMap<&str, &Spanned<PointDef>> = entries
-            .iter()
-            .map(|(n, d)| (n.get_ref().as_str(), *d))
-            .collect();
-        let mut placed: HashMap<String, [f64; 2]> = HashMap::new();
-        let mut points = Vec::with_capacity(entries.len());
-        for (name, _) in &entries {
-            let sketch = self.place(name.get_ref(), &defs, &mut placed, &mut Vec::new())?;
-            points.push(Point {
-                name: name.get_ref().clone(),
-                sketch,
-                location: self.at(name),
-            });
-        }
-        Ok(points)
-    }
-
-    /// Sketch coordinates of a point, placing the points it is measured from first.
-    fn place(
-        &self,
-        name: &str,
-        defs: &HashMap<&str, &Spanned<PointDef>>,
-        placed: &mut HashMap<String, [f64; 2]>,
-        chain: &mut Vec<String>,
-    ) -> Result<[f64; 2]> {
-        if let Some(&xy) = placed.get(name) {
-            return Ok(xy);
-        }
-        let def = defs[name];
-        let xy = match def.get_ref() {
-            PointDef::Xy(xy) => {
-                let what = |axis: &str| format!("the {axis} coordinate of point `{name}`");
-                let coordinate = |v: f64, axis: &str| {
-                    let v = Spanned::new(def.span(), v);
-                    self.number(&v, &what(axis), Dimension::Length)
-                };
-                [coordinate(xy[0], "x")?, coordinate(xy[1], "y")?]
-            }
-            PointDef::Polar {
-                from,
-                length,
-                angle,
-            } => {
-                let context = format!("the polar definition of point `{name}`");
-                let names: HashMap<&str, usize> = defs.keys().map(|&k| (k, 0)).collect();
-                let origin = self.point(from, &names, &context)?;
-                if chain.iter().any(|c| c == origin) || origin == name {
-                    return Err(self.invalid(
-                        from,
-                        format!(
-                            "point `{name}` is measured from `{origin}`, which is measured from \
-                            `{name}` (a cycle); place one of them by `[x, y]`"
-                        ),
-                    ));
-                }
-                let length = self.positive(
-                    length,
-                    &format!("`length` of point `{name}`"),
-                    Dimension::Length,
-                )?;
-                let angle = self.number(
-                    angle,
-                    &format!("`angle` of point `{name}`"),
-                    Dimension::Angle,
-                )?;
-                chain.push(name.to_owned());
-                let o = self.place(origin, defs, placed, chain)?;
-                chain.pop();
-                [o[0] + length * angle.cos(), o[1] + length * angle.sin()]
-            }
-        };
-        placed.insert(name.to_owned(), xy);
-        Ok(xy)
     }
 
     fn links(

@@ -36,10 +36,39 @@ impl Source {
         }
     }
 
+    /// The place of an error inside a quoted formula: the message's "(column N of the
+    /// formula)" counted from the opening quote, when the string is written plainly (no
+    /// escapes); otherwise `span` itself.
+    pub(crate) fn inside_formula(&self, span: Range<usize>, message: &str) -> Range<usize> {
+        const MARK: &str = "(column ";
+        let column = message
+            .find(MARK)
+            .map(|i| &message[i + MARK.len()..])
+            .filter(|rest| rest.contains(" of the formula)"))
+            .and_then(|rest| rest.split(' ').next())
+            .and_then(|n| n.parse::<usize>().ok());
+        let quoted = self.text.get(span.clone()).filter(|t| {
+            t.len() >= 2 && t.starts_with('"') && t.ends_with('"') && !t.contains('\\')
+        });
+        match (column, quoted) {
+            (Some(column), Some(quoted)) => {
+                let inner = &quoted[1..quoted.len() - 1];
+                match inner.char_indices().nth(column.saturating_sub(1)) {
+                    Some((offset, _)) => {
+                        let at = span.start + 1 + offset;
+                        at..at + 1
+                    }
+                    None => span,
+                }
+            }
+            _ => span,
+        }
+    }
+
     /// Turns a TOML parse or deserialisation error into [`Error::Syntax`] at its place.
     pub fn syntax_error(&self, error: &toml::de::Error) -> Error {
         let location = match error.span() {
-            Some(span) => self.location(span),
+            Some(span) => self.location(self.inside_formula(span, error.message())),
             None => Location {
                 file: self.file.as_str().into(),
                 line: 1,

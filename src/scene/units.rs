@@ -16,7 +16,87 @@ pub enum LengthUnit {
     /// Millimetre.
     #[serde(rename = "mm")]
     Millimetre,
+    /// Inch (25.4 mm exactly).
+    #[serde(rename = "in")]
+    Inch,
+    /// Foot (0.3048 m exactly).
+    #[serde(rename = "ft")]
+    Foot,
 }
+
+/// Mass unit (`[units] mass`): link masses, and with the length unit, densities.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+pub enum MassUnit {
+    /// Kilogram.
+    #[default]
+    #[serde(rename = "kg")]
+    Kilogram,
+    /// Pound (0.45359237 kg exactly).
+    #[serde(rename = "lb")]
+    Pound,
+    /// Slug (1 lbf·s²/ft).
+    #[serde(rename = "slug")]
+    Slug,
+}
+
+/// Force unit (`[units] force`): the components of a `[[load]]` force.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+pub enum ForceUnit {
+    /// Newton.
+    #[default]
+    #[serde(rename = "N")]
+    Newton,
+    /// Pound-force (0.45359237 kg × 9.80665 m/s² exactly).
+    #[serde(rename = "lbf")]
+    PoundForce,
+}
+
+/// Torque unit (`[units] torque`): a `[[load]]` torque.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+pub enum TorqueUnit {
+    /// Newton metre.
+    #[default]
+    #[serde(rename = "N*m")]
+    NewtonMetre,
+    /// Newton millimetre.
+    #[serde(rename = "N*mm")]
+    NewtonMillimetre,
+    /// Pound-force inch.
+    #[serde(rename = "lbf*in")]
+    PoundForceInch,
+    /// Pound-force foot.
+    #[serde(rename = "lbf*ft")]
+    PoundForceFoot,
+}
+
+/// Moment of inertia unit (`[units] inertia`): links' and rotors' moments of inertia.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+pub enum InertiaUnit {
+    /// Kilogram metre squared.
+    #[default]
+    #[serde(rename = "kg*m^2")]
+    KilogramMetreSquared,
+    /// Kilogram millimetre squared (CAD programs' unit).
+    #[serde(rename = "kg*mm^2")]
+    KilogramMillimetreSquared,
+    /// Pound inch squared.
+    #[serde(rename = "lb*in^2")]
+    PoundInchSquared,
+    /// Slug foot squared.
+    #[serde(rename = "slug*ft^2")]
+    SlugFootSquared,
+}
+
+/// One inch (m).
+const INCH: f64 = 0.0254;
+/// One foot (m).
+const FOOT: f64 = 0.3048;
+/// One pound (kg).
+const POUND: f64 = 0.45359237;
+/// One pound-force (N): a pound under standard gravity 9.80665 m/s².
+const POUND_FORCE: f64 = POUND * 9.80665;
+/// One slug (kg): the mass a pound-force accelerates by one foot per second squared.
+const SLUG: f64 = POUND_FORCE / FOOT;
 
 /// Angle unit (`[units] angle`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
@@ -68,6 +148,14 @@ pub struct Units {
     pub angular_velocity: AngularVelocityUnit,
     /// Angular accelerations.
     pub angular_acceleration: AngularAccelerationUnit,
+    /// Masses (and, per length unit, densities).
+    pub mass: MassUnit,
+    /// Forces of loads.
+    pub force: ForceUnit,
+    /// Torques of loads.
+    pub torque: TorqueUnit,
+    /// Moments of inertia.
+    pub inertia: InertiaUnit,
 }
 
 /// The physical dimension of a printed column, which fixes its unit.
@@ -85,6 +173,67 @@ pub enum Dimension {
     AngularVelocity,
     /// An angular acceleration (rad/s²).
     AngularAcceleration,
+    /// A mass (kg).
+    Mass,
+    /// A mass per length (kg/m).
+    Density,
+    /// A force (N).
+    Force,
+    /// A torque (N·m).
+    Torque,
+    /// A moment of inertia (kg·m²).
+    MomentOfInertia,
+}
+
+/// The dimension of a unit symbol as `[units]` writes it (`"in"`, `"deg"`, `"lbf"`,
+/// `"kg*mm^2"`) and its value in SI.
+///
+/// ```
+/// use mechdiff::scene::units::{Dimension, unit_factor};
+///
+/// assert_eq!(unit_factor("in"), Some((Dimension::Length, 0.0254)));
+/// assert_eq!(unit_factor("furlong"), None);
+/// ```
+pub fn unit_factor(symbol: &str) -> Option<(Dimension, f64)> {
+    use serde::de::IntoDeserializer;
+    use serde::de::value::{Error, StrDeserializer};
+    fn read<T: for<'de> Deserialize<'de>>(symbol: &str) -> Option<T> {
+        let deserializer: StrDeserializer<Error> = symbol.into_deserializer();
+        T::deserialize(deserializer).ok()
+    }
+    let d = Units::default();
+    let units = if let Some(length) = read(symbol) {
+        (Dimension::Length, Units { length, ..d })
+    } else if let Some(angle) = read(symbol) {
+        (Dimension::Angle, Units { angle, ..d })
+    } else if let Some(angular_velocity) = read(symbol) {
+        let units = Units {
+            angular_velocity,
+            ..d
+        };
+        (Dimension::AngularVelocity, units)
+    } else if let Some(angular_acceleration) = read(symbol) {
+        let units = Units {
+            angular_acceleration,
+            ..d
+        };
+        (Dimension::AngularAcceleration, units)
+    } else if let Some(mass) = read(symbol) {
+        (Dimension::Mass, Units { mass, ..d })
+    } else if let Some(force) = read(symbol) {
+        (Dimension::Force, Units { force, ..d })
+    } else if let Some(torque) = read(symbol) {
+        (Dimension::Torque, Units { torque, ..d })
+    } else {
+        (
+            Dimension::MomentOfInertia,
+            Units {
+                inertia: read(symbol)?,
+                ..d
+            },
+        )
+    };
+    Some((units.0, units.1.factor(units.0)))
 }
 
 impl Units {
@@ -114,6 +263,13 @@ impl Units {
         let length = match self.length {
             LengthUnit::Metre => 1.0,
             LengthUnit::Millimetre => 1e-3,
+            LengthUnit::Inch => INCH,
+            LengthUnit::Foot => FOOT,
+        };
+        let mass = match self.mass {
+            MassUnit::Kilogram => 1.0,
+            MassUnit::Pound => POUND,
+            MassUnit::Slug => SLUG,
         };
         match dimension {
             Dimension::Length | Dimension::Velocity | Dimension::Acceleration => length,
@@ -130,6 +286,24 @@ impl Units {
                 AngularAccelerationUnit::RadianPerSecondSquared => 1.0,
                 AngularAccelerationUnit::DegreePerSecondSquared => std::f64::consts::PI / 180.0,
             },
+            Dimension::Mass => mass,
+            Dimension::Density => mass / length,
+            Dimension::Force => match self.force {
+                ForceUnit::Newton => 1.0,
+                ForceUnit::PoundForce => POUND_FORCE,
+            },
+            Dimension::Torque => match self.torque {
+                TorqueUnit::NewtonMetre => 1.0,
+                TorqueUnit::NewtonMillimetre => 1e-3,
+                TorqueUnit::PoundForceInch => POUND_FORCE * INCH,
+                TorqueUnit::PoundForceFoot => POUND_FORCE * FOOT,
+            },
+            Dimension::MomentOfInertia => match self.inertia {
+                InertiaUnit::KilogramMetreSquared => 1.0,
+                InertiaUnit::KilogramMillimetreSquared => 1e-6,
+                InertiaUnit::PoundInchSquared => POUND * INCH * INCH,
+                InertiaUnit::SlugFootSquared => SLUG * FOOT * FOOT,
+            },
         }
     }
 
@@ -145,13 +319,55 @@ impl Units {
 
     /// The unit's symbol, as printed in headers.
     pub fn symbol(&self, dimension: Dimension) -> &'static str {
-        let metre = self.length == LengthUnit::Metre;
         match dimension {
             Dimension::Length => length_symbol(self.length),
-            Dimension::Velocity if metre => "m/s",
-            Dimension::Velocity => "mm/s",
-            Dimension::Acceleration if metre => "m/s^2",
-            Dimension::Acceleration => "mm/s^2",
+            Dimension::Velocity => match self.length {
+                LengthUnit::Metre => "m/s",
+                LengthUnit::Millimetre => "mm/s",
+                LengthUnit::Inch => "in/s",
+                LengthUnit::Foot => "ft/s",
+            },
+            Dimension::Acceleration => match self.length {
+                LengthUnit::Metre => "m/s^2",
+                LengthUnit::Millimetre => "mm/s^2",
+                LengthUnit::Inch => "in/s^2",
+                LengthUnit::Foot => "ft/s^2",
+            },
+            Dimension::Mass => match self.mass {
+                MassUnit::Kilogram => "kg",
+                MassUnit::Pound => "lb",
+                MassUnit::Slug => "slug",
+            },
+            Dimension::Density => match (self.mass, self.length) {
+                (MassUnit::Kilogram, LengthUnit::Metre) => "kg/m",
+                (MassUnit::Kilogram, LengthUnit::Millimetre) => "kg/mm",
+                (MassUnit::Kilogram, LengthUnit::Inch) => "kg/in",
+                (MassUnit::Kilogram, LengthUnit::Foot) => "kg/ft",
+                (MassUnit::Pound, LengthUnit::Metre) => "lb/m",
+                (MassUnit::Pound, LengthUnit::Millimetre) => "lb/mm",
+                (MassUnit::Pound, LengthUnit::Inch) => "lb/in",
+                (MassUnit::Pound, LengthUnit::Foot) => "lb/ft",
+                (MassUnit::Slug, LengthUnit::Metre) => "slug/m",
+                (MassUnit::Slug, LengthUnit::Millimetre) => "slug/mm",
+                (MassUnit::Slug, LengthUnit::Inch) => "slug/in",
+                (MassUnit::Slug, LengthUnit::Foot) => "slug/ft",
+            },
+            Dimension::Force => match self.force {
+                ForceUnit::Newton => "N",
+                ForceUnit::PoundForce => "lbf",
+            },
+            Dimension::Torque => match self.torque {
+                TorqueUnit::NewtonMetre => "N*m",
+                TorqueUnit::NewtonMillimetre => "N*mm",
+                TorqueUnit::PoundForceInch => "lbf*in",
+                TorqueUnit::PoundForceFoot => "lbf*ft",
+            },
+            Dimension::MomentOfInertia => match self.inertia {
+                InertiaUnit::KilogramMetreSquared => "kg*m^2",
+                InertiaUnit::KilogramMillimetreSquared => "kg*mm^2",
+                InertiaUnit::PoundInchSquared => "lb*in^2",
+                InertiaUnit::SlugFootSquared => "slug*ft^2",
+            },
             Dimension::Angle => match self.angle {
                 AngleUnit::Radian => "rad",
                 AngleUnit::Degree => "deg",
@@ -210,12 +426,40 @@ fn length_symbol(unit: LengthUnit) -> &'static str {
     match unit {
         LengthUnit::Metre => "m",
         LengthUnit::Millimetre => "mm",
+        LengthUnit::Inch => "in",
+        LengthUnit::Foot => "ft",
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn imperial_units_are_their_definitions() {
+        let units = Units {
+            length: LengthUnit::Inch,
+            mass: MassUnit::Slug,
+            force: ForceUnit::PoundForce,
+            torque: TorqueUnit::PoundForceFoot,
+            inertia: InertiaUnit::KilogramMillimetreSquared,
+            ..Units::default()
+        };
+        // NIST SP 811 values: 1 lbf = 4.4482216152605 N, 1 slug = 14.593902937206 kg
+        // (to its 14 digits), 1 lbf·ft = 1.3558179483314004 N·m; 1e-15 relative is a few
+        // roundings of the products.
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-15 * b.abs();
+        assert!(close(units.factor(Dimension::Force), 4.4482216152605));
+        assert!((units.factor(Dimension::Mass) - 14.593902937206).abs() < 1e-12);
+        assert!(close(units.factor(Dimension::Torque), 1.3558179483314004));
+        assert!(close(units.factor(Dimension::Length), 0.0254));
+        assert!(close(units.factor(Dimension::MomentOfInertia), 1e-6));
+        assert!(close(
+            units.factor(Dimension::Density),
+            14.593902937206364 / 0.0254
+        ));
+        assert_eq!(units.symbol(Dimension::Velocity), "in/s");
+    }
 
     #[test]
     fn rpm_converts_to_rad_per_second() {

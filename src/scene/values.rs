@@ -4,6 +4,7 @@
 //! These are `deserialize_with` helpers for [`super::format`]; every error they raise gets
 //! the value's span from toml, so the message is printed at `file:line:column`.
 
+use std::collections::HashMap;
 use std::fmt;
 
 use mechdiff_core::symbolic::Graph;
@@ -58,25 +59,108 @@ impl Visitor<'_> for NumberVisitor {
     }
 }
 
-/// The value of a constant formula written in a scene: numbers, `+ - * / ^`, parentheses,
-/// the functions of the symbolic engine (`sqrt`, `sin`, `atan2`, …, angles in radians) and
-/// the constants `pi` and `tau`. It is parsed by the symbolic engine's infix parser.
+/// The value of a formula written in a scene: numbers, `+ - * / ^`, parentheses, the
+/// functions of the symbolic engine (`sqrt`, `sin`, `atan2`, …, angles in radians), the
+/// constants `pi` and `tau`, and the scene's `[parameters]` while the scene is read (see
+/// [`super::parameters`]). It is parsed by the symbolic engine's infix parser.
 ///
 /// ```
 /// use mechdiff::scene::values::constant_formula;
 ///
 /// assert_eq!(constant_formula("23.4791*0.86").unwrap(), 23.4791 * 0.86);
 /// assert_eq!(constant_formula("2*pi").unwrap(), std::f64::consts::TAU);
-/// assert!(constant_formula("2*x").unwrap_err().contains("`x`"));
+/// assert!(constant_formula("2*x").unwrap_err().contains("`x` (column 3"));
 /// ```
 ///
 /// # Errors
-/// A message saying what is wrong with the formula (syntax, an unknown name, a result that
-/// is not a finite number) and what a formula may contain.
+/// A message saying what is wrong with the formula (syntax, an unknown name and its column,
+/// a result that is not a finite number) and what a formula may contain.
 pub fn constant_formula(text: &str) -> Result<f64, String> {
+    super::parameters::with_in_scope(|bindings| formula(text, bindings))
+}
+
+/// The value of a formula whose names are `pi`, `tau` and the given `bindings` (see
+/// [`constant_formula`]).
+///
+/// # Errors
+/// As [`constant_formula`].
+pub fn formula(text: &str, bindings: &HashMap<String, f64>) -> Result<f64, String> {
     let quoted = format!("the formula \"{text}\"");
-    let allowed = "a formula may use numbers, + - * / ^, parentheses, functions such as sqrt, \
-                   sin, cos, atan2 (radians) and the constants pi and tau";
+    let (graph, id) = parse_formula(text)?;
+    let constants = [("pi", std::f64::consts::PI), ("tau", std::f64::consts::TAU)];
+    let known = |s: &str| {
+        is_named_constant(s) || constants.iter().any(|(c, _)| *c == s) || bindings.contains_key(s)
+    };
+    let symbols = graph.symbols(&[id]);
+    if let Some(name) = symbols.iter().copied().find(|s| !known(s)) {
+        let column = name_column(text, name);
+        let parameters = if bindings.is_empty() {
+            "the scene has no `[parameters]`".to_owned()
+        } else {
+            let mut names: Vec<&str> = bindings.keys().map(String::as_str).collect();
+            names.sort_unstable();
+            format!("the parameters are: {}", names.join(", "))
+        };
+        return Err(format!(
+            "{quoted} uses `{name}` (column {column} of the formula), which is neither a \
+             parameter nor a constant; {parameters}; {ALLOWED}"
+        ));
+    }
+    // Only the names the formula uses are bound (a scene may have many parameters).
+    let mut all: Vec<(&str, f64)> = constants.to_vec();
+    all.extend(
+        symbols
+            .iter()
+            .filter_map(|s| bindings.get(*s).map(|v| (*s, *v))),
+    );
+    let value = graph
+        .evaluate_f64(&[id], &all)
+        .map_err(|e| format!("{quoted} cannot be evaluated: {e}"))?[0];
+    if !value.is_finite() {
+        return Err(format!(
+            "{quoted} evaluates to {value}; expected a finite number (check for a division \
+             by zero, a square root or logarithm of a negative number, or an overflow)"
+        ));
+    }
+    Ok(value + 0.0)
+}
+
+/// What a formula may contain, for messages.
+const ALLOWED: &str = "a formula may use numbers, + - * / ^, parentheses, functions such as \
+                       sqrt, sin, cos, atan2 (radians), the constants pi and tau, and the \
+                       names of `[parameters]`";
+
+/// The names a formula uses (other than `pi` and `tau`), in the order of the engine.
+///
+/// # Errors
+/// As [`constant_formula`], for a formula that cannot be read.
+pub fn formula_names(text: &str) -> Result<Vec<String>, String> {
+    let (graph, id) = parse_formula(text)?;
+    Ok(graph
+        .symbols(&[id])
+        .into_iter()
+        .filter(|s| !matches!(*s, "pi" | "tau") && !is_named_constant(s))
+        .map(str::to_owned)
+        .collect())
+}
+
+/// The column (1-based, in characters) of the first whole-word `name` in `text`.
+fn name_column(text: &str, name: &str) -> usize {
+    let word = |c: char| c.is_alphanumeric() || c == '_';
+    let at = text
+        .match_indices(name)
+        .find(|(i, _)| {
+            let before = text[..*i].chars().next_back();
+            let after = text[i + name.len()..].chars().next();
+            !before.is_some_and(word) && !after.is_some_and(word)
+        })
+        .map_or(0, |(i, _)| i);
+    text[..at].chars().count() + 1
+}
+
+/// A formula checked for size and parsed by the symbolic engine.
+fn parse_formula(text: &str) -> Result<(Graph, mechdiff_core::symbolic::Id), String> {
+    let quoted = format!("the formula \"{text}\"");
     if text.chars().count() > MAX_FORMULA_LENGTH {
         return Err(format!(
             "{quoted} is longer than {MAX_FORMULA_LENGTH} characters; write the number itself"
@@ -108,28 +192,9 @@ pub fn constant_formula(text: &str) -> Result<f64, String> {
         // first line (its column in the formula), not the caret drawn under it.
         let e = e.to_string();
         let first = e.lines().next().unwrap_or_default();
-        format!("{quoted} cannot be read: {first}; {allowed}")
+        format!("{quoted} cannot be read: {first}; {ALLOWED}")
     })?;
-    let constants = [("pi", std::f64::consts::PI), ("tau", std::f64::consts::TAU)];
-    if let Some(name) = graph
-        .symbols(&[id])
-        .into_iter()
-        .find(|s| !is_named_constant(s) && constants.iter().all(|(c, _)| c != s))
-    {
-        return Err(format!(
-            "{quoted} uses `{name}`, which is not a constant; {allowed}"
-        ));
-    }
-    let value = graph
-        .evaluate_f64(&[id], &constants)
-        .map_err(|e| format!("{quoted} cannot be evaluated: {e}"))?[0];
-    if !value.is_finite() {
-        return Err(format!(
-            "{quoted} evaluates to {value}; expected a finite number (check for a division \
-             by zero, a square root or logarithm of a negative number, or an overflow)"
-        ));
-    }
-    Ok(value + 0.0)
+    Ok((graph, id))
 }
 
 /// The number literals of a formula (digits, `.`, and an exponent).

@@ -56,6 +56,27 @@ pub struct Inertia {
     pub moment: f64,
 }
 
+impl Inertia {
+    /// A uniform slender bar from `a` to `b` of mass `density` per length (kg/m): mass
+    /// m = ρ·L at the midpoint, moment m·L²/12 about it.
+    ///
+    /// ```
+    /// use mechdiff_core::geometry::Inertia;
+    ///
+    /// let bar = Inertia::uniform_bar(2.0, [0.0, 0.0], [3.0, 4.0]);
+    /// assert_eq!((bar.mass, bar.center, bar.moment), (10.0, [1.5, 2.0], 10.0 * 25.0 / 12.0));
+    /// ```
+    pub fn uniform_bar(density: f64, a: [f64; 2], b: [f64; 2]) -> Inertia {
+        let length = (b[0] - a[0]).hypot(b[1] - a[1]);
+        let mass = density * length;
+        Inertia {
+            mass,
+            center: [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])],
+            moment: mass * length * length / 12.0,
+        }
+    }
+}
+
 /// A rigid body carrying named points.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Link {

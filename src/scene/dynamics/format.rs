@@ -7,16 +7,27 @@ use toml::Spanned;
 
 use crate::scene::format::Name;
 
-/// `[masses.<link>]`.
+/// `[masses.<link>]`: a `mass` with its `center` (and `inertia`), or a `density` per length
+/// for a uniform bar.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MassDef {
     /// Mass (kg).
-    #[serde(deserialize_with = "crate::scene::values::number")]
-    pub mass: Spanned<f64>,
-    /// Centre of gravity: a point of the link, or `[x, y]` at the sketch (length unit).
-    pub center: Spanned<CenterDef>,
-    /// Moment of inertia about the centre (kg·m²); default 0.
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
+    pub mass: Option<Spanned<f64>>,
+    /// Mass per length of a uniform slender bar (kg/m): mass ρ·L at the bar's midpoint and
+    /// moment of inertia m·L²/12 about it, unless `center` or `inertia` are given.
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
+    pub density: Option<Spanned<f64>>,
+    /// With `density`: the bar's ends, two points of the link (default: the link's two
+    /// points, when it has two).
+    #[serde(default, deserialize_with = "crate::scene::values::option_name_pair")]
+    pub bar: Option<Spanned<[Name; 2]>>,
+    /// Centre of gravity: a point of the link, or `[x, y]` at the sketch (length unit);
+    /// required with `mass`.
+    pub center: Option<Spanned<CenterDef>>,
+    /// Moment of inertia about the centre (kg·m²); default 0 with `mass`, m·L²/12 with
+    /// `density`.
     #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub inertia: Option<Spanned<f64>>,
 }

@@ -13,7 +13,7 @@ use crate::scene::model::{DriveKind, Joint, JointKind};
 use crate::scene::resolve::{Context, Geometry};
 use crate::scene::units::Dimension;
 
-use super::format::{CenterDef, DrivingSide, DynamicQuantity, DynamicsSections, LoadDef};
+use super::format::{CenterDef, DrivingSide, DynamicQuantity, DynamicsSections, LoadDef, MassDef};
 
 /// One checked `[[dynamics]]` output.
 #[derive(Debug, Clone, PartialEq)]
@@ -65,6 +65,18 @@ fn non_negative(cx: &Context, v: &Spanned<f64>, what: &str, largest: f64) -> Res
     cx.in_range(v, what, 0.0..=largest, "")
 }
 
+/// A non-negative quantity in the file's unit of `dimension`, converted to SI.
+fn non_negative_in(
+    cx: &Context,
+    v: &Spanned<f64>,
+    what: &str,
+    dimension: Dimension,
+) -> Result<f64> {
+    let si = cx.number(v, what, dimension)?;
+    cx.in_range(v, what, 0.0..=f64::MAX, cx.units.symbol(dimension))?;
+    Ok(si)
+}
+
 fn efficiency(cx: &Context, v: &Spanned<f64>, what: &str) -> Result<f64> {
     let x = *v.get_ref();
     if !(x.is_finite() && x > 0.0 && x <= 1.0) {
@@ -111,45 +123,7 @@ pub(crate) fn resolve(
     let mut masses = Vec::new();
     for (name, def) in s.masses.map(|m| m.get_ref().iter()).into_iter().flatten() {
         let link = cx.link(name, geometry.links, "`[masses]`")?;
-        let d = def.get_ref();
-        let mass = non_negative(
-            cx,
-            &d.mass,
-            &format!("the mass of link `{link}` (kg)"),
-            limits::MASS,
-        )?;
-        let moment = match &d.inertia {
-            Some(i) => non_negative(
-                cx,
-                i,
-                &format!("the moment of inertia of link `{link}` (kg·m²)"),
-                limits::MOMENT_OF_INERTIA,
-            )?,
-            None => 0.0,
-        };
-        let center = match d.center.get_ref() {
-            CenterDef::Point(p) => {
-                let spanned = Spanned::new(d.center.span(), p.clone());
-                let p =
-                    cx.point_on(&spanned, link, geometry, &format!("`masses.{link}.center`"))?;
-                geometry.sketch(p)
-            }
-            CenterDef::Xy(xy) => {
-                let coordinate = |v: f64, axis: &str| {
-                    let what = format!("the {axis} coordinate of the centre of link `{link}`");
-                    cx.number(&Spanned::new(d.center.span(), v), &what, Dimension::Length)
-                };
-                [coordinate(xy[0].0, "x")?, coordinate(xy[1].0, "y")?]
-            }
-        };
-        masses.push((
-            link.to_owned(),
-            Inertia {
-                mass,
-                center,
-                moment,
-            },
-        ));
+        masses.push((link.to_owned(), mass_properties(cx, link, def, geometry)?));
     }
     let mut data = Dynamics::new();
     if let Some(g) = s.gravity {
@@ -251,11 +225,11 @@ pub(crate) fn resolve(
             "",
         )?;
         data.motor = Some(Motor {
-            rotor_inertia: non_negative(
+            rotor_inertia: non_negative_in(
                 cx,
                 &d.rotor_inertia,
-                "the motor's `rotor_inertia` (kg·m²)",
-                limits::MOMENT_OF_INERTIA,
+                "the motor's `rotor_inertia`",
+                Dimension::MomentOfInertia,
             )?,
             ratio,
             efficiency: match &d.efficiency {
@@ -328,8 +302,8 @@ fn load(
 ) -> Result<Load> {
     let d = def.get_ref();
     let link = cx.link(&d.link, geometry.links, "`[[load]]`")?;
-    let bounded = |v: f64, at: &Spanned<[f64; 2]>, what: &str, largest: f64| {
-        cx.in_range(&Spanned::new(at.span(), v), what, -largest..=largest, "")
+    let bounded = |v: f64, at: &Spanned<[f64; 2]>, what: &str| {
+        cx.number(&Spanned::new(at.span(), v), what, Dimension::Force)
     };
     let mut load = match (&d.force, &d.torque) {
         (Some(f), None) => {
@@ -338,14 +312,11 @@ fn load(
             })?;
             let p = cx.point_on(point, link, geometry, "`[[load]] point`")?;
             let [fx, fy] = *f.get_ref();
-            let fx = bounded(fx, f, "the force's x component (N)", limits::FORCE)?;
-            let fy = bounded(fy, f, "the force's y component (N)", limits::FORCE)?;
+            let fx = bounded(fx, f, "the force's x component")?;
+            let fy = bounded(fy, f, "the force's y component")?;
             Load::force(link, p, [fx, fy])
         }
-        (None, Some(t)) => Load::torque(
-            link,
-            cx.in_range(t, "the torque (N·m)", -limits::TORQUE..=limits::TORQUE, "")?,
-        ),
+        (None, Some(t)) => Load::torque(link, cx.number(t, "the torque", Dimension::Torque)?),
         _ => {
             return Err(cx.invalid(
                 def,
@@ -363,4 +334,104 @@ fn load(
         );
     }
     Ok(load)
+}
+
+/// A link's mass, centre and moment: given, or from a density per length (uniform bar).
+fn mass_properties(
+    cx: &Context,
+    link: &str,
+    def: &Spanned<MassDef>,
+    geometry: &Geometry,
+) -> Result<Inertia> {
+    let d = def.get_ref();
+    let (mass, bar) = match (&d.mass, &d.density) {
+        (Some(_), Some(_)) | (None, None) => {
+            return Err(cx.invalid(
+                def,
+                format!(
+                    "`masses.{link}` needs exactly one of `mass` (with `center`) and \
+                     `density` (mass per length of a uniform bar)"
+                ),
+            ));
+        }
+        (None, Some(density)) => {
+            let density = non_negative_in(
+                cx,
+                density,
+                &format!("the density of link `{link}`"),
+                Dimension::Density,
+            )?;
+            let [a, b] = bar_ends(cx, link, def, geometry)?;
+            let bar = Inertia::uniform_bar(density, geometry.sketch(&a), geometry.sketch(&b));
+            (bar.mass, Some(bar))
+        }
+        (Some(m), None) => {
+            let what = format!("the mass of link `{link}`");
+            (non_negative_in(cx, m, &what, Dimension::Mass)?, None)
+        }
+    };
+    let moment = match (&d.inertia, &bar) {
+        (Some(i), _) => non_negative_in(
+            cx,
+            i,
+            &format!("the moment of inertia of link `{link}`"),
+            Dimension::MomentOfInertia,
+        )?,
+        (None, Some(bar)) => bar.moment,
+        (None, None) => 0.0,
+    };
+    let center = match (&d.center, &bar) {
+        (Some(center), _) => match center.get_ref() {
+            CenterDef::Point(p) => {
+                let spanned = Spanned::new(center.span(), p.clone());
+                let p =
+                    cx.point_on(&spanned, link, geometry, &format!("`masses.{link}.center`"))?;
+                geometry.sketch(p)
+            }
+            CenterDef::Xy(xy) => {
+                let coordinate = |v: f64, axis: &str| {
+                    let what = format!("the {axis} coordinate of the centre of link `{link}`");
+                    cx.number(&Spanned::new(center.span(), v), &what, Dimension::Length)
+                };
+                [coordinate(xy[0].0, "x")?, coordinate(xy[1].0, "y")?]
+            }
+        },
+        (None, Some(bar)) => bar.center,
+        (None, None) => {
+            return Err(cx.invalid(
+                def,
+                format!(
+                    "`masses.{link}` gives a `mass` without its `center`; add `center = \"P\"` \
+                     (a point of the link) or `center = [x, y]`"
+                ),
+            ));
+        }
+    };
+    Ok(Inertia {
+        mass,
+        center,
+        moment,
+    })
+}
+
+/// The ends of a uniform bar: `bar`, or the link's two points.
+fn bar_ends(
+    cx: &Context,
+    link: &str,
+    def: &Spanned<MassDef>,
+    geometry: &Geometry,
+) -> Result<[String; 2]> {
+    if let Some(bar) = &def.get_ref().bar {
+        return cx.line(bar, link, geometry, &format!("`masses.{link}.bar`"));
+    }
+    match geometry.link(link).map(|l| l.points.as_slice()) {
+        Some([a, b]) => Ok([a.clone(), b.clone()]),
+        _ => Err(cx.invalid(
+            def,
+            format!(
+                "link `{link}` does not have exactly two points, so its bar is not known; give \
+                 its ends with `bar = [\"P\", \"Q\"]`"
+            ),
+        )),
+    }
 }
