@@ -6,6 +6,7 @@ use std::path::Path;
 use std::process::Command;
 
 use mechdiff::Error;
+use mechdiff::scene::balancing::{RotorScene, rotor_scene};
 use mechdiff::scene::{self, Report};
 
 fn run(name: &str) -> Report {
@@ -69,11 +70,16 @@ fn whitworth_crank_counterweight_is_the_closed_form_least_squares() {
     assert!(linkage.after.rms_force() < linkage.before.rms_force());
 }
 
+fn rotor(name: &str) -> RotorScene {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes")
+        .join(name);
+    rotor_scene::load(&path).unwrap_or_else(|e| panic!("{e}"))
+}
+
 #[test]
 fn rotor_scene_prints_the_stated_variant() {
-    let r = run("rotor_balancing.toml");
-    let lines = &r.balancing.as_ref().unwrap().lines;
-    let text = lines.join("\n");
+    let text = rotor("rotor_balancing.toml").lines().unwrap().join("\n");
     // √0.19 m = 435.889894354067 mm (core/tests/balancing_rotor.rs derives it by hand).
     assert!(text.contains("plane at 435.889894354067 mm"), "{text}");
     assert!(
@@ -251,11 +257,11 @@ fn balancing_pictures_are_drawn() {
         let report = scene::run(&scene).unwrap();
         mechdiff::pictures::balancing::pictures(&scene, &report).unwrap()
     };
-    let rotor = load("rotor_balancing.toml");
-    let names: Vec<&str> = rotor.iter().map(|(n, _)| n.as_str()).collect();
-    assert_eq!(names, ["rotor_force_polygon", "rotor_couple_polygon"]);
-    for (_, svg) in &rotor {
-        let raster = mechdiff::pictures::raster::render(svg).unwrap();
+    let polygons =
+        mechdiff::pictures::balancing::rotor_polygons(&rotor("rotor_balancing.toml").rotor)
+            .unwrap();
+    for drawing in &polygons {
+        let raster = mechdiff::pictures::raster::render(&drawing.to_svg()).unwrap();
         let red = (0..raster.width)
             .flat_map(|x| (0..raster.height).map(move |y| (x, y)))
             .filter(|&(x, y)| {

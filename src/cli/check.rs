@@ -16,16 +16,10 @@ pub struct CheckArgs {
 /// Reads the scene, builds its model and checks its mobility at the sketch pose; prints a
 /// summary and the plan a run would carry out.
 pub fn check(args: &CheckArgs) -> Result<(), Error> {
-    if super::cam::is_cam_scene(&args.scene) {
-        let cam = scene::cam::load(&args.scene)?;
-        let m = &cam.mechanism;
-        println!(
-            "{}: ok: cam program of {} segment(s) over 360°, {} follower",
-            cam.file,
-            m.program.len(),
-            m.dimensions.follower.describe()
-        );
-        return Ok(());
+    match super::scene_kind(&args.scene) {
+        scene::Kind::Cam => return check_cam(args),
+        scene::Kind::Rotor => return super::rotor::check(args),
+        scene::Kind::Linkage => {}
     }
     let scene = scene::load(&args.scene)?;
     let checked = scene::check(&scene)?;
@@ -60,5 +54,18 @@ pub fn check(args: &CheckArgs) -> Result<(), Error> {
         Err(why) => println!("drive motion range: not found ({why})"),
     }
     println!("{}", checked.plan.describe(&scene));
+    Ok(())
+}
+
+/// Checks a cam scene and prints its summary.
+fn check_cam(args: &CheckArgs) -> Result<(), Error> {
+    let cam = scene::cam::load(&args.scene)?;
+    let m = &cam.mechanism;
+    println!(
+        "{}: ok: cam program of {} segment(s) over 360°, {} follower",
+        cam.file,
+        m.program.len(),
+        m.dimensions.follower.describe()
+    );
     Ok(())
 }

@@ -13,7 +13,8 @@ use mechdiff::{Error, files, pictures};
 pub struct RunArgs {
     /// The scene file (TOML; see docs/scene-format.md).
     pub scene: PathBuf,
-    /// Also write every column at every drive position to this CSV file (header: `name [unit]`).
+    /// Also write every column at every drive position to this CSV file (header: `name [unit]`;
+    /// rotor scenes: the rotor's answers, one row each).
     /// The file is written whole or not at all (a temporary file beside it, renamed when
     /// complete), and never onto the scene file.
     #[arg(long, value_name = "FILE")]
@@ -43,8 +44,10 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
             });
         }
     }
-    if super::cam::is_cam_scene(&args.scene) {
-        return super::cam::run(args);
+    match super::scene_kind(&args.scene) {
+        scene::Kind::Cam => return super::cam::run(args),
+        scene::Kind::Rotor => return super::rotor::run(args),
+        scene::Kind::Linkage => {}
     }
     let scene = scene::load(&args.scene)?;
     let report = scene::run(&scene)?;
