@@ -354,6 +354,16 @@ pub enum Error {
         /// What went wrong.
         message: String,
     },
+    /// A command-line option that does not apply to this kind of scene.
+    #[error("{option} does not apply to {scene}: {why}")]
+    OptionNotApplicable {
+        /// The option, as written on the command line.
+        option: String,
+        /// The scene path as given.
+        scene: PathBuf,
+        /// Why, and what to use instead.
+        why: String,
+    },
 }
 
 /// Result with the facade's [`enum@Error`].

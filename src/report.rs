@@ -1,6 +1,7 @@
 //! Plain-text reports the `mechdiff` command prints: tables with units and aligned columns.
 
 pub mod cam;
+pub mod rotor;
 pub mod whitworth;
 
 /// A text table: a header row and data rows, the first `labels` columns left-aligned (names,

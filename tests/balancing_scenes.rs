@@ -6,6 +6,7 @@ use std::path::Path;
 use std::process::Command;
 
 use mechdiff::Error;
+use mechdiff::scene::balancing::{RotorScene, rotor_scene};
 use mechdiff::scene::{self, Report};
 
 fn run(name: &str) -> Report {
@@ -69,11 +70,16 @@ fn whitworth_crank_counterweight_is_the_closed_form_least_squares() {
     assert!(linkage.after.rms_force() < linkage.before.rms_force());
 }
 
+fn rotor(name: &str) -> RotorScene {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes")
+        .join(name);
+    rotor_scene::load(&path).unwrap_or_else(|e| panic!("{e}"))
+}
+
 #[test]
 fn rotor_scene_prints_the_stated_variant() {
-    let r = run("rotor_balancing.toml");
-    let lines = &r.balancing.as_ref().unwrap().lines;
-    let text = lines.join("\n");
+    let text = rotor("rotor_balancing.toml").lines().unwrap().join("\n");
     // √0.19 m = 435.889894354067 mm (core/tests/balancing_rotor.rs derives it by hand).
     assert!(text.contains("plane at 435.889894354067 mm"), "{text}");
     assert!(
@@ -251,11 +257,11 @@ fn balancing_pictures_are_drawn() {
         let report = scene::run(&scene).unwrap();
         mechdiff::pictures::balancing::pictures(&scene, &report).unwrap()
     };
-    let rotor = load("rotor_balancing.toml");
-    let names: Vec<&str> = rotor.iter().map(|(n, _)| n.as_str()).collect();
-    assert_eq!(names, ["rotor_force_polygon", "rotor_couple_polygon"]);
-    for (_, svg) in &rotor {
-        let raster = mechdiff::pictures::raster::render(svg).unwrap();
+    let polygons =
+        mechdiff::pictures::balancing::rotor_polygons(&rotor("rotor_balancing.toml").rotor)
+            .unwrap();
+    for drawing in &polygons {
+        let raster = mechdiff::pictures::raster::render(&drawing.to_svg()).unwrap();
         let red = (0..raster.width)
             .flat_map(|x| (0..raster.height).map(move |y| (x, y)))
             .filter(|&(x, y)| {
@@ -326,4 +332,191 @@ fn slider_crank_unbalance_is_printed() {
         .replace("line = [\"O\", \"X\"]", "line = [\"G\", \"X\"]");
     let e = error(&offset);
     assert!(e.to_string().contains("in-line"), "{e}");
+}
+
+/// Runs `mechdiff run SCENE --csv` and parses the CSV back: header and rows of cells.
+fn rotor_csv(scene: &Path) -> (Vec<String>, Vec<Vec<String>>) {
+    let csv = std::env::temp_dir().join(format!(
+        "mechdiff-rotor-{}-{}.csv",
+        std::process::id(),
+        scene.file_stem().unwrap().to_str().unwrap()
+    ));
+    let out = mechdiff(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--csv",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(&csv).unwrap();
+    std::fs::remove_file(&csv).unwrap();
+    let mut lines = text
+        .lines()
+        .map(|l| l.split(',').map(str::to_owned).collect());
+    (lines.next().unwrap(), lines.collect())
+}
+
+fn cell(header: &[String], row: &[String], name: &str) -> f64 {
+    let k = header
+        .iter()
+        .position(|h| h == name)
+        .unwrap_or_else(|| panic!("{name}"));
+    row[k]
+        .parse()
+        .unwrap_or_else(|e| panic!("{name} = `{}`: {e}", row[k]))
+}
+
+/// The crankshaft's CSV holds the API's values (the same f64: written with the fewest digits
+/// that read back exactly) and the couple-plane distance √0.19 m derived by hand in
+/// core/tests/balancing_rotor.rs.
+#[test]
+fn rotor_csv_holds_the_answers_exactly() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/rotor_balancing.toml");
+    let (header, rows) = rotor_csv(&path);
+    let expected_header = "row,index,plane [mm],mass [kg],radius [mm],m r x [kg m],m r y [kg m],\
+        m r [kg m],m r angle [deg],m r d x [kg m^2],m r d y [kg m^2],m r d [kg m^2],\
+        m r d angle [deg]";
+    assert_eq!(header.join(","), expected_header);
+    let kinds: Vec<&str> = rows.iter().map(|r| r[0].as_str()).collect();
+    assert_eq!(
+        kinds,
+        [
+            "mass",
+            "mass",
+            "mass",
+            "resultant",
+            "static",
+            "two_plane",
+            "two_plane",
+            "couple_plane",
+            "couple_plane_gap"
+        ]
+    );
+    let scene = rotor_scene::load(&path).unwrap();
+    let a = scene.rotor.answers().unwrap();
+    let mm = 1000.0;
+    let u = &scene.units;
+    let si = |x: f64, d| u.from_si(x, d);
+    use mechdiff::scene::units::Dimension::{Angle, Length};
+    let c = |row: usize, name: &str| cell(&header, &rows[row], name);
+    // Exact (==): the CSV is the API's f64 through the scene's own unit conversion.
+    for i in 0..3 {
+        assert_eq!(c(i, "m r x [kg m]"), a.polygons.force[i][0]);
+        assert_eq!(c(i, "m r y [kg m]"), a.polygons.force[i][1]);
+        assert_eq!(c(i, "m r d x [kg m^2]"), a.polygons.couple[i][0]);
+        assert_eq!(c(i, "m r d y [kg m^2]"), a.polygons.couple[i][1]);
+        let m = scene.rotor.rotor.masses()[i];
+        assert_eq!(c(i, "plane [mm]"), si(m.axial, Length));
+        // The given angles 0°, 120°, 240° come back from atan2 to 1e-12° (rounding of the
+        // degree conversion and of sin/cos, ~1e-14°).
+        let back = c(i, "m r angle [deg]");
+        let off = (back - 120.0 * i as f64).rem_euclid(360.0);
+        assert!(off.min(360.0 - off) < 1e-12, "{back}");
+    }
+    for (row, correction) in [
+        (4, a.static_balance),
+        (5, a.two_plane.unwrap().left),
+        (6, a.two_plane.unwrap().right),
+        (7, a.couple_plane.unwrap().correction),
+    ] {
+        assert_eq!(c(row, "plane [mm]"), si(correction.axial, Length));
+        assert_eq!(c(row, "m r x [kg m]"), correction.vector[0]);
+        assert_eq!(c(row, "m r y [kg m]"), correction.vector[1]);
+        assert_eq!(c(row, "m r [kg m]"), correction.mass_radius);
+        assert_eq!(c(row, "mass [kg]"), correction.mass_radius / 0.1);
+        if row > 4 {
+            assert_eq!(c(row, "m r angle [deg]"), si(correction.angle, Angle));
+        }
+    }
+    // The static correction is rounding noise (the cranks are in static balance): its angle
+    // is left empty, as "none needed" is printed.
+    assert_eq!(
+        rows[4][header.iter().position(|h| h == "m r angle [deg]").unwrap()],
+        ""
+    );
+    // √0.19 m from the reference plane (1e-12 mm: a few roundings of 436 mm).
+    assert!((c(7, "plane [mm]") - 0.19f64.sqrt() * mm).abs() < 1e-12);
+    // m r = 0.075 kg m, the given crank (1e-16: a hypot of a rescaled vector).
+    assert!((c(7, "m r [kg m]") - 0.075).abs() <= 1e-16);
+    // Two-plane corrections cancel the couple about −400 mm: U_R·800 mm = −Σ Uᵢ (zᵢ + 400 mm).
+    let right = [c(6, "m r x [kg m]"), c(6, "m r y [kg m]")];
+    let gap = a.resultant[0];
+    // Σ Uᵢ zᵢ by hand: 0.075·0.3·(1, 0) + 0.075·(−0.2)·(−1/2, −√3/2) = (0.03, 0.015·√3/2).
+    let couple = [
+        0.075 * 0.3 + 0.075 * 0.2 * 0.5,
+        0.075 * 0.2 * 3f64.sqrt() / 2.0,
+    ];
+    let about_left = [couple[0] + 0.4 * gap[0], couple[1] + 0.4 * gap[1]];
+    // 1e-15 kg m: terms of 0.02 kg m², divided by 0.8 m, a few roundings.
+    assert!((right[0] + about_left[0] / 0.8).abs() < 1e-15, "{right:?}");
+    assert!((right[1] + about_left[1] / 0.8).abs() < 1e-15, "{right:?}");
+}
+
+/// Reference 002's static example as a rotor-only scene: the CSV's static correction is
+/// mr4 = 0.04709564735726647 kg m at 266.3477772196937° (values in core/tests/balancing_rotor.rs).
+#[test]
+fn rotor_csv_static_example_of_reference_002() {
+    let path = std::env::temp_dir().join(format!("mechdiff-static-{}.toml", std::process::id()));
+    std::fs::write(
+        &path,
+        "title = \"static\"\n[units]\nangle = \"deg\"\n[rotor]\nmasses = [\n  \
+         { mass = 1, radius = 0.003, angle = 0, plane = 0 },\n  \
+         { mass = 1, radius = 0.0470, angle = 90, plane = 0.1 },\n]\n",
+    )
+    .unwrap();
+    let check = mechdiff(&["check", path.to_str().unwrap()]);
+    assert!(
+        check.status.success(),
+        "{}",
+        String::from_utf8_lossy(&check.stderr)
+    );
+    let (header, rows) = rotor_csv(&path);
+    std::fs::remove_file(&path).unwrap();
+    let row = rows.iter().find(|r| r[0] == "static").unwrap();
+    // 1e-12 kg m and 1e-9°: the reference's own rounding (its 13 digits), as in balancing_rotor.rs.
+    assert!((cell(&header, row, "m r [kg m]") - 0.04709564735726647).abs() <= 1e-12);
+    let theta = cell(&header, row, "m r angle [deg]").rem_euclid(360.0);
+    assert!((theta - 266.3477772196937).abs() <= 1e-9, "{theta}");
+}
+
+/// Options a rotor or cam scene cannot honour are refused by name, never silently ignored:
+/// `--json` (a rotor has no drive positions) and `--set` (only linkages have `[parameters]`).
+#[test]
+fn options_a_scene_kind_cannot_honour_are_refused() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let rotor = root.join("scenes/rotor_balancing.toml");
+    let cam = root.join("scenes/cams/rise_dwell_return_dwell.toml");
+    let json = std::env::temp_dir().join(format!("mechdiff-refused-{}.json", std::process::id()));
+    for (args, option) in [
+        (
+            vec![
+                "run",
+                rotor.to_str().unwrap(),
+                "--json",
+                json.to_str().unwrap(),
+            ],
+            "--json",
+        ),
+        (
+            vec!["run", rotor.to_str().unwrap(), "--set", "m=1"],
+            "--set",
+        ),
+        (
+            vec!["check", cam.to_str().unwrap(), "--set", "m=1"],
+            "--set",
+        ),
+    ] {
+        let out = mechdiff(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{args:?} was accepted");
+        assert!(
+            stderr.contains(&format!("{option} does not apply")),
+            "{stderr}"
+        );
+        assert!(!json.exists(), "a refused run wrote {}", json.display());
+    }
 }

@@ -17,6 +17,8 @@ fn scenes() -> Vec<PathBuf> {
         .unwrap()
         .map(|e| e.unwrap().path())
         .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        // Linkage scenes only (a rotor scene has no mechanism; balancing_scenes.rs draws it).
+        .filter(|p| scene::kind(&std::fs::read_to_string(p).unwrap()) == scene::Kind::Linkage)
         .collect();
     files.sort();
     assert!(files.len() >= 8, "the scenes folder has its scenes");

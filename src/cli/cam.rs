@@ -1,19 +1,13 @@
 //! `mechdiff run <cam.toml>`: the report of a cam scene (a file with a `[cam]` section).
 
 use std::io::{BufWriter, Write};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use mechdiff::report::cam;
 use mechdiff::scene;
 use mechdiff::{Error, files};
 
 use super::run::RunArgs;
-
-/// Whether the file given to `run` is a cam scene (unreadable files are left to the usual
-/// path, which reports them).
-pub fn is_cam_scene(path: &Path) -> bool {
-    files::read_scene(path).is_ok_and(|text| scene::cam::is_cam_scene(&text))
-}
 
 /// Runs a cam scene: the report on stdout, the SVAJ table and the profile as CSV if asked.
 pub fn run(args: &RunArgs) -> Result<(), Error> {

@@ -22,16 +22,12 @@ pub struct CheckArgs {
 /// summary, every link's lengths (which the solver holds) and the plan a run would carry
 /// out.
 pub fn check(args: &CheckArgs) -> Result<(), Error> {
-    if super::cam::is_cam_scene(&args.scene) {
-        let cam = scene::cam::load(&args.scene)?;
-        let m = &cam.mechanism;
-        println!(
-            "{}: ok: cam program of {} segment(s) over 360°, {} follower",
-            cam.file,
-            m.program.len(),
-            m.dimensions.follower.describe()
-        );
-        return Ok(());
+    let kind = super::scene_kind(&args.scene);
+    super::refuse_settings(kind, &args.set, &args.scene)?;
+    match kind {
+        scene::Kind::Cam => return check_cam(args),
+        scene::Kind::Rotor => return super::rotor::check(args),
+        scene::Kind::Linkage => {}
     }
     let scene = scene::load_with(&args.scene, &args.set)?;
     let checked = scene::check(&scene)?;
@@ -75,5 +71,18 @@ pub fn check(args: &CheckArgs) -> Result<(), Error> {
         println!("length {link}: {a}–{b} = {length} {unit}");
     }
     println!("{}", checked.plan.describe(&scene));
+    Ok(())
+}
+
+/// Checks a cam scene and prints its summary.
+fn check_cam(args: &CheckArgs) -> Result<(), Error> {
+    let cam = scene::cam::load(&args.scene)?;
+    let m = &cam.mechanism;
+    println!(
+        "{}: ok: cam program of {} segment(s) over 360°, {} follower",
+        cam.file,
+        m.program.len(),
+        m.dimensions.follower.describe()
+    );
     Ok(())
 }

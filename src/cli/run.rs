@@ -17,7 +17,8 @@ pub struct RunArgs {
     /// `--set l1=0.16`; the value may be a formula of the other parameters.
     #[arg(long = "set", value_name = "NAME=VALUE")]
     pub set: Vec<scene::parameters::Setting>,
-    /// Also write every column at every drive position to this CSV file (header: `name [unit]`).
+    /// Also write every column at every drive position to this CSV file (header: `name [unit]`;
+    /// rotor scenes: the rotor's answers, one row each).
     /// The file is written whole or not at all (a temporary file beside it, renamed when
     /// complete), and never onto the scene file.
     #[arg(long, value_name = "FILE")]
@@ -47,8 +48,12 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
             });
         }
     }
-    if super::cam::is_cam_scene(&args.scene) {
-        return super::cam::run(args);
+    let kind = super::scene_kind(&args.scene);
+    super::refuse_settings(kind, &args.set, &args.scene)?;
+    match kind {
+        scene::Kind::Cam => return super::cam::run(args),
+        scene::Kind::Rotor => return super::rotor::run(args),
+        scene::Kind::Linkage => {}
     }
     let scene = scene::load_with(&args.scene, &args.set)?;
     let report = scene::run(&scene)?;

@@ -65,6 +65,24 @@ pub fn pictures(scene: &Scene, report: &Report) -> Result<Vec<(String, String)>>
     Ok(out)
 }
 
+/// Writes a rotor's polygons into `dir` (created if needed): `rotor_force_polygon.svg/png`
+/// and `rotor_couple_polygon.svg/png`.
+pub fn write_rotor_dir(r: &SceneRotor, dir: &std::path::Path) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|source| crate::Error::Write {
+        path: dir.to_owned(),
+        source,
+    })?;
+    let [force, couple] = rotor_polygons(r)?;
+    for (name, drawing) in [
+        ("rotor_force_polygon", force),
+        ("rotor_couple_polygon", couple),
+    ] {
+        drawing.write_svg(&dir.join(format!("{name}.svg")))?;
+        drawing.write_png(&dir.join(format!("{name}.png")))?;
+    }
+    Ok(())
+}
+
 /// The force and couple polygons of a rotor, head to tail from the origin, closed by the
 /// corrections: with two planes, both corrections close the force polygon and the second
 /// closes the couple polygon taken about the first plane; otherwise the static correction

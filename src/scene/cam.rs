@@ -149,12 +149,6 @@ impl CamScene {
     }
 }
 
-/// Whether a scene's text has a `[cam]` section (and so is a cam scene).
-pub fn is_cam_scene(text: &str) -> bool {
-    text.parse::<toml::Table>()
-        .is_ok_and(|table| table.contains_key("cam"))
-}
-
 /// Parses and checks a cam scene given as text; `file` names it in messages.
 pub fn parse(file: &str, text: &str) -> Result<CamScene> {
     let source = Source::new(file, text);

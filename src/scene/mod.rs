@@ -70,6 +70,27 @@ pub use source::Source;
 /// read, at about 150 bytes an entry, so a longer list is refused before parsing.
 pub const MAX_LIST_ENTRIES: usize = drive::MAX_POSITIONS + 100_000;
 
+/// What a scene file describes, from its top-level sections.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// A linkage (`[points]`, `[links]`, …; the default, which reports what is missing).
+    Linkage,
+    /// A cam (a `[cam]` section; see [`cam`]).
+    Cam,
+    /// A rotor alone (a `[rotor]` section and no `[points]`; see [`balancing::RotorScene`]).
+    Rotor,
+}
+
+/// Which kind of scene `text` is. Text that is not TOML is a [`Kind::Linkage`], whose
+/// reader reports the syntax error at its place.
+pub fn kind(text: &str) -> Kind {
+    match text.parse::<toml::Table>() {
+        Ok(table) if table.contains_key("cam") => Kind::Cam,
+        Ok(table) if table.contains_key("rotor") && !table.contains_key("points") => Kind::Rotor,
+        _ => Kind::Linkage,
+    }
+}
+
 /// Parses and checks a scene given as text; `file` names it in messages.
 pub fn parse(file: &str, text: &str) -> Result<Scene> {
     parse_with(file, text, &[])

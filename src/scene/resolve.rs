@@ -170,7 +170,7 @@ pub(crate) struct Context<'a> {
 }
 
 impl<'a> Context<'a> {
-    fn new(source: &'a Source, units: Units) -> Self {
+    pub(crate) fn new(source: &'a Source, units: Units) -> Self {
         Context { source, units }
     }
 

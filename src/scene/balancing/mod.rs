@@ -3,6 +3,9 @@
 //! [`mechdiff_core::balancing`]; this module only reads the sections, converts units and
 //! prints the answers.
 //!
+//! A file with only a title, `[units]` and `[rotor]` is a rotor scene of its own
+//! ([`rotor_scene`]): no linkage is needed to balance a rotor.
+//!
 //! ```toml
 //! [rotor]                      # masses on a rigid shaft (independent of the linkage)
 //! masses = [
@@ -19,12 +22,16 @@
 //! slider_crank = { crank = "crank", rod = "rod", slider = "slider", fraction = 0.5 }
 //! ```
 
+mod answers;
 mod format;
 mod resolve;
+pub mod rotor_scene;
 mod run;
 
+pub use answers::RotorAnswers;
 pub use format::{BalancingDef, CounterweightDef, RotorDef, RotorMassDef, SliderCrankDef};
 pub(crate) use resolve::resolve;
 pub use resolve::{SceneBalancing, SceneRotor, SceneSliderCrank};
+pub use rotor_scene::RotorScene;
 pub use run::BalancingReport;
-pub(crate) use run::run;
+pub(crate) use run::{rotor_lines, run};

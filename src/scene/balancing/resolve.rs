@@ -129,7 +129,7 @@ pub(crate) fn resolve(
     }))
 }
 
-fn resolve_rotor(cx: &Context, r: &Spanned<RotorDef>) -> Result<SceneRotor> {
+pub(super) fn resolve_rotor(cx: &Context, r: &Spanned<RotorDef>) -> Result<SceneRotor> {
     let def = r.get_ref();
     let mut masses = Vec::new();
     for (i, m) in def.masses.get_ref().iter().enumerate() {

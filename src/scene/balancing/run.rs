@@ -2,16 +2,14 @@
 //! and what they change.
 
 use mechdiff_core::DriveState;
-use mechdiff_core::balancing::{
-    LinkageBalance, Polygons, Rotor, SliderCrankUnbalance, balance_linkage,
-};
+use mechdiff_core::balancing::{LinkageBalance, Rotor, SliderCrankUnbalance, balance_linkage};
 use mechdiff_core::dynamics::Dynamics;
 use mechdiff_core::geometry::{Mechanism, Solver};
 
 use crate::error::{Error, Location, Result};
 use crate::scene::model::{DriveKind, Scene};
 use crate::scene::outputs::Column;
-use crate::scene::units::Dimension;
+use crate::scene::units::{Dimension, Units};
 
 use super::resolve::{SceneBalancing, SceneRotor};
 
@@ -58,13 +56,16 @@ pub(crate) fn run(
         linkage: None,
     };
     if let Some(r) = &b.rotor {
-        report.lines.extend(rotor_lines(scene, r)?);
+        report
+            .lines
+            .extend(rotor_lines(&scene.units.for_outputs(), r)?);
     }
     if let Some(sc) = &b.slider_crank {
         let [crank, rod, slider] = &sc.links;
         let u = SliderCrankUnbalance::from_mechanism(mechanism, crank, rod, slider)
             .map_err(|e| core_error(&sc.location, e))?;
         let omega = scene.drive.speed.unwrap_or(0.0);
+        let units = scene.units.for_outputs();
         let p = u
             .partial_balance(sc.fraction, omega)
             .map_err(|e| core_error(&sc.location, e))?;
@@ -72,8 +73,8 @@ pub(crate) fn run(
         report.lines.push(format!(
             "slider-crank `{crank}`–`{rod}`–`{slider}`: r = {}, l = {}, reciprocating mass {:.9} kg, \
              rotating m r {:.9} kg m (rod split between its pins by its centre of gravity)",
-            length_text(scene, u.crank),
-            length_text(scene, u.rod),
+            length_text(&units, u.crank),
+            length_text(&units, u.rod),
             u.reciprocating_mass,
             u.rotating_mass_radius
         ));
@@ -147,8 +148,7 @@ pub(crate) fn run(
     Ok(report)
 }
 
-fn angle_text(scene: &Scene, rad: f64) -> String {
-    let u = scene.units.for_outputs();
+fn angle_text(u: &Units, rad: f64) -> String {
     format!(
         "{:.6} {}",
         u.from_si(rad, Dimension::Angle),
@@ -156,11 +156,10 @@ fn angle_text(scene: &Scene, rad: f64) -> String {
     )
 }
 
-fn length_text(scene: &Scene, m: f64) -> String {
-    let u = scene.units.for_outputs();
+fn length_text(u: &Units, m: f64) -> String {
     format!(
         "{} {}",
-        crate::scene::units::Units::tidy(u.from_si(m, Dimension::Length)),
+        Units::tidy(u.from_si(m, Dimension::Length)),
         u.symbol(Dimension::Length)
     )
 }
@@ -169,23 +168,24 @@ fn polar(v: [f64; 2]) -> (f64, f64) {
     (v[0].hypot(v[1]), v[1].atan2(v[0]))
 }
 
-fn rotor_lines(scene: &Scene, r: &SceneRotor) -> Result<Vec<String>> {
-    let rotor: &Rotor = &r.rotor;
-    let [force_scale, couple_scale] = rotor.largest_terms(r.reference);
+/// The printed answers of a rotor, numbers in the output units `units`.
+pub(crate) fn rotor_lines(units: &Units, r: &SceneRotor) -> Result<Vec<String>> {
+    let answers = r.answers()?;
+    let [force_scale, couple_scale] = answers.scale;
     // A vector as magnitude and angle, or as zero when it is rounding noise.
     let vector = |v: [f64; 2], scale: f64, unit: &str| {
         let (m, a) = polar(v);
         if m <= Rotor::NEGLIGIBLE * scale {
             format!("0 {unit}")
         } else {
-            format!("{m:.12} {unit} at {}", angle_text(scene, a))
+            format!("{m:.12} {unit} at {}", angle_text(units, a))
         }
     };
     let mut lines = vec![String::new()];
-    let p = rotor.polygons(r.reference);
+    let p = &answers.polygons;
     lines.push(format!(
         "rotor polygons (couple about the plane at {}): mass, m r [kg m], angle, m r d [kg m^2], angle",
-        length_text(scene, r.reference)
+        length_text(units, r.reference)
     ));
     for (i, (f, c)) in p.force.iter().zip(&p.couple).enumerate() {
         lines.push(format!(
@@ -195,21 +195,21 @@ fn rotor_lines(scene: &Scene, r: &SceneRotor) -> Result<Vec<String>> {
             vector(*c, couple_scale, "kg m^2")
         ));
     }
-    let gap = |sides: &[[f64; 2]]| *Polygons::vertices(sides).last().expect("one vertex");
+    let [force_gap, couple_gap] = answers.resultant;
     lines.push(format!(
         "  gap: {}; {}",
-        vector(gap(&p.force), force_scale, "kg m"),
-        vector(gap(&p.couple), couple_scale, "kg m^2")
+        vector(force_gap, force_scale, "kg m"),
+        vector(couple_gap, couple_scale, "kg m^2")
     ));
     let with_mass = |mr: f64| match r.correction_radius {
         Some(radius) => format!(
             " ({:.9} kg at radius {})",
             mr / radius,
-            length_text(scene, radius)
+            length_text(units, radius)
         ),
         None => String::new(),
     };
-    let s = rotor.static_balance(r.reference);
+    let s = answers.static_balance;
     lines.push(if s.mass_radius <= Rotor::NEGLIGIBLE * force_scale {
         "rotor static balance: none needed (the mr polygon closes)".to_owned()
     } else {
@@ -219,29 +219,23 @@ fn rotor_lines(scene: &Scene, r: &SceneRotor) -> Result<Vec<String>> {
             with_mass(s.mass_radius)
         )
     });
-    if let Some([left, right]) = r.planes {
-        let two = rotor
-            .two_plane_balance(left, right)
-            .map_err(|e| core_error(&r.location, e))?;
+    if let Some(two) = answers.two_plane {
         for c in two.corrections() {
             lines.push(format!(
                 "rotor two-plane balance, plane at {}: m r = {}{}",
-                length_text(scene, c.axial),
+                length_text(units, c.axial),
                 vector(c.vector, force_scale, "kg m"),
                 with_mass(c.mass_radius)
             ));
         }
     }
-    if let Some(mr) = r.couple_mass_radius {
-        let c = rotor
-            .couple_plane(mr, r.reference)
-            .map_err(|e| core_error(&r.location, e))?;
+    if let (Some(mr), Some(c)) = (r.couple_mass_radius, answers.couple_plane) {
         lines.push(format!(
             "rotor couple balance with one m r = {mr} kg m: plane at {} ({} from the reference), \
              angle {}; force polygon gap after: {}",
-            length_text(scene, c.correction.axial),
-            length_text(scene, c.distance),
-            angle_text(scene, c.correction.angle),
+            length_text(units, c.correction.axial),
+            length_text(units, c.distance),
+            angle_text(units, c.correction.angle),
             vector(c.force_after, force_scale.max(mr), "kg m")
         ));
     }
@@ -249,17 +243,18 @@ fn rotor_lines(scene: &Scene, r: &SceneRotor) -> Result<Vec<String>> {
 }
 
 fn linkage_lines(scene: &Scene, r: &LinkageBalance, torque_unit: &str) -> Vec<String> {
+    let units = scene.units.for_outputs();
     let mut lines = vec![String::new()];
     for c in &r.counterweights {
         lines.push(format!(
             "counterweight on `{}`: m r = {:.9} kg m at {} from {}→{}; {:.9} kg at radius {}",
             c.request.link,
             c.mass_radius,
-            angle_text(scene, c.angle),
+            angle_text(&units, c.angle),
             c.request.line[0],
             c.request.line[1],
             c.mass,
-            length_text(scene, c.request.radius)
+            length_text(&units, c.request.radius)
         ));
     }
     let kind = if r.full_force_balance() {
