@@ -85,6 +85,10 @@ pub enum Dimension {
     AngularVelocity,
     /// An angular acceleration (rad/s²).
     AngularAcceleration,
+    /// A linear jerk (m/s³).
+    Jerk,
+    /// An angular jerk (rad/s³), printed in the angular acceleration's angle unit per s³.
+    AngularJerk,
 }
 
 impl Units {
@@ -116,7 +120,9 @@ impl Units {
             LengthUnit::Millimetre => 1e-3,
         };
         match dimension {
-            Dimension::Length | Dimension::Velocity | Dimension::Acceleration => length,
+            Dimension::Length | Dimension::Velocity | Dimension::Acceleration | Dimension::Jerk => {
+                length
+            }
             Dimension::Angle => match self.angle {
                 AngleUnit::Radian => 1.0,
                 AngleUnit::Degree => std::f64::consts::PI / 180.0,
@@ -126,10 +132,12 @@ impl Units {
                 AngularVelocityUnit::DegreePerSecond => std::f64::consts::PI / 180.0,
                 AngularVelocityUnit::Rpm => std::f64::consts::PI / 30.0,
             },
-            Dimension::AngularAcceleration => match self.angular_acceleration {
-                AngularAccelerationUnit::RadianPerSecondSquared => 1.0,
-                AngularAccelerationUnit::DegreePerSecondSquared => std::f64::consts::PI / 180.0,
-            },
+            Dimension::AngularAcceleration | Dimension::AngularJerk => {
+                match self.angular_acceleration {
+                    AngularAccelerationUnit::RadianPerSecondSquared => 1.0,
+                    AngularAccelerationUnit::DegreePerSecondSquared => std::f64::consts::PI / 180.0,
+                }
+            }
         }
     }
 
@@ -152,6 +160,8 @@ impl Units {
             Dimension::Velocity => "mm/s",
             Dimension::Acceleration if metre => "m/s^2",
             Dimension::Acceleration => "mm/s^2",
+            Dimension::Jerk if metre => "m/s^3",
+            Dimension::Jerk => "mm/s^3",
             Dimension::Angle => match self.angle {
                 AngleUnit::Radian => "rad",
                 AngleUnit::Degree => "deg",
@@ -164,6 +174,10 @@ impl Units {
             Dimension::AngularAcceleration => match self.angular_acceleration {
                 AngularAccelerationUnit::RadianPerSecondSquared => "rad/s^2",
                 AngularAccelerationUnit::DegreePerSecondSquared => "deg/s^2",
+            },
+            Dimension::AngularJerk => match self.angular_acceleration {
+                AngularAccelerationUnit::RadianPerSecondSquared => "rad/s^3",
+                AngularAccelerationUnit::DegreePerSecondSquared => "deg/s^3",
             },
         }
     }
