@@ -11,7 +11,8 @@ use super::format::{Quantity, Sense};
 use super::model::{Output, OutputKind, Scene};
 use super::run::solver_error;
 
-/// One quantity of a jet: its value, a coefficient, or a time derivative.
+/// One quantity of a jet: its value, a coefficient, or a time derivative (a derivative
+/// beyond the jet's order reads as zero; the plan asks for the order the outputs need).
 pub(crate) fn quantity<const N: usize>(jet: &Jet<N>, q: Quantity, drive: &DriveState) -> f64 {
     let d = |k: usize| jet.derivative(k).unwrap_or(0.0);
     match q {
@@ -20,6 +21,11 @@ pub(crate) fn quantity<const N: usize>(jet: &Jet<N>, q: Quantity, drive: &DriveS
         Quantity::AccelerationCoefficient => d(2),
         Quantity::Velocity => drive.omega * d(1),
         Quantity::Acceleration => drive.alpha * d(1) + drive.omega * drive.omega * d(2),
+        Quantity::JerkCoefficient => d(3),
+        // The chain rule of `mechdiff_core::motion` (φ⃛ = drive.jerk, zero in a scene).
+        Quantity::Jerk => {
+            drive.jerk * d(1) + 3.0 * drive.omega * drive.alpha * d(2) + drive.omega.powi(3) * d(3)
+        }
     }
 }
 

@@ -382,6 +382,10 @@ pub enum Quantity {
     Velocity,
     /// Second time derivative (ψ̈ = α ψ′ + ω² ψ″).
     Acceleration,
+    /// Third derivative with respect to the drive (ψ‴).
+    JerkCoefficient,
+    /// Third time derivative (ψ⃛ = φ⃛ ψ′ + 3ωα ψ″ + ω³ ψ‴, with φ⃛ = 0).
+    Jerk,
 }
 
 /// One `[[output]]` entry: exactly one of `point`, `angle`, `slider`.

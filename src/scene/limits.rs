@@ -23,6 +23,9 @@ pub const VELOCITY: f64 = 1e6;
 pub const ANGULAR_ACCELERATION: f64 = 1e12;
 /// Largest magnitude of a linear acceleration: a slide's drive acceleration, gravity (m/s²).
 pub const ACCELERATION: f64 = 1e12;
+/// Largest magnitude of a jerk, linear (m/s³) or angular (rad/s³): no number of a scene
+/// file is a jerk today (jerks are outputs only); the bound completes the table.
+pub const JERK: f64 = 1e18;
 /// Largest mass of a link (kg).
 pub const MASS: f64 = 1e9;
 /// Largest moment of inertia of a link or rotor (kg·m²).
@@ -53,5 +56,6 @@ pub fn largest(dimension: Dimension) -> f64 {
         Dimension::Force => FORCE,
         Dimension::Torque => TORQUE,
         Dimension::MomentOfInertia => MOMENT_OF_INERTIA,
+        Dimension::Jerk | Dimension::AngularJerk => JERK,
     }
 }

@@ -230,18 +230,35 @@ pub struct Output {
 }
 
 impl Quantity {
-    /// The derivative order this quantity needs (0, 1 or 2).
+    /// The derivative order this quantity needs (0 to 3).
     pub fn order(self) -> usize {
         match self {
             Quantity::Position => 0,
             Quantity::VelocityCoefficient | Quantity::Velocity => 1,
             Quantity::AccelerationCoefficient | Quantity::Acceleration => 2,
+            Quantity::JerkCoefficient | Quantity::Jerk => 3,
         }
     }
 
     /// Whether the quantity is a time derivative (needs the drive's speed).
     pub fn is_time_derivative(self) -> bool {
-        matches!(self, Quantity::Velocity | Quantity::Acceleration)
+        matches!(
+            self,
+            Quantity::Velocity | Quantity::Acceleration | Quantity::Jerk
+        )
+    }
+
+    /// The quantity's name in words, for messages (`"jerk"`, `"velocity coefficient"`).
+    pub fn words(self) -> &'static str {
+        match self {
+            Quantity::Position => "position",
+            Quantity::VelocityCoefficient => "velocity coefficient",
+            Quantity::AccelerationCoefficient => "acceleration coefficient",
+            Quantity::JerkCoefficient => "jerk coefficient",
+            Quantity::Velocity => "velocity",
+            Quantity::Acceleration => "acceleration",
+            Quantity::Jerk => "jerk",
+        }
     }
 }
 

@@ -166,7 +166,8 @@ fn resolve_one(
                 return Err(cx.invalid(
                     list,
                     "`quantities` is empty; expected some of: position, \
-                    velocity_coefficient, acceleration_coefficient, velocity, acceleration",
+                    velocity_coefficient, acceleration_coefficient, jerk_coefficient, velocity, \
+                    acceleration, jerk",
                 ));
             }
             let mut seen: Vec<Quantity> = Vec::new();
@@ -191,11 +192,7 @@ fn resolve_one(
             message: format!(
                 "output `{name}` asks for the {} but `[drive]` has no `speed`; give `speed` \
                     (and `acceleration`) or ask only for position and coefficients",
-                if *q == Quantity::Velocity {
-                    "velocity"
-                } else {
-                    "acceleration"
-                }
+                q.words()
             ),
         });
     }
@@ -281,16 +278,26 @@ pub fn columns(output: &Output, units: &Units, drive: Dimension) -> Vec<Column> 
     let units = &units.for_outputs();
     let value = output.kind.dimension();
     let point = matches!(output.kind, OutputKind::Point(_));
-    let (rate, rate2) = match value {
-        Dimension::Angle => (Dimension::AngularVelocity, Dimension::AngularAcceleration),
-        _ => (Dimension::Velocity, Dimension::Acceleration),
+    let (rate, rate2, rate3) = match value {
+        Dimension::Angle => (
+            Dimension::AngularVelocity,
+            Dimension::AngularAcceleration,
+            Dimension::AngularJerk,
+        ),
+        _ => (
+            Dimension::Velocity,
+            Dimension::Acceleration,
+            Dimension::Jerk,
+        ),
     };
     let n = &output.name;
     let mut columns = Vec::new();
     for q in &output.quantities {
         let (unit, factor) = match q {
             Quantity::Position => (units.symbol(value).to_owned(), units.factor(value)),
-            Quantity::VelocityCoefficient | Quantity::AccelerationCoefficient => {
+            Quantity::VelocityCoefficient
+            | Quantity::AccelerationCoefficient
+            | Quantity::JerkCoefficient => {
                 let order = q.order() as u32;
                 (
                     units.coefficient_symbol(value, drive, order),
@@ -299,6 +306,7 @@ pub fn columns(output: &Output, units: &Units, drive: Dimension) -> Vec<Column> 
             }
             Quantity::Velocity => (units.symbol(rate).to_owned(), units.factor(rate)),
             Quantity::Acceleration => (units.symbol(rate2).to_owned(), units.factor(rate2)),
+            Quantity::Jerk => (units.symbol(rate3).to_owned(), units.factor(rate3)),
         };
         let names: Vec<String> = match (q, point) {
             (Quantity::Position, true) => vec![format!("x_{n}"), format!("y_{n}")],
@@ -308,11 +316,15 @@ pub fn columns(output: &Output, units: &Units, drive: Dimension) -> Vec<Column> 
             }
             (Quantity::Velocity, true) => vec![format!("vx_{n}"), format!("vy_{n}")],
             (Quantity::Acceleration, true) => vec![format!("ax_{n}"), format!("ay_{n}")],
+            (Quantity::JerkCoefficient, true) => vec![format!("x_{n}'''"), format!("y_{n}'''")],
+            (Quantity::Jerk, true) => vec![format!("jx_{n}"), format!("jy_{n}")],
             (Quantity::Position, false) => vec![n.clone()],
             (Quantity::VelocityCoefficient, false) => vec![format!("{n}'")],
             (Quantity::AccelerationCoefficient, false) => vec![format!("{n}''")],
             (Quantity::Velocity, false) => vec![format!("{n}_dot")],
             (Quantity::Acceleration, false) => vec![format!("{n}_ddot")],
+            (Quantity::JerkCoefficient, false) => vec![format!("{n}'''")],
+            (Quantity::Jerk, false) => vec![format!("{n}_dddot")],
         };
         columns.extend(names.into_iter().map(|name| Column {
             name,

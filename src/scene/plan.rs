@@ -78,7 +78,8 @@ impl Plan {
         let what = match self.order {
             0 => "positions only (order 0)",
             1 => "positions and velocity coefficients (order 1)",
-            _ => "positions, velocity and acceleration coefficients (order 2)",
+            2 => "positions, velocity and acceleration coefficients (order 2)",
+            _ => "positions, velocity, acceleration and jerk coefficients (order 3)",
         };
         let range = if let Some(k) = scene.sweep_of {
             let output = &scene.outputs[k];
@@ -121,7 +122,12 @@ impl Plan {
                 let kind = scene.drive.kind;
                 let u = &scene.units;
                 format!(
-                    "; velocities and accelerations for speed {} {}, acceleration {} {}",
+                    "; {} for speed {} {}, acceleration {} {}",
+                    if self.order >= 3 {
+                        "velocities, accelerations and jerks"
+                    } else {
+                        "velocities and accelerations"
+                    },
                     Units::tidy(u.from_si(d.omega, kind.speed_dimension())),
                     u.symbol(kind.speed_dimension()),
                     Units::tidy(u.from_si(d.alpha, kind.acceleration_dimension())),

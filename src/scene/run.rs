@@ -134,7 +134,8 @@ pub fn run(scene: &Scene) -> Result<Report> {
     let positions = drive_positions(scene, &mechanism)?;
     let (rows, worst) = match plan.order {
         0 | 1 => sweep::<1>(scene, &mechanism, &plan, &positions)?,
-        _ => sweep::<2>(scene, &mechanism, &plan, &positions)?,
+        2 => sweep::<2>(scene, &mechanism, &plan, &positions)?,
+        _ => sweep::<3>(scene, &mechanism, &plan, &positions)?,
     };
     let mut warnings = Vec::new();
     if let Some((amplification, phi, joints)) = worst.filter(|w| w.0 > ILL_CONDITIONED) {

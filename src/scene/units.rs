@@ -183,6 +183,10 @@ pub enum Dimension {
     Torque,
     /// A moment of inertia (kg·m²).
     MomentOfInertia,
+    /// A linear jerk (m/s³).
+    Jerk,
+    /// An angular jerk (rad/s³), printed in the angular acceleration's angle unit per s³.
+    AngularJerk,
 }
 
 /// The dimension of a unit symbol as `[units]` writes it (`"in"`, `"deg"`, `"lbf"`,
@@ -272,7 +276,9 @@ impl Units {
             MassUnit::Slug => SLUG,
         };
         match dimension {
-            Dimension::Length | Dimension::Velocity | Dimension::Acceleration => length,
+            Dimension::Length | Dimension::Velocity | Dimension::Acceleration | Dimension::Jerk => {
+                length
+            }
             Dimension::Angle => match self.angle {
                 AngleUnit::Radian => 1.0,
                 AngleUnit::Degree => std::f64::consts::PI / 180.0,
@@ -282,10 +288,12 @@ impl Units {
                 AngularVelocityUnit::DegreePerSecond => std::f64::consts::PI / 180.0,
                 AngularVelocityUnit::Rpm => std::f64::consts::PI / 30.0,
             },
-            Dimension::AngularAcceleration => match self.angular_acceleration {
-                AngularAccelerationUnit::RadianPerSecondSquared => 1.0,
-                AngularAccelerationUnit::DegreePerSecondSquared => std::f64::consts::PI / 180.0,
-            },
+            Dimension::AngularAcceleration | Dimension::AngularJerk => {
+                match self.angular_acceleration {
+                    AngularAccelerationUnit::RadianPerSecondSquared => 1.0,
+                    AngularAccelerationUnit::DegreePerSecondSquared => std::f64::consts::PI / 180.0,
+                }
+            }
             Dimension::Mass => mass,
             Dimension::Density => mass / length,
             Dimension::Force => match self.force {
@@ -332,6 +340,12 @@ impl Units {
                 LengthUnit::Millimetre => "mm/s^2",
                 LengthUnit::Inch => "in/s^2",
                 LengthUnit::Foot => "ft/s^2",
+            },
+            Dimension::Jerk => match self.length {
+                LengthUnit::Metre => "m/s^3",
+                LengthUnit::Millimetre => "mm/s^3",
+                LengthUnit::Inch => "in/s^3",
+                LengthUnit::Foot => "ft/s^3",
             },
             Dimension::Mass => match self.mass {
                 MassUnit::Kilogram => "kg",
@@ -380,6 +394,10 @@ impl Units {
             Dimension::AngularAcceleration => match self.angular_acceleration {
                 AngularAccelerationUnit::RadianPerSecondSquared => "rad/s^2",
                 AngularAccelerationUnit::DegreePerSecondSquared => "deg/s^2",
+            },
+            Dimension::AngularJerk => match self.angular_acceleration {
+                AngularAccelerationUnit::RadianPerSecondSquared => "rad/s^3",
+                AngularAccelerationUnit::DegreePerSecondSquared => "deg/s^3",
             },
         }
     }
