@@ -104,7 +104,13 @@ pub fn check(scene: &Scene) -> Result<Checked> {
             tracker.mobility(),
             tracker.loops(),
             tracker.closed_form_loops(),
-            (tracker.motion_range()).map_err(|e| solver_error(scene, e).to_string()),
+            match scene.drive.cam {
+                // The cam's follower moves within the cam program's stroke.
+                Some(_) => {
+                    Err("not walked for a cam drive (the cam sets the joint's travel)".into())
+                }
+                None => (tracker.motion_range()).map_err(|e| solver_error(scene, e).to_string()),
+            },
         )
     };
     Ok(Checked {
@@ -124,7 +130,12 @@ pub fn run(scene: &Scene) -> Result<Report> {
     let plan = Plan::of(scene);
     let drive_dimension = scene.drive.kind.dimension();
     let mut all = vec![Column {
-        name: "phi".to_owned(),
+        name: if scene.drive.cam.is_some() {
+            "theta"
+        } else {
+            "phi"
+        }
+        .to_owned(),
         unit: scene.units.symbol(drive_dimension).to_owned(),
         factor: scene.units.factor(drive_dimension),
     }];
@@ -343,14 +354,18 @@ fn sweep<const N: usize>(
     let mut previous: Vec<Option<f64>> = vec![None; scene.outputs.len()];
     let mut rows = Vec::with_capacity(positions.len());
     for &phi in positions {
-        let k = solve::<N>(scene, &mut tracker, phi)?;
+        let k = solve::<N>(scene, &mut tracker, scene.drive.joint_position(phi))?;
         let (amplification, joints) = tracker.amplification();
         if worst.as_ref().is_none_or(|w| amplification > w.0) {
             worst = Some((amplification, phi, joints));
         }
         let mut row = vec![phi];
         for (resolved, previous) in outputs.iter().zip(previous.iter_mut()) {
-            let values = evaluate(scene, &k, resolved, previous);
+            let mut values = evaluate(scene, &k, resolved, previous);
+            if let Some(cam) = &scene.drive.cam {
+                // Derivatives with respect to the cam angle (the chain rule through s(θ)).
+                values = values.iter().map(|v| cam.joint.compose(phi, v)).collect();
+            }
             for q in &resolved.output.quantities {
                 for v in &values {
                     row.push(quantity(v, *q, &drive));
