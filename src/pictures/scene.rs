@@ -58,6 +58,7 @@ pub fn poses(scene: &Scene, mechanism: &Mechanism, phi: &[f64]) -> Result<Poses>
         .map_err(|e| solver_error(scene, e))?;
     let mut xy = Vec::with_capacity(phi.len());
     for &p in phi {
+        let p = scene.drive.joint_position(p);
         tracker.move_to(p).map_err(|e| solver_error(scene, e))?;
         let k = tracker
             .kinematics::<1>()

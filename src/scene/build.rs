@@ -52,7 +52,7 @@ pub fn mechanism(scene: &Scene) -> Result<Mechanism> {
             JointKind::Weld { links: [a, c] } => b.rigid(name, a, c),
         };
     }
-    let drive = match scene.drive.kind {
+    let drive = match scene.drive.joint_kind() {
         DriveKind::Angle => Drive::angle(scene.drive.joint.as_str()),
         DriveKind::Displacement => Drive::displacement(scene.drive.joint.as_str()),
     };

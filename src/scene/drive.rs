@@ -7,7 +7,9 @@ use toml::Spanned;
 use crate::error::{Error, Result};
 
 use super::format::{DriveSection, SweepSection};
-use super::model::{Drive, DriveKind, Joint, JointKind, Output, OutputKind};
+use mechdiff_core::cams::{CamJoint, Follower};
+
+use super::model::{Drive, DriveCam, DriveKind, Joint, JointKind, Output, OutputKind};
 use super::resolve::{Context, GROUND, Geometry};
 use super::units::Dimension;
 
@@ -110,6 +112,17 @@ impl Context<'_> {
                 ));
             }
         };
+        let cam = match &d.cam {
+            Some(path) => Some(self.drive_cam(path, &joint.name, kind)?),
+            None => None,
+        };
+        // With a cam the drive position, speed and acceleration are the cam's angle and
+        // motion; the joint's own kind is kept in the cam drive.
+        let kind = if cam.is_some() {
+            DriveKind::Angle
+        } else {
+            kind
+        };
         let speed = d
             .speed
             .as_ref()
@@ -128,6 +141,52 @@ impl Context<'_> {
             speed,
             acceleration,
             location: self.at(section),
+            cam,
+        })
+    }
+
+    /// Loads the cam scene `path` (relative to this file) for `[drive] cam` of joint `joint`
+    /// and checks that its follower moves a joint of kind `kind`.
+    fn drive_cam(&self, path: &Spanned<String>, joint: &str, kind: DriveKind) -> Result<DriveCam> {
+        let dir = std::path::Path::new(&self.source.file).parent();
+        let file = dir.map_or_else(
+            || std::path::PathBuf::from(path.get_ref()),
+            |d| d.join(path.get_ref()),
+        );
+        let cam = super::cam::load(&file).map_err(|e| {
+            self.invalid(
+                path,
+                format!("`[drive] cam`: the cam scene does not load: {e}"),
+            )
+        })?;
+        let translating = !matches!(
+            cam.mechanism.dimensions.follower,
+            Follower::OscillatingRoller { .. }
+        );
+        let expected = if translating {
+            DriveKind::Displacement
+        } else {
+            DriveKind::Angle
+        };
+        if kind != expected {
+            let (follower, wanted) = if translating {
+                ("translating", "prismatic")
+            } else {
+                ("oscillating", "revolute")
+            };
+            return Err(self.invalid(
+                path,
+                format!(
+                    "`[drive] cam`: the cam's follower is {follower} ({}), so it moves a \
+                     {wanted} joint; joint `{joint}` is not one",
+                    cam.mechanism.dimensions.follower.describe()
+                ),
+            ));
+        }
+        Ok(DriveCam {
+            file: file.display().to_string(),
+            joint: CamJoint::new(cam.mechanism.program),
+            joint_kind: kind,
         })
     }
 

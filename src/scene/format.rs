@@ -345,6 +345,9 @@ pub struct DriveSection {
     /// (length unit per s²). Default 0.
     #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub acceleration: Option<Spanned<f64>>,
+    /// A cam scene file (path relative to this file) whose follower moves the joint: the
+    /// sweep, `speed` and `acceleration` are then the cam's (see [`super::model::DriveCam`]).
+    pub cam: Option<Name>,
 }
 
 /// `[sweep]`: `from`, `to`, `step`, or `positions`.

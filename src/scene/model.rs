@@ -176,6 +176,46 @@ pub struct Drive {
     pub acceleration: f64,
     /// Where `[drive]` is.
     pub location: Location,
+    /// The cam moving the joint, if `[drive] cam` names one.
+    pub cam: Option<DriveCam>,
+}
+
+impl Drive {
+    /// The kind of the driven joint's variable (for a cam drive, the follower's, while
+    /// [`Drive::kind`] is the cam angle's).
+    pub fn joint_kind(&self) -> DriveKind {
+        self.cam.as_ref().map_or(self.kind, |c| c.joint_kind)
+    }
+
+    /// The driven joint's position (rad or m) at drive position `phi` (for a cam drive, the
+    /// cam angle: the sketch's value plus the follower's displacement s(θ)).
+    pub fn joint_position(&self, phi: f64) -> f64 {
+        match &self.cam {
+            Some(c) => self.at_sketch + c.joint.svaj(phi).value,
+            None => phi,
+        }
+    }
+}
+
+/// A cam driving the joint (`[drive] cam = "file"`): the drive position is the cam angle θ,
+/// the speed and acceleration are the cam's, and the joint moves by the follower's
+/// displacement s(θ) from the sketch (the sketch shows the follower at s = 0).
+#[derive(Debug, Clone)]
+pub struct DriveCam {
+    /// The cam scene file, as resolved.
+    pub file: String,
+    /// The cam program as a drive.
+    pub joint: mechdiff_core::cams::CamJoint,
+    /// The driven joint's kind: a displacement for a translating follower, an angle for an
+    /// oscillating one.
+    pub joint_kind: DriveKind,
+}
+
+impl PartialEq for DriveCam {
+    /// Two cam drives are equal when they come from the same file for the same joint kind.
+    fn eq(&self, other: &Self) -> bool {
+        self.file == other.file && self.joint_kind == other.joint_kind
+    }
 }
 
 /// What one output column group measures.
@@ -303,6 +343,21 @@ impl Scene {
             "{} {}",
             Units::tidy(self.units.from_si(value, dimension)),
             self.units.symbol(dimension)
+        )
+    }
+
+    /// A position of the driven joint (SI) as the geometry solver sees it: the drive text,
+    /// or for a cam drive the follower's position in its own unit.
+    pub fn joint_text(&self, value: f64) -> String {
+        let Some(cam) = &self.drive.cam else {
+            return self.drive_text(value);
+        };
+        let dimension = cam.joint_kind.dimension();
+        format!(
+            "the cam's follower at {} {} (joint `{}`)",
+            Units::tidy(self.units.from_si(value, dimension)),
+            self.units.symbol(dimension),
+            self.drive.joint
         )
     }
 }

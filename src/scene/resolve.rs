@@ -71,8 +71,28 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
         None => drive.kind.dimension(),
     };
     let positions = cx.sweep(&file.sweep, dimension)?;
-    if drive.kind == DriveKind::Angle && sweep_of.is_none() {
+    if drive.kind == DriveKind::Angle && sweep_of.is_none() && drive.cam.is_none() {
         drive.at_sketch = nearest_turn(drive.at_sketch, positions[0]);
+    }
+    if let Some(cam) = &file.drive.get_ref().cam {
+        let unsupported = [
+            (sweep_of.is_some(), "`[sweep] of`"),
+            (outputs.iter().any(|o| o.dead_positions), "`dead_positions`"),
+            (
+                file.balancing.is_some() || file.rotor.is_some(),
+                "balancing",
+            ),
+            (
+                file.motor.is_some(),
+                "a `[motor]` (the motor turns the cam, not the joint)",
+            ),
+        ];
+        if let Some((_, what)) = unsupported.iter().find(|u| u.0) {
+            return Err(cx.invalid(
+                cam,
+                format!("`[drive] cam`: {what} is not supported with a cam drive; remove it"),
+            ));
+        }
     }
     if let Some(output) = outputs.iter().find(|o| o.dead_positions) {
         let (lo, hi) = positions

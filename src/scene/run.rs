@@ -104,7 +104,13 @@ pub fn check(scene: &Scene) -> Result<Checked> {
             tracker.mobility(),
             tracker.loops(),
             tracker.closed_form_loops(),
-            (tracker.motion_range()).map_err(|e| solver_error(scene, e).to_string()),
+            match scene.drive.cam {
+                // The cam's follower moves within the cam program's stroke.
+                Some(_) => {
+                    Err("not walked for a cam drive (the cam sets the joint's travel)".into())
+                }
+                None => (tracker.motion_range()).map_err(|e| solver_error(scene, e).to_string()),
+            },
         )
     };
     Ok(Checked {
@@ -124,7 +130,12 @@ pub fn run(scene: &Scene) -> Result<Report> {
     let plan = Plan::of(scene);
     let drive_dimension = scene.drive.kind.dimension();
     let mut all = vec![Column {
-        name: "phi".to_owned(),
+        name: if scene.drive.cam.is_some() {
+            "theta"
+        } else {
+            "phi"
+        }
+        .to_owned(),
         unit: scene.units.symbol(drive_dimension).to_owned(),
         factor: scene.units.factor(drive_dimension),
     }];
@@ -344,14 +355,18 @@ fn sweep<const N: usize>(
     let mut previous: Vec<Option<f64>> = vec![None; scene.outputs.len()];
     let mut rows = Vec::with_capacity(positions.len());
     for &phi in positions {
-        let k = solve::<N>(scene, &mut tracker, phi)?;
+        let k = solve::<N>(scene, &mut tracker, scene.drive.joint_position(phi))?;
         let (amplification, joints) = tracker.amplification();
         if worst.as_ref().is_none_or(|w| amplification > w.0) {
             worst = Some((amplification, phi, joints));
         }
         let mut row = vec![phi];
         for (resolved, previous) in outputs.iter().zip(previous.iter_mut()) {
-            let values = evaluate(scene, &k, resolved, previous);
+            let mut values = evaluate(scene, &k, resolved, previous);
+            if let Some(cam) = &scene.drive.cam {
+                // Derivatives with respect to the cam angle (the chain rule through s(θ)).
+                values = values.iter().map(|v| cam.joint.compose(phi, v)).collect();
+            }
             for q in &resolved.output.quantities {
                 for v in &values {
                     row.push(quantity(v, *q, &drive));
@@ -453,8 +468,8 @@ pub(crate) fn solver_error(scene: &Scene, source: mechdiff_core::Error) -> Error
             residual,
         } => Error::Unassemblable {
             file: scene.file.clone(),
-            position: scene.drive_text(phi),
-            last: scene.drive_text(last_assembled),
+            position: scene.joint_text(phi),
+            last: scene.joint_text(last_assembled),
             loop_joints: joined(&joints),
             residual,
         },
@@ -464,7 +479,7 @@ pub(crate) fn solver_error(scene: &Scene, source: mechdiff_core::Error) -> Error
             joints,
         } => Error::Singular {
             file: scene.file.clone(),
-            position: scene.drive_text(phi),
+            position: scene.joint_text(phi),
             loop_joints: joined(&joints),
             condition,
         },
@@ -472,7 +487,7 @@ pub(crate) fn solver_error(scene: &Scene, source: mechdiff_core::Error) -> Error
             file: scene.file.clone(),
             quantity: quantity.to_owned(),
             value: "not finite".to_owned(),
-            position: scene.drive_text(phi),
+            position: scene.joint_text(phi),
         },
         Core::Blocked {
             from,
@@ -481,20 +496,20 @@ pub(crate) fn solver_error(scene: &Scene, source: mechdiff_core::Error) -> Error
             joints,
         } => Error::Blocked {
             file: scene.file.clone(),
-            from: scene.drive_text(from).into(),
-            to: scene.drive_text(to).into(),
-            limit: scene.drive_text(limit).into(),
+            from: scene.joint_text(from).into(),
+            to: scene.joint_text(to).into(),
+            limit: scene.joint_text(limit).into(),
             loop_joints: joined(&joints).into(),
         },
         Core::ChangePoint { phi, joints } => Error::ChangePoint {
             file: scene.file.clone(),
-            position: scene.drive_text(phi),
+            position: scene.joint_text(phi),
             loop_joints: joined(&joints),
         },
         Core::BranchFlip { from, to, joints } => Error::BranchFlip {
             file: scene.file.clone(),
-            from: scene.drive_text(from),
-            to: scene.drive_text(to),
+            from: scene.joint_text(from),
+            to: scene.joint_text(to),
             loop_joints: joined(&joints),
         },
         other => model_error(scene, other),

@@ -6,7 +6,8 @@
 //! - [`continuity`]: where a program's derivatives jump ([`ContinuityReport`]);
 //! - [`peaks`]: the peak coefficients of a law (C_v, C_a, C_j);
 //! - [`follower`] and [`profile`]: pitch curve, profile, pressure angle, curvature,
-//!   undercutting; [`sizing`]: the smallest base circle.
+//!   undercutting; [`sizing`]: the smallest base circle;
+//! - [`joint`]: a cam program as the drive of a linkage ([`CamJoint`]).
 //!
 //! Angles are in radians, the cam turns counter-clockwise; the displacement is in the unit of
 //! the lifts (a length for a translating follower, an angle in radians for an oscillating
@@ -15,6 +16,7 @@
 pub mod continuity;
 pub mod extrema;
 pub mod follower;
+pub mod joint;
 pub mod law;
 pub mod peaks;
 pub mod profile;
@@ -23,6 +25,7 @@ pub mod sizing;
 
 pub use continuity::{Boundary, BoundaryKind, ContinuityReport};
 pub use follower::{Dimensions, Follower};
+pub use joint::{CamJoint, CamRun, CamStep};
 pub use law::{MotionLaw, Side};
 pub use peaks::PeakCoefficients;
 pub use profile::{CamAnalysis, CamMechanism, Contact, Extreme};

@@ -60,6 +60,18 @@ pub fn run(
     phis: &[f64],
     drive: impl Fn(f64) -> DriveState,
 ) -> Result<Run, Error> {
+    let states: Vec<(f64, DriveState)> = phis.iter().map(|&phi| (phi, drive(phi))).collect();
+    run_states(plan, model, solver, &states)
+}
+
+/// [`run`] with the drive state given with each drive position (a drive whose speed is not
+/// a function of its position, e.g. one moved by a cam: see [`crate::cams::joint`]).
+pub fn run_states(
+    plan: &Plan,
+    model: &CompiledModel<'_>,
+    solver: &Solver,
+    states: &[(f64, DriveState)],
+) -> Result<Run, Error> {
     if plan.shaking && model.masses.is_empty() {
         return Err(Error::MissingData {
             what: "the shaking force".to_owned(),
@@ -68,11 +80,10 @@ pub fn run(
     }
     let mut tracker = solver.track(model.mechanism)?;
     let mut trace = Trace::default();
-    let mut steps = Vec::with_capacity(phis.len());
-    for &phi in phis {
+    let mut steps = Vec::with_capacity(states.len());
+    for &(phi, d) in states {
         tracker.move_to(phi)?;
         trace.positions += 1;
-        let d = drive(phi);
         let mut step = Step {
             phi,
             drive: d,

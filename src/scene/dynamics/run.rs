@@ -1,7 +1,7 @@
 //! Running the `[[dynamics]]` outputs: the planned sweep and its columns.
 
 use mechdiff_core::DriveState;
-use mechdiff_core::dynamics::run::{Run, run as run_plan};
+use mechdiff_core::dynamics::run::{Run, run_states};
 use mechdiff_core::dynamics::{Plan, ShakingSummary};
 use mechdiff_core::geometry::{Mechanism, Solver};
 
@@ -74,29 +74,45 @@ pub(crate) fn run(
                 .to_owned(),
         });
     }
-    let result =
-        run_plan(&plan, &model, &Solver::default(), positions, |_| drive).map_err(|e| match e {
-            mechdiff_core::Error::SelfLocking {
-                phi,
-                joints,
-                reason,
-            } => Error::Invalid {
-                location: scene.drive.location.clone(),
-                message: format!(
-                    "self-locking at drive position {}: joints {} ({reason})",
-                    scene.drive_text(phi),
-                    joints.join(", ")
-                ),
-            },
-            other => crate::scene::run::solver_error(scene, other),
-        })?;
+    // The driven joint's position and motion at each drive position (through the cam's
+    // follower for a cam drive).
+    let states: Vec<(f64, DriveState)> = (positions.iter())
+        .map(|&phi| match &scene.drive.cam {
+            Some(c) => {
+                let (s, follower) = c.joint.drive_at(phi, &drive);
+                (scene.drive.at_sketch + s, follower)
+            }
+            None => (phi, drive),
+        })
+        .collect();
+    let result = run_states(&plan, &model, &Solver::default(), &states).map_err(|e| match e {
+        mechdiff_core::Error::SelfLocking {
+            phi,
+            joints,
+            reason,
+        } => Error::Invalid {
+            location: scene.drive.location.clone(),
+            message: format!(
+                "self-locking at drive position {}: joints {} ({reason})",
+                scene.joint_text(phi),
+                joints.join(", ")
+            ),
+        },
+        other => crate::scene::run::solver_error(scene, other),
+    })?;
     let m = mechanism;
-    let torque_unit = if scene.drive.kind == DriveKind::Angle {
+    let torque_unit = if scene.drive.joint_kind() == DriveKind::Angle {
         ("M_drive", "N m")
     } else {
         ("F_drive", "N")
     };
     let mass_links: Vec<&str> = model_links(d);
+    // With a cam the balance gives the cam-shaft torque.
+    let balance_unit = if scene.drive.cam.is_some() {
+        "N m"
+    } else {
+        torque_unit.1
+    };
     let mut columns = Vec::new();
     for o in &d.outputs {
         match o.quantity {
@@ -122,6 +138,9 @@ pub(crate) fn run(
             }
             DynamicQuantity::DriveTorque => {
                 columns.push(column(torque_unit.0, torque_unit.1));
+                if scene.drive.cam.is_some() {
+                    columns.push(column("M_cam", "N m"));
+                }
                 if d.data.motor.is_some() && plan.effects.motor {
                     columns.push(column("M_motor", "N m"));
                 }
@@ -136,8 +155,8 @@ pub(crate) fn run(
                 columns.extend([column("J_red", u[0]), column("J_red'", u[1])]);
             }
             DynamicQuantity::PowerBalance => columns.extend([
-                column("M_balance", torque_unit.1),
-                column("dM", torque_unit.1),
+                column("M_balance", balance_unit),
+                column("dM", balance_unit),
                 column("P_drive", "W"),
                 column("dT/dt", "W"),
                 column("P_losses", "W"),
@@ -145,7 +164,8 @@ pub(crate) fn run(
         }
     }
     let mut rows = Vec::with_capacity(result.steps.len());
-    for step in &result.steps {
+    for (step, &phi) in result.steps.iter().zip(positions) {
+        let cam = (scene.drive.cam.as_ref()).map(|c| (c.joint.svaj(phi), c));
         let mut row = Vec::with_capacity(columns.len());
         for o in &d.outputs {
             match o.quantity {
@@ -180,6 +200,9 @@ pub(crate) fn run(
                 DynamicQuantity::DriveTorque => {
                     let s = step.solution.as_ref().expect("planned");
                     row.push(s.drive_torque);
+                    if let Some((_, c)) = &cam {
+                        row.push(c.joint.torque(phi, s.drive_torque));
+                    }
                     if let Some(ms) = &s.motor {
                         row.push(ms.torque);
                     }
@@ -187,17 +210,37 @@ pub(crate) fn run(
                 DynamicQuantity::KineticEnergy => row.push(step.energy.expect("planned").kinetic),
                 DynamicQuantity::ReducedInertia => {
                     let e = step.energy.expect("planned");
-                    row.extend([
+                    let (j, dj) = (
                         e.reduced_inertia,
                         e.reduced_inertia_derivative.unwrap_or(f64::NAN),
-                    ]);
+                    );
+                    row.extend(match &cam {
+                        // Reduced to the cam shaft: J_θ = J_s s′², J_θ′ = J_s′ s′³ + 2 J_s s′ s″.
+                        Some((s, _)) => {
+                            let [s1, s2, _] = s.derivatives;
+                            [j * s1 * s1, dj * s1 * s1 * s1 + 2.0 * j * s1 * s2]
+                        }
+                        None => [j, dj],
+                    });
                 }
                 DynamicQuantity::PowerBalance => {
-                    let b = step.solution.as_ref().expect("planned").balance;
-                    let t = b.torque.unwrap_or(f64::NAN);
+                    let s = step.solution.as_ref().expect("planned");
+                    let b = s.balance;
+                    let (t, kinetostatic) = match &cam {
+                        // The cam-shaft torque from the balance, (dT/dt − P_others)/ω, against
+                        // F_s s′ (defined in a dwell too, where the follower stands still).
+                        Some((_, c)) => {
+                            let others = b.gravity + b.loads + b.friction + b.efficiency;
+                            (
+                                (b.kinetic_rate - others) / drive.omega,
+                                c.joint.torque(phi, s.drive_torque),
+                            )
+                        }
+                        None => (b.torque.unwrap_or(f64::NAN), b.kinetostatic_torque),
+                    };
                     row.extend([
                         t,
-                        b.kinetostatic_torque - t,
+                        kinetostatic - t,
                         b.drive,
                         b.kinetic_rate,
                         b.friction + b.efficiency,
