@@ -49,6 +49,7 @@ pub mod plan;
 pub mod resolve;
 pub mod run;
 pub mod source;
+pub mod study;
 pub mod table;
 pub mod units;
 pub mod values;
