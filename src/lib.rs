@@ -19,6 +19,7 @@ pub use mechdiff_macros::derivatives;
 
 pub mod error;
 pub mod files;
+pub mod import;
 pub mod report;
 pub mod scene;
 

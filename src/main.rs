@@ -25,6 +25,8 @@ enum Command {
     Run(cli::run::RunArgs),
     /// Check a scene file (syntax, names, units, sketch, mobility) without running it.
     Check(cli::check::CheckArgs),
+    /// Convert a Pyslvs expression or a PMKS text file into a scene (printed, or --out FILE).
+    Import(cli::import::ImportArgs),
     /// Generate the Rust function that computes a formula and its derivatives (symbolic, with CSE)
     Codegen(mechdiff::codegen::Args),
 }
@@ -35,6 +37,7 @@ fn main() -> ExitCode {
         None | Some(Command::Whitworth) => whitworth(),
         Some(Command::Run(args)) => cli::run::run(&args).map_err(Into::into),
         Some(Command::Check(args)) => cli::check::check(&args).map_err(Into::into),
+        Some(Command::Import(args)) => cli::import::import(&args).map_err(Into::into),
         Some(Command::Codegen(args)) => mechdiff::codegen::run(&args).map_err(Into::into),
     };
     match result {

@@ -1,4 +1,5 @@
-//! The `run` and `check` subcommands of the `mechdiff` tool (scene files).
+//! The `run`, `check` and `import` subcommands of the `mechdiff` tool (scene files).
 
 pub mod check;
+pub mod import;
 pub mod run;
