@@ -165,6 +165,24 @@ quantities = ["position", "velocity_coefficient"]
     }
 }
 
+/// Pyslvs's own documentation solves this example at input angle 0 and prints the foot
+/// (joint 7, `J8` here) at (-43.170055, -91.753226): `expr_solving` of this example with
+/// input angle 0, "print(x, y)  # -43.170055 -91.753226", in Pyslvs's usage example (as
+/// copied in qunat/Pythonocc-CAD, module/slove_test.py). The imported scene, with its
+/// three-link joints, gives the same foot to the 6 decimals printed (1e-6 mm).
+#[test]
+fn an_imported_jansen_leg_puts_the_foot_where_pyslvs_does() {
+    let (_, got) = imported("tests/data/import/jansen.pyslvs");
+    let (phi, x, y) = (
+        got.column("phi").unwrap(),
+        got.column("x_J8").unwrap(),
+        got.column("y_J8").unwrap(),
+    );
+    assert_eq!(phi[0], 0.0);
+    assert!((x[0] * 1e3 + 43.170055).abs() < 1e-6, "{}", x[0] * 1e3);
+    assert!((y[0] * 1e3 + 91.753226).abs() < 1e-6, "{}", y[0] * 1e3);
+}
+
 fn import_error(name: &str, text: &str) -> String {
     let source = Source::new(name, text);
     let e = import::read(&source)

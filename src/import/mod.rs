@@ -306,10 +306,17 @@ impl Linkage {
             }
         }
         let driven = Self::name(drive);
+        // The crank's second point: the other joint's point, or its guide's when the crank
+        // carries that slide's guide.
+        let mut second = Self::name(other);
+        if matches!(self.joints[other].kind, JointKind::Prismatic { .. })
+            && self.joints[other].links[0] == crank
+        {
+            second.push_str("_guide");
+        }
         let _ = writeln!(
             w,
-            "\n[drive]\njoint = \"{driven}\"\nline = [\"{driven}\", \"{}\"]   # the angle of `{crank}`\nspeed = 1   # rad/s\n",
-            Self::name(other)
+            "\n[drive]\njoint = \"{driven}\"\nline = [\"{driven}\", \"{second}\"]   # the angle of `{crank}`\nspeed = 1   # rad/s\n"
         );
         let _ = writeln!(
             w,
