@@ -177,6 +177,23 @@ pub enum Error {
         /// What is wrong and what is expected.
         message: String,
     },
+    /// A run of a parameter sweep (`--sweep`) failed at one of the parameter's values.
+    #[error("with {setting} (of --sweep): {source}")]
+    AtParameter {
+        /// The parameter and the value, `NAME=VALUE`.
+        setting: String,
+        /// What went wrong at that value.
+        source: Box<Error>,
+    },
+    /// A file given to `mechdiff import` (Pyslvs expression, PMKS text) is not in its format
+    /// or holds what a scene cannot take.
+    #[error("{location}: {message}")]
+    Import {
+        /// Where in the imported file.
+        location: Location,
+        /// What is wrong and what is expected.
+        message: String,
+    },
     /// A point built from lengths (two circles, a circle and a line) has no solution.
     #[error("{location}: {message}")]
     Unconstructible {

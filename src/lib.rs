@@ -20,6 +20,7 @@ pub use mechdiff_macros::derivatives;
 
 pub mod error;
 pub mod files;
+pub mod import;
 pub mod pictures;
 pub mod report;
 pub mod scene;

@@ -28,6 +28,8 @@ enum Command {
     /// Every derivative method against an extended-precision reference: error per order and
     /// time per drive position, side by side (`whitworth` or a formula scene).
     Accuracy(cli::accuracy::AccuracyArgs),
+    /// Convert a Pyslvs expression or a PMKS text file into a scene (printed, or --out FILE).
+    Import(cli::import::ImportArgs),
     /// Generate the Rust function that computes a formula and its derivatives (symbolic, with CSE)
     Codegen(mechdiff::codegen::Args),
 }
@@ -39,6 +41,7 @@ fn main() -> ExitCode {
         Some(Command::Run(args)) => cli::run::run(&args).map_err(Into::into),
         Some(Command::Check(args)) => cli::check::check(&args).map_err(Into::into),
         Some(Command::Accuracy(args)) => cli::accuracy::accuracy(&args).map_err(Into::into),
+        Some(Command::Import(args)) => cli::import::import(&args).map_err(Into::into),
         Some(Command::Codegen(args)) => mechdiff::codegen::run(&args).map_err(Into::into),
     };
     match result {

@@ -154,10 +154,10 @@ fn a_line_through_two_coincident_points_has_zero_length() {
 }
 
 #[test]
-fn a_non_positive_sweep_step_is_rejected() {
+fn a_zero_sweep_step_is_rejected() {
     let e = parse_with("step = 10", "step = 0");
-    assert!(matches!(e, Error::NonPositiveLength { .. }), "{e:?}");
-    assert_message(&e, 31, &["`[sweep] step`", "must be positive"]);
+    assert!(matches!(e, Error::Invalid { .. }), "{e:?}");
+    assert_message(&e, 31, &["`[sweep] step` is zero", "negative to walk"]);
 }
 
 #[test]

@@ -484,7 +484,8 @@ fn rotor_csv_static_example_of_reference_002() {
 }
 
 /// Options a rotor or cam scene cannot honour are refused by name, never silently ignored:
-/// `--json` (a rotor has no drive positions) and `--set` (only linkages have `[parameters]`).
+/// `--json` (a rotor has no drive positions), `--set` and `--sweep` (only linkages have
+/// `[parameters]`).
 #[test]
 fn options_a_scene_kind_cannot_honour_are_refused() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));

@@ -146,3 +146,30 @@ fn check_lists_every_links_lengths_with_set_applied() {
     assert!(!output.status.success());
     assert!(stderr(&output).contains("--set e=1: the scene has no parameter `e`"));
 }
+
+#[test]
+fn run_sweep_prints_one_long_table_with_the_parameter_first() {
+    let output = mechdiff(&[
+        "run",
+        "scenes/norton_four_bar.toml",
+        "--sweep",
+        "b=1.85:1.95:3",
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = stdout(&output);
+    let header = text.lines().find(|l| l.contains("psi_dot")).unwrap();
+    assert!(header.trim_start().starts_with("b "), "{header}");
+    // 3 values × 11 drive positions, each row starting with its b.
+    let rows = text
+        .lines()
+        .filter(|l| l.trim_start().starts_with("1."))
+        .count();
+    assert_eq!(rows, 33, "{text}");
+    let output = mechdiff(&["run", "scenes/norton_four_bar.toml", "--sweep", "b=1:2"]);
+    assert!(!output.status.success());
+    assert!(
+        stderr(&output).contains("NAME=FROM:TO:COUNT"),
+        "{}",
+        stderr(&output)
+    );
+}

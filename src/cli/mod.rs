@@ -1,8 +1,9 @@
-//! The `run` and `check` subcommands of the `mechdiff` tool (scene files).
+//! The `run`, `check` and `import` subcommands of the `mechdiff` tool (scene files).
 
 pub mod accuracy;
 pub mod cam;
 pub mod check;
+pub mod import;
 pub mod rotor;
 pub mod run;
 

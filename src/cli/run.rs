@@ -17,6 +17,11 @@ pub struct RunArgs {
     /// `--set l1=0.16`; the value may be a formula of the other parameters.
     #[arg(long = "set", value_name = "NAME=VALUE")]
     pub set: Vec<scene::parameters::Setting>,
+    /// Run the scene once per value of one parameter and print one long table with the
+    /// parameter as its first column: `--sweep l1=0.15:0.17:5` (5 values, both ends
+    /// included, either direction) or `--sweep l1=0.15,0.16,0.17`; in the parameter's unit.
+    #[arg(long = "sweep", value_name = "NAME=FROM:TO:COUNT")]
+    pub sweep: Option<scene::study::ParameterSweep>,
     /// Also write every column at every drive position to this CSV file (header: `name [unit]`;
     /// rotor scenes: the rotor's answers, one row each).
     /// The file is written whole or not at all (a temporary file beside it, renamed when
@@ -50,13 +55,30 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
     }
     let kind = super::scene_kind(&args.scene);
     super::refuse_settings(kind, &args.set, &args.scene)?;
+    if args.sweep.is_some() && kind != scene::Kind::Linkage {
+        return Err(Error::OptionNotApplicable {
+            option: "--sweep".to_owned(),
+            scene: args.scene.clone(),
+            why: "only linkage scenes have `[parameters]` to sweep".to_owned(),
+        });
+    }
     match kind {
         scene::Kind::Cam => return super::cam::run(args),
         scene::Kind::Rotor => return super::rotor::run(args),
         scene::Kind::Linkage => {}
     }
-    let scene = scene::load_with(&args.scene, &args.set)?;
-    let report = scene::run(&scene)?;
+    let (scene, report) = match &args.sweep {
+        None => {
+            let scene = scene::load_with(&args.scene, &args.set)?;
+            let report = scene::run(&scene)?;
+            (scene, report)
+        }
+        Some(sweep) => {
+            let text = files::read_scene(&args.scene)?;
+            let file = args.scene.display().to_string();
+            scene::study::run_sweep(&file, &text, &args.set, sweep)?
+        }
+    };
     for warning in &report.warnings {
         eprintln!("warning: {}: {warning}", scene.file);
     }

@@ -248,20 +248,35 @@ impl Context<'_> {
                     .collect()
             }
             (None, Some(from), Some(to), Some(step)) => {
-                self.positive(step, "`[sweep] step`", dimension)?;
-                let (from_si, to_si) = (
+                let (from_si, to_si, step_si) = (
                     self.number(from, "`[sweep] from`", dimension)?,
                     self.number(to, "`[sweep] to`", dimension)?,
+                    self.number(step, "`[sweep] step`", dimension)?,
                 );
-                if to_si < from_si {
+                if step_si == 0.0 {
                     return Err(self.invalid(
-                        to,
-                        "`[sweep] to` must not be below `from`; the step is positive",
+                        step,
+                        "`[sweep] step` is zero; expected the distance between two drive \
+                         positions (positive, or negative to walk from `from` down to `to`)",
+                    ));
+                }
+                if to_si > from_si && step_si < 0.0 {
+                    return Err(self.invalid(
+                        step,
+                        "`[sweep] step` is negative but `to` is above `from`; a negative step \
+                         walks from `from` down to `to`: swap `from` and `to`, or make the step \
+                         positive",
                     ));
                 }
                 // Count in the file's units so that 0..360 by 0.5 has exactly 721 positions.
-                let (f, t, h) = (*from.get_ref(), *to.get_ref(), *step.get_ref());
-                let intervals = ((t - f) / h * (1.0 + 4.0 * f64::EPSILON)).floor();
+                // Downwards when `to` is below `from`, whatever the step's sign (its size).
+                let (f, t) = (*from.get_ref(), *to.get_ref());
+                let h = step.get_ref().abs().copysign(t - f);
+                let intervals = if t == f {
+                    0.0
+                } else {
+                    ((t - f) / h * (1.0 + 4.0 * f64::EPSILON)).floor()
+                };
                 if intervals >= MAX_POSITIONS as f64 {
                     return Err(self.invalid(
                         step,

@@ -360,7 +360,7 @@ pub struct SweepSection {
     /// Last drive position (included when the step divides the range).
     #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub to: Option<Spanned<f64>>,
-    /// Positive step.
+    /// Step between positions: its size; `to` below `from` walks down (a negative step too).
     #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub step: Option<Spanned<f64>>,
     /// An explicit list of drive positions.

@@ -52,6 +52,7 @@ pub mod plot;
 pub mod resolve;
 pub mod run;
 pub mod source;
+pub mod study;
 pub mod table;
 pub mod units;
 pub mod values;

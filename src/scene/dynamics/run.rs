@@ -8,6 +8,7 @@ use mechdiff_core::geometry::{Mechanism, Solver};
 use crate::error::{Error, Result};
 use crate::scene::model::{DriveKind, JointKind, Scene};
 use crate::scene::outputs::Column;
+use crate::scene::units::{Dimension, Units};
 
 use super::format::DynamicQuantity;
 use super::resolve::SceneDynamics;
@@ -17,7 +18,7 @@ use super::resolve::SceneDynamics;
 pub struct DynamicsReport {
     /// The plan carried out.
     pub plan: Plan,
-    /// Columns (SI units, factor 1).
+    /// Columns: SI, or the file's force, torque, mass and inertia units (their factor).
     pub columns: Vec<Column>,
     /// One row per drive position.
     pub rows: Vec<Vec<f64>>,
@@ -163,6 +164,9 @@ pub(crate) fn run(
             ]),
         }
     }
+    for c in &mut columns {
+        in_file_units(c, &scene.units);
+    }
     let mut rows = Vec::with_capacity(result.steps.len());
     for (step, &phi) in result.steps.iter().zip(positions) {
         let cam = (scene.drive.cam.as_ref()).map(|c| (c.joint.svaj(phi), c));
@@ -298,6 +302,33 @@ pub(crate) fn run(
         summary,
         run: result,
     }))
+}
+
+/// Prints a force, torque, mass or moment-of-inertia column (and a reduced inertia's
+/// derivative) in the file's unit of that dimension when `[units]` names one other than
+/// SI (`force = "lbf"`, `torque = "lbf*in"`, ...); energies and powers stay in J and W.
+/// Only the printing changes: the report keeps SI values.
+fn in_file_units(column: &mut Column, units: &Units) {
+    let (dimension, per_radian) = match column.unit.as_str() {
+        "N" => (Dimension::Force, false),
+        "N m" => (Dimension::Torque, false),
+        "kg" => (Dimension::Mass, false),
+        "kg m^2" => (Dimension::MomentOfInertia, false),
+        "kg m^2/rad" => (Dimension::MomentOfInertia, true),
+        // The reduced mass's derivative with respect to a linear drive: mass per length.
+        "kg/m" => (Dimension::Density, false),
+        _ => return,
+    };
+    let factor = units.factor(dimension);
+    if factor != 1.0 {
+        let symbol = units.symbol(dimension);
+        column.unit = if per_radian {
+            format!("{symbol}/rad")
+        } else {
+            symbol.to_owned()
+        };
+        column.factor = factor;
+    }
 }
 
 fn model_links(d: &SceneDynamics) -> Vec<&str> {
