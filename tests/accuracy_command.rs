@@ -1,19 +1,7 @@
 //! `mechdiff accuracy` as a user calls it: the table, the CSV and SVG files, the errors.
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
-
-fn mechdiff(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_mechdiff"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the mechdiff binary runs")
-}
-
-fn temp_file(name: &str) -> PathBuf {
-    std::env::temp_dir().join(format!("mechdiff-accuracy-{}-{name}", std::process::id()))
-}
+mod common;
+use common::{mechdiff, temp_file};
 
 /// `mechdiff accuracy whitworth` prints one row per method — every exact method and the
 /// finite differences at their best steps — and the step scans with the best step of each

@@ -10,6 +10,9 @@
 use mechdiff::Error;
 use mechdiff::scene::{self, Report, parameters::Setting};
 
+mod common;
+use common::line_of;
+
 const A: f64 = 0.86;
 const B: f64 = 1.85;
 const C: f64 = 0.86;
@@ -110,11 +113,6 @@ fn assert_same(got: &Report, want: &Report, tol: f64) {
         }
     }
     assert_eq!(got.rows.len(), want.rows.len());
-}
-
-/// The 1-based line of the first occurrence of `what` in `text`.
-fn line_of(text: &str, what: &str) -> usize {
-    text[..text.find(what).unwrap()].matches('\n').count() + 1
 }
 
 #[test]

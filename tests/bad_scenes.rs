@@ -4,6 +4,9 @@
 use mechdiff::Error;
 use mechdiff::scene;
 
+mod common;
+use common::assert_message;
+
 /// A valid four-bar; each test breaks one thing in it.
 const FOUR_BAR: &str = r#"[units]
 length = "m"
@@ -51,18 +54,6 @@ fn parse_with(from: &str, to: &str) -> Error {
     match scene::parse("bad.toml", &FOUR_BAR.replacen(from, to, 1)) {
         Ok(_) => panic!("`{to}` was accepted"),
         Err(e) => e,
-    }
-}
-
-/// Asserts the message starts with `bad.toml:<line>:` and contains every `part`.
-fn assert_message(error: &Error, line: usize, parts: &[&str]) {
-    let message = error.to_string();
-    assert!(
-        message.starts_with(&format!("bad.toml:{line}:")),
-        "wrong place: {message}"
-    );
-    for part in parts {
-        assert!(message.contains(part), "`{part}` missing from: {message}");
     }
 }
 

@@ -3,24 +3,13 @@
 //! CSV columns, and bad balancing input with `file:line:column`.
 
 use std::path::Path;
-use std::process::Command;
 
 use mechdiff::Error;
 use mechdiff::scene::balancing::{RotorScene, rotor_scene};
-use mechdiff::scene::{self, Report};
+use mechdiff::scene::{self};
 
-fn run(name: &str) -> Report {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("scenes")
-        .join(name);
-    let scene = scene::load(path).unwrap_or_else(|e| panic!("{e}"));
-    scene::run(&scene).unwrap_or_else(|e| panic!("{e}"))
-}
-
-fn column(r: &Report, name: &str) -> Vec<f64> {
-    r.column(name)
-        .unwrap_or_else(|| panic!("no column `{name}`"))
-}
+mod common;
+use common::{column, mechdiff, run_scene as run};
 
 /// At constant speed ω a crank counterweight b (global, at the sketch) adds the force
 /// ω² R(θ) b, θ the crank's rotation (= φ here: the sketch is at φ = 0). With N positions
@@ -87,14 +76,6 @@ fn rotor_scene_prints_the_stated_variant() {
         "{text}"
     );
     assert!(text.contains("plane at -400 mm: m r = "), "{text}");
-}
-
-fn mechdiff(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_mechdiff"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .unwrap()
 }
 
 #[test]

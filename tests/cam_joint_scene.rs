@@ -4,25 +4,16 @@
 //! balance, and bad cam drives as errors with `file:line:column`.
 
 use std::f64::consts::TAU;
-use std::path::{Path, PathBuf};
 
 use mechdiff::scene::{self, Report};
 use num_dual::{Dual3_64, DualNum};
 
-fn scene_path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("scenes")
-        .join(name)
-}
+mod common;
+use common::{column, scene_path};
 
 fn run() -> Report {
     let s = scene::load(scene_path("cam_driven_rocker.toml")).unwrap_or_else(|e| panic!("{e}"));
     scene::run(&s).unwrap_or_else(|e| panic!("{e}"))
-}
-
-fn column(r: &Report, name: &str) -> Vec<f64> {
-    r.column(name)
-        .unwrap_or_else(|| panic!("no column `{name}`"))
 }
 
 /// The scene's data (m): rocker, rod, follower at s = 0; the cam's lift and extents (rad).

@@ -1,30 +1,12 @@
 //! `mechdiff run` and `mechdiff check` as a user calls them: exit status, what is printed,
 //! and the CSV file.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::Path;
 
 use mechdiff::scene;
 
-fn mechdiff(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_mechdiff"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the mechdiff binary runs")
-}
-
-fn stdout(output: &Output) -> String {
-    String::from_utf8(output.stdout.clone()).unwrap()
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8(output.stderr.clone()).unwrap()
-}
-
-fn temp_file(name: &str) -> PathBuf {
-    std::env::temp_dir().join(format!("mechdiff-cli-{}-{name}", std::process::id()))
-}
+mod common;
+use common::{mechdiff, stderr, stdout, temp_file};
 
 /// The table of the offset slider-crank (millimetres, rpm): plan line, headers with units,
 /// 73 rows, dead positions and stroke. Snapshot of what a user sees.

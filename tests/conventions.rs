@@ -3,6 +3,8 @@
 //! forces as docs/scene-format.md ("Conventions") states them, and dynamics columns
 //! printed in the file's force and torque units.
 
+mod common;
+
 use mechdiff::scene::{self, Report};
 
 /// Norton's four-bar from its lengths (the scene shipped in `scenes/`), with masses from a
@@ -36,8 +38,7 @@ output = "reactions"
 }
 
 fn run(text: &str) -> Report {
-    let scene = scene::parse("conventions.toml", text).unwrap_or_else(|e| panic!("{e}"));
-    scene::run(&scene).unwrap_or_else(|e| panic!("{e}"))
+    common::run_text("conventions.toml", text)
 }
 
 /// `a` and `b` agree to `tol` relative to each value's magnitude (absolute below 1).

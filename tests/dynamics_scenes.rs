@@ -4,20 +4,10 @@
 use std::path::Path;
 
 use mechdiff::Error;
-use mechdiff::scene::{self, Report};
+use mechdiff::scene::{self};
 
-fn run(name: &str) -> Report {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("scenes")
-        .join(name);
-    let scene = scene::load(path).unwrap_or_else(|e| panic!("{e}"));
-    scene::run(&scene).unwrap_or_else(|e| panic!("{e}"))
-}
-
-fn column(r: &Report, name: &str) -> Vec<f64> {
-    r.column(name)
-        .unwrap_or_else(|| panic!("no column `{name}`"))
-}
+mod common;
+use common::{column, run_scene as run};
 
 /// whitworth_000.json `table_recomputed.A_exact_dead_positions` (the copy the core tests use;
 /// its source is named there): rows of φ (rad), F_x1, F_y1, F_x2, F_y2, F_x3, ΣF_x, ΣF_y (N).

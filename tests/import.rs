@@ -6,6 +6,8 @@
 //! Examples/, with the `mech=` header and flags PMKS writes; the first joint marked as the
 //! driving input).
 
+mod common;
+
 use std::process::Command;
 
 use mechdiff::import;
@@ -26,8 +28,7 @@ fn imported(path: &str) -> (String, Report) {
 }
 
 fn run(text: &str) -> Report {
-    let scene = scene::parse("hand.toml", text).unwrap_or_else(|e| panic!("{e}"));
-    scene::run(&scene).unwrap_or_else(|e| panic!("{e}"))
+    common::run_text("hand.toml", text)
 }
 
 /// Every row of column `a` of `got` equals column `b` of `want` to 1e-12 relative (absolute

@@ -8,6 +8,9 @@ use std::path::Path;
 use mechdiff::Error;
 use mechdiff::scene::{self, Report};
 
+mod common;
+use common::assert_message;
+
 /// The text of `scenes/<name>`.
 fn scene_text(name: &str) -> String {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -26,18 +29,6 @@ fn refused(name: &str, from: &str, to: &str) -> (Error, usize) {
     match scene::parse("bad.toml", &text) {
         Ok(_) => panic!("`{to}` was accepted"),
         Err(e) => (e, line),
-    }
-}
-
-/// Asserts the message is placed at `bad.toml:<line>:` and contains every part.
-fn assert_message(error: &Error, line: usize, parts: &[&str]) {
-    let message = error.to_string();
-    assert!(
-        message.starts_with(&format!("bad.toml:{line}:")),
-        "expected line {line}: {message}"
-    );
-    for part in parts {
-        assert!(message.contains(part), "`{part}` missing from: {message}");
     }
 }
 

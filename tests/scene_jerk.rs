@@ -6,7 +6,10 @@ use std::f64::consts::PI;
 use std::path::Path;
 
 use mechdiff::pictures::run::diagram;
-use mechdiff::scene::{self, Report, Scene};
+use mechdiff::scene::{self, Scene};
+
+mod common;
+use common::{column, scaled_error};
 
 /// The Whitworth scene with jerks asked for, and a drive acceleration of 3 rad/s² so that the
 /// chain rule's 3ωα x″ term counts.
@@ -24,23 +27,6 @@ fn whitworth_with_jerk() -> Scene {
         )
         .replace("acceleration = 0\n", "acceleration = 3\n");
     scene::parse("whitworth_jerk.toml", &text).unwrap_or_else(|e| panic!("{e}"))
-}
-
-fn column(report: &Report, name: &str) -> Vec<f64> {
-    report
-        .column(name)
-        .unwrap_or_else(|| panic!("no column `{name}`"))
-}
-
-/// max |a − b| over the sweep divided by max |b| (relative where large, scaled where the value
-/// passes through zero).
-fn scaled_error(a: &[f64], b: &[f64]) -> f64 {
-    let scale = b.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max)
-        / scale
 }
 
 /// tan ψ = λ sin φ / (1 − λ cos φ), n = 1 − 2λ cos φ + λ²: ψ′ = λ(cos φ − λ)/n (source 1.35),

@@ -2,37 +2,12 @@
 //! reference values (closed forms, or the 30-digit values of reference 001).
 
 use std::f64::consts::PI;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use mechdiff::scene::{self, Report};
+use mechdiff::scene::{self};
 
-fn scene_path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("scenes")
-        .join(name)
-}
-
-fn run(name: &str) -> Report {
-    let scene = scene::load(scene_path(name)).unwrap_or_else(|e| panic!("{e}"));
-    scene::run(&scene).unwrap_or_else(|e| panic!("{e}"))
-}
-
-fn column(report: &Report, name: &str) -> Vec<f64> {
-    report
-        .column(name)
-        .unwrap_or_else(|| panic!("no column `{name}`"))
-}
-
-/// max |a − b| over the sweep divided by max |b|: relative where the value is large, and
-/// absolute (scaled by its largest magnitude) where it passes through zero.
-fn scaled_error(a: &[f64], b: &[f64]) -> f64 {
-    let scale = b.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max)
-        / scale
-}
+mod common;
+use common::{column, run_scene as run, scaled_error, scene_path};
 
 #[test]
 fn every_scene_in_the_scenes_folder_runs() {
