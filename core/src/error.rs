@@ -200,6 +200,19 @@ pub enum Error {
         /// Joints of the loop that is singular.
         joints: Vec<String>,
     },
+    /// A computation that needs every loop in closed form met a loop the solver closes by
+    /// Newton's method (no closed-form pattern matches it).
+    #[error(
+        "{what} needs every loop in closed form; the loop of joints {} has none (it is \
+         solved by Newton's method)",
+        .joints.join(", ")
+    )]
+    NoClosedForm {
+        /// What needed the closed forms.
+        what: String,
+        /// Joints of the loop without a closed form.
+        joints: Vec<String>,
+    },
     /// A step would switch a loop to its other assembly branch, and subdividing did not help.
     #[error(
         "assembly branch of the loop of joints {} would flip between φ = {from} and φ = {to}",
