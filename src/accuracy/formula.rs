@@ -221,7 +221,7 @@ pub fn case(scene: &FormulaScene, file: &str) -> Result<Case<'static>, Error> {
     let methods = evaluator.methods();
     let f = evaluator.clone();
     Ok(Case {
-        title: scene.title.clone(),
+        title: format!("{} (reference: 256-bit symbolic)", scene.title),
         outputs: scene.outputs.keys().cloned().collect(),
         positions,
         reference,

@@ -227,8 +227,8 @@ impl Report {
         let mut out = format!("{}\n\n", self.title);
         out.push_str(&table.render());
         out.push_str(
-            "\nscaled error: |x − x_ref| / max over the sweep of |x_ref| (reference: 256-bit \
-             symbolic evaluation); digits lost: log10(max error / 2.2e-16); * on the Pareto \
+            "\nscaled error: |x − x_ref| / max over the sweep of |x_ref| (reference: extended \
+             precision, see the title); digits lost: log10(max error / 2.2e-16); * on the Pareto \
              front of time against the error of value, ′, ″; ratio: time / fastest exact \
              method's time, all timed in this one process.\n",
         );
