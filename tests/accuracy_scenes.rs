@@ -153,7 +153,16 @@ quantities = ["position"]
     };
     assert!(matches!(error, Error::Reference { .. }), "{error}");
     let message = error.to_string();
-    for part in ["triad.toml", "closed form", "B", "C", "D", "G2", "G3", "Newton"] {
+    for part in [
+        "triad.toml",
+        "closed form",
+        "B",
+        "C",
+        "D",
+        "G2",
+        "G3",
+        "Newton",
+    ] {
         assert!(message.contains(part), "`{part}` missing from: {message}");
     }
 }

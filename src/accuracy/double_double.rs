@@ -275,7 +275,9 @@ impl Num for DoubleDouble {
     /// Decimal only (radix 10), exactly rounded from the text.
     fn from_str_radix(text: &str, radix: u32) -> Result<Self, String> {
         if radix != 10 {
-            return Err(format!("double-double numbers parse radix 10 only, not {radix}"));
+            return Err(format!(
+                "double-double numbers parse radix 10 only, not {radix}"
+            ));
         }
         BigReal::parse(text, FUNCTION_BITS)
             .map(|b| DoubleDouble::from_big(&b))
@@ -451,7 +453,9 @@ impl DualNum for DoubleDouble {
         self.unary(Unary::Atan)
     }
     fn atan2(&self, other: Self) -> Self {
-        Self::big(&[*self, other], |a, v| a.binary(Binary::Atan2, &v[0], &v[1]))
+        Self::big(&[*self, other], |a, v| {
+            a.binary(Binary::Atan2, &v[0], &v[1])
+        })
     }
     fn sinh(&self) -> Self {
         self.unary(Unary::Sinh)

@@ -31,7 +31,7 @@
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
-use mechdiff_core::num_dual::{Dual2_64, Dual3_64, Dual64, DualNum, HyperDual64};
+use mechdiff_core::num_dual::{Dual2_64, Dual3_64, Dual64, HyperDual64};
 use mechdiff_core::symbolic::constants::is_named_constant;
 use mechdiff_core::symbolic::{Graph, Id};
 use serde::Deserialize;
@@ -260,7 +260,7 @@ struct Evaluator {
 
 impl Evaluator {
     /// The outputs in the num-dual type `D` (`f64` included) at the drive `phi`.
-    fn evaluate<D: DualNum<Primitive = f64> + Copy>(&self, phi: D) -> Result<Vec<D>, Error> {
+    fn evaluate<D: mechdiff_core::Scalar>(&self, phi: D) -> Result<Vec<D>, Error> {
         let roots: Vec<Id> = self.formulas.jets().iter().map(|j| j[0]).collect();
         let mut bindings: Vec<(&str, D)> = vec![("phi", phi)];
         bindings.extend(

@@ -65,7 +65,9 @@ impl<'s> Outputs<'s> {
                 .push(Resolved::new(scene, mechanism, output)?);
             match &output.kind {
                 OutputKind::Point(name) => {
-                    outputs.names.extend([format!("x_{name}"), format!("y_{name}")]);
+                    outputs
+                        .names
+                        .extend([format!("x_{name}"), format!("y_{name}")]);
                     outputs.angle.extend([false, false]);
                 }
                 OutputKind::Angle { .. } => {
@@ -290,7 +292,14 @@ fn geometry<'a>(
         let q: Vec<Dual3_64> = kinematics
             .coordinates
             .iter()
-            .map(|j| Dual3_64::new(j.value, j.derivatives[0], j.derivatives[1], j.derivatives[2]))
+            .map(|j| {
+                Dual3_64::new(
+                    j.value,
+                    j.derivatives[0],
+                    j.derivatives[1],
+                    j.derivatives[2],
+                )
+            })
             .collect();
         let i = nearest(&positions, phi);
         for (k, v) in outputs.values(&q).into_iter().enumerate() {

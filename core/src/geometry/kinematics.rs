@@ -138,7 +138,10 @@ fn rotation_of<D: crate::Scalar>(coordinate: &impl Fn(usize) -> D, b: Body) -> D
 
 /// A resolved point of the pose whose coordinate `i` (with derivatives) is `coordinate(i)`.
 #[inline]
-pub(crate) fn position<D: crate::Scalar>(coordinate: impl Fn(usize) -> D, point: &PointOutput) -> [D; 2] {
+pub(crate) fn position<D: crate::Scalar>(
+    coordinate: impl Fn(usize) -> D,
+    point: &PointOutput,
+) -> [D; 2] {
     place(&coordinate, point.body, point.local)
 }
 

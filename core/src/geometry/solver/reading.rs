@@ -23,11 +23,7 @@ impl<'m> Tracker<'m> {
     pub fn closed_form_pose<D: Scalar>(&self, phi: D) -> Result<Vec<D>, Error> {
         if !self.closed_only {
             let on = self.seeding;
-            let l = self
-                .closed
-                .matched()
-                .position(|m| !(m && on))
-                .unwrap_or(0);
+            let l = self.closed.matched().position(|m| !(m && on)).unwrap_or(0);
             return Err(Error::NoClosedForm {
                 what: "the pose in closed form".into(),
                 joints: self.loop_joints(&self.loops[l]),
