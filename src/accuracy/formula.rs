@@ -168,7 +168,7 @@ pub fn case(scene: &FormulaScene, file: &str) -> Result<Case<'static>, Error> {
     let values: Vec<f64> = scene.parameters.values().copied().collect();
     let parse = |graph: &mut Graph, what: &str, text: &str| -> Result<Id, Error> {
         let id = graph
-            .parse_infix(text)
+            .parse_infix_piecewise(text)
             .map_err(|e| syntax(file, format!("{what} = \"{text}\": {e}")))?;
         if let Some(unknown) = graph
             .symbols(&[id])
@@ -208,8 +208,25 @@ pub fn case(scene: &FormulaScene, file: &str) -> Result<Case<'static>, Error> {
     let formulas = Formulas::new(graph, &roots, "phi", &names);
     let mut reference = Vec::new();
     let mut condition = Vec::new();
+    let outputs: Vec<&String> = scene.outputs.keys().collect();
     for &phi in &positions {
         let (r, c) = formulas.reference(phi, &values)?;
+        if let Some((o, k)) = (0..r.len())
+            .flat_map(|o| (0..=MAX_ORDER).map(move |k| (o, k)))
+            .find(|&(o, k)| !r[o][k].is_finite())
+        {
+            return Err(Error::Reference {
+                what: file.to_owned(),
+                reason: format!(
+                    "output `{}`, derivative order {k}, is not finite at phi = {phi} even at \
+                     256 bits (a 0/0 such as sin(phi)/phi at 0, or a true singularity); if it \
+                     has a limit there, write it with `if`, e.g. \
+                     \"if(phi == 0, 1, sin(phi)/phi)\" (scenes/hard/removable_sinc.toml), or \
+                     leave the point out of the sweep",
+                    outputs[o]
+                ),
+            });
+        }
         reference.push(r);
         condition.push(c);
     }
