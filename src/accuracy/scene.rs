@@ -161,6 +161,13 @@ pub fn case<'a>(scene: &'a Scene, mechanism: &'a Mechanism) -> Result<Case<'a>, 
         ));
     }
     let outputs = Outputs::new(scene, mechanism)?;
+    if outputs.names.is_empty() {
+        return Err(refuse(
+            "the scene has no `[[output]]` (a point, angle or slider) to measure; the report \
+             covers the geometric outputs and their derivatives, not forces or torques"
+                .into(),
+        ));
+    }
     let positions = scene.positions.clone();
     let mut tracker = Solver::default()
         .track(mechanism)
