@@ -379,7 +379,7 @@ impl DualNum for DoubleDouble {
         let mut k = n.unsigned_abs();
         while k > 0 {
             if k & 1 == 1 {
-                result = result * base;
+                result *= base;
             }
             base = base * base;
             k >>= 1;

@@ -134,7 +134,7 @@ fn reference_at(
             let mut value = v.re;
             if let (true, Some(previous)) = (angle, previous) {
                 let turns = ((previous[k][0].hi - value.hi) / TAU).round();
-                value = value + TAU_DD * turns;
+                value += TAU_DD * turns;
             }
             [value, v.v1, v.v2, v.v3]
         })
