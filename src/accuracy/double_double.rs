@@ -550,8 +550,8 @@ mod tests {
         x.to_big(&mut a).relative_difference(big)
     }
 
-    /// + − × ÷ keep ~106 bits: (1/3)·3 − 1, √2·√2 − 2 and a long sum are within 1e-30 of
-    /// the exact results (2⁻¹⁰⁴ ≈ 5e-32 per operation, a few operations).
+    /// Addition, multiplication and division keep ~106 bits: (1/3)·3 − 1, √2·√2 − 2 and a
+    /// sum are within 1e-30 of the exact results (2⁻¹⁰⁴ ≈ 5e-32 per operation, a few operations).
     #[test]
     fn arithmetic_keeps_double_double_precision() {
         let third = DoubleDouble::new(1.0) / DoubleDouble::new(3.0);
