@@ -23,9 +23,9 @@ fn load(relative: &str) -> scene::Scene {
 /// different formula (the solver's slotted-rocker closed form is written with complex
 /// products, not this quotient), different differentiation (symbolic against forward mode)
 /// and different precision. Agreement to 1e-28 of the output's scale: double-double keeps
-/// ~2⁻¹⁰⁴ ≈ 5e-32 per operation, a few hundred operations and ψ′'s largest amplification
-/// here (ψ′ = l1/(l0 − l1) = 1 at φ = 180°, ψ‴ up to ~10) leave well below that; an
-/// `f64` evaluation would miss by ~1e-16.
+/// ~2⁻¹⁰⁴ ≈ 5e-32 per operation, and a few hundred well-conditioned operations (λ = 0.5:
+/// |ψ′| ≤ 1, reached at φ = 180°) stay well below that; an `f64` evaluation would miss by
+/// ~1e-16.
 #[test]
 fn scene_reference_agrees_with_the_256_bit_formula() {
     let scene = load("tests/data/accuracy/whitworth_binary.toml");
@@ -61,10 +61,9 @@ fn scene_reference_agrees_with_the_256_bit_formula() {
 
 /// Every exact method of the report on the example scenes, four-bar and offset
 /// slider-crank: no failure, and the scaled error of value, ′, ″, ‴ at most 1e-14. Measured
-/// (BENCHMARKS.md): at most 2.6e-15 (12 ε), with the pose's rounding amplification ≤ ~3
-/// on these sweeps (no toggle nearby); 1e-14 leaves a factor ~4 for other compilers' libm,
-/// and is 1e4 below the best finite difference, so a derivative that lost its exactness
-/// cannot pass.
+/// (BENCHMARKS.md): at most 1.4e-15 (6 ε; no toggle near these sweeps); 1e-14 leaves a
+/// factor 7 for other platforms' libm, and is 1e4 below the best central difference
+/// (1.6e-10), so a derivative that lost its exactness cannot pass.
 #[test]
 fn exact_methods_on_the_example_scenes_stay_within_1e_14() {
     for file in ["scenes/four_bar.toml", "scenes/slider_crank.toml"] {
