@@ -145,21 +145,27 @@ fn reference_at(
 /// the scene's model ([`crate::scene::build::mechanism`]).
 ///
 /// # Errors
-/// [`Error::Reference`] for a scene whose sweep is given by an output (`[sweep] of`), a
-/// loop without a closed form (named), or a reference that is not finite;
-/// the solver's error where the sweep cannot be walked.
+/// [`Error::Reference`] for a scene without geometric outputs, a loop without a closed form
+/// (named), or a reference that is not finite; the solver's error where the sweep cannot be
+/// walked (for a sweep of an output's values, `[sweep] of`, `mechdiff run`'s errors).
 pub fn case<'a>(scene: &'a Scene, mechanism: &'a Mechanism) -> Result<Case<'a>, Error> {
     let refuse = |reason: String| Error::Reference {
         what: scene.file.clone(),
         reason,
     };
-    if scene.sweep_of.is_some() {
-        return Err(refuse(
-            "the sweep is given by an output's values (`[sweep] of`); the report sweeps the \
-             drive: give `[sweep] from`, `to`, `step` of the drive instead"
-                .into(),
-        ));
-    }
+    // A sweep of an output's values (`[sweep] of`): the drive positions `mechdiff run`
+    // solves for, in increasing order.
+    let mut positions = if scene.sweep_of.is_some() {
+        crate::scene::run(scene)?
+            .rows
+            .iter()
+            .map(|row| row[0])
+            .collect()
+    } else {
+        scene.positions.clone()
+    };
+    positions.sort_by(f64::total_cmp);
+    positions.dedup();
     let outputs = Outputs::new(scene, mechanism)?;
     if outputs.names.is_empty() {
         return Err(refuse(
@@ -168,7 +174,6 @@ pub fn case<'a>(scene: &'a Scene, mechanism: &'a Mechanism) -> Result<Case<'a>, 
                 .into(),
         ));
     }
-    let positions = scene.positions.clone();
     let mut tracker = Solver::default()
         .track(mechanism)
         .map_err(|e| crate::scene::run::solver_error(scene, e))?;
