@@ -76,14 +76,40 @@ fn formula_scene_writes_csv_and_svg() {
     );
 }
 
-/// A mechanism scene (points, links, joints) is refused with a message saying what the
-/// command takes instead.
+/// A mechanism scene (points, links, joints) whose loops all have closed forms is measured:
+/// both geometry paths and the finite differences, against the double-double reference
+/// named in the title.
 #[test]
-fn mechanism_scene_is_refused_with_what_is_supported() {
-    let output = mechdiff(&["accuracy", "scenes/slider_crank.toml"]);
+fn mechanism_scene_is_measured() {
+    let output = mechdiff(&["accuracy", "scenes/slider_crank.toml", "--repeats", "1"]);
+    assert!(output.status.success(), "{output:?}");
+    let text = String::from_utf8(output.stdout).unwrap();
+    for part in [
+        "double-double",
+        "geometry closed form",
+        "geometry Newton + implicit",
+        "central h=",
+        "Richardson: best h",
+    ] {
+        assert!(text.contains(part), "{part} missing:\n{text}");
+    }
+}
+
+/// A cam scene is refused with a message saying what the command takes instead.
+#[test]
+fn cam_scene_is_refused_with_what_is_supported() {
+    let cam = std::fs::read_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/cams"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .find(|p| p.extension().is_some_and(|e| e == "toml"))
+        .expect("a cam scene in scenes/cams");
+    let output = mechdiff(&["accuracy", cam.to_str().unwrap()]);
     assert!(!output.status.success());
     let message = String::from_utf8(output.stderr).unwrap();
-    assert!(message.contains("formula scenes"), "{message}");
+    assert!(
+        message.contains("cam scenes are not supported") && message.contains("formula scenes"),
+        "{message}"
+    );
 }
 
 /// A formula with an unknown symbol names the file, the output and the symbol.

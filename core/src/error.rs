@@ -200,6 +200,43 @@ pub enum Error {
         /// Joints of the loop that is singular.
         joints: Vec<String>,
     },
+    /// An expression evaluated to 0/0 where its value is used: undefined as written (a
+    /// removable singularity if the quotient has a limit there, e.g. sin x / x at 0).
+    #[error(
+        "0/0 in `{expression}` at the values given: the formula is undefined there as \
+         written; if it has a limit (a removable singularity such as sin(x)/x at 0), write \
+         the limit as a piecewise formula or evaluate beside the point"
+    )]
+    ZeroOverZero {
+        /// The quotient, as an S-expression (shortened).
+        expression: String,
+    },
+    /// A derivative is infinite where it is used: `function` at the edge of its domain.
+    #[error(
+        "the derivative of {function} is infinite at {at} (in `{expression}`): a true \
+         singularity of the derivatives; move the point off the domain's edge"
+    )]
+    InfiniteDerivative {
+        /// The function (asin, acos, sqrt).
+        function: String,
+        /// Its argument.
+        at: f64,
+        /// The function's node, as an S-expression (shortened).
+        expression: String,
+    },
+    /// A computation that needs every loop in closed form met a loop the solver closes by
+    /// Newton's method (no closed-form pattern matches it).
+    #[error(
+        "{what} needs every loop in closed form; the loop of joints {} has none (it is \
+         solved by Newton's method)",
+        .joints.join(", ")
+    )]
+    NoClosedForm {
+        /// What needed the closed forms.
+        what: String,
+        /// Joints of the loop without a closed form.
+        joints: Vec<String>,
+    },
     /// A step would switch a loop to its other assembly branch, and subdividing did not help.
     #[error(
         "assembly branch of the loop of joints {} would flip between φ = {from} and φ = {to}",

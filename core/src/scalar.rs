@@ -62,8 +62,24 @@ pub fn atan2<D: Scalar>(y: D, x: D) -> D {
 }
 
 /// `hypot(x, y) = √(x² + y²)`, the length of the vector (x, y), with derivatives.
+///
+/// Scaled by the power of two of the larger of |x|, |y| (a constant, and exact: the
+/// derivatives and the rounding are unchanged), so that x² does not overflow for arguments
+/// up to `f64::MAX` nor underflow for tiny ones.
+///
+/// ```
+/// use mechdiff_core::hypot;
+/// assert_eq!(hypot(3e300, 4e300), 5e300);
+/// ```
 pub fn hypot<D: Scalar>(x: D, y: D) -> D {
-    (x * x + y * y).sqrt()
+    let larger = x.re().abs().max(y.re().abs());
+    // 2^⌊log₂ larger⌋: the exponent bits alone (0 for subnormals, ∞/NaN kept).
+    let scale = f64::from_bits(larger.to_bits() & 0x7ff0_0000_0000_0000);
+    if scale == 0.0 || !scale.is_finite() {
+        return (x * x + y * y).sqrt();
+    }
+    let (u, v) = (x / scale, y / scale);
+    (u * u + v * v).sqrt() * scale
 }
 
 #[cfg(test)]

@@ -31,7 +31,7 @@
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
-use mechdiff_core::num_dual::{Dual2_64, Dual3_64, Dual64, DualNum, HyperDual64};
+use mechdiff_core::num_dual::{Dual2_64, Dual3_64, Dual64, HyperDual64};
 use mechdiff_core::symbolic::constants::is_named_constant;
 use mechdiff_core::symbolic::{Graph, Id};
 use serde::Deserialize;
@@ -168,7 +168,7 @@ pub fn case(scene: &FormulaScene, file: &str) -> Result<Case<'static>, Error> {
     let values: Vec<f64> = scene.parameters.values().copied().collect();
     let parse = |graph: &mut Graph, what: &str, text: &str| -> Result<Id, Error> {
         let id = graph
-            .parse_infix(text)
+            .parse_infix_piecewise(text)
             .map_err(|e| syntax(file, format!("{what} = \"{text}\": {e}")))?;
         if let Some(unknown) = graph
             .symbols(&[id])
@@ -208,8 +208,25 @@ pub fn case(scene: &FormulaScene, file: &str) -> Result<Case<'static>, Error> {
     let formulas = Formulas::new(graph, &roots, "phi", &names);
     let mut reference = Vec::new();
     let mut condition = Vec::new();
+    let outputs: Vec<&String> = scene.outputs.keys().collect();
     for &phi in &positions {
         let (r, c) = formulas.reference(phi, &values)?;
+        if let Some((o, k)) = (0..r.len())
+            .flat_map(|o| (0..=MAX_ORDER).map(move |k| (o, k)))
+            .find(|&(o, k)| !r[o][k].is_finite())
+        {
+            return Err(Error::Reference {
+                what: file.to_owned(),
+                reason: format!(
+                    "output `{}`, derivative order {k}, is not finite at phi = {phi} even at \
+                     256 bits (a 0/0 such as sin(phi)/phi at 0, or a true singularity); if it \
+                     has a limit there, write it with `if`, e.g. \
+                     \"if(phi == 0, 1, sin(phi)/phi)\" (scenes/hard/removable_sinc.toml), or \
+                     leave the point out of the sweep",
+                    outputs[o]
+                ),
+            });
+        }
         reference.push(r);
         condition.push(c);
     }
@@ -221,7 +238,7 @@ pub fn case(scene: &FormulaScene, file: &str) -> Result<Case<'static>, Error> {
     let methods = evaluator.methods();
     let f = evaluator.clone();
     Ok(Case {
-        title: scene.title.clone(),
+        title: format!("{} (reference: 256-bit symbolic)", scene.title),
         outputs: scene.outputs.keys().cloned().collect(),
         positions,
         reference,
@@ -260,7 +277,7 @@ struct Evaluator {
 
 impl Evaluator {
     /// The outputs in the num-dual type `D` (`f64` included) at the drive `phi`.
-    fn evaluate<D: DualNum<Primitive = f64> + Copy>(&self, phi: D) -> Result<Vec<D>, Error> {
+    fn evaluate<D: mechdiff_core::Scalar>(&self, phi: D) -> Result<Vec<D>, Error> {
         let roots: Vec<Id> = self.formulas.jets().iter().map(|j| j[0]).collect();
         let mut bindings: Vec<(&str, D)> = vec![("phi", phi)];
         bindings.extend(

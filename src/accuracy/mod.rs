@@ -32,13 +32,16 @@
 //! ```
 
 pub mod differences;
+pub mod double_double;
 pub mod formula;
 pub mod plot;
 pub mod reference;
 mod report;
+pub mod scene;
 pub mod whitworth;
 
 pub use differences::StepScan;
+pub use double_double::DoubleDouble;
 pub use reference::Reference;
 pub use report::{Measurement, Report};
 

@@ -5,40 +5,18 @@
 //! see, so the reference is the exact function at exactly their inputs: what remains in a
 //! method's error is its own rounding (and, for finite differences, truncation).
 
-use mechdiff_core::symbolic::{Arithmetic, BigArithmetic, BigReal, Binary, Graph, Id};
+use mechdiff_core::symbolic::{Arithmetic, BigArithmetic, BigReal, Graph, Id};
 
 use super::MAX_ORDER;
+use super::double_double::DoubleDouble;
 use crate::Error;
 
 /// Bits of the reference evaluation.
 pub const BITS: usize = 256;
 
 /// A reference value as an unevaluated sum hi + lo of two `f64` (double-double, ≈ 32 digits):
-/// enough to measure an `f64` result's error to its last bit.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Reference {
-    /// The nearest `f64`.
-    pub hi: f64,
-    /// The remainder, |lo| ≤ ulp(hi)/2.
-    pub lo: f64,
-}
-
-impl Reference {
-    /// The double-double nearest to a big real.
-    pub fn from_big(value: &BigReal) -> Self {
-        let hi = value.to_f64();
-        let mut arithmetic = BigArithmetic::new(BITS);
-        let hi_big = arithmetic.constant(hi);
-        let lo = arithmetic.binary(Binary::Sub, value, &hi_big).to_f64();
-        Reference { hi, lo }
-    }
-
-    /// |x − reference|, with the reference's low part: (x − hi) is exact when x is within a
-    /// factor 2 of hi (Sterbenz), so the error of an `f64` result is resolved to its last bit.
-    pub fn error(&self, x: f64) -> f64 {
-        ((x - self.hi) - self.lo).abs()
-    }
-}
+/// enough to measure an `f64` result's error to its last bit ([`DoubleDouble::error`]).
+pub type Reference = DoubleDouble;
 
 /// A set of formulas of a drive variable, with their derivatives to order 3 and their
 /// condition numbers, ready to be evaluated at 256 bits.

@@ -43,15 +43,20 @@ impl Measurement {
         let mut rms = [f64::NAN; MAX_ORDER + 1];
         let mut worst = [0; MAX_ORDER + 1];
         for k in 0..=method.order.min(MAX_ORDER) {
-            let (mut m, mut sum) = (0.0f64, 0.0);
+            let mut m = 0.0f64;
             for (i, e) in errors.iter().enumerate() {
                 if e[k] > m {
                     (m, worst[k]) = (e[k], i);
                 }
-                sum += e[k] * e[k];
             }
             max[k] = m;
-            rms[k] = (sum / errors.len().max(1) as f64).sqrt();
+            // Scaled by the max, so that errors near 1e160 do not overflow their squares.
+            rms[k] = if m > 0.0 && m.is_finite() {
+                let sum: f64 = errors.iter().map(|e| (e[k] / m) * (e[k] / m)).sum();
+                m * (sum / errors.len().max(1) as f64).sqrt()
+            } else {
+                m
+            };
         }
         Measurement {
             name: method.name.clone(),
@@ -218,17 +223,19 @@ impl Report {
                 }
             }));
             row.push(format!("{:.1}", m.digits_lost()));
-            row.push(format!(
-                "{:.2}",
-                self.positions[m.worst[worst_order]].to_degrees()
-            ));
+            let worst = self.positions[m.worst[worst_order]].to_degrees();
+            row.push(if worst.abs() < 1e7 {
+                format!("{worst:.2}")
+            } else {
+                format!("{worst:.3e}")
+            });
             table.row(row);
         }
         let mut out = format!("{}\n\n", self.title);
         out.push_str(&table.render());
         out.push_str(
-            "\nscaled error: |x − x_ref| / max over the sweep of |x_ref| (reference: 256-bit \
-             symbolic evaluation); digits lost: log10(max error / 2.2e-16); * on the Pareto \
+            "\nscaled error: |x − x_ref| / max over the sweep of |x_ref| (reference: extended \
+             precision, see the title); digits lost: log10(max error / 2.2e-16); * on the Pareto \
              front of time against the error of value, ′, ″; ratio: time / fastest exact \
              method's time, all timed in this one process.\n",
         );

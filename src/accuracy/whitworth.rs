@@ -168,7 +168,7 @@ pub fn case<'a>(shaper: &Whitworth, linkage: &'a Mechanism) -> Result<Case<'a>, 
     Ok(Case {
         title: format!(
             "Whitworth shaping machine, λ = l1/l0 = {lambda}: ψ and x_C over φ = 0°, 10°, …, \
-             350° and both dead positions (cos φ = λ), {} positions",
+             350° and both dead positions (cos φ = λ), {} positions; reference: 256-bit symbolic",
             positions.len()
         ),
         outputs: OUTPUTS.map(String::from).to_vec(),

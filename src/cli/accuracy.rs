@@ -12,7 +12,8 @@ use mechdiff::mechanisms::whitworth::Parameters;
 /// Arguments of `mechdiff accuracy`.
 #[derive(Debug, Args)]
 pub struct AccuracyArgs {
-    /// `whitworth` (the reference machine), or a formula scene (see scenes/hard/).
+    /// `whitworth` (the reference machine), a formula scene (see scenes/hard/), or a
+    /// mechanism scene whose loops all have closed forms (scenes/four_bar.toml, …).
     pub subject: String,
     /// For `whitworth`: the crank ratio λ = l1/l0 (l0 kept at 0.4 m), in (0, 1).
     #[arg(long)]
@@ -48,21 +49,22 @@ pub fn accuracy(args: &AccuracyArgs) -> Result<(), Error> {
         whitworth::case(&shaper, &linkage)?.measure(&timing)?
     } else {
         let path = PathBuf::from(&args.subject);
-        let text = std::fs::read_to_string(&path).map_err(|source| Error::Read {
-            path: path.clone(),
-            source,
-        })?;
-        if !formula::is_formula_scene(&text) {
+        let text = mechdiff::files::read_scene(&path)?;
+        if formula::is_formula_scene(&text) {
+            let scene = formula::parse(&text, &args.subject)?;
+            formula::case(&scene, &args.subject)?.measure(&timing)?
+        } else if mechdiff::scene::kind(&text) != mechdiff::scene::Kind::Linkage {
             return Err(Error::Reference {
                 what: args.subject.clone(),
-                reason: "the extended-precision reference is built for `whitworth` and for \
-                         formula scenes (an `[outputs]` table of formulas, see scenes/hard/); \
-                         mechanism scenes are not supported by `mechdiff accuracy` yet"
+                reason: "cam and rotor scenes are not supported by `mechdiff accuracy`; it takes \
+                         `whitworth`, formula scenes (see scenes/hard/) and mechanism scenes"
                     .into(),
             });
+        } else {
+            let scene = mechdiff::scene::parse(&args.subject, &text)?;
+            let mechanism = mechdiff::scene::build::mechanism(&scene)?;
+            accuracy::scene::case(&scene, &mechanism)?.measure(&timing)?
         }
-        let scene = formula::parse(&text, &args.subject)?;
-        formula::case(&scene, &args.subject)?.measure(&timing)?
     };
     write(args, &report)
 }

@@ -2,8 +2,8 @@
 //! displacements computed from them with exact derivatives (third-order dual numbers).
 
 use mechdiff_core::geometry::{Kinematics, Mechanism, PointOutput};
-use mechdiff_core::num_dual::{Dual3_64, DualNum};
-use mechdiff_core::{DriveState, Jet};
+use mechdiff_core::num_dual::Dual3_64;
+use mechdiff_core::{DriveState, Jet, Scalar};
 
 use crate::error::{Error, Result};
 
@@ -59,6 +59,11 @@ impl<'s> Resolved<'s> {
             .collect::<Result<_>>()?;
         Ok(Resolved { output, points })
     }
+
+    /// The output's points resolved in the model, in the order [`values`] reads them.
+    pub fn points(&self) -> &[PointOutput] {
+        &self.points
+    }
 }
 
 /// The points an output is computed from: the point; the line, then the reference line;
@@ -93,8 +98,23 @@ pub(crate) fn evaluate<const N: usize>(
         [dual(&x), dual(&y)]
     };
     let output = resolved.output;
+    let mut values = values(output, point);
+    if let OutputKind::Angle { .. } = &output.kind {
+        let angle = &mut values[0];
+        let target = previous.unwrap_or_else(|| sketch_angle(scene, output));
+        let turns = ((target - angle.re) / std::f64::consts::TAU).round();
+        angle.re += turns * std::f64::consts::TAU;
+        *previous = Some(angle.re);
+    }
+    values.iter().map(jet::<N>).collect()
+}
+
+/// The output's values from the positions `point(i)` of its points (in the order of
+/// [`Resolved::points`]), in any scalar: `[x, y]` for a point, one value otherwise (an
+/// angle in (−π, π] before any reference line is subtracted, on no particular turn).
+pub(crate) fn values<D: Scalar>(output: &Output, point: impl Fn(usize) -> [D; 2]) -> Vec<D> {
     match &output.kind {
-        OutputKind::Point(_) => point(0).iter().map(jet::<N>).collect(),
+        OutputKind::Point(_) => point(0).to_vec(),
         OutputKind::Angle {
             reference, sense, ..
         } => {
@@ -105,11 +125,7 @@ pub(crate) fn evaluate<const N: usize>(
             if *sense == Sense::Cw {
                 angle = -angle;
             }
-            let target = previous.unwrap_or_else(|| sketch_angle(scene, output));
-            let turns = ((target - angle.re) / std::f64::consts::TAU).round();
-            angle.re += turns * std::f64::consts::TAU;
-            *previous = Some(angle.re);
-            vec![jet::<N>(&angle)]
+            vec![angle]
         }
         OutputKind::Slider { .. } => {
             // s = (p − a)·u with u the unit direction a → b of the guide or slot (both points
@@ -118,7 +134,7 @@ pub(crate) fn evaluate<const N: usize>(
             let u = [b[0] - a[0], b[1] - a[1]];
             let norm = (u[0] * u[0] + u[1] * u[1]).sqrt();
             let s = ((p[0] - a[0]) * u[0] + (p[1] - a[1]) * u[1]) / norm;
-            vec![jet::<N>(&s)]
+            vec![s]
         }
     }
 }
@@ -150,7 +166,7 @@ fn sketch_angle(scene: &Scene, output: &Output) -> f64 {
 }
 
 /// Direction angle of `a → b`, with derivatives.
-fn direction(a: [Dual3_64; 2], b: [Dual3_64; 2]) -> Dual3_64 {
+fn direction<D: Scalar>(a: [D; 2], b: [D; 2]) -> D {
     mechdiff_core::atan2(b[1] - a[1], b[0] - a[0])
 }
 

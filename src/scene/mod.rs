@@ -39,7 +39,7 @@ pub mod cam;
 pub mod construct;
 mod drive;
 pub mod dynamics;
-mod evaluate;
+pub(crate) mod evaluate;
 pub mod format;
 mod joints;
 pub mod limits;

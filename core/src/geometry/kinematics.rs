@@ -4,7 +4,7 @@ use super::constraints::Body;
 use super::model::Mechanism;
 use super::output::{PointOutput, Scalar, ScalarOutput};
 use crate::{Error, Jet};
-use num_dual::{Dual3_64, DualNum};
+use num_dual::Dual3_64;
 
 /// The pose coordinates at drive position φ with their first `N` derivatives with respect to
 /// φ (`N` ≤ 3), and the mechanism they belong to. Outputs are [`Jet`]s: turn them into
@@ -111,9 +111,9 @@ pub(crate) fn jet<const N: usize>(x: Dual3_64) -> Jet<N> {
 
 /// `A(θ_b)·v` for a link-local vector `v`, coordinate `i` of the pose being `coordinate(i)`.
 #[inline]
-fn rotate(coordinate: &impl Fn(usize) -> Dual3_64, b: Body, v: [f64; 2]) -> [Dual3_64; 2] {
+fn rotate<D: crate::Scalar>(coordinate: &impl Fn(usize) -> D, b: Body, v: [f64; 2]) -> [D; 2] {
     match b {
-        None => [Dual3_64::from(v[0]), Dual3_64::from(v[1])],
+        None => [D::from(v[0]), D::from(v[1])],
         Some(k) => {
             let (s, c) = coordinate(3 * k + 2).sin_cos();
             [c * v[0] - s * v[1], s * v[0] + c * v[1]]
@@ -123,7 +123,7 @@ fn rotate(coordinate: &impl Fn(usize) -> Dual3_64, b: Body, v: [f64; 2]) -> [Dua
 
 /// Position of the point of body `b` at link-local `p`.
 #[inline]
-fn place(coordinate: &impl Fn(usize) -> Dual3_64, b: Body, p: [f64; 2]) -> [Dual3_64; 2] {
+fn place<D: crate::Scalar>(coordinate: &impl Fn(usize) -> D, b: Body, p: [f64; 2]) -> [D; 2] {
     let r = rotate(coordinate, b, p);
     match b {
         None => r,
@@ -132,23 +132,23 @@ fn place(coordinate: &impl Fn(usize) -> Dual3_64, b: Body, p: [f64; 2]) -> [Dual
 }
 
 #[inline]
-fn rotation_of(coordinate: &impl Fn(usize) -> Dual3_64, b: Body) -> Dual3_64 {
-    b.map_or(Dual3_64::from(0.0), |k| coordinate(3 * k + 2))
+fn rotation_of<D: crate::Scalar>(coordinate: &impl Fn(usize) -> D, b: Body) -> D {
+    b.map_or(D::from(0.0), |k| coordinate(3 * k + 2))
 }
 
 /// A resolved point of the pose whose coordinate `i` (with derivatives) is `coordinate(i)`.
 #[inline]
-pub(crate) fn position(
-    coordinate: impl Fn(usize) -> Dual3_64,
+pub(crate) fn position<D: crate::Scalar>(
+    coordinate: impl Fn(usize) -> D,
     point: &PointOutput,
-) -> [Dual3_64; 2] {
+) -> [D; 2] {
     place(&coordinate, point.body, point.local)
 }
 
 /// A resolved angle or displacement of the pose whose coordinate `i` (with derivatives) is
 /// `coordinate(i)`.
 #[inline]
-pub(crate) fn value(coordinate: impl Fn(usize) -> Dual3_64, output: &ScalarOutput) -> Dual3_64 {
+pub(crate) fn value<D: crate::Scalar>(coordinate: impl Fn(usize) -> D, output: &ScalarOutput) -> D {
     match output.0 {
         Scalar::Rotation { body, offset } => rotation_of(&coordinate, body) + offset,
         Scalar::Relative { a, b } => rotation_of(&coordinate, b) - rotation_of(&coordinate, a),
@@ -158,5 +158,21 @@ pub(crate) fn value(coordinate: impl Fn(usize) -> Dual3_64, output: &ScalarOutpu
             let r = place(&coordinate, slide.slider, slide.point);
             u[0] * (r[0] - a[0]) + u[1] * (r[1] - a[1])
         }
+    }
+}
+
+impl PointOutput {
+    /// The point's position `[x, y]` in the pose `q` (`(x, y, θ)` per moving link) in any
+    /// scalar: e.g. a pose from [`super::Tracker::closed_form_pose`].
+    pub fn position_in<D: crate::Scalar>(&self, q: &[D]) -> [D; 2] {
+        position(|i| q[i], self)
+    }
+}
+
+impl ScalarOutput {
+    /// The angle or displacement in the pose `q` (`(x, y, θ)` per moving link) in any
+    /// scalar: e.g. a pose from [`super::Tracker::closed_form_pose`].
+    pub fn value_in<D: crate::Scalar>(&self, q: &[D]) -> D {
+        value(|i| q[i], self)
     }
 }

@@ -5,7 +5,7 @@
 
 use std::marker::PhantomData;
 
-use num_dual::DualNum;
+use crate::Scalar;
 
 use super::constants::{self, Formula};
 use super::graph::{Graph, Id, Node};
@@ -28,6 +28,13 @@ pub trait Arithmetic {
     /// Whether `a <cmp> b` holds (on the real part: a piecewise function takes the branch
     /// of its value).
     fn compare(&mut self, cmp: Comparison, a: &Self::Value, b: &Self::Value) -> bool;
+
+    /// What went wrong in the last primitive computed (a 0/0, an infinite derivative), if
+    /// anything; cleared by the call. [`Graph::evaluate`] reports it as an error when the
+    /// node's value reaches an output (not when it is in a piecewise branch not taken).
+    fn take_trouble(&mut self) -> Option<Trouble> {
+        None
+    }
 
     /// The named constant `name` (`std::f64::consts::PI`, …; see [`super::constants`]),
     /// computed from its formula in this arithmetic's precision; `None` if `name` is not one.
@@ -58,18 +65,38 @@ pub trait Arithmetic {
     }
 }
 
+/// A point where a primitive's result is not defined (see [`Arithmetic::take_trouble`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Trouble {
+    /// 0/0: the value is undefined (a removable singularity if the quotient has a limit).
+    ZeroOverZero,
+    /// The derivative of `op` is infinite at `at` (asin and acos at ±1, sqrt at 0).
+    InfiniteDerivative {
+        /// The function.
+        op: Unary,
+        /// Its argument.
+        at: f64,
+    },
+}
+
 /// Evaluation in a num-dual type `D` (and in `f64`, which is one).
 #[derive(Debug, Clone, Copy, Default)]
-pub struct DualArithmetic<D>(PhantomData<D>);
+pub struct DualArithmetic<D> {
+    trouble: Option<Trouble>,
+    scalar: PhantomData<D>,
+}
 
 impl<D> DualArithmetic<D> {
     /// The arithmetic of `D`.
     pub fn new() -> Self {
-        DualArithmetic(PhantomData)
+        DualArithmetic {
+            trouble: None,
+            scalar: PhantomData,
+        }
     }
 }
 
-impl<D: DualNum<Primitive = f64> + Copy> Arithmetic for DualArithmetic<D> {
+impl<D: Scalar> Arithmetic for DualArithmetic<D> {
     type Value = D;
 
     fn constant(&mut self, c: f64) -> D {
@@ -77,6 +104,17 @@ impl<D: DualNum<Primitive = f64> + Copy> Arithmetic for DualArithmetic<D> {
     }
 
     fn unary(&mut self, op: Unary, u: &D) -> D {
+        let x = u.re();
+        // Derivatives of these are 1/√(1 − x²) and 1/(2√x): infinite at the domain's edge,
+        // and NaN once multiplied by a zero derivative of u.
+        let edge = match op {
+            Unary::Asin | Unary::Acos => x.abs() == 1.0,
+            Unary::Sqrt => x == 0.0,
+            _ => false,
+        };
+        if edge && D::NDERIV > 0 {
+            self.trouble = Some(Trouble::InfiniteDerivative { op, at: x });
+        }
         match op {
             Unary::Neg => -*u,
             Unary::Sqrt => u.sqrt(),
@@ -107,10 +145,18 @@ impl<D: DualNum<Primitive = f64> + Copy> Arithmetic for DualArithmetic<D> {
             Binary::Add => *a + *b,
             Binary::Sub => *a - *b,
             Binary::Mul => *a * *b,
-            Binary::Div => *a / *b,
+            Binary::Div => {
+                if a.re() == 0.0 && b.re() == 0.0 {
+                    self.trouble = Some(Trouble::ZeroOverZero);
+                }
+                *a / *b
+            }
             Binary::Powf => a.powd(*b),
-            Binary::Atan2 => a.atan2(*b),
-            Binary::Hypot => (*a * *a + *b * *b).sqrt(),
+            // The project's atan2: exact derivatives on the y axis too (num-dual's
+            // differentiates atan(y/x): NaN at x = 0).
+            Binary::Atan2 => crate::atan2(*a, *b),
+            // Scaled: no overflow of x² + y² for arguments near f64::MAX.
+            Binary::Hypot => crate::scalar::hypot(*a, *b),
         }
     }
 
@@ -120,6 +166,10 @@ impl<D: DualNum<Primitive = f64> + Copy> Arithmetic for DualArithmetic<D> {
 
     fn compare(&mut self, cmp: Comparison, a: &D, b: &D) -> bool {
         cmp.holds(&a.re(), &b.re())
+    }
+
+    fn take_trouble(&mut self) -> Option<Trouble> {
+        self.trouble.take()
     }
 
     /// The `f64` value of the constant (as the emitted code's `std::f64::consts` path).
@@ -171,6 +221,9 @@ impl Graph {
     ) -> Result<Vec<A::Value>, Error> {
         let needed = self.reachable(outputs);
         let mut values: Vec<Option<A::Value>> = vec![None; needed.len()];
+        let mut troubles: Vec<(usize, Trouble)> = Vec::new();
+        // Per piecewise node, whether its condition held (the branch taken).
+        let mut taken: Vec<Option<bool>> = vec![None; needed.len()];
         let get = |values: &[Option<A::Value>], id: Id| -> A::Value {
             values[id.index()]
                 .clone()
@@ -194,12 +247,57 @@ impl Graph {
                 Node::Powi(a, n) => arithmetic.powi(&get(&values, *a), *n),
                 Node::Select(cmp, [a, b, t, e]) => {
                     let holds = arithmetic.compare(*cmp, &get(&values, *a), &get(&values, *b));
+                    taken[index] = Some(holds);
                     get(&values, if holds { *t } else { *e })
                 }
             };
+            if let Some(trouble) = arithmetic.take_trouble() {
+                troubles.push((index, trouble));
+            }
             values[index] = Some(value);
         }
+        if !troubles.is_empty() {
+            self.live_trouble(outputs, &taken, &troubles)?;
+        }
         Ok(outputs.iter().map(|&id| get(&values, id)).collect())
+    }
+
+    /// The first of `troubles` whose node's value reaches an output through the piecewise
+    /// branches taken, as an error.
+    fn live_trouble(
+        &self,
+        outputs: &[Id],
+        taken: &[Option<bool>],
+        troubles: &[(usize, Trouble)],
+    ) -> Result<(), Error> {
+        let mut live = vec![false; self.len()];
+        let mut stack: Vec<Id> = outputs.to_vec();
+        while let Some(id) = stack.pop() {
+            if std::mem::replace(&mut live[id.index()], true) {
+                continue;
+            }
+            match (self.node(id), taken[id.index()]) {
+                (Node::Select(_, [a, b, t, e]), Some(holds)) => {
+                    stack.extend([*a, *b, if holds { *t } else { *e }]);
+                }
+                (node, _) => stack.extend(node.children()),
+            }
+        }
+        let Some(&(index, trouble)) = troubles.iter().find(|(i, _)| live[*i]) else {
+            return Ok(());
+        };
+        let mut expression = self.to_sexpr(Id::at(index));
+        if expression.chars().count() > 80 {
+            expression = expression.chars().take(77).collect::<String>() + "...";
+        }
+        Err(match trouble {
+            Trouble::ZeroOverZero => Error::ZeroOverZero { expression },
+            Trouble::InfiniteDerivative { op, at } => Error::InfiniteDerivative {
+                function: op.name().to_owned(),
+                at,
+                expression,
+            },
+        })
     }
 
     /// Evaluates `outputs` in `f64` with the symbol values `bindings`.
@@ -227,7 +325,7 @@ impl Graph {
     ///
     /// # Errors
     /// [`Error::UnboundSymbol`] if a symbol has no value.
-    pub fn evaluate_dual<D: DualNum<Primitive = f64> + Copy>(
+    pub fn evaluate_dual<D: Scalar>(
         &self,
         outputs: &[Id],
         bindings: &[(&str, D)],

@@ -10,6 +10,11 @@ use crate::geometry::implicit::Factorised;
 use crate::geometry::{branch, frames, mobility};
 use nalgebra::DVector;
 
+/// A polishing Newton step larger than this (relative to the sketch size) is followed by a
+/// fresh factorisation of Φ_q at the polished pose before q′, q″ are solved for (see
+/// `Tracker::accept`): 4 ε, the size of rounding in the coordinates.
+const REFACTOR_ABOVE: f64 = 4.0 * f64::EPSILON;
+
 impl Tracker<'_> {
     /// Moves to `phi` by predictor, Newton and the checks, halving the step on failure.
     pub(super) fn move_newton(&mut self, phi: f64) -> Result<SolveReport, Error> {
@@ -201,13 +206,33 @@ impl Tracker<'_> {
         std::mem::swap(&mut self.q, &mut self.trial);
         std::mem::swap(&mut self.frames, &mut self.trial_frames);
         self.phi = phi;
+        let polished = Loops {
+            jac: &self.jac,
+            lu: &self.lu,
+        }
+        .solve_into(self.trial_residual.as_slice(), self.step.as_mut_slice());
+        if polished {
+            step_pose(&mut self.q, &mut self.frames, &self.step);
+            // Φ_q was factorised at the pose before the polish: where the polish moved it by
+            // more than rounding, q′ and q″ from that factorisation would carry the move's
+            // relative size (up to the tolerance, 1e-13) instead of rounding. Newton often
+            // stops one iteration short of rounding (short steps: a close predictor), so
+            // factorise again at the polished pose.
+            if amax(self.step.as_slice()) > REFACTOR_ABOVE * self.size {
+                let f = Frames {
+                    q: self.q.as_slice(),
+                    frames: &self.frames,
+                };
+                self.eq.jacobian_with(&f, &mut self.jac);
+                if !self.lu.factor(&self.jac) {
+                    return Err(self.singular(phi));
+                }
+            }
+        }
         let lu = Loops {
             jac: &self.jac,
             lu: &self.lu,
         };
-        if lu.solve_into(self.trial_residual.as_slice(), self.step.as_mut_slice()) {
-            step_pose(&mut self.q, &mut self.frames, &self.step);
-        }
         // Φ_q q′ = −Φ_φ = e_drive (the drive row, last, is the only one that depends on φ);
         // q″ comes with Φ at the polished pose (the reported residual).
         let ok = lu.solve_into(self.unit_drive.as_slice(), self.dq.as_mut_slice())

@@ -6,10 +6,39 @@ use crate::geometry::constraints::Frames;
 use crate::geometry::implicit;
 use crate::geometry::kinematics::{self, Kinematics};
 use crate::geometry::output::{PointOutput, ScalarOutput};
-use crate::{Error, Jet};
+use crate::{Error, Jet, Scalar};
 use num_dual::Dual3_64;
 
 impl<'m> Tracker<'m> {
+    /// The loops' closed forms evaluated in any scalar `D` at drive position `phi` (its
+    /// derivative parts are those of φ itself): the pose `(x, y, θ)` per moving link, on the
+    /// tracker's branches, each angle on the turn nearest to the current pose's. Move the
+    /// tracker near `phi.re()` first. With `D = Dual3<DoubleDouble>` (a higher-precision
+    /// scalar) this is the accuracy report's reference for geometry scenes.
+    ///
+    /// # Errors
+    /// [`Error::NoClosedForm`] naming the first loop solved by Newton (with the closed forms
+    /// switched off: every loop); [`Error::Unassemblable`] or [`Error::Singular`] where a
+    /// loop's formula fails at `phi`.
+    pub fn closed_form_pose<D: Scalar>(&self, phi: D) -> Result<Vec<D>, Error> {
+        if !self.closed_only {
+            let on = self.seeding;
+            let l = self.closed.matched().position(|m| !(m && on)).unwrap_or(0);
+            return Err(Error::NoClosedForm {
+                what: "the pose in closed form".into(),
+                joints: self.loop_joints(&self.loops[l]),
+            });
+        }
+        let n = self.q.len();
+        let zero = D::from(0.0);
+        let (mut q, mut frames) = (vec![zero; n], vec![(zero, zero); n / 3]);
+        let mut margins = vec![zero; self.margins.len()];
+        self.closed
+            .solve_all(phi, self.q.as_slice(), &mut q, &mut frames, &mut margins)
+            .map_err(|(l, failure)| self.closed_failure(phi.re(), l, failure))?;
+        Ok(q)
+    }
+
     /// The pose at the current drive position with its first `N` (1 ≤ N ≤ 3) exact
     /// derivatives with respect to φ, by implicit differentiation with the factorisation
     /// already computed for the pose (see [`crate::geometry::implicit`]).
