@@ -390,6 +390,23 @@ pub enum Error {
         /// The constant's `f64` value.
         value: f64,
     },
+    /// A scene's position solution cannot be generated as code: a loop has no closed form
+    /// (it is solved by Newton).
+    #[error(
+        "code generation needs every loop in closed form; the loop of joints {} is solved by \
+         Newton (run the scene with `mechdiff run` instead)",
+        joints.join(", ")
+    )]
+    NoClosedForm {
+        /// The joints of the first loop without a closed form.
+        joints: Vec<String>,
+    },
+    /// Tracing the position solution met an operation without a symbolic form.
+    #[error("code generation cannot trace `{operation}` into the symbolic engine")]
+    Untraceable {
+        /// The operation.
+        operation: String,
+    },
     /// Emitted Rust did not parse back (a bug in the emitter).
     #[error("emitted Rust is not valid: {reason}")]
     InvalidEmittedRust {
