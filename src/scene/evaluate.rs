@@ -2,8 +2,8 @@
 //! displacements computed from them with exact derivatives (third-order dual numbers).
 
 use mechdiff_core::geometry::{Kinematics, Mechanism, PointOutput};
-use mechdiff_core::num_dual::{Dual3_64, DualNum};
-use mechdiff_core::{DriveState, Jet};
+use mechdiff_core::num_dual::Dual3_64;
+use mechdiff_core::{DriveState, Jet, Scalar};
 
 use crate::error::{Error, Result};
 
@@ -86,9 +86,30 @@ pub(crate) fn evaluate<const N: usize>(
         let [x, y] = k.position(&resolved.points[i]);
         [dual(&x), dual(&y)]
     };
-    let output = resolved.output;
+    values(scene, resolved.output, point, previous)
+        .iter()
+        .map(jet::<N>)
+        .collect()
+}
+
+impl Resolved<'_> {
+    /// The output's points, resolved in the model.
+    pub(crate) fn points(&self) -> &[PointOutput] {
+        &self.points
+    }
+}
+
+/// The output's values from the positions of its points (`point(i)`, in the order of
+/// [`point_names`]), in any scalar: `[x, y]` for a point, one value otherwise. Angles are
+/// moved by whole turns to the one nearest `previous` (or the sketch's angle).
+pub(crate) fn values<D: Scalar>(
+    scene: &Scene,
+    output: &Output,
+    point: impl Fn(usize) -> [D; 2],
+    previous: &mut Option<f64>,
+) -> Vec<D> {
     match &output.kind {
-        OutputKind::Point(_) => point(0).iter().map(jet::<N>).collect(),
+        OutputKind::Point(_) => point(0).to_vec(),
         OutputKind::Angle {
             reference, sense, ..
         } => {
@@ -100,10 +121,12 @@ pub(crate) fn evaluate<const N: usize>(
                 angle = -angle;
             }
             let target = previous.unwrap_or_else(|| sketch_angle(scene, output));
-            let turns = ((target - angle.re) / std::f64::consts::TAU).round();
-            angle.re += turns * std::f64::consts::TAU;
-            *previous = Some(angle.re);
-            vec![jet::<N>(&angle)]
+            let turns = ((target - angle.re()) / std::f64::consts::TAU).round();
+            if turns != 0.0 {
+                angle += turns * std::f64::consts::TAU;
+            }
+            *previous = Some(angle.re());
+            vec![angle]
         }
         OutputKind::Slider { .. } => {
             // s = (p − a)·u with u the unit direction a → b of the guide or slot (both points
@@ -112,7 +135,7 @@ pub(crate) fn evaluate<const N: usize>(
             let u = [b[0] - a[0], b[1] - a[1]];
             let norm = (u[0] * u[0] + u[1] * u[1]).sqrt();
             let s = ((p[0] - a[0]) * u[0] + (p[1] - a[1]) * u[1]) / norm;
-            vec![jet::<N>(&s)]
+            vec![s]
         }
     }
 }
@@ -144,7 +167,7 @@ fn sketch_angle(scene: &Scene, output: &Output) -> f64 {
 }
 
 /// Direction angle of `a → b`, with derivatives.
-fn direction(a: [Dual3_64; 2], b: [Dual3_64; 2]) -> Dual3_64 {
+fn direction<D: Scalar>(a: [D; 2], b: [D; 2]) -> D {
     mechdiff_core::atan2(b[1] - a[1], b[0] - a[0])
 }
 

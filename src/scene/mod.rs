@@ -38,7 +38,7 @@ pub mod build;
 pub mod cam;
 mod drive;
 pub mod dynamics;
-mod evaluate;
+pub(crate) mod evaluate;
 pub mod format;
 mod joints;
 pub mod limits;

@@ -272,3 +272,19 @@ impl PositionGraph {
         })
     }
 }
+
+/// The error the solver's closed forms give at drive position `phi`, evaluated directly
+/// from the sketch pose (as the traced graph is), if any loop fails there: what a guard
+/// failure of the generated code stands for, with the solver's data (residual, condition,
+/// joints; `last_assembled` is the sketch's drive position).
+pub fn closed_form_error(tracker: &Tracker<'_>, phi: f64) -> Option<Error> {
+    let closed = tracker.closed_forms()?;
+    let sketch = tracker.coordinates();
+    let mut q = sketch.to_vec();
+    let mut frames: Vec<(f64, f64)> = sketch.chunks_exact(3).map(|c| c[2].sin_cos()).collect();
+    let mut margins = vec![0.0; tracker.closed_form_loops().len()];
+    closed
+        .solve_all(phi, sketch, &mut q, &mut frames, &mut margins)
+        .err()
+        .map(|(l, failure)| tracker.closed_failure(phi, l, failure))
+}
