@@ -43,7 +43,7 @@ macro_rules! generated {
 }
 
 // Every scene of scenes/ that describes a mechanism (all of them have only closed-form
-// loops), and a test scene that cannot complete a turn.
+// loops), a test scene that cannot complete a turn, and Whitworth's ψ alone (benches).
 generated! {
     four_bar => "scenes/four_bar.toml",
     rack_slotted_link => "scenes/rack_slotted_link.toml",
@@ -57,6 +57,7 @@ generated! {
     whitworth_balancing => "scenes/whitworth_balancing.toml",
     whitworth_forces => "scenes/whitworth_forces.toml",
     four_bar_unassemblable => "tests/data/four_bar_unassemblable.toml",
+    whitworth_psi => "tests/data/whitworth_psi.toml",
 }
 
 fn generated_path(scene: &str) -> String {
