@@ -241,3 +241,16 @@ fn generated_whitworth_matches_the_30_digit_reference() {
         assert!(e <= 1e-15, "column {k}: scaled error {e:e}");
     }
 }
+
+#[test]
+fn build_script_helper_writes_the_printed_module() {
+    // The compile-time back end writes exactly what `mechdiff codegen` prints (and what
+    // the modules included above were generated as).
+    let dir = std::env::temp_dir().join(format!("mechdiff-scene-codegen-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("whitworth.rs");
+    mechdiff::codegen::scene::write_module("scenes/whitworth.toml", &out).unwrap();
+    let written = std::fs::read_to_string(&out).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert_eq!(written, std::fs::read_to_string("tests/generated/whitworth.rs").unwrap());
+}

@@ -17,6 +17,8 @@ use mechdiff_core::geometry::{Mechanism, Solver};
 use mechdiff_core::symbolic::{Id, format_rust};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
+use std::io::Write;
+use std::path::Path;
 
 use crate::error::{Error, Result};
 use crate::scene::build::mechanism;
@@ -269,4 +271,26 @@ pub fn module(scene: &Scene, shown_path: &str) -> Result<String> {
          // operations: {ops}\n{source}",
         order = code.order
     ))
+}
+
+/// The compile-time back end: writes the module generated for the scene file `scene` to
+/// `out` (whole or not at all), for a build script; the module is then included where it
+/// is used. With `scenes/whitworth.toml` in the crate:
+///
+/// ```no_run
+/// // build.rs
+/// let out = std::path::Path::new(&std::env::var("OUT_DIR").unwrap()).join("whitworth.rs");
+/// mechdiff::codegen::scene::write_module("scenes/whitworth.toml", &out).unwrap();
+/// println!("cargo::rerun-if-changed=scenes/whitworth.toml");
+/// // src/lib.rs:
+/// // mod whitworth { include!(concat!(env!("OUT_DIR"), "/whitworth.rs")); }
+/// // let [[psi, psi_1, psi_2], _] = whitworth::pose(1.0)?;
+/// ```
+///
+/// # Errors
+/// The scene's errors (see [`module`]); [`Error::Write`] if `out` cannot be written.
+pub fn write_module(scene: impl AsRef<Path>, out: impl AsRef<Path>) -> Result<()> {
+    let path = scene.as_ref();
+    let text = module(&crate::scene::load(path)?, &path.display().to_string())?;
+    crate::files::write_atomically(out.as_ref(), |w| w.write_all(text.as_bytes()))
 }
