@@ -39,7 +39,8 @@ fn whitworth_from_scene(c: &mut Criterion) {
     let program = code.program(&scene).unwrap();
     let (mut registers, mut out) = (program.registers(), vec![0.0; program.outputs()]);
 
-    let mut group = c.benchmark_group("whitworth from its scene, ψ,ψ′,ψ″: hand vs generated vs dual2");
+    let mut group =
+        c.benchmark_group("whitworth from its scene, ψ,ψ′,ψ″: hand vs generated vs dual2");
     group.bench_function("hand ψ", |b| {
         b.iter(|| hand::rocker_angle(black_box(lambda), black_box(PHI)))
     });
@@ -51,8 +52,9 @@ fn whitworth_from_scene(c: &mut Criterion) {
     });
     group.finish();
 
-    let mut group =
-        c.benchmark_group("whitworth from its scene, ψ and x_C with ′,″: hand vs generated vs run time");
+    let mut group = c.benchmark_group(
+        "whitworth from its scene, ψ and x_C with ′,″: hand vs generated vs run time",
+    );
     group.bench_function("hand ψ, x_C", |b| {
         b.iter(|| {
             let phi = black_box(PHI);

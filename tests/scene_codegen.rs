@@ -114,7 +114,11 @@ fn generated_code_agrees_with_the_solver() {
             .outputs
             .iter()
             .flat_map(|o| {
-                let n = if matches!(o.kind, scene::model::OutputKind::Point(_)) { 2 } else { 1 };
+                let n = if matches!(o.kind, scene::model::OutputKind::Point(_)) {
+                    2
+                } else {
+                    1
+                };
                 vec![matches!(o.kind, scene::model::OutputKind::Angle { .. }); n]
             })
             .collect();
@@ -128,7 +132,11 @@ fn generated_code_agrees_with_the_solver() {
                     None => name.clone(),
                 };
                 let at = |c: String| report.columns.iter().position(|k| k.name == c);
-                [at(base.clone()), at(format!("{base}'")), at(format!("{base}''"))]
+                [
+                    at(base.clone()),
+                    at(format!("{base}'")),
+                    at(format!("{base}''")),
+                ]
             })
             .collect();
         for row in &report.rows {
@@ -205,7 +213,10 @@ fn guards_report_the_solvers_error_beyond_the_assembly_range() {
             }
         }
     }
-    assert!(failed > 10 && assembled > 10, "{failed} failed, {assembled} assembled");
+    assert!(
+        failed > 10 && assembled > 10,
+        "{failed} failed, {assembled} assembled"
+    );
 }
 
 #[allow(dead_code, clippy::excessive_precision, clippy::approx_constant)]
@@ -252,5 +263,8 @@ fn build_script_helper_writes_the_printed_module() {
     mechdiff::codegen::scene::write_module("scenes/whitworth.toml", &out).unwrap();
     let written = std::fs::read_to_string(&out).unwrap();
     std::fs::remove_dir_all(&dir).unwrap();
-    assert_eq!(written, std::fs::read_to_string("tests/generated/whitworth.rs").unwrap());
+    assert_eq!(
+        written,
+        std::fs::read_to_string("tests/generated/whitworth.rs").unwrap()
+    );
 }

@@ -140,7 +140,13 @@ pub fn guard_error(scene: &Scene, phi: f64) -> Result<Option<Error>> {
 fn identifier(name: &str) -> String {
     let mut id: String = name
         .chars()
-        .map(|c| if c.is_alphanumeric() || c == '_' { c } else { '_' })
+        .map(|c| {
+            if c.is_alphanumeric() || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
         .collect();
     if !id.starts_with(|c: char| c.is_alphabetic() || c == '_') {
         id.insert(0, '_');
@@ -179,7 +185,10 @@ pub fn pose_function(code: &SceneCode) -> TokenStream {
         .filter(|(_, g)| g.kind != GuardKind::Always)
         .map(|(l, g)| {
             let l = Literal::usize_unsuffixed(l);
-            let (disc, cond) = (format_ident!("discriminant_{l}"), format_ident!("condition_{l}"));
+            let (disc, cond) = (
+                format_ident!("discriminant_{l}"),
+                format_ident!("condition_{l}"),
+            );
             let unassemblable = (g.kind == GuardKind::Root).then(|| {
                 quote! {
                     if #disc < 0.0 {

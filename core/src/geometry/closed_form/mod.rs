@@ -502,7 +502,8 @@ impl ClosedForm {
                         let c = cross_d(u, [a[0] - pivot[0], a[1] - pivot[1]]);
                         let rho2 = r[0] * r[0] + r[1] * r[1];
                         let gap = c.re().abs() - rho2.sqrt();
-                        let root = self.root(-c * c + rho2, D::from(rho2), gap, step.branch, margin)?;
+                        let root =
+                            self.root(-c * c + rho2, D::from(rho2), gap, step.branch, margin)?;
                         // e^{i(θ+β)} ∝ u·(k + i c), then rotated back by β = arg r.
                         let v = [u[0] * root - u[1] * c, u[1] * root + u[0] * c];
                         let x = v[0] * r[0] + v[1] * r[1];

@@ -121,7 +121,12 @@ impl GuardKind {
     /// The verdict on a loop whose guard values are `discriminant` and `condition`, with
     /// the solver's singular threshold `limit`: the checks of the solver's closed form
     /// (`ClosedForm::root`, `ClosedForm::slope`), in the same order.
-    pub fn verdict(self, discriminant: f64, condition: f64, limit: f64) -> Result<(), GuardFailure> {
+    pub fn verdict(
+        self,
+        discriminant: f64,
+        condition: f64,
+        limit: f64,
+    ) -> Result<(), GuardFailure> {
         if self == GuardKind::Always {
             return Ok(());
         }
@@ -249,7 +254,10 @@ impl PositionGraph {
         self.outputs
             .clone()
             .into_iter()
-            .map(|x| self.graph.try_derivatives(x, DRIVE, order, rules::MAX_NODES))
+            .map(|x| {
+                self.graph
+                    .try_derivatives(x, DRIVE, order, rules::MAX_NODES)
+            })
             .collect()
     }
 

@@ -73,9 +73,9 @@ impl Program {
                     here
                 }
                 Node::Sym(name) => {
-                    let value = arithmetic.named_constant(name).filter(|_| {
-                        constants::is_named_constant(name)
-                    });
+                    let value = arithmetic
+                        .named_constant(name)
+                        .filter(|_| constants::is_named_constant(name));
                     let value = value.ok_or_else(|| Error::UnboundSymbol {
                         symbol: name.to_string(),
                     })?;
