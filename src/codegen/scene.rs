@@ -17,7 +17,6 @@ use mechdiff_core::geometry::{Mechanism, Solver};
 use mechdiff_core::symbolic::{Id, format_rust};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
-use std::io::Write;
 use std::path::Path;
 
 use crate::error::{Error, Result};

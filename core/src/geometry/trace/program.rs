@@ -169,7 +169,8 @@ impl Program {
                 Op::Binary(op, a, b) => arithmetic.binary(op, &x[at(a)], &x[at(b)]),
                 Op::Powi(a, n) => x[at(a)].powi(n),
                 Op::Select(cmp, [a, b, t, e]) => {
-                    x[at(if cmp.holds(&x[at(a)], &x[at(b)]) { t } else { e })]
+                    let holds = cmp.holds(&x[at(a)], &x[at(b)]);
+                    x[at(if holds { t } else { e })]
                 }
             };
         }

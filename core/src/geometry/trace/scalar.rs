@@ -170,7 +170,7 @@ macro_rules! arithmetic {
                 self.binary(Binary::$op, rhs, $trait::$method(self.value, rhs.value))
             }
         }
-        impl<'r> $trait<&'r Traced> for Traced {
+        impl $trait<&Traced> for Traced {
             type Output = Traced;
             fn $method(self, rhs: &Traced) -> Traced {
                 $trait::$method(self, *rhs)
@@ -209,7 +209,7 @@ impl Rem for Traced {
     }
 }
 
-impl<'r> Rem<&'r Traced> for Traced {
+impl Rem<&Traced> for Traced {
     type Output = Traced;
     fn rem(self, _: &Traced) -> Traced {
         unsupported("rem")
