@@ -268,3 +268,22 @@ fn build_script_helper_writes_the_printed_module() {
         std::fs::read_to_string("tests/generated/whitworth.rs").unwrap()
     );
 }
+
+#[test]
+fn codegen_command_prints_the_module_and_refuses_a_formula_scene() {
+    let run = |path: &str| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_mechdiff"))
+            .args(["codegen", path])
+            .output()
+            .unwrap()
+    };
+    let printed = run("scenes/whitworth.toml");
+    assert!(printed.status.success());
+    let expected = std::fs::read_to_string("tests/generated/whitworth.rs").unwrap();
+    assert_eq!(String::from_utf8(printed.stdout).unwrap(), expected);
+    // A formula (accuracy) scene is not a mechanism: the scene reader's located error.
+    let refused = run("scenes/formulas/shaper.toml");
+    assert!(!refused.status.success());
+    let message = String::from_utf8(refused.stderr).unwrap();
+    assert!(message.contains("scenes/formulas/shaper.toml:"), "{message}");
+}
