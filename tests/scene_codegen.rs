@@ -285,5 +285,8 @@ fn codegen_command_prints_the_module_and_refuses_a_formula_scene() {
     let refused = run("scenes/formulas/shaper.toml");
     assert!(!refused.status.success());
     let message = String::from_utf8(refused.stderr).unwrap();
-    assert!(message.contains("scenes/formulas/shaper.toml:"), "{message}");
+    assert!(
+        message.contains("scenes/formulas/shaper.toml:"),
+        "{message}"
+    );
 }
