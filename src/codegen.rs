@@ -220,7 +220,7 @@ fn generate_code(expression: &str, args: &Args) -> Result<String, mechdiff_core:
 /// See [`generate`].
 pub fn run(args: &Args) -> Result<(), Error> {
     if let Some(path) = &args.scene {
-        let scene = crate::scene::load(path)?;
+        let scene = scene::load(path)?;
         print!("{}", scene::module(&scene, &path.display().to_string())?);
         return Ok(());
     }

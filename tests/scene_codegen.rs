@@ -270,7 +270,7 @@ fn build_script_helper_writes_the_printed_module() {
 }
 
 #[test]
-fn codegen_command_prints_the_module_and_refuses_a_formula_scene() {
+fn codegen_command_prints_the_module_and_refuses_other_scenes() {
     let run = |path: &str| {
         std::process::Command::new(env!("CARGO_BIN_EXE_mechdiff"))
             .args(["codegen", path])

@@ -299,6 +299,25 @@ pub fn module(scene: &Scene, shown_path: &str) -> Result<String> {
 /// The scene's errors (see [`module`]); [`Error::Write`] if `out` cannot be written.
 pub fn write_module(scene: impl AsRef<Path>, out: impl AsRef<Path>) -> Result<()> {
     let path = scene.as_ref();
-    let text = module(&crate::scene::load(path)?, &path.display().to_string())?;
+    let text = module(&load(path)?, &path.display().to_string())?;
     crate::files::write_atomically(out.as_ref(), |w| w.write_all(text.as_bytes()))
+}
+
+/// Reads the scene file at `path` for code generation: a linkage scene (a cam scene is
+/// refused with a clear error).
+///
+/// # Errors
+/// The scene reader's errors; [`Error::Codegen`] for a cam scene.
+pub fn load(path: &Path) -> Result<Scene> {
+    let text = crate::files::read_scene(path)?;
+    let file = path.display().to_string();
+    if crate::scene::cam::is_cam_scene(&text) {
+        return Err(Error::Codegen {
+            origin: file,
+            source: mechdiff_core::Error::Untraceable {
+                operation: "a cam scene (code generation covers linkage scenes)".to_owned(),
+            },
+        });
+    }
+    crate::scene::parse(&file, &text)
 }
