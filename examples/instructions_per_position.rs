@@ -14,13 +14,22 @@
 //! Loops (the first argument): `geometry` (Whitworth by geometry only: `move_to` + read ψ,
 //! ψ′, ψ″), `newton` (the same with `Solver::with_closed_form(false)`), `psi` (the Whitworth
 //! module's closed-form ψ in `Dual2`), `pose` (its whole pose in `Dual2`), `rack` (mechanism
-//! 001 from `scenes/rack_slotted_link.toml`: `move_to` + read θ3, θ3′, θ3″).
+//! 001 from `scenes/rack_slotted_link.toml`: `move_to` + read θ3, θ3′, θ3″), `hand` (the
+//! hand-derived ψ, ψ′, ψ″), `generated` (ψ, ψ′, ψ″ generated from the scene, with guards).
 
 use mechdiff::core::geometry::{ScalarOutput, Solver, Tracker};
 use mechdiff::core::method::{Differentiator, Dual2};
 use mechdiff::mechanisms::whitworth::Whitworth;
+use mechdiff::mechanisms::whitworth::hand;
 use std::hint::black_box;
 use std::process::ExitCode;
+
+/// Whitworth's ψ, ψ′, ψ″ generated from its scene (`mechdiff codegen`, see
+/// `tests/scene_codegen.rs`).
+#[allow(dead_code, clippy::all)]
+mod generated_psi {
+    include!("../tests/generated/whitworth_psi.rs");
+}
 
 /// Walks a copy of `start` through `positions`, reading `output` to second order.
 fn walk(start: &Tracker<'_>, positions: &[f64], output: &ScalarOutput) -> f64 {
@@ -39,7 +48,10 @@ fn walk(start: &Tracker<'_>, positions: &[f64], output: &ScalarOutput) -> f64 {
 fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
     let (Some(which), Some(reps)) = (args.get(1), args.get(2)) else {
-        eprintln!("usage: instructions_per_position geometry|newton|psi|pose|rack REPETITIONS");
+        eprintln!(
+            "usage: instructions_per_position geometry|newton|psi|pose|rack|hand|generated \
+             REPETITIONS"
+        );
         return Ok(ExitCode::FAILURE);
     };
     let reps: usize = reps.parse()?;
@@ -65,6 +77,7 @@ fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
     );
     let rack_start = solver.track(&rack)?;
     let rocker_angle = shaper.rocker();
+    let lambda = shaper.lambda();
     let mut acc = 0.0;
     for _ in 0..reps {
         acc += match which.as_str() {
@@ -85,8 +98,24 @@ fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
                     psi.value + psi.d1() + psi.d2()
                 })
                 .sum(),
+            "hand" => phis
+                .iter()
+                .map(|&phi| {
+                    let psi = hand::rocker_angle(black_box(lambda), black_box(phi));
+                    psi.value + psi.d1() + psi.d2()
+                })
+                .sum(),
+            "generated" => phis
+                .iter()
+                .map(|&phi| match generated_psi::pose(black_box(phi)) {
+                    Ok([[psi, psi1, psi2]]) => psi + psi1 + psi2,
+                    Err(_) => f64::NAN,
+                })
+                .sum(),
             other => {
-                eprintln!("unknown loop `{other}`: geometry, newton, psi, pose or rack");
+                eprintln!(
+                    "unknown loop `{other}`: geometry, newton, psi, pose, rack, hand or generated"
+                );
                 return Ok(ExitCode::FAILURE);
             }
         };

@@ -11,6 +11,9 @@
 //! of [`mechdiff_core::symbolic`], and its operation count (with and without
 //! common-subexpression elimination).
 //!
+//! `mechdiff codegen scenes/whitworth.toml` prints a Rust module computing a scene's
+//! outputs and their derivatives (see [`scene`]).
+//!
 //! Limits (each a clear error, never a crash): a formula file of at most
 //! [`MAX_FORMULA_BYTES`]; nesting at most [`mechdiff_core::symbolic::infix::MAX_NESTING`] levels; derivative order
 //! at most [`rules::MAX_DERIVATIVE_ORDER`]; at most [`rules::MAX_NODES`] expression nodes.
@@ -23,6 +26,8 @@ use mechdiff_core::symbolic::{Graph, rules};
 
 use crate::error::Error;
 
+pub mod scene;
+
 /// The largest formula file `codegen` reads (16 MiB).
 pub const MAX_FORMULA_BYTES: u64 = 16 << 20;
 
@@ -34,15 +39,19 @@ pub struct Args {
     /// hypot, powf, powi.
     #[arg(
         long = "expr",
-        required_unless_present = "file",
-        conflicts_with = "file"
+        required_unless_present_any = ["file", "scene"],
+        conflicts_with_all = ["file", "scene"]
     )]
     pub expression: Option<String>,
     /// Read the formula from this file instead (`-`: standard input); line breaks are spaces.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "scene")]
     pub file: Option<PathBuf>,
+    /// A scene file (TOML): print a Rust module computing its outputs and their derivatives
+    /// (every loop must have a closed form; see `mechdiff check`).
+    #[arg(conflicts_with = "wrt")]
+    pub scene: Option<PathBuf>,
     /// The variable to differentiate with respect to.
-    #[arg(long)]
+    #[arg(long, required_unless_present = "scene", default_value = "")]
     pub wrt: String,
     /// The highest derivative order (at most 32).
     #[arg(long, default_value_t = 1)]
@@ -59,6 +68,7 @@ impl Args {
         Args {
             expression: Some(expression.to_owned()),
             file: None,
+            scene: None,
             wrt: wrt.to_owned(),
             order,
             name: "derivatives".to_owned(),
@@ -209,6 +219,11 @@ fn generate_code(expression: &str, args: &Args) -> Result<String, mechdiff_core:
 /// # Errors
 /// See [`generate`].
 pub fn run(args: &Args) -> Result<(), Error> {
+    if let Some(path) = &args.scene {
+        let scene = scene::load(path)?;
+        print!("{}", scene::module(&scene, &path.display().to_string())?);
+        return Ok(());
+    }
     print!("{}", generate(args)?);
     Ok(())
 }

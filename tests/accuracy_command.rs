@@ -107,7 +107,8 @@ fn cam_scene_is_refused_with_what_is_supported() {
     assert!(!output.status.success());
     let message = String::from_utf8(output.stderr).unwrap();
     assert!(
-        message.contains("cam and rotor scenes are not supported") && message.contains("formula scenes"),
+        message.contains("cam and rotor scenes are not supported")
+            && message.contains("formula scenes"),
         "{message}"
     );
 }

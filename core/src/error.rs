@@ -427,6 +427,12 @@ pub enum Error {
         /// The constant's `f64` value.
         value: f64,
     },
+    /// Tracing the position solution met an operation without a symbolic form.
+    #[error("code generation cannot trace `{operation}` into the symbolic engine")]
+    Untraceable {
+        /// The operation.
+        operation: String,
+    },
     /// Emitted Rust did not parse back (a bug in the emitter).
     #[error("emitted Rust is not valid: {reason}")]
     InvalidEmittedRust {

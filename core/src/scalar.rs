@@ -3,7 +3,9 @@
 //! A position function is written once, generic over `D: Scalar`; it is then evaluated with
 //! `f64` for positions, or with a num-dual number to get exact derivatives.
 
+use crate::geometry::trace::Traced;
 use num_dual::DualNum;
+use std::any::Any;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// A real scalar or a dual number over `f64`: what generic position functions are written for.
@@ -45,6 +47,9 @@ impl<T: DualNum<Primitive = f64> + Copy + Send + Sync> Scalar for T {}
 /// assert_eq!(angle.eps, -1.0);
 /// ```
 pub fn atan2<D: Scalar>(y: D, x: D) -> D {
+    if let Some(angle) = traced_atan2(&y, &x) {
+        return angle;
+    }
     let (yr, xr) = (y.re(), x.re());
     if xr.abs() >= yr.abs() {
         let quadrant = if xr > 0.0 {
@@ -59,6 +64,16 @@ pub fn atan2<D: Scalar>(y: D, x: D) -> D {
         let half_plane = if yr > 0.0 { FRAC_PI_2 } else { -FRAC_PI_2 };
         -(x / y).atan() + half_plane
     }
+}
+
+/// A traced `atan2` is recorded as one node, valid in every quadrant (the branches below
+/// would record only the traced point's quadrant); `None` for every other scalar (the test
+/// is on the type, resolved at compile time).
+fn traced_atan2<D: Scalar>(y: &D, x: &D) -> Option<D> {
+    let y = (y as &dyn Any).downcast_ref::<Traced>()?;
+    let x = (x as &dyn Any).downcast_ref::<Traced>()?;
+    let angle = y.atan2_node(*x);
+    (&angle as &dyn Any).downcast_ref::<D>().copied()
 }
 
 /// `hypot(x, y) = √(x² + y²)`, the length of the vector (x, y), with derivatives.

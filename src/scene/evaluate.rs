@@ -100,13 +100,33 @@ pub(crate) fn evaluate<const N: usize>(
     let output = resolved.output;
     let mut values = values(output, point);
     if let OutputKind::Angle { .. } = &output.kind {
-        let angle = &mut values[0];
         let target = previous.unwrap_or_else(|| sketch_angle(scene, output));
-        let turns = ((target - angle.re) / std::f64::consts::TAU).round();
-        angle.re += turns * std::f64::consts::TAU;
-        *previous = Some(angle.re);
+        to_turn(&mut values[0], target);
+        *previous = Some(values[0].re);
     }
     values.iter().map(jet::<N>).collect()
+}
+
+/// The output's values as [`values`] gives them, with an angle moved by whole turns to the
+/// one nearest its angle in the sketch (where a sweep's angle continuity starts).
+pub(crate) fn values_on_sketch_turn<D: Scalar>(
+    scene: &Scene,
+    output: &Output,
+    point: impl Fn(usize) -> [D; 2],
+) -> Vec<D> {
+    let mut values = values(output, point);
+    if let OutputKind::Angle { .. } = &output.kind {
+        to_turn(&mut values[0], sketch_angle(scene, output));
+    }
+    values
+}
+
+/// Moves `angle` by whole turns to the one nearest `target` (unchanged when it is there).
+fn to_turn<D: Scalar>(angle: &mut D, target: f64) {
+    let turns = ((target - angle.re()) / std::f64::consts::TAU).round();
+    if turns != 0.0 {
+        *angle += turns * std::f64::consts::TAU;
+    }
 }
 
 /// The output's values from the positions `point(i)` of its points (in the order of

@@ -17,6 +17,7 @@ mod mobility;
 mod model;
 mod output;
 mod solver;
+pub mod trace;
 mod validate;
 
 pub use constraints::Equations;

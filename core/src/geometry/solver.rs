@@ -394,6 +394,21 @@ impl<'m> Tracker<'m> {
         (worst.0, self.loop_joints(&self.loops[worst.1]))
     }
 
+    /// The loops' closed forms, when every loop has one (see `geometry::trace`).
+    pub(crate) fn closed_forms(&self) -> Option<&ClosedForm> {
+        self.closed_only.then_some(&self.closed)
+    }
+
+    /// The singular threshold of the solver tracking (see [`Solver::singular_threshold`]).
+    pub(crate) fn solver_singular_threshold(&self) -> f64 {
+        self.solver.singular_threshold()
+    }
+
+    /// The joints of loop `l` (in the order of [`Tracker::loops`]).
+    pub(crate) fn joints_of_loop(&self, l: usize) -> Vec<String> {
+        self.loop_joints(&self.loops[l])
+    }
+
     fn loop_joints(&self, l: &Loop) -> Vec<String> {
         let m = self.mechanism;
         let mut names: Vec<String> = Vec::new();

@@ -14,8 +14,8 @@ use std::fmt;
 
 use super::ops::{Binary, Comparison, Unary};
 
-/// Index of a node in a [`Graph`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+/// Index of a node in a [`Graph`] (the default: the first node).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Id(u32);
 
 impl Id {

@@ -13,6 +13,9 @@ use crate::Scalar;
 pub(crate) struct Margin<D> {
     pub value: D,
     pub size: f64,
+    /// `size` as a function of the drive position (what the generated guards measure the
+    /// condition with; see `geometry::trace`).
+    pub now: D,
     /// Whether the value is a discriminant (its square root is the loop's lever) rather
     /// than a slope; `None`: the loop always closes.
     pub root: Option<bool>,
@@ -23,6 +26,7 @@ impl<D: Scalar> Margin<D> {
         Margin {
             value: D::from(1.0),
             size: 1.0,
+            now: D::from(1.0),
             root: None,
         }
     }
@@ -53,21 +57,23 @@ impl ClosedForm {
     }
 
     /// `σ √disc`, or why there is none: a toggle if `√(size / |disc|)` (the condition
-    /// estimate, in the loop's own length scale: `size` is the square of what `√disc`
+    /// estimate, in the loop's own length scale: `size`, the value of `now`, is the square of what `√disc`
     /// is measured against now, e.g. `l₁² l₂²` for a dyad) exceeds the limit, else a loop
     /// that cannot close by `gap` (m) if `disc < 0`. Records the margin.
     #[inline]
     pub(super) fn root<D: Scalar>(
         &self,
         disc: D,
-        size: f64,
+        now: D,
         gap: f64,
         branch: f64,
         margin: &mut Margin<D>,
     ) -> Result<D, Failure> {
+        let size = now.re();
         *margin = Margin {
             value: disc,
             size,
+            now,
             root: Some(true),
         };
         let condition = (size / disc.re().abs()).sqrt();
@@ -86,6 +92,7 @@ impl ClosedForm {
         *margin = Margin {
             value: slope,
             size: 1.0,
+            now: D::from(1.0),
             root: Some(false),
         };
         let condition = 1.0 / slope.re().abs();

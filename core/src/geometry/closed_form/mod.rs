@@ -343,6 +343,21 @@ impl ClosedForm {
         frames: &mut [(D, D)],
         margins: &mut [D],
     ) -> Result<(), (usize, Failure)> {
+        self.solve_each(phi, previous, q, frames, |i, margin, inv_scale| {
+            margins[i] = margin.value * inv_scale;
+        })
+    }
+
+    /// [`ClosedForm::solve_all`], handing each loop's margin and its factor (sign / size
+    /// at the sketch) to `margin_of`, up to the failing loop included.
+    pub(crate) fn solve_each<D: Scalar>(
+        &self,
+        phi: D,
+        previous: &[f64],
+        q: &mut [D],
+        frames: &mut [(D, D)],
+        mut margin_of: impl FnMut(usize, &Margin<D>, f64),
+    ) -> Result<(), (usize, Failure)> {
         for (i, step) in self.steps.iter().enumerate() {
             let step = step.as_ref().ok_or((
                 i,
@@ -352,7 +367,7 @@ impl ClosedForm {
             ))?;
             let mut margin = Margin::none();
             let solved = self.solve(step, phi, previous, q, frames, &mut margin);
-            margins[i] = margin.value * step.inv_scale;
+            margin_of(i, &margin, step.inv_scale);
             solved.map_err(|f| (i, f))?;
         }
         Ok(())
@@ -403,7 +418,7 @@ impl ClosedForm {
                         let (a, b) = (l1.sqrt(), l2.sqrt());
                         let gap = (dist - (a + b)).max((a - b).abs() - dist);
                         // √disc = l₁ l₂ |sin γ|, γ the angle between the links at J.
-                        let h = self.root(disc, l1 * l2, gap, step.branch, margin)?;
+                        let h = self.root(disc, D::from(l1 * l2), gap, step.branch, margin)?;
                         let inv = d2.recip();
                         let j = [
                             pivot[0] + (d[0] * g - d[1] * h) * inv,
@@ -434,7 +449,7 @@ impl ClosedForm {
                         let disc = uw * uw - ww + l1;
                         let gap = (ww.re() - uw.re() * uw.re()).max(0.0).sqrt() - l1.sqrt();
                         // √disc = l₁ |cos| of the link's angle to the guide's normal.
-                        let s = self.root(disc, l1, gap, step.branch, margin)? - uw;
+                        let s = self.root(disc, D::from(l1), gap, step.branch, margin)? - uw;
                         let j = [j0[0] + u[0] * s, j0[1] + u[1] * s];
                         (j, t2, sc2, [base[0] + u[0] * s, base[1] + u[1] * s])
                     }
@@ -473,7 +488,7 @@ impl ClosedForm {
                         // √disc = ρ |cos ψ|; its size is ρ² now (and the lever ρ itself
                         // shrinks as the pin nears the hinge: the margin is measured
                         // against ρ² in the sketch).
-                        let root = self.root(rho2 - c * c, rho2.re(), gap, step.branch, margin)?;
+                        let root = self.root(rho2 - c * c, rho2, gap, step.branch, margin)?;
                         // e^{i(θ+δ)} ∝ w·(k − i c), then rotated back by δ = arg d.
                         let v = [w[0] * root + w[1] * c, w[1] * root - w[0] * c];
                         let x = v[0] * d[0] + v[1] * d[1];
@@ -487,7 +502,8 @@ impl ClosedForm {
                         let c = cross_d(u, [a[0] - pivot[0], a[1] - pivot[1]]);
                         let rho2 = r[0] * r[0] + r[1] * r[1];
                         let gap = c.re().abs() - rho2.sqrt();
-                        let root = self.root(-c * c + rho2, rho2, gap, step.branch, margin)?;
+                        let root =
+                            self.root(-c * c + rho2, D::from(rho2), gap, step.branch, margin)?;
                         // e^{i(θ+β)} ∝ u·(k + i c), then rotated back by β = arg r.
                         let v = [u[0] * root - u[1] * c, u[1] * root + u[0] * c];
                         let x = v[0] * r[0] + v[1] * r[1];

@@ -134,7 +134,7 @@ impl Tracker<'_> {
     }
 
     /// The error for loop `l`'s closed form failing at `phi`.
-    pub(super) fn closed_failure(&self, phi: f64, l: usize, failure: Failure) -> Error {
+    pub(crate) fn closed_failure(&self, phi: f64, l: usize, failure: Failure) -> Error {
         let joints = self.loop_joints(&self.loops[l]);
         match failure {
             Failure::Unassemblable { residual } => Error::Unassemblable {

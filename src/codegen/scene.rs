@@ -1,0 +1,324 @@
+//! `mechdiff codegen <scene.toml>`: a scene's position solution as generated code.
+//!
+//! The scene is built and tracked as `mechdiff run` does; its loops' closed forms and its
+//! outputs are traced into one expression graph ([`mechdiff_core::geometry::trace`]),
+//! differentiated to the order the scene's plan needs (at least 2: ψ, ψ′, ψ″), and
+//! either emitted as a Rust module ([`module`]: no dependency, drop it into any crate) or
+//! compiled for the run-time evaluator ([`SceneCode::program`]).
+//!
+//! The module has one function, `pose(phi: f64) -> Result<[[f64; ORDER + 1]; N], LoopFailure>`:
+//! every output (a point gives two, `x` and `y`) with its derivatives with respect to the
+//! drive position, in SI units (rad, m), after checking each loop's guard as the solver
+//! checks it. Angles agree with the solver's modulo 2π (the solver keeps them continuous
+//! along a sweep; the module has no sweep).
+
+use mechdiff_core::geometry::trace::{self, GuardKind, PositionGraph, Program};
+use mechdiff_core::geometry::{Mechanism, Solver};
+use mechdiff_core::symbolic::{Id, format_rust};
+use proc_macro2::{Literal, TokenStream};
+use quote::{format_ident, quote};
+use std::path::Path;
+
+use crate::error::{Error, Result};
+use crate::scene::build::mechanism;
+use crate::scene::evaluate::{Resolved, values_on_sketch_turn};
+use crate::scene::model::{OutputKind, Scene};
+use crate::scene::plan::Plan;
+use crate::scene::run::solver_error;
+
+/// A scene's position solution, traced and differentiated.
+#[derive(Debug, Clone)]
+pub struct SceneCode {
+    /// The traced graph, its outputs and guards.
+    pub position: PositionGraph,
+    /// The outputs' names: the scene's, `name.x` and `name.y` for a point.
+    pub names: Vec<String>,
+    /// The highest derivative order.
+    pub order: usize,
+    /// Per output, its value and derivatives 1 to `order`.
+    pub jets: Vec<Vec<Id>>,
+}
+
+/// The tracker of `m` the scene's runs use.
+fn solver() -> Solver {
+    Solver::default()
+}
+
+impl SceneCode {
+    /// Traces `scene`.
+    ///
+    /// # Errors
+    /// The scene's model and sketch errors; [`mechdiff_core::Error::NoClosedForm`] (as
+    /// [`Error::Codegen`]) if a loop has no closed form.
+    pub fn of(scene: &Scene) -> Result<Self> {
+        let m = mechanism(scene)?;
+        let tracker = solver().track(&m).map_err(|e| solver_error(scene, e))?;
+        let resolved = scene
+            .outputs
+            .iter()
+            .map(|o| Resolved::new(scene, &m, o))
+            .collect::<Result<Vec<_>>>()?;
+        let codegen = |source| Error::Codegen {
+            origin: scene.file.clone(),
+            source,
+        };
+        let mut position = trace::trace(&tracker, |pose| {
+            resolved
+                .iter()
+                .flat_map(|r| {
+                    let point = |i: usize| pose.point(&r.points()[i]);
+                    values_on_sketch_turn(scene, r.output, point)
+                })
+                .collect()
+        })
+        .map_err(codegen)?;
+        let names = scene
+            .outputs
+            .iter()
+            .flat_map(|o| match o.kind {
+                OutputKind::Point(_) => vec![format!("{}.x", o.name), format!("{}.y", o.name)],
+                _ => vec![o.name.clone()],
+            })
+            .collect();
+        let order = Plan::of(scene).order.max(2);
+        let jets = position.jets(order).map_err(codegen)?;
+        Ok(SceneCode {
+            position,
+            names,
+            order,
+            jets,
+        })
+    }
+
+    /// Every node the code computes: the jets, output by output, then the guards.
+    fn roots(&self) -> Vec<Id> {
+        let mut roots: Vec<Id> = self.jets.iter().flatten().copied().collect();
+        roots.extend(self.position.guard_nodes());
+        roots
+    }
+
+    /// The run-time program: [`SceneCode::evaluate`] reads its outputs.
+    ///
+    /// # Errors
+    /// [`Error::Codegen`] if the graph has a symbol other than φ (a bug).
+    pub fn program(&self, scene: &Scene) -> Result<Program> {
+        Program::compile(&self.position.graph, &self.roots(), trace::DRIVE).map_err(|source| {
+            Error::Codegen {
+                origin: scene.file.clone(),
+                source,
+            }
+        })
+    }
+
+    /// Reads one evaluation of [`SceneCode::program`] (`out`: jets, then guards): the jets
+    /// `[x, x′, …]` output by output, or the loop whose guard fails and why.
+    pub fn read<'o>(
+        &self,
+        out: &'o [f64],
+    ) -> std::result::Result<&'o [f64], (usize, trace::GuardFailure)> {
+        let jets = self.jets.len() * (self.order + 1);
+        match self.position.first_failure(&out[jets..]) {
+            Some(failure) => Err(failure),
+            None => Ok(&out[..jets]),
+        }
+    }
+}
+
+/// The error the solver gives for `scene` at drive position `phi` (SI), when the
+/// generated code's guard fails there: the solver's closed forms evaluated at `phi`.
+///
+/// # Errors
+/// The scene's model errors.
+pub fn guard_error(scene: &Scene, phi: f64) -> Result<Option<Error>> {
+    let m: Mechanism = mechanism(scene)?;
+    let tracker = solver().track(&m).map_err(|e| solver_error(scene, e))?;
+    Ok(trace::closed_form_error(&tracker, phi).map(|e| solver_error(scene, e)))
+}
+
+/// A name as a Rust identifier: other characters become `_`.
+fn identifier(name: &str) -> String {
+    let mut id: String = name
+        .chars()
+        .map(|c| {
+            if c.is_alphanumeric() || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    if !id.starts_with(|c: char| c.is_alphabetic() || c == '_') {
+        id.insert(0, '_');
+    }
+    id
+}
+
+/// The body of `pose` (tokens), for the module and the proc-macro.
+pub fn pose_function(code: &SceneCode) -> TokenStream {
+    let graph = &code.position.graph;
+    let mut names: Vec<String> = Vec::new();
+    for name in &code.names {
+        let base = identifier(name);
+        names.push(base.clone());
+        names.extend((1..=code.order).map(|k| format!("{base}_d{k}")));
+    }
+    for l in 0..code.position.guards.len() {
+        names.push(format!("discriminant_{l}"));
+        names.push(format!("condition_{l}"));
+    }
+    let name_refs: Vec<&str> = names.iter().map(String::as_str).collect();
+    let roots = code.roots();
+    let body = graph.emit_body(&roots, &name_refs);
+    let bound: Vec<_> = names.iter().map(|n| format_ident!("{n}")).collect();
+    let count = Literal::usize_unsuffixed(roots.len());
+    let width = code.order + 1;
+    let rows = bound[..code.jets.len() * width].chunks(width).map(|row| {
+        quote! { [#(#row),*] }
+    });
+    let limit = Literal::f64_unsuffixed(code.position.limit);
+    let guards = code
+        .position
+        .guards
+        .iter()
+        .enumerate()
+        .filter(|(_, g)| g.kind != GuardKind::Always)
+        .map(|(l, g)| {
+            let l = Literal::usize_unsuffixed(l);
+            let (disc, cond) = (
+                format_ident!("discriminant_{l}"),
+                format_ident!("condition_{l}"),
+            );
+            let unassemblable = (g.kind == GuardKind::Root).then(|| {
+                quote! {
+                    if #disc < 0.0 {
+                        return Err(LoopFailure::Unassemblable { phi, loop_index: #l });
+                    }
+                }
+            });
+            quote! {
+                if !(#cond <= SINGULAR_THRESHOLD) {
+                    return Err(LoopFailure::Singular { phi, loop_index: #l, condition: #cond });
+                }
+                #unassemblable
+            }
+        });
+    let (n, width) = (
+        Literal::usize_unsuffixed(code.jets.len()),
+        Literal::usize_unsuffixed(width),
+    );
+    quote! {
+        /// The solver's singular threshold: a loop whose condition estimate exceeds it is
+        /// at (or too near) a toggle.
+        pub const SINGULAR_THRESHOLD: f64 = #limit;
+
+        /// Every output and its derivatives with respect to the drive position at `phi`
+        /// (SI: rad or m), row by row in the order of `OUTPUTS`, after every loop's guard.
+        #[allow(clippy::all, unused_variables, non_snake_case)]
+        pub fn pose(phi: f64) -> Result<[[f64; #width]; #n], LoopFailure> {
+            let [#(#bound),*]: [f64; #count] = { #body };
+            #(#guards)*
+            Ok([#(#rows),*])
+        }
+    }
+}
+
+/// The generated Rust module for `scene` (formatted source).
+///
+/// # Errors
+/// See [`SceneCode::of`]; [`Error::Codegen`] if the emitted code does not parse (a bug).
+pub fn module(scene: &Scene, shown_path: &str) -> Result<String> {
+    let code = SceneCode::of(scene)?;
+    let outputs = &code.names;
+    let loops: Vec<String> = code
+        .position
+        .guards
+        .iter()
+        .map(|g| g.joints.join(", "))
+        .collect();
+    let [n, l, order] = [outputs.len(), loops.len(), code.order].map(Literal::usize_unsuffixed);
+    let pose = pose_function(&code);
+    let tokens = quote! {
+        /// The outputs, in the order of the rows `pose` returns.
+        pub const OUTPUTS: [&str; #n] = [#(#outputs),*];
+        /// The highest derivative with respect to the drive position in each row.
+        pub const ORDER: usize = #order;
+        /// The loops (their joints), in solving order.
+        pub const LOOPS: [&str; #l] = [#(#loops),*];
+
+        /// Why `pose` has no answer at a drive position: the loop `LOOPS[loop_index]`.
+        #[derive(Debug, Clone, Copy, PartialEq)]
+        pub enum LoopFailure {
+            /// The loop cannot assemble at `phi`.
+            Unassemblable {
+                /// The drive position (SI).
+                phi: f64,
+                /// The loop, in `LOOPS`.
+                loop_index: usize,
+            },
+            /// The loop is at (or too near) a toggle at `phi`: its condition estimate.
+            Singular {
+                /// The drive position (SI).
+                phi: f64,
+                /// The loop, in `LOOPS`.
+                loop_index: usize,
+                /// The condition estimate (above `SINGULAR_THRESHOLD`).
+                condition: f64,
+            },
+        }
+
+        #pose
+    };
+    let source = format_rust(tokens).map_err(|source| Error::Codegen {
+        origin: scene.file.clone(),
+        source,
+    })?;
+    let ops = code.position.graph.operation_count(&code.roots());
+    Ok(format!(
+        "// Generated by `mechdiff codegen {shown_path}`: the scene's position solution\n\
+         // (every loop in closed form, traced at the sketch) and derivatives 1 to {order}.\n\
+         // operations: {ops}\n{source}",
+        order = code.order
+    ))
+}
+
+/// The compile-time back end: writes the module generated for the scene file `scene` to
+/// `out` (whole or not at all), for a build script; the module is then included where it
+/// is used. With `scenes/whitworth.toml` in the crate:
+///
+/// ```no_run
+/// // build.rs
+/// let out = std::path::Path::new(&std::env::var("OUT_DIR").unwrap()).join("whitworth.rs");
+/// mechdiff::codegen::scene::write_module("scenes/whitworth.toml", &out).unwrap();
+/// println!("cargo::rerun-if-changed=scenes/whitworth.toml");
+/// // src/lib.rs:
+/// // mod whitworth { include!(concat!(env!("OUT_DIR"), "/whitworth.rs")); }
+/// // let [[psi, psi_1, psi_2], _] = whitworth::pose(1.0)?;
+/// ```
+///
+/// # Errors
+/// The scene's errors (see [`module`]); [`Error::Write`] if `out` cannot be written.
+pub fn write_module(scene: impl AsRef<Path>, out: impl AsRef<Path>) -> Result<()> {
+    let path = scene.as_ref();
+    let text = module(&load(path)?, &path.display().to_string())?;
+    crate::files::write_atomically(out.as_ref(), |w| w.write_all(text.as_bytes()))
+}
+
+/// Reads the scene file at `path` for code generation: a linkage scene (a cam scene is
+/// or rotor scene is refused with a clear error).
+///
+/// # Errors
+/// The scene reader's errors; [`Error::Codegen`] for a cam or rotor scene.
+pub fn load(path: &Path) -> Result<Scene> {
+    let text = crate::files::read_scene(path)?;
+    let file = path.display().to_string();
+    if crate::scene::kind(&text) != crate::scene::Kind::Linkage {
+        return Err(Error::Codegen {
+            origin: file,
+            source: mechdiff_core::Error::Untraceable {
+                operation: "a cam or rotor scene (code generation covers linkage scenes)"
+                    .to_owned(),
+            },
+        });
+    }
+    crate::scene::parse(&file, &text)
+}
