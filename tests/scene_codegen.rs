@@ -46,11 +46,11 @@ macro_rules! generated {
 // loops), a test scene that cannot complete a turn, and Whitworth's ψ alone (benches).
 generated! {
     four_bar => "scenes/four_bar.toml",
+    norton_four_bar => "scenes/norton_four_bar.toml",
     rack_slotted_link => "scenes/rack_slotted_link.toml",
     rack_slotted_link_dynamics => "scenes/rack_slotted_link_dynamics.toml",
     rack_slotted_link_other_branch => "scenes/rack_slotted_link_other_branch.toml",
     rack_slotted_link_travel => "scenes/rack_slotted_link_travel.toml",
-    rotor_balancing => "scenes/rotor_balancing.toml",
     shaper => "scenes/shaper.toml",
     slider_crank => "scenes/slider_crank.toml",
     whitworth => "scenes/whitworth.toml",
@@ -289,4 +289,19 @@ fn codegen_command_prints_the_module_and_refuses_other_scenes() {
         message.contains("scenes/formulas/shaper.toml:"),
         "{message}"
     );
+    // Cam, rotor and cam-driven scenes are refused by name, not generated with another
+    // drive variable.
+    for (path, what) in [
+        (
+            "scenes/cams/rise_dwell_return_dwell.toml",
+            "a cam or rotor scene",
+        ),
+        ("scenes/rotor_balancing.toml", "a cam or rotor scene"),
+        ("scenes/cam_driven_rocker.toml", "a cam-driven joint"),
+    ] {
+        let refused = run(path);
+        assert!(!refused.status.success(), "{path} was generated");
+        let message = String::from_utf8(refused.stderr).unwrap();
+        assert!(message.contains(what), "{path}: {message}");
+    }
 }

@@ -51,6 +51,17 @@ impl SceneCode {
     /// The scene's model and sketch errors; [`mechdiff_core::Error::NoClosedForm`] (as
     /// [`Error::Codegen`]) if a loop has no closed form.
     pub fn of(scene: &Scene) -> Result<Self> {
+        if scene.drive.cam.is_some() {
+            // The generated pose would be a function of the follower's position, not of the
+            // cam angle the scene's table is written in: refused rather than mislabelled.
+            return Err(Error::Codegen {
+                origin: scene.file.clone(),
+                source: mechdiff_core::Error::Untraceable {
+                    operation: "a cam-driven joint ([drive] cam; the cam program is not traced)"
+                        .to_owned(),
+                },
+            });
+        }
         let m = mechanism(scene)?;
         let tracker = solver().track(&m).map_err(|e| solver_error(scene, e))?;
         let resolved = scene

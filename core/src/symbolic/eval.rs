@@ -152,9 +152,19 @@ impl<D: Scalar> Arithmetic for DualArithmetic<D> {
                 *a / *b
             }
             Binary::Powf => a.powd(*b),
-            // The project's atan2: exact derivatives on the y axis too (num-dual's
+            // Plain f64: libm's atan2, as the emitted code calls it (bit for bit). Dual
+            // numbers: the project's atan2, exact derivatives on the y axis too (num-dual's
             // differentiates atan(y/x): NaN at x = 0).
-            Binary::Atan2 => crate::atan2(*a, *b),
+            Binary::Atan2 => {
+                use std::any::Any;
+                let (y, x) = (a as &dyn Any, b as &dyn Any);
+                if let (Some(y), Some(x)) = (y.downcast_ref::<f64>(), x.downcast_ref::<f64>())
+                    && let Some(angle) = (&y.atan2(*x) as &dyn Any).downcast_ref::<D>()
+                {
+                    return *angle;
+                }
+                crate::atan2(*a, *b)
+            }
             // Scaled: no overflow of x² + y² for arguments near f64::MAX.
             Binary::Hypot => crate::scalar::hypot(*a, *b),
         }
