@@ -23,6 +23,7 @@ pub mod files;
 pub mod pictures;
 pub mod report;
 pub mod scene;
+pub mod stream;
 
 pub use error::{Error, Result};
 

@@ -125,6 +125,8 @@ pub fn run(scene: &Scene) -> Result<Report> {
     for &phi in &positions {
         let mut row = Vec::with_capacity(all.len());
         sweeper.row(phi, &mut row)?;
+        // The first error in drive order, as a streamed run reports it.
+        check_row(scene, &all, &row)?;
         rows.push(row);
     }
     let warnings = sweeper.warnings();
