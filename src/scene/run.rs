@@ -315,6 +315,9 @@ pub(crate) fn dead_positions(
     Ok(dead_positions)
 }
 
+/// The most intervals of the grid on which dead positions are searched.
+const DEAD_POSITION_INTERVALS: f64 = 65_536.0;
+
 /// Every dead position of an angle or slider output in the sweep's range.
 fn search_dead_positions(
     scene: &Scene,
@@ -329,7 +332,11 @@ fn search_dead_positions(
     let sweep_step = (positions.clone().zip(positions.skip(1)))
         .map(|(a, b)| (b - a).abs())
         .fold(f64::INFINITY, f64::min);
-    let step = sweep_step.min((hi - lo) / 360.0);
+    // At most 2^16 intervals, so that a streamed sweep of 10^8 positions does not hold 10^8
+    // samples: the grid only brackets the sign changes of the output's derivative, refined
+    // to full precision after; dead positions closer together than (hi - lo)/2^16 would be
+    // missed (the sweep's own resolution is then finer than any plot of it).
+    let step = sweep_step.min((hi - lo) / 360.0).max((hi - lo) / DEAD_POSITION_INTERVALS);
     let tracker = RefCell::new(
         Solver::default()
             .track(mechanism)
