@@ -31,8 +31,8 @@ fn streaming(c: &mut Criterion) {
     let scene = slider_crank();
     let mechanism = build::mechanism(&scene).unwrap();
     let plan = Plan::of(&scene);
-    let mut group =
-        c.benchmark_group("slider_crank.toml, 10^4 positions: in-process sweep vs streamed outputs");
+    let mut group = c
+        .benchmark_group("slider_crank.toml, 10^4 positions: in-process sweep vs streamed outputs");
     group.throughput(Throughput::Elements(scene.positions.len() as u64));
     group.bench_function(BenchmarkId::from_parameter("sweep rows in process"), |b| {
         b.iter(|| {

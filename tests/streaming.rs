@@ -69,10 +69,12 @@ struct Outputs {
 
 fn streamed(scene: &Scene, options: &Options) -> Outputs {
     let (mut table, mut csv, mut jsonl) = (Vec::new(), Vec::new(), Vec::new());
-    let sink = |path: &str, out| Some(Sink {
-        path: PathBuf::from(path),
-        out,
-    });
+    let sink = |path: &str, out| {
+        Some(Sink {
+            path: PathBuf::from(path),
+            out,
+        })
+    };
     let mut sinks = Sinks {
         table: sink("<stdout>", &mut table),
         csv: sink("out.csv", &mut csv),
@@ -112,9 +114,18 @@ fn every_thread_count_and_batch_size_gives_the_same_bytes() {
     for (threads, batch, chunk) in [(2, 7, 3), (3, 100, 16), (2, 1441, 1)] {
         let other = streamed(&scene, &options(threads, batch, chunk));
         other.result.as_ref().unwrap();
-        assert!(one.table == other.table, "table, {threads} threads, batch {batch}");
-        assert!(one.csv == other.csv, "csv, {threads} threads, batch {batch}");
-        assert!(one.jsonl == other.jsonl, "jsonl, {threads} threads, batch {batch}");
+        assert!(
+            one.table == other.table,
+            "table, {threads} threads, batch {batch}"
+        );
+        assert!(
+            one.csv == other.csv,
+            "csv, {threads} threads, batch {batch}"
+        );
+        assert!(
+            one.jsonl == other.jsonl,
+            "jsonl, {threads} threads, batch {batch}"
+        );
     }
     let long = |threads, batch, chunk| Options {
         table_from_values: 0,
@@ -126,7 +137,11 @@ fn every_thread_count_and_batch_size_gives_the_same_bytes() {
     assert!(a.csv == one.csv);
     // The streamed table: title, plan, names, units, 1441 rows, then the dead positions.
     let lines: Vec<&str> = text(&a.table).lines().collect();
-    assert!(lines[4].trim_start().starts_with("0.00000000e0"), "{}", lines[4]);
+    assert!(
+        lines[4].trim_start().starts_with("0.00000000e0"),
+        "{}",
+        lines[4]
+    );
     assert!(lines[4 + 1440].trim_start().starts_with("3.60000000e2"));
     assert!(text(&a.table).contains("stroke of s: 200.096"));
 }
@@ -235,7 +250,10 @@ fn a_failed_write_is_an_error_naming_the_file() {
     };
     let e = stream::run(&scene, &mut sinks, &options(2, 50, 10)).unwrap_err();
     assert!(matches!(e, Error::Write { .. }), "{e:?}");
-    assert_eq!(e.to_string(), "cannot write out.csv: injected: no space left");
+    assert_eq!(
+        e.to_string(),
+        "cannot write out.csv: injected: no space left"
+    );
 }
 
 /// `mechdiff run` of a sweep that fails mid-way: the error on stderr, the user's old CSV
@@ -256,7 +274,10 @@ fn a_failed_sweep_leaves_the_old_files_and_no_temporary_file() {
     assert!(!out.status.success());
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("cannot assemble between drive positions 261 deg and 262 deg"));
-    assert_eq!(std::fs::read_to_string(dir.join("out.csv")).unwrap(), "old\n");
+    assert_eq!(
+        std::fs::read_to_string(dir.join("out.csv")).unwrap(),
+        "old\n"
+    );
     let mut names: Vec<String> = std::fs::read_dir(&dir)
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
@@ -276,5 +297,8 @@ fn a_long_sweep_is_counted_not_stored() {
     let last = scene.positions.get(36_000_000);
     assert!((last / std::f64::consts::TAU - 1.0).abs() < 1e-12, "{last}");
     let e = scene::run(&scene).unwrap_err().to_string();
-    assert!(e.starts_with("slider_crank.toml:40:8: the sweep has 36000001 positions"), "{e}");
+    assert!(
+        e.starts_with("slider_crank.toml:40:8: the sweep has 36000001 positions"),
+        "{e}"
+    );
 }

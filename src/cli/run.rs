@@ -44,7 +44,13 @@ pub struct RunArgs {
 
 /// Reads, checks and runs the scene; prints the plan, the table and the dead positions.
 pub fn run(args: &RunArgs) -> Result<(), Error> {
-    let outputs = [&args.csv, &args.jsonl, &args.json, &args.report, &args.profile_csv];
+    let outputs = [
+        &args.csv,
+        &args.jsonl,
+        &args.json,
+        &args.report,
+        &args.profile_csv,
+    ];
     for output in outputs.into_iter().flatten() {
         if files::same_file(output, &args.scene) {
             return Err(Error::OutputIsInput {
@@ -99,8 +105,16 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
 /// Runs a kinematic scene streaming its rows: the table to stdout, `--csv` and `--jsonl`
 /// into temporary files renamed over the user's only when the run succeeded.
 fn stream(scene: &scene::Scene, args: &RunArgs) -> Result<(), Error> {
-    let mut csv = args.csv.as_deref().map(files::AtomicFile::create).transpose()?;
-    let mut jsonl = args.jsonl.as_deref().map(files::AtomicFile::create).transpose()?;
+    let mut csv = args
+        .csv
+        .as_deref()
+        .map(files::AtomicFile::create)
+        .transpose()?;
+    let mut jsonl = args
+        .jsonl
+        .as_deref()
+        .map(files::AtomicFile::create)
+        .transpose()?;
     let mut stdout = BufWriter::with_capacity(1 << 16, std::io::stdout());
     fn sink(file: &mut files::AtomicFile) -> stream::Sink<'_> {
         let path = file.path().to_owned();

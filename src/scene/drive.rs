@@ -7,8 +7,8 @@ use toml::Spanned;
 use crate::error::{Error, Result};
 
 use super::format::{DriveSection, SweepSection};
-use super::positions::Positions;
 use super::model::{Drive, DriveKind, Joint, JointKind, Output, OutputKind};
+use super::positions::Positions;
 use super::resolve::{Context, GROUND, Geometry};
 use super::units::Dimension;
 

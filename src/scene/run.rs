@@ -336,7 +336,9 @@ fn search_dead_positions(
     // samples: the grid only brackets the sign changes of the output's derivative, refined
     // to full precision after; dead positions closer together than (hi - lo)/2^16 would be
     // missed (the sweep's own resolution is then finer than any plot of it).
-    let step = sweep_step.min((hi - lo) / 360.0).max((hi - lo) / DEAD_POSITION_INTERVALS);
+    let step = sweep_step
+        .min((hi - lo) / 360.0)
+        .max((hi - lo) / DEAD_POSITION_INTERVALS);
     let tracker = RefCell::new(
         Solver::default()
             .track(mechanism)

@@ -90,7 +90,7 @@ fn is_tie(value: f64, len: usize) -> bool {
     } else {
         u128::from(m) * 5u128.pow((-e) as u32)
     };
-    while n % 10 == 0 {
+    while n.is_multiple_of(10) {
         n /= 10;
     }
     n % 10 == 5 && n.ilog10() as usize + 1 == len + 1
@@ -275,8 +275,7 @@ impl RowFormat {
     /// The streamed table's line of a row: every value in scientific notation with
     /// [`DIGITS`] significant digits, right-aligned in its column's fixed width.
     pub fn table(&self, row: &[f64], out: &mut String) {
-        for (k, ((v, factor), &w)) in row.iter().zip(&self.factors).zip(&self.widths).enumerate()
-        {
+        for (k, ((v, factor), &w)) in row.iter().zip(&self.factors).zip(&self.widths).enumerate() {
             if k > 0 {
                 out.push_str("  ");
             }
