@@ -79,12 +79,16 @@ impl Positions {
         Ok(self.iter().collect())
     }
 
-    /// The smallest and the largest position.
+    /// The smallest and the largest position, without walking a range (`from + i·step`
+    /// times a positive factor never decreases with `i`: each operation is monotone).
     pub fn range(&self) -> (f64, f64) {
-        self.iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
-                (lo.min(p), hi.max(p))
-            })
+        match self {
+            Self::List(list) => (list.iter())
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &p| {
+                    (lo.min(p), hi.max(p))
+                }),
+            Self::Steps { count, .. } => (self.get(0), self.get(count - 1)),
+        }
     }
 }
 
