@@ -288,7 +288,8 @@ fn a_failed_sweep_leaves_the_old_files_and_no_temporary_file() {
 }
 
 /// `from`, `to`, `step` are counted on demand: 3.6·10⁷ positions parse at once (the cap of
-/// 10⁶ is gone), and a run that holds every row in memory refuses them, naming `step`.
+/// 10⁶ is gone), a run that holds every row in memory refuses them, naming `step`, and
+/// checking a sweep of 3.6·10¹¹ does not walk it.
 #[test]
 fn a_long_sweep_is_counted_not_stored() {
     let scene = slider_crank("0.00001");
@@ -301,4 +302,9 @@ fn a_long_sweep_is_counted_not_stored() {
         e.starts_with("slider_crank.toml:40:8: the sweep has 36000001 positions"),
         "{e}"
     );
+    // 3.6·10¹¹ positions: reading and checking the scene walks none of them.
+    let scene = slider_crank("0.000000001");
+    assert_eq!(scene.positions.len(), 360_000_000_001);
+    let plan = scene::check(&scene).unwrap().plan;
+    assert_eq!(plan.range.1, scene.positions.get(360_000_000_000));
 }
