@@ -74,6 +74,14 @@ pub enum Error {
         /// The scene path as given.
         scene: PathBuf,
     },
+    /// The worker threads of a streamed run could not be started.
+    #[error("cannot start {threads} worker threads: {reason}; try `--threads 1`")]
+    Threads {
+        /// The number asked for (0: one per core).
+        threads: usize,
+        /// The operating system's reason.
+        reason: String,
+    },
     /// An output file (CSV) could not be written.
     #[error("cannot write {path}: {source}")]
     Write {

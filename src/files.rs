@@ -75,27 +75,86 @@ pub fn write_atomically(
     path: &Path,
     write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
 ) -> Result<()> {
-    let write_error = |source| Error::Write {
-        path: path.to_owned(),
-        source,
-    };
-    let temporary = temporary_beside(path);
-    let result = (|| {
+    let mut file = AtomicFile::create(path)?;
+    write(file.writer()).map_err(|source| file.error(source))?;
+    file.commit()
+}
+
+/// An output file written whole or not at all, as it is streamed: the bytes go to a
+/// temporary file beside `path`, renamed over `path` by [`AtomicFile::commit`]. Dropped
+/// without a commit (an error, a panic), the temporary file is removed and `path` is left
+/// as it was. (A process killed outright leaves the hidden temporary file behind, and
+/// `path` as it was.)
+#[derive(Debug)]
+pub struct AtomicFile {
+    path: PathBuf,
+    temporary: PathBuf,
+    out: Option<BufWriter<File>>,
+}
+
+impl AtomicFile {
+    /// Creates the temporary file for `path`.
+    ///
+    /// # Errors
+    /// [`Error::Write`] naming `path` if the temporary file cannot be created.
+    pub fn create(path: &Path) -> Result<Self> {
+        let temporary = temporary_beside(path);
         let file = File::options()
             .write(true)
             .create(true)
             .truncate(true)
-            .open(&temporary)?;
-        let mut out = BufWriter::new(file);
-        write(&mut out)?;
-        let file = out.into_inner().map_err(io::IntoInnerError::into_error)?;
-        file.sync_all()?;
-        fs::rename(&temporary, path)
-    })();
-    if result.is_err() {
-        let _ = fs::remove_file(&temporary);
+            .open(&temporary)
+            .map_err(|source| Error::Write {
+                path: path.to_owned(),
+                source,
+            })?;
+        Ok(Self {
+            path: path.to_owned(),
+            temporary,
+            out: Some(BufWriter::with_capacity(1 << 16, file)),
+        })
     }
-    result.map_err(write_error)
+
+    /// Where the bytes go until the commit.
+    pub fn writer(&mut self) -> &mut (dyn Write + Send) {
+        self.out.as_mut().expect("written after its commit")
+    }
+
+    /// The file the user asked for.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// An error writing this file, named as the user's path.
+    pub fn error(&self, source: io::Error) -> Error {
+        Error::Write {
+            path: self.path.clone(),
+            source,
+        }
+    }
+
+    /// Flushes and syncs the temporary file and renames it over the user's path.
+    ///
+    /// # Errors
+    /// [`Error::Write`] with the operating system's reason; the temporary file is removed.
+    pub fn commit(mut self) -> Result<()> {
+        let out = self.out.take().expect("committed once");
+        let result = (|| {
+            let file = out.into_inner().map_err(io::IntoInnerError::into_error)?;
+            file.sync_all()?;
+            fs::rename(&self.temporary, &self.path)
+        })();
+        result.map_err(|source| self.error(source))
+    }
+}
+
+impl Drop for AtomicFile {
+    fn drop(&mut self) {
+        // Not committed, or the commit failed before or at the rename: nothing of it may stay.
+        if self.out.take().is_some() || self.temporary.exists() {
+            let _ = fs::remove_file(&self.temporary);
+        }
+    }
 }
 
 /// `dir/.name.tmp-<pid>`: in the same directory (so the rename stays on one file system),

@@ -153,6 +153,14 @@ pub fn case<'a>(scene: &'a Scene, mechanism: &'a Mechanism) -> Result<Case<'a>, 
         what: scene.file.clone(),
         reason,
     };
+    if scene.drive.cam.is_some() {
+        return Err(refuse(
+            "a cam-driven joint ([drive] cam) is not measured: the report differentiates with \
+             respect to the driven joint's position; drive the joint itself to measure the \
+             linkage"
+                .into(),
+        ));
+    }
     // A sweep of an output's values (`[sweep] of`): the drive positions `mechdiff run`
     // solves for, in increasing order.
     let mut positions = if scene.sweep_of.is_some() {
@@ -162,7 +170,7 @@ pub fn case<'a>(scene: &'a Scene, mechanism: &'a Mechanism) -> Result<Case<'a>, 
             .map(|row| row[0])
             .collect()
     } else {
-        scene.positions.clone()
+        scene.positions.to_vec()?
     };
     positions.sort_by(f64::total_cmp);
     positions.dedup();

@@ -13,6 +13,7 @@ use super::run::RunArgs;
 pub fn run(args: &RunArgs) -> Result<(), Error> {
     let not_here = [
         ("--json", args.json.is_some()),
+        ("--jsonl", args.jsonl.is_some()),
         ("--report", args.report.is_some()),
         ("--profile-csv", args.profile_csv.is_some()),
     ];

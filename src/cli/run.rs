@@ -1,12 +1,12 @@
 //! `mechdiff run <scene.toml> [--csv out.csv] [--json out.json] [--plot DIR] [--report
 //! out.html]`: run a scene, print its table, and write the outputs asked for.
 
-use std::io::{BufWriter, Write};
+use std::io::{BufWriter, IsTerminal, Write};
 use std::path::PathBuf;
 
 use clap::Args;
 use mechdiff::scene::{self, table};
-use mechdiff::{Error, files, pictures};
+use mechdiff::{Error, files, pictures, stream};
 
 /// Arguments of `mechdiff run`.
 #[derive(Debug, Args)]
@@ -28,7 +28,17 @@ pub struct RunArgs {
     /// complete), and never onto the scene file.
     #[arg(long, value_name = "FILE")]
     pub csv: Option<PathBuf>,
-    /// Also write the columns, rows and dead positions to this JSON file.
+    /// Also write every column at every drive position to this JSON Lines file, one object
+    /// per drive position keyed by the CSV's headers (pandas: `read_json(path, lines=True)`,
+    /// polars: `read_ndjson`). Written whole or not at all, like `--csv`.
+    #[arg(long, value_name = "FILE")]
+    pub jsonl: Option<PathBuf>,
+    /// Worker threads formatting the rows (0: `RAYON_NUM_THREADS`, else one per core). The
+    /// output is the same, byte for byte, for any number.
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub threads: usize,
+    /// Also write the columns, rows and dead positions to this JSON file (held in memory:
+    /// at most a million drive positions).
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
     /// Draw the run into this folder: diagram.svg/png, mechanism_*.svg/png, report.html.
@@ -44,7 +54,13 @@ pub struct RunArgs {
 
 /// Reads, checks and runs the scene; prints the plan, the table and the dead positions.
 pub fn run(args: &RunArgs) -> Result<(), Error> {
-    let outputs = [&args.csv, &args.json, &args.report, &args.profile_csv];
+    let outputs = [
+        &args.csv,
+        &args.jsonl,
+        &args.json,
+        &args.report,
+        &args.profile_csv,
+    ];
     for output in outputs.into_iter().flatten() {
         if files::same_file(output, &args.scene) {
             return Err(Error::OutputIsInput {
@@ -70,6 +86,14 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
     let (scene, report) = match &args.sweep {
         None => {
             let scene = scene::load_with(&args.scene, &args.set)?;
+            let in_memory = scene.dynamics.is_some()
+                || scene.balancing.is_some()
+                || args.json.is_some()
+                || args.plot.is_some()
+                || args.report.is_some();
+            if !in_memory {
+                return stream(&scene, args);
+            }
             let report = scene::run(&scene)?;
             (scene, report)
         }
@@ -85,6 +109,9 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
     if let Some(path) = &args.csv {
         files::write_atomically(path, |mut out| table::write_csv(&report, &mut out))?;
     }
+    if let Some(path) = &args.jsonl {
+        files::write_atomically(path, |mut out| table::write_jsonl(&report, &mut out))?;
+    }
     if let Some(path) = &args.json {
         files::write_atomically(path, |mut out| table::write_json(&scene, &report, &mut out))?;
     }
@@ -98,6 +125,58 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
     let mut out = BufWriter::new(stdout.lock());
     match table::write_table(&scene, &report, &mut out).and_then(|()| out.flush()) {
         // The reader went away (`mechdiff run s.toml | head`): not an error of ours.
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        result => result.map_err(|source| Error::Write {
+            path: PathBuf::from("<stdout>"),
+            source,
+        }),
+    }
+}
+
+/// Runs a kinematic scene streaming its rows: the table to stdout, `--csv` and `--jsonl`
+/// into temporary files renamed over the user's only when the run succeeded.
+fn stream(scene: &scene::Scene, args: &RunArgs) -> Result<(), Error> {
+    let mut csv = args
+        .csv
+        .as_deref()
+        .map(files::AtomicFile::create)
+        .transpose()?;
+    let mut jsonl = args
+        .jsonl
+        .as_deref()
+        .map(files::AtomicFile::create)
+        .transpose()?;
+    let mut stdout = BufWriter::with_capacity(1 << 16, std::io::stdout());
+    fn sink(file: &mut files::AtomicFile) -> stream::Sink<'_> {
+        let path = file.path().to_owned();
+        stream::Sink {
+            path,
+            out: file.writer(),
+        }
+    }
+    let mut sinks = stream::Sinks {
+        table: Some(stream::Sink {
+            path: PathBuf::from("<stdout>"),
+            out: &mut stdout,
+        }),
+        csv: csv.as_mut().map(sink),
+        jsonl: jsonl.as_mut().map(sink),
+    };
+    let options = stream::Options {
+        threads: args.threads,
+        progress: std::io::stderr().is_terminal()
+            && scene.positions.len() > stream::TABLE_FROM_VALUES,
+        ..stream::Options::default()
+    };
+    let streamed = stream::run(scene, &mut sinks, &options)?;
+    drop(sinks);
+    for warning in &streamed.warnings {
+        eprintln!("warning: {}: {warning}", scene.file);
+    }
+    for file in [csv, jsonl].into_iter().flatten() {
+        file.commit()?;
+    }
+    match stdout.flush() {
         Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
         result => result.map_err(|source| Error::Write {
             path: PathBuf::from("<stdout>"),

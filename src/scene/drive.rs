@@ -10,11 +10,16 @@ use super::format::{DriveSection, SweepSection};
 use mechdiff_core::cams::{CamJoint, Follower};
 
 use super::model::{Drive, DriveCam, DriveKind, Joint, JointKind, Output, OutputKind};
+use super::positions::Positions;
 use super::resolve::{Context, GROUND, Geometry};
 use super::units::Dimension;
 
-/// The most drive positions a sweep may have (a typo like `step = 1e-9` should not hang).
+/// The most drive positions a `positions = [...]` list may have (the file is parsed whole).
 pub const MAX_POSITIONS: usize = 1_000_000;
+
+/// The most intervals of `from`, `to`, `step`: below 2⁵³ every `from + i·step` is counted
+/// with an exact `i`. A longer sweep is bounded by time and disk, not memory (it streams).
+const MAX_INTERVALS: f64 = 9_007_199_254_740_992.0;
 
 /// Direction angle of the line `a → b` in the sketch (rad).
 pub(crate) fn direction(geometry: &Geometry, [a, b]: [&str; 2]) -> f64 {
@@ -229,7 +234,7 @@ impl Context<'_> {
         &self,
         section: &Spanned<SweepSection>,
         dimension: Dimension,
-    ) -> Result<Vec<f64>> {
+    ) -> Result<Positions> {
         let s = section.get_ref();
         let expected = "expected either `from`, `to` and `step`, or `positions = [...]`";
         match (&s.positions, &s.from, &s.to, &s.step) {
@@ -245,7 +250,8 @@ impl Context<'_> {
                         let what = format!("`positions` entry {}", k + 1);
                         self.number(v, &what, dimension)
                     })
-                    .collect()
+                    .collect::<Result<_>>()
+                    .map(Positions::List)
             }
             (None, Some(from), Some(to), Some(step)) => {
                 let (from_si, to_si, step_si) = (
@@ -277,19 +283,22 @@ impl Context<'_> {
                 } else {
                     ((t - f) / h * (1.0 + 4.0 * f64::EPSILON)).floor()
                 };
-                if intervals >= MAX_POSITIONS as f64 {
+                if intervals >= MAX_INTERVALS {
                     return Err(self.invalid(
                         step,
                         format!(
-                            "the sweep has more than {MAX_POSITIONS} positions; expected a \
-                            larger step"
+                            "the sweep has {intervals:.3e} intervals; from, to and step count \
+                            at most 2^53 exactly: expected a larger step"
                         ),
                     ));
                 }
-                let n = intervals as usize + 1;
-                Ok((0..n)
-                    .map(|i| self.units.to_si(f + i as f64 * h, dimension))
-                    .collect())
+                Ok(Positions::Steps {
+                    from: f,
+                    step: h,
+                    count: intervals as usize + 1,
+                    factor: self.units.factor(dimension),
+                    location: self.at(step),
+                })
             }
             _ => Err(self.invalid(section, format!("`[sweep]`: {expected}"))),
         }

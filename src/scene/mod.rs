@@ -29,7 +29,7 @@
 //!     point = "A"
 //!     quantities = ["position"]
 //! "#).unwrap();
-//! assert_eq!(scene.positions, vec![0.0, 1.0]);
+//! assert_eq!(scene.positions.to_vec().unwrap(), vec![0.0, 1.0]);
 //! assert_eq!(scene.order(), 0);
 //! ```
 
@@ -49,10 +49,12 @@ pub mod parameters;
 mod placement;
 pub mod plan;
 pub mod plot;
+pub mod positions;
 pub mod resolve;
 pub mod run;
 pub mod source;
 pub mod study;
+pub mod sweep;
 pub mod table;
 pub mod units;
 pub mod values;
@@ -63,8 +65,10 @@ use crate::error::Result;
 
 pub use model::Scene;
 pub use plan::Plan;
+pub use positions::Positions;
 pub use run::{Checked, Report, check, run};
 pub use source::Source;
+pub use sweep::Sweeper;
 
 /// The most list entries (commas) a scene's text may hold: a `positions` list of
 /// [`drive::MAX_POSITIONS`] and room for the rest. TOML is parsed whole before a list is

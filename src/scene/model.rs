@@ -24,7 +24,7 @@ pub struct Scene {
     pub drive: Drive,
     /// The drive positions to compute (SI: rad or m), in order; or, when [`Scene::sweep_of`]
     /// names an output, the values of that output (SI) whose drive positions are solved for.
-    pub positions: Vec<f64>,
+    pub positions: super::positions::Positions,
     /// Index into [`Scene::outputs`] of the output whose values the sweep gives (`[sweep] of`).
     pub sweep_of: Option<usize>,
     /// The outputs, in column order.

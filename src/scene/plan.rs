@@ -33,12 +33,7 @@ pub struct Plan {
 impl Plan {
     /// The plan of a scene.
     pub fn of(scene: &Scene) -> Self {
-        let (lo, hi) = scene
-            .positions
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &p| {
-                (lo.min(p), hi.max(p))
-            });
+        let (lo, hi) = scene.positions.range();
         let times = scene
             .outputs
             .iter()

@@ -72,7 +72,7 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
     };
     let positions = cx.sweep(&file.sweep, dimension)?;
     if drive.kind == DriveKind::Angle && sweep_of.is_none() && drive.cam.is_none() {
-        drive.at_sketch = nearest_turn(drive.at_sketch, positions[0]);
+        drive.at_sketch = nearest_turn(drive.at_sketch, positions.get(0));
     }
     if let Some(cam) = &file.drive.get_ref().cam {
         let unsupported = [
@@ -95,11 +95,7 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
         }
     }
     if let Some(output) = outputs.iter().find(|o| o.dead_positions) {
-        let (lo, hi) = positions
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &p| {
-                (lo.min(p), hi.max(p))
-            });
+        let (lo, hi) = positions.range();
         if hi <= lo {
             return Err(Error::Invalid {
                 location: output.location.clone(),

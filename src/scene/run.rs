@@ -3,18 +3,18 @@
 
 use std::cell::RefCell;
 
-use mechdiff_core::geometry::{
-    Kinematics, LimitKind, Mechanism, Mobility, MotionRange, Solver, Tracker,
-};
-use mechdiff_core::{DeadPosition, DeadPositionSearch, DriveState};
+use mechdiff_core::geometry::{LimitKind, Mechanism, Mobility, MotionRange, Solver};
+use mechdiff_core::{DeadPosition, DeadPositionSearch};
 
 use crate::error::{Error, Result};
 
 use super::build::{mechanism, model_error};
-use super::evaluate::{Resolved, evaluate, quantity};
+use super::evaluate::{Resolved, evaluate};
 use super::model::{DriveKind, Output, Scene};
-use super::outputs::{Column, columns};
+use super::outputs::Column;
 use super::plan::Plan;
+use super::positions::Positions;
+use super::sweep::{Sweeper, check_row, kinematic_columns, not_finite, solve};
 use super::units::{Dimension, Units};
 
 /// The dead positions of one output found in the sweep's range.
@@ -60,10 +60,6 @@ pub struct Report {
     /// The balancing answers (their columns are also in `columns` and `rows`).
     pub balancing: Option<super::balancing::BalancingReport>,
 }
-
-/// A pose that amplifies rounding more than this (see `Tracker::amplification`) is
-/// reported as ill-conditioned: its results carry a relative error above ~2e-12.
-const ILL_CONDITIONED: f64 = 1e4;
 
 impl Report {
     /// The SI values of the column named `name` (e.g. `psi'`, `vx_C`), in row order.
@@ -128,46 +124,20 @@ pub fn check(scene: &Scene) -> Result<Checked> {
 pub fn run(scene: &Scene) -> Result<Report> {
     let mechanism = mechanism(scene)?;
     let plan = Plan::of(scene);
-    let drive_dimension = scene.drive.kind.dimension();
-    let mut all = vec![Column {
-        name: if scene.drive.cam.is_some() {
-            "theta"
-        } else {
-            "phi"
-        }
-        .to_owned(),
-        unit: scene.units.symbol(drive_dimension).to_owned(),
-        factor: scene.units.factor(drive_dimension),
-    }];
-    for output in &scene.outputs {
-        all.extend(columns(output, &scene.units, drive_dimension));
-    }
+    let mut all = kinematic_columns(scene);
     let positions = drive_positions(scene, &mechanism)?;
-    let (rows, worst) = match plan.order {
-        0 | 1 => sweep::<1>(scene, &mechanism, &plan, &positions)?,
-        2 => sweep::<2>(scene, &mechanism, &plan, &positions)?,
-        _ => sweep::<3>(scene, &mechanism, &plan, &positions)?,
-    };
-    let mut warnings = Vec::new();
-    if let Some((amplification, phi, joints)) = worst.filter(|w| w.0 > ILL_CONDITIONED) {
-        warnings.push(format!(
-            "ill-conditioned position at drive position {}: the loop of joints {} amplifies \
-             rounding by {amplification:.1e} (its lever is that much shorter than in the \
-             sketch); expect a relative error of about {:.0e} in the results there",
-            scene.drive_text(phi),
-            joints.join(", "),
-            amplification * f64::EPSILON,
-        ));
+    let mut sweeper = Sweeper::new(scene, &mechanism, &plan)?;
+    let mut rows = Vec::with_capacity(positions.len());
+    for &phi in &positions {
+        let mut row = Vec::with_capacity(all.len());
+        sweeper.row(phi, &mut row)?;
+        // The first error in drive order, as a streamed run reports it.
+        check_row(scene, &all, &row)?;
+        rows.push(row);
     }
-    let mut dead_positions = Vec::new();
-    for output in scene.outputs.iter().filter(|o| o.dead_positions) {
-        dead_positions.push(DeadPositions {
-            output: output.name.clone(),
-            dimension: output.kind.dimension(),
-            positions: search_dead_positions(scene, &mechanism, output, &positions)?,
-        });
-    }
-    let mut rows = rows;
+    let warnings = sweeper.warnings();
+    drop(sweeper);
+    let dead_positions = dead_positions(scene, &mechanism, positions.iter().copied())?;
     let dynamics = match &scene.dynamics {
         Some(d) => super::dynamics::run(scene, d, &mechanism, &positions, scene.drive.speed)?,
         None => None,
@@ -205,25 +175,16 @@ pub fn run(scene: &Scene) -> Result<Report> {
 /// overflow for some combination of inputs is an error naming the quantity and the drive
 /// position, never an `inf` or `NaN` in the table.
 fn all_finite(scene: &Scene, report: &Report) -> Result<()> {
-    let not_finite = |quantity: String, value: f64, phi: f64| Error::NotFinite {
-        file: scene.file.clone(),
-        quantity,
-        value: value.to_string(),
-        position: if phi.is_finite() {
-            scene.drive_text(phi)
-        } else {
-            phi.to_string()
-        },
-    };
     for row in &report.rows {
-        for (value, column) in row.iter().zip(&report.columns) {
-            // The printed value is divided by the unit's factor: check that too.
-            if !value.is_finite() || !(value / column.factor).is_finite() {
-                return Err(not_finite(column.header(), *value, row[0]));
-            }
-        }
+        check_row(scene, &report.columns, row)?;
     }
-    for dead in &report.dead_positions {
+    check_dead_positions(scene, &report.dead_positions)
+}
+
+/// Checks that the dead positions found and their strokes are finite.
+pub(crate) fn check_dead_positions(scene: &Scene, dead_positions: &[DeadPositions]) -> Result<()> {
+    let not_finite = |quantity, value, phi| not_finite(scene, quantity, value, phi);
+    for dead in dead_positions {
         for d in &dead.positions {
             if !(d.value.is_finite() && d.phi.is_finite()) {
                 let quantity = format!("the dead position of {}", dead.output);
@@ -238,13 +199,22 @@ fn all_finite(scene: &Scene, report: &Report) -> Result<()> {
     Ok(())
 }
 
+/// The drive positions of a streamed sweep: as given (counted on demand), or solved for
+/// `[sweep] of` (a list from the file, held in memory).
+pub(crate) fn streamed_positions(scene: &Scene, mechanism: &Mechanism) -> Result<Positions> {
+    match scene.sweep_of {
+        None => Ok(scene.positions.clone()),
+        Some(_) => drive_positions(scene, mechanism).map(Positions::List),
+    }
+}
+
 /// The drive positions of the sweep: as given, or, for `[sweep] of = "output"`, solved so
 /// that the output takes each given value (Newton on the output's exact velocity
 /// coefficient, from the sketch or the previous position; steps limited to a quarter turn or
 /// a quarter of the sketch's size).
 fn drive_positions(scene: &Scene, mechanism: &Mechanism) -> Result<Vec<f64>> {
     let Some(k) = scene.sweep_of else {
-        return Ok(scene.positions.clone());
+        return scene.positions.to_vec();
     };
     let resolved = Resolved::new(scene, mechanism, &scene.outputs[k])?;
     let output = resolved.output;
@@ -265,7 +235,7 @@ fn drive_positions(scene: &Scene, mechanism: &Mechanism) -> Result<Vec<f64>> {
     };
     let mut previous = None;
     let mut drive = Vec::with_capacity(scene.positions.len());
-    for &target in &scene.positions {
+    for target in scene.positions.iter() {
         let mut phi = tracker.phi();
         let mut reached = false;
         // Why the last trial position failed, if it did: a step that leaves the positions
@@ -334,79 +304,47 @@ fn sketch_size(scene: &Scene) -> f64 {
     size
 }
 
-/// The most ill-conditioned position of a sweep: its amplification of rounding, drive
-/// position and loop joints.
-type Worst = (f64, f64, Vec<String>);
-
-fn sweep<const N: usize>(
+/// The dead positions asked for, searched in the range of the sweep's drive positions.
+pub(crate) fn dead_positions(
     scene: &Scene,
     mechanism: &Mechanism,
-    plan: &Plan,
-    positions: &[f64],
-) -> Result<(Vec<Vec<f64>>, Option<Worst>)> {
-    let mut worst: Option<Worst> = None;
-    let mut tracker = Solver::default()
-        .track(mechanism)
-        .map_err(|e| solver_error(scene, e))?;
-    let drive = plan.drive.unwrap_or(DriveState::constant_speed(0.0));
-    let outputs = (scene.outputs.iter())
-        .map(|output| Resolved::new(scene, mechanism, output))
-        .collect::<Result<Vec<_>>>()?;
-    let mut previous: Vec<Option<f64>> = vec![None; scene.outputs.len()];
-    let mut rows = Vec::with_capacity(positions.len());
-    for &phi in positions {
-        let k = solve::<N>(scene, &mut tracker, scene.drive.joint_position(phi))?;
-        let (amplification, joints) = tracker.amplification();
-        if worst.as_ref().is_none_or(|w| amplification > w.0) {
-            worst = Some((amplification, phi, joints));
-        }
-        let mut row = vec![phi];
-        for (resolved, previous) in outputs.iter().zip(previous.iter_mut()) {
-            let mut values = evaluate(scene, &k, resolved, previous);
-            if let Some(cam) = &scene.drive.cam {
-                // Derivatives with respect to the cam angle (the chain rule through s(θ)).
-                values = values.iter().map(|v| cam.joint.compose(phi, v)).collect();
-            }
-            for q in &resolved.output.quantities {
-                for v in &values {
-                    row.push(quantity(v, *q, &drive));
-                }
-            }
-        }
-        rows.push(row);
+    positions: impl Iterator<Item = f64> + Clone,
+) -> Result<Vec<DeadPositions>> {
+    let mut dead_positions = Vec::new();
+    for output in scene.outputs.iter().filter(|o| o.dead_positions) {
+        dead_positions.push(DeadPositions {
+            output: output.name.clone(),
+            dimension: output.kind.dimension(),
+            positions: search_dead_positions(scene, mechanism, output, positions.clone())?,
+        });
     }
-    Ok((rows, worst))
+    Ok(dead_positions)
 }
 
-fn solve<'m, const N: usize>(
-    scene: &Scene,
-    tracker: &mut Tracker<'m>,
-    phi: f64,
-) -> Result<Kinematics<'m, N>> {
-    tracker.move_to(phi).map_err(|e| solver_error(scene, e))?;
-    tracker
-        .kinematics::<N>()
-        .map_err(|e| solver_error(scene, e))
-}
+/// The most intervals of the grid on which dead positions are searched.
+const DEAD_POSITION_INTERVALS: f64 = 65_536.0;
 
 /// Every dead position of an angle or slider output in the sweep's range.
 fn search_dead_positions(
     scene: &Scene,
     mechanism: &Mechanism,
     output: &Output,
-    positions: &[f64],
+    positions: impl Iterator<Item = f64> + Clone,
 ) -> Result<Vec<DeadPosition>> {
-    let (lo, hi) = positions
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &p| {
-            (lo.min(p), hi.max(p))
-        });
+    let (lo, hi) = (positions.clone()).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+        (lo.min(p), hi.max(p))
+    });
     // Sample at least as finely as the sweep, and at least 360 intervals over the range.
-    let sweep_step = positions
-        .windows(2)
-        .map(|w| (w[1] - w[0]).abs())
+    let sweep_step = (positions.clone().zip(positions.skip(1)))
+        .map(|(a, b)| (b - a).abs())
         .fold(f64::INFINITY, f64::min);
-    let step = sweep_step.min((hi - lo) / 360.0);
+    // At most 2^16 intervals, so that a streamed sweep of 10^8 positions does not hold 10^8
+    // samples: the grid only brackets the sign changes of the output's derivative, refined
+    // to full precision after; dead positions closer together than (hi - lo)/2^16 would be
+    // missed (the sweep's own resolution is then finer than any plot of it).
+    let step = sweep_step
+        .min((hi - lo) / 360.0)
+        .max((hi - lo) / DEAD_POSITION_INTERVALS);
     let tracker = RefCell::new(
         Solver::default()
             .track(mechanism)

@@ -6,10 +6,11 @@ use super::model::Scene;
 use super::run::Report;
 use super::units::Units;
 use crate::report::Table;
+use crate::stream::format::RowFormat;
 
 /// Significant digits of a column's largest value in the printed table (the CSV carries every
 /// digit).
-const DIGITS: i32 = 9;
+pub const DIGITS: i32 = 9;
 
 /// How every number of one column is printed, so that the decimal points line up.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -150,13 +151,25 @@ pub fn write_dead_positions(
 pub fn write_csv(report: &Report, out: &mut impl Write) -> io::Result<()> {
     let header: Vec<String> = report.columns.iter().map(|c| c.header()).collect();
     writeln!(out, "{}", header.join(","))?;
+    let format = RowFormat::new(&report.columns);
+    let mut line = Vec::new();
     for row in &report.rows {
-        let cells: Vec<String> = row
-            .iter()
-            .zip(&report.columns)
-            .map(|(v, c)| (v / c.factor + 0.0).to_string())
-            .collect();
-        writeln!(out, "{}", cells.join(","))?;
+        line.clear();
+        format.csv(row, &mut line);
+        out.write_all(&line)?;
+    }
+    Ok(())
+}
+
+/// Writes the report's rows as JSON Lines: one object per drive position keyed by the CSV's
+/// headers, every value in the scene's units with the shortest digits that read back.
+pub fn write_jsonl(report: &Report, out: &mut impl Write) -> io::Result<()> {
+    let format = RowFormat::new(&report.columns);
+    let mut line = Vec::new();
+    for row in &report.rows {
+        line.clear();
+        format.jsonl(row, &mut line);
+        out.write_all(&line)?;
     }
     Ok(())
 }

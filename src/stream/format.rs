@@ -1,0 +1,379 @@
+//! Rows as text, fast: CSV and JSON Lines with the shortest digits that read back to the
+//! same `f64` (the Żmij algorithm of the `zmij` crate), and the streamed table's fixed-width
+//! scientific columns.
+
+use std::fmt::Write as _;
+
+use crate::scene::outputs::Column;
+use crate::scene::table::DIGITS;
+
+/// The width of a number in the streamed table: `-d.dddddddde-308`, the longest an `f64`
+/// prints in scientific notation with [`DIGITS`] significant digits.
+pub const SCIENTIFIC_WIDTH: usize = DIGITS as usize + 7;
+
+/// The shortest decimal digits of a finite `value` (no leading or trailing zeros; `0` has
+/// none), the power of ten of the first digit's place plus one, and the sign.
+struct Shortest {
+    digits: [u8; 20],
+    len: usize,
+    /// The value is `0.d1d2d3… × 10^point`.
+    point: i32,
+    negative: bool,
+}
+
+impl Shortest {
+    fn of(value: f64) -> Self {
+        let mut buffer = zmij::Buffer::new();
+        let text = buffer.format_finite(value + 0.0);
+        let (negative, text) = match text.strip_prefix('-') {
+            Some(rest) => (true, rest),
+            None => (false, text),
+        };
+        let (mantissa, exponent) = match text.split_once(['e', 'E']) {
+            Some((m, e)) => (m, e.parse::<i32>().unwrap_or(0)),
+            None => (text, 0),
+        };
+        let (whole, fraction) = mantissa.split_once('.').unwrap_or((mantissa, ""));
+        let mut shortest = Self {
+            digits: [0; 20],
+            len: 0,
+            point: whole.len() as i32 + exponent,
+            negative,
+        };
+        for d in whole.bytes().chain(fraction.bytes()) {
+            if d == b'0' && shortest.len == 0 {
+                shortest.point -= 1;
+            } else if shortest.len < shortest.digits.len() {
+                shortest.digits[shortest.len] = d;
+                shortest.len += 1;
+            }
+        }
+        while shortest.len > 0 && shortest.digits[shortest.len - 1] == b'0' {
+            shortest.len -= 1;
+        }
+        shortest
+    }
+
+    fn digits(&self) -> &[u8] {
+        &self.digits[..self.len]
+    }
+}
+
+/// Whether `value` lies exactly halfway between two decimals of `len` significant digits:
+/// its exact decimal expansion has `len + 1` significant digits, the last a 5. There two
+/// shortest strings are equally near, and the standard library and Żmij may pick either
+/// (found by the property test: -842335545753126.25). Such a value has few binary digits
+/// after the point, so its expansion is counted exactly in `u128`; a value too large for
+/// that is answered "maybe" (true).
+fn is_tie(value: f64, len: usize) -> bool {
+    if value == 0.0 || !value.is_finite() {
+        return false;
+    }
+    let bits = value.abs().to_bits();
+    let (exponent, fraction) = ((bits >> 52) as i32, bits & ((1 << 52) - 1));
+    let (mut m, mut e) = if exponent == 0 {
+        (fraction, -1074)
+    } else {
+        (fraction | (1 << 52), exponent - 1075)
+    };
+    let zeros = m.trailing_zeros();
+    m >>= zeros;
+    e += zeros as i32;
+    let mut n: u128 = if e >= 0 {
+        if e > 74 {
+            return true;
+        }
+        u128::from(m) << e
+    } else if -e > 32 {
+        // At least 23 significant digits: never a tie of 17 or fewer.
+        return false;
+    } else {
+        u128::from(m) * 5u128.pow((-e) as u32)
+    };
+    while n.is_multiple_of(10) {
+        n /= 10;
+    }
+    n % 10 == 5 && n.ilog10() as usize + 1 == len + 1
+}
+
+/// Appends `value` as Rust's `Display` prints it (`1`, `0.5`, `0.0000001`, never an
+/// exponent), the digits being the shortest that read back to the same number (Żmij's,
+/// or the standard library's where it has 17). `-0` is written `0`. `value` must be finite.
+pub fn push_display(value: f64, out: &mut Vec<u8>) {
+    let shortest = Shortest::of(value);
+    let (digits, point) = (shortest.digits(), shortest.point);
+    if is_tie(value, digits.len()) {
+        let _ = std::io::Write::write_fmt(out, format_args!("{}", value + 0.0));
+        return;
+    }
+    if digits.is_empty() {
+        out.push(b'0');
+        return;
+    }
+    if shortest.negative {
+        out.push(b'-');
+    }
+    let n = digits.len() as i32;
+    if point <= 0 {
+        out.extend_from_slice(b"0.");
+        out.extend(std::iter::repeat_n(b'0', (-point) as usize));
+        out.extend_from_slice(digits);
+    } else if point >= n {
+        out.extend_from_slice(digits);
+        out.extend(std::iter::repeat_n(b'0', (point - n) as usize));
+    } else {
+        out.extend_from_slice(&digits[..point as usize]);
+        out.push(b'.');
+        out.extend_from_slice(&digits[point as usize..]);
+    }
+}
+
+/// Appends finite `value` as `format!("{:.8e}", value + 0.0)` prints it ([`DIGITS`]
+/// significant digits, correctly rounded), right-aligned in `width`. The shortest digits
+/// are rounded to [`DIGITS`]; for a normal `f64` that equals rounding the exact value
+/// (its rounding interval, ~1e-16 relative, holds no two 10-digit decimals) unless they end
+/// exactly on a tie (…5 after the last kept digit); there, and for subnormals, the
+/// standard library decides.
+pub fn push_scientific(value: f64, width: usize, out: &mut String) {
+    const KEPT: usize = DIGITS as usize;
+    let shortest = Shortest::of(value);
+    let digits = shortest.digits();
+    // Subnormals: their shortest digits may be fewer than nine and still not the value's.
+    let subnormal = value != 0.0 && value.abs() < f64::MIN_POSITIVE;
+    let tie = digits.len() == KEPT + 1 && digits[KEPT] == b'5';
+    if subnormal || tie || is_tie(value, digits.len()) {
+        let _ = write!(out, "{:>width$.*e}", KEPT - 1, value + 0.0);
+        return;
+    }
+    let mut kept = [b'0'; KEPT];
+    let n = digits.len().min(KEPT);
+    kept[..n].copy_from_slice(&digits[..n]);
+    let mut exponent = shortest.point - 1;
+    if digits.len() > KEPT && digits[KEPT] >= b'5' {
+        // Round up (not a tie: more digits follow the 5, or the digit is above 5).
+        let mut k = KEPT;
+        loop {
+            if k == 0 {
+                kept[0] = b'1';
+                exponent += 1;
+                break;
+            }
+            k -= 1;
+            if kept[k] == b'9' {
+                kept[k] = b'0';
+            } else {
+                kept[k] += 1;
+                break;
+            }
+        }
+    }
+    if digits.is_empty() {
+        exponent = 0;
+    }
+    let mut text = [0u8; 24];
+    let mut len = 0;
+    let mut push = |b: u8| {
+        text[len] = b;
+        len += 1;
+    };
+    if shortest.negative {
+        push(b'-');
+    }
+    push(kept[0]);
+    push(b'.');
+    for &d in &kept[1..] {
+        push(d);
+    }
+    push(b'e');
+    if exponent < 0 {
+        push(b'-');
+    }
+    let magnitude = exponent.unsigned_abs();
+    for divisor in [100, 10, 1] {
+        if magnitude >= divisor || divisor == 1 {
+            push(b'0' + (magnitude / divisor % 10) as u8);
+        }
+    }
+    out.extend(std::iter::repeat_n(' ', width.saturating_sub(len)));
+    out.push_str(std::str::from_utf8(&text[..len]).unwrap_or_default());
+}
+
+/// How rows become text, one writer per output; the values of a row are in SI and printed
+/// in the columns' units.
+#[derive(Debug, Clone)]
+pub struct RowFormat {
+    /// Per column: the SI value per printed unit.
+    factors: Vec<f64>,
+    /// Per column: `"name [unit]":` as a JSON key, the first with its `{`.
+    keys: Vec<String>,
+    /// Per column: the streamed table's width.
+    widths: Vec<usize>,
+}
+
+impl RowFormat {
+    /// The format of rows with these columns.
+    pub fn new(columns: &[Column]) -> Self {
+        let keys = (columns.iter().enumerate())
+            .map(|(k, c)| {
+                let key = serde_json::Value::String(c.header()).to_string();
+                format!("{}{key}:", if k == 0 { "{" } else { "," })
+            })
+            .collect();
+        let widths = (columns.iter())
+            .map(|c| {
+                let unit = c.unit.chars().count() + 2;
+                SCIENTIFIC_WIDTH.max(c.name.chars().count()).max(unit)
+            })
+            .collect();
+        Self {
+            factors: columns.iter().map(|c| c.factor).collect(),
+            keys,
+            widths,
+        }
+    }
+
+    /// The number of columns.
+    pub fn columns(&self) -> usize {
+        self.factors.len()
+    }
+
+    /// The CSV line of a row: every value with the digits of [`push_display`].
+    pub fn csv(&self, row: &[f64], out: &mut Vec<u8>) {
+        for (k, (v, factor)) in row.iter().zip(&self.factors).enumerate() {
+            if k > 0 {
+                out.push(b',');
+            }
+            push_display(v / factor, out);
+        }
+        out.push(b'\n');
+    }
+
+    /// The JSON Lines record of a row: `{"name [unit]":value,...}`, the shortest digits.
+    pub fn jsonl(&self, row: &[f64], out: &mut Vec<u8>) {
+        let mut buffer = zmij::Buffer::new();
+        for ((v, factor), key) in row.iter().zip(&self.factors).zip(&self.keys) {
+            out.extend_from_slice(key.as_bytes());
+            out.extend_from_slice(buffer.format_finite(v / factor + 0.0).as_bytes());
+        }
+        out.extend_from_slice(b"}\n");
+    }
+
+    /// The two header lines of the streamed table: names, then units in brackets, each
+    /// right-aligned in its column.
+    pub fn table_header(&self, columns: &[Column], out: &mut String) {
+        let line = |out: &mut String, cell: &dyn Fn(&Column) -> String| {
+            let cells: Vec<String> = (columns.iter().zip(&self.widths))
+                .map(|(c, &w)| format!("{:>w$}", cell(c)))
+                .collect();
+            out.push_str(cells.join("  ").trim_end());
+            out.push('\n');
+        };
+        line(out, &|c| c.name.clone());
+        line(out, &|c| format!("[{}]", c.unit));
+    }
+
+    /// The streamed table's line of a row: every value in scientific notation with
+    /// [`DIGITS`] significant digits, right-aligned in its column's fixed width.
+    pub fn table(&self, row: &[f64], out: &mut String) {
+        for (k, ((v, factor), &w)) in row.iter().zip(&self.factors).zip(&self.widths).enumerate() {
+            if k > 0 {
+                out.push_str("  ");
+            }
+            push_scientific(v / factor, w, out);
+        }
+        out.push('\n');
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn display(v: f64) -> String {
+        let mut out = Vec::new();
+        push_display(v, &mut out);
+        String::from_utf8(out).unwrap()
+    }
+
+    /// The edges of the layout: integers, exponents far out either way, negative zero.
+    #[test]
+    fn display_digits_match_the_standard_library_at_the_edges() {
+        for v in [
+            0.0,
+            -0.0,
+            1.0,
+            -1.5,
+            100.0,
+            0.1,
+            1e-7,
+            -2.5e-8,
+            123_456_789.125,
+            1e15,
+            1e16,
+            1.7976931348623157e308,
+            5e-324,
+            f64::MIN_POSITIVE,
+            0.30000000000000004,
+        ] {
+            assert_eq!(display(v), (v + 0.0).to_string(), "{v:e}");
+        }
+    }
+
+    fn scientific(v: f64) -> String {
+        let mut out = String::new();
+        push_scientific(v, 0, &mut out);
+        out
+    }
+
+    /// Rounding up through nines, ties, zero, the ends of the exponent range.
+    #[test]
+    fn scientific_digits_match_the_standard_library_at_the_edges() {
+        for v in [
+            0.0,
+            -0.0,
+            1.0,
+            9.999999995,
+            9.9999999951,
+            -9.99999999999,
+            1.0000000005,
+            1.00000000050001,
+            123_456_789.5,
+            1e-300,
+            1.7976931348623157e308,
+            5e-324,
+            -3.085e6,
+        ] {
+            assert_eq!(scientific(v), format!("{:.8e}", v + 0.0), "{v:e}");
+        }
+        let mut padded = String::new();
+        push_scientific(-0.5, 16, &mut padded);
+        assert_eq!(padded, "  -5.00000000e-1");
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(4096))]
+        /// Any finite `f64` prints as `Display` prints it: same shortest digits, same layout.
+        #[test]
+        fn display_digits_match_the_standard_library(bits in any::<u64>()) {
+            let v = f64::from_bits(bits);
+            prop_assume!(v.is_finite());
+            prop_assert_eq!(display(v), (v + 0.0).to_string());
+        }
+
+        /// Any finite `f64` prints as `{:.8e}` prints it: the same nine digits.
+        #[test]
+        fn scientific_digits_match_the_standard_library(bits in any::<u64>()) {
+            let v = f64::from_bits(bits);
+            prop_assume!(v.is_finite());
+            prop_assert_eq!(scientific(v), format!("{:.8e}", v + 0.0));
+        }
+
+        /// Values with few digits, where ties and carries are frequent.
+        #[test]
+        fn scientific_digits_match_at_short_decimals(m in 0u64..100_000_000_000, e in -20i32..20) {
+            let v = m as f64 * 10f64.powi(e);
+            prop_assert_eq!(scientific(v), format!("{:.8e}", v + 0.0));
+        }
+    }
+}

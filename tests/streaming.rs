@@ -1,0 +1,310 @@
+//! Sweeps that stream: the same bytes for any number of threads, batch and chunk size; the
+//! first error in drive order with the rows before it; files whole or not at all; no cap on
+//! the number of drive positions of a streamed run.
+
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::Command;
+
+use mechdiff::scene::{self, Scene, table};
+use mechdiff::stream::{self, Options, Sink, Sinks};
+use mechdiff::{Error, Result};
+
+/// `scenes/slider_crank.toml` of this repository (offset slider-crank in mm and degrees,
+/// speed 1500 rpm, dead positions of `s`), swept at `step` degrees.
+fn slider_crank(step: &str) -> Scene {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/slider_crank.toml");
+    let text = std::fs::read_to_string(path).unwrap();
+    assert!(text.contains("step = 5\n"));
+    let text = text.replace("step = 5\n", &format!("step = {step}\n"));
+    scene::parse("slider_crank.toml", &text).unwrap()
+}
+
+/// The offset slider-crank of `tests/sweep_limits.rs` (r = 1 m, e = 0.5 m, l = 1.49 m): the
+/// crank cannot pass sin φ < −0.99, ≈ 261.89°–278.11°; swept 0–360° at 1°.
+const BLOCKED: &str = r#"
+[units]
+length = "m"
+angle = "deg"
+[points]
+O = [0, 0]
+A = [1, 0]
+B = [2.4036025078347505, 0.5]
+G0 = [0, 0.5]
+G1 = [1, 0.5]
+[links]
+ground = ["O", "G0", "G1"]
+crank = ["O", "A"]
+rod = ["A", "B"]
+slider = ["B"]
+[joints]
+O = { type = "revolute", at = "O", links = ["ground", "crank"] }
+A = { type = "revolute", at = "A", links = ["crank", "rod"] }
+B = { type = "revolute", at = "B", links = ["rod", "slider"] }
+guide = { type = "prismatic", line = ["G0", "G1"], point = "B", links = ["ground", "slider"] }
+[drive]
+joint = "O"
+line = ["O", "A"]
+[sweep]
+from = 0
+to = 360
+step = 1
+[[output]]
+name = "s"
+slider = "guide"
+quantities = ["position", "velocity_coefficient"]
+[[output]]
+name = "rod"
+angle = ["A", "B"]
+quantities = ["position"]
+"#;
+
+/// The three outputs of a streamed run, and how it ended.
+struct Outputs {
+    result: Result<stream::Streamed>,
+    table: Vec<u8>,
+    csv: Vec<u8>,
+    jsonl: Vec<u8>,
+}
+
+fn streamed(scene: &Scene, options: &Options) -> Outputs {
+    let (mut table, mut csv, mut jsonl) = (Vec::new(), Vec::new(), Vec::new());
+    let sink = |path: &str, out| {
+        Some(Sink {
+            path: PathBuf::from(path),
+            out,
+        })
+    };
+    let mut sinks = Sinks {
+        table: sink("<stdout>", &mut table),
+        csv: sink("out.csv", &mut csv),
+        jsonl: sink("out.jsonl", &mut jsonl),
+    };
+    let result = stream::run(scene, &mut sinks, options);
+    drop(sinks);
+    Outputs {
+        result,
+        table,
+        csv,
+        jsonl,
+    }
+}
+
+fn options(threads: usize, batch: usize, chunk: usize) -> Options {
+    Options {
+        threads,
+        batch,
+        chunk,
+        ..Options::default()
+    }
+}
+
+fn text(bytes: &[u8]) -> &str {
+    std::str::from_utf8(bytes).unwrap()
+}
+
+/// One thread with the default batches, and two or three threads with batches and chunks
+/// that do not divide the 1441 positions: the same bytes in every output, for the table
+/// printed from its values and for the streamed one.
+#[test]
+fn every_thread_count_and_batch_size_gives_the_same_bytes() {
+    let scene = slider_crank("0.25");
+    let one = streamed(&scene, &options(1, 1 << 14, 1 << 10));
+    one.result.as_ref().unwrap();
+    for (threads, batch, chunk) in [(2, 7, 3), (3, 100, 16), (2, 1441, 1)] {
+        let other = streamed(&scene, &options(threads, batch, chunk));
+        other.result.as_ref().unwrap();
+        assert!(
+            one.table == other.table,
+            "table, {threads} threads, batch {batch}"
+        );
+        assert!(
+            one.csv == other.csv,
+            "csv, {threads} threads, batch {batch}"
+        );
+        assert!(
+            one.jsonl == other.jsonl,
+            "jsonl, {threads} threads, batch {batch}"
+        );
+    }
+    let long = |threads, batch, chunk| Options {
+        table_from_values: 0,
+        ..options(threads, batch, chunk)
+    };
+    let a = streamed(&scene, &long(1, 1 << 14, 1 << 10));
+    let b = streamed(&scene, &long(3, 13, 5));
+    assert!(a.table == b.table);
+    assert!(a.csv == one.csv);
+    // The streamed table: title, plan, names, units, 1441 rows, then the dead positions.
+    let lines: Vec<&str> = text(&a.table).lines().collect();
+    assert!(
+        lines[4].trim_start().starts_with("0.00000000e0"),
+        "{}",
+        lines[4]
+    );
+    assert!(lines[4 + 1440].trim_start().starts_with("3.60000000e2"));
+    assert!(text(&a.table).contains("stroke of s: 200.096"));
+}
+
+/// The streamed outputs hold what a run in memory computes: the table as it always was
+/// printed, and the CSV with the digits of Rust's `Display` (the format before streaming),
+/// written here independently of the streamed formatter.
+#[test]
+fn streamed_outputs_hold_the_values_of_a_run_in_memory() {
+    let scene = slider_crank("0.25");
+    let out = streamed(&scene, &options(2, 64, 8));
+    out.result.as_ref().unwrap();
+    let report = scene::run(&scene).unwrap();
+    let mut expected_table = Vec::new();
+    table::write_table(&scene, &report, &mut expected_table).unwrap();
+    assert!(out.table == expected_table, "{}", text(&out.table));
+    let mut expected_csv = String::new();
+    let header: Vec<String> = report.columns.iter().map(|c| c.header()).collect();
+    expected_csv.push_str(&(header.join(",") + "\n"));
+    for row in &report.rows {
+        let cells: Vec<String> = (row.iter().zip(&report.columns))
+            .map(|(v, c)| (v / c.factor + 0.0).to_string())
+            .collect();
+        expected_csv.push_str(&(cells.join(",") + "\n"));
+    }
+    assert_eq!(text(&out.csv), expected_csv);
+}
+
+/// Each JSON Lines record holds the CSV's headers as keys and the CSV's numbers: the same
+/// `f64` exactly (both are shortest representations of one value, read back exactly).
+#[test]
+fn jsonl_records_hold_the_csv_values() {
+    let scene = slider_crank("5");
+    let out = streamed(&scene, &options(2, 10, 3));
+    out.result.unwrap();
+    let mut csv = text(&out.csv).lines();
+    let header: Vec<&str> = csv.next().unwrap().split(',').collect();
+    let records: Vec<&str> = text(&out.jsonl).lines().collect();
+    assert_eq!(records.len(), 73);
+    for (line, record) in csv.zip(records) {
+        let record: serde_json::Map<String, serde_json::Value> =
+            serde_json::from_str(record).unwrap();
+        let keys: Vec<&str> = record.keys().map(String::as_str).collect();
+        let mut sorted = header.clone();
+        sorted.sort_unstable();
+        assert_eq!(keys, sorted);
+        for (name, cell) in header.iter().zip(line.split(',')) {
+            let value: f64 = cell.parse().unwrap();
+            assert_eq!(record[*name].as_f64().unwrap(), value, "{name}");
+        }
+    }
+}
+
+/// A sweep blocked at 261.89° fails at 262° with the error of a run in memory, whatever the
+/// threads and batches; every output holds exactly the rows before it (0° to 261°), the
+/// same bytes for one thread and for three.
+#[test]
+fn a_blocked_sweep_reports_the_first_error_in_drive_order_after_the_rows_before_it() {
+    let scene = scene::parse("blocked.toml", BLOCKED).unwrap();
+    let expected = scene::run(&scene).unwrap_err().to_string();
+    let one = streamed(&scene, &options(1, 1 << 14, 1 << 10));
+    for (threads, batch, chunk) in [(3, 5, 2), (2, 262, 7), (2, 261, 300)] {
+        let out = streamed(&scene, &options(threads, batch, chunk));
+        let e = out.result.unwrap_err();
+        assert!(matches!(e, Error::Blocked { .. }), "{e:?}");
+        assert_eq!(e.to_string(), expected);
+        let rows: Vec<&str> = text(&out.csv).lines().skip(1).collect();
+        assert_eq!(rows.len(), 262, "{threads} threads, batch {batch}");
+        assert!(rows[261].starts_with("261,"), "{}", rows[261]);
+        assert_eq!(text(&out.jsonl).lines().count(), 262);
+        assert!(out.csv == one.csv && out.jsonl == one.jsonl);
+        // The table of a short sweep is printed from its values, at the end: nothing yet.
+        assert!(out.table.is_empty());
+    }
+}
+
+/// A writer that fails after `budget` bytes, like a full disk.
+struct FailsAfter {
+    budget: usize,
+}
+
+impl Write for FailsAfter {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        if buf.len() > self.budget {
+            return Err(std::io::Error::other("injected: no space left"));
+        }
+        self.budget -= buf.len();
+        Ok(buf.len())
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+/// A CSV that cannot be written ends the run with an error naming its path.
+#[test]
+fn a_failed_write_is_an_error_naming_the_file() {
+    let scene = slider_crank("0.25");
+    let mut failing = FailsAfter { budget: 5000 };
+    let mut sinks = Sinks {
+        csv: Some(Sink {
+            path: PathBuf::from("out.csv"),
+            out: &mut failing,
+        }),
+        ..Sinks::default()
+    };
+    let e = stream::run(&scene, &mut sinks, &options(2, 50, 10)).unwrap_err();
+    assert!(matches!(e, Error::Write { .. }), "{e:?}");
+    assert_eq!(
+        e.to_string(),
+        "cannot write out.csv: injected: no space left"
+    );
+}
+
+/// `mechdiff run` of a sweep that fails mid-way: the error on stderr, the user's old CSV
+/// intact, no JSON Lines file and no temporary file left in the folder.
+#[test]
+fn a_failed_sweep_leaves_the_old_files_and_no_temporary_file() {
+    let dir = std::env::temp_dir().join(format!("mechdiff-stream-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("s.toml"), BLOCKED).unwrap();
+    std::fs::write(dir.join("out.csv"), "old\n").unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_mechdiff"))
+        .current_dir(&dir)
+        .args(["run", "s.toml", "--csv", "out.csv", "--jsonl", "out.jsonl"])
+        .args(["--threads", "2"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("cannot assemble between drive positions 261 deg and 262 deg"));
+    assert_eq!(
+        std::fs::read_to_string(dir.join("out.csv")).unwrap(),
+        "old\n"
+    );
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(names, ["out.csv", "s.toml"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `from`, `to`, `step` are counted on demand: 3.6·10⁷ positions parse at once (the cap of
+/// 10⁶ is gone), a run that holds every row in memory refuses them, naming `step`, and
+/// checking a sweep of 3.6·10¹¹ does not walk it.
+#[test]
+fn a_long_sweep_is_counted_not_stored() {
+    let scene = slider_crank("0.00001");
+    assert_eq!(scene.positions.len(), 36_000_001);
+    // The last is 360° to 1e-12 relative (i·step in f64 rounds once or twice).
+    let last = scene.positions.get(36_000_000);
+    assert!((last / std::f64::consts::TAU - 1.0).abs() < 1e-12, "{last}");
+    let e = scene::run(&scene).unwrap_err().to_string();
+    assert!(
+        e.starts_with("slider_crank.toml:40:8: the sweep has 36000001 positions"),
+        "{e}"
+    );
+    // 3.6·10¹¹ positions: reading and checking the scene walks none of them.
+    let scene = slider_crank("0.000000001");
+    assert_eq!(scene.positions.len(), 360_000_000_001);
+    let plan = scene::check(&scene).unwrap().plan;
+    assert_eq!(plan.range.1, scene.positions.get(360_000_000_000));
+}
