@@ -18,7 +18,7 @@ pub enum Positions {
     Steps {
         /// `from`, in the file's units.
         from: f64,
-        /// `step`, in the file's units (positive).
+        /// `step`, in the file's units (negative for a sweep from `from` down to `to`).
         step: f64,
         /// The number of positions.
         count: usize,
@@ -80,14 +80,17 @@ impl Positions {
     }
 
     /// The smallest and the largest position, without walking a range (`from + i·step`
-    /// times a positive factor never decreases with `i`: each operation is monotone).
+    /// times a positive factor is monotone in `i`: the extremes are the two ends).
     pub fn range(&self) -> (f64, f64) {
         match self {
             Self::List(list) => (list.iter())
                 .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &p| {
                     (lo.min(p), hi.max(p))
                 }),
-            Self::Steps { count, .. } => (self.get(0), self.get(count - 1)),
+            Self::Steps { count, .. } => {
+                let (first, last) = (self.get(0), self.get(count - 1));
+                (first.min(last), first.max(last))
+            }
         }
     }
 }
@@ -116,5 +119,25 @@ mod tests {
         assert_eq!(p.get(720), 360.0 * factor);
         assert_eq!(p.range(), (0.0, 360.0 * factor));
         assert_eq!(p.to_vec().unwrap().len(), 721);
+    }
+
+    /// A sweep downwards (negative step) has the same extremes as its upward twin: `range`
+    /// orders its two ends (exact: both are the same products).
+    #[test]
+    fn a_downward_sweep_has_its_ends_as_range() {
+        let location = Location {
+            file: "s.toml".into(),
+            line: 1,
+            column: 1,
+        };
+        let down = Positions::Steps {
+            from: 360.0,
+            step: -10.0,
+            count: 37,
+            factor: 1.0,
+            location,
+        };
+        assert_eq!(down.get(36), 0.0);
+        assert_eq!(down.range(), (0.0, 360.0));
     }
 }
