@@ -53,6 +53,7 @@ pub mod resolve;
 pub mod run;
 pub mod source;
 pub mod study;
+pub mod sweep_limits;
 pub mod table;
 pub mod units;
 pub mod values;

@@ -3,9 +3,7 @@
 
 use std::cell::RefCell;
 
-use mechdiff_core::geometry::{
-    Kinematics, LimitKind, Mechanism, Mobility, MotionRange, Solver, Tracker,
-};
+use mechdiff_core::geometry::{Kinematics, Mechanism, Mobility, MotionRange, Solver, Tracker};
 use mechdiff_core::{DeadPosition, DeadPositionSearch, DriveState};
 
 use crate::error::{Error, Result};
@@ -59,6 +57,8 @@ pub struct Report {
     pub warnings: Vec<String>,
     /// The balancing answers (their columns are also in `columns` and `rows`).
     pub balancing: Option<super::balancing::BalancingReport>,
+    /// The limit positions, change points and toggles the sweep reaches.
+    pub limits: Vec<super::sweep_limits::SweepLimit>,
 }
 
 /// A pose that amplifies rounding more than this (see `Tracker::amplification`) is
@@ -196,6 +196,7 @@ pub fn run(scene: &Scene) -> Result<Report> {
         dynamics,
         warnings,
         balancing,
+        limits: super::sweep_limits::in_sweep(scene, &mechanism, &positions),
     };
     all_finite(scene, &report)?;
     Ok(report)
@@ -429,12 +430,7 @@ fn search_dead_positions(
 pub fn describe_motion_range(scene: &Scene, range: &MotionRange) -> String {
     let end = |limit: &Option<mechdiff_core::geometry::DriveLimit>, sign: f64| match limit {
         Some(l) => {
-            let what = match l.kind {
-                LimitKind::Limit => "limit position",
-                LimitKind::ChangePoint => "change point",
-                LimitKind::Toggle => "toggle",
-                LimitKind::BranchFlip => "branch flip beyond",
-            };
+            let what = super::sweep_limits::kind_words(l.kind);
             let joints = l.joints.join(", ");
             format!(
                 "{} ({what}, loop of joints {joints})",
