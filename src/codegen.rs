@@ -4,6 +4,7 @@
 //! mechdiff codegen --expr "atan2(lambda*sin(phi), 1 - lambda*cos(phi))" --wrt phi --order 2
 //! mechdiff codegen --file psi.txt --wrt phi --order 2
 //! echo "sin(phi)^2" | mechdiff codegen --file - --wrt phi
+//! mechdiff codegen --expr "if(x < pi, 80*x/pi, 160 - 80*x/pi)" --wrt x --order 2
 //! ```
 //! prints a function `fn derivatives(phi: f64, lambda: f64) -> [f64; 3]` returning
 //! `[value, d1, d2]` (the differentiation variable first, the other symbols in alphabetical
@@ -36,7 +37,8 @@ pub const MAX_FORMULA_BYTES: u64 = 16 << 20;
 pub struct Args {
     /// The formula, infix: `+ - * / ^`, parentheses, numbers, names, `pi`, and the functions
     /// sqrt, cbrt, exp, ln, sin, cos, tan, asin, acos, atan, sinh, cosh, tanh, abs, atan2,
-    /// hypot, powf, powi.
+    /// hypot, powf, powi; and the piecewise `if(a < b, then, otherwise)` (also <=, >, >=,
+    /// ==, !=).
     #[arg(
         long = "expr",
         required_unless_present_any = ["file", "scene"],
@@ -178,7 +180,7 @@ fn generate_code(expression: &str, args: &Args) -> Result<String, mechdiff_core:
         }
     }
     let mut graph = Graph::new();
-    let value = graph.parse_infix(expression)?;
+    let value = graph.parse_infix_piecewise(expression)?;
     let outputs = graph.try_derivatives(value, &args.wrt, args.order, rules::MAX_NODES)?;
     for (order, output) in outputs.iter().enumerate() {
         if let Some((_, value)) = graph.non_finite_constant(&[*output]) {

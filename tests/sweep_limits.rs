@@ -187,3 +187,66 @@ quantities = ["position"]
     let e = scene::parse("rack.toml", text).unwrap_err();
     assert!(e.to_string().contains("at most"), "{e}");
 }
+
+/// The blocked slider-crank swept from −81° to 261° at 1°: both limit positions
+/// (−asin 0.99 ≈ −81.89° and 180° + asin 0.99 ≈ 261.89°) lie within a step beyond the ends.
+fn reaching_both_limits() -> String {
+    BLOCKED.replace(
+        "from = 0\nto = 360\nstep = 20",
+        "from = -81\nto = 261\nstep = 1",
+    )
+}
+
+#[test]
+fn a_sweep_that_ends_at_limit_positions_marks_and_lists_them() {
+    let s = scene::parse("limits.toml", &reaching_both_limits()).unwrap();
+    let report = scene::run(&s).unwrap();
+    // Closed-form path: the limits are found to full precision; 1e-12 rad absolute.
+    let limit = 0.99f64.asin();
+    let phi: Vec<f64> = report.limits.iter().map(|l| l.limit.phi).collect();
+    assert_eq!(phi.len(), 2, "{phi:?}");
+    assert!((phi[0] + limit).abs() < 1e-12, "{phi:?}");
+    assert!(
+        (phi[1] - (std::f64::consts::PI + limit)).abs() < 1e-12,
+        "{phi:?}"
+    );
+    // The diagram marks them in degrees (1e-10 deg: one conversion of exact radians).
+    let diagram = mechdiff::pictures::run::diagram(&s, &report).unwrap();
+    let marked: Vec<f64> = (diagram.markers.iter())
+        .filter(|m| m.kind == mechdiff::pictures::MarkerKind::Limit)
+        .map(|m| m.x)
+        .collect();
+    assert_eq!(marked.len(), 2, "{marked:?}");
+    assert!((marked[0] + limit.to_degrees()).abs() < 1e-10, "{marked:?}");
+    assert!(
+        (marked[1] - 180.0 - limit.to_degrees()).abs() < 1e-10,
+        "{marked:?}"
+    );
+    assert!(diagram.to_svg().unwrap().contains("limit position"));
+    // `mechdiff run` lists them after the table.
+    let mut out = Vec::new();
+    scene::table::write_table(&s, &report, &mut out).unwrap();
+    let out = String::from_utf8(out).unwrap();
+    assert!(
+        out.contains("the sweep reaches the end of the drive's motion range")
+            && out.contains("  phi = -81.89")
+            && out.contains("  phi = 261.89")
+            && out.contains("limit position (loop of joints A, B, guide)"),
+        "{out}"
+    );
+}
+
+#[test]
+fn a_sweep_more_than_a_step_from_the_limits_marks_none() {
+    // 0° to 180° at 10°: the limits are 81.89° below and beyond, more than a step away.
+    let text = BLOCKED.replace(
+        "from = 0\nto = 360\nstep = 20",
+        "from = 0\nto = 180\nstep = 10",
+    );
+    let s = scene::parse("inside.toml", &text).unwrap();
+    let report = scene::run(&s).unwrap();
+    assert!(report.limits.is_empty(), "{:?}", report.limits);
+    let mut out = Vec::new();
+    scene::table::write_table(&s, &report, &mut out).unwrap();
+    assert!(!String::from_utf8(out).unwrap().contains("motion range"));
+}

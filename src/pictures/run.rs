@@ -123,8 +123,9 @@ fn label(columns: &[&Column]) -> String {
 }
 
 /// The diagram of a run: the selected panels against the drive position, the dead positions
-/// marked, and polar panels for every force given by its x and y components (joint reactions
-/// `Fx_j`/`Fy_j`, inertial forces, the shaking force `SumF_x`/`SumF_y`).
+/// and the limits the sweep reaches marked, and polar panels for every force given by its x
+/// and y components (joint reactions `Fx_j`/`Fy_j`, inertial forces, the shaking force
+/// `SumF_x`/`SumF_y`).
 pub fn diagram(scene: &Scene, report: &Report) -> Result<Diagram> {
     let drive = &report.columns[0];
     let title = scene.title.clone().unwrap_or_else(|| scene.file.clone());
@@ -143,6 +144,14 @@ pub fn diagram(scene: &Scene, report: &Report) -> Result<Diagram> {
             let label = format!("{}: dead", dead.output);
             d = d.marker(Marker::new(p.phi / drive.factor, &label, MarkerKind::Dead));
         }
+    }
+    for l in &report.limits {
+        let label = crate::scene::sweep_limits::kind_words(l.limit.kind);
+        d = d.marker(Marker::new(
+            l.limit.phi / drive.factor,
+            label,
+            MarkerKind::Limit,
+        ));
     }
     for g in &groups {
         for pair in g.columns.windows(2) {

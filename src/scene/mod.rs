@@ -55,6 +55,7 @@ pub mod run;
 pub mod source;
 pub mod study;
 pub mod sweep;
+pub mod sweep_limits;
 pub mod table;
 pub mod units;
 pub mod values;

@@ -3,7 +3,7 @@
 
 use std::cell::RefCell;
 
-use mechdiff_core::geometry::{LimitKind, Mechanism, Mobility, MotionRange, Solver};
+use mechdiff_core::geometry::{Mechanism, Mobility, MotionRange, Solver};
 use mechdiff_core::{DeadPosition, DeadPositionSearch};
 
 use crate::error::{Error, Result};
@@ -59,6 +59,8 @@ pub struct Report {
     pub warnings: Vec<String>,
     /// The balancing answers (their columns are also in `columns` and `rows`).
     pub balancing: Option<super::balancing::BalancingReport>,
+    /// The limit positions, change points and toggles the sweep reaches.
+    pub limits: Vec<super::sweep_limits::SweepLimit>,
 }
 
 impl Report {
@@ -166,6 +168,7 @@ pub fn run(scene: &Scene) -> Result<Report> {
         dynamics,
         warnings,
         balancing,
+        limits: super::sweep_limits::in_sweep(scene, &mechanism, positions.iter().copied()),
     };
     all_finite(scene, &report)?;
     Ok(report)
@@ -367,12 +370,7 @@ fn search_dead_positions(
 pub fn describe_motion_range(scene: &Scene, range: &MotionRange) -> String {
     let end = |limit: &Option<mechdiff_core::geometry::DriveLimit>, sign: f64| match limit {
         Some(l) => {
-            let what = match l.kind {
-                LimitKind::Limit => "limit position",
-                LimitKind::ChangePoint => "change point",
-                LimitKind::Toggle => "toggle",
-                LimitKind::BranchFlip => "branch flip beyond",
-            };
+            let what = super::sweep_limits::kind_words(l.kind);
             let joints = l.joints.join(", ");
             format!(
                 "{} ({what}, loop of joints {joints})",

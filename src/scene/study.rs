@@ -149,6 +149,9 @@ pub fn run_sweep(
         for dead in &mut report.dead_positions {
             dead.output.push_str(&tag);
         }
+        for limit in &mut report.limits {
+            limit.tag.push_str(&tag);
+        }
         if let Some(dynamics) = &mut report.dynamics {
             for line in &mut dynamics.summary {
                 line.push_str(&tag);
@@ -169,6 +172,7 @@ pub fn run_sweep(
             Some((_, all)) => {
                 all.rows.append(&mut report.rows);
                 all.dead_positions.append(&mut report.dead_positions);
+                all.limits.append(&mut report.limits);
                 if let (Some(all), Some(more)) = (&mut all.dynamics, report.dynamics) {
                     all.summary.extend(more.summary);
                 }

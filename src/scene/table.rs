@@ -142,6 +142,16 @@ pub fn write_dead_positions(
             writeln!(out, "stroke of {}: {stroke} {unit}", dead.output)?;
         }
     }
+    if !report.limits.is_empty() {
+        writeln!(out)?;
+        writeln!(
+            out,
+            "the sweep reaches the end of the drive's motion range (walked from the sketch):"
+        )?;
+        for line in super::sweep_limits::lines(scene, &report.limits) {
+            writeln!(out, "{line}")?;
+        }
+    }
     Ok(())
 }
 
@@ -175,7 +185,7 @@ pub fn write_jsonl(report: &Report, out: &mut impl Write) -> io::Result<()> {
 }
 
 /// Writes the report as JSON: `{"columns": [{"name", "unit"}], "rows": [[...]], "dead_positions":
-/// [{"output", "phi", "value"}]}`, every value in the scene's units with all the digits of an
+/// [{"output", "phi", "value"}], "limits": [{"phi", "kind", "joints"}]}`, every value in the scene's units with all the digits of an
 /// `f64`; a non-finite value is written as `null`.
 pub fn write_json(scene: &Scene, report: &Report, out: &mut impl Write) -> io::Result<()> {
     let columns: Vec<_> = (report.columns.iter())
@@ -202,7 +212,18 @@ pub fn write_json(scene: &Scene, report: &Report, out: &mut impl Write) -> io::R
             })
         })
         .collect();
-    let value = serde_json::json!({"columns": columns, "rows": rows, "dead_positions": dead});
+    let limits: Vec<_> = (report.limits.iter())
+        .map(|l| {
+            serde_json::json!({
+                "phi": scene.units.from_si(l.limit.phi, drive),
+                "kind": super::sweep_limits::kind_words(l.limit.kind),
+                "joints": l.limit.joints,
+            })
+        })
+        .collect();
+    let value = serde_json::json!({
+        "columns": columns, "rows": rows, "dead_positions": dead, "limits": limits
+    });
     serde_json::to_writer(&mut *out, &value)?;
     writeln!(out)
 }

@@ -213,6 +213,7 @@ pub fn run(scene: &Scene, sinks: &mut Sinks<'_>, options: &Options) -> Result<St
             dynamics: None,
             warnings: warnings.clone(),
             balancing: None,
+            limits: crate::scene::sweep_limits::in_sweep(scene, &mechanism, positions.iter()),
         };
         let result = if streamed_table {
             table::write_dead_positions(scene, &report, &mut text)

@@ -9,7 +9,7 @@
 
 use std::collections::{HashMap, HashSet};
 
-use proc_macro2::{Ident, Literal, Span, TokenStream};
+use proc_macro2::{Ident, Literal, Span, TokenStream, TokenTree};
 use quote::{ToTokens, quote};
 
 use super::graph::{Graph, Id, Node};
@@ -201,7 +201,15 @@ impl Emitter<'_> {
                 let (t, depth_t) = self.operand(t, Block);
                 let (e, depth_e) = self.operand(e, Block);
                 let depth = depth_a.max(depth_b).max(depth_t).max(depth_e);
-                (quote!(if #a #cmp #b { #t } else { #e }), Block, depth)
+                // A nested select continues the chain (`else if`, as clippy's
+                // `collapsible_else_if` asks of the generated code).
+                let chained = e
+                    .clone()
+                    .into_iter()
+                    .next()
+                    .is_some_and(|t| matches!(&t, TokenTree::Ident(i) if i == "if"));
+                let e = if chained { e } else { quote!({ #e }) };
+                (quote!(if #a #cmp #b { #t } else #e), Block, depth)
             }
         };
         Emitted {
