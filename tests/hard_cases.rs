@@ -228,12 +228,15 @@ fn removable_singularity_as_written_takes_the_limit_flagged() {
             case.title
         );
         let at = case.positions.iter().position(|&p| p == point).unwrap();
-        let close = |got: f64, want: f64| (got - want).abs() <= 1e-13 * want.abs().max(1.0);
+        let close = |got: f64, want: f64| {
+            let scale = if want == 0.0 { 1.0 } else { want.abs() };
+            (got - want).abs() <= 1e-13 * scale
+        };
         let mut values = vec![[f64::NAN; 4]; case.outputs.len()];
         for &(o, limit) in limits {
-            for k in 0..4 {
+            for (k, want) in limit.into_iter().enumerate() {
                 let r = case.reference[at][o][k].hi;
-                assert!(close(r, limit[k]), "{name} reference {o} {k}: {r}");
+                assert!(close(r, want), "{name} reference {o} {k}: {r}");
             }
         }
         for method in &mut case.methods {

@@ -27,6 +27,10 @@
 //! (num-dual through the evaluator) — and finite differences of the formula in `f64`. The
 //! reference is the derivative formulas at 256 bits; the condition numbers follow from their
 //! gradients (see [`super::reference`]).
+//!
+//! At a position where a formula is 0/0 with a limit (sin φ/φ at 0), the limit is taken by
+//! truncated Taylor series ([`Graph::limit_jets`]): the reference in double-double, every
+//! method in `f64`; the case's title says "removable singularity at φ = … rad: limit taken".
 
 use std::collections::BTreeMap;
 use std::sync::Arc;
