@@ -222,7 +222,7 @@ pub fn case(scene: &FormulaScene, file: &str) -> Result<Case<'static>, Error> {
             // A 0/0 at this position: its limit, in double-double Taylor series (about
             // 32 digits), if it exists. The condition numbers' formulas are 0/0 there too:
             // where not finite they are taken as 0 (the bound is then 16 ε of the scale).
-            if let Ok(jets) = limit_jets::<Reference>(&formulas, &names, &values, phi) {
+            if let Ok((jets, true)) = limit_jets::<Reference>(&formulas, &names, &values, phi) {
                 for (o, jet) in jets.iter().enumerate() {
                     r[o] = *jet;
                 }
@@ -324,7 +324,7 @@ impl Evaluator {
         match self.formulas.graph().evaluate_dual(&roots, &bindings) {
             Ok(v) => Ok(v.iter().map(to_values).collect()),
             Err(CoreError::ZeroOverZero { .. }) => {
-                let jets = limit_jets::<f64>(&self.formulas, &names, &self.values, seed.re())?;
+                let (jets, _) = limit_jets::<f64>(&self.formulas, &names, &self.values, seed.re())?;
                 Ok(jets
                     .into_iter()
                     .map(|j| std::array::from_fn(|k| if k <= order { j[k] } else { f64::NAN }))
@@ -353,7 +353,7 @@ impl Evaluator {
                         }
                     }
                     Err(CoreError::ZeroOverZero { .. }) => {
-                        let jets =
+                        let (jets, _) =
                             limit_jets::<f64>(&symbolic.formulas, &names, &symbolic.values, phi)?;
                         write(out, jets.into_iter());
                     }
@@ -400,13 +400,13 @@ fn formulas_error(e: CoreError) -> Error {
 }
 
 /// The limit jets `[f, f′, f″, f‴]` in `T` of every output at the drive `phi`, through a
-/// removable singularity there (see [`Graph::limit_jets`]).
+/// removable singularity there (see [`Graph::limit_jets`]), and whether a 0/0 was resolved.
 fn limit_jets<T: Scalar>(
     formulas: &Formulas,
     names: &[&str],
     values: &[f64],
     phi: f64,
-) -> Result<Vec<[T; MAX_ORDER + 1]>, Error> {
+) -> Result<(Vec<[T; MAX_ORDER + 1]>, bool), Error> {
     let roots: Vec<Id> = formulas.jets().iter().map(|j| j[0]).collect();
     let mut bindings: Vec<(&str, T)> = vec![("phi", T::from(phi))];
     bindings.extend(
@@ -415,11 +415,11 @@ fn limit_jets<T: Scalar>(
             .copied()
             .zip(values.iter().map(|&v| T::from(v))),
     );
-    Ok(formulas
+    let limits = formulas
         .graph()
         .limit_jets(&roots, "phi", &bindings)
-        .map_err(formulas_error)?
-        .jets)
+        .map_err(formulas_error)?;
+    Ok((limits.jets, limits.removed))
 }
 
 fn write(out: &mut [Values], values: impl Iterator<Item = Values>) {
