@@ -131,3 +131,24 @@ fn unknown_symbol_is_named_with_the_file() {
     );
     let _ = std::fs::remove_file(path);
 }
+
+/// A bare quotient swept through its 0/0 (sin φ/φ at 0) is measured: the limit is taken
+/// there and the report says so, never silently.
+#[test]
+fn removable_singularity_is_measured_with_the_limit_flagged() {
+    let output = mechdiff(&[
+        "accuracy",
+        "scenes/hard/removable_sinc_unguarded.toml",
+        "--repeats",
+        "1",
+    ]);
+    assert!(output.status.success(), "{output:?}");
+    let text = String::from_utf8(output.stdout).unwrap();
+    for part in [
+        "removable singularity at φ = 0 rad: limit taken",
+        "Dual3 (evaluator)",
+    ] {
+        assert!(text.contains(part), "{part} missing:\n{text}");
+    }
+    assert!(!text.contains("NaN"), "{text}");
+}

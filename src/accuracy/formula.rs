@@ -27,16 +27,22 @@
 //! (num-dual through the evaluator) — and finite differences of the formula in `f64`. The
 //! reference is the derivative formulas at 256 bits; the condition numbers follow from their
 //! gradients (see [`super::reference`]).
+//!
+//! At a position where a formula is 0/0 with a limit (sin φ/φ at 0), the limit is taken by
+//! truncated Taylor series ([`Graph::limit_jets`]): the reference in double-double, every
+//! method in `f64`; the case's title says "removable singularity at φ = … rad: limit taken".
 
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
+use mechdiff_core::Scalar;
+use mechdiff_core::error::Error as CoreError;
 use mechdiff_core::num_dual::{Dual2_64, Dual3_64, Dual64, HyperDual64};
 use mechdiff_core::symbolic::constants::is_named_constant;
 use mechdiff_core::symbolic::{Graph, Id};
 use serde::Deserialize;
 
-use super::reference::Formulas;
+use super::reference::{Formulas, Reference};
 use super::{Case, MAX_ORDER, Method, Values};
 use crate::Error;
 use crate::error::Location;
@@ -208,9 +214,24 @@ pub fn case(scene: &FormulaScene, file: &str) -> Result<Case<'static>, Error> {
     let formulas = Formulas::new(graph, &roots, "phi", &names);
     let mut reference = Vec::new();
     let mut condition = Vec::new();
+    let mut removable = Vec::new();
     let outputs: Vec<&String> = scene.outputs.keys().collect();
     for &phi in &positions {
-        let (r, c) = formulas.reference(phi, &values)?;
+        let (mut r, mut c) = formulas.reference(phi, &values)?;
+        if r.iter().flatten().any(|x| !x.is_finite()) {
+            // A 0/0 at this position: its limit, in double-double Taylor series (about
+            // 32 digits), if it exists. The condition numbers' formulas are 0/0 there too:
+            // where not finite they are taken as 0 (the bound is then 16 ε of the scale).
+            if let Ok((jets, true)) = limit_jets::<Reference>(&formulas, &names, &values, phi) {
+                for (o, jet) in jets.iter().enumerate() {
+                    r[o] = *jet;
+                }
+                for x in c.iter_mut().flatten().filter(|x| !x.is_finite()) {
+                    *x = 0.0;
+                }
+                removable.push(phi);
+            }
+        }
         if let Some((o, k)) = (0..r.len())
             .flat_map(|o| (0..=MAX_ORDER).map(move |k| (o, k)))
             .find(|&(o, k)| !r[o][k].is_finite())
@@ -219,10 +240,10 @@ pub fn case(scene: &FormulaScene, file: &str) -> Result<Case<'static>, Error> {
                 what: file.to_owned(),
                 reason: format!(
                     "output `{}`, derivative order {k}, is not finite at phi = {phi} even at \
-                     256 bits (a 0/0 such as sin(phi)/phi at 0, or a true singularity); if it \
-                     has a limit there, write it with `if`, e.g. \
-                     \"if(phi == 0, 1, sin(phi)/phi)\" (scenes/hard/removable_sinc.toml), or \
-                     leave the point out of the sweep",
+                     256 bits, and has no limit there that a Taylor series to order 7 finds \
+                     (a true singularity, or a 0/0 of higher order); write the value there \
+                     with `if`, e.g. \"if(phi == 0, 1, sin(phi)/phi)\" \
+                     (scenes/hard/removable_sinc.toml), or leave the point out of the sweep",
                     outputs[o]
                 ),
             });
@@ -237,8 +258,12 @@ pub fn case(scene: &FormulaScene, file: &str) -> Result<Case<'static>, Error> {
     });
     let methods = evaluator.methods();
     let f = evaluator.clone();
+    let flag = removable
+        .iter()
+        .map(|phi| format!("; removable singularity at φ = {phi} rad: limit taken"))
+        .collect::<String>();
     Ok(Case {
-        title: format!("{} (reference: 256-bit symbolic)", scene.title),
+        title: format!("{} (reference: 256-bit symbolic{flag})", scene.title),
         outputs: scene.outputs.keys().cloned().collect(),
         positions,
         reference,
@@ -246,8 +271,10 @@ pub fn case(scene: &FormulaScene, file: &str) -> Result<Case<'static>, Error> {
         relative: scene.error.as_deref() == Some("relative"),
         methods,
         positions_f64: Box::new(move |phi, out| {
-            let v = f.evaluate(phi)?;
-            out.copy_from_slice(&v);
+            let v = f.jets(phi, 0, |&x| [x, f64::NAN, f64::NAN, f64::NAN])?;
+            for (o, jet) in out.iter_mut().zip(v) {
+                *o = jet[0];
+            }
             Ok(())
         }),
     })
@@ -276,23 +303,35 @@ struct Evaluator {
 }
 
 impl Evaluator {
-    /// The outputs in the num-dual type `D` (`f64` included) at the drive `phi`.
-    fn evaluate<D: mechdiff_core::Scalar>(&self, phi: D) -> Result<Vec<D>, Error> {
+    /// `[f, f′, f″, f‴]` per output at the drive `seed` (a num-dual seed, or `f64`),
+    /// through `to_values`; at a removable singularity (0/0 with a limit), the limit from
+    /// truncated Taylor series instead, to order `order` (NaN above).
+    fn jets<D: Scalar>(
+        &self,
+        seed: D,
+        order: usize,
+        to_values: impl Fn(&D) -> Values,
+    ) -> Result<Vec<Values>, Error> {
         let roots: Vec<Id> = self.formulas.jets().iter().map(|j| j[0]).collect();
-        let mut bindings: Vec<(&str, D)> = vec![("phi", phi)];
+        let names: Vec<&str> = self.names.iter().map(String::as_str).collect();
+        let mut bindings: Vec<(&str, D)> = vec![("phi", seed)];
         bindings.extend(
-            self.names
+            names
                 .iter()
-                .map(String::as_str)
+                .copied()
                 .zip(self.values.iter().map(|&v| D::from(v))),
         );
-        self.formulas
-            .graph()
-            .evaluate_dual(&roots, &bindings)
-            .map_err(|e| Error::Reference {
-                what: "the formulas".into(),
-                reason: e.to_string(),
-            })
+        match self.formulas.graph().evaluate_dual(&roots, &bindings) {
+            Ok(v) => Ok(v.iter().map(to_values).collect()),
+            Err(CoreError::ZeroOverZero { .. }) => {
+                let (jets, _) = limit_jets::<f64>(&self.formulas, &names, &self.values, seed.re())?;
+                Ok(jets
+                    .into_iter()
+                    .map(|j| std::array::from_fn(|k| if k <= order { j[k] } else { f64::NAN }))
+                    .collect())
+            }
+            Err(e) => Err(formulas_error(e)),
+        }
     }
 
     fn methods(self: &Arc<Self>) -> Vec<Method<'static>> {
@@ -304,50 +343,83 @@ impl Evaluator {
         let d3 = self.clone();
         vec![
             Method::exact("symbolic (evaluator)", MAX_ORDER, move |phi, out| {
+                let names: Vec<&str> = symbolic.names.iter().map(String::as_str).collect();
                 let mut bindings: Vec<(&str, f64)> = vec![("phi", phi)];
-                bindings.extend(
-                    symbolic
-                        .names
-                        .iter()
-                        .map(String::as_str)
-                        .zip(symbolic.values.iter().copied()),
-                );
-                let v = symbolic
-                    .formulas
-                    .graph()
-                    .evaluate_f64(&ids, &bindings)
-                    .map_err(|e| Error::Reference {
-                        what: "the formulas".into(),
-                        reason: e.to_string(),
-                    })?;
-                for (o, jet) in out.iter_mut().zip(v.chunks(MAX_ORDER + 1)) {
-                    o.copy_from_slice(jet);
+                bindings.extend(names.iter().copied().zip(symbolic.values.iter().copied()));
+                match symbolic.formulas.graph().evaluate_f64(&ids, &bindings) {
+                    Ok(v) => {
+                        for (o, jet) in out.iter_mut().zip(v.chunks(MAX_ORDER + 1)) {
+                            o.copy_from_slice(jet);
+                        }
+                    }
+                    Err(CoreError::ZeroOverZero { .. }) => {
+                        let (jets, _) =
+                            limit_jets::<f64>(&symbolic.formulas, &names, &symbolic.values, phi)?;
+                        write(out, jets.into_iter());
+                    }
+                    Err(e) => return Err(formulas_error(e)),
                 }
                 Ok(())
             }),
             Method::exact("Dual1 (evaluator)", 1, move |phi, out| {
-                let v = d1.evaluate(Dual64::from(phi).derivative())?;
-                write(out, v.iter().map(|x| [x.re, x.eps, f64::NAN, f64::NAN]));
+                let v = d1.jets(Dual64::from(phi).derivative(), 1, |x| {
+                    [x.re, x.eps, f64::NAN, f64::NAN]
+                })?;
+                write(out, v.into_iter());
                 Ok(())
             }),
             Method::exact("Dual2 (evaluator)", 2, move |phi, out| {
-                let v = d2.evaluate(Dual2_64::from(phi).derivative())?;
-                write(out, v.iter().map(|x| [x.re, x.v1, x.v2, f64::NAN]));
+                let v = d2.jets(Dual2_64::from(phi).derivative(), 2, |x| {
+                    [x.re, x.v1, x.v2, f64::NAN]
+                })?;
+                write(out, v.into_iter());
                 Ok(())
             }),
             Method::exact("HyperDual (evaluator)", 2, move |phi, out| {
                 let seed = HyperDual64::from(phi).derivative1().derivative2();
-                let v = hd.evaluate(seed)?;
-                write(out, v.iter().map(|x| [x.re, x.eps1, x.eps1eps2, f64::NAN]));
+                let v = hd.jets(seed, 2, |x| [x.re, x.eps1, x.eps1eps2, f64::NAN])?;
+                write(out, v.into_iter());
                 Ok(())
             }),
             Method::exact("Dual3 (evaluator)", 3, move |phi, out| {
-                let v = d3.evaluate(Dual3_64::from(phi).derivative())?;
-                write(out, v.iter().map(|x| [x.re, x.v1, x.v2, x.v3]));
+                let v = d3.jets(Dual3_64::from(phi).derivative(), 3, |x| {
+                    [x.re, x.v1, x.v2, x.v3]
+                })?;
+                write(out, v.into_iter());
                 Ok(())
             }),
         ]
     }
+}
+
+fn formulas_error(e: CoreError) -> Error {
+    Error::Reference {
+        what: "the formulas".into(),
+        reason: e.to_string(),
+    }
+}
+
+/// The limit jets `[f, f′, f″, f‴]` in `T` of every output at the drive `phi`, through a
+/// removable singularity there (see [`Graph::limit_jets`]), and whether a 0/0 was resolved.
+fn limit_jets<T: Scalar>(
+    formulas: &Formulas,
+    names: &[&str],
+    values: &[f64],
+    phi: f64,
+) -> Result<(Vec<[T; MAX_ORDER + 1]>, bool), Error> {
+    let roots: Vec<Id> = formulas.jets().iter().map(|j| j[0]).collect();
+    let mut bindings: Vec<(&str, T)> = vec![("phi", T::from(phi))];
+    bindings.extend(
+        names
+            .iter()
+            .copied()
+            .zip(values.iter().map(|&v| T::from(v))),
+    );
+    let limits = formulas
+        .graph()
+        .limit_jets(&roots, "phi", &bindings)
+        .map_err(formulas_error)?;
+    Ok((limits.jets, limits.removed))
 }
 
 fn write(out: &mut [Values], values: impl Iterator<Item = Values>) {

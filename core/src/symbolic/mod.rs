@@ -8,6 +8,7 @@
 //! - [`rules`]: the one table of derivative rules and the differentiation driver;
 //! - [`eval`] and [`bigfloat`]: evaluation in `f64`, in num-dual types, in arbitrary
 //!   precision;
+//! - [`taylor`]: truncated Taylor series, the limits at removable singularities;
 //! - [`emit`] and [`count`]: Rust tokens, formatted source, operation counts.
 //!
 //! ```
@@ -36,6 +37,7 @@ pub mod rules;
 pub mod sexpr;
 pub mod simplify;
 pub mod sums;
+pub mod taylor;
 
 pub use bigfloat::{BigArithmetic, BigReal};
 pub use count::OperationCount;
