@@ -176,10 +176,12 @@ pub enum Error {
         /// The drive position, with its unit.
         position: String,
     },
-    /// A `--set NAME=VALUE` that names no parameter of the scene or whose value cannot be
-    /// evaluated.
-    #[error("--set {setting}: {message}")]
+    /// A `--set NAME=VALUE` (or a `--sweep`) that names no parameter of the scene or whose
+    /// value cannot be evaluated.
+    #[error("{option} {setting}: {message}")]
     Setting {
+        /// The option: `--set` or `--sweep`.
+        option: &'static str,
         /// The setting as given.
         setting: String,
         /// What is wrong and what is expected.

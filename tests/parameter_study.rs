@@ -82,4 +82,6 @@ fn a_sweep_that_fails_names_the_value_and_a_set_sweep_is_refused() {
     let unknown: study::ParameterSweep = "q=1,2".parse().unwrap();
     let e = study::run_sweep("norton.toml", NORTON, &[], &unknown).unwrap_err();
     assert!(e.to_string().contains("no parameter `q`"), "{e}");
+    // Named by the option that asked for it, not as a `--set`.
+    assert!(e.to_string().starts_with("--sweep q: "), "{e}");
 }

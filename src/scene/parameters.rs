@@ -253,6 +253,7 @@ pub fn read(text: &str, source: &Source, settings: &[Setting]) -> Result<Vec<(St
         let Some(p) = pending.iter_mut().find(|p| p.name == setting.name) else {
             let known: Vec<&str> = pending.iter().map(|p| p.name).collect();
             return Err(Error::Setting {
+                option: "--set",
                 setting: format!("{}={}", setting.name, setting.value),
                 message: if known.is_empty() {
                     "the scene has no `[parameters]`".to_owned()
@@ -279,6 +280,7 @@ fn evaluate(pending: &[Pending], source: &Source) -> Result<Vec<(String, f64)>> 
             message: format!("parameter `{}`: {message}", p.name),
         },
         None => Error::Setting {
+            option: "--set",
             setting: format!("{}={}", p.name, p.text),
             message,
         },

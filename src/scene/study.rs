@@ -118,6 +118,7 @@ pub fn run_sweep(
 ) -> Result<(Scene, Report)> {
     if settings.iter().any(|s| s.name == sweep.name) {
         return Err(Error::Setting {
+            option: "--sweep",
             setting: format!("{}=…", sweep.name),
             message: format!(
                 "`{}` is both set and swept; drop the `--set` or the `--sweep`",
@@ -133,7 +134,16 @@ pub fn run_sweep(
             value: value.to_string(),
         });
         let at = |source: Error| match source {
-            // A parameter the scene does not have: the same error for every value.
+            // The swept parameter is not in the scene: the same error for every value, named
+            // by the option that asked for it.
+            Error::Setting {
+                setting, message, ..
+            } if setting.starts_with(&format!("{}=", sweep.name)) => Error::Setting {
+                option: "--sweep",
+                setting: sweep.name.clone(),
+                message,
+            },
+            // A `--set` the scene does not have.
             e @ Error::Setting { .. } => e,
             e => Error::AtParameter {
                 setting: format!("{}={value}", sweep.name),
@@ -181,6 +191,7 @@ pub fn run_sweep(
     }
     // `ParameterSweep` always holds at least one value (a list of one or a range of two).
     joined.ok_or_else(|| Error::Setting {
+        option: "--sweep",
         setting: format!("{}=", sweep.name),
         message: "the sweep has no values".to_owned(),
     })
