@@ -9,22 +9,9 @@ use mechdiff::{Error, files};
 
 use super::run::RunArgs;
 
-/// Runs a cam scene: the report on stdout, the SVAJ table and the profile as CSV if asked.
+/// Runs a cam scene: the report on stdout, the SVAJ table and the profile as CSV if asked
+/// (the options it cannot honour are refused by [`super::refuse_options`] before).
 pub fn run(args: &RunArgs) -> Result<(), Error> {
-    let not_here = [
-        ("--json", args.json.is_some()),
-        ("--jsonl", args.jsonl.is_some()),
-        ("--report", args.report.is_some()),
-    ];
-    if let Some((option, _)) = not_here.iter().find(|(_, given)| *given) {
-        return Err(Error::OptionNotApplicable {
-            option: (*option).to_owned(),
-            scene: args.scene.clone(),
-            why: "a cam scene writes its SVAJ table with --csv, its profile with --profile-csv \
-                  and its pictures with --plot"
-                .to_owned(),
-        });
-    }
     let scene = scene::cam::load(&args.scene)?;
     if let Some(path) = &args.csv {
         files::write_atomically(path, |mut out| cam::write_svaj_csv(&scene, &mut out))?;

@@ -23,7 +23,7 @@ pub struct CheckArgs {
 /// out.
 pub fn check(args: &CheckArgs) -> Result<(), Error> {
     let kind = super::scene_kind(&args.scene);
-    super::refuse_settings(kind, &args.set, &args.scene)?;
+    super::refuse_options(kind, &[("--set", !args.set.is_empty())], &args.scene)?;
     match kind {
         scene::Kind::Cam => return check_cam(args),
         scene::Kind::Rotor => return super::rotor::check(args),

@@ -17,23 +17,51 @@ pub fn scene_kind(path: &Path) -> scene::Kind {
     files::read_scene(path).map_or(scene::Kind::Linkage, |text| scene::kind(&text))
 }
 
-/// Refuses `--set` for a scene whose kind has no `[parameters]` (cams and rotors).
+/// Refuses the options a scene of this kind cannot honour, instead of ignoring them:
+/// `given` pairs each option with whether it was given. Cam and rotor scenes have no
+/// `[parameters]` (`--set`, `--sweep`) nor a drive-position table (`--json`, `--jsonl`,
+/// `--report`); only cam scenes have a profile (`--profile-csv`).
 ///
 /// # Errors
-/// [`Error::OptionNotApplicable`] naming `--set` and the scene, when settings are given.
-pub fn refuse_settings(
+/// [`Error::OptionNotApplicable`] naming the first such option and the scene.
+pub fn refuse_options(
     kind: scene::Kind,
-    settings: &[scene::parameters::Setting],
+    given: &[(&'static str, bool)],
     path: &Path,
 ) -> Result<(), Error> {
-    if settings.is_empty() || kind == scene::Kind::Linkage {
-        return Ok(());
+    let (refused, why): (&[&str], &str) = match kind {
+        scene::Kind::Linkage => (
+            &["--profile-csv"],
+            "only cam scenes have a profile; a linkage writes --csv, --jsonl, --json, --plot \
+             and --report",
+        ),
+        scene::Kind::Cam => (
+            &["--set", "--sweep", "--json", "--jsonl", "--report"],
+            "a cam scene has no `[parameters]` and writes its SVAJ table with --csv, its \
+             profile with --profile-csv and its pictures with --plot",
+        ),
+        scene::Kind::Rotor => (
+            &[
+                "--set",
+                "--sweep",
+                "--json",
+                "--jsonl",
+                "--report",
+                "--profile-csv",
+            ],
+            "a rotor scene has no `[parameters]` and no drive positions to tabulate; use --csv \
+             for its answers and --plot for its polygons",
+        ),
+    };
+    match given
+        .iter()
+        .find(|(option, is_given)| *is_given && refused.contains(option))
+    {
+        Some((option, _)) => Err(Error::OptionNotApplicable {
+            option: (*option).to_owned(),
+            scene: path.to_path_buf(),
+            why: why.to_owned(),
+        }),
+        None => Ok(()),
     }
-    Err(Error::OptionNotApplicable {
-        option: "--set".to_owned(),
-        scene: path.to_path_buf(),
-        why: "only linkage scenes have `[parameters]`; write the value into the cam or rotor \
-              scene itself"
-            .to_owned(),
-    })
 }

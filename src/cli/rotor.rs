@@ -9,23 +9,9 @@ use mechdiff::{Error, files};
 use super::check::CheckArgs;
 use super::run::RunArgs;
 
-/// Runs a rotor scene: its answers on stdout, as CSV with `--csv`, its polygons with `--plot`.
+/// Runs a rotor scene: its answers on stdout, as CSV with `--csv`, its polygons with `--plot`
+/// (the options it cannot honour are refused by [`super::refuse_options`] before).
 pub fn run(args: &RunArgs) -> Result<(), Error> {
-    let not_here = [
-        ("--json", args.json.is_some()),
-        ("--jsonl", args.jsonl.is_some()),
-        ("--report", args.report.is_some()),
-        ("--profile-csv", args.profile_csv.is_some()),
-    ];
-    if let Some((option, _)) = not_here.iter().find(|(_, given)| *given) {
-        return Err(Error::OptionNotApplicable {
-            option: (*option).to_owned(),
-            scene: args.scene.clone(),
-            why: "a rotor scene has no drive positions to tabulate; use --csv for its answers \
-                  and --plot for its polygons"
-                .to_owned(),
-        });
-    }
     let scene = rotor_scene::load(&args.scene)?;
     let lines = scene.lines()?;
     if let Some(path) = &args.csv {

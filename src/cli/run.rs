@@ -70,14 +70,15 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         }
     }
     let kind = super::scene_kind(&args.scene);
-    super::refuse_settings(kind, &args.set, &args.scene)?;
-    if args.sweep.is_some() && kind != scene::Kind::Linkage {
-        return Err(Error::OptionNotApplicable {
-            option: "--sweep".to_owned(),
-            scene: args.scene.clone(),
-            why: "only linkage scenes have `[parameters]` to sweep".to_owned(),
-        });
-    }
+    let given = [
+        ("--set", !args.set.is_empty()),
+        ("--sweep", args.sweep.is_some()),
+        ("--json", args.json.is_some()),
+        ("--jsonl", args.jsonl.is_some()),
+        ("--report", args.report.is_some()),
+        ("--profile-csv", args.profile_csv.is_some()),
+    ];
+    super::refuse_options(kind, &given, &args.scene)?;
     match kind {
         scene::Kind::Cam => return super::cam::run(args),
         scene::Kind::Rotor => return super::rotor::run(args),
