@@ -381,6 +381,26 @@ pub enum Error {
         /// What went wrong.
         message: String,
     },
+    /// A sensitivity or tolerance study (`[sensitivity]`, `[tolerances]`) that cannot give a
+    /// right answer for this scene: what is wrong and how to fix it.
+    #[error("{file}: {message}")]
+    Study {
+        /// The scene file.
+        file: String,
+        /// What is wrong and what to do.
+        message: String,
+    },
+    /// A run of a sensitivity or tolerance study failed with parameters moved from their
+    /// values.
+    #[error("with {settings} ({purpose}): {source}")]
+    Perturbed {
+        /// The parameters as moved, `NAME=VALUE, …`.
+        settings: String,
+        /// What the run was for (a derivative, a Monte-Carlo sample).
+        purpose: String,
+        /// What went wrong there.
+        source: Box<Error>,
+    },
     /// A command-line option that does not apply to this kind of scene.
     #[error("{option} does not apply to {scene}: {why}")]
     OptionNotApplicable {

@@ -24,6 +24,7 @@ pub mod import;
 pub mod pictures;
 pub mod report;
 pub mod scene;
+pub mod sensitivity;
 pub mod stream;
 
 pub use error::{Error, Result};

@@ -36,7 +36,14 @@ pub fn refuse_options(
              and --report",
         ),
         scene::Kind::Cam => (
-            &["--set", "--sweep", "--json", "--jsonl", "--report"],
+            &[
+                "--set",
+                "--sweep",
+                "--json",
+                "--jsonl",
+                "--report",
+                "--monte-carlo",
+            ],
             "a cam scene has no `[parameters]` and writes its SVAJ table with --csv, its \
              profile with --profile-csv and its pictures with --plot",
         ),
@@ -48,6 +55,7 @@ pub fn refuse_options(
                 "--jsonl",
                 "--report",
                 "--profile-csv",
+                "--monte-carlo",
             ],
             "a rotor scene has no `[parameters]` and no drive positions to tabulate; use --csv \
              for its answers and --plot for its polygons",

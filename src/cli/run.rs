@@ -6,7 +6,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use mechdiff::scene::{self, table};
-use mechdiff::{Error, files, pictures, stream};
+use mechdiff::{Error, files, pictures, sensitivity, stream};
 
 /// Arguments of `mechdiff run`.
 #[derive(Debug, Args)]
@@ -47,6 +47,13 @@ pub struct RunArgs {
     /// Write the animated HTML report of the run to this file (self-contained).
     #[arg(long, value_name = "FILE")]
     pub report: Option<PathBuf>,
+    /// Check the scene's `[tolerances]` study by N runs at parameters drawn uniformly from
+    /// their ± tolerances; prints the largest deviation sampled beside the worst case.
+    #[arg(long = "monte-carlo", value_name = "N")]
+    pub monte_carlo: Option<usize>,
+    /// The seed of `--monte-carlo`'s generator (the same seed gives the same samples).
+    #[arg(long, value_name = "S", default_value_t = 1)]
+    pub seed: u64,
     /// Cam scenes: write the cam profile (pitch and profile points, normals) to this CSV.
     #[arg(long, value_name = "FILE")]
     pub profile_csv: Option<PathBuf>,
@@ -77,6 +84,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         ("--jsonl", args.jsonl.is_some()),
         ("--report", args.report.is_some()),
         ("--profile-csv", args.profile_csv.is_some()),
+        ("--monte-carlo", args.monte_carlo.is_some()),
     ];
     super::refuse_options(kind, &given, &args.scene)?;
     match kind {
@@ -84,9 +92,32 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         scene::Kind::Rotor => return super::rotor::run(args),
         scene::Kind::Linkage => {}
     }
+    let text = files::read_scene(&args.scene)?;
+    let file = args.scene.display().to_string();
+    let study_asked = sensitivity::requested(&text) || args.monte_carlo.is_some();
+    let mut study = None;
     let (scene, report) = match &args.sweep {
+        Some(_) if study_asked => {
+            return Err(Error::OptionNotApplicable {
+                option: "--sweep".to_owned(),
+                scene: args.scene.clone(),
+                why: "the scene has a sensitivity or tolerance study (`[sensitivity]`, \
+                      `[tolerances]`, `--monte-carlo`), which runs at one set of parameter \
+                      values; run it once per value with `--set`"
+                    .to_owned(),
+            });
+        }
+        None if study_asked => {
+            let options = sensitivity::Options {
+                monte_carlo: args.monte_carlo,
+                seed: args.seed,
+            };
+            let (scene, report, found) = sensitivity::run(&file, &text, &args.set, &options)?;
+            study = found;
+            (scene, report)
+        }
         None => {
-            let scene = scene::load_with(&args.scene, &args.set)?;
+            let scene = scene::parse_with(&file, &text, &args.set)?;
             let in_memory = scene.dynamics.is_some()
                 || scene.balancing.is_some()
                 || args.json.is_some()
@@ -98,11 +129,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
             let report = scene::run(&scene)?;
             (scene, report)
         }
-        Some(sweep) => {
-            let text = files::read_scene(&args.scene)?;
-            let file = args.scene.display().to_string();
-            scene::study::run_sweep(&file, &text, &args.set, sweep)?
-        }
+        Some(sweep) => scene::study::run_sweep(&file, &text, &args.set, sweep)?,
     };
     for warning in &report.warnings {
         eprintln!("warning: {}: {warning}", scene.file);
@@ -124,7 +151,11 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
     }
     let stdout = std::io::stdout();
     let mut out = BufWriter::new(stdout.lock());
-    match table::write_table(&scene, &report, &mut out).and_then(|()| out.flush()) {
+    let written = table::write_table(&scene, &report, &mut out).and_then(|()| match &study {
+        Some(study) => sensitivity::write_summary(study, &mut out),
+        None => Ok(()),
+    });
+    match written.and_then(|()| out.flush()) {
         // The reader went away (`mechdiff run s.toml | head`): not an error of ours.
         Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
         result => result.map_err(|source| Error::Write {

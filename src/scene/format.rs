@@ -65,6 +65,10 @@ pub struct SceneFile {
     pub balancing: Option<Spanned<super::balancing::BalancingDef>>,
     /// What the pictures show (see [`super::plot`]).
     pub plot: Option<Spanned<super::plot::PlotDef>>,
+    /// Derivative columns with respect to parameters; read by [`crate::sensitivity`].
+    pub sensitivity: Option<de::IgnoredAny>,
+    /// ± tolerances of parameters for a tolerance study; read by [`crate::sensitivity`].
+    pub tolerances: Option<de::IgnoredAny>,
 }
 
 /// `[units]`: every field has an SI default.

@@ -205,6 +205,24 @@ struct Pending<'a> {
 /// formula that cannot be read or uses an unknown name (with its column); a cycle of
 /// parameters; a `--set` naming no parameter of the file.
 pub fn read(text: &str, source: &Source, settings: &[Setting]) -> Result<Vec<(String, f64)>> {
+    Ok(read_with_own_units(text, source, settings)?
+        .into_iter()
+        .map(|(name, value, _)| (name, value))
+        .collect())
+}
+
+/// As [`read`], each parameter also with its value in its own unit (the unit of
+/// `{ value = 6, unit = "in" }`, the unit a `--set` value is in): `(name, value in the
+/// file's unit, value in its own unit)`; the two are equal for a parameter without a unit of
+/// its own.
+///
+/// # Errors
+/// As [`read`].
+pub fn read_with_own_units(
+    text: &str,
+    source: &Source,
+    settings: &[Setting],
+) -> Result<Vec<(String, f64, f64)>> {
     let first: ParametersOnly = toml::from_str(text).map_err(|e| source.syntax_error(&e))?;
     let file_units = super::resolve::units(&first.units);
     let table = first
@@ -273,7 +291,7 @@ pub fn read(text: &str, source: &Source, settings: &[Setting]) -> Result<Vec<(St
 }
 
 /// Evaluates the parameters in the order of their dependencies (Kahn's algorithm).
-fn evaluate(pending: &[Pending], source: &Source) -> Result<Vec<(String, f64)>> {
+fn evaluate(pending: &[Pending], source: &Source) -> Result<Vec<(String, f64, f64)>> {
     let fail = |p: &Pending, message: String| match &p.span {
         Some(span) => Error::Invalid {
             location: source.location(source.inside_formula(span.clone(), &message)),
@@ -309,13 +327,14 @@ fn evaluate(pending: &[Pending], source: &Source) -> Result<Vec<(String, f64)>> 
         }
     }
     let mut ready: Vec<usize> = (0..pending.len()).filter(|&i| waiting[i] == 0).collect();
-    let mut values: Vec<(String, f64)> = Vec::with_capacity(pending.len());
+    let mut values: Vec<(String, f64, f64)> = Vec::with_capacity(pending.len());
     let mut known: HashMap<String, f64> = HashMap::with_capacity(pending.len());
     while let Some(i) = ready.pop() {
         let p = &pending[i];
-        let value = formula(&p.text, &known).map_err(|e| fail(p, e))? * p.scale;
+        let own = formula(&p.text, &known).map_err(|e| fail(p, e))?;
+        let value = own * p.scale;
         known.insert(p.name.to_owned(), value);
-        values.push((p.name.to_owned(), value));
+        values.push((p.name.to_owned(), value, own));
         for &k in &used_by[i] {
             waiting[k] -= 1;
             if waiting[k] == 0 {
