@@ -142,7 +142,7 @@ pub fn run(
         });
     }
     let nominal = report.clone();
-    let mut runner = Runner {
+    let runner = Runner {
         file,
         text,
         settings,
@@ -276,7 +276,7 @@ struct Runner<'a> {
 
 impl Runner<'_> {
     /// The report with `moved` applied after the command line's settings.
-    fn run_with(&mut self, moved: &[Setting], purpose: &str) -> Result<Report> {
+    fn run_with(&self, moved: &[Setting], purpose: &str) -> Result<Report> {
         let mut with = self.settings.to_vec();
         with.extend_from_slice(moved);
         let wrap = |source: Error| Error::Perturbed {
@@ -314,7 +314,7 @@ impl Runner<'_> {
     }
 
     /// The derivatives of every column with respect to `p` (see the module's doc).
-    fn derivative(&mut self, p: &Parameter) -> Result<Derivative> {
+    fn derivative(&self, p: &Parameter) -> Result<Derivative> {
         let mut step = if p.value != 0.0 {
             RELATIVE_STEP * p.value.abs()
         } else {
@@ -334,7 +334,7 @@ impl Runner<'_> {
     }
 
     /// Central differences with steps `h`, `h/2`, `h/4`, extrapolated twice.
-    fn extrapolated(&mut self, p: &Parameter, h: f64) -> Result<Derivative> {
+    fn extrapolated(&self, p: &Parameter, h: f64) -> Result<Derivative> {
         let purpose = format!("for the derivative with respect to `{}`", p.name);
         let mut differences: Vec<Vec<Vec<f64>>> = Vec::with_capacity(3);
         for level in 0..3 {

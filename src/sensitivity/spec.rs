@@ -104,7 +104,8 @@ pub fn read(
              number was"
                 .to_owned()
         } else {
-            let names: Vec<&str> = parameters.iter().map(|(n, _, _)| n.as_str()).collect();
+            let mut names: Vec<&str> = parameters.iter().map(|(n, _, _)| n.as_str()).collect();
+            names.sort_unstable();
             format!("its parameters are: {}", names.join(", "))
         }
     };

@@ -13,6 +13,7 @@
 
 use rand::rngs::Xoshiro256PlusPlus;
 use rand::{RngExt, SeedableRng};
+use rayon::prelude::*;
 
 use crate::error::Result;
 use crate::scene::parameters::Setting;
@@ -56,37 +57,57 @@ pub struct MonteCarlo {
 
 /// Runs `samples` scenes with the toleranced `parameters` drawn uniformly from their ± boxes
 /// (the others at their values) and returns, per column of `studied`, the largest deviation
-/// from `nominal`. `run` runs the scene with the settings given.
+/// from `nominal`. `run` runs the scene with the settings given. The samples are drawn in
+/// order from the seeded generator and run in parallel (rayon's pool): the result does not
+/// depend on the number of threads.
 ///
 /// # Errors
-/// The first error of a sample's run (from `run`).
+/// The error of the first sample (in sample order) whose run fails (from `run`).
 pub fn monte_carlo(
     parameters: &[Parameter],
     studied: &[usize],
     nominal: &Report,
     samples: usize,
     seed: u64,
-    mut run: impl FnMut(&[Setting], &str) -> Result<Report>,
+    run: impl Fn(&[Setting], &str) -> Result<Report> + Sync,
 ) -> Result<MonteCarlo> {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
-    let mut max_deviation = vec![0.0_f64; studied.len()];
-    for sample in 0..samples {
-        let settings: Vec<Setting> = parameters
-            .iter()
-            .filter_map(|p| {
-                let t = p.tolerance?;
-                let u: f64 = rng.random_range(-1.0..=1.0);
-                Some(Setting {
-                    name: p.name.clone(),
-                    value: format!("{:e}", p.value + u * t),
+    let drawn: Vec<Vec<Setting>> = (0..samples)
+        .map(|_| {
+            parameters
+                .iter()
+                .filter_map(|p| {
+                    let t = p.tolerance?;
+                    let u: f64 = rng.random_range(-1.0..=1.0);
+                    Some(Setting {
+                        name: p.name.clone(),
+                        value: format!("{:e}", p.value + u * t),
+                    })
                 })
-            })
-            .collect();
-        let report = run(&settings, &format!("Monte-Carlo sample {}", sample + 1))?;
-        for (m, &k) in max_deviation.iter_mut().zip(studied) {
-            for (row, base) in report.rows.iter().zip(&nominal.rows) {
-                *m = m.max((row[k] - base[k]).abs());
-            }
+                .collect()
+        })
+        .collect();
+    let deviations: Vec<Result<Vec<f64>>> = drawn
+        .par_iter()
+        .enumerate()
+        .map(|(sample, settings)| {
+            let report = run(settings, &format!("Monte-Carlo sample {}", sample + 1))?;
+            Ok(studied
+                .iter()
+                .map(|&k| {
+                    report
+                        .rows
+                        .iter()
+                        .zip(&nominal.rows)
+                        .fold(0.0_f64, |m, (row, base)| m.max((row[k] - base[k]).abs()))
+                })
+                .collect())
+        })
+        .collect();
+    let mut max_deviation = vec![0.0_f64; studied.len()];
+    for sample in deviations {
+        for (m, d) in max_deviation.iter_mut().zip(sample?) {
+            *m = m.max(d);
         }
     }
     Ok(MonteCarlo {

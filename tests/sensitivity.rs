@@ -1,0 +1,394 @@
+//! Issue 14, item 5: sensitivities `d(COLUMN)/d(PARAMETER)` and the tolerance study.
+//!
+//! References are independent of the method under test: the closed forms of Norton's
+//! four-bar and of the offset slider-crank, differentiated by the symbolic engine and
+//! evaluated in 256-bit arithmetic (or, for the slider-crank, by hand); plain central
+//! differences of the parameter show the h² convergence the extrapolation builds on.
+
+use mechdiff::Error;
+use mechdiff::core::symbolic::{Graph, Id};
+use mechdiff::scene::{self, parameters::Setting};
+use mechdiff::sensitivity::{self, Options, Study};
+
+/// Norton's four-bar from its lengths (the scene shipped in `scenes/`).
+const NORTON: &str = include_str!("../scenes/norton_four_bar.toml");
+
+/// The values of Norton's parameters in the scene (m).
+const LENGTHS: [(&str, f64); 4] = [("a", 0.86), ("b", 1.85), ("c", 0.86), ("d", 2.22)];
+
+fn norton_with(sections: &str) -> String {
+    format!("{NORTON}\n{sections}")
+}
+
+/// Runs a study of `text` and returns the report and the study.
+fn study(text: &str, options: &Options) -> (scene::run::Report, Option<Study>) {
+    let (_, report, study) = sensitivity::run("t.toml", text, &[], options).unwrap();
+    (report, study)
+}
+
+/// ψ of Norton's four-bar in closed form (O2 at the origin, O4 at (d, 0), B on the left of
+/// A → O4, as the scene constructs it), in the symbolic engine: returns ψ, ∂ψ/∂a, ∂ψ′/∂a.
+fn norton_closed_form(graph: &mut Graph) -> [Id; 3] {
+    let x = "(d - a*cos(phi))";
+    let y = "(0 - a*sin(phi))";
+    let dist = format!("sqrt({x}^2 + {y}^2)");
+    let along = format!("((b^2 - c^2 + {dist}^2)/(2*{dist}))");
+    let across = format!("sqrt(b^2 - {along}^2)");
+    let bx = format!("(a*cos(phi) + {along}*{x}/{dist} - {across}*{y}/{dist})");
+    let by = format!("(a*sin(phi) + {along}*{y}/{dist} + {across}*{x}/{dist})");
+    let psi = graph.parse_infix(&format!("atan2({by}, {bx} - d)")).unwrap();
+    let dpsi_da = graph.derivative(psi, "a");
+    let dpsi_dphi = graph.derivative(psi, "phi");
+    let mixed = graph.derivative(dpsi_dphi, "a");
+    [psi, dpsi_da, mixed]
+}
+
+/// The closed form's values in 256-bit arithmetic at drive position `phi` (rad), the
+/// lengths bound to the exact decimal values of their `f64`s.
+fn evaluate_big(graph: &Graph, ids: &[Id], phi: f64) -> Vec<f64> {
+    let text = |v: f64| format!("{v:.60e}");
+    let mut bindings: Vec<(&str, String)> =
+        LENGTHS.iter().map(|(n, v)| (*n, text(*v))).collect();
+    bindings.push(("phi", text(phi)));
+    let bindings: Vec<(&str, &str)> = bindings.iter().map(|(n, v)| (*n, v.as_str())).collect();
+    graph
+        .evaluate_big(ids, &bindings, 256)
+        .unwrap()
+        .iter()
+        .map(|v| v.to_f64())
+        .collect()
+}
+
+/// The largest |x| of a column.
+fn largest(values: &[f64]) -> f64 {
+    values.iter().fold(0.0, |m: f64, v| m.max(v.abs()))
+}
+
+#[test]
+fn norton_derivatives_match_the_symbolic_derivative_in_256_bits_to_1e_10() {
+    let text = norton_with("[sensitivity]\ncolumns = [\"d(psi)/d(a)\", \"d(psi')/d(a)\"]\n");
+    let (report, _) = study(&text, &Options::default());
+    let mut graph = Graph::new();
+    let ids = norton_closed_form(&mut graph);
+    let phi = report.column("phi").unwrap();
+    let psi = report.column("psi").unwrap();
+    let got = [
+        report.column("d(psi)/d(a)").unwrap(),
+        report.column("d(psi')/d(a)").unwrap(),
+    ];
+    let reference: Vec<Vec<f64>> = phi.iter().map(|&p| evaluate_big(&graph, &ids, p)).collect();
+    for (row, r) in reference.iter().enumerate() {
+        // The closed form is the scene's mechanism: ψ agrees to the solver's convergence
+        // (1e-12 rad; angles compared modulo whole turns).
+        let turns = ((psi[row] - r[0]) / std::f64::consts::TAU).round();
+        let off = psi[row] - r[0] - turns * std::f64::consts::TAU;
+        assert!(off.abs() < 1e-12, "psi at row {row}: {} vs {}", psi[row], r[0]);
+    }
+    for (k, got) in got.iter().enumerate() {
+        let want: Vec<f64> = reference.iter().map(|r| r[k + 1]).collect();
+        let scale = largest(&want);
+        for (row, (g, w)) in got.iter().zip(&want).enumerate() {
+            // 1e-10 of the column's largest value (the issue's bound): the extrapolated
+            // differences are O(h⁶) with h = 1 % of a, plus ε·|ψ|/h ≈ 1e-13 of rounding.
+            assert!(
+                (g - w).abs() <= 1e-10 * scale,
+                "column {k}, row {row}: {g} vs {w} (error {:e} of {scale})",
+                (g - w).abs()
+            );
+        }
+    }
+}
+
+#[test]
+fn central_differences_of_the_parameter_converge_as_h_squared_to_the_sensitivity() {
+    let text = norton_with("[sensitivity]\ncolumns = [\"d(psi)/d(a)\"]\n");
+    let (report, _) = study(&text, &Options::default());
+    let ours = report.column("d(psi)/d(a)").unwrap();
+    let mut graph = Graph::new();
+    let ids = norton_closed_form(&mut graph);
+    let reference: Vec<f64> = report
+        .column("phi")
+        .unwrap()
+        .iter()
+        .map(|&p| evaluate_big(&graph, &ids, p)[1])
+        .collect();
+    let psi_at = |a: f64| {
+        let set = [Setting {
+            name: "a".to_owned(),
+            value: format!("{a:e}"),
+        }];
+        let scene = scene::parse_with("t.toml", &text, &set).unwrap();
+        scene::run(&scene).unwrap().column("psi").unwrap()
+    };
+    let a = 0.86;
+    let mut errors = Vec::new();
+    for h in [8e-3, 4e-3, 2e-3] {
+        let (up, down) = (psi_at(a + h), psi_at(a - h));
+        let central: Vec<f64> = up
+            .iter()
+            .zip(&down)
+            .map(|(u, d)| (u - d) / ((a + h) - (a - h)))
+            .collect();
+        let error = central
+            .iter()
+            .zip(&reference)
+            .fold(0.0, |m: f64, (c, r)| m.max((c - r).abs()));
+        let to_ours = central
+            .iter()
+            .zip(&ours)
+            .fold(0.0, |m: f64, (c, o)| m.max((c - o).abs()));
+        // Our value is the limit the differences approach: they differ from it as they
+        // differ from the reference, to 1e-6 of their error.
+        assert!((to_ours - error).abs() <= 1e-6 * error, "h = {h}: {to_ours} vs {error}");
+        errors.push(error);
+    }
+    for pair in errors.windows(2) {
+        // Halving h divides the error by 4 (h²), to (h/a)² ≈ 1e-4 and the rounding
+        // ε·|ψ|/h ≈ 1e-12 ≪ the error ≈ 1e-4 rad/m: the ratio is 4 within 0.1.
+        let ratio = pair[0] / pair[1];
+        assert!((ratio - 4.0).abs() < 0.1, "ratio {ratio} in {errors:?}");
+    }
+    // The extrapolation is far ahead of the smallest plain difference.
+    let ours_error = ours
+        .iter()
+        .zip(&reference)
+        .fold(0.0, |m: f64, (o, r)| m.max((o - r).abs()));
+    assert!(ours_error < 1e-6 * errors[2], "{ours_error} vs {errors:?}");
+}
+
+/// An offset slider-crank built from its lengths r, l, e, with a slider of mass m3.
+const SLIDER_CRANK: &str = r#"
+title = "offset slider-crank from its lengths"
+[parameters]
+r = 0.1
+l = 0.4
+e = -0.012
+m3 = 2.0
+[points]
+O = [0, 0]
+A = { from = "O", length = "r", angle = "pi/2" }
+G0 = [0, "e"]
+G1 = [1, "e"]
+B = { circle = "A", radius = "l", line = ["G0", "G1"], along = "forward" }
+[links]
+ground = ["O", "G0", "G1"]
+crank = ["O", "A"]
+rod = ["A", "B"]
+slider = ["B"]
+[joints]
+O = { type = "revolute", at = "O", links = ["ground", "crank"] }
+A = { type = "revolute", at = "A", links = ["crank", "rod"] }
+B = { type = "revolute", at = "B", links = ["rod", "slider"] }
+guide = { type = "prismatic", line = ["G0", "G1"], point = "B", links = ["ground", "slider"] }
+[drive]
+joint = "O"
+line = ["O", "A"]
+speed = 50
+[sweep]
+from = 0
+to = 6
+step = 0.5
+[[output]]
+name = "s"
+slider = "guide"
+quantities = ["position", "velocity_coefficient", "acceleration_coefficient"]
+[masses]
+slider = { mass = "m3", center = "B" }
+[[dynamics]]
+output = "drive_torque"
+[sensitivity]
+columns = ["d(s)/d(r)", "d(s)/d(e)", "d(M_drive)/d(m3)"]
+"#;
+
+#[test]
+fn slider_crank_sensitivities_match_the_hand_derived_formulas() {
+    let (report, _) = study(SLIDER_CRANK, &Options::default());
+    let (r, l, e, omega) = (0.1_f64, 0.4_f64, -0.012_f64, 50.0_f64);
+    let phi = report.column("phi").unwrap();
+    let s = report.column("s").unwrap();
+    let (s1, s2) = (report.column("s'").unwrap(), report.column("s''").unwrap());
+    // s = r cos φ + √(l² − (r sin φ − e)²): ∂s/∂r = cos φ − (r sin φ − e) sin φ / √…,
+    // ∂s/∂e = (r sin φ − e) / √…
+    let root = |p: f64| (l * l - (r * p.sin() - e).powi(2)).sqrt();
+    let want_s: Vec<f64> = phi.iter().map(|&p| r * p.cos() + root(p)).collect();
+    let want_r: Vec<f64> = phi
+        .iter()
+        .map(|&p| p.cos() - (r * p.sin() - e) * p.sin() / root(p))
+        .collect();
+    let want_e: Vec<f64> = phi.iter().map(|&p| (r * p.sin() - e) / root(p)).collect();
+    // A slider alone, no gravity: power balance M_drive·ω = m3·ṡ·s̈ = m3·ω³·s′·s″, so
+    // ∂M_drive/∂m3 = ω²·s′·s″ (M_drive is linear in m3), from the run's own exact s′, s″.
+    let want_m: Vec<f64> = s1
+        .iter()
+        .zip(&s2)
+        .map(|(a, b)| omega * omega * a * b)
+        .collect();
+    for (row, (got, want)) in s.iter().zip(&want_s).enumerate() {
+        // The closed form is the scene's mechanism: 1e-13 m (a few roundings of 0.5 m).
+        assert!((got - want).abs() < 1e-13, "s at row {row}: {got} vs {want}");
+    }
+    for (name, want) in [
+        ("d(s)/d(r)", want_r),
+        ("d(s)/d(e)", want_e),
+        ("d(M_drive)/d(m3)", want_m),
+    ] {
+        let got = report.column(name).unwrap();
+        let scale = largest(&want);
+        for (row, (g, w)) in got.iter().zip(&want).enumerate() {
+            // 1e-10 of the column's largest value, as for the four-bar (the formulas are
+            // f64, a few roundings: far below it).
+            assert!(
+                (g - w).abs() <= 1e-10 * scale,
+                "{name}, row {row}: {g} vs {w}"
+            );
+        }
+    }
+}
+
+#[test]
+fn the_worst_case_bounds_a_monte_carlo_run_of_10_000_samples() {
+    // Three drive positions keep the 10⁴ runs short; tolerances of 0.5 mm on 0.86–2.22 m.
+    let text = norton_with(
+        "[tolerances]\ncolumns = [\"psi\", \"psi'\"]\n\
+         parameters = { a = 0.0005, b = 0.0005, c = 0.0005, d = 0.0005 }\n",
+    )
+    .replace("to = 100\nstep = 10", "to = 100\nstep = 50");
+    let options = Options {
+        monte_carlo: Some(10_000),
+        seed: 7,
+    };
+    let (report, study) = study(&text, &options);
+    let study = study.unwrap();
+    let mc = study.monte_carlo.as_ref().unwrap();
+    assert_eq!(mc.samples, 10_000);
+    for (k, c) in study.columns.iter().enumerate() {
+        let (worst, row) = c.worst_case;
+        let sampled = mc.max_deviation[k];
+        // The second-order remainder, measured: the deviation at the worst corner of the
+        // box (each parameter moved by its tolerance in the direction that increases the
+        // column), against the first-order worst case there.
+        let corner: Vec<Setting> = LENGTHS
+            .iter()
+            .map(|(name, value)| {
+                // The direction from a run with the parameter moved up.
+                let up = run_with(&text, name, value + 0.0005, &c.column.name)[row];
+                let nominal = report.column(&c.column.name).unwrap()[row];
+                let sign = if up > nominal { 1.0 } else { -1.0 };
+                Setting {
+                    name: (*name).to_owned(),
+                    value: format!("{:e}", value + sign * 0.0005),
+                }
+            })
+            .collect();
+        let at_corner = {
+            let scene = scene::parse_with("t.toml", &text, &corner).unwrap();
+            scene::run(&scene).unwrap().column(&c.column.name).unwrap()[row]
+        };
+        let nominal = report.column(&c.column.name).unwrap()[row];
+        let remainder = ((at_corner - nominal).abs() - worst).abs();
+        // The remainder is second order: below 1 % of the worst case for 0.5 mm on ≈ 1 m.
+        assert!(remainder < 1e-2 * worst, "{}: {remainder} vs {worst}", c.column.name);
+        // The worst case bounds every sample, within that remainder.
+        assert!(
+            sampled <= worst + remainder,
+            "{}: sampled {sampled} > worst case {worst} + {remainder}",
+            c.column.name
+        );
+        // And the samples explore the box: with 4 uniform parameters and 10⁴ samples the
+        // largest deviation sampled is well above half the worst case.
+        assert!(sampled > 0.5 * worst, "{}: {sampled} vs {worst}", c.column.name);
+        // The root-sum-square lies between the largest term and the worst case.
+        assert!(c.rss.0 <= worst && c.rss.0 > 0.25 * worst);
+    }
+}
+
+/// The column `column` of the scene `text` with parameter `name` set to `value`.
+fn run_with(text: &str, name: &str, value: f64, column: &str) -> Vec<f64> {
+    let set = [Setting {
+        name: name.to_owned(),
+        value: format!("{value:e}"),
+    }];
+    let scene = scene::parse_with("t.toml", text, &set).unwrap();
+    scene::run(&scene).unwrap().column(column).unwrap()
+}
+
+/// The error of a study of `sections` appended to Norton's scene, and the 1-based line of
+/// the appended text that holds `marker`.
+fn error_of(sections: &str, marker: &str, options: &Options) -> (Error, usize) {
+    let text = norton_with(sections);
+    let line = text
+        .lines()
+        .position(|l| l.contains(marker))
+        .expect("the marker is in the text")
+        + 1;
+    let e = sensitivity::run("t.toml", &text, &[], options).unwrap_err();
+    (e, line)
+}
+
+#[test]
+fn bad_studies_are_refused_at_their_place_with_what_to_write() {
+    let plain = Options::default();
+    let cases = [
+        (
+            "[sensitivity]\ncolumns = [\"d(psi)/d(zz)\"]\n",
+            "d(psi)/d(zz)",
+            "the scene has no parameter `zz`; its parameters are: a, b, c, d, theta",
+        ),
+        (
+            "[sensitivity]\ncolumns = [\"d(omega)/d(a)\"]\n",
+            "d(omega)/d(a)",
+            "the table has no column `omega`",
+        ),
+        (
+            "[sensitivity]\ncolumns = [\"dpsi/da\"]\n",
+            "dpsi/da",
+            "is not a derivative; write \"d(COLUMN)/d(PARAMETER)\"",
+        ),
+        (
+            "[tolerances]\ncolumns = [\"psi\"]\nparameters = { a = 0.001, speed = 0.1 }\n",
+            "speed",
+            "`speed` is not a parameter of the scene",
+        ),
+        (
+            "[tolerances]\ncolumns = [\"psi\"]\nparameters = { a = -0.001 }\n",
+            "-0.001",
+            "a tolerance is the half-width of ± in the parameter's unit: a positive finite \
+             number (write 0.001)",
+        ),
+        (
+            "[tolerances]\ncolumns = [\"psy\"]\nparameters = { a = 0.001 }\n",
+            "psy",
+            "the table has no column `psy`",
+        ),
+    ];
+    for (sections, marker, message) in cases {
+        let (e, line) = error_of(sections, marker, &plain);
+        let text = e.to_string();
+        assert!(matches!(e, Error::Invalid { .. }), "{text}");
+        assert!(text.starts_with(&format!("t.toml:{line}:")), "{text}");
+        assert!(text.contains(message), "{text}");
+    }
+    // `--monte-carlo` needs a tolerance study.
+    let options = Options {
+        monte_carlo: Some(10),
+        seed: 1,
+    };
+    let (e, _) = error_of("[sensitivity]\ncolumns = [\"d(psi)/d(a)\"]\n", "d(psi)", &options);
+    assert!(e.to_string().contains("`--monte-carlo` checks a tolerance study"), "{e}");
+    // A misspelt key lists the keys expected.
+    let (e, line) = error_of("[tolerances]\ncolumn = [\"psi\"]\n", "column =", &plain);
+    assert!(e.to_string().starts_with(&format!("t.toml:{line}:")), "{e}");
+    assert!(e.to_string().contains("columns"), "{e}");
+}
+
+#[test]
+fn sweep_positions_that_move_with_the_parameter_are_refused() {
+    // `to` follows `a`: the moved runs have other drive positions, where a sensitivity at
+    // fixed positions has no meaning; the error says so and names `a`.
+    let text = norton_with("[sensitivity]\ncolumns = [\"d(psi)/d(a)\"]\n")
+        .replace("to = 100\n", "to = \"100*a/0.86\"\n");
+    let e = sensitivity::run("t.toml", &text, &[], &Options::default()).unwrap_err();
+    assert!(matches!(e, Error::Study { .. }), "{e}");
+    let e = e.to_string();
+    assert!(e.contains("with a moved") && e.contains("without a"), "{e}");
+}
