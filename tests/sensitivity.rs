@@ -5,6 +5,8 @@
 //! evaluated in 256-bit arithmetic (or, for the slider-crank, by hand); plain central
 //! differences of the parameter show the h² convergence the extrapolation builds on.
 
+mod common;
+
 use mechdiff::Error;
 use mechdiff::core::symbolic::{Graph, Id};
 use mechdiff::scene::{self, parameters::Setting};
@@ -36,7 +38,9 @@ fn norton_closed_form(graph: &mut Graph) -> [Id; 3] {
     let across = format!("sqrt(b^2 - {along}^2)");
     let bx = format!("(a*cos(phi) + {along}*{x}/{dist} - {across}*{y}/{dist})");
     let by = format!("(a*sin(phi) + {along}*{y}/{dist} + {across}*{x}/{dist})");
-    let psi = graph.parse_infix(&format!("atan2({by}, {bx} - d)")).unwrap();
+    let psi = graph
+        .parse_infix(&format!("atan2({by}, {bx} - d)"))
+        .unwrap();
     let dpsi_da = graph.derivative(psi, "a");
     let dpsi_dphi = graph.derivative(psi, "phi");
     let mixed = graph.derivative(dpsi_dphi, "a");
@@ -47,8 +51,7 @@ fn norton_closed_form(graph: &mut Graph) -> [Id; 3] {
 /// lengths bound to the exact decimal values of their `f64`s.
 fn evaluate_big(graph: &Graph, ids: &[Id], phi: f64) -> Vec<f64> {
     let text = |v: f64| format!("{v:.60e}");
-    let mut bindings: Vec<(&str, String)> =
-        LENGTHS.iter().map(|(n, v)| (*n, text(*v))).collect();
+    let mut bindings: Vec<(&str, String)> = LENGTHS.iter().map(|(n, v)| (*n, text(*v))).collect();
     bindings.push(("phi", text(phi)));
     let bindings: Vec<(&str, &str)> = bindings.iter().map(|(n, v)| (*n, v.as_str())).collect();
     graph
@@ -82,7 +85,12 @@ fn norton_derivatives_match_the_symbolic_derivative_in_256_bits_to_1e_10() {
         // (1e-12 rad; angles compared modulo whole turns).
         let turns = ((psi[row] - r[0]) / std::f64::consts::TAU).round();
         let off = psi[row] - r[0] - turns * std::f64::consts::TAU;
-        assert!(off.abs() < 1e-12, "psi at row {row}: {} vs {}", psi[row], r[0]);
+        assert!(
+            off.abs() < 1e-12,
+            "psi at row {row}: {} vs {}",
+            psi[row],
+            r[0]
+        );
     }
     for (k, got) in got.iter().enumerate() {
         let want: Vec<f64> = reference.iter().map(|r| r[k + 1]).collect();
@@ -139,7 +147,10 @@ fn central_differences_of_the_parameter_converge_as_h_squared_to_the_sensitivity
             .fold(0.0, |m: f64, (c, o)| m.max((c - o).abs()));
         // Our value is the limit the differences approach: they differ from it as they
         // differ from the reference, to 1e-6 of their error.
-        assert!((to_ours - error).abs() <= 1e-6 * error, "h = {h}: {to_ours} vs {error}");
+        assert!(
+            (to_ours - error).abs() <= 1e-6 * error,
+            "h = {h}: {to_ours} vs {error}"
+        );
         errors.push(error);
     }
     for pair in errors.windows(2) {
@@ -225,7 +236,10 @@ fn slider_crank_sensitivities_match_the_hand_derived_formulas() {
         .collect();
     for (row, (got, want)) in s.iter().zip(&want_s).enumerate() {
         // The closed form is the scene's mechanism: 1e-13 m (a few roundings of 0.5 m).
-        assert!((got - want).abs() < 1e-13, "s at row {row}: {got} vs {want}");
+        assert!(
+            (got - want).abs() < 1e-13,
+            "s at row {row}: {got} vs {want}"
+        );
     }
     for (name, want) in [
         ("d(s)/d(r)", want_r),
@@ -287,7 +301,11 @@ fn the_worst_case_bounds_a_monte_carlo_run_of_10_000_samples() {
         let nominal = report.column(&c.column.name).unwrap()[row];
         let remainder = ((at_corner - nominal).abs() - worst).abs();
         // The remainder is second order: below 1 % of the worst case for 0.5 mm on ≈ 1 m.
-        assert!(remainder < 1e-2 * worst, "{}: {remainder} vs {worst}", c.column.name);
+        assert!(
+            remainder < 1e-2 * worst,
+            "{}: {remainder} vs {worst}",
+            c.column.name
+        );
         // The worst case bounds every sample, within that remainder.
         assert!(
             sampled <= worst + remainder,
@@ -296,7 +314,11 @@ fn the_worst_case_bounds_a_monte_carlo_run_of_10_000_samples() {
         );
         // And the samples explore the box: with 4 uniform parameters and 10⁴ samples the
         // largest deviation sampled is well above half the worst case.
-        assert!(sampled > 0.5 * worst, "{}: {sampled} vs {worst}", c.column.name);
+        assert!(
+            sampled > 0.5 * worst,
+            "{}: {sampled} vs {worst}",
+            c.column.name
+        );
         // The root-sum-square lies between the largest term and the worst case.
         assert!(c.rss.0 <= worst && c.rss.0 > 0.25 * worst);
     }
@@ -346,7 +368,7 @@ fn bad_studies_are_refused_at_their_place_with_what_to_write() {
         ),
         (
             "[tolerances]\ncolumns = [\"psi\"]\nparameters = { a = 0.001, speed = 0.1 }\n",
-            "speed",
+            "speed = 0.1",
             "`speed` is not a parameter of the scene",
         ),
         (
@@ -373,8 +395,16 @@ fn bad_studies_are_refused_at_their_place_with_what_to_write() {
         monte_carlo: Some(10),
         seed: 1,
     };
-    let (e, _) = error_of("[sensitivity]\ncolumns = [\"d(psi)/d(a)\"]\n", "d(psi)", &options);
-    assert!(e.to_string().contains("`--monte-carlo` checks a tolerance study"), "{e}");
+    let (e, _) = error_of(
+        "[sensitivity]\ncolumns = [\"d(psi)/d(a)\"]\n",
+        "d(psi)",
+        &options,
+    );
+    assert!(
+        e.to_string()
+            .contains("`--monte-carlo` checks a tolerance study"),
+        "{e}"
+    );
     // A misspelt key lists the keys expected.
     let (e, line) = error_of("[tolerances]\ncolumn = [\"psi\"]\n", "column =", &plain);
     assert!(e.to_string().starts_with(&format!("t.toml:{line}:")), "{e}");
@@ -391,4 +421,42 @@ fn sweep_positions_that_move_with_the_parameter_are_refused() {
     assert!(matches!(e, Error::Study { .. }), "{e}");
     let e = e.to_string();
     assert!(e.contains("with a moved") && e.contains("without a"), "{e}");
+}
+
+#[test]
+fn the_cli_prints_the_study_and_refuses_it_with_a_parameter_sweep() {
+    let path = common::temp_file("norton_tolerances.toml");
+    let text = norton_with(
+        "[sensitivity]\ncolumns = [\"d(psi)/d(a)\"]\n\
+         [tolerances]\ncolumns = [\"psi\"]\nparameters = { a = 0.0005, d = 0.0005 }\n",
+    );
+    std::fs::write(&path, text).unwrap();
+    let scene = path.to_str().unwrap();
+    let out = common::mechdiff(&["run", scene, "--monte-carlo", "40", "--seed", "3"]);
+    let stdout = common::stdout(&out);
+    assert!(out.status.success(), "{}", common::stderr(&out));
+    assert!(
+        stdout.contains("d(psi)/d(a)") && stdout.contains("[deg per a]"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("wc(psi)") && stdout.contains("rss(psi)"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("tolerance study (first order, a ± 0.0005, d ± 0.0005):"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("Monte Carlo (40 samples, seed 3)"),
+        "{stdout}"
+    );
+    let out = common::mechdiff(&["run", scene, "--sweep", "b=1.8,1.9"]);
+    assert!(!out.status.success());
+    assert!(
+        common::stderr(&out).contains("--sweep does not apply"),
+        "{}",
+        common::stderr(&out)
+    );
+    std::fs::remove_file(&path).unwrap();
 }

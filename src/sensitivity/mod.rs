@@ -241,10 +241,10 @@ pub fn run(
 
 /// The largest value and its index (the first, if several).
 fn largest(values: &[f64]) -> (f64, usize) {
-    values
-        .iter()
-        .enumerate()
-        .fold((0.0, 0), |(m, at), (i, &v)| if v > m { (v, i) } else { (m, at) })
+    values.iter().enumerate().fold(
+        (0.0, 0),
+        |(m, at), (i, &v)| if v > m { (v, i) } else { (m, at) },
+    )
 }
 
 /// Appends a column with its values, one per row.
@@ -439,7 +439,10 @@ pub fn write_summary(study: &Study, out: &mut impl Write) -> io::Result<()> {
         if let Some(mc) = &study.monte_carlo {
             let sampled = mc.max_deviation[i];
             let share = if c.worst_case.0 > 0.0 {
-                format!("{:.1} % of the worst case", 100.0 * sampled / c.worst_case.0)
+                format!(
+                    "{:.1} % of the worst case",
+                    100.0 * sampled / c.worst_case.0
+                )
             } else {
                 "the worst case is 0".to_owned()
             };

@@ -88,9 +88,8 @@ pub fn read(
     columns: &[Column],
 ) -> Result<Option<Spec>> {
     let bindings: Vec<(String, f64)> = parameters.iter().map(|(n, v, _)| (n.clone(), *v)).collect();
-    let only: StudyOnly =
-        crate::scene::parameters::with_scope(bindings, || toml::from_str(text))
-            .map_err(|e| source.syntax_error(&e))?;
+    let only: StudyOnly = crate::scene::parameters::with_scope(bindings, || toml::from_str(text))
+        .map_err(|e| source.syntax_error(&e))?;
     if only.sensitivity.is_none() && only.tolerances.is_none() {
         return Ok(None);
     }
