@@ -95,6 +95,11 @@ fn norton_derivatives_match_the_symbolic_derivative_in_256_bits_to_1e_10() {
     for (k, got) in got.iter().enumerate() {
         let want: Vec<f64> = reference.iter().map(|r| r[k + 1]).collect();
         let scale = largest(&want);
+        let worst = got
+            .iter()
+            .zip(&want)
+            .fold(0.0, |m: f64, (g, w)| m.max((g - w).abs()));
+        eprintln!("column {k}: largest error {worst:e} of {scale:e}");
         for (row, (g, w)) in got.iter().zip(&want).enumerate() {
             // 1e-10 of the column's largest value (the bound): the extrapolated
             // differences are O(h⁶) with h = 1 % of a, plus ε·|ψ|/h ≈ 1e-13 of rounding.
@@ -153,6 +158,7 @@ fn central_differences_of_the_parameter_converge_as_h_squared_to_the_sensitivity
         );
         errors.push(error);
     }
+    eprintln!("central differences, h = 8e-3, 4e-3, 2e-3 m: errors {errors:?}");
     for pair in errors.windows(2) {
         // Halving h divides the error by 4 (h²), to (h/a)² ≈ 1e-4 and the rounding
         // ε·|ψ|/h ≈ 1e-12 ≪ the error ≈ 1e-4 rad/m: the ratio is 4 within 0.1.
@@ -300,6 +306,10 @@ fn the_worst_case_bounds_a_monte_carlo_run_of_10_000_samples() {
         };
         let nominal = report.column(&c.column.name).unwrap()[row];
         let remainder = ((at_corner - nominal).abs() - worst).abs();
+        eprintln!(
+            "{}: worst case {worst:e}, rss {:e}, sampled {sampled:e}, remainder {remainder:e}",
+            c.column.name, c.rss.0
+        );
         // The remainder is second order: below 1 % of the worst case for 0.5 mm on ≈ 1 m.
         assert!(
             remainder < 1e-2 * worst,
