@@ -33,7 +33,7 @@
 //! points, the compiled constraint equations, the outputs' link-local data, the masses)
 //! are `f64` from the moment the file is read, and only the drive position is carried as a
 //! dual number through the solver. An exact derivative with respect to a parameter needs
-//! that data generic over the scalar (see CHANGELOG, "Known gaps").
+//! that data generic over the scalar (see CHANGELOG, issue 14 item 5, "Known gap").
 //!
 //! Cost: six runs of the scene per parameter differentiated, and one per Monte-Carlo sample.
 
