@@ -8,12 +8,14 @@ use mechdiff::Error;
 use mechdiff::accuracy::{self, Timing, formula, whitworth};
 use mechdiff::mechanisms::Whitworth;
 use mechdiff::mechanisms::whitworth::Parameters;
+use mechdiff::scene::Kind;
 
 /// Arguments of `mechdiff accuracy`.
 #[derive(Debug, Args)]
 pub struct AccuracyArgs {
-    /// `whitworth` (the reference machine), a formula scene (see scenes/hard/), or a
-    /// mechanism scene whose loops all have closed forms (scenes/four_bar.toml, …).
+    /// `whitworth` (the reference machine), a formula scene (see scenes/hard/), a mechanism
+    /// scene (scenes/four_bar.toml, a cam-driven one too), a cam scene (scenes/cams/) or a
+    /// rotor scene (scenes/rotor_balancing.toml).
     pub subject: String,
     /// For `whitworth`: the crank ratio λ = l1/l0 (l0 kept at 0.4 m), in (0, 1).
     #[arg(long)]
@@ -28,6 +30,10 @@ pub struct AccuracyArgs {
     /// Timed repeats per method (the median and spread are over these).
     #[arg(long, default_value_t = 15)]
     pub repeats: usize,
+    /// Measure at most this many drive positions of the sweep, evenly spread (every k-th,
+    /// the last kept): a quick check of a long sweep.
+    #[arg(long, value_name = "N")]
+    pub positions: Option<usize>,
 }
 
 /// Measures and prints (or writes) the report.
@@ -46,24 +52,31 @@ pub fn accuracy(args: &AccuracyArgs) -> Result<(), Error> {
             reason: e.to_string(),
         })?;
         let linkage = whitworth::linkage(&shaper)?;
-        whitworth::case(&shaper, &linkage)?.measure(&timing)?
+        thin(args.positions, whitworth::case(&shaper, &linkage)?)?.measure(&timing)?
     } else {
         let path = PathBuf::from(&args.subject);
         let text = mechdiff::files::read_scene(&path)?;
         if formula::is_formula_scene(&text) {
             let scene = formula::parse(&text, &args.subject)?;
-            formula::case(&scene, &args.subject)?.measure(&timing)?
-        } else if mechdiff::scene::kind(&text) != mechdiff::scene::Kind::Linkage {
-            return Err(Error::Reference {
-                what: args.subject.clone(),
-                reason: "cam and rotor scenes are not supported by `mechdiff accuracy`; it takes \
-                         `whitworth`, formula scenes (see scenes/hard/) and mechanism scenes"
-                    .into(),
-            });
+            thin(args.positions, formula::case(&scene, &args.subject)?)?.measure(&timing)?
         } else {
-            let scene = mechdiff::scene::parse(&args.subject, &text)?;
-            let mechanism = mechdiff::scene::build::mechanism(&scene)?;
-            accuracy::scene::case(&scene, &mechanism)?.measure(&timing)?
+            match mechdiff::scene::kind(&text) {
+                Kind::Cam => {
+                    let scene = mechdiff::scene::cam::parse(&args.subject, &text)?;
+                    thin(args.positions, accuracy::cam::case(&scene)?)?.measure(&timing)?
+                }
+                Kind::Rotor => {
+                    return Err(Error::Reference {
+                        what: args.subject.clone(),
+                        reason: "TODO rotor".into(),
+                    });
+                }
+                Kind::Linkage => {
+                    let scene = mechdiff::scene::parse(&args.subject, &text)?;
+                    let mechanism = mechdiff::scene::build::mechanism(&scene)?;
+                    thin(args.positions, accuracy::scene::case(&scene, &mechanism)?)?.measure(&timing)?
+                }
+            }
         }
     };
     write(args, &report)
@@ -99,4 +112,12 @@ fn angle_path(path: &std::path::Path) -> PathBuf {
         .file_stem()
         .map_or_else(|| "accuracy".into(), |s| s.to_string_lossy().into_owned());
     path.with_file_name(format!("{stem}-angle.svg"))
+}
+
+/// `case` thinned to `positions` drive positions (`--positions`), or whole.
+fn thin(positions: Option<usize>, case: accuracy::Case<'_>) -> Result<accuracy::Case<'_>, Error> {
+    match positions {
+        Some(n) => case.thinned(n),
+        None => Ok(case),
+    }
 }
