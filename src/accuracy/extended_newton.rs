@@ -15,9 +15,10 @@
 //! about cond(J)·ε per step, and the residual is computed in double-double, so the fixed
 //! point is the double-double solution). Started from the solver's `f64` jet, a few
 //! iterations reach the double-double level (≈ 1e-31 relative); the iteration stops when the
-//! correction is below that, and reports a failure (with the drive position) if it does
-//! not get there — near a toggle, where J is nearly singular, rather than return a
-//! reference it does not have.
+//! correction is below that, or when it stops falling below 1e-26 (near a toggle the
+//! attainable accuracy is cond(Φ_q) times the double-double's rounding), and reports a
+//! failure otherwise — where J is nearly singular — rather than return a reference it does
+//! not have.
 
 use mechdiff_core::geometry::Equations;
 use mechdiff_core::num_dual::Dual3;
@@ -35,6 +36,12 @@ const MAX_ITERATIONS: usize = 30;
 /// The correction, relative to each derivative order's largest coordinate, below which the
 /// iteration has converged: a few units of the double-double's last place (2⁻¹⁰⁴ ≈ 5e-32).
 const CONVERGED: f64 = 1e-30;
+
+/// Where Φ_q is ill-conditioned the corrections stop falling at about cond(Φ_q) times the
+/// double-double's rounding; a correction that no longer halves is accepted if it is below
+/// this (still ten digits beyond `f64`'s 1e-16, so the reference measures an `f64` method's
+/// error to its last bits), and is a failure above it.
+const STAGNATED: f64 = 1e-26;
 
 /// The pose jet solving Φ(q, φ) = 0 at the drive position `drive` (a jet), refined in
 /// double-double from `start` (the `f64` solver's jet at `drive.re`, the derivatives in the
@@ -59,7 +66,7 @@ pub fn solve(equations: &Equations, start: &[Jet], drive: Jet) -> Result<Vec<Jet
     let mut q = start.to_vec();
     let zero = Jet::from(0.0);
     let mut residual = vec![zero; n];
-    let mut last = f64::NAN;
+    let mut last = f64::INFINITY;
     for _ in 0..MAX_ITERATIONS {
         equations.evaluate(&q, drive, &mut residual);
         // The correction of each derivative order: J⁻¹ applied to that part of Φ.
@@ -89,7 +96,7 @@ pub fn solve(equations: &Equations, start: &[Jet], drive: Jet) -> Result<Vec<Jet
             x.v2 -= DoubleDouble::new(corrections[2][i]);
             x.v3 -= DoubleDouble::new(corrections[3][i]);
         }
-        if converged {
+        if converged || (worst > 0.5 * last && worst <= STAGNATED) {
             return Ok(q);
         }
         last = worst;

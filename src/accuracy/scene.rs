@@ -293,10 +293,13 @@ pub fn case<'a>(scene: &'a Scene, mechanism: &'a Mechanism) -> Result<Case<'a>, 
     let all_closed = loops.iter().all(|&c| c);
     let equations = (!all_closed).then(|| Equations::new(mechanism));
     let mut reference = Vec::with_capacity(positions.len());
+    // The tracker at each sweep position: finite differences start from the nearest one.
+    let mut trackers = Vec::with_capacity(positions.len());
     for &phi in &positions {
         tracker
             .move_to(drive.joint(phi))
             .map_err(|e| crate::scene::run::solver_error(scene, e))?;
+        trackers.push(tracker.clone());
         let q = reference_pose(&tracker, equations.as_ref(), &drive, phi).map_err(|e| {
             refuse(format!(
                 "no double-double reference at drive position {}: {e}",
@@ -376,7 +379,7 @@ pub fn case<'a>(scene: &'a Scene, mechanism: &'a Mechanism) -> Result<Case<'a>, 
         Ok(method) => methods.push(method),
         Err(reason) => notes.push(format!("symbolic (run-time evaluator): not measured: {reason}")),
     }
-    let differences = RefCell::new(tracker);
+    let differences = RefCell::new((tracker, usize::MAX));
     let (f_outputs, f_targets, f_positions) = (outputs.clone(), targets, positions_rc);
     Ok(Case {
         title: format!(
@@ -394,12 +397,20 @@ pub fn case<'a>(scene: &'a Scene, mechanism: &'a Mechanism) -> Result<Case<'a>, 
         notes,
         methods,
         positions_f64: Box::new(move |phi, out| {
-            let mut tracker = differences.borrow_mut();
+            let mut working = differences.borrow_mut();
+            let (tracker, from) = &mut *working;
+            // A stencil's samples start from the tracker at the nearest sweep position, so
+            // that the walk between samples is short (a long walk back may not get past a
+            // limit position the sweep went round).
+            let nearest = nearest(&f_positions, phi);
+            if *from != nearest {
+                *tracker = trackers[nearest].clone();
+                *from = nearest;
+            }
             tracker
                 .move_to(drive.joint(phi))
                 .map_err(failed("finite differences", phi))?;
             let q = tracker.coordinates();
-            let nearest = nearest(&f_positions, phi);
             for (k, v) in f_outputs.values(q).into_iter().enumerate() {
                 out[k] = if f_outputs.angle[k] {
                     near(v, f_targets[nearest][k])
