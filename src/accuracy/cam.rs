@@ -45,6 +45,11 @@ fn positions(scene: &CamScene) -> Vec<f64> {
         .collect()
 }
 
+/// An angle in degrees for the notes, rounded to 1e-9° (120°, not 119.99999999999999°).
+fn degrees(radians: f64) -> f64 {
+    (radians.to_degrees() * 1e9).round() / 1e9
+}
+
 /// A jet of any order as the report's values (NaN above its order).
 fn values<const N: usize>(jet: Jet<N>, out: &mut Values) {
     *out = [f64::NAN; MAX_ORDER + 1];
@@ -63,14 +68,22 @@ where
     })
 }
 
-/// The accuracy case of a cam scene (see the module's documentation).
+/// The accuracy case of a cam scene (see the module's documentation), at no more than
+/// `count` of the table's positions (every k-th, the last kept: [`super::thin`]) if given.
 ///
 /// # Errors
 /// [`Error::Reference`] if the reference is not finite at a position (a formula segment
 /// that does not evaluate there), naming the cam angle.
-pub fn case(scene: &CamScene) -> Result<Case<'_>, Error> {
+pub fn case(scene: &CamScene, count: Option<usize>) -> Result<Case<'_>, Error> {
     let program = &scene.mechanism.program;
-    let positions = positions(scene);
+    let mut positions = positions(scene);
+    let all = positions.len();
+    if let Some(count) = count {
+        positions = super::thin(all, count.max(1))
+            .into_iter()
+            .map(|i| positions[i])
+            .collect();
+    }
     let one = DoubleDouble::new(1.0);
     let zero = DoubleDouble::new(0.0);
     let mut reference = Vec::with_capacity(positions.len());
@@ -114,8 +127,8 @@ pub fn case(scene: &CamScene) -> Result<Case<'_>, Error> {
         .filter_map(|(theta, jump)| {
             let order = (*jump)?;
             Some(format!(
-                "{:.6}° ({} jumps)",
-                theta.to_degrees(),
+                "{}° ({} jumps)",
+                degrees(*theta),
                 ["s", "s′", "s″", "s‴"][order]
             ))
         })
@@ -142,10 +155,11 @@ pub fn case(scene: &CamScene) -> Result<Case<'_>, Error> {
     Ok(Case {
         title: format!(
             "{}: follower displacement s [{unit}] and s′, s″, s‴ per rad of cam angle, every \
-             {:.6}° of the turn, {} positions",
+             {}° of the turn, {} positions{}",
             scene.title.as_deref().unwrap_or(&scene.file),
-            scene.step.to_degrees(),
-            positions.len()
+            degrees(scene.step),
+            positions.len(),
+            super::scene::thinned_from(all, positions.len())
         ),
         outputs: vec![format!("s [{unit}]")],
         positions,

@@ -51,27 +51,31 @@ pub fn method<'a>(
     let mut out = vec![0.0; program.outputs()];
     let (angle, targets, positions) = (angle.to_vec(), targets.clone(), positions.clone());
     let width = MAX_ORDER + 1;
-    Ok(Method::exact(NAME, MAX_ORDER, move |phi, values: &mut [Values]| {
-        program.evaluate(phi, &mut registers, &mut out);
-        let jets = match code.read(&out) {
-            Ok(jets) => jets,
-            Err((l, failure)) => {
-                return Err(guard_error(scene, phi)?.unwrap_or_else(|| Error::Reference {
+    Ok(Method::exact(
+        NAME,
+        MAX_ORDER,
+        move |phi, values: &mut [Values]| {
+            program.evaluate(phi, &mut registers, &mut out);
+            let jets = match code.read(&out) {
+                Ok(jets) => jets,
+                Err((l, failure)) => {
+                    return Err(guard_error(scene, phi)?.unwrap_or_else(|| Error::Reference {
                     what: scene.file.clone(),
                     reason: format!(
                         "{NAME}: the guard of loop {l} fails at φ = {phi} rad ({failure:?}) \
                          where the solver's closed forms do not"
                     ),
                 }));
+                }
+            };
+            let i = nearest(&positions, phi);
+            for (k, (value, jet)) in values.iter_mut().zip(jets.chunks(width)).enumerate() {
+                *value = [jet[0], jet[1], jet[2], jet[3]];
+                if angle[k] {
+                    value[0] = near(jet[0], targets[i][k]);
+                }
             }
-        };
-        let i = nearest(&positions, phi);
-        for (k, (value, jet)) in values.iter_mut().zip(jets.chunks(width)).enumerate() {
-            *value = [jet[0], jet[1], jet[2], jet[3]];
-            if angle[k] {
-                value[0] = near(jet[0], targets[i][k]);
-            }
-        }
-        Ok(())
-    }))
+            Ok(())
+        },
+    ))
 }

@@ -40,6 +40,7 @@ pub mod formula;
 pub mod plot;
 pub mod reference;
 mod report;
+pub mod rotor;
 pub mod scene;
 pub mod whitworth;
 
@@ -142,6 +143,23 @@ pub struct Case<'a> {
     pub notes: Vec<String>,
 }
 
+/// The indices of every k-th of `n` drive positions, the last always kept, k the smallest
+/// that leaves at most `count` (all of them if `n ≤ count`; the last alone if `count` is 0
+/// or 1): what `--positions` measures.
+pub fn thin(n: usize, count: usize) -> Vec<usize> {
+    if n <= count {
+        return (0..n).collect();
+    }
+    if count <= 1 {
+        return (n.checked_sub(1)).into_iter().collect();
+    }
+    // Every k-th from the first, plus the last: at most ⌊(n − 1)/k⌋ + 1 ≤ count, and the
+    // last adds one only when (n − 1)/k is not a whole number (then the first part has at
+    // most count − 1).
+    let k = (n - 1).div_ceil(count - 1);
+    (0..n).filter(|&i| i % k == 0 || i + 1 == n).collect()
+}
+
 /// How long to time each method.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Timing {
@@ -185,19 +203,10 @@ impl Case<'_> {
                 reason: "--positions must be at least 1".into(),
             });
         }
-        let n = self.positions.len();
-        if n <= count {
+        if self.positions.len() <= count {
             return Ok(self);
         }
-        // Every k-th from the first, plus the last: at most ⌈(n − 1)/k⌉ + 1 ≤ count.
-        let k = if count == 1 {
-            n
-        } else {
-            (n - 1).div_ceil(count - 1)
-        };
-        let keep: Vec<usize> = (0..n)
-            .filter(|&i| (i % k == 0 || i + 1 == n) && (count > 1 || i + 1 == n))
-            .collect();
+        let keep = thin(self.positions.len(), count);
         fn pick<T: Clone>(values: &[T], keep: &[usize]) -> Vec<T> {
             if values.is_empty() {
                 return Vec::new();

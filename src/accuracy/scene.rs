@@ -34,12 +34,12 @@
 //! method's value is moved by whole turns only where it is more than half a turn away).
 
 use std::cell::RefCell;
-use std::rc::Rc;
 use std::f64::consts::TAU;
+use std::rc::Rc;
 
 use mechdiff_core::Jet;
 use mechdiff_core::cams::{ContinuityReport, Side};
-use mechdiff_core::geometry::{Equations, Mechanism, Solver, Tracker};
+use mechdiff_core::geometry::{Equations, GROUND, Mechanism, Solver, Tracker};
 use mechdiff_core::num_dual::{Dual3, Dual3_64};
 
 use super::double_double::DoubleDouble;
@@ -158,9 +158,7 @@ impl<'s> Drive<'s> {
         let x = Dual3::new(DoubleDouble::new(phi), one, zero, zero);
         match self.cam {
             None => x,
-            Some(c) => {
-                c.joint.program().displacement(x, Side::Right) + self.scene.drive.at_sketch
-            }
+            Some(c) => c.joint.program().displacement(x, Side::Right) + self.scene.drive.at_sketch,
         }
     }
 
@@ -169,8 +167,15 @@ impl<'s> Drive<'s> {
         match self.cam {
             None => jet,
             Some(c) => {
-                let j = c.joint.compose(phi, &Jet::new(jet.re, [jet.v1, jet.v2, jet.v3]));
-                Dual3_64::new(j.value, j.derivatives[0], j.derivatives[1], j.derivatives[2])
+                let j = c
+                    .joint
+                    .compose(phi, &Jet::new(jet.re, [jet.v1, jet.v2, jet.v3]));
+                Dual3_64::new(
+                    j.value,
+                    j.derivatives[0],
+                    j.derivatives[1],
+                    j.derivatives[2],
+                )
             }
         }
     }
@@ -219,7 +224,12 @@ fn reference_pose(
         .map(|j| {
             let d = drive.compose(
                 phi,
-                Dual3_64::new(j.value, j.derivatives[0], j.derivatives[1], j.derivatives[2]),
+                Dual3_64::new(
+                    j.value,
+                    j.derivatives[0],
+                    j.derivatives[1],
+                    j.derivatives[2],
+                ),
             );
             extended_newton::lift(d.re, [d.v1, d.v2, d.v3])
         })
@@ -260,6 +270,19 @@ fn reference_at(
 /// sweep cannot be walked (for a sweep of an output's values, `[sweep] of`, `mechdiff run`'s
 /// errors).
 pub fn case<'a>(scene: &'a Scene, mechanism: &'a Mechanism) -> Result<Case<'a>, Error> {
+    case_at(scene, mechanism, None)
+}
+
+/// [`case`] at no more than `count` of the sweep's drive positions (every k-th, the last
+/// kept: [`super::thin`]), chosen before the reference is computed; all of them for `None`.
+///
+/// # Errors
+/// As [`case`].
+pub fn case_at<'a>(
+    scene: &'a Scene,
+    mechanism: &'a Mechanism,
+    count: Option<usize>,
+) -> Result<Case<'a>, Error> {
     let refuse = |reason: String| Error::Reference {
         what: scene.file.clone(),
         reason,
@@ -278,6 +301,13 @@ pub fn case<'a>(scene: &'a Scene, mechanism: &'a Mechanism) -> Result<Case<'a>, 
     };
     positions.sort_by(f64::total_cmp);
     positions.dedup();
+    let all = positions.len();
+    if let Some(count) = count {
+        positions = super::thin(all, count.max(1))
+            .into_iter()
+            .map(|i| positions[i])
+            .collect();
+    }
     let outputs = Outputs::new(scene, mechanism)?;
     if outputs.names.is_empty() {
         return Err(refuse(
@@ -377,16 +407,19 @@ pub fn case<'a>(scene: &'a Scene, mechanism: &'a Mechanism) -> Result<Case<'a>, 
     methods.push(geometry("geometry Newton + implicit", false, &shared));
     match super::evaluator::method(scene, &shared.outputs.angle, &targets, &positions_rc) {
         Ok(method) => methods.push(method),
-        Err(reason) => notes.push(format!("symbolic (run-time evaluator): not measured: {reason}")),
+        Err(reason) => notes.push(format!(
+            "symbolic (run-time evaluator): not measured: {reason}"
+        )),
     }
     let differences = RefCell::new((tracker, usize::MAX));
     let (f_outputs, f_targets, f_positions) = (outputs.clone(), targets, positions_rc);
     Ok(Case {
         title: format!(
-            "{}: {} over the scene's sweep, {} positions",
+            "{}: {} over the scene's sweep, {} positions{}",
             scene.title.as_deref().unwrap_or(&scene.file),
             outputs.names.join(", "),
-            positions.len()
+            positions.len(),
+            thinned_from(all, positions.len())
         ),
         outputs: outputs.names.clone(),
         positions,
@@ -421,6 +454,54 @@ pub fn case<'a>(scene: &'a Scene, mechanism: &'a Mechanism) -> Result<Case<'a>, 
             Ok(())
         }),
     })
+}
+
+/// Gives a scene without `[[output]]` (a balancing or dynamics scene) one point output per
+/// point of its moving links (every point not on the ground), so that the report measures
+/// the motion its forces come from; returns the note the report prints, `None` for a scene
+/// that has outputs (left as it is).
+pub fn default_outputs(scene: &mut Scene) -> Option<String> {
+    if !scene.outputs.is_empty() {
+        return None;
+    }
+    let on_ground = |point: &String| {
+        scene
+            .links
+            .iter()
+            .any(|l| l.name == GROUND && l.points.contains(point))
+    };
+    let mut points: Vec<String> = Vec::new();
+    for link in scene.links.iter().filter(|l| l.name != GROUND) {
+        for point in &link.points {
+            if !on_ground(point) && !points.contains(point) {
+                points.push(point.clone());
+            }
+        }
+    }
+    let location = scene.drive.location.clone();
+    scene.outputs = points
+        .iter()
+        .map(|p| crate::scene::model::Output {
+            name: p.clone(),
+            kind: OutputKind::Point(p.clone()),
+            quantities: vec![crate::scene::format::Quantity::Position],
+            dead_positions: false,
+            location: location.clone(),
+        })
+        .collect();
+    Some(format!(
+        "the scene has no [[output]]: measured every point of its moving links ({})",
+        points.join(", ")
+    ))
+}
+
+/// " of N (every k-th, --positions)" when the sweep was thinned.
+pub(super) fn thinned_from(all: usize, kept: usize) -> String {
+    if kept < all {
+        format!(" of {all} (every k-th, --positions)")
+    } else {
+        String::new()
+    }
 }
 
 /// The index of the sweep position nearest to `phi`.

@@ -63,18 +63,19 @@ pub fn accuracy(args: &AccuracyArgs) -> Result<(), Error> {
             match mechdiff::scene::kind(&text) {
                 Kind::Cam => {
                     let scene = mechdiff::scene::cam::parse(&args.subject, &text)?;
-                    thin(args.positions, accuracy::cam::case(&scene)?)?.measure(&timing)?
+                    accuracy::cam::case(&scene, args.positions)?.measure(&timing)?
                 }
                 Kind::Rotor => {
-                    return Err(Error::Reference {
-                        what: args.subject.clone(),
-                        reason: "TODO rotor".into(),
-                    });
+                    let scene = mechdiff::scene::balancing::rotor_scene::load(&path)?;
+                    return write_rotor(args, &accuracy::rotor::report(&scene)?);
                 }
                 Kind::Linkage => {
-                    let scene = mechdiff::scene::parse(&args.subject, &text)?;
+                    let mut scene = mechdiff::scene::parse(&args.subject, &text)?;
+                    let defaulted = accuracy::scene::default_outputs(&mut scene);
                     let mechanism = mechdiff::scene::build::mechanism(&scene)?;
-                    thin(args.positions, accuracy::scene::case(&scene, &mechanism)?)?.measure(&timing)?
+                    let mut case = accuracy::scene::case_at(&scene, &mechanism, args.positions)?;
+                    case.notes.extend(defaulted);
+                    case.measure(&timing)?
                 }
             }
         }
@@ -82,20 +83,40 @@ pub fn accuracy(args: &AccuracyArgs) -> Result<(), Error> {
     write(args, &report)
 }
 
+/// Writes `text` to `path`: to a temporary name, renamed when complete.
+fn save(path: &PathBuf, text: &str) -> Result<(), Error> {
+    let temporary = path.with_extension("partial");
+    std::fs::write(&temporary, text)
+        .and_then(|()| std::fs::rename(&temporary, path))
+        .map_err(|source| Error::Write {
+            path: path.clone(),
+            source,
+        })
+}
+
 fn write(args: &AccuracyArgs, report: &accuracy::Report) -> Result<(), Error> {
-    let save = |path: &PathBuf, text: &str| -> Result<(), Error> {
-        // Written to a temporary name and renamed when complete.
-        let temporary = path.with_extension("partial");
-        std::fs::write(&temporary, text)
-            .and_then(|()| std::fs::rename(&temporary, path))
-            .map_err(|source| Error::Write {
-                path: path.clone(),
-                source,
-            })
-    };
     if let Some(path) = &args.svg {
         save(path, &accuracy::plot::pareto_svg(report, 900, 600)?)?;
         accuracy::plot::along_sweep(report).write_svg(&angle_path(path))?;
+    }
+    match &args.csv {
+        Some(path) => save(path, &report.csv()),
+        None => {
+            print!("{}", report.table());
+            Ok(())
+        }
+    }
+}
+
+/// A rotor's report: the table, or `--csv`. `--svg` and `--positions` are refused (no
+/// sweep to plot or thin).
+fn write_rotor(args: &AccuracyArgs, report: &accuracy::rotor::RotorReport) -> Result<(), Error> {
+    if args.svg.is_some() || args.positions.is_some() {
+        return Err(Error::Reference {
+            what: args.subject.clone(),
+            reason: "a rotor scene has no drive sweep: --svg (error against time and angle)                      and --positions do not apply; its report is the table or --csv"
+                .into(),
+        });
     }
     match &args.csv {
         Some(path) => save(path, &report.csv()),
