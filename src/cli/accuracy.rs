@@ -114,7 +114,8 @@ fn write_rotor(args: &AccuracyArgs, report: &accuracy::rotor::RotorReport) -> Re
     if args.svg.is_some() || args.positions.is_some() {
         return Err(Error::Reference {
             what: args.subject.clone(),
-            reason: "a rotor scene has no drive sweep: --svg (error against time and angle)                      and --positions do not apply; its report is the table or --csv"
+            reason: "a rotor scene has no drive sweep: --svg (error against time and angle) \
+                     and --positions do not apply; its report is the table or --csv"
                 .into(),
         });
     }
