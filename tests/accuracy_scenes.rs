@@ -324,14 +324,15 @@ fn every_scene_runs_and_names_every_non_finite_value() {
     }
 }
 
-/// The scaled error every exact method of a mechanism, cam-driven or cam scene meets: 1e-13.
-/// These cases have no computed condition number (the sketch's coordinates are hundreds of
-/// inputs), so the bound is a measured one: the exact methods' largest scaled error over the
-/// full sweeps of every such scene is 8.4e-15 (≈ 38 ε, the symbolic evaluator's ‴ on the
-/// Norton four-bar; BENCHMARKS.md); 1e-13 leaves a factor 12 for other platforms' libm and
-/// stays 1e3 below the best central difference of any scene (≥ 1e-10), so a derivative that
-/// lost its exactness fails.
-const MEASURED_BOUND: f64 = 1e-13;
+/// The scaled error every exact method of a mechanism, cam-driven or cam scene meets: 1e-12.
+/// These cases have no computed condition number (a scene's inputs are its sketch's
+/// coordinates), so the bound is a measured one: over the full sweeps of every such scene
+/// the exact methods' largest scaled error is 7.7e-14 (2.5 digits lost: the run-time
+/// evaluator's ‴ at the start of scenes/rack_slotted_link_travel.toml, where the slotted
+/// link is steep; README, `mechdiff accuracy`, gives the command), 8.4e-15 on the others; 1e-12 leaves a
+/// factor 13 for other platforms' libm, while a derivative that lost its exactness (the best
+/// finite difference's ″ is above 1e-6 on every one of these scenes) fails.
+const MEASURED_BOUND: f64 = 1e-12;
 
 /// Every exact method on every scene of `scenes/` outside `scenes/hard/` (whose bounds, and
 /// the methods that miss them by design, are asserted case by case in tests/hard_cases.rs),

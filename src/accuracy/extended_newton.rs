@@ -164,12 +164,11 @@ mod tests {
         let q = solve(&eq, &start, drive).unwrap();
         let expected = [[0.0; 4], [0.0; 4], [phi, 1.0, 0.0, 0.0]];
         for (x, e) in q.iter().zip(expected) {
-            for k in 0..4 {
+            for (k, expected) in e.into_iter().enumerate() {
                 let p = part(x, k);
                 assert!(
-                    ((p.hi - e[k]) + p.lo).abs() <= 1e-30,
-                    "{k}: {p:?} vs {}",
-                    e[k]
+                    ((p.hi - expected) + p.lo).abs() <= 1e-30,
+                    "{k}: {p:?} vs {expected}"
                 );
             }
         }
