@@ -77,8 +77,8 @@ fn formula_scene_writes_csv_and_svg() {
 }
 
 /// A mechanism scene (points, links, joints) whose loops all have closed forms is measured:
-/// both geometry paths and the finite differences, against the double-double reference
-/// named in the title.
+/// both geometry paths, the symbolic run-time evaluator and the finite differences, against
+/// the double-double reference named under the title.
 #[test]
 fn mechanism_scene_is_measured() {
     let output = mechdiff(&["accuracy", "scenes/slider_crank.toml", "--repeats", "1"]);
@@ -88,6 +88,7 @@ fn mechanism_scene_is_measured() {
         "double-double",
         "geometry closed form",
         "geometry Newton + implicit",
+        "symbolic (run-time evaluator)",
         "central h=",
         "Richardson: best h",
     ] {

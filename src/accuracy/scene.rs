@@ -347,8 +347,8 @@ pub fn case_at<'a>(
         reference.push(row);
     }
     let mut notes = vec![if all_closed {
-        "reference: the solver's closed forms in Dual3<DoubleDouble> at the exact f64 drive \
-         positions"
+        "reference: the solver's closed forms in double-double (Dual3<DoubleDouble>) at the \
+         exact f64 drive positions"
             .to_owned()
     } else {
         let newton: Vec<String> = tracker
