@@ -32,8 +32,8 @@ pub struct AccuracyArgs {
     pub repeats: usize,
     /// Measure at most this many drive positions of the sweep, evenly spread (every k-th,
     /// the last kept): a quick check of a long sweep.
-    #[arg(long, value_name = "N")]
-    pub positions: Option<usize>,
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    pub positions: Option<u32>,
 }
 
 /// Measures and prints (or writes) the report.
@@ -42,6 +42,7 @@ pub fn accuracy(args: &AccuracyArgs) -> Result<(), Error> {
         repeats: args.repeats,
         ..Timing::default()
     };
+    let positions = args.positions.map(|n| n as usize);
     let report = if args.subject == "whitworth" {
         let mut parameters = Parameters::reference();
         if let Some(lambda) = args.lambda {
@@ -52,18 +53,18 @@ pub fn accuracy(args: &AccuracyArgs) -> Result<(), Error> {
             reason: e.to_string(),
         })?;
         let linkage = whitworth::linkage(&shaper)?;
-        thin(args.positions, whitworth::case(&shaper, &linkage)?)?.measure(&timing)?
+        thin(positions, whitworth::case(&shaper, &linkage)?)?.measure(&timing)?
     } else {
         let path = PathBuf::from(&args.subject);
         let text = mechdiff::files::read_scene(&path)?;
         if formula::is_formula_scene(&text) {
             let scene = formula::parse(&text, &args.subject)?;
-            thin(args.positions, formula::case(&scene, &args.subject)?)?.measure(&timing)?
+            thin(positions, formula::case(&scene, &args.subject)?)?.measure(&timing)?
         } else {
             match mechdiff::scene::kind(&text) {
                 Kind::Cam => {
                     let scene = mechdiff::scene::cam::parse(&args.subject, &text)?;
-                    accuracy::cam::case(&scene, args.positions)?.measure(&timing)?
+                    accuracy::cam::case(&scene, positions)?.measure(&timing)?
                 }
                 Kind::Rotor => {
                     let scene = mechdiff::scene::balancing::rotor_scene::load(&path)?;
@@ -73,7 +74,7 @@ pub fn accuracy(args: &AccuracyArgs) -> Result<(), Error> {
                     let mut scene = mechdiff::scene::parse(&args.subject, &text)?;
                     let defaulted = accuracy::scene::default_outputs(&mut scene);
                     let mechanism = mechdiff::scene::build::mechanism(&scene)?;
-                    let mut case = accuracy::scene::case_at(&scene, &mechanism, args.positions)?;
+                    let mut case = accuracy::scene::case_at(&scene, &mechanism, positions)?;
                     case.notes.extend(defaulted);
                     case.measure(&timing)?
                 }
