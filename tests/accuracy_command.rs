@@ -77,8 +77,8 @@ fn formula_scene_writes_csv_and_svg() {
 }
 
 /// A mechanism scene (points, links, joints) whose loops all have closed forms is measured:
-/// both geometry paths and the finite differences, against the double-double reference
-/// named in the title.
+/// both geometry paths, the symbolic run-time evaluator and the finite differences, against
+/// the double-double reference named under the title.
 #[test]
 fn mechanism_scene_is_measured() {
     let output = mechdiff(&["accuracy", "scenes/slider_crank.toml", "--repeats", "1"]);
@@ -88,6 +88,7 @@ fn mechanism_scene_is_measured() {
         "double-double",
         "geometry closed form",
         "geometry Newton + implicit",
+        "symbolic (run-time evaluator)",
         "central h=",
         "Richardson: best h",
     ] {
@@ -95,22 +96,42 @@ fn mechanism_scene_is_measured() {
     }
 }
 
-/// A cam scene is refused with a message saying what the command takes instead.
+/// A cam scene is measured (its laws by the dual-number methods against the program in
+/// double-double), and a rotor scene gets its table of balancing answers, with the line that
+/// says why it has no method table; `--svg` is refused for the rotor (nothing to plot).
 #[test]
-fn cam_scene_is_refused_with_what_is_supported() {
-    let cam = std::fs::read_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/cams"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .find(|p| p.extension().is_some_and(|e| e == "toml"))
-        .expect("a cam scene in scenes/cams");
-    let output = mechdiff(&["accuracy", cam.to_str().unwrap()]);
+fn cam_and_rotor_scenes_are_measured() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes");
+    let cam = format!("{dir}/cams/rise_dwell_return_dwell.toml");
+    let output = mechdiff(&["accuracy", &cam, "--repeats", "1", "--positions", "5"]);
+    assert!(output.status.success(), "{output:?}");
+    let text = String::from_utf8(output.stdout).unwrap();
+    for part in [
+        "Dual1",
+        "Dual3",
+        "HyperDual",
+        "central h=",
+        "right-hand limit",
+    ] {
+        assert!(text.contains(part), "{part} missing:\n{text}");
+    }
+    let rotor = format!("{dir}/rotor_balancing.toml");
+    let output = mechdiff(&["accuracy", &rotor]);
+    assert!(output.status.success(), "{output:?}");
+    let text = String::from_utf8(output.stdout).unwrap();
+    for part in [
+        "no method table",
+        "two-plane correction, plane 1: m·r",
+        "negligible",
+    ] {
+        assert!(text.contains(part), "{part} missing:\n{text}");
+    }
+    let svg = temp_file("rotor.svg");
+    let output = mechdiff(&["accuracy", &rotor, "--svg", svg.to_str().unwrap()]);
     assert!(!output.status.success());
     let message = String::from_utf8(output.stderr).unwrap();
-    assert!(
-        message.contains("cam and rotor scenes are not supported")
-            && message.contains("formula scenes"),
-        "{message}"
-    );
+    assert!(message.contains("no drive sweep"), "{message}");
+    assert!(!svg.exists());
 }
 
 /// A formula with an unknown symbol names the file, the output and the symbol.

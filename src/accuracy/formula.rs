@@ -269,6 +269,8 @@ pub fn case(scene: &FormulaScene, file: &str) -> Result<Case<'static>, Error> {
         reference,
         condition: Some(condition),
         relative: scene.error.as_deref() == Some("relative"),
+        jumps: Vec::new(),
+        notes: Vec::new(),
         methods,
         positions_f64: Box::new(move |phi, out| {
             let v = f.jets(phi, 0, |&x| [x, f64::NAN, f64::NAN, f64::NAN])?;

@@ -31,12 +31,16 @@
 //! # Ok::<(), mechdiff::Error>(())
 //! ```
 
+pub mod cam;
 pub mod differences;
 pub mod double_double;
+pub mod evaluator;
+pub mod extended_newton;
 pub mod formula;
 pub mod plot;
 pub mod reference;
 mod report;
+pub mod rotor;
 pub mod scene;
 pub mod whitworth;
 
@@ -129,6 +133,31 @@ pub struct Case<'a> {
     /// the output's max over the sweep: for outputs whose small values matter (a saturating
     /// function's derivative, 4e^−2x for tanh′ at large x).
     pub relative: bool,
+    /// Per drive position, the lowest derivative order that jumps there (a cam's segment
+    /// joint: the exact methods and the reference take the same one-sided value), or `None`;
+    /// empty when nothing jumps. A finite difference's stencil straddles the jump there, so
+    /// its errors at these orders are not counted (NaN in [`Case::errors`]): the jump is the
+    /// function's, not an error of the method.
+    pub jumps: Vec<Option<usize>>,
+    /// Lines printed under the title: what the reference is, what was left out and why.
+    pub notes: Vec<String>,
+}
+
+/// The indices of every k-th of `n` drive positions, the last always kept, k the smallest
+/// that leaves at most `count` (all of them if `n ≤ count`; the last alone if `count` is 0
+/// or 1): what `--positions` measures.
+pub fn thin(n: usize, count: usize) -> Vec<usize> {
+    if n <= count {
+        return (0..n).collect();
+    }
+    if count <= 1 {
+        return (n.checked_sub(1)).into_iter().collect();
+    }
+    // Every k-th from the first, plus the last: at most ⌊(n − 1)/k⌋ + 1 ≤ count, and the
+    // last adds one only when (n − 1)/k is not a whole number (then the first part has at
+    // most count − 1).
+    let k = (n - 1).div_ceil(count - 1);
+    (0..n).filter(|&i| i % k == 0 || i + 1 == n).collect()
 }
 
 /// How long to time each method.
@@ -161,6 +190,37 @@ impl Timing {
 }
 
 impl Case<'_> {
+    /// The case at every k-th drive position only (the last always kept), k the smallest
+    /// that leaves at most `count` positions: a quick check of a long sweep. The reference,
+    /// condition numbers and jumps are kept with their positions.
+    ///
+    /// # Errors
+    /// [`Error::Reference`] if `count` is 0.
+    pub fn thinned(mut self, count: usize) -> Result<Self, Error> {
+        if count == 0 {
+            return Err(Error::Reference {
+                what: self.title,
+                reason: "--positions must be at least 1".into(),
+            });
+        }
+        if self.positions.len() <= count {
+            return Ok(self);
+        }
+        let keep = thin(self.positions.len(), count);
+        fn pick<T: Clone>(values: &[T], keep: &[usize]) -> Vec<T> {
+            if values.is_empty() {
+                return Vec::new();
+            }
+            keep.iter().map(|&i| values[i].clone()).collect()
+        }
+        self.positions = pick(&self.positions, &keep);
+        self.reference = pick(&self.reference, &keep);
+        self.condition = self.condition.map(|c| pick(&c, &keep));
+        self.jumps = pick(&self.jumps, &keep);
+        self.title = format!("{} (thinned to {} by --positions)", self.title, keep.len());
+        Ok(self)
+    }
+
     /// The scale of each output and order: max over the sweep of |reference| (1 where the
     /// reference is zero all along: the error is then absolute).
     pub fn scales(&self) -> Vec<[f64; MAX_ORDER + 1]> {
@@ -291,6 +351,7 @@ impl Case<'_> {
         }
         Ok(Report::new(
             self.title.clone(),
+            self.notes.clone(),
             self.positions.clone(),
             measurements,
             scans,
@@ -336,8 +397,9 @@ impl Case<'_> {
     }
 
     /// The scaled errors of `method` at every position: `[position][order]`, the maximum
-    /// over the outputs (NaN above the method's order, infinite where the method returned
-    /// NaN or an infinite value), and the first such failure.
+    /// over the outputs (NaN above the method's order, and for a finite difference at the
+    /// orders that jump at that position, see [`Case::jumps`]; infinite where the method
+    /// returned NaN or an infinite value), and the first such failure.
     ///
     /// # Errors
     /// The method's own error if it fails at a position.
@@ -364,8 +426,13 @@ impl Case<'_> {
                 continue;
             }
             let mut worst = [f64::NAN; MAX_ORDER + 1];
+            let counted = match (method.kind, self.jumps.get(errors.len())) {
+                (Kind::Approximate { .. }, Some(&Some(jump))) => jump.saturating_sub(1),
+                _ => method.order,
+            }
+            .min(method.order);
             for (o, (value, reference)) in values.iter().zip(reference).enumerate() {
-                for k in 0..=method.order {
+                for k in 0..=counted {
                     let scale = if self.relative {
                         Some(reference[k].hi.abs())
                             .filter(|&r| r > 0.0)

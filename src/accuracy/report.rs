@@ -50,10 +50,14 @@ impl Measurement {
                 }
             }
             max[k] = m;
-            // Scaled by the max, so that errors near 1e160 do not overflow their squares.
+            // Scaled by the max, so that errors near 1e160 do not overflow their squares; NaN
+            // (not counted: a jump of the function under a finite difference) left out.
+            let counted = errors.iter().filter(|e| !e[k].is_nan());
             rms[k] = if m > 0.0 && m.is_finite() {
-                let sum: f64 = errors.iter().map(|e| (e[k] / m) * (e[k] / m)).sum();
-                m * (sum / errors.len().max(1) as f64).sqrt()
+                let (sum, count) = counted.fold((0.0, 0usize), |(s, c), e| {
+                    (s + (e[k] / m) * (e[k] / m), c + 1)
+                });
+                m * (sum / count.max(1) as f64).sqrt()
             } else {
                 m
             };
@@ -95,6 +99,8 @@ impl Measurement {
 pub struct Report {
     /// What was measured.
     pub title: String,
+    /// Lines under the title: the reference, what was left out and why.
+    pub notes: Vec<String>,
     /// The drive positions (rad).
     pub positions: Vec<f64>,
     /// One per method, exact methods first.
@@ -109,12 +115,14 @@ pub const PARETO_ORDER: usize = 2;
 impl Report {
     pub(super) fn new(
         title: String,
+        notes: Vec<String>,
         positions: Vec<f64>,
         measurements: Vec<Measurement>,
         scans: Vec<StepScan>,
     ) -> Self {
         Report {
             title,
+            notes,
             positions,
             measurements,
             scans,
@@ -231,7 +239,11 @@ impl Report {
             });
             table.row(row);
         }
-        let mut out = format!("{}\n\n", self.title);
+        let mut out = format!("{}\n", self.title);
+        for note in &self.notes {
+            let _ = writeln!(out, "  {note}");
+        }
+        out.push('\n');
         out.push_str(&table.render());
         out.push_str(
             "\nscaled error: |x − x_ref| / max over the sweep of |x_ref| (reference: extended \

@@ -1,23 +1,33 @@
 //! Mechanism scenes (`scenes/four_bar.toml`, …) in the accuracy report: the scene's outputs
-//! over its sweep by the geometry solver's two paths and by finite differences, against a
-//! reference computed in double-double precision.
+//! over its sweep by the geometry solver's two paths, the traced closed forms in the
+//! symbolic run-time evaluator, and finite differences, against a reference computed in
+//! double-double precision.
 //!
 //! | method | order | what runs |
 //! |---|---|---|
 //! | geometry closed form | 3 | the solver's closed-form path (formulas in `Dual2_64`, ‴ in `Dual3_64`) |
 //! | geometry Newton + implicit | 3 | the same model with the closed forms off: Newton, then implicit differentiation |
-//! | central, forward, Richardson | 3 | differences of the closed-form positions in `f64` |
+//! | symbolic (run-time evaluator) | 3 | the closed forms traced into the symbolic engine, differentiated, compiled to an instruction list ([`super::evaluator`]) |
+//! | central, forward, Richardson | 3 | differences of the solver's positions in `f64` |
 //!
-//! **Reference.** The solver's closed forms are written once, generic over the scalar
-//! ([`mechdiff_core::Scalar`]); [`Tracker::closed_form_pose`] evaluates them in
-//! `Dual3<DoubleDouble>` ([`DoubleDouble`]: ≈ 32 digits, its functions from 256-bit
-//! arithmetic) at the exact `f64` drive position, so value, ′, ″ and ‴ come from
-//! higher-precision arithmetic and forward-mode differentiation, with no rounding of `f64`
-//! and no finite step; the outputs (points, angles, slider displacements) are read from that
-//! pose by the same generic code as `mechdiff run`. A scene with a loop that no closed form
-//! matches (solved by Newton only) has no such reference: it is refused with the loop named
-//! ([`mechdiff_core::Error::NoClosedForm`]), not reported against a reference it does not
-//! have.
+//! **Reference.** Where every loop has a closed form, the solver's closed forms (written
+//! once, generic over the scalar, [`mechdiff_core::Scalar`]) are evaluated by
+//! [`Tracker::closed_form_pose`] in `Dual3<DoubleDouble>` ([`DoubleDouble`]: ≈ 32 digits,
+//! its functions from 256-bit arithmetic) at the exact `f64` drive position, so value, ′, ″
+//! and ‴ come from higher-precision arithmetic and forward-mode differentiation, with no
+//! rounding of `f64` and no finite step. Where a loop is solved by Newton only, the position
+//! solve and the implicit derivatives are carried out in double-double instead
+//! ([`super::extended_newton`]). The outputs (points, angles, slider displacements) are read
+//! from that pose by the same generic code as `mechdiff run`.
+//!
+//! **Cam-driven joints** (`[drive] cam`): the sweep is over the cam angle θ, the driven
+//! joint at its sketch value plus the follower's s(θ). The reference runs the same chain in
+//! double-double: s(θ) from the cam program in `Dual3<DoubleDouble>` is the drive jet given
+//! to the closed forms (or the Newton solve), so the outputs' derivatives are d/dθ by
+//! forward mode; the geometry methods compose the linkage's derivatives d/ds with s′, s″,
+//! s‴ as the solver's runs do ([`mechdiff_core::cams::CamJoint::compose`]). At a cam joint
+//! where s′, s″ or s‴ jumps, every method and the reference take the right-hand limit, and
+//! finite differences are not counted at the orders that jump ([`Case::jumps`]).
 //!
 //! Angles are compared on the turn of the reference at the same position (an angle is
 //! defined up to whole turns; the reference is kept continuous along the sweep, and a
@@ -25,17 +35,21 @@
 
 use std::cell::RefCell;
 use std::f64::consts::TAU;
+use std::rc::Rc;
 
-use mechdiff_core::geometry::{Mechanism, Solver, Tracker};
+use mechdiff_core::Jet;
+use mechdiff_core::cams::{ContinuityReport, Side};
+use mechdiff_core::geometry::{Equations, GROUND, Mechanism, Solver, Tracker};
 use mechdiff_core::num_dual::{Dual3, Dual3_64};
 
 use super::double_double::DoubleDouble;
+use super::extended_newton;
 use super::reference::Reference;
 use super::{Case, MAX_ORDER, Method, Values};
 use crate::Error;
 use crate::scene::Scene;
 use crate::scene::evaluate::{Resolved, values};
-use crate::scene::model::OutputKind;
+use crate::scene::model::{DriveCam, OutputKind};
 
 /// 2π in double-double (hi: `TAU`, lo: the remainder).
 const TAU_DD: DoubleDouble = DoubleDouble {
@@ -94,7 +108,7 @@ impl<'s> Outputs<'s> {
 
 /// `value` moved by whole turns to within half a turn of `target` (unchanged, exactly,
 /// when it already is).
-fn near(value: f64, target: f64) -> f64 {
+pub(super) fn near(value: f64, target: f64) -> f64 {
     let turns = ((target - value) / TAU).round();
     if turns == 0.0 {
         value
@@ -112,21 +126,127 @@ fn failed(method: &str, phi: f64) -> impl Fn(mechdiff_core::Error) -> Error + '_
     }
 }
 
-/// The reference of one position: the closed forms in `Dual3<DoubleDouble>`, every column's
-/// value and derivatives; angles on the turn nearest to `previous` (the last position's
-/// reference, so that angles are continuous along the sweep).
-fn reference_at(
+/// A drive jet in double-double.
+type DdJet = Dual3<DoubleDouble>;
+
+/// The sweep's drive: the linkage's driven joint at a sweep position, directly or through a
+/// cam (`[drive] cam`).
+#[derive(Clone, Copy)]
+struct Drive<'s> {
+    scene: &'s Scene,
+    cam: Option<&'s DriveCam>,
+}
+
+impl<'s> Drive<'s> {
+    fn new(scene: &'s Scene) -> Self {
+        Drive {
+            scene,
+            cam: scene.drive.cam.as_ref(),
+        }
+    }
+
+    /// The driven joint's position (as the solver's runs compute it).
+    fn joint(&self, phi: f64) -> f64 {
+        self.scene.drive.joint_position(phi)
+    }
+
+    /// The driven joint's position as a jet in the sweep variable, in double-double: φ
+    /// itself, or the sketch's value plus the cam program's s(θ) (right-hand limits, as
+    /// [`mechdiff_core::cams::CamJoint::new`] takes them).
+    fn joint_jet(&self, phi: f64) -> DdJet {
+        let (one, zero) = (DoubleDouble::new(1.0), DoubleDouble::new(0.0));
+        let x = Dual3::new(DoubleDouble::new(phi), one, zero, zero);
+        match self.cam {
+            None => x,
+            Some(c) => c.joint.program().displacement(x, Side::Right) + self.scene.drive.at_sketch,
+        }
+    }
+
+    /// A jet with respect to the driven joint as a jet in the sweep variable.
+    fn compose(&self, phi: f64, jet: Dual3_64) -> Dual3_64 {
+        match self.cam {
+            None => jet,
+            Some(c) => {
+                let j = c
+                    .joint
+                    .compose(phi, &Jet::new(jet.re, [jet.v1, jet.v2, jet.v3]));
+                Dual3_64::new(
+                    j.value,
+                    j.derivatives[0],
+                    j.derivatives[1],
+                    j.derivatives[2],
+                )
+            }
+        }
+    }
+
+    /// Per sweep position, the lowest order of the cam's s that jumps there (none without
+    /// a cam): see [`Case::jumps`].
+    fn jumps(&self, positions: &[f64]) -> Vec<Option<usize>> {
+        let Some(cam) = self.cam else {
+            return Vec::new();
+        };
+        let report = ContinuityReport::new(cam.joint.program());
+        positions
+            .iter()
+            .map(|&theta| {
+                report
+                    .boundaries
+                    .iter()
+                    .filter(|b| {
+                        let d = (theta - b.angle).rem_euclid(TAU);
+                        d.min(TAU - d) <= 1e-9
+                    })
+                    .filter_map(|b| b.first_jump())
+                    .min()
+                    .map(|order| order.max(1))
+            })
+            .collect()
+    }
+}
+
+/// The pose jet in double-double at the tracker's position: the closed forms, or (a loop
+/// solved by Newton) the double-double Newton solve from the tracker's `f64` jet.
+fn reference_pose(
     tracker: &Tracker<'_>,
-    outputs: &Outputs<'_>,
+    equations: Option<&Equations>,
+    drive: &Drive<'_>,
     phi: f64,
+) -> Result<Vec<DdJet>, String> {
+    let x = drive.joint_jet(phi);
+    let Some(equations) = equations else {
+        return tracker.closed_form_pose(x).map_err(|e| e.to_string());
+    };
+    let kinematics = tracker.kinematics::<3>().map_err(|e| e.to_string())?;
+    let start: Vec<DdJet> = kinematics
+        .coordinates
+        .iter()
+        .map(|j| {
+            let d = drive.compose(
+                phi,
+                Dual3_64::new(
+                    j.value,
+                    j.derivatives[0],
+                    j.derivatives[1],
+                    j.derivatives[2],
+                ),
+            );
+            extended_newton::lift(d.re, [d.v1, d.v2, d.v3])
+        })
+        .collect();
+    extended_newton::solve(equations, &start, x)
+}
+
+/// The reference of one position: every column's value and derivatives from the pose jet;
+/// angles on the turn nearest to `previous` (the last position's reference, so that angles
+/// are continuous along the sweep).
+fn reference_at(
+    outputs: &Outputs<'_>,
+    q: &[DdJet],
     previous: Option<&Vec<[Reference; MAX_ORDER + 1]>>,
-) -> Result<Vec<[Reference; MAX_ORDER + 1]>, mechdiff_core::Error> {
-    let one = DoubleDouble::new(1.0);
-    let zero = DoubleDouble::new(0.0);
-    let x = Dual3::new(DoubleDouble::new(phi), one, zero, zero);
-    let q = tracker.closed_form_pose(x)?;
-    Ok(outputs
-        .values(&q)
+) -> Vec<[Reference; MAX_ORDER + 1]> {
+    outputs
+        .values(q)
         .into_iter()
         .zip(&outputs.angle)
         .enumerate()
@@ -138,29 +258,36 @@ fn reference_at(
             }
             [value, v.v1, v.v2, v.v3]
         })
-        .collect())
+        .collect()
 }
 
 /// The accuracy case of a mechanism scene (see the module's documentation); `mechanism` is
 /// the scene's model ([`crate::scene::build::mechanism`]).
 ///
 /// # Errors
-/// [`Error::Reference`] for a scene without geometric outputs, a loop without a closed form
-/// (named), or a reference that is not finite; the solver's error where the sweep cannot be
-/// walked (for a sweep of an output's values, `[sweep] of`, `mechdiff run`'s errors).
+/// [`Error::Reference`] for a scene without geometric outputs, or a reference that cannot
+/// be computed or is not finite (the drive position named); the solver's error where the
+/// sweep cannot be walked (for a sweep of an output's values, `[sweep] of`, `mechdiff run`'s
+/// errors).
 pub fn case<'a>(scene: &'a Scene, mechanism: &'a Mechanism) -> Result<Case<'a>, Error> {
+    case_at(scene, mechanism, None)
+}
+
+/// [`case`] at no more than `count` of the sweep's drive positions (every k-th, the last
+/// kept: [`super::thin`]), chosen before the reference is computed; all of them for `None`.
+///
+/// # Errors
+/// As [`case`].
+pub fn case_at<'a>(
+    scene: &'a Scene,
+    mechanism: &'a Mechanism,
+    count: Option<usize>,
+) -> Result<Case<'a>, Error> {
     let refuse = |reason: String| Error::Reference {
         what: scene.file.clone(),
         reason,
     };
-    if scene.drive.cam.is_some() {
-        return Err(refuse(
-            "a cam-driven joint ([drive] cam) is not measured: the report differentiates with \
-             respect to the driven joint's position; drive the joint itself to measure the \
-             linkage"
-                .into(),
-        ));
-    }
+    let drive = Drive::new(scene);
     // A sweep of an output's values (`[sweep] of`): the drive positions `mechdiff run`
     // solves for, in increasing order.
     let mut positions = if scene.sweep_of.is_some() {
@@ -174,6 +301,13 @@ pub fn case<'a>(scene: &'a Scene, mechanism: &'a Mechanism) -> Result<Case<'a>, 
     };
     positions.sort_by(f64::total_cmp);
     positions.dedup();
+    let all = positions.len();
+    if let Some(count) = count {
+        positions = super::thin(all, count.max(1))
+            .into_iter()
+            .map(|i| positions[i])
+            .collect();
+    }
     let outputs = Outputs::new(scene, mechanism)?;
     if outputs.names.is_empty() {
         return Err(refuse(
@@ -185,17 +319,24 @@ pub fn case<'a>(scene: &'a Scene, mechanism: &'a Mechanism) -> Result<Case<'a>, 
     let mut tracker = Solver::default()
         .track(mechanism)
         .map_err(|e| crate::scene::run::solver_error(scene, e))?;
+    let loops = tracker.closed_form_loops();
+    let all_closed = loops.iter().all(|&c| c);
+    let equations = (!all_closed).then(|| Equations::new(mechanism));
     let mut reference = Vec::with_capacity(positions.len());
+    // The tracker at each sweep position: finite differences start from the nearest one.
+    let mut trackers = Vec::with_capacity(positions.len());
     for &phi in &positions {
         tracker
-            .move_to(phi)
+            .move_to(drive.joint(phi))
             .map_err(|e| crate::scene::run::solver_error(scene, e))?;
-        let row = reference_at(&tracker, &outputs, phi, reference.last()).map_err(|e| {
+        trackers.push(tracker.clone());
+        let q = reference_pose(&tracker, equations.as_ref(), &drive, phi).map_err(|e| {
             refuse(format!(
-                "{e}; `mechdiff accuracy` takes mechanism scenes whose every loop has a \
-                 closed form (see `mechdiff check`)"
+                "no double-double reference at drive position {}: {e}",
+                scene.drive_text(phi)
             ))
         })?;
+        let row = reference_at(&outputs, &q, reference.last());
         if let Some(k) = row.iter().position(|r| r.iter().any(|x| !x.is_finite())) {
             return Err(refuse(format!(
                 "output `{}` is not finite at drive position {} in double-double precision",
@@ -205,54 +346,104 @@ pub fn case<'a>(scene: &'a Scene, mechanism: &'a Mechanism) -> Result<Case<'a>, 
         }
         reference.push(row);
     }
+    let mut notes = vec![if all_closed {
+        "reference: the solver's closed forms in double-double (Dual3<DoubleDouble>) at the \
+         exact f64 drive positions"
+            .to_owned()
+    } else {
+        let newton: Vec<String> = tracker
+            .loops()
+            .into_iter()
+            .zip(&loops)
+            .filter(|(_, closed)| !**closed)
+            .map(|((joints, _), _)| joints.join(", "))
+            .collect();
+        format!(
+            "reference: Newton and implicit derivatives in double-double (Dual3<DoubleDouble>; \
+             loop(s) [{}] have no closed form)",
+            newton.join("; ")
+        )
+    }];
+    if let Some(cam) = drive.cam {
+        notes.push(format!(
+            "drive: the cam angle θ; the joint moves by the follower's s(θ) of {} (the \
+             reference runs the cam program and the linkage in double-double)",
+            cam.file
+        ));
+    }
+    let jumps = drive.jumps(&positions);
+    if jumps.iter().any(Option::is_some) {
+        notes.push(
+            "at the cam's joints where s′, s″ or s‴ jumps, every method and the reference take \
+             the right-hand limit; finite differences straddle the jump and are not counted \
+             there at the orders that jump"
+                .to_owned(),
+        );
+    }
     let targets: Vec<Vec<f64>> = reference
         .iter()
         .map(|row| row.iter().map(|r| r[0].hi).collect())
         .collect();
-    let outputs = std::rc::Rc::new(outputs);
-    let targets = std::rc::Rc::new(targets);
-    let positions_rc = std::rc::Rc::new(positions.clone());
-    let methods = vec![
-        geometry(
-            "geometry closed form",
-            mechanism,
+    let outputs = Rc::new(outputs);
+    let targets = Rc::new(targets);
+    let positions_rc = Rc::new(positions.clone());
+    let shared = Shared {
+        mechanism,
+        drive,
+        outputs: outputs.clone(),
+        targets: targets.clone(),
+        positions: positions_rc.clone(),
+    };
+    let mut methods = Vec::new();
+    if all_closed {
+        methods.push(geometry("geometry closed form", true, &shared));
+    } else if loops.iter().any(|&c| c) {
+        methods.push(geometry(
+            "geometry closed form + Newton (mixed)",
             true,
-            &outputs,
-            &targets,
-            &positions_rc,
-        ),
-        geometry(
-            "geometry Newton + implicit",
-            mechanism,
-            false,
-            &outputs,
-            &targets,
-            &positions_rc,
-        ),
-    ];
-    let differences = RefCell::new(tracker);
-    let (f_outputs, f_targets, f_positions) = (outputs.clone(), targets.clone(), positions_rc);
+            &shared,
+        ));
+    }
+    methods.push(geometry("geometry Newton + implicit", false, &shared));
+    match super::evaluator::method(scene, &shared.outputs.angle, &targets, &positions_rc) {
+        Ok(method) => methods.push(method),
+        Err(reason) => notes.push(format!(
+            "symbolic (run-time evaluator): not measured: {reason}"
+        )),
+    }
+    let differences = RefCell::new((tracker, usize::MAX));
+    let (f_outputs, f_targets, f_positions) = (outputs.clone(), targets, positions_rc);
     Ok(Case {
         title: format!(
-            "{}: {} over the scene's sweep, {} positions; reference: the closed forms in \
-             double-double",
+            "{}: {} over the scene's sweep, {} positions{}",
             scene.title.as_deref().unwrap_or(&scene.file),
             outputs.names.join(", "),
-            positions.len()
+            positions.len(),
+            thinned_from(all, positions.len())
         ),
         outputs: outputs.names.clone(),
         positions,
         reference,
         condition: None,
         relative: false,
+        jumps,
+        notes,
         methods,
         positions_f64: Box::new(move |phi, out| {
-            let mut tracker = differences.borrow_mut();
+            let mut working = differences.borrow_mut();
+            let (tracker, from) = &mut *working;
+            // A stencil's samples start from the tracker at the nearest sweep position, so
+            // that the walk between samples is short (a long walk back may not get past a
+            // limit position the sweep went round).
+            let nearest = nearest(&f_positions, phi);
+            if *from != nearest {
+                *tracker = trackers[nearest].clone();
+                *from = nearest;
+            }
             tracker
-                .move_to(phi)
+                .move_to(drive.joint(phi))
                 .map_err(failed("finite differences", phi))?;
             let q = tracker.coordinates();
-            let nearest = nearest(&f_positions, phi);
             for (k, v) in f_outputs.values(q).into_iter().enumerate() {
                 out[k] = if f_outputs.angle[k] {
                     near(v, f_targets[nearest][k])
@@ -265,8 +456,56 @@ pub fn case<'a>(scene: &'a Scene, mechanism: &'a Mechanism) -> Result<Case<'a>, 
     })
 }
 
+/// Gives a scene without `[[output]]` (a balancing or dynamics scene) one point output per
+/// point of its moving links (every point not on the ground), so that the report measures
+/// the motion its forces come from; returns the note the report prints, `None` for a scene
+/// that has outputs (left as it is).
+pub fn default_outputs(scene: &mut Scene) -> Option<String> {
+    if !scene.outputs.is_empty() {
+        return None;
+    }
+    let on_ground = |point: &String| {
+        scene
+            .links
+            .iter()
+            .any(|l| l.name == GROUND && l.points.contains(point))
+    };
+    let mut points: Vec<String> = Vec::new();
+    for link in scene.links.iter().filter(|l| l.name != GROUND) {
+        for point in &link.points {
+            if !on_ground(point) && !points.contains(point) {
+                points.push(point.clone());
+            }
+        }
+    }
+    let location = scene.drive.location.clone();
+    scene.outputs = points
+        .iter()
+        .map(|p| crate::scene::model::Output {
+            name: p.clone(),
+            kind: OutputKind::Point(p.clone()),
+            quantities: vec![crate::scene::format::Quantity::Position],
+            dead_positions: false,
+            location: location.clone(),
+        })
+        .collect();
+    Some(format!(
+        "the scene has no [[output]]: measured every point of its moving links ({})",
+        points.join(", ")
+    ))
+}
+
+/// " of N (every k-th, --positions)" when the sweep was thinned.
+pub(super) fn thinned_from(all: usize, kept: usize) -> String {
+    if kept < all {
+        format!(" of {all} (every k-th, --positions)")
+    } else {
+        String::new()
+    }
+}
+
 /// The index of the sweep position nearest to `phi`.
-fn nearest(positions: &[f64], phi: f64) -> usize {
+pub(super) fn nearest(positions: &[f64], phi: f64) -> usize {
     let i = positions.partition_point(|&p| p < phi);
     match (i.checked_sub(1), positions.get(i)) {
         (Some(below), Some(&above)) if phi - positions[below] < above - phi => below,
@@ -275,20 +514,28 @@ fn nearest(positions: &[f64], phi: f64) -> usize {
     }
 }
 
+/// What the geometry methods share: the model, the drive, the outputs and the reference's
+/// angles (to compare angles on the reference's turn).
+struct Shared<'a> {
+    mechanism: &'a Mechanism,
+    drive: Drive<'a>,
+    outputs: Rc<Outputs<'a>>,
+    targets: Rc<Vec<Vec<f64>>>,
+    positions: Rc<Vec<f64>>,
+}
+
 /// The geometry solver's path (closed form or Newton) as a method. A repeated sweep starts
 /// again from a copy of the tracker at the first position (the walk back is not timed as a
 /// position).
-fn geometry<'a>(
-    name: &str,
-    mechanism: &'a Mechanism,
-    closed_form: bool,
-    outputs: &std::rc::Rc<Outputs<'a>>,
-    targets: &std::rc::Rc<Vec<Vec<f64>>>,
-    positions: &std::rc::Rc<Vec<f64>>,
-) -> Method<'a> {
+fn geometry<'a>(name: &str, closed_form: bool, shared: &Shared<'a>) -> Method<'a> {
     let name_owned = name.to_owned();
     let solver = Solver::default().with_closed_form(closed_form);
-    let (outputs, targets, positions) = (outputs.clone(), targets.clone(), positions.clone());
+    let (outputs, targets, positions) = (
+        shared.outputs.clone(),
+        shared.targets.clone(),
+        shared.positions.clone(),
+    );
+    let (mechanism, drive) = (shared.mechanism, shared.drive);
     let mut tracker: Option<Tracker<'a>> = None;
     let mut start: Option<Tracker<'a>> = None;
     let mut last = f64::NEG_INFINITY;
@@ -303,7 +550,7 @@ fn geometry<'a>(
             tracker = Some(first.clone());
         }
         let t = tracker.as_mut().expect("set above");
-        t.move_to(phi).map_err(&fail)?;
+        t.move_to(drive.joint(phi)).map_err(&fail)?;
         if start.is_none() {
             start = Some(t.clone());
         }
@@ -323,6 +570,7 @@ fn geometry<'a>(
             .collect();
         let i = nearest(&positions, phi);
         for (k, v) in outputs.values(&q).into_iter().enumerate() {
+            let v = drive.compose(phi, v);
             let value = if outputs.angle[k] {
                 near(v.re, targets[i][k])
             } else {

@@ -176,6 +176,8 @@ pub fn case<'a>(shaper: &Whitworth, linkage: &'a Mechanism) -> Result<Case<'a>, 
         reference,
         condition: Some(condition),
         relative: false,
+        jumps: Vec::new(),
+        notes: Vec::new(),
         methods,
         positions_f64: Box::new(move |phi, out| {
             let pose = shaper.evaluate(phi);

@@ -8,12 +8,14 @@ use mechdiff::Error;
 use mechdiff::accuracy::{self, Timing, formula, whitworth};
 use mechdiff::mechanisms::Whitworth;
 use mechdiff::mechanisms::whitworth::Parameters;
+use mechdiff::scene::Kind;
 
 /// Arguments of `mechdiff accuracy`.
 #[derive(Debug, Args)]
 pub struct AccuracyArgs {
-    /// `whitworth` (the reference machine), a formula scene (see scenes/hard/), or a
-    /// mechanism scene whose loops all have closed forms (scenes/four_bar.toml, …).
+    /// `whitworth` (the reference machine), a formula scene (see scenes/hard/), a mechanism
+    /// scene (scenes/four_bar.toml, a cam-driven one too), a cam scene (scenes/cams/) or a
+    /// rotor scene (scenes/rotor_balancing.toml).
     pub subject: String,
     /// For `whitworth`: the crank ratio λ = l1/l0 (l0 kept at 0.4 m), in (0, 1).
     #[arg(long)]
@@ -28,6 +30,10 @@ pub struct AccuracyArgs {
     /// Timed repeats per method (the median and spread are over these).
     #[arg(long, default_value_t = 15)]
     pub repeats: usize,
+    /// Measure at most this many drive positions of the sweep, evenly spread (every k-th,
+    /// the last kept): a quick check of a long sweep.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    pub positions: Option<u32>,
 }
 
 /// Measures and prints (or writes) the report.
@@ -36,6 +42,7 @@ pub fn accuracy(args: &AccuracyArgs) -> Result<(), Error> {
         repeats: args.repeats,
         ..Timing::default()
     };
+    let positions = args.positions.map(|n| n as usize);
     let report = if args.subject == "whitworth" {
         let mut parameters = Parameters::reference();
         if let Some(lambda) = args.lambda {
@@ -46,43 +53,72 @@ pub fn accuracy(args: &AccuracyArgs) -> Result<(), Error> {
             reason: e.to_string(),
         })?;
         let linkage = whitworth::linkage(&shaper)?;
-        whitworth::case(&shaper, &linkage)?.measure(&timing)?
+        thin(positions, whitworth::case(&shaper, &linkage)?)?.measure(&timing)?
     } else {
         let path = PathBuf::from(&args.subject);
         let text = mechdiff::files::read_scene(&path)?;
         if formula::is_formula_scene(&text) {
             let scene = formula::parse(&text, &args.subject)?;
-            formula::case(&scene, &args.subject)?.measure(&timing)?
-        } else if mechdiff::scene::kind(&text) != mechdiff::scene::Kind::Linkage {
-            return Err(Error::Reference {
-                what: args.subject.clone(),
-                reason: "cam and rotor scenes are not supported by `mechdiff accuracy`; it takes \
-                         `whitworth`, formula scenes (see scenes/hard/) and mechanism scenes"
-                    .into(),
-            });
+            thin(positions, formula::case(&scene, &args.subject)?)?.measure(&timing)?
         } else {
-            let scene = mechdiff::scene::parse(&args.subject, &text)?;
-            let mechanism = mechdiff::scene::build::mechanism(&scene)?;
-            accuracy::scene::case(&scene, &mechanism)?.measure(&timing)?
+            match mechdiff::scene::kind(&text) {
+                Kind::Cam => {
+                    let scene = mechdiff::scene::cam::parse(&args.subject, &text)?;
+                    accuracy::cam::case(&scene, positions)?.measure(&timing)?
+                }
+                Kind::Rotor => {
+                    let scene = mechdiff::scene::balancing::rotor_scene::load(&path)?;
+                    return write_rotor(args, &accuracy::rotor::report(&scene)?);
+                }
+                Kind::Linkage => {
+                    let mut scene = mechdiff::scene::parse(&args.subject, &text)?;
+                    let defaulted = accuracy::scene::default_outputs(&mut scene);
+                    let mechanism = mechdiff::scene::build::mechanism(&scene)?;
+                    let mut case = accuracy::scene::case_at(&scene, &mechanism, positions)?;
+                    case.notes.extend(defaulted);
+                    case.measure(&timing)?
+                }
+            }
         }
     };
     write(args, &report)
 }
 
+/// Writes `text` to `path`: to a temporary name, renamed when complete.
+fn save(path: &PathBuf, text: &str) -> Result<(), Error> {
+    let temporary = path.with_extension("partial");
+    std::fs::write(&temporary, text)
+        .and_then(|()| std::fs::rename(&temporary, path))
+        .map_err(|source| Error::Write {
+            path: path.clone(),
+            source,
+        })
+}
+
 fn write(args: &AccuracyArgs, report: &accuracy::Report) -> Result<(), Error> {
-    let save = |path: &PathBuf, text: &str| -> Result<(), Error> {
-        // Written to a temporary name and renamed when complete.
-        let temporary = path.with_extension("partial");
-        std::fs::write(&temporary, text)
-            .and_then(|()| std::fs::rename(&temporary, path))
-            .map_err(|source| Error::Write {
-                path: path.clone(),
-                source,
-            })
-    };
     if let Some(path) = &args.svg {
         save(path, &accuracy::plot::pareto_svg(report, 900, 600)?)?;
         accuracy::plot::along_sweep(report).write_svg(&angle_path(path))?;
+    }
+    match &args.csv {
+        Some(path) => save(path, &report.csv()),
+        None => {
+            print!("{}", report.table());
+            Ok(())
+        }
+    }
+}
+
+/// A rotor's report: the table, or `--csv`. `--svg` and `--positions` are refused (no
+/// sweep to plot or thin).
+fn write_rotor(args: &AccuracyArgs, report: &accuracy::rotor::RotorReport) -> Result<(), Error> {
+    if args.svg.is_some() || args.positions.is_some() {
+        return Err(Error::Reference {
+            what: args.subject.clone(),
+            reason: "a rotor scene has no drive sweep: --svg (error against time and angle) \
+                     and --positions do not apply; its report is the table or --csv"
+                .into(),
+        });
     }
     match &args.csv {
         Some(path) => save(path, &report.csv()),
@@ -99,4 +135,12 @@ fn angle_path(path: &std::path::Path) -> PathBuf {
         .file_stem()
         .map_or_else(|| "accuracy".into(), |s| s.to_string_lossy().into_owned());
     path.with_file_name(format!("{stem}-angle.svg"))
+}
+
+/// `case` thinned to `positions` drive positions (`--positions`), or whole.
+fn thin(positions: Option<usize>, case: accuracy::Case<'_>) -> Result<accuracy::Case<'_>, Error> {
+    match positions {
+        Some(n) => case.thinned(n),
+        None => Ok(case),
+    }
 }

@@ -32,7 +32,7 @@
 //! assert!(after.resultant_force().iter().all(|c| c.abs() < 1e-15));
 //! ```
 
-use crate::Error;
+use crate::{Error, Scalar};
 
 /// One mass on the rotor, in its plane.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -50,9 +50,15 @@ pub struct RotorMass {
 impl RotorMass {
     /// The mass-radius vector `m r (cos θ, sin θ)` (kg·m).
     pub fn mass_radius(&self) -> [f64; 2] {
-        let (s, c) = self.angle.sin_cos();
-        let mr = self.mass * self.radius;
-        [mr * c, mr * s]
+        self.mass_radius_in()
+    }
+
+    /// [`RotorMass::mass_radius`] computed in the scalar `D` (the same operations; with a
+    /// higher-precision `D`, the accuracy report's reference for the `f64` answers).
+    pub fn mass_radius_in<D: Scalar>(&self) -> [D; 2] {
+        let angle = D::from(self.angle);
+        let mr = D::from(self.mass) * self.radius;
+        [mr * angle.cos(), mr * angle.sin()]
     }
 }
 
@@ -179,13 +185,14 @@ fn positive_length(value: f64, what: &str) -> Result<(), Error> {
     }
 }
 
-fn scale(v: [f64; 2], k: f64) -> [f64; 2] {
+fn scale<D: Scalar>(v: [D; 2], k: D) -> [D; 2] {
     [v[0] * k, v[1] * k]
 }
 
-fn sum(vs: impl IntoIterator<Item = [f64; 2]>) -> [f64; 2] {
+fn sum<D: Scalar>(vs: impl IntoIterator<Item = [D; 2]>) -> [D; 2] {
+    let zero = D::from(0.0);
     vs.into_iter()
-        .fold([0.0, 0.0], |a, v| [a[0] + v[0], a[1] + v[1]])
+        .fold([zero, zero], |a, v| [a[0] + v[0], a[1] + v[1]])
 }
 
 impl Rotor {
@@ -232,15 +239,25 @@ impl Rotor {
 
     /// `Σ Uᵢ` (kg·m): the gap of the force polygon.
     pub fn resultant_force(&self) -> [f64; 2] {
-        sum(self.masses.iter().map(RotorMass::mass_radius))
+        self.resultant_force_in()
+    }
+
+    /// [`Rotor::resultant_force`] computed in the scalar `D`.
+    pub fn resultant_force_in<D: Scalar>(&self) -> [D; 2] {
+        sum(self.masses.iter().map(RotorMass::mass_radius_in))
     }
 
     /// `Σ Uᵢ (zᵢ − z₀)` (kg·m²): the gap of the couple polygon about the plane at `reference`.
     pub fn resultant_couple(&self, reference: f64) -> [f64; 2] {
+        self.resultant_couple_in(reference)
+    }
+
+    /// [`Rotor::resultant_couple`] computed in the scalar `D`.
+    pub fn resultant_couple_in<D: Scalar>(&self, reference: f64) -> [D; 2] {
         sum(self
             .masses
             .iter()
-            .map(|m| scale(m.mass_radius(), m.axial - reference)))
+            .map(|m| scale(m.mass_radius_in(), D::from(m.axial) - reference)))
     }
 
     /// The force and couple polygons, the couple about the plane at `reference`.
@@ -294,12 +311,23 @@ impl Rotor {
         if gap.abs() <= 1e-12 * extent || gap == 0.0 {
             return Err(Error::CoincidentPlanes { left, right });
         }
-        let about_left = self.resultant_couple(left);
-        let about_right = self.resultant_couple(right);
+        let [in_left, in_right] = self.two_plane_vectors_in(left, right);
         Ok(TwoPlaneBalance {
-            left: Correction::new(left, scale(about_right, 1.0 / gap)),
-            right: Correction::new(right, scale(about_left, -1.0 / gap)),
+            left: Correction::new(left, in_left),
+            right: Correction::new(right, in_right),
         })
+    }
+
+    /// The mass-radius vectors of [`Rotor::two_plane_balance`] (left, right) computed in the
+    /// scalar `D`, without its checks of the planes.
+    pub fn two_plane_vectors_in<D: Scalar>(&self, left: f64, right: f64) -> [[D; 2]; 2] {
+        let about_left = self.resultant_couple_in(left);
+        let about_right = self.resultant_couple_in(right);
+        let inverse_gap = (D::from(right) - left).recip();
+        [
+            scale(about_right, inverse_gap),
+            scale(about_left, -inverse_gap),
+        ]
     }
 
     /// The inverse question of reference 002's dynamic example: where one correcting mass of
@@ -320,13 +348,22 @@ impl Rotor {
                 what: "the couple about the reference plane".to_owned(),
             });
         }
-        let distance = size / mass_radius;
-        let correction = Correction::new(reference + distance, scale(c, -mass_radius / size));
+        let (distance, vector) = self.couple_plane_in(mass_radius, reference);
+        let correction = Correction::new(reference + distance, vector);
         let f = self.resultant_force();
         Ok(CouplePlane {
             correction,
             distance,
             force_after: [f[0] + correction.vector[0], f[1] + correction.vector[1]],
         })
+    }
+
+    /// The distance `|C|/(m r)` and the mass-radius vector `−C m r/|C|` of
+    /// [`Rotor::couple_plane`] (C the couple about `reference`) computed in the scalar `D`,
+    /// without its checks.
+    pub fn couple_plane_in<D: Scalar>(&self, mass_radius: f64, reference: f64) -> (D, [D; 2]) {
+        let c = self.resultant_couple_in::<D>(reference);
+        let size = crate::hypot(c[0], c[1]);
+        (size / mass_radius, scale(c, D::from(-mass_radius) / size))
     }
 }
