@@ -26,11 +26,13 @@ enum Command {
     /// Check a scene file (syntax, names, units, sketch, mobility) without running it.
     Check(cli::check::CheckArgs),
     /// Every derivative method against an extended-precision reference: error per order and
-    /// time per drive position, side by side (`whitworth` or a formula scene).
+    /// time per drive position, side by side (`whitworth` or any scene file: mechanism, formula,
+    /// cam or rotor).
     Accuracy(cli::accuracy::AccuracyArgs),
     /// Convert a Pyslvs expression or a PMKS text file into a scene (printed, or --out FILE).
     Import(cli::import::ImportArgs),
-    /// Generate the Rust function that computes a formula and its derivatives (symbolic, with CSE)
+    /// Generate Rust code: a formula's function and its derivatives, or a scene's whole pose
+    /// (symbolic, with CSE)
     Codegen(mechdiff::codegen::Args),
 }
 
