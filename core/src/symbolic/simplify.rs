@@ -14,7 +14,10 @@
 //! - `tan(atan2(a, b)) = a / b`, `tan(atan(x)) = x`;
 //! - `ln(exp(s)) = s`, `ln(uⁿ) = n ln u` (n odd) or `n ln |u|` (n even), `ln(u^c) = c ln u`
 //!   for a constant c, `ln(u^v) = v ln u` for u known positive;
-//! - common factors of a quotient cancel: `(x·u)/u = x`, `x·u/uⁿ = x/uⁿ⁻¹`;
+//! - common factors of a quotient cancel: `(x·u)/u = x`, `x·u/uⁿ = x/uⁿ⁻¹`,
+//!   `(x·u)/(y·u) = x/y`;
+//! - what a proven sign allows (`|u| = u` for u ≥ 0, `atan2` without a positive factor its
+//!   coordinates share, `atan2(y, x) = atan(y / x)` for x > 0): see [`super::signs`];
 //! - integer powers: `x * x = x²`, `xᵐ · xⁿ = xᵐ⁺ⁿ`, `(xᵐ)ⁿ = xᵐⁿ`, `x⁰ = 1`, `x¹ = x`,
 //!   `x⁻ⁿ = 1 / xⁿ`, `(-x)ⁿ = ±xⁿ`, `x.powf(n)` with an integer constant `n` is `x.powi(n)`;
 //! - commutative operands are put in a canonical order (constants first, then by id), so
@@ -217,6 +220,20 @@ impl Graph {
             let lower = self.powi(base, n - 1);
             return self.div(rest, lower);
         }
+        // a factor both share cancels: (x·u)/(y·u) = x/y (where u ≠ 0; at u = 0 the
+        // quotient is 0/0), the largest shared factor first
+        let in_a = self.product_nodes(a);
+        let common = self
+            .product_nodes(b)
+            .into_iter()
+            .filter(|f| self.as_number(*f).is_none() && in_a.contains(f))
+            .max();
+        if let Some(common) = common
+            && let Some(rest_a) = self.without(a, common)
+            && let Some(rest_b) = self.without(b, common)
+        {
+            return self.div(rest_a, rest_b);
+        }
         if let Some(y) = self.negated(b) {
             let quotient = self.div(a, y);
             return self.neg(quotient);
@@ -297,6 +314,9 @@ impl Graph {
             return log;
         }
         if op == Unary::Abs {
+            if let Some(magnitude) = self.abs_of_signed(u) {
+                return magnitude;
+            }
             match *self.node(u) {
                 Node::Unary(Unary::Abs | Unary::Neg, x) => return self.abs(x),
                 Node::Powi(_, n) if n % 2 == 0 => return u,
@@ -331,9 +351,13 @@ impl Graph {
         }
     }
 
-    /// Whether `id` is positive wherever it is defined: a positive constant, an exponential,
-    /// a `cosh`, a named constant (all of `std::f64::consts` are positive).
+    /// Whether `id` is positive wherever it is defined: its range proves it (see
+    /// [`super::range`]), or it is an exponential or a `cosh` (whose range may reach 0 in
+    /// `f64` bounds).
     fn is_positive(&self, id: Id) -> bool {
+        if self.range(id).is_positive() {
+            return true;
+        }
         match self.node(id) {
             Node::Num(n) => n.value() > 0.0,
             Node::Unary(Unary::Exp | Unary::Cosh, _) => true,
@@ -350,7 +374,8 @@ impl Graph {
             Binary::Mul => self.mul(a, b),
             Binary::Div => self.div(a, b),
             Binary::Powf => self.powf(a, b),
-            Binary::Atan2 | Binary::Hypot => self.intern(Node::Binary(op, a, b)),
+            Binary::Atan2 => self.atan2_simplified(a, b),
+            Binary::Hypot => self.intern(Node::Binary(op, a, b)),
         }
     }
 
