@@ -12,16 +12,37 @@
 //!   `std::f64::consts::FRAC_PI_2` (so that `π/2 − (π/2 − a)` cancels to `a`, and no rounded
 //!   value is frozen: arbitrary-precision evaluation takes π to its own precision).
 //!
-//! Where the proof fails (the range of a factor holds 0), nothing is rewritten.
+//! Where the proof fails (the range of a factor holds 0), nothing is rewritten; the rewrites
+//! of `atan2` as `atan` also ask the sign to be robust in `f64` (see [`ROBUST`]).
 
 use super::graph::{Graph, Id, Node};
 use super::ops::Binary;
+use super::range::Range;
 
 /// The named constant π/2 (see [`super::constants`]).
 const FRAC_PI_2: &str = "std::f64::consts::FRAC_PI_2";
 
 /// The named constant π.
 const PI: &str = "std::f64::consts::PI";
+
+/// How far from 0 a range's nearest bound must be, relative to its farthest finite bound,
+/// for a rewrite whose result jumps with the sign (`atan2(y, x)` as `atan(y / x)`): then
+/// the `f64` value of the node, a few roundings away from its real value, has the sign too.
+/// (A range [1e-300, 1] proves x > 0 in real arithmetic, but x may round to 0 or below,
+/// where `atan(y / x)` and `atan2(y, x)` differ by π.)
+const ROBUST: f64 = 1e-6;
+
+/// The sign of every value of `range` (`1` or `-1`) when it is robust (see [`ROBUST`]).
+fn robust_sign(range: Range) -> Option<f64> {
+    let (lo, hi) = (range.lo(), range.hi());
+    if lo > 0.0 && (hi.is_infinite() || lo >= ROBUST * hi) {
+        Some(1.0)
+    } else if hi < 0.0 && (lo.is_infinite() || -hi >= ROBUST * -lo) {
+        Some(-1.0)
+    } else {
+        None
+    }
+}
 
 impl Graph {
     /// `|u|` when the sign of `u` is proven: `u` or `−u`.
@@ -41,14 +62,13 @@ impl Graph {
         if let Some((y, x)) = self.without_positive_factor(y, x) {
             return self.atan2(y, x);
         }
-        if self.range(x).is_positive() {
+        if robust_sign(self.range(x)) == Some(1.0) {
             let quotient = self.div(y, x);
             return self.atan(quotient);
         }
-        let range = self.range(y);
-        if range.is_positive() || range.is_negative() {
+        if let Some(sign) = robust_sign(self.range(y)) {
             let half_pi = self.symbol(FRAC_PI_2);
-            let quarter = if range.is_positive() {
+            let quarter = if sign > 0.0 {
                 half_pi
             } else {
                 self.neg(half_pi)
@@ -57,7 +77,7 @@ impl Graph {
             let atan = self.atan(quotient);
             return self.sub(quarter, atan);
         }
-        if self.is_number(y, 0.0) && self.range(x).is_negative() {
+        if self.is_number(y, 0.0) && robust_sign(self.range(x)) == Some(-1.0) {
             return self.symbol(PI);
         }
         self.intern(Node::Binary(Binary::Atan2, y, x))
