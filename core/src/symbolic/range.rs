@@ -176,14 +176,14 @@ impl Range {
     /// `uⁿ` for `n ≥ 1`: by repeated multiplication of the range (of its absolute value for
     /// even n, so that the square of [−1, 1] is [0, 1], not [−1, 1]).
     fn powi(self, n: u32) -> Range {
-        let base = if n % 2 == 0 { self.abs() } else { self };
+        let base = if n.is_multiple_of(2) { self.abs() } else { self };
         let mut power = base;
         for _ in 1..n.min(64) {
             power = power.mul(base);
         }
         if n > 64 {
             // beyond 64 factors only the sign is kept
-            return if n % 2 == 0 || base.lo >= 0.0 {
+            return if n.is_multiple_of(2) || base.lo >= 0.0 {
                 Range::new(0.0, f64::INFINITY)
             } else if base.hi <= 0.0 {
                 Range::new(f64::NEG_INFINITY, 0.0)
@@ -191,7 +191,7 @@ impl Range {
                 Range::ALL
             };
         }
-        if n % 2 == 0 {
+        if n.is_multiple_of(2) {
             Range::new(power.lo.max(0.0), power.hi)
         } else {
             power
