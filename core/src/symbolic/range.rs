@@ -176,7 +176,11 @@ impl Range {
     /// `uⁿ` for `n ≥ 1`: by repeated multiplication of the range (of its absolute value for
     /// even n, so that the square of [−1, 1] is [0, 1], not [−1, 1]).
     fn powi(self, n: u32) -> Range {
-        let base = if n.is_multiple_of(2) { self.abs() } else { self };
+        let base = if n.is_multiple_of(2) {
+            self.abs()
+        } else {
+            self
+        };
         let mut power = base;
         for _ in 1..n.min(64) {
             power = power.mul(base);
@@ -269,7 +273,7 @@ fn binary_range(op: Binary, a: Range, b: Range) -> Range {
         }
         Binary::Hypot => {
             let (a, b) = (a.abs(), b.abs());
-            Range::rounded(a.lo.max(b.lo), a.hi.hypot(b.hi))
+            Range::library(a.lo.max(b.lo), a.hi.hypot(b.hi))
         }
         // a positive base gives a positive power; anything else is not bounded here
         Binary::Powf if a.lo > 0.0 => Range::new(0.0, f64::INFINITY),
