@@ -4,7 +4,9 @@
 //! (`tests/generated/whitworth.rs`, ψ and x_C with derivatives 1 and 2 and every loop's
 //! guard), the same for ψ alone (`tests/generated/whitworth_psi.rs`), the run-time
 //! evaluator of the same graph, the hand-derived formulas (1.35), (1.36), (1.39), (1.41),
-//! and Dual2 through the closed-form ψ, in one run.
+//! and Dual2 through the closed-form ψ, in one run; and the whole pose (ψ, A, C, S1, S2, S3
+//! with ′ and ″) generated from `tests/data/whitworth_pose.toml` against the hand-derived
+//! `whitworth::hand::pose`.
 //!
 //! ```sh
 //! cargo bench -p mechdiff --bench scene_codegen -- --warm-up-time 1 --measurement-time 3
@@ -25,6 +27,11 @@ mod generated {
 #[allow(dead_code, clippy::all)]
 mod generated_psi {
     include!("../tests/generated/whitworth_psi.rs");
+}
+
+#[allow(dead_code, clippy::all)]
+mod generated_pose {
+    include!("../tests/generated/whitworth_pose.rs");
 }
 
 /// The crank angle (rad): a generic position, as in `derivative_methods`.
@@ -73,6 +80,20 @@ fn whitworth_from_scene(c: &mut Criterion) {
             program.evaluate(black_box(PHI), &mut registers, &mut out);
             code.read(&out).map(|v| v[0] + v[3]).ok()
         })
+    });
+    group.finish();
+
+    let mut group = c.benchmark_group(
+        "whitworth whole pose (ψ, A, C, S1, S2, S3 with ′, ″): hand vs generated vs dual2",
+    );
+    group.bench_function("hand pose", |b| {
+        b.iter(|| hand::pose(black_box(&shaper), black_box(PHI)))
+    });
+    group.bench_function("generated pose (+ guards)", |b| {
+        b.iter(|| generated_pose::pose(black_box(PHI)))
+    });
+    group.bench_function("dual2 pose (closed form)", |b| {
+        b.iter(|| Dual2.jets(black_box(&shaper), black_box(PHI)))
     });
     group.finish();
 }

@@ -15,7 +15,9 @@
 //! ψ′, ψ″), `newton` (the same with `Solver::with_closed_form(false)`), `psi` (the Whitworth
 //! module's closed-form ψ in `Dual2`), `pose` (its whole pose in `Dual2`), `rack` (mechanism
 //! 001 from `scenes/rack_slotted_link.toml`: `move_to` + read θ3, θ3′, θ3″), `hand` (the
-//! hand-derived ψ, ψ′, ψ″), `generated` (ψ, ψ′, ψ″ generated from the scene, with guards).
+//! hand-derived ψ, ψ′, ψ″), `generated` (ψ, ψ′, ψ″ generated from the scene, with guards),
+//! `hand_pose` (the hand-derived whole pose: ψ, A, C, S1, S2, S3 with ′ and ″),
+//! `generated_pose` (the same generated from `tests/data/whitworth_pose.toml`, with guards).
 
 use mechdiff::core::geometry::{ScalarOutput, Solver, Tracker};
 use mechdiff::core::method::{Differentiator, Dual2};
@@ -29,6 +31,20 @@ use std::process::ExitCode;
 #[allow(dead_code, clippy::all)]
 mod generated_psi {
     include!("../tests/generated/whitworth_psi.rs");
+}
+
+/// Whitworth's whole pose (ψ, A, C, S1, S2, S3 with ′ and ″) generated from
+/// `tests/data/whitworth_pose.toml`.
+#[allow(dead_code, clippy::all)]
+mod generated_pose {
+    include!("../tests/generated/whitworth_pose.rs");
+}
+
+/// The sum of every value and derivative of a hand-derived whole pose.
+fn hand_pose_sum(shaper: &Whitworth, phi: f64) -> f64 {
+    let mut acc = 0.0;
+    hand::pose(shaper, phi).map(|j| acc += j.value + j.derivatives[0] + j.derivatives[1]);
+    acc
 }
 
 /// Walks a copy of `start` through `positions`, reading `output` to second order.
@@ -49,8 +65,8 @@ fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
     let (Some(which), Some(reps)) = (args.get(1), args.get(2)) else {
         eprintln!(
-            "usage: instructions_per_position geometry|newton|psi|pose|rack|hand|generated \
-             REPETITIONS"
+            "usage: instructions_per_position \
+             geometry|newton|psi|pose|rack|hand|generated|hand_pose|generated_pose REPETITIONS"
         );
         return Ok(ExitCode::FAILURE);
     };
@@ -112,9 +128,21 @@ fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
                     Err(_) => f64::NAN,
                 })
                 .sum(),
+            "hand_pose" => phis
+                .iter()
+                .map(|&phi| hand_pose_sum(black_box(&shaper), black_box(phi)))
+                .sum(),
+            "generated_pose" => phis
+                .iter()
+                .map(|&phi| match generated_pose::pose(black_box(phi)) {
+                    Ok(rows) => rows.iter().flatten().sum(),
+                    Err(_) => f64::NAN,
+                })
+                .sum(),
             other => {
                 eprintln!(
-                    "unknown loop `{other}`: geometry, newton, psi, pose, rack, hand or generated"
+                    "unknown loop `{other}`: geometry, newton, psi, pose, rack, hand, generated, \
+                     hand_pose or generated_pose"
                 );
                 return Ok(ExitCode::FAILURE);
             }

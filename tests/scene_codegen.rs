@@ -43,7 +43,8 @@ macro_rules! generated {
 }
 
 // Every scene of scenes/ that describes a mechanism (all of them have only closed-form
-// loops), a test scene that cannot complete a turn, and Whitworth's ψ alone (benches).
+// loops), a test scene that cannot complete a turn, and Whitworth's ψ alone and its whole
+// pose (benches).
 generated! {
     four_bar => "scenes/four_bar.toml",
     norton_four_bar => "scenes/norton_four_bar.toml",
@@ -58,6 +59,7 @@ generated! {
     whitworth_forces => "scenes/whitworth_forces.toml",
     four_bar_unassemblable => "tests/data/four_bar_unassemblable.toml",
     whitworth_psi => "tests/data/whitworth_psi.toml",
+    whitworth_pose => "tests/data/whitworth_pose.toml",
 }
 
 fn generated_path(scene: &str) -> String {

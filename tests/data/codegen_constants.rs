@@ -66,10 +66,10 @@ pub fn constants_6(phi: f64) -> [f64; 3] {
 }
 
 // `pi*phi^2 + atan2(1, 3)*ln(3)`: value and derivatives 1 to 2 with respect to `phi`
-// operations: 1 add, 6 mul, 0 div, 1 atan2, 1 ln
-// without common-subexpression elimination: 1 add, 6 mul, 0 div, 1 atan2, 1 ln
+// operations: 1 add, 6 mul, 1 div, 1 atan, 1 ln
+// without common-subexpression elimination: 1 add, 6 mul, 1 div, 1 atan, 1 ln
 pub fn constants_7(phi: f64) -> [f64; 3] {
-    let value = std::f64::consts::PI * (phi * phi) + f64::atan2(1.0, 3.0) * f64::ln(3.0);
+    let value = std::f64::consts::PI * (phi * phi) + f64::atan(1.0 / 3.0) * f64::ln(3.0);
     let d1 = 2.0 * (std::f64::consts::PI * phi);
     let d2 = 2.0 * std::f64::consts::PI;
     [value, d1, d2]

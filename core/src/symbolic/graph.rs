@@ -13,6 +13,7 @@ use std::collections::HashMap;
 use std::fmt;
 
 use super::ops::{Binary, Comparison, Unary};
+use super::range::Range;
 
 /// Index of a node in a [`Graph`] (the default: the first node).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -105,6 +106,8 @@ impl Node {
 pub struct Graph {
     nodes: Vec<Node>,
     index: HashMap<Node, Id>,
+    /// The range of each node (see [`super::range`]), computed as it is stored.
+    ranges: Vec<Range>,
     pub(super) derivative_cache: HashMap<(Id, Box<str>), Id>,
 }
 
@@ -129,6 +132,12 @@ impl Graph {
         &self.nodes[id.index()]
     }
 
+    /// An interval holding every real value of the node `id`, whatever its symbols are
+    /// (see [`super::range`]): what the simplifier knows of its sign.
+    pub fn range(&self, id: Id) -> Range {
+        self.ranges[id.index()]
+    }
+
     /// All nodes, children before parents.
     pub fn nodes(&self) -> &[Node] {
         &self.nodes
@@ -142,6 +151,8 @@ impl Graph {
         }
         debug_assert!(node.children().iter().all(|c| c.index() < self.nodes.len()));
         let id = Id::at(self.nodes.len());
+        let range = self.range_of(&node);
+        self.ranges.push(range);
         self.nodes.push(node.clone());
         self.index.insert(node, id);
         id

@@ -4,6 +4,8 @@
 //! - [`graph`]: the IR, a flat hash-consed arena ([`Graph`], [`Id`], [`Node`]);
 //! - [`sexpr`] and [`infix`]: text forms, with positioned parse errors;
 //! - [`simplify`] and [`sums`]: the simplifying constructors every node is built with;
+//! - [`range`] and [`signs`]: what each node's range proves of its sign, and the
+//!   simplifications a proven sign allows (`atan2`, `abs`);
 //! - [`constants`]: named constants (`std::f64::consts::PI`, `pi`);
 //! - [`rules`]: the one table of derivative rules and the differentiation driver;
 //! - [`eval`] and [`bigfloat`]: evaluation in `f64`, in num-dual types, in arbitrary
@@ -33,8 +35,10 @@ pub mod graph;
 pub mod infix;
 pub mod ops;
 pub mod piecewise;
+pub mod range;
 pub mod rules;
 pub mod sexpr;
+pub mod signs;
 pub mod simplify;
 pub mod sums;
 pub mod taylor;
@@ -45,3 +49,4 @@ pub use emit::{Emission, format_rust};
 pub use eval::{Arithmetic, DualArithmetic};
 pub use graph::{Graph, Id, Node, Number};
 pub use ops::{Binary, Comparison, Unary};
+pub use range::Range;

@@ -14,7 +14,10 @@
 //! - `tan(atan2(a, b)) = a / b`, `tan(atan(x)) = x`;
 //! - `ln(exp(s)) = s`, `ln(uⁿ) = n ln u` (n odd) or `n ln |u|` (n even), `ln(u^c) = c ln u`
 //!   for a constant c, `ln(u^v) = v ln u` for u known positive;
-//! - common factors of a quotient cancel: `(x·u)/u = x`, `x·u/uⁿ = x/uⁿ⁻¹`;
+//! - common factors of a quotient cancel: `(x·u)/u = x`, `x·u/uⁿ = x/uⁿ⁻¹`,
+//!   `(x·u)/(y·u) = x/y`, `(x·√u)/u = x/√u` (and `x·√u·(1/u)` likewise), `(x·(p/c))/(q/c) = (x·p)/q`;
+//! - what a proven sign allows (`|u| = u` for u ≥ 0, `atan2` without a positive factor its
+//!   coordinates share, `atan2(y, x) = atan(y / x)` for x > 0): see [`super::signs`];
 //! - integer powers: `x * x = x²`, `xᵐ · xⁿ = xᵐ⁺ⁿ`, `(xᵐ)ⁿ = xᵐⁿ`, `x⁰ = 1`, `x¹ = x`,
 //!   `x⁻ⁿ = 1 / xⁿ`, `(-x)ⁿ = ±xⁿ`, `x.powf(n)` with an integer constant `n` is `x.powi(n)`;
 //! - commutative operands are put in a canonical order (constants first, then by id), so
@@ -149,6 +152,17 @@ impl Graph {
                 return self.neg(product);
             }
         }
+        // x · (1/u) = x / u where x has the root of a factor of u, which then cancels
+        // ((x·√u)/u = x/√u below; not in general: x·(1/u) keeps its factors apart, which
+        // the quotient rule's f·b′ needs where u overflows)
+        for (x, y) in [(a, b), (b, a)] {
+            if let Node::Binary(Binary::Div, one, u) = *self.node(y)
+                && self.is_number(one, 1.0)
+                && self.has_root_of_a_factor(x, u)
+            {
+                return self.div(x, u);
+            }
+        }
         if a == b {
             return self.powi(a, 2);
         }
@@ -185,6 +199,14 @@ impl Graph {
         self.intern(Node::Binary(Binary::Mul, a, b))
     }
 
+    /// Whether the product `x` has the factor `√v` for a factor `v` of `u`.
+    fn has_root_of_a_factor(&self, x: Id, u: Id) -> bool {
+        let in_u = self.product_nodes(u);
+        self.product_nodes(x)
+            .iter()
+            .any(|f| matches!(*self.node(*f), Node::Unary(Unary::Sqrt, v) if in_u.contains(&v)))
+    }
+
     /// `a / b`, simplified.
     pub fn div(&mut self, a: Id, b: Id) -> Id {
         if let Some(c) = self.constant_pair(a, b).and_then(|(x, y)| exact_div(x, y)) {
@@ -216,6 +238,49 @@ impl Graph {
         {
             let lower = self.powi(base, n - 1);
             return self.div(rest, lower);
+        }
+        // a factor both share cancels: (x·u)/(y·u) = x/y (where u ≠ 0; at u = 0 the
+        // quotient is 0/0), the largest shared factor first
+        let in_a = self.product_nodes(a);
+        let common = self
+            .product_nodes(b)
+            .into_iter()
+            .filter(|f| self.as_number(*f).is_none() && in_a.contains(f))
+            .max();
+        if let Some(common) = common
+            && let Some(rest_a) = self.without(a, common)
+            && let Some(rest_b) = self.without(b, common)
+        {
+            return self.div(rest_a, rest_b);
+        }
+        // a square root over its radicand: (x·√u)/(y·u) = x/(y·√u) (u ≥ 0 wherever √u is
+        // defined; at u = 0 both sides are 0/0 or x/0)
+        let in_b = self.product_nodes(b);
+        let root = in_a
+            .iter()
+            .copied()
+            .find(|f| matches!(*self.node(*f), Node::Unary(Unary::Sqrt, u) if in_b.contains(&u)));
+        if let Some(root) = root
+            && let Node::Unary(Unary::Sqrt, u) = *self.node(root)
+            && let Some(rest_a) = self.without(a, root)
+            && let Some(rest_b) = self.without(b, u)
+        {
+            let denominator = self.mul(rest_b, root);
+            return self.div(rest_a, denominator);
+        }
+        // quotients over one denominator: (x·(p/c))/(q/c) = (x·p)/q (where c ≠ 0)
+        if let Node::Binary(Binary::Div, q, c) = *self.node(b) {
+            let over_c = in_a
+                .iter()
+                .copied()
+                .find(|f| matches!(*self.node(*f), Node::Binary(Binary::Div, _, d) if d == c));
+            if let Some(over_c) = over_c
+                && let Node::Binary(Binary::Div, p, _) = *self.node(over_c)
+                && let Some(rest) = self.without(a, over_c)
+            {
+                let numerator = self.mul(rest, p);
+                return self.div(numerator, q);
+            }
         }
         if let Some(y) = self.negated(b) {
             let quotient = self.div(a, y);
@@ -297,6 +362,9 @@ impl Graph {
             return log;
         }
         if op == Unary::Abs {
+            if let Some(magnitude) = self.abs_of_signed(u) {
+                return magnitude;
+            }
             match *self.node(u) {
                 Node::Unary(Unary::Abs | Unary::Neg, x) => return self.abs(x),
                 Node::Powi(_, n) if n % 2 == 0 => return u,
@@ -331,9 +399,13 @@ impl Graph {
         }
     }
 
-    /// Whether `id` is positive wherever it is defined: a positive constant, an exponential,
-    /// a `cosh`, a named constant (all of `std::f64::consts` are positive).
+    /// Whether `id` is positive wherever it is defined: its range proves it (see
+    /// [`super::range`]), or it is an exponential or a `cosh` (whose range may reach 0 in
+    /// `f64` bounds).
     fn is_positive(&self, id: Id) -> bool {
+        if self.range(id).is_positive() {
+            return true;
+        }
         match self.node(id) {
             Node::Num(n) => n.value() > 0.0,
             Node::Unary(Unary::Exp | Unary::Cosh, _) => true,
@@ -350,7 +422,8 @@ impl Graph {
             Binary::Mul => self.mul(a, b),
             Binary::Div => self.div(a, b),
             Binary::Powf => self.powf(a, b),
-            Binary::Atan2 | Binary::Hypot => self.intern(Node::Binary(op, a, b)),
+            Binary::Atan2 => self.atan2_simplified(a, b),
+            Binary::Hypot => self.intern(Node::Binary(op, a, b)),
         }
     }
 

@@ -169,7 +169,7 @@ impl Graph {
     /// The nodes of the product tree of `id`: itself and, through products, every sub-product
     /// and factor (`a·(b·c)` → `[a·(b·c), a, b·c, b, c]`), breadth first, at most
     /// [`LOOK_THROUGH`] of them.
-    fn product_nodes(&self, id: Id) -> Vec<Id> {
+    pub(super) fn product_nodes(&self, id: Id) -> Vec<Id> {
         let mut out = vec![id];
         let mut next = 0;
         while next < out.len() && out.len() < LOOK_THROUGH {
