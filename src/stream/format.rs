@@ -2,8 +2,6 @@
 //! same `f64` (the Żmij algorithm of the `zmij` crate), and the streamed table's fixed-width
 //! scientific columns.
 
-use std::fmt::Write as _;
-
 use crate::scene::outputs::Column;
 use crate::scene::table::DIGITS;
 
@@ -24,32 +22,48 @@ struct Shortest {
 impl Shortest {
     fn of(value: f64) -> Self {
         let mut buffer = zmij::Buffer::new();
-        let text = buffer.format_finite(value + 0.0);
-        let (negative, text) = match text.strip_prefix('-') {
-            Some(rest) => (true, rest),
-            None => (false, text),
-        };
-        let (mantissa, exponent) = match text.split_once(['e', 'E']) {
-            Some((m, e)) => (m, e.parse::<i32>().unwrap_or(0)),
-            None => (text, 0),
-        };
-        let (whole, fraction) = mantissa.split_once('.').unwrap_or((mantissa, ""));
+        Self::read(buffer.format_finite(value + 0.0).as_bytes())
+    }
+
+    /// The digits of Żmij's text (`-`? digits, `.` digits, then `e`, a sign and digits for
+    /// an exponent), read in one pass: the crate gives its decimal only as text.
+    fn read(text: &[u8]) -> Self {
         let mut shortest = Self {
             digits: [0; 20],
             len: 0,
-            point: whole.len() as i32 + exponent,
-            negative,
+            point: 0,
+            negative: false,
         };
-        for d in whole.bytes().chain(fraction.bytes()) {
-            if d == b'0' && shortest.len == 0 {
-                shortest.point -= 1;
-            } else if shortest.len < shortest.digits.len() {
-                shortest.digits[shortest.len] = d;
-                shortest.len += 1;
+        let mut after_point = false;
+        let mut rest = text;
+        while let [b, tail @ ..] = rest {
+            rest = tail;
+            match *b {
+                b'-' => shortest.negative = true,
+                b'.' => after_point = true,
+                b'e' | b'E' => break,
+                b'0' if shortest.len == 0 => shortest.point -= i32::from(after_point),
+                d => {
+                    if shortest.len < shortest.digits.len() {
+                        shortest.digits[shortest.len] = d;
+                        shortest.len += 1;
+                    }
+                    shortest.point += i32::from(!after_point);
+                }
             }
         }
+        let (negative, magnitude) = match rest {
+            [b'-', digits @ ..] => (true, digits),
+            [b'+', digits @ ..] => (false, digits),
+            digits => (false, digits),
+        };
+        let exponent = (magnitude.iter()).fold(0i32, |e, &d| e * 10 + i32::from(d - b'0'));
+        shortest.point += if negative { -exponent } else { exponent };
         while shortest.len > 0 && shortest.digits[shortest.len - 1] == b'0' {
             shortest.len -= 1;
+        }
+        if shortest.len == 0 {
+            shortest.point = 0;
         }
         shortest
     }
@@ -59,15 +73,25 @@ impl Shortest {
     }
 }
 
-/// Whether `value` lies exactly halfway between two decimals of `len` significant digits:
-/// its exact decimal expansion has `len + 1` significant digits, the last a 5. There two
-/// shortest strings are equally near, and the standard library and Żmij may pick either
-/// (found by the property test: -842335545753126.25). Such a value has few binary digits
-/// after the point, so its expansion is counted exactly in `u128`; a value too large for
-/// that is answered "maybe" (true).
-fn is_tie(value: f64, len: usize) -> bool {
+/// Whether a finite `value` can lie exactly halfway between two decimals of few
+/// significant digits (see [`is_tie`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Tie {
+    /// Its exact decimal expansion does not end in a 5 within 18 significant digits: no
+    /// shortest string of 17 or fewer digits is ever a tie.
+    No,
+    /// Its exact expansion has this many significant digits, the last a 5.
+    Digits(usize),
+    /// Too large to count exactly in `u128`: treated as a tie.
+    Maybe,
+}
+
+/// The [`Tie`] class of `value`. Such a value has few binary digits after the point, so its
+/// expansion is counted exactly in `u128`; almost every other value is answered by its
+/// binary exponent alone (at least 23 significant digits).
+fn tie(value: f64) -> Tie {
     if value == 0.0 || !value.is_finite() {
-        return false;
+        return Tie::No;
     }
     let bits = value.abs().to_bits();
     let (exponent, fraction) = ((bits >> 52) as i32, bits & ((1 << 52) - 1));
@@ -81,29 +105,58 @@ fn is_tie(value: f64, len: usize) -> bool {
     e += zeros as i32;
     let mut n: u128 = if e >= 0 {
         if e > 74 {
-            return true;
+            return Tie::Maybe;
         }
         u128::from(m) << e
     } else if -e > 32 {
         // At least 23 significant digits: never a tie of 17 or fewer.
-        return false;
+        return Tie::No;
     } else {
         u128::from(m) * 5u128.pow((-e) as u32)
     };
     while n.is_multiple_of(10) {
         n /= 10;
     }
-    n % 10 == 5 && n.ilog10() as usize + 1 == len + 1
+    if n % 10 == 5 {
+        Tie::Digits(n.ilog10() as usize + 1)
+    } else {
+        Tie::No
+    }
+}
+
+/// Whether `value` lies exactly halfway between two decimals of `len` significant digits:
+/// its exact decimal expansion has `len + 1` significant digits, the last a 5. There two
+/// shortest strings are equally near, and the standard library and Żmij may pick either
+/// (found by the property test: -842335545753126.25). A value too large to count exactly
+/// is answered "maybe" (true).
+fn is_tie(value: f64, len: usize) -> bool {
+    match tie(value) {
+        Tie::No => false,
+        Tie::Digits(n) => n == len + 1,
+        Tie::Maybe => true,
+    }
 }
 
 /// Appends `value` as Rust's `Display` prints it (`1`, `0.5`, `0.0000001`, never an
 /// exponent), the digits being the shortest that read back to the same number (Żmij's,
 /// or the standard library's where it has 17). `-0` is written `0`. `value` must be finite.
+///
+/// Żmij prints `1e-5 ≤ |value| < 1e16` in the same layout as `Display` but for a trailing
+/// `.0` on whole numbers: those bytes are copied as they are (no tie possible, the usual
+/// case); the others are laid out from their digits.
 pub fn push_display(value: f64, out: &mut Vec<u8>) {
-    let shortest = Shortest::of(value);
+    let value = value + 0.0;
+    let mut buffer = zmij::Buffer::new();
+    let text = buffer.format_finite(value).as_bytes();
+    let tie = tie(value);
+    if tie == Tie::No && !text.contains(&b'e') {
+        out.extend_from_slice(text.strip_suffix(b".0").unwrap_or(text));
+        return;
+    }
+    let shortest = Shortest::read(text);
     let (digits, point) = (shortest.digits(), shortest.point);
     if is_tie(value, digits.len()) {
-        let _ = std::io::Write::write_fmt(out, format_args!("{}", value + 0.0));
+        let _ = std::io::Write::write_fmt(out, format_args!("{value}"));
         return;
     }
     if digits.is_empty() {
@@ -116,11 +169,11 @@ pub fn push_display(value: f64, out: &mut Vec<u8>) {
     let n = digits.len() as i32;
     if point <= 0 {
         out.extend_from_slice(b"0.");
-        out.extend(std::iter::repeat_n(b'0', (-point) as usize));
+        out.resize(out.len() + (-point) as usize, b'0');
         out.extend_from_slice(digits);
     } else if point >= n {
         out.extend_from_slice(digits);
-        out.extend(std::iter::repeat_n(b'0', (point - n) as usize));
+        out.resize(out.len() + (point - n) as usize, b'0');
     } else {
         out.extend_from_slice(&digits[..point as usize]);
         out.push(b'.');
@@ -134,7 +187,7 @@ pub fn push_display(value: f64, out: &mut Vec<u8>) {
 /// (its rounding interval, ~1e-16 relative, holds no two 10-digit decimals) unless they end
 /// exactly on a tie (…5 after the last kept digit); there, and for subnormals, the
 /// standard library decides.
-pub fn push_scientific(value: f64, width: usize, out: &mut String) {
+pub fn push_scientific(value: f64, width: usize, out: &mut Vec<u8>) {
     const KEPT: usize = DIGITS as usize;
     let shortest = Shortest::of(value);
     let digits = shortest.digits();
@@ -142,7 +195,10 @@ pub fn push_scientific(value: f64, width: usize, out: &mut String) {
     let subnormal = value != 0.0 && value.abs() < f64::MIN_POSITIVE;
     let tie = digits.len() == KEPT + 1 && digits[KEPT] == b'5';
     if subnormal || tie || is_tie(value, digits.len()) {
-        let _ = write!(out, "{:>width$.*e}", KEPT - 1, value + 0.0);
+        let _ = std::io::Write::write_fmt(
+            out,
+            format_args!("{:>width$.*e}", KEPT - 1, value + 0.0),
+        );
         return;
     }
     let mut kept = [b'0'; KEPT];
@@ -194,8 +250,8 @@ pub fn push_scientific(value: f64, width: usize, out: &mut String) {
             push(b'0' + (magnitude / divisor % 10) as u8);
         }
     }
-    out.extend(std::iter::repeat_n(' ', width.saturating_sub(len)));
-    out.push_str(std::str::from_utf8(&text[..len]).unwrap_or_default());
+    out.resize(out.len() + width.saturating_sub(len), b' ');
+    out.extend_from_slice(&text[..len]);
 }
 
 /// How rows become text, one writer per output; the values of a row are in SI and printed
@@ -274,14 +330,14 @@ impl RowFormat {
 
     /// The streamed table's line of a row: every value in scientific notation with
     /// [`DIGITS`] significant digits, right-aligned in its column's fixed width.
-    pub fn table(&self, row: &[f64], out: &mut String) {
+    pub fn table(&self, row: &[f64], out: &mut Vec<u8>) {
         for (k, ((v, factor), &w)) in row.iter().zip(&self.factors).zip(&self.widths).enumerate() {
             if k > 0 {
-                out.push_str("  ");
+                out.extend_from_slice(b"  ");
             }
             push_scientific(v / factor, w, out);
         }
-        out.push('\n');
+        out.push(b'\n');
     }
 }
 
@@ -321,9 +377,9 @@ mod tests {
     }
 
     fn scientific(v: f64) -> String {
-        let mut out = String::new();
+        let mut out = Vec::new();
         push_scientific(v, 0, &mut out);
-        out
+        String::from_utf8(out).unwrap()
     }
 
     /// Rounding up through nines, ties, zero, the ends of the exponent range.
@@ -346,9 +402,9 @@ mod tests {
         ] {
             assert_eq!(scientific(v), format!("{:.8e}", v + 0.0), "{v:e}");
         }
-        let mut padded = String::new();
+        let mut padded = Vec::new();
         push_scientific(-0.5, 16, &mut padded);
-        assert_eq!(padded, "  -5.00000000e-1");
+        assert_eq!(padded, b"  -5.00000000e-1");
     }
 
     proptest! {
