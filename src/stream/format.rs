@@ -20,45 +20,50 @@ struct Shortest {
 }
 
 impl Shortest {
-    fn of(value: f64) -> Self {
-        let mut buffer = zmij::Buffer::new();
-        Self::read(buffer.format_finite(value + 0.0).as_bytes())
-    }
-
-    /// The digits of Żmij's text (`-`? digits, `.` digits, then `e`, a sign and digits for
-    /// an exponent), read in one pass: the crate gives its decimal only as text.
+    /// The digits of Żmij's text, which is `-`? then either `w.f` (no exponent: `w` is `0`
+    /// or has no leading zero, `f` no trailing zero unless it is the `0` of `w.0`) or
+    /// `d.ddde±x` / `de±x`: the crate gives its decimal only as text.
     fn read(text: &[u8]) -> Self {
+        let negative = text.first() == Some(&b'-');
+        let body = &text[usize::from(negative)..];
+        let (mantissa, exponent) = match body.iter().position(|&b| b == b'e') {
+            Some(e) => {
+                let (sign, magnitude) = match &body[e + 1..] {
+                    [b'-', m @ ..] => (-1, m),
+                    [b'+', m @ ..] => (1, m),
+                    m => (1, m),
+                };
+                let x = (magnitude.iter()).fold(0i32, |x, &d| x * 10 + i32::from(d - b'0'));
+                (&body[..e], sign * x)
+            }
+            None => (body, 0),
+        };
+        let dot = mantissa.iter().position(|&b| b == b'.');
+        let (whole, fraction) = match dot {
+            Some(dot) => (&mantissa[..dot], &mantissa[dot + 1..]),
+            None => (mantissa, &[][..]),
+        };
         let mut shortest = Self {
             digits: [0; 20],
             len: 0,
-            point: 0,
-            negative: false,
+            point: exponent,
+            negative,
         };
-        let mut after_point = false;
-        let mut rest = text;
-        while let [b, tail @ ..] = rest {
-            rest = tail;
-            match *b {
-                b'-' => shortest.negative = true,
-                b'.' => after_point = true,
-                b'e' | b'E' => break,
-                b'0' if shortest.len == 0 => shortest.point -= i32::from(after_point),
-                d => {
-                    if shortest.len < shortest.digits.len() {
-                        shortest.digits[shortest.len] = d;
-                        shortest.len += 1;
-                    }
-                    shortest.point += i32::from(!after_point);
-                }
-            }
+        if whole == b"0" {
+            // 0.000ddd: the zeros after the point move it.
+            let zeros = fraction.iter().take_while(|&&b| b == b'0').count();
+            let digits = &fraction[zeros..];
+            shortest.point -= zeros as i32;
+            shortest.len = digits.len().min(20);
+            shortest.digits[..shortest.len].copy_from_slice(&digits[..shortest.len]);
+        } else {
+            let w = whole.len().min(20);
+            let f = fraction.len().min(20 - w);
+            shortest.point += whole.len() as i32;
+            shortest.digits[..w].copy_from_slice(&whole[..w]);
+            shortest.digits[w..w + f].copy_from_slice(&fraction[..f]);
+            shortest.len = w + f;
         }
-        let (negative, magnitude) = match rest {
-            [b'-', digits @ ..] => (true, digits),
-            [b'+', digits @ ..] => (false, digits),
-            digits => (false, digits),
-        };
-        let exponent = (magnitude.iter()).fold(0i32, |e, &d| e * 10 + i32::from(d - b'0'));
-        shortest.point += if negative { -exponent } else { exponent };
         while shortest.len > 0 && shortest.digits[shortest.len - 1] == b'0' {
             shortest.len -= 1;
         }
@@ -74,7 +79,7 @@ impl Shortest {
 }
 
 /// Whether a finite `value` can lie exactly halfway between two decimals of few
-/// significant digits (see [`is_tie`]).
+/// significant digits (see [`Tie::is`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Tie {
     /// Its exact decimal expansion does not end in a 5 within 18 significant digits: no
@@ -124,38 +129,43 @@ fn tie(value: f64) -> Tie {
     }
 }
 
-/// Whether `value` lies exactly halfway between two decimals of `len` significant digits:
-/// its exact decimal expansion has `len + 1` significant digits, the last a 5. There two
-/// shortest strings are equally near, and the standard library and Żmij may pick either
-/// (found by the property test: -842335545753126.25). A value too large to count exactly
-/// is answered "maybe" (true).
-fn is_tie(value: f64, len: usize) -> bool {
-    match tie(value) {
-        Tie::No => false,
-        Tie::Digits(n) => n == len + 1,
-        Tie::Maybe => true,
+impl Tie {
+    /// Whether a value of this class lies exactly halfway between two decimals of `len`
+    /// significant digits: its exact decimal expansion has `len + 1` significant digits, the last a 5. There two
+    /// shortest strings are equally near, and the standard library and Żmij may pick either
+    /// (found by the property test: -842335545753126.25). A value too large to count exactly
+    /// is answered "maybe" (true).
+    fn is(self, len: usize) -> bool {
+        match self {
+            Tie::No => false,
+            Tie::Digits(n) => n == len + 1,
+            Tie::Maybe => true,
+        }
     }
 }
 
 /// Appends `value` as Rust's `Display` prints it (`1`, `0.5`, `0.0000001`, never an
 /// exponent), the digits being the shortest that read back to the same number (Żmij's,
 /// or the standard library's where it has 17). `-0` is written `0`. `value` must be finite.
+pub fn push_display(value: f64, out: &mut Vec<u8>) {
+    let value = value + 0.0;
+    let mut buffer = zmij::Buffer::new();
+    display(value, buffer.format_finite(value).as_bytes(), tie(value), out);
+}
+
+/// [`push_display`] of `value` (not `-0`) from Żmij's `text` of it and its [`Tie`] class.
 ///
 /// Żmij prints `1e-5 ≤ |value| < 1e16` in the same layout as `Display` but for a trailing
 /// `.0` on whole numbers: those bytes are copied as they are (no tie possible, the usual
 /// case); the others are laid out from their digits.
-pub fn push_display(value: f64, out: &mut Vec<u8>) {
-    let value = value + 0.0;
-    let mut buffer = zmij::Buffer::new();
-    let text = buffer.format_finite(value).as_bytes();
-    let tie = tie(value);
+fn display(value: f64, text: &[u8], tie: Tie, out: &mut Vec<u8>) {
     if tie == Tie::No && !text.contains(&b'e') {
         out.extend_from_slice(text.strip_suffix(b".0").unwrap_or(text));
         return;
     }
     let shortest = Shortest::read(text);
     let (digits, point) = (shortest.digits(), shortest.point);
-    if is_tie(value, digits.len()) {
+    if tie.is(digits.len()) {
         let _ = std::io::Write::write_fmt(out, format_args!("{value}"));
         return;
     }
@@ -188,17 +198,22 @@ pub fn push_display(value: f64, out: &mut Vec<u8>) {
 /// exactly on a tie (…5 after the last kept digit); there, and for subnormals, the
 /// standard library decides.
 pub fn push_scientific(value: f64, width: usize, out: &mut Vec<u8>) {
+    let value = value + 0.0;
+    let mut buffer = zmij::Buffer::new();
+    let text = buffer.format_finite(value).as_bytes();
+    scientific(value, text, tie(value), width, out);
+}
+
+/// [`push_scientific`] of `value` (not `-0`) from Żmij's `text` of it and its [`Tie`] class.
+fn scientific(value: f64, text: &[u8], tie: Tie, width: usize, out: &mut Vec<u8>) {
     const KEPT: usize = DIGITS as usize;
-    let shortest = Shortest::of(value);
+    let shortest = Shortest::read(text);
     let digits = shortest.digits();
     // Subnormals: their shortest digits may be fewer than nine and still not the value's.
     let subnormal = value != 0.0 && value.abs() < f64::MIN_POSITIVE;
-    let tie = digits.len() == KEPT + 1 && digits[KEPT] == b'5';
-    if subnormal || tie || is_tie(value, digits.len()) {
-        let _ = std::io::Write::write_fmt(
-            out,
-            format_args!("{:>width$.*e}", KEPT - 1, value + 0.0),
-        );
+    let rounding_tie = digits.len() == KEPT + 1 && digits[KEPT] == b'5';
+    if subnormal || rounding_tie || tie.is(digits.len()) {
+        let _ = std::io::Write::write_fmt(out, format_args!("{:>width$.*e}", KEPT - 1, value));
         return;
     }
     let mut kept = [b'0'; KEPT];
@@ -254,6 +269,37 @@ pub fn push_scientific(value: f64, width: usize, out: &mut Vec<u8>) {
     out.extend_from_slice(&text[..len]);
 }
 
+/// Which texts rows are written into.
+#[derive(Debug, Clone, Copy)]
+pub struct Wanted {
+    /// The streamed table.
+    pub table: bool,
+    /// CSV.
+    pub csv: bool,
+    /// JSON Lines.
+    pub jsonl: bool,
+}
+
+/// The text of some rows, one buffer per output (kept and reused from batch to batch).
+#[derive(Debug, Default)]
+pub struct Texts {
+    /// The streamed table's lines.
+    pub table: Vec<u8>,
+    /// CSV lines.
+    pub csv: Vec<u8>,
+    /// JSON Lines records.
+    pub jsonl: Vec<u8>,
+}
+
+impl Texts {
+    /// Empties every buffer, keeping its memory.
+    pub fn clear(&mut self) {
+        self.table.clear();
+        self.csv.clear();
+        self.jsonl.clear();
+    }
+}
+
 /// How rows become text, one writer per output; the values of a row are in SI and printed
 /// in the columns' units.
 #[derive(Debug, Clone)]
@@ -293,25 +339,44 @@ impl RowFormat {
         self.factors.len()
     }
 
-    /// The CSV line of a row: every value with the digits of [`push_display`].
-    pub fn csv(&self, row: &[f64], out: &mut Vec<u8>) {
-        for (k, (v, factor)) in row.iter().zip(&self.factors).enumerate() {
-            if k > 0 {
-                out.push(b',');
-            }
-            push_display(v / factor, out);
-        }
-        out.push(b'\n');
-    }
-
-    /// The JSON Lines record of a row: `{"name [unit]":value,...}`, the shortest digits.
-    pub fn jsonl(&self, row: &[f64], out: &mut Vec<u8>) {
+    /// The lines of a row in every text `wanted`, appended to `texts`: the CSV line (every
+    /// value with the digits of [`push_display`]), the JSON Lines record
+    /// (`{"name [unit]":value,...}`, Żmij's shortest digits) and the streamed table's line
+    /// (every value as [`push_scientific`] writes it, right-aligned in its column's fixed
+    /// width). Each value is formatted by Żmij once, for all three.
+    pub fn row(&self, row: &[f64], wanted: Wanted, texts: &mut Texts) {
         let mut buffer = zmij::Buffer::new();
-        for ((v, factor), key) in row.iter().zip(&self.factors).zip(&self.keys) {
-            out.extend_from_slice(key.as_bytes());
-            out.extend_from_slice(buffer.format_finite(v / factor + 0.0).as_bytes());
+        let columns = row.iter().zip(&self.factors).zip(&self.keys).zip(&self.widths);
+        for (k, (((v, factor), key), &width)) in columns.enumerate() {
+            let value = v / factor + 0.0;
+            let text = buffer.format_finite(value).as_bytes();
+            let tie = tie(value);
+            if wanted.csv {
+                if k > 0 {
+                    texts.csv.push(b',');
+                }
+                display(value, text, tie, &mut texts.csv);
+            }
+            if wanted.jsonl {
+                texts.jsonl.extend_from_slice(key.as_bytes());
+                texts.jsonl.extend_from_slice(text);
+            }
+            if wanted.table {
+                if k > 0 {
+                    texts.table.extend_from_slice(b"  ");
+                }
+                scientific(value, text, tie, width, &mut texts.table);
+            }
         }
-        out.extend_from_slice(b"}\n");
+        if wanted.csv {
+            texts.csv.push(b'\n');
+        }
+        if wanted.jsonl {
+            texts.jsonl.extend_from_slice(b"}\n");
+        }
+        if wanted.table {
+            texts.table.push(b'\n');
+        }
     }
 
     /// The two header lines of the streamed table: names, then units in brackets, each
@@ -326,18 +391,6 @@ impl RowFormat {
         };
         line(out, &|c| c.name.clone());
         line(out, &|c| format!("[{}]", c.unit));
-    }
-
-    /// The streamed table's line of a row: every value in scientific notation with
-    /// [`DIGITS`] significant digits, right-aligned in its column's fixed width.
-    pub fn table(&self, row: &[f64], out: &mut Vec<u8>) {
-        for (k, ((v, factor), &w)) in row.iter().zip(&self.factors).zip(&self.widths).enumerate() {
-            if k > 0 {
-                out.extend_from_slice(b"  ");
-            }
-            push_scientific(v / factor, w, out);
-        }
-        out.push(b'\n');
     }
 }
 

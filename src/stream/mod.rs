@@ -30,7 +30,7 @@ use crate::scene::run::{Report, check_dead_positions, dead_positions, streamed_p
 use crate::scene::sweep::{Sweeper, kinematic_columns};
 use crate::scene::{Plan, Scene, build, table};
 
-use format::RowFormat;
+use format::{RowFormat, Texts, Wanted};
 use speculate::{Batch, Sweep};
 pub use speculate::{Pieces, Speculation};
 
@@ -113,14 +113,6 @@ pub struct Streamed {
     pub pieces: Pieces,
 }
 
-/// Text of one chunk of rows, one buffer per output.
-#[derive(Default)]
-struct Text {
-    table: Vec<u8>,
-    csv: Vec<u8>,
-    jsonl: Vec<u8>,
-}
-
 /// Runs a kinematic scene (no dynamics, no balancing) and streams its rows to `sinks`.
 ///
 /// # Errors
@@ -178,6 +170,7 @@ pub fn run(scene: &Scene, sinks: &mut Sinks<'_>, options: &Options) -> Result<St
         Speculation::Never => false,
     };
     let mut pieces = Pieces::default();
+    let mut texts: Vec<Texts> = Vec::new();
     let mut written = 0;
     let mut next = 0;
     let mut pending: Option<Batch> = None;
@@ -194,11 +187,14 @@ pub fn run(scene: &Scene, sinks: &mut Sinks<'_>, options: &Options) -> Result<St
                         false => sweep.walk(&mut sweeper, range),
                     })
                 },
-                || (pending.as_ref()).map(|b| format_batch(&format, &b.rows, chunk, wanted)),
+                || {
+                    (pending.as_ref())
+                        .map(|b| format_batch(&format, &b.rows, chunk, wanted, &mut texts))
+                },
             );
-            if let (Some(b), Some(text)) = (pending.take(), text) {
+            if let (Some(b), Some(chunks)) = (pending.take(), text) {
                 let n = b.rows.len() / format.columns();
-                bar.suspend(|| write_texts(sinks, &text))?;
+                bar.suspend(|| write_texts(sinks, &texts[..chunks]))?;
                 if sinks.table.is_some() && !streamed_table {
                     kept_rows.extend(b.rows.chunks(format.columns()).map(<[f64]>::to_vec));
                 }
@@ -254,38 +250,33 @@ pub fn run(scene: &Scene, sinks: &mut Sinks<'_>, options: &Options) -> Result<St
     })
 }
 
-/// Which texts the formatting makes.
-#[derive(Debug, Clone, Copy)]
-struct Wanted {
-    table: bool,
-    csv: bool,
-    jsonl: bool,
-}
-
-/// The text of a batch's rows, chunk by chunk in parallel, chunks in row order.
-fn format_batch(format: &RowFormat, rows: &[f64], chunk: usize, wanted: Wanted) -> Vec<Text> {
+/// Formats a batch's rows chunk by chunk in parallel into `texts` (one per chunk, in row
+/// order, reused from batch to batch); returns the number of chunks.
+fn format_batch(
+    format: &RowFormat,
+    rows: &[f64],
+    chunk: usize,
+    wanted: Wanted,
+    texts: &mut Vec<Texts>,
+) -> usize {
     let width = format.columns();
-    rows.par_chunks(chunk * width)
-        .map(|rows| {
-            let mut text = Text::default();
+    let chunks = rows.len().div_ceil(chunk * width);
+    if texts.len() < chunks {
+        texts.resize_with(chunks, Texts::default);
+    }
+    (texts[..chunks].par_iter_mut())
+        .zip(rows.par_chunks(chunk * width))
+        .for_each(|(text, rows)| {
+            text.clear();
             for row in rows.chunks(width) {
-                if wanted.table {
-                    format.table(row, &mut text.table);
-                }
-                if wanted.csv {
-                    format.csv(row, &mut text.csv);
-                }
-                if wanted.jsonl {
-                    format.jsonl(row, &mut text.jsonl);
-                }
+                format.row(row, wanted, text);
             }
-            text
-        })
-        .collect()
+        });
+    chunks
 }
 
 /// Writes the texts of a batch to their outputs, in order.
-fn write_texts(sinks: &mut Sinks<'_>, texts: &[Text]) -> Result<()> {
+fn write_texts(sinks: &mut Sinks<'_>, texts: &[Texts]) -> Result<()> {
     for text in texts {
         if !text.table.is_empty() {
             write_table(sinks, &text.table)?;
