@@ -192,29 +192,133 @@ fn display(value: f64, text: &[u8], tie: Tie, out: &mut Vec<u8>) {
 }
 
 /// Appends finite `value` as `format!("{:.8e}", value + 0.0)` prints it ([`DIGITS`]
-/// significant digits, correctly rounded), right-aligned in `width`. The shortest digits
-/// are rounded to [`DIGITS`]; for a normal `f64` that equals rounding the exact value
-/// (its rounding interval, ~1e-16 relative, holds no two 10-digit decimals) unless they end
-/// exactly on a tie (…5 after the last kept digit); there, and for subnormals, the
-/// standard library decides.
+/// significant digits, correctly rounded), right-aligned in `width`.
 pub fn push_scientific(value: f64, width: usize, out: &mut Vec<u8>) {
-    let value = value + 0.0;
-    let mut buffer = zmij::Buffer::new();
-    let text = buffer.format_finite(value).as_bytes();
-    scientific(value, text, tie(value), width, out);
+    scientific(value + 0.0, None, width, out);
 }
 
-/// [`push_scientific`] of `value` (not `-0`) from Żmij's `text` of it and its [`Tie`] class.
-fn scientific(value: f64, text: &[u8], tie: Tie, width: usize, out: &mut Vec<u8>) {
-    const KEPT: usize = DIGITS as usize;
+/// The significant digits kept in the streamed table.
+const KEPT: usize = DIGITS as usize;
+
+/// Powers of ten exact in `f64`.
+const POWERS_OF_TEN: [f64; 23] = [
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
+    1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+];
+
+/// [`push_scientific`] of `value` (not `-0`), with Żmij's `text` of it if it was made.
+///
+/// Most values take [`nine_digits`]; the others (zero, beyond 1e±14…1e31, or within 1e-6
+/// of a rounding tie) round Żmij's shortest digits ([`nine_of_shortest`]) or, where that
+/// cannot decide, let the standard library print them.
+fn scientific(value: f64, text: Option<&[u8]>, width: usize, out: &mut Vec<u8>) {
+    let (kept, exponent) = match nine_digits(value) {
+        Some(nine) => nine,
+        None => {
+            let mut buffer = zmij::Buffer::new();
+            let text = text.unwrap_or_else(|| buffer.format_finite(value).as_bytes());
+            match nine_of_shortest(value, text) {
+                Some(nine) => nine,
+                None => {
+                    let _ = std::io::Write::write_fmt(
+                        out,
+                        format_args!("{:>width$.*e}", KEPT - 1, value),
+                    );
+                    return;
+                }
+            }
+        }
+    };
+    let mut text = [0u8; 24];
+    let mut len = 0;
+    let mut push = |b: u8| {
+        text[len] = b;
+        len += 1;
+    };
+    if value.is_sign_negative() {
+        push(b'-');
+    }
+    push(kept[0]);
+    push(b'.');
+    for &d in &kept[1..] {
+        push(d);
+    }
+    push(b'e');
+    if exponent < 0 {
+        push(b'-');
+    }
+    let magnitude = exponent.unsigned_abs();
+    for divisor in [100, 10, 1] {
+        if magnitude >= divisor || divisor == 1 {
+            push(b'0' + (magnitude / divisor % 10) as u8);
+        }
+    }
+    out.resize(out.len() + width.saturating_sub(len), b' ');
+    out.extend_from_slice(&text[..len]);
+}
+
+/// The [`KEPT`] significant digits of finite `value`, correctly rounded, and the power of
+/// ten of the first, by one multiplication or division with an exact power of ten: `|value|
+/// × 10^(8−k)` in [1e8, 1e9) carries one rounding (≤ 1.2e-7 there), so rounding it to an
+/// integer is rounding the exact value whenever its fraction is more than 1e-6 from ½.
+/// `None` for zero, magnitudes outside 1e-14…1e31 (the power would not be exact) and the
+/// near-ties.
+fn nine_digits(value: f64) -> Option<([u8; KEPT], i32)> {
+    let magnitude = value.abs();
+    if !(1e-14..1e31).contains(&magnitude) {
+        return None;
+    }
+    // log10 of the binary exponent's power of two: k or k − 1.
+    let binary = ((magnitude.to_bits() >> 52) as i32) - 1023;
+    let mut k = (f64::from(binary) * std::f64::consts::LOG10_2).floor() as i32;
+    let scaled = |k: i32| -> Option<f64> {
+        let p = 8 - k;
+        let power = *POWERS_OF_TEN.get(p.unsigned_abs() as usize)?;
+        Some(if p >= 0 {
+            magnitude * power
+        } else {
+            magnitude / power
+        })
+    };
+    let mut x = scaled(k)?;
+    if x >= 1e9 {
+        k += 1;
+        x = scaled(k)?;
+    }
+    if !(1e8..1e9).contains(&x) {
+        return None;
+    }
+    let whole = x.floor();
+    let fraction = x - whole;
+    if (fraction - 0.5).abs() < 1e-6 {
+        return None;
+    }
+    let mut n = whole as u32 + u32::from(fraction > 0.5);
+    if n == 1_000_000_000 {
+        n = 100_000_000;
+        k += 1;
+    }
+    let mut digits = [b'0'; KEPT];
+    for d in digits.iter_mut().rev() {
+        *d = b'0' + (n % 10) as u8;
+        n /= 10;
+    }
+    Some((digits, k))
+}
+
+/// The [`KEPT`] significant digits of finite `value` rounded from Żmij's shortest digits
+/// (its `text`), and the power of ten of the first. For a normal `f64` that equals
+/// rounding the exact value (its rounding interval, ~1e-16 relative, holds no two 10-digit
+/// decimals) unless they end exactly on a tie (…5 after the last kept digit): `None` there,
+/// and for subnormals and values that are themselves ties ([`Tie`]).
+fn nine_of_shortest(value: f64, text: &[u8]) -> Option<([u8; KEPT], i32)> {
     let shortest = Shortest::read(text);
     let digits = shortest.digits();
     // Subnormals: their shortest digits may be fewer than nine and still not the value's.
     let subnormal = value != 0.0 && value.abs() < f64::MIN_POSITIVE;
     let rounding_tie = digits.len() == KEPT + 1 && digits[KEPT] == b'5';
-    if subnormal || rounding_tie || tie.is(digits.len()) {
-        let _ = std::io::Write::write_fmt(out, format_args!("{:>width$.*e}", KEPT - 1, value));
-        return;
+    if subnormal || rounding_tie || tie(value).is(digits.len()) {
+        return None;
     }
     let mut kept = [b'0'; KEPT];
     let n = digits.len().min(KEPT);
@@ -241,32 +345,7 @@ fn scientific(value: f64, text: &[u8], tie: Tie, width: usize, out: &mut Vec<u8>
     if digits.is_empty() {
         exponent = 0;
     }
-    let mut text = [0u8; 24];
-    let mut len = 0;
-    let mut push = |b: u8| {
-        text[len] = b;
-        len += 1;
-    };
-    if shortest.negative {
-        push(b'-');
-    }
-    push(kept[0]);
-    push(b'.');
-    for &d in &kept[1..] {
-        push(d);
-    }
-    push(b'e');
-    if exponent < 0 {
-        push(b'-');
-    }
-    let magnitude = exponent.unsigned_abs();
-    for divisor in [100, 10, 1] {
-        if magnitude >= divisor || divisor == 1 {
-            push(b'0' + (magnitude / divisor % 10) as u8);
-        }
-    }
-    out.resize(out.len() + width.saturating_sub(len), b' ');
-    out.extend_from_slice(&text[..len]);
+    Some((kept, exponent))
 }
 
 /// Which texts rows are written into.
@@ -343,21 +422,20 @@ impl RowFormat {
     /// value with the digits of [`push_display`]), the JSON Lines record
     /// (`{"name [unit]":value,...}`, Żmij's shortest digits) and the streamed table's line
     /// (every value as [`push_scientific`] writes it, right-aligned in its column's fixed
-    /// width). Each value is formatted by Żmij once, for all three.
+    /// width). Each value is formatted by Żmij at most once, for all three.
     pub fn row(&self, row: &[f64], wanted: Wanted, texts: &mut Texts) {
         let mut buffer = zmij::Buffer::new();
         let columns = row.iter().zip(&self.factors).zip(&self.keys).zip(&self.widths);
         for (k, (((v, factor), key), &width)) in columns.enumerate() {
             let value = v / factor + 0.0;
-            let text = buffer.format_finite(value).as_bytes();
-            let tie = tie(value);
-            if wanted.csv {
+            let text = (wanted.csv || wanted.jsonl).then(|| buffer.format_finite(value).as_bytes());
+            if let (true, Some(text)) = (wanted.csv, text) {
                 if k > 0 {
                     texts.csv.push(b',');
                 }
-                display(value, text, tie, &mut texts.csv);
+                display(value, text, tie(value), &mut texts.csv);
             }
-            if wanted.jsonl {
+            if let (true, Some(text)) = (wanted.jsonl, text) {
                 texts.jsonl.extend_from_slice(key.as_bytes());
                 texts.jsonl.extend_from_slice(text);
             }
@@ -365,7 +443,7 @@ impl RowFormat {
                 if k > 0 {
                     texts.table.extend_from_slice(b"  ");
                 }
-                scientific(value, text, tie, width, &mut texts.table);
+                scientific(value, text, width, &mut texts.table);
             }
         }
         if wanted.csv {
@@ -475,6 +553,18 @@ mod tests {
         fn scientific_digits_match_the_standard_library(bits in any::<u64>()) {
             let v = f64::from_bits(bits);
             prop_assume!(v.is_finite());
+            prop_assert_eq!(scientific(v), format!("{:.8e}", v + 0.0));
+        }
+
+        /// Values in the range of the fast path (1e-14…1e31, one product with an exact power
+        /// of ten), of either sign: the same nine digits.
+        #[test]
+        fn scientific_digits_match_in_the_fast_range(
+            fraction in 0u64..(1 << 52),
+            exponent in 975u64..1127,
+            negative in any::<bool>(),
+        ) {
+            let v = f64::from_bits((u64::from(negative) << 63) | (exponent << 52) | fraction);
             prop_assert_eq!(scientific(v), format!("{:.8e}", v + 0.0));
         }
 
