@@ -268,9 +268,10 @@ fn nine_digits(value: f64) -> Option<([u8; KEPT], i32)> {
     if !(1e-14..1e31).contains(&magnitude) {
         return None;
     }
-    // log10 of the binary exponent's power of two: k or k − 1.
+    // ⌊log10 2^binary⌋ (78913 / 2^18 = log10 2 to 1e-6: exact for |binary| < 1650, and
+    // the shift rounds down for negatives too): k or k − 1.
     let binary = ((magnitude.to_bits() >> 52) as i32) - 1023;
-    let mut k = (f64::from(binary) * std::f64::consts::LOG10_2).floor() as i32;
+    let mut k = (binary * 78913) >> 18;
     let scaled = |k: i32| -> Option<f64> {
         let p = 8 - k;
         let power = *POWERS_OF_TEN.get(p.unsigned_abs() as usize)?;
@@ -288,12 +289,13 @@ fn nine_digits(value: f64) -> Option<([u8; KEPT], i32)> {
     if !(1e8..1e9).contains(&x) {
         return None;
     }
-    let whole = x.floor();
-    let fraction = x - whole;
+    // x > 0: the conversion truncates, i.e. floors, and the difference is exact.
+    let whole = x as u32;
+    let fraction = x - f64::from(whole);
     if (fraction - 0.5).abs() < 1e-6 {
         return None;
     }
-    let mut n = whole as u32 + u32::from(fraction > 0.5);
+    let mut n = whole + u32::from(fraction > 0.5);
     if n == 1_000_000_000 {
         n = 100_000_000;
         k += 1;
