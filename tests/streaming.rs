@@ -346,13 +346,19 @@ fn parallel_pieces_give_the_bytes_of_one_thread_up_to_two_limit_positions() {
         table_from_values: 0,
         ..o
     };
-    let one = streamed(&scene, &long(pieces(1, 1 << 14, 1 << 12, Speculation::Never)));
+    let one = streamed(
+        &scene,
+        &long(pieces(1, 1 << 14, 1 << 12, Speculation::Never)),
+    );
     one.result.as_ref().unwrap();
     for (batch, piece) in [(1 << 14, 7), (5000, 4096), (34361, 1000), (999, 250)] {
         let other = streamed(&scene, &long(pieces(2, batch, piece, Speculation::Auto)));
         assert_same(&one, &other, &format!("batch {batch}, piece {piece}"));
         let counted = other.result.unwrap().pieces;
-        assert!(counted.guessed >= 34361 / piece - 34361 / batch, "{counted:?}");
+        assert!(
+            counted.guessed >= 34361 / piece - 34361 / batch,
+            "{counted:?}"
+        );
         assert_eq!(counted.solved_again, 0, "{counted:?}");
     }
 }

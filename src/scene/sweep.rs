@@ -152,7 +152,11 @@ impl<'s> Sweeper<'s> {
     /// every loop in closed form. Newton's poses differ in their last bits with the route
     /// (its start and its steps), so a sweep with a loop on Newton is best walked in order.
     pub fn is_route_independent(&self) -> bool {
-        self.outputs().tracker.closed_form_loops().iter().all(|&c| c)
+        self.outputs()
+            .tracker
+            .closed_form_loops()
+            .iter()
+            .all(|&c| c)
     }
 
     /// Forgets the most ill-conditioned position seen so far: a piece of a sweep counts its

@@ -150,7 +150,12 @@ impl Tie {
 pub fn push_display(value: f64, out: &mut Vec<u8>) {
     let value = value + 0.0;
     let mut buffer = zmij::Buffer::new();
-    display(value, buffer.format_finite(value).as_bytes(), tie(value), out);
+    display(
+        value,
+        buffer.format_finite(value).as_bytes(),
+        tie(value),
+        out,
+    );
 }
 
 /// [`push_display`] of `value` (not `-0`) from Żmij's `text` of it and its [`Tie`] class.
@@ -427,7 +432,11 @@ impl RowFormat {
     /// width). Each value is formatted by Żmij at most once, for all three.
     pub fn row(&self, row: &[f64], wanted: Wanted, texts: &mut Texts) {
         let mut buffer = zmij::Buffer::new();
-        let columns = row.iter().zip(&self.factors).zip(&self.keys).zip(&self.widths);
+        let columns = row
+            .iter()
+            .zip(&self.factors)
+            .zip(&self.keys)
+            .zip(&self.widths);
         for (k, (((v, factor), key), &width)) in columns.enumerate() {
             let value = v / factor + 0.0;
             let text = (wanted.csv || wanted.jsonl).then(|| buffer.format_finite(value).as_bytes());

@@ -417,9 +417,8 @@ impl<'m> Tracker<'m> {
         let real = |x: &f64| [x.to_bits(), 0, 0, 0, 0, 0];
         let dual = |x: &Dual2_64| [x.re, x.v1, x.v2, 0.0, 0.0, 0.0].map(f64::to_bits);
         let frame = |(s, c): &(f64, f64)| [*s, *c, 0.0, 0.0, 0.0, 0.0].map(f64::to_bits);
-        let dual_frame = |(s, c): &(Dual2_64, Dual2_64)| {
-            [s.re, s.v1, s.v2, c.re, c.v1, c.v2].map(f64::to_bits)
-        };
+        let dual_frame =
+            |(s, c): &(Dual2_64, Dual2_64)| [s.re, s.v1, s.v2, c.re, c.v1, c.v2].map(f64::to_bits);
         std::ptr::eq(self.mechanism, other.mechanism)
             && self.solver == other.solver
             && self.closed_only == other.closed_only
