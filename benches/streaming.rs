@@ -1,14 +1,17 @@
 //! What streaming a sweep costs on top of solving it, per drive position.
 //!
-//! `slider_crank.toml, 10^4 positions: in-process sweep vs streamed outputs` — the scene of
+//! `slider_crank.toml, 10^6 positions: in-process sweep vs streamed outputs` — the scene of
 //! `scenes/slider_crank.toml` (offset slider-crank, 8 output columns to second order) swept
-//! over 0–360° in 10⁴ steps:
+//! over 0–360° in 10⁶ steps (the dead-position search of `s` is capped at 2¹⁶ intervals, so
+//! at this count it adds ~5 % as in `mechdiff run` of 10⁶–10⁷ positions; at 10⁴ it would add
+//! a second sweep):
 //! - `sweep rows in process`: `Sweeper::row` at every position (the tracker's walk, the
 //!   kinematics to second order and the outputs in SI), rows kept in one buffer: the
 //!   in-process solver cost;
 //! - `stream table + csv, N threads`: `stream::run` writing the streamed table (fixed-width
 //!   scientific) and the CSV to `io::sink()`: everything `mechdiff run --csv` does per
-//!   position except the write system calls.
+//!   position except the write system calls. With 2 threads the batches are solved in
+//!   parallel pieces and formatted in parallel.
 
 use std::hint::black_box;
 use std::path::PathBuf;
@@ -17,7 +20,7 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 use mechdiff::scene::{self, Plan, Scene, Sweeper, build};
 use mechdiff::stream::{self, Options, Sink, Sinks};
 
-const POSITIONS: usize = 10_000;
+const POSITIONS: usize = 1_000_000;
 
 fn slider_crank() -> Scene {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/slider_crank.toml");
@@ -32,7 +35,9 @@ fn streaming(c: &mut Criterion) {
     let mechanism = build::mechanism(&scene).unwrap();
     let plan = Plan::of(&scene);
     let mut group = c
-        .benchmark_group("slider_crank.toml, 10^4 positions: in-process sweep vs streamed outputs");
+        .benchmark_group("slider_crank.toml, 10^6 positions: in-process sweep vs streamed outputs");
+    group.sample_size(10);
+    group.measurement_time(std::time::Duration::from_secs(20));
     group.throughput(Throughput::Elements(scene.positions.len() as u64));
     group.bench_function(BenchmarkId::from_parameter("sweep rows in process"), |b| {
         b.iter(|| {

@@ -1,5 +1,6 @@
-//! Sweeps that stream: the same bytes for any number of threads, batch and chunk size; the
-//! first error in drive order with the rows before it; files whole or not at all; no cap on
+//! Sweeps that stream: the same bytes for any number of threads, batch, chunk and piece size
+//! (the parallel solve: closed-form and Newton scenes, limit positions and ill-conditioned
+//! poses inside the sweep); the first error in drive order with the rows before it; files whole or not at all; no cap on
 //! the number of drive positions of a streamed run.
 
 use std::io::Write;
@@ -7,7 +8,7 @@ use std::path::PathBuf;
 use std::process::Command;
 
 use mechdiff::scene::{self, Scene, table};
-use mechdiff::stream::{self, Options, Sink, Sinks};
+use mechdiff::stream::{self, Options, Sink, Sinks, Speculation};
 use mechdiff::{Error, Result};
 
 /// `scenes/slider_crank.toml` of this repository (offset slider-crank in mm and degrees,
@@ -307,4 +308,187 @@ fn a_long_sweep_is_counted_not_stored() {
     assert_eq!(scene.positions.len(), 360_000_000_001);
     let plan = scene::check(&scene).unwrap().plan;
     assert_eq!(plan.range.1, scene.positions.get(360_000_000_000));
+}
+
+/// A run solved in parallel pieces of `piece` positions (`speculation`), on `threads`.
+fn pieces(threads: usize, batch: usize, piece: usize, speculation: Speculation) -> Options {
+    Options {
+        piece,
+        speculation,
+        ..options(threads, batch, 16)
+    }
+}
+
+/// Every output and the warnings of two runs are the same, byte for byte.
+fn assert_same(one: &Outputs, other: &Outputs, what: &str) {
+    assert!(one.table == other.table, "table, {what}");
+    assert!(one.csv == other.csv, "csv, {what}");
+    assert!(one.jsonl == other.jsonl, "jsonl, {what}");
+    let warnings = |o: &Outputs| o.result.as_ref().map(|s| s.warnings.clone()).ok();
+    assert_eq!(warnings(one), warnings(other), "warnings, {what}");
+}
+
+/// The blocked slider-crank swept from −81.8° to 261.8° at 0.01° (34361 positions): both
+/// limit positions (≈ −81.89° and 261.89°) lie within 0.1° beyond the ends, where the rod and
+/// crank near a line. Solved in pieces of 7 to 4096 positions on two threads (piece starts
+/// next to both ends and everywhere between), it gives the bytes of one thread walking in
+/// order; every guessed start of a piece was the true state (closed forms: no piece solved
+/// twice).
+#[test]
+fn parallel_pieces_give_the_bytes_of_one_thread_up_to_two_limit_positions() {
+    let text = BLOCKED.replace(
+        "from = 0\nto = 360\nstep = 1",
+        "from = -81.8\nto = 261.8\nstep = 0.01",
+    );
+    let scene = scene::parse("limits.toml", &text).unwrap();
+    assert_eq!(scene.positions.len(), 34361);
+    let long = |o: Options| Options {
+        table_from_values: 0,
+        ..o
+    };
+    let one = streamed(
+        &scene,
+        &long(pieces(1, 1 << 14, 1 << 12, Speculation::Never)),
+    );
+    one.result.as_ref().unwrap();
+    for (batch, piece) in [(1 << 14, 7), (5000, 4096), (34361, 1000), (999, 250)] {
+        let other = streamed(&scene, &long(pieces(2, batch, piece, Speculation::Auto)));
+        assert_same(&one, &other, &format!("batch {batch}, piece {piece}"));
+        let counted = other.result.unwrap().pieces;
+        assert!(
+            counted.guessed >= 34361 / piece - 34361 / batch,
+            "{counted:?}"
+        );
+        assert_eq!(counted.solved_again, 0, "{counted:?}");
+    }
+}
+
+/// A slotted lever whose pin passes 1e-6 m from the lever's hinge at −90° (ψ′ ≈ −1e6, see
+/// `tests/sweep_limits.rs`), swept from −100° to −80° at 0.01°: the most ill-conditioned
+/// position is chosen among the pieces as in one walk, whether −90° starts a piece, ends one
+/// or lies inside one, and the warning names it.
+#[test]
+fn the_most_ill_conditioned_position_is_the_same_in_pieces() {
+    let text = r#"
+[units]
+length = "m"
+angle = "deg"
+[points]
+O = [0, 1]
+B0 = [0, 0]
+A = [0, 1.999999]
+S = [0, 1]
+[links]
+ground = ["O", "B0"]
+crank = ["O", "A"]
+lever = ["B0", "S"]
+[joints]
+O = { type = "revolute", at = "O", links = ["ground", "crank"] }
+B0 = { type = "revolute", at = "B0", links = ["ground", "lever"] }
+slot = { type = "pin_in_slot", pin = "A", slot = ["B0", "S"], links = ["lever", "crank"] }
+[drive]
+joint = "O"
+line = ["O", "A"]
+[sweep]
+from = -100
+to = -80
+step = 0.01
+[[output]]
+name = "psi"
+angle = ["B0", "S"]
+quantities = ["position", "velocity_coefficient"]
+"#;
+    let scene = scene::parse("lever.toml", text).unwrap();
+    let one = streamed(&scene, &pieces(1, 1 << 14, 1 << 12, Speculation::Never));
+    let warnings = one.result.as_ref().unwrap().warnings.clone();
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    assert!(
+        warnings[0].contains("ill-conditioned position at drive position -90 deg"),
+        "{}",
+        warnings[0]
+    );
+    for piece in [1000, 1001, 999, 3] {
+        let other = streamed(&scene, &pieces(2, 1 << 14, piece, Speculation::Auto));
+        assert_same(&one, &other, &format!("piece {piece}"));
+    }
+}
+
+/// The blocked slider-crank at 1° fails at 262°: solved in pieces whose joins lie at, just
+/// before and just after the error (and a piece of 5), the same error after the same rows.
+#[test]
+fn parallel_pieces_report_the_first_error_in_drive_order() {
+    let scene = scene::parse("blocked.toml", BLOCKED).unwrap();
+    let one = streamed(&scene, &pieces(1, 1 << 14, 1 << 12, Speculation::Never));
+    let expected = one.result.as_ref().unwrap_err().to_string();
+    for piece in [262, 261, 263, 131, 5] {
+        let other = streamed(&scene, &pieces(2, 361, piece, Speculation::Auto));
+        assert_eq!(other.result.as_ref().unwrap_err().to_string(), expected);
+        assert_same(&one, &other, &format!("piece {piece}"));
+        assert_eq!(text(&other.csv).lines().count(), 1 + 262);
+    }
+}
+
+/// A triad (a ternary link held by three binary links: one loop of four links, solved by
+/// Newton, no closed form) swept from −1.4° to 91.1° at 0.1°, within a step of its two limit
+/// positions (−1.45°, 91.17°). Newton's poses carry the last bits of their route, so a
+/// guessed start is rarely the true state: forced to guess anyway, the run solves those
+/// pieces again and still gives the bytes of one thread; left to itself it walks in order.
+#[test]
+fn a_newton_scene_in_pieces_gives_the_bytes_of_one_thread() {
+    let text = r#"
+title = "Triad"
+[units]
+angle = "deg"
+[points]
+O2 = [0, 0]
+A = [0, 1]
+B = [2, 2]
+C = [3, 3.5]
+D = [4, 2]
+G2 = [3, 6]
+G3 = [6, 0]
+[links]
+ground = ["O2", "G2", "G3"]
+crank = ["O2", "A"]
+first = ["A", "B"]
+ternary = ["B", "C", "D"]
+second = ["G2", "C"]
+third = ["G3", "D"]
+[joints]
+O2 = { type = "revolute", at = "O2", links = ["ground", "crank"] }
+A = { type = "revolute", at = "A", links = ["crank", "first"] }
+B = { type = "revolute", at = "B", links = ["first", "ternary"] }
+C = { type = "revolute", at = "C", links = ["ternary", "second"] }
+D = { type = "revolute", at = "D", links = ["ternary", "third"] }
+G2 = { type = "revolute", at = "G2", links = ["ground", "second"] }
+G3 = { type = "revolute", at = "G3", links = ["ground", "third"] }
+[drive]
+joint = "O2"
+line = ["O2", "A"]
+[sweep]
+from = -1.4
+to = 91.1
+step = 0.1
+[[output]]
+point = "C"
+quantities = ["position", "velocity_coefficient", "acceleration_coefficient"]
+[[output]]
+name = "third"
+angle = ["G3", "D"]
+quantities = ["position", "velocity_coefficient"]
+"#;
+    let scene = scene::parse("triad.toml", text).unwrap();
+    assert_eq!(scene.positions.len(), 926);
+    let one = streamed(&scene, &pieces(1, 1 << 14, 1 << 12, Speculation::Never));
+    one.result.as_ref().unwrap();
+    for (batch, piece) in [(1 << 14, 5), (300, 50), (926, 463)] {
+        let other = streamed(&scene, &pieces(2, batch, piece, Speculation::Always));
+        assert_same(&one, &other, &format!("batch {batch}, piece {piece}"));
+        let counted = other.result.unwrap().pieces;
+        assert!(counted.guessed > 0, "{counted:?}");
+        assert!(counted.solved_again > 0, "{counted:?}");
+    }
+    let auto = streamed(&scene, &pieces(2, 1 << 14, 5, Speculation::Auto));
+    assert_same(&one, &auto, "auto");
+    assert_eq!(auto.result.unwrap().pieces, stream::Pieces::default());
 }

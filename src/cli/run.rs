@@ -33,8 +33,8 @@ pub struct RunArgs {
     /// polars: `read_ndjson`). Written whole or not at all, like `--csv`.
     #[arg(long, value_name = "FILE")]
     pub jsonl: Option<PathBuf>,
-    /// Worker threads formatting the rows (0: `RAYON_NUM_THREADS`, else one per core). The
-    /// output is the same, byte for byte, for any number.
+    /// Worker threads solving and formatting the rows (0: `RAYON_NUM_THREADS`, else one per
+    /// core). The output is the same, byte for byte, for any number.
     #[arg(long, value_name = "N", default_value_t = 0)]
     pub threads: usize,
     /// Also write the columns, rows and dead positions to this JSON file (held in memory:

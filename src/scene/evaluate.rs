@@ -31,7 +31,7 @@ pub(crate) fn quantity<const N: usize>(jet: &Jet<N>, q: Quantity, drive: &DriveS
 
 /// An output with its points resolved in the model once, before the sweep, so that reading
 /// it at a drive position costs no name lookups.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub(crate) struct Resolved<'s> {
     /// The output.
     pub output: &'s Output,

@@ -18,8 +18,15 @@ use super::run::solver_error;
 const ILL_CONDITIONED: f64 = 1e4;
 
 /// The most ill-conditioned position of a sweep: its amplification of rounding, drive
-/// position and loop joints.
-type Worst = (f64, f64, Vec<String>);
+/// position and loop (in the order of `Tracker::loops`).
+type Worst = (f64, f64, usize);
+
+/// Whether `candidate` (an amplification) replaces the worst so far: a larger one, the
+/// first of equals kept, NaN below every number. An associative choice, so that the worst
+/// of a sweep solved in pieces, chosen among the pieces' in order, is the sequential one.
+fn is_worse(candidate: f64, worst: Option<&Worst>) -> bool {
+    worst.is_none_or(|w| !candidate.is_nan() && (w.0.is_nan() || candidate > w.0))
+}
 
 /// The columns of a scene's kinematic outputs: the drive first, then each output's.
 pub fn kinematic_columns(scene: &Scene) -> Vec<Column> {
@@ -41,8 +48,9 @@ pub fn kinematic_columns(scene: &Scene) -> Vec<Column> {
     all
 }
 
-/// A sweep under way: call [`Sweeper::row`] with the drive positions in order.
-#[derive(Debug)]
+/// A sweep under way: call [`Sweeper::row`] with the drive positions in order. A clone
+/// continues from the same state independently (see [`Sweeper::same_state`]).
+#[derive(Debug, Clone)]
 pub struct Sweeper<'s> {
     scene: &'s Scene,
     walk: Walk<'s>,
@@ -50,7 +58,7 @@ pub struct Sweeper<'s> {
 }
 
 /// The walk at the derivative order the plan needs.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 enum Walk<'s> {
     First(Outputs<'s>),
     Second(Outputs<'s>),
@@ -58,7 +66,7 @@ enum Walk<'s> {
 }
 
 /// The tracker and what the outputs' evaluation carries from one position to the next.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 struct Outputs<'s> {
     tracker: Tracker<'s>,
     drive: DriveState,
@@ -119,21 +127,72 @@ impl<'s> Sweeper<'s> {
                 o
             }
         };
-        let (amplification, joints) = o.tracker.amplification();
-        if self.worst.as_ref().is_none_or(|w| amplification > w.0) {
-            self.worst = Some((amplification, phi, joints));
+        let (amplification, l) = o.tracker.amplification_loop();
+        if is_worse(amplification, self.worst.as_ref()) {
+            self.worst = Some((amplification, phi, l));
         }
         Ok(())
+    }
+
+    /// Whether `other` (a sweep of the same scene) continues exactly as this one: the same
+    /// tracker state bit for bit (`Tracker::same_state`) and the same previous value of
+    /// every angle output. Then [`Sweeper::row`] gives both the same rows, bit for bit, and
+    /// the same errors.
+    pub fn same_state(&self, other: &Sweeper<'_>) -> bool {
+        let (a, b) = (self.outputs(), other.outputs());
+        let previous = |o: &Outputs<'_>| -> Vec<Option<u64>> {
+            o.previous.iter().map(|p| p.map(f64::to_bits)).collect()
+        };
+        a.tracker.same_state(&b.tracker) && previous(a) == previous(b)
+    }
+
+    /// Whether the sweep's state after a position is a function of the position alone and
+    /// the turns of its angles, so that a sweep solved in pieces from states reached by
+    /// other routes usually finds them [`Sweeper::same_state`] as the sequential ones:
+    /// every loop in closed form. Newton's poses differ in their last bits with the route
+    /// (its start and its steps), so a sweep with a loop on Newton is best walked in order.
+    pub fn is_route_independent(&self) -> bool {
+        self.outputs()
+            .tracker
+            .closed_form_loops()
+            .iter()
+            .all(|&c| c)
+    }
+
+    /// Forgets the most ill-conditioned position seen so far: a piece of a sweep counts its
+    /// own (see [`Sweeper::follow`]).
+    pub fn restart_worst(&mut self) {
+        self.worst = None;
+    }
+
+    /// Becomes `later`, a piece of the sweep solved from this one's state (a clone, its
+    /// count restarted), keeping the most ill-conditioned position of both: the sweeper is
+    /// then the one that walked this one's positions and the piece's in order.
+    pub fn follow(&mut self, mut later: Sweeper<'s>) {
+        let earlier_stays = match &later.worst {
+            None => true,
+            Some(w) => !is_worse(w.0, self.worst.as_ref()),
+        };
+        if earlier_stays {
+            later.worst = self.worst;
+        }
+        *self = later;
+    }
+
+    fn outputs(&self) -> &Outputs<'s> {
+        match &self.walk {
+            Walk::First(o) | Walk::Second(o) | Walk::Third(o) => o,
+        }
     }
 
     /// The warnings about the rows so far: the most ill-conditioned position, if its
     /// rounding error is worth a word.
     pub fn warnings(&self) -> Vec<String> {
-        let Some((amplification, phi, joints)) =
-            self.worst.as_ref().filter(|w| w.0 > ILL_CONDITIONED)
+        let Some((amplification, phi, l)) = self.worst.as_ref().filter(|w| w.0 > ILL_CONDITIONED)
         else {
             return Vec::new();
         };
+        let joints = self.outputs().tracker.joints_of_loop(*l);
         vec![format!(
             "ill-conditioned position at drive position {}: the loop of joints {} amplifies \
              rounding by {amplification:.1e} (its lever is that much shorter than in the \

@@ -6,7 +6,7 @@ use super::model::Scene;
 use super::run::Report;
 use super::units::Units;
 use crate::report::Table;
-use crate::stream::format::RowFormat;
+use crate::stream::format::{RowFormat, Texts, Wanted};
 
 /// Significant digits of a column's largest value in the printed table (the CSV carries every
 /// digit).
@@ -162,11 +162,16 @@ pub fn write_csv(report: &Report, out: &mut impl Write) -> io::Result<()> {
     let header: Vec<String> = report.columns.iter().map(|c| c.header()).collect();
     writeln!(out, "{}", header.join(","))?;
     let format = RowFormat::new(&report.columns);
-    let mut line = Vec::new();
+    let wanted = Wanted {
+        table: false,
+        csv: true,
+        jsonl: false,
+    };
+    let mut texts = Texts::default();
     for row in &report.rows {
-        line.clear();
-        format.csv(row, &mut line);
-        out.write_all(&line)?;
+        texts.clear();
+        format.row(row, wanted, &mut texts);
+        out.write_all(&texts.csv)?;
     }
     Ok(())
 }
@@ -175,11 +180,16 @@ pub fn write_csv(report: &Report, out: &mut impl Write) -> io::Result<()> {
 /// headers, every value in the scene's units with the shortest digits that read back.
 pub fn write_jsonl(report: &Report, out: &mut impl Write) -> io::Result<()> {
     let format = RowFormat::new(&report.columns);
-    let mut line = Vec::new();
+    let wanted = Wanted {
+        table: false,
+        csv: false,
+        jsonl: true,
+    };
+    let mut texts = Texts::default();
     for row in &report.rows {
-        line.clear();
-        format.jsonl(row, &mut line);
-        out.write_all(&line)?;
+        texts.clear();
+        format.row(row, wanted, &mut texts);
+        out.write_all(&texts.jsonl)?;
     }
     Ok(())
 }

@@ -1,13 +1,14 @@
 //! Sweeps that stream: the rows of a kinematic scene are formatted and written as they are
 //! computed, so that memory stays flat in the number of drive positions.
 //!
-//! The sweep itself is walked in drive order on one thread: each position starts from the
-//! previous pose (the branch tracking) and each angle output from its previous value (kept
-//! continuous), so the numbers, the errors and the first error's position are those of a
-//! sequential run by construction. Turning numbers into text — most of a run's time — is
-//! done in parallel (rayon): while one batch of positions is solved, the one before is
-//! formatted in chunks across the other cores, and the chunks are written in order. A run
-//! with one thread gives the same bytes.
+//! Each position of a sweep starts from the previous pose (the branch tracking) and each
+//! angle output from its previous value (kept continuous). A batch of positions is solved in
+//! parallel by speculative pieces ([`speculate`]), each piece checked against the state
+//! the walk in order reaches at its start and solved again where it differs, so the
+//! numbers, the errors and the first error's position are those of a sequential run by
+//! construction. Turning numbers into text is done in parallel too (rayon): while one batch
+//! of positions is solved, the one before is formatted in chunks, and the chunks are
+//! written in order. A run with one thread gives the same bytes.
 //!
 //! The terminal table must know its column widths before its first row: a sweep of at most
 //! [`TABLE_FROM_VALUES`] positions keeps its values (a few MB) and prints the table as
@@ -16,6 +17,7 @@
 //! whose width is bounded for any `f64` (`-d.dddddddde-308`).
 
 pub mod format;
+pub mod speculate;
 
 use std::io::{self, Write};
 use std::path::PathBuf;
@@ -25,10 +27,12 @@ use rayon::prelude::*;
 
 use crate::error::{Error, Result};
 use crate::scene::run::{Report, check_dead_positions, dead_positions, streamed_positions};
-use crate::scene::sweep::{Sweeper, check_row, kinematic_columns};
-use crate::scene::{Plan, Positions, Scene, build, table};
+use crate::scene::sweep::{Sweeper, kinematic_columns};
+use crate::scene::{Plan, Scene, build, table};
 
-use format::RowFormat;
+use format::{RowFormat, Texts, Wanted};
+use speculate::{Batch, Sweep};
+pub use speculate::{Pieces, Speculation};
 
 /// The longest sweep whose table is printed as in memory (each column in the format its
 /// values need, see [`crate::scene::table::write_table`]); a longer one is printed with
@@ -76,6 +80,10 @@ pub struct Options {
     pub batch: usize,
     /// Positions formatted by one task.
     pub chunk: usize,
+    /// Positions solved by one task of the parallel solve (see [`speculate`]).
+    pub piece: usize,
+    /// When batches are solved in parallel pieces.
+    pub speculation: Speculation,
     /// The longest sweep whose table is printed from its values ([`TABLE_FROM_VALUES`]).
     pub table_from_values: usize,
 }
@@ -87,6 +95,8 @@ impl Default for Options {
             progress: false,
             batch: 1 << 14,
             chunk: 1 << 10,
+            piece: 1 << 12,
+            speculation: Speculation::Auto,
             table_from_values: TABLE_FROM_VALUES,
         }
     }
@@ -99,21 +109,8 @@ pub struct Streamed {
     pub rows: usize,
     /// Warnings about the results (the most ill-conditioned position).
     pub warnings: Vec<String>,
-}
-
-/// Rows solved in one batch, flat (`columns` values per row), and the error that stopped
-/// the batch, if one did: the rows before it are good and are written.
-struct Batch {
-    rows: Vec<f64>,
-    error: Option<Error>,
-}
-
-/// Text of one chunk of rows, one buffer per output.
-#[derive(Default)]
-struct Text {
-    table: String,
-    csv: Vec<u8>,
-    jsonl: Vec<u8>,
+    /// How the parallel solve's pieces went.
+    pub pieces: Pieces,
 }
 
 /// Runs a kinematic scene (no dynamics, no balancing) and streams its rows to `sinks`.
@@ -162,6 +159,18 @@ pub fn run(scene: &Scene, sinks: &mut Sinks<'_>, options: &Options) -> Result<St
         jsonl: sinks.jsonl.is_some(),
     };
     let (batch, chunk) = (options.batch.max(1), options.chunk.max(1));
+    let sweep = Sweep {
+        scene,
+        columns: &columns,
+        positions: &positions,
+    };
+    let speculate = match options.speculation {
+        Speculation::Auto => pool.current_num_threads() > 1 && sweeper.is_route_independent(),
+        Speculation::Always => true,
+        Speculation::Never => false,
+    };
+    let mut pieces = Pieces::default();
+    let mut texts: Vec<Texts> = Vec::new();
     let mut written = 0;
     let mut next = 0;
     let mut pending: Option<Batch> = None;
@@ -172,12 +181,20 @@ pub fn run(scene: &Scene, sinks: &mut Sinks<'_>, options: &Options) -> Result<St
                 && (sinks.table.is_some() || wanted.csv || wanted.jsonl);
             let range = next..(next + batch).min(positions.len());
             let (solved, text) = rayon::join(
-                || solve.then(|| solve_batch(scene, &mut sweeper, &columns, &positions, range)),
-                || (pending.as_ref()).map(|b| format_batch(&format, &b.rows, chunk, wanted)),
+                || {
+                    solve.then(|| match speculate {
+                        true => sweep.solve(&mut sweeper, range, options.piece, &mut pieces),
+                        false => sweep.walk(&mut sweeper, range),
+                    })
+                },
+                || {
+                    (pending.as_ref())
+                        .map(|b| format_batch(&format, &b.rows, chunk, wanted, &mut texts))
+                },
             );
-            if let (Some(b), Some(text)) = (pending.take(), text) {
+            if let (Some(b), Some(chunks)) = (pending.take(), text) {
                 let n = b.rows.len() / format.columns();
-                bar.suspend(|| write_texts(sinks, &text))?;
+                bar.suspend(|| write_texts(sinks, &texts[..chunks]))?;
                 if sinks.table.is_some() && !streamed_table {
                     kept_rows.extend(b.rows.chunks(format.columns()).map(<[f64]>::to_vec));
                 }
@@ -229,69 +246,40 @@ pub fn run(scene: &Scene, sinks: &mut Sinks<'_>, options: &Options) -> Result<St
     Ok(Streamed {
         rows: written,
         warnings,
+        pieces,
     })
 }
 
-/// Which texts the formatting makes.
-#[derive(Debug, Clone, Copy)]
-struct Wanted {
-    table: bool,
-    csv: bool,
-    jsonl: bool,
-}
-
-/// Solves the positions of `range` in order; stops at the first error, keeping the rows
-/// before it.
-fn solve_batch(
-    scene: &Scene,
-    sweeper: &mut Sweeper<'_>,
-    columns: &[crate::scene::outputs::Column],
-    positions: &Positions,
-    range: std::ops::Range<usize>,
-) -> Batch {
-    let mut rows = Vec::with_capacity(range.len() * columns.len());
-    let mut row = Vec::with_capacity(columns.len());
-    for i in range {
-        let result = (sweeper.row(positions.get(i), &mut row))
-            .and_then(|()| check_row(scene, columns, &row));
-        if let Err(error) = result {
-            return Batch {
-                rows,
-                error: Some(error),
-            };
-        }
-        rows.extend_from_slice(&row);
-    }
-    Batch { rows, error: None }
-}
-
-/// The text of a batch's rows, chunk by chunk in parallel, chunks in row order.
-fn format_batch(format: &RowFormat, rows: &[f64], chunk: usize, wanted: Wanted) -> Vec<Text> {
+/// Formats a batch's rows chunk by chunk in parallel into `texts` (one per chunk, in row
+/// order, reused from batch to batch); returns the number of chunks.
+fn format_batch(
+    format: &RowFormat,
+    rows: &[f64],
+    chunk: usize,
+    wanted: Wanted,
+    texts: &mut Vec<Texts>,
+) -> usize {
     let width = format.columns();
-    rows.par_chunks(chunk * width)
-        .map(|rows| {
-            let mut text = Text::default();
+    let chunks = rows.len().div_ceil(chunk * width);
+    if texts.len() < chunks {
+        texts.resize_with(chunks, Texts::default);
+    }
+    (texts[..chunks].par_iter_mut())
+        .zip(rows.par_chunks(chunk * width))
+        .for_each(|(text, rows)| {
+            text.clear();
             for row in rows.chunks(width) {
-                if wanted.table {
-                    format.table(row, &mut text.table);
-                }
-                if wanted.csv {
-                    format.csv(row, &mut text.csv);
-                }
-                if wanted.jsonl {
-                    format.jsonl(row, &mut text.jsonl);
-                }
+                format.row(row, wanted, text);
             }
-            text
-        })
-        .collect()
+        });
+    chunks
 }
 
 /// Writes the texts of a batch to their outputs, in order.
-fn write_texts(sinks: &mut Sinks<'_>, texts: &[Text]) -> Result<()> {
+fn write_texts(sinks: &mut Sinks<'_>, texts: &[Texts]) -> Result<()> {
     for text in texts {
         if !text.table.is_empty() {
-            write_table(sinks, text.table.as_bytes())?;
+            write_table(sinks, &text.table)?;
         }
         if let Some(sink) = &mut sinks.csv {
             sink.write(&text.csv)?;

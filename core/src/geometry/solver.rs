@@ -382,6 +382,14 @@ impl<'m> Tracker<'m> {
     /// ~2e-10). Loops on the Newton path count 1 (their conditioning is checked against
     /// [`Solver::singular_threshold`] instead).
     pub fn amplification(&self) -> (f64, Vec<String>) {
+        let (amplification, l) = self.amplification_loop();
+        (amplification, self.joints_of_loop(l))
+    }
+
+    /// [`Tracker::amplification`] with its loop as an index (in the order of
+    /// [`Tracker::loops`], named by [`Tracker::joints_of_loop`]): nothing allocated, for a
+    /// check at every position of a sweep.
+    pub fn amplification_loop(&self) -> (f64, usize) {
         let mut worst = (1.0, 0);
         if self.closed_only {
             for (l, m) in self.margins.iter().enumerate() {
@@ -391,7 +399,42 @@ impl<'m> Tracker<'m> {
                 }
             }
         }
-        (worst.0, self.loop_joints(&self.loops[worst.1]))
+        worst
+    }
+
+    /// Whether `other` (a tracker of the same mechanism and solver) is in the same state as
+    /// this one, bit for bit: drive position, pose, `(sin θ, cos θ)`, q′, q″, branch
+    /// certificates, the closed-form loops' margins and buffers, Φ_q (its factorisation is
+    /// always made from it) and the last residual. Every move reads only these (its other
+    /// buffers are written before they are read), so two trackers in the same state give
+    /// the same results, bit for bit, for the same moves: a sweep split into pieces solved
+    /// from states found another way is the sequential sweep exactly where the states
+    /// agree at the pieces' joins.
+    pub fn same_state(&self, other: &Tracker<'_>) -> bool {
+        fn same<T>(a: &[T], b: &[T], bits: impl Fn(&T) -> [u64; 6]) -> bool {
+            a.len() == b.len() && a.iter().zip(b).all(|(x, y)| bits(x) == bits(y))
+        }
+        let real = |x: &f64| [x.to_bits(), 0, 0, 0, 0, 0];
+        let dual = |x: &Dual2_64| [x.re, x.v1, x.v2, 0.0, 0.0, 0.0].map(f64::to_bits);
+        let frame = |(s, c): &(f64, f64)| [*s, *c, 0.0, 0.0, 0.0, 0.0].map(f64::to_bits);
+        let dual_frame =
+            |(s, c): &(Dual2_64, Dual2_64)| [s.re, s.v1, s.v2, c.re, c.v1, c.v2].map(f64::to_bits);
+        std::ptr::eq(self.mechanism, other.mechanism)
+            && self.solver == other.solver
+            && self.closed_only == other.closed_only
+            && self.seeding == other.seeding
+            && self.phi.to_bits() == other.phi.to_bits()
+            && same(self.q.as_slice(), other.q.as_slice(), real)
+            && same(self.dq.as_slice(), other.dq.as_slice(), real)
+            && same(self.ddq.as_slice(), other.ddq.as_slice(), real)
+            && same(&self.frames, &other.frames, frame)
+            && self.certificates == other.certificates
+            && same(&self.margins, &other.margins, dual)
+            && same(&self.closed_q, &other.closed_q, dual)
+            && same(&self.closed_frames, &other.closed_frames, dual_frame)
+            && same(&self.closed_margins, &other.closed_margins, dual)
+            && same(self.jac.as_slice(), other.jac.as_slice(), real)
+            && same(self.residual.as_slice(), other.residual.as_slice(), real)
     }
 
     /// The loops' closed forms, when every loop has one (see `geometry::trace`).
@@ -405,7 +448,7 @@ impl<'m> Tracker<'m> {
     }
 
     /// The joints of loop `l` (in the order of [`Tracker::loops`]).
-    pub(crate) fn joints_of_loop(&self, l: usize) -> Vec<String> {
+    pub fn joints_of_loop(&self, l: usize) -> Vec<String> {
         self.loop_joints(&self.loops[l])
     }
 
