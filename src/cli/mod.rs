@@ -36,9 +36,9 @@ pub fn refuse_options(
              and --report",
         ),
         scene::Kind::Cam => (
-            &["--set", "--sweep", "--json", "--jsonl", "--report"],
-            "a cam scene has no `[parameters]` and writes its SVAJ table with --csv, its \
-             profile with --profile-csv and its pictures with --plot",
+            &["--set", "--sweep", "--json", "--jsonl", "--report", "--evaluator"],
+            "a cam scene has no `[parameters]` and no linkage to evaluate, and writes its SVAJ \
+             table with --csv, its profile with --profile-csv and its pictures with --plot",
         ),
         scene::Kind::Rotor => (
             &[
@@ -48,6 +48,7 @@ pub fn refuse_options(
                 "--jsonl",
                 "--report",
                 "--profile-csv",
+                "--evaluator",
             ],
             "a rotor scene has no `[parameters]` and no drive positions to tabulate; use --csv \
              for its answers and --plot for its polygons",

@@ -6,8 +6,9 @@ use mechdiff_core::DriveState;
 use mechdiff_core::geometry::{Kinematics, Mechanism, Tracker};
 
 use crate::error::{Error, Result};
+use crate::evaluator::{LoopPlan, ProgramPath, solver_loops};
 
-use super::evaluate::{Resolved, evaluate, quantity};
+use super::evaluate::{Resolved, evaluate, from_code, quantity};
 use super::model::Scene;
 use super::outputs::{Column, columns};
 use super::plan::Plan;
@@ -47,6 +48,9 @@ pub struct Sweeper<'s> {
     scene: &'s Scene,
     walk: Walk<'s>,
     worst: Option<Worst>,
+    /// The run-time evaluator, when the scene's `evaluator` chose it: it takes every step
+    /// it can prove, the solver the others (see [`crate::evaluator`]).
+    program: Option<ProgramPath>,
 }
 
 /// The walk at the derivative order the plan needs.
@@ -76,6 +80,7 @@ impl<'s> Sweeper<'s> {
         let outputs = (scene.outputs.iter())
             .map(|output| Resolved::new(scene, mechanism, output))
             .collect::<Result<Vec<_>>>()?;
+        let program = ProgramPath::choose(scene, &tracker)?;
         let outputs = Outputs {
             tracker,
             drive: plan.drive.unwrap_or(DriveState::constant_speed(0.0)),
@@ -91,7 +96,44 @@ impl<'s> Sweeper<'s> {
             scene,
             walk,
             worst: None,
+            program,
         })
+    }
+
+    /// Each loop and the path that evaluates it (for the plan line).
+    pub fn loops(&self) -> Vec<LoopPlan> {
+        match &self.program {
+            Some(p) => p.loops(),
+            None => solver_loops(&self.outputs().tracker),
+        }
+    }
+
+    fn outputs(&self) -> &Outputs<'s> {
+        match &self.walk {
+            Walk::First(o) | Walk::Second(o) | Walk::Third(o) => o,
+        }
+    }
+
+    /// The row at `phi` from the run-time evaluator, if it proves the step there.
+    fn program_row(&mut self, phi: f64, row: &mut Vec<f64>) -> bool {
+        let Some(p) = &mut self.program else {
+            return false;
+        };
+        let width = p.width();
+        let Some(values) = p.move_to(phi) else {
+            return false;
+        };
+        let scene = self.scene;
+        match &mut self.walk {
+            Walk::First(o) => o.push_code::<1>(scene, values, width, row),
+            Walk::Second(o) => o.push_code::<2>(scene, values, width, row),
+            Walk::Third(o) => o.push_code::<3>(scene, values, width, row),
+        }
+        let (amplification, joints) = p.amplification();
+        if self.worst.as_ref().is_none_or(|w| amplification > w.0) {
+            self.worst = Some((amplification, phi, joints.to_vec()));
+        }
+        true
     }
 
     /// Moves to drive position `phi` (SI) and writes its row into `row` (cleared first):
@@ -99,7 +141,18 @@ impl<'s> Sweeper<'s> {
     pub fn row(&mut self, phi: f64, row: &mut Vec<f64>) -> Result<()> {
         row.clear();
         row.push(phi);
+        if self.program_row(phi, row) {
+            return Ok(());
+        }
         let scene = self.scene;
+        if let Some(at) = self.program.as_ref().map(ProgramPath::phi) {
+            // The solver takes this step from where the program stands (it has not moved
+            // since the last step it took; the steps between were proven).
+            let tracker = &mut self.outputs_mut().tracker;
+            if tracker.phi() != at {
+                tracker.move_to(at).map_err(|e| solver_error(scene, e))?;
+            }
+        }
         // The solver moves the driven joint: φ itself, or s(θ) for a cam drive.
         let joint = scene.drive.joint_position(phi);
         let o = match &mut self.walk {
@@ -123,7 +176,20 @@ impl<'s> Sweeper<'s> {
         if self.worst.as_ref().is_none_or(|w| amplification > w.0) {
             self.worst = Some((amplification, phi, joints));
         }
+        if let Some(p) = &mut self.program
+            && !p.restart(phi)
+        {
+            // The solver accepted a position whose guard the program's rounding fails:
+            // the solver goes on alone.
+            self.program = None;
+        }
         Ok(())
+    }
+
+    fn outputs_mut(&mut self) -> &mut Outputs<'s> {
+        match &mut self.walk {
+            Walk::First(o) | Walk::Second(o) | Walk::Third(o) => o,
+        }
     }
 
     /// The warnings about the rows so far: the most ill-conditioned position, if its
@@ -146,6 +212,26 @@ impl<'s> Sweeper<'s> {
 }
 
 impl Outputs<'_> {
+    /// Pushes the columns of every output from the generated code's `values` (each output
+    /// row `[x, x′, …]`, `width` values).
+    fn push_code<const N: usize>(
+        &mut self,
+        scene: &Scene,
+        values: &[f64],
+        width: usize,
+        row: &mut Vec<f64>,
+    ) {
+        let mut at = 0;
+        for (resolved, previous) in self.outputs.iter().zip(self.previous.iter_mut()) {
+            let jets = from_code::<N>(scene, resolved, values, &mut at, width, previous);
+            for q in &resolved.output.quantities {
+                for v in &jets {
+                    row.push(quantity(v, *q, &self.drive));
+                }
+            }
+        }
+    }
+
     fn push<const N: usize>(
         &mut self,
         scene: &Scene,
