@@ -6,12 +6,19 @@
 //! evaluator of the same graph, the hand-derived formulas (1.35), (1.36), (1.39), (1.41),
 //! and Dual2 through the closed-form ψ, in one run.
 //!
+//! Then the sweep of `mechdiff run` in process on the same scene (10⁴ positions over a
+//! turn, every column of the scene to second order): `Sweeper::row` by the solver and by
+//! the run-time evaluator (`--evaluator solver|program`), and what setting up each sweep
+//! costs (the program's: trace, differentiate, compile) — where `auto` starts to pay.
+//!
 //! ```sh
 //! cargo bench -p mechdiff --bench scene_codegen -- --warm-up-time 1 --measurement-time 3
 //! ```
 
-use criterion::{Criterion, criterion_group, criterion_main};
+use criterion::{BatchSize, Criterion, Throughput, criterion_group, criterion_main};
 use mechdiff::codegen::scene::SceneCode;
+use mechdiff::evaluator::Evaluator;
+use mechdiff::scene::{Plan, Scene, Sweeper, build};
 use mechdiff_core::method::{Differentiator, Dual2};
 use mechdiff_mechanisms::Whitworth;
 use mechdiff_mechanisms::whitworth::hand;
@@ -77,5 +84,62 @@ fn whitworth_from_scene(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, whitworth_from_scene);
+/// Positions of the in-process sweeps.
+const POSITIONS: usize = 10_000;
+
+fn whitworth_sweep(evaluator: Evaluator) -> Scene {
+    let text = std::fs::read_to_string("scenes/whitworth.toml").unwrap();
+    let step = 360.0 / POSITIONS as f64;
+    let text = text.replace("step = 0.5\n", &format!("step = {step}\n"));
+    let mut scene = mechdiff::scene::parse("whitworth.toml", &text).unwrap();
+    assert!(scene.positions.len() > POSITIONS, "the sweep's step was not replaced");
+    scene.evaluator = evaluator;
+    scene
+}
+
+fn sweep_solver_vs_program(c: &mut Criterion) {
+    let mut group = c.benchmark_group(
+        "whitworth.toml sweep rows in process, 10^4 positions: solver vs run-time evaluator",
+    );
+    group.throughput(Throughput::Elements(POSITIONS as u64 + 1));
+    for (name, evaluator) in [
+        ("solver", Evaluator::Solver),
+        ("program", Evaluator::Program),
+    ] {
+        let scene = whitworth_sweep(evaluator);
+        let mechanism = build::mechanism(&scene).unwrap();
+        let plan = Plan::of(&scene);
+        group.bench_function(format!("rows, {name}"), |b| {
+            b.iter_batched(
+                || Sweeper::new(&scene, &mechanism, &plan).unwrap(),
+                |mut sweeper| {
+                    let mut row = Vec::new();
+                    let mut sum = 0.0;
+                    for phi in scene.positions.iter() {
+                        sweeper.row(black_box(phi), &mut row).unwrap();
+                        sum += row[1];
+                    }
+                    sum
+                },
+                BatchSize::PerIteration,
+            )
+        });
+    }
+    group.finish();
+    let mut group = c.benchmark_group("whitworth.toml sweep set-up: solver vs run-time evaluator");
+    for (name, evaluator) in [
+        ("solver", Evaluator::Solver),
+        ("program (trace, differentiate, compile)", Evaluator::Program),
+    ] {
+        let scene = whitworth_sweep(evaluator);
+        let mechanism = build::mechanism(&scene).unwrap();
+        let plan = Plan::of(&scene);
+        group.bench_function(name, |b| {
+            b.iter(|| Sweeper::new(&scene, &mechanism, &plan).unwrap().loops().len())
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, whitworth_from_scene, sweep_solver_vs_program);
 criterion_main!(benches);

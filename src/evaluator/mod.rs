@@ -73,21 +73,23 @@ impl fmt::Display for LoopPath {
 
 impl fmt::Display for LoopPlan {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{} ({})", self.path, self.joints.join(", "))
+        write!(f, "[{}] {}", self.joints.join(", "), self.path)
     }
 }
 
 /// The words of the plan line for a run whose loops take `loops`: by whom, and each
-/// loop's path.
+/// loop's path (`by the geometry solver (exact): loops [O2, drive `O2`] closed form, …`).
 pub fn describe(loops: &[LoopPlan]) -> String {
     let each: Vec<String> = loops.iter().map(LoopPlan::to_string).collect();
     let each = each.join(", ");
     if loops.iter().any(|l| l.path == LoopPath::Program) {
         format!(
             "by the run-time evaluator of the traced closed forms (exact; a step it cannot \
-             prove is taken by the geometry solver); loops: {each}"
+             prove is taken by the geometry solver): loops {each}"
         )
+    } else if loops.iter().any(|l| l.path == LoopPath::Newton) {
+        format!("by the geometry solver (exact; Newton with implicit differentiation): loops {each}")
     } else {
-        format!("by the geometry solver (exact); loops: {each}")
+        format!("by the geometry solver (exact): loops {each}")
     }
 }
