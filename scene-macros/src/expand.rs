@@ -54,7 +54,7 @@ mod tests {
         let message = scene_module(&literal("scenes/no_such_scene.toml"))
             .unwrap_err()
             .to_string();
-        assert!(message.starts_with("scenes/no_such_scene.toml"), "{message}");
+        assert!(message.contains("cannot read scenes/no_such_scene.toml:"), "{message}");
     }
 
     #[test]
