@@ -45,6 +45,11 @@ fn whitworth_from_scene(c: &mut Criterion) {
     let code = SceneCode::of(&scene).unwrap();
     let program = code.program(&scene).unwrap();
     let (mut registers, mut out) = (program.registers(), vec![0.0; program.outputs()]);
+    let psi_scene = mechdiff::scene::load("tests/data/whitworth_psi.toml").unwrap();
+    let psi_code = SceneCode::of(&psi_scene).unwrap();
+    let psi_program = psi_code.program(&psi_scene).unwrap();
+    let (mut psi_registers, mut psi_out) =
+        (psi_program.registers(), vec![0.0; psi_program.outputs()]);
 
     let mut group =
         c.benchmark_group("whitworth from its scene, ψ,ψ′,ψ″: hand vs generated vs dual2");
@@ -53,6 +58,12 @@ fn whitworth_from_scene(c: &mut Criterion) {
     });
     group.bench_function("generated ψ (+ guards)", |b| {
         b.iter(|| generated_psi::pose(black_box(PHI)))
+    });
+    group.bench_function("run-time evaluator ψ (+ guards)", |b| {
+        b.iter(|| {
+            psi_program.evaluate(black_box(PHI), &mut psi_registers, &mut psi_out);
+            psi_code.read(&psi_out).map(|v| v[0] + v[1] + v[2]).ok()
+        })
     });
     group.bench_function("dual2 ψ (closed form)", |b| {
         b.iter(|| Dual2.jets(black_box(&rocker), black_box(PHI)))
@@ -92,7 +103,10 @@ fn whitworth_sweep(evaluator: Evaluator) -> Scene {
     let step = 360.0 / POSITIONS as f64;
     let text = text.replace("step = 0.5\n", &format!("step = {step}\n"));
     let mut scene = mechdiff::scene::parse("whitworth.toml", &text).unwrap();
-    assert!(scene.positions.len() > POSITIONS, "the sweep's step was not replaced");
+    assert!(
+        scene.positions.len() > POSITIONS,
+        "the sweep's step was not replaced"
+    );
     scene.evaluator = evaluator;
     scene
 }
@@ -129,13 +143,21 @@ fn sweep_solver_vs_program(c: &mut Criterion) {
     let mut group = c.benchmark_group("whitworth.toml sweep set-up: solver vs run-time evaluator");
     for (name, evaluator) in [
         ("solver", Evaluator::Solver),
-        ("program (trace, differentiate, compile)", Evaluator::Program),
+        (
+            "program (trace, differentiate, compile)",
+            Evaluator::Program,
+        ),
     ] {
         let scene = whitworth_sweep(evaluator);
         let mechanism = build::mechanism(&scene).unwrap();
         let plan = Plan::of(&scene);
         group.bench_function(name, |b| {
-            b.iter(|| Sweeper::new(&scene, &mechanism, &plan).unwrap().loops().len())
+            b.iter(|| {
+                Sweeper::new(&scene, &mechanism, &plan)
+                    .unwrap()
+                    .loops()
+                    .len()
+            })
         });
     }
     group.finish();

@@ -15,7 +15,8 @@
 //! ψ′, ψ″), `newton` (the same with `Solver::with_closed_form(false)`), `psi` (the Whitworth
 //! module's closed-form ψ in `Dual2`), `pose` (its whole pose in `Dual2`), `rack` (mechanism
 //! 001 from `scenes/rack_slotted_link.toml`: `move_to` + read θ3, θ3′, θ3″), `hand` (the
-//! hand-derived ψ, ψ′, ψ″), `generated` (ψ, ψ′, ψ″ generated from the scene, with guards).
+//! hand-derived ψ, ψ′, ψ″), `generated` (ψ, ψ′, ψ″ generated from the scene, with guards),
+//! `program` (the same graph by the run-time evaluator, `trace::Program`).
 
 use mechdiff::core::geometry::{ScalarOutput, Solver, Tracker};
 use mechdiff::core::method::{Differentiator, Dual2};
@@ -49,8 +50,8 @@ fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
     let (Some(which), Some(reps)) = (args.get(1), args.get(2)) else {
         eprintln!(
-            "usage: instructions_per_position geometry|newton|psi|pose|rack|hand|generated \
-             REPETITIONS"
+            "usage: instructions_per_position geometry|newton|psi|pose|rack|hand|generated|\
+             program REPETITIONS"
         );
         return Ok(ExitCode::FAILURE);
     };
@@ -78,6 +79,13 @@ fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
     let rack_start = solver.track(&rack)?;
     let rocker_angle = shaper.rocker();
     let lambda = shaper.lambda();
+    let psi_scene = mechdiff::scene::load(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/whitworth_psi.toml"
+    ))?;
+    let psi_code = mechdiff::codegen::scene::SceneCode::of(&psi_scene)?;
+    let program = psi_code.program(&psi_scene)?;
+    let (mut registers, mut out) = (program.registers(), vec![0.0; program.outputs()]);
     let mut acc = 0.0;
     for _ in 0..reps {
         acc += match which.as_str() {
@@ -112,9 +120,20 @@ fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
                     Err(_) => f64::NAN,
                 })
                 .sum(),
+            "program" => phis
+                .iter()
+                .map(|&phi| {
+                    program.evaluate(black_box(phi), &mut registers, &mut out);
+                    match psi_code.read(&out) {
+                        Ok(v) => v[0] + v[1] + v[2],
+                        Err(_) => f64::NAN,
+                    }
+                })
+                .sum(),
             other => {
                 eprintln!(
-                    "unknown loop `{other}`: geometry, newton, psi, pose, rack, hand or generated"
+                    "unknown loop `{other}`: geometry, newton, psi, pose, rack, hand, generated \
+                     or program"
                 );
                 return Ok(ExitCode::FAILURE);
             }

@@ -65,13 +65,21 @@ fn every_scene_runs_the_same_by_the_program_and_by_the_solver() {
         let scene = scene::load(&path).unwrap();
         let solver = scene::run(&with(scene.clone(), Evaluator::Solver)).unwrap();
         assert!(
-            solver.plan.loops.iter().all(|l| l.path != LoopPath::Program),
+            solver
+                .plan
+                .loops
+                .iter()
+                .all(|l| l.path != LoopPath::Program),
             "{path}"
         );
         match scene::run(&with(scene.clone(), Evaluator::Program)) {
             Ok(program) => {
                 assert!(
-                    program.plan.loops.iter().all(|l| l.path == LoopPath::Program),
+                    program
+                        .plan
+                        .loops
+                        .iter()
+                        .all(|l| l.path == LoopPath::Program),
                     "{path}: {:?}",
                     program.plan.loops
                 );
@@ -191,7 +199,11 @@ fn auto_takes_the_program_for_long_sweeps() {
     assert!(scene.positions.len() >= PROGRAM_FROM);
     let report = scene::run(&scene).unwrap();
     assert!(
-        report.plan.loops.iter().all(|l| l.path == LoopPath::Program),
+        report
+            .plan
+            .loops
+            .iter()
+            .all(|l| l.path == LoopPath::Program),
         "{:?}",
         report.plan.loops
     );
@@ -274,5 +286,9 @@ fn a_cam_scene_refuses_the_option() {
         .unwrap();
     let output = mechdiff(&["run", cam.to_str().unwrap(), "--evaluator", "program"]);
     assert!(!output.status.success());
-    assert!(stderr(&output).contains("--evaluator"), "{}", stderr(&output));
+    assert!(
+        stderr(&output).contains("--evaluator"),
+        "{}",
+        stderr(&output)
+    );
 }

@@ -22,10 +22,11 @@ pub fn scene_module(path: &LitStr) -> syn::Result<TokenStream> {
     let file = scene_file(path);
     // Messages name the file as the macro's path names it, not as found on this machine.
     let shown = file.display().to_string();
-    let fail = |message: String| syn::Error::new_spanned(path, message.replace(&shown, &path.value()));
+    let fail =
+        |message: String| syn::Error::new_spanned(path, message.replace(&shown, &path.value()));
     let scene = mechdiff::codegen::scene::load(&file).map_err(|e| fail(e.to_string()))?;
-    let source = mechdiff::codegen::scene::module(&scene, &path.value())
-        .map_err(|e| fail(e.to_string()))?;
+    let source =
+        mechdiff::codegen::scene::module(&scene, &path.value()).map_err(|e| fail(e.to_string()))?;
     let module: TokenStream = source
         .parse()
         .map_err(|e| fail(format!("the generated module does not parse (a bug): {e}")))?;
@@ -54,7 +55,10 @@ mod tests {
         let message = scene_module(&literal("scenes/no_such_scene.toml"))
             .unwrap_err()
             .to_string();
-        assert!(message.contains("cannot read scenes/no_such_scene.toml:"), "{message}");
+        assert!(
+            message.contains("cannot read scenes/no_such_scene.toml:"),
+            "{message}"
+        );
     }
 
     #[test]
@@ -114,7 +118,10 @@ quantities = ["position"]
         let (tracked, module) = tokens.split_once(';').unwrap();
         assert!(tracked.contains("include_bytes"), "{tracked}");
         assert!(tracked.contains("slider_crank.toml"), "{tracked}");
-        assert!(Path::new(tracked.split('"').nth(1).unwrap()).is_absolute(), "{tracked}");
+        assert!(
+            Path::new(tracked.split('"').nth(1).unwrap()).is_absolute(),
+            "{tracked}"
+        );
         let tokens = module;
         for item in ["OUTPUTS", "ORDER", "LOOPS", "LoopFailure", "fn pose"] {
             assert!(tokens.contains(item), "{item} missing");

@@ -37,8 +37,11 @@ fn the_macros_whitworth_agrees_with_the_solver() {
     // 1e-13 relative (absolute below 1), as tests/scene_codegen.rs checks every generated
     // module: the same closed forms in f64, rounded differently by the solver's dual
     // numbers (measured 2e-15 at worst); ψ modulo 2π (the module has no sweep to follow).
-    let scene = scene::load(concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/whitworth.toml"))
-        .unwrap();
+    let scene = scene::load(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../scenes/whitworth.toml"
+    ))
+    .unwrap();
     let report = scene::run(&scene).unwrap();
     let column = |name: &str| report.columns.iter().position(|c| c.name == name).unwrap();
     let columns = [["psi", "psi'", "psi''"], ["x_C", "x_C'", "x_C''"]].map(|r| r.map(column));
@@ -51,7 +54,11 @@ fn the_macros_whitworth_agrees_with_the_solver() {
                 if c == columns[0] && order == 0 && columns[0] == column("psi") {
                     gap -= (gap / std::f64::consts::TAU).round() * std::f64::consts::TAU;
                 }
-                assert!(gap.abs() <= 1e-13 * row[c].abs().max(1.0), "φ = {}: {gap:e}", row[0]);
+                assert!(
+                    gap.abs() <= 1e-13 * row[c].abs().max(1.0),
+                    "φ = {}: {gap:e}",
+                    row[0]
+                );
                 compared += 1;
             }
         }

@@ -36,7 +36,14 @@ pub fn refuse_options(
              and --report",
         ),
         scene::Kind::Cam => (
-            &["--set", "--sweep", "--json", "--jsonl", "--report", "--evaluator"],
+            &[
+                "--set",
+                "--sweep",
+                "--json",
+                "--jsonl",
+                "--report",
+                "--evaluator",
+            ],
             "a cam scene has no `[parameters]` and no linkage to evaluate, and writes its SVAJ \
              table with --csv, its profile with --profile-csv and its pictures with --plot",
         ),

@@ -5,8 +5,8 @@ use std::io::{BufWriter, IsTerminal, Write};
 use std::path::PathBuf;
 
 use clap::Args;
-use mechdiff::scene::{self, table};
 use mechdiff::evaluator::Evaluator;
+use mechdiff::scene::{self, table};
 use mechdiff::{Error, files, pictures, stream};
 
 /// Arguments of `mechdiff run`.

@@ -88,7 +88,9 @@ pub fn describe(loops: &[LoopPlan]) -> String {
              prove is taken by the geometry solver): loops {each}"
         )
     } else if loops.iter().any(|l| l.path == LoopPath::Newton) {
-        format!("by the geometry solver (exact; Newton with implicit differentiation): loops {each}")
+        format!(
+            "by the geometry solver (exact; Newton with implicit differentiation): loops {each}"
+        )
     } else {
         format!("by the geometry solver (exact): loops {each}")
     }

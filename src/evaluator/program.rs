@@ -58,7 +58,12 @@ impl ProgramPath {
         Ok(ProgramPath {
             tracker,
             width: code.order + 1,
-            joints: code.position.guards.iter().map(|g| g.joints.clone()).collect(),
+            joints: code
+                .position
+                .guards
+                .iter()
+                .map(|g| g.joints.clone())
+                .collect(),
         })
     }
 

@@ -127,7 +127,12 @@ pub(crate) fn from_code<const N: usize>(
     };
     let mut jets: Vec<Jet<N>> = values[*at..*at + rows * width]
         .chunks_exact(width)
-        .map(|v| Jet::new(v[0], std::array::from_fn(|k| v.get(k + 1).copied().unwrap_or(0.0))))
+        .map(|v| {
+            Jet::new(
+                v[0],
+                std::array::from_fn(|k| v.get(k + 1).copied().unwrap_or(0.0)),
+            )
+        })
         .collect();
     *at += rows * width;
     if let OutputKind::Angle { .. } = &output.kind {

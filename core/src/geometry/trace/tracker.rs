@@ -78,12 +78,17 @@ impl ProgramTracker {
     /// The symbolic engine's limits ([`Error::ExpressionTooLarge`], …) differentiating the
     /// margins; [`Error::NoClosedForm`] if the program's guards fail at the sketch (the
     /// solver's do not: a bug, reported rather than walked).
-    pub fn new(tracker: &Tracker<'_>, position: &mut PositionGraph, values: &[Id]) -> Result<Self, Error> {
+    pub fn new(
+        tracker: &Tracker<'_>,
+        position: &mut PositionGraph,
+        values: &[Id],
+    ) -> Result<Self, Error> {
         let mut roots = values.to_vec();
         for guard in &position.guards {
-            let jet = position
-                .graph
-                .try_derivatives(guard.discriminant, DRIVE, 2, rules::MAX_NODES)?;
+            let jet =
+                position
+                    .graph
+                    .try_derivatives(guard.discriminant, DRIVE, 2, rules::MAX_NODES)?;
             roots.extend([guard.discriminant, guard.condition, jet[1], jet[2]]);
         }
         let program = Program::compile(&position.graph, &roots, DRIVE)?;
@@ -110,7 +115,10 @@ impl ProgramTracker {
         if !walk.restart(tracker.phi()) {
             return Err(Error::NoClosedForm {
                 what: "the run-time evaluator (its guards fail at the sketch)".to_owned(),
-                joints: position.guards.first().map_or_else(Vec::new, |g| g.joints.clone()),
+                joints: position
+                    .guards
+                    .first()
+                    .map_or_else(Vec::new, |g| g.joints.clone()),
             });
         }
         Ok(walk)
