@@ -358,7 +358,9 @@ mod tests {
             "if(x < 0.5, x * x + 1, sqrt(x) * 2 - x) + abs(x - 2) * atan2(x, 0.3)",
             "x^3 * 0.5 + hypot(x, 2) * (x - 1)",
         ];
-        let ids: Vec<Id> = exprs.iter().map(|e| g.parse_infix(e).unwrap()).collect();
+        let ids: Vec<Id> = (exprs.iter())
+            .map(|e| g.parse_infix_piecewise(e).unwrap())
+            .collect();
         let program = Program::compile(&g, &ids, "x").unwrap();
         assert!(program.code.iter().any(|i| i.op == Op::MulAdd));
         assert!(program.code.iter().any(|i| i.op == Op::SubMul));
