@@ -102,8 +102,11 @@ impl Instruction {
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct Program {
-    /// The registers' initial values: the constants, then the drive position (0).
-    constants: Vec<f64>,
+    /// The registers' initial values: the constants, the drive position (0), and the
+    /// values of the instructions folded at compile time (every argument a constant).
+    initial: Vec<f64>,
+    /// The drive position's register.
+    drive: u32,
     /// The instructions, in order; every register they name is below `size`.
     code: Vec<Instruction>,
     outputs: Vec<u32>,
@@ -186,9 +189,12 @@ impl Program {
             next += 1;
         }
         let outputs: Vec<u32> = outputs.iter().map(|id| register[id.index()]).collect();
-        let program = Program {
-            constants,
-            code: fuse(code, &outputs, next as usize),
+        let mut initial = constants;
+        initial.resize(next as usize, 0.0);
+        let mut program = Program {
+            initial,
+            drive,
+            code,
             outputs,
             size: next as usize,
         };
@@ -197,22 +203,53 @@ impl Program {
                 operation: "a node read before it is computed (a bug of the evaluator)".to_owned(),
             });
         }
+        program.fold_constants();
+        program.code = fuse(
+            std::mem::take(&mut program.code),
+            &program.outputs,
+            program.size,
+        );
         Ok(program)
+    }
+
+    /// Computes once, into the initial registers, every instruction whose arguments are
+    /// all constants (as `atan2(0.65, 0)` in a traced mechanism), with the same `f64`
+    /// operations as [`Program::evaluate`]: the results are unchanged, bit for bit.
+    fn fold_constants(&mut self) {
+        let mut known = vec![false; self.size];
+        known[..self.drive as usize].fill(true);
+        let mut arithmetic = DualArithmetic::<f64>::new();
+        let mut kept = Vec::with_capacity(self.code.len());
+        for ins in std::mem::take(&mut self.code) {
+            let constant = known[ins.b as usize]
+                && ins.reads().iter().all(|&k| known[ins.operand(k) as usize]);
+            if constant {
+                // SAFETY: `compile` checked the instructions against `self.size`
+                // (`registers_in_order`), the length of `self.initial`.
+                unsafe { step(&ins, &mut self.initial, &mut arithmetic) };
+                known[ins.to as usize..ins.end() as usize].fill(true);
+            } else {
+                kept.push(ins);
+            }
+        }
+        self.code = kept;
     }
 
     /// Whether every instruction reads only registers written before it (constants, the
     /// drive, earlier instructions) and writes below `size`, and every output is a register:
     /// what [`Program::evaluate`] relies on to skip bounds checks.
     fn registers_in_order(&self) -> bool {
-        let mut written = self.constants.len() as u32;
+        let mut written = self.drive + 1;
         let in_order = self.code.iter().all(|ins| {
             // `b` is read by every instruction (a register of its own, or 0).
-            let reads = ins.b < written && ins.reads().iter().all(|&k| ins.operand(k) < written);
+            let reads = ins.b < ins.to && ins.reads().iter().all(|&k| ins.operand(k) < ins.to);
             let ok = reads && ins.to >= written && ins.end() as usize <= self.size;
             written = ins.end();
             ok
         });
-        in_order && self.outputs.iter().all(|&r| (r as usize) < self.size)
+        in_order
+            && self.initial.len() == self.size
+            && self.outputs.iter().all(|&r| (r as usize) < self.size)
     }
 
     /// Number of outputs.
@@ -228,9 +265,7 @@ impl Program {
     /// The registers to evaluate with, the constants in place (allocate once, reuse for
     /// every evaluation).
     pub fn registers(&self) -> Vec<f64> {
-        let mut registers = self.constants.clone();
-        registers.resize(self.size, 0.0);
-        registers
+        self.initial.clone()
     }
 
     /// Evaluates at drive position `phi` into `out` (one value per output), with
@@ -244,56 +279,68 @@ impl Program {
             "Program::evaluate: registers from Program::registers and one output slot each"
         );
         let x = &mut registers[..self.size];
-        x[self.constants.len() - 1] = phi;
+        x[self.drive as usize] = phi;
         let mut arithmetic = DualArithmetic::<f64>::new();
         for ins in &self.code {
-            // SAFETY: `compile` checked (`registers_in_order`) that every register an
-            // instruction names is below `self.size`, and `x` has `self.size` registers.
-            let get = |r: u32| unsafe { *x.get_unchecked(r as usize) };
-            let (a, b) = (get(ins.a), get(ins.b));
-            let value = match ins.op {
-                Op::Add => a + b,
-                Op::Sub => a - b,
-                Op::Mul => a * b,
-                Op::Div => a / b,
-                Op::MulAdd => a * b + get(ins.c),
-                Op::MulSub => a * b - get(ins.c),
-                Op::SubMul => get(ins.c) - a * b,
-                Op::Neg => -a,
-                Op::Sqrt => a.sqrt(),
-                Op::Abs => {
-                    if a < 0.0 {
-                        -a
-                    } else {
-                        a
-                    }
-                }
-                Op::Atan2 => a.atan2(b),
-                Op::SinCos => {
-                    let (s, c) = a.sin_cos();
-                    // SAFETY: as above; `registers_in_order` checked `to + 1` too.
-                    unsafe { *x.get_unchecked_mut(ins.to as usize + 1) = c };
-                    s
-                }
-                Op::Unary(op) => arithmetic.unary(op, &a),
-                Op::Binary(op) => arithmetic.binary(op, &a, &b),
-                Op::Powi => a.powi(ins.c as i32),
-                Op::Compare(cmp) => f64::from(u8::from(cmp.holds(&a, &b))),
-                Op::Choose => {
-                    if a == 1.0 {
-                        b
-                    } else {
-                        get(ins.c)
-                    }
-                }
-            };
-            // SAFETY: as above.
-            unsafe { *x.get_unchecked_mut(ins.to as usize) = value };
+            // SAFETY: `compile` checked every instruction against `self.size`
+            // (`registers_in_order`) and `x` has `self.size` registers.
+            unsafe { step(ins, x, &mut arithmetic) };
         }
         for (o, &r) in out.iter_mut().zip(&self.outputs) {
             *o = x[r as usize];
         }
     }
+}
+
+/// Executes one instruction on the registers `x`.
+///
+/// # Safety
+/// Every register `ins` names (`a`, `b`, `to`, and `c` where it reads it; `to + 1` for a
+/// `sin_cos`) must be below `x.len()`: `registers_in_order` checks it for a program's
+/// instructions against its number of registers.
+#[inline(always)]
+unsafe fn step(ins: &Instruction, x: &mut [f64], arithmetic: &mut DualArithmetic<f64>) {
+    // SAFETY: the caller's promise (see above).
+    let get = |r: u32| unsafe { *x.get_unchecked(r as usize) };
+    let (a, b) = (get(ins.a), get(ins.b));
+    let value = match ins.op {
+        Op::Add => a + b,
+        Op::Sub => a - b,
+        Op::Mul => a * b,
+        Op::Div => a / b,
+        Op::MulAdd => a * b + get(ins.c),
+        Op::MulSub => a * b - get(ins.c),
+        Op::SubMul => get(ins.c) - a * b,
+        Op::Neg => -a,
+        Op::Sqrt => a.sqrt(),
+        Op::Abs => {
+            if a < 0.0 {
+                -a
+            } else {
+                a
+            }
+        }
+        Op::Atan2 => a.atan2(b),
+        Op::SinCos => {
+            let (s, c) = a.sin_cos();
+            // SAFETY: as above; `registers_in_order` checked `to + 1` too.
+            unsafe { *x.get_unchecked_mut(ins.to as usize + 1) = c };
+            s
+        }
+        Op::Unary(op) => arithmetic.unary(op, &a),
+        Op::Binary(op) => arithmetic.binary(op, &a, &b),
+        Op::Powi => a.powi(ins.c as i32),
+        Op::Compare(cmp) => f64::from(u8::from(cmp.holds(&a, &b))),
+        Op::Choose => {
+            if a == 1.0 {
+                b
+            } else {
+                get(ins.c)
+            }
+        }
+    };
+    // SAFETY: as above.
+    unsafe { *x.get_unchecked_mut(ins.to as usize) = value };
 }
 
 /// Fuses each product read once, by a sum or a difference, into it: `a·b + c`, `a·b − c`,
@@ -372,5 +419,29 @@ mod tests {
                 assert_eq!(o.to_bits(), w.to_bits(), "{} at x = {x}", exprs[k]);
             }
         }
+    }
+
+    /// Constant subexpressions (`atan2(0.65, 0)`, `sin(2)` in a traced mechanism) are
+    /// computed once, at compile time: only the two products of x and their sum remain,
+    /// fused into one instruction after `x·c₁`.
+    #[test]
+    fn constant_subexpressions_are_folded() {
+        let mut g = Graph::new();
+        let f = g
+            .parse_infix("atan2(0.65, 0) * x + sin(2) * cos(2) * x")
+            .unwrap();
+        let program = Program::compile(&g, &[f], "x").unwrap();
+        assert!(
+            !program
+                .code
+                .iter()
+                .any(|i| matches!(i.op, Op::Atan2 | Op::SinCos)),
+            "{:?}",
+            program.code
+        );
+        let (mut registers, mut out) = (program.registers(), [0.0]);
+        program.evaluate(0.7, &mut registers, &mut out);
+        let want = g.evaluate_f64(&[f], &[("x", 0.7)]).unwrap()[0];
+        assert_eq!(out[0].to_bits(), want.to_bits());
     }
 }
