@@ -53,9 +53,9 @@ pub struct RunArgs {
     pub profile_csv: Option<PathBuf>,
     /// How positions are evaluated: `solver` (the geometry solver in dual numbers),
     /// `program` (the run-time evaluator of the scene's traced closed forms: every loop
-    /// must have one), or `auto`: the program for sweeps of 2000 positions or more when it
-    /// can, else the solver. Results agree to 1e-13; errors are the solver's. The plan line
-    /// says which path evaluates each loop.
+    /// must have one), or `auto`: the faster by measurement (today the solver). Results
+    /// agree to 1e-13; errors are the solver's. The plan line says which path evaluates
+    /// each loop.
     #[arg(long, value_enum, value_name = "HOW", default_value_t = Evaluator::Auto)]
     pub evaluator: Evaluator,
 }

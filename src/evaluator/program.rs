@@ -4,7 +4,7 @@
 use mechdiff_core::geometry::Tracker;
 use mechdiff_core::geometry::trace::ProgramTracker;
 
-use super::{Evaluator, LoopPath, LoopPlan, PROGRAM_FROM};
+use super::{Evaluator, LoopPath, LoopPlan};
 use crate::codegen::scene::SceneCode;
 use crate::error::{Error, Result};
 use crate::scene::model::Scene;
@@ -28,15 +28,8 @@ impl ProgramPath {
     /// without a closed form, a cam drive, or an output the trace cannot follow.
     pub fn choose(scene: &Scene, tracker: &Tracker<'_>) -> Result<Option<Self>> {
         match scene.evaluator {
-            Evaluator::Solver => Ok(None),
-            Evaluator::Auto => {
-                let closed = tracker.closed_form_loops().iter().all(|&c| c);
-                let long = scene.positions.len() >= PROGRAM_FROM;
-                // Any reason the program cannot be made leaves the run to the solver.
-                Ok((closed && long)
-                    .then(|| Self::new(scene, tracker).ok())
-                    .flatten())
-            }
+            // `auto`: the solver, not yet measured slower (see `evaluator`).
+            Evaluator::Solver | Evaluator::Auto => Ok(None),
             Evaluator::Program => Self::new(scene, tracker).map(Some),
         }
     }
