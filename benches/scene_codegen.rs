@@ -8,12 +8,19 @@
 //! with ′ and ″) generated from `tests/data/whitworth_pose.toml` against the hand-derived
 //! `whitworth::hand::pose`.
 //!
+//! Then the sweep of `mechdiff run` in process on the same scene (10⁴ positions over a
+//! turn, every column of the scene to second order): `Sweeper::row` by the solver and by
+//! the run-time evaluator (`--evaluator solver|program`), and what setting up each sweep
+//! costs (the program's: trace, differentiate, compile) — where `auto` starts to pay.
+//!
 //! ```sh
 //! cargo bench -p mechdiff --bench scene_codegen -- --warm-up-time 1 --measurement-time 3
 //! ```
 
-use criterion::{Criterion, criterion_group, criterion_main};
+use criterion::{BatchSize, Criterion, Throughput, criterion_group, criterion_main};
 use mechdiff::codegen::scene::SceneCode;
+use mechdiff::evaluator::Evaluator;
+use mechdiff::scene::{Plan, Scene, Sweeper, build};
 use mechdiff_core::method::{Differentiator, Dual2};
 use mechdiff_mechanisms::Whitworth;
 use mechdiff_mechanisms::whitworth::hand;
@@ -45,6 +52,11 @@ fn whitworth_from_scene(c: &mut Criterion) {
     let code = SceneCode::of(&scene).unwrap();
     let program = code.program(&scene).unwrap();
     let (mut registers, mut out) = (program.registers(), vec![0.0; program.outputs()]);
+    let psi_scene = mechdiff::scene::load("tests/data/whitworth_psi.toml").unwrap();
+    let psi_code = SceneCode::of(&psi_scene).unwrap();
+    let psi_program = psi_code.program(&psi_scene).unwrap();
+    let (mut psi_registers, mut psi_out) =
+        (psi_program.registers(), vec![0.0; psi_program.outputs()]);
 
     let mut group =
         c.benchmark_group("whitworth from its scene, ψ,ψ′,ψ″: hand vs generated vs dual2");
@@ -53,6 +65,12 @@ fn whitworth_from_scene(c: &mut Criterion) {
     });
     group.bench_function("generated ψ (+ guards)", |b| {
         b.iter(|| generated_psi::pose(black_box(PHI)))
+    });
+    group.bench_function("run-time evaluator ψ (+ guards)", |b| {
+        b.iter(|| {
+            psi_program.evaluate(black_box(PHI), &mut psi_registers, &mut psi_out);
+            psi_code.read(&psi_out).map(|v| v[0] + v[1] + v[2]).ok()
+        })
     });
     group.bench_function("dual2 ψ (closed form)", |b| {
         b.iter(|| Dual2.jets(black_box(&rocker), black_box(PHI)))
@@ -98,5 +116,73 @@ fn whitworth_from_scene(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, whitworth_from_scene);
+/// Positions of the in-process sweeps.
+const POSITIONS: usize = 10_000;
+
+fn whitworth_sweep(evaluator: Evaluator) -> Scene {
+    let text = std::fs::read_to_string("scenes/whitworth.toml").unwrap();
+    let step = 360.0 / POSITIONS as f64;
+    let text = text.replace("step = 0.5\n", &format!("step = {step}\n"));
+    let mut scene = mechdiff::scene::parse("whitworth.toml", &text).unwrap();
+    assert!(
+        scene.positions.len() > POSITIONS,
+        "the sweep's step was not replaced"
+    );
+    scene.evaluator = evaluator;
+    scene
+}
+
+fn sweep_solver_vs_program(c: &mut Criterion) {
+    let mut group = c.benchmark_group(
+        "whitworth.toml sweep rows in process, 10^4 positions: solver vs run-time evaluator",
+    );
+    group.throughput(Throughput::Elements(POSITIONS as u64 + 1));
+    for (name, evaluator) in [
+        ("solver", Evaluator::Solver),
+        ("program", Evaluator::Program),
+    ] {
+        let scene = whitworth_sweep(evaluator);
+        let mechanism = build::mechanism(&scene).unwrap();
+        let plan = Plan::of(&scene);
+        group.bench_function(format!("rows, {name}"), |b| {
+            b.iter_batched(
+                || Sweeper::new(&scene, &mechanism, &plan).unwrap(),
+                |mut sweeper| {
+                    let mut row = Vec::new();
+                    let mut sum = 0.0;
+                    for phi in scene.positions.iter() {
+                        sweeper.row(black_box(phi), &mut row).unwrap();
+                        sum += row[1];
+                    }
+                    sum
+                },
+                BatchSize::PerIteration,
+            )
+        });
+    }
+    group.finish();
+    let mut group = c.benchmark_group("whitworth.toml sweep set-up: solver vs run-time evaluator");
+    for (name, evaluator) in [
+        ("solver", Evaluator::Solver),
+        (
+            "program (trace, differentiate, compile)",
+            Evaluator::Program,
+        ),
+    ] {
+        let scene = whitworth_sweep(evaluator);
+        let mechanism = build::mechanism(&scene).unwrap();
+        let plan = Plan::of(&scene);
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                Sweeper::new(&scene, &mechanism, &plan)
+                    .unwrap()
+                    .loops()
+                    .len()
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, whitworth_from_scene, sweep_solver_vs_program);
 criterion_main!(benches);

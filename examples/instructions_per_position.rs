@@ -17,7 +17,8 @@
 //! 001 from `scenes/rack_slotted_link.toml`: `move_to` + read θ3, θ3′, θ3″), `hand` (the
 //! hand-derived ψ, ψ′, ψ″), `generated` (ψ, ψ′, ψ″ generated from the scene, with guards),
 //! `hand_pose` (the hand-derived whole pose: ψ, A, C, S1, S2, S3 with ′ and ″),
-//! `generated_pose` (the same generated from `tests/data/whitworth_pose.toml`, with guards).
+//! `generated_pose` (the same generated from `tests/data/whitworth_pose.toml`, with guards),
+//! `program` (the Whitworth ψ graph by the run-time evaluator, `trace::Program`).
 
 use mechdiff::core::geometry::{ScalarOutput, Solver, Tracker};
 use mechdiff::core::method::{Differentiator, Dual2};
@@ -66,7 +67,8 @@ fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
     let (Some(which), Some(reps)) = (args.get(1), args.get(2)) else {
         eprintln!(
             "usage: instructions_per_position \
-             geometry|newton|psi|pose|rack|hand|generated|hand_pose|generated_pose REPETITIONS"
+             geometry|newton|psi|pose|rack|hand|generated|hand_pose|generated_pose|program \
+             REPETITIONS"
         );
         return Ok(ExitCode::FAILURE);
     };
@@ -94,6 +96,13 @@ fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
     let rack_start = solver.track(&rack)?;
     let rocker_angle = shaper.rocker();
     let lambda = shaper.lambda();
+    let psi_scene = mechdiff::scene::load(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/whitworth_psi.toml"
+    ))?;
+    let psi_code = mechdiff::codegen::scene::SceneCode::of(&psi_scene)?;
+    let program = psi_code.program(&psi_scene)?;
+    let (mut registers, mut out) = (program.registers(), vec![0.0; program.outputs()]);
     let mut acc = 0.0;
     for _ in 0..reps {
         acc += match which.as_str() {
@@ -139,10 +148,20 @@ fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
                     Err(_) => f64::NAN,
                 })
                 .sum(),
+            "program" => phis
+                .iter()
+                .map(|&phi| {
+                    program.evaluate(black_box(phi), &mut registers, &mut out);
+                    match psi_code.read(&out) {
+                        Ok(v) => v[0] + v[1] + v[2],
+                        Err(_) => f64::NAN,
+                    }
+                })
+                .sum(),
             other => {
                 eprintln!(
                     "unknown loop `{other}`: geometry, newton, psi, pose, rack, hand, generated, \
-                     hand_pose or generated_pose"
+                     hand_pose, generated_pose or program"
                 );
                 return Ok(ExitCode::FAILURE);
             }

@@ -323,6 +323,17 @@ pub enum Error {
         /// The engine's reason.
         source: mechdiff_core::Error,
     },
+    /// `mechdiff run --evaluator program` cannot evaluate this scene.
+    #[error(
+        "{file}: --evaluator program cannot evaluate this scene: {reason}; use --evaluator \
+         solver (or auto, which chooses)"
+    )]
+    NoEvaluator {
+        /// The scene file.
+        file: String,
+        /// Why (a loop without a closed form, a cam drive, …).
+        reason: String,
+    },
     /// The solver would jump to the other assembly branch between two drive positions.
     #[error(
         "{file}: the loop of joints {loop_joints} would change assembly branch between drive \

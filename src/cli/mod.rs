@@ -43,9 +43,10 @@ pub fn refuse_options(
                 "--jsonl",
                 "--report",
                 "--monte-carlo",
+                "--evaluator",
             ],
-            "a cam scene has no `[parameters]` and writes its SVAJ table with --csv, its \
-             profile with --profile-csv and its pictures with --plot",
+            "a cam scene has no `[parameters]` and no linkage to evaluate, and writes its SVAJ \
+             table with --csv, its profile with --profile-csv and its pictures with --plot",
         ),
         scene::Kind::Rotor => (
             &[
@@ -56,6 +57,7 @@ pub fn refuse_options(
                 "--report",
                 "--profile-csv",
                 "--monte-carlo",
+                "--evaluator",
             ],
             "a rotor scene has no `[parameters]` and no drive positions to tabulate; use --csv \
              for its answers and --plot for its polygons",

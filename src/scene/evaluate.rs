@@ -108,6 +108,41 @@ pub(crate) fn evaluate<const N: usize>(
     values.iter().map(jet::<N>).collect()
 }
 
+/// The output's jets read from the values of the scene's generated code (see
+/// [`crate::codegen::scene`]: per output row `[x, x′, …]`, `width` values, from
+/// `values[*at..]`; `at` is moved past them), an angle kept continuous along the sweep
+/// through `previous` as [`evaluate`] keeps it.
+pub(crate) fn from_code<const N: usize>(
+    scene: &Scene,
+    resolved: &Resolved<'_>,
+    values: &[f64],
+    at: &mut usize,
+    width: usize,
+    previous: &mut Option<f64>,
+) -> Vec<Jet<N>> {
+    let output = resolved.output;
+    let rows = match output.kind {
+        OutputKind::Point(_) => 2,
+        _ => 1,
+    };
+    let mut jets: Vec<Jet<N>> = values[*at..*at + rows * width]
+        .chunks_exact(width)
+        .map(|v| {
+            Jet::new(
+                v[0],
+                std::array::from_fn(|k| v.get(k + 1).copied().unwrap_or(0.0)),
+            )
+        })
+        .collect();
+    *at += rows * width;
+    if let OutputKind::Angle { .. } = &output.kind {
+        let target = previous.unwrap_or_else(|| sketch_angle(scene, output));
+        to_turn(&mut jets[0].value, target);
+        *previous = Some(jets[0].value);
+    }
+    jets
+}
+
 /// The output's values as [`values`] gives them, with an angle moved by whole turns to the
 /// one nearest its angle in the sketch (where a sweep's angle continuity starts).
 pub(crate) fn values_on_sketch_turn<D: Scalar>(

@@ -28,6 +28,9 @@ pub struct Plan {
     pub dead_positions: Vec<String>,
     /// The plan of the `[[dynamics]]` outputs: derivative order and effects.
     pub dynamics: Option<mechdiff_core::dynamics::Plan>,
+    /// Each loop and the path that evaluates it, once the sweep is set up
+    /// ([`super::Sweeper::loops`]); empty before.
+    pub loops: Vec<crate::evaluator::LoopPlan>,
 }
 
 impl Plan {
@@ -65,6 +68,7 @@ impl Plan {
                 .as_ref()
                 .filter(|d| !d.outputs.is_empty())
                 .and_then(|d| super::build::mechanism(scene).ok().map(|m| d.plan(&m))),
+            loops: Vec::new(),
         }
     }
 
@@ -140,9 +144,15 @@ impl Plan {
             Some(p) => format!("\ndynamics plan: {p}"),
             None => String::new(),
         };
+        let by = if self.loops.is_empty() {
+            "by the geometry solver (exact: loops in closed form where they match a standard \
+             group, else Newton with implicit differentiation)"
+                .to_owned()
+        } else {
+            crate::evaluator::describe(&self.loops)
+        };
         format!(
-            "plan: {range}; {what} by the geometry solver (exact: loops in closed form where they match a standard group, else Newton with implicit differentiation){motion}; \
-            {} columns{dead}{dynamics}",
+            "plan: {range}; {what} {by}{motion}; {} columns{dead}{dynamics}",
             self.columns
         )
     }

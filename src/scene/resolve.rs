@@ -122,6 +122,7 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
         balancing,
         plot,
         parameters: Vec::new(),
+        evaluator: Default::default(),
     })
 }
 

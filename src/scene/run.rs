@@ -125,10 +125,11 @@ pub fn check(scene: &Scene) -> Result<Checked> {
 /// branch), evaluates the outputs, and searches the dead positions asked for.
 pub fn run(scene: &Scene) -> Result<Report> {
     let mechanism = mechanism(scene)?;
-    let plan = Plan::of(scene);
+    let mut plan = Plan::of(scene);
     let mut all = kinematic_columns(scene);
     let positions = drive_positions(scene, &mechanism)?;
     let mut sweeper = Sweeper::new(scene, &mechanism, &plan)?;
+    plan.loops = sweeper.loops();
     let mut rows = Vec::with_capacity(positions.len());
     for &phi in &positions {
         let mut row = Vec::with_capacity(all.len());

@@ -6,8 +6,9 @@ use mechdiff_core::DriveState;
 use mechdiff_core::geometry::{Kinematics, Mechanism, Tracker};
 
 use crate::error::{Error, Result};
+use crate::evaluator::{LoopPlan, ProgramPath, solver_loops};
 
-use super::evaluate::{Resolved, evaluate, quantity};
+use super::evaluate::{Resolved, evaluate, from_code, quantity};
 use super::model::Scene;
 use super::outputs::{Column, columns};
 use super::plan::Plan;
@@ -55,6 +56,9 @@ pub struct Sweeper<'s> {
     scene: &'s Scene,
     walk: Walk<'s>,
     worst: Option<Worst>,
+    /// The run-time evaluator, when the scene's `evaluator` chose it: it takes every step
+    /// it can prove, the solver the others (see [`crate::evaluator`]).
+    program: Option<ProgramPath>,
 }
 
 /// The walk at the derivative order the plan needs.
@@ -84,6 +88,7 @@ impl<'s> Sweeper<'s> {
         let outputs = (scene.outputs.iter())
             .map(|output| Resolved::new(scene, mechanism, output))
             .collect::<Result<Vec<_>>>()?;
+        let program = ProgramPath::choose(scene, &tracker)?;
         let outputs = Outputs {
             tracker,
             drive: plan.drive.unwrap_or(DriveState::constant_speed(0.0)),
@@ -99,7 +104,44 @@ impl<'s> Sweeper<'s> {
             scene,
             walk,
             worst: None,
+            program,
         })
+    }
+
+    /// Each loop and the path that evaluates it (for the plan line).
+    pub fn loops(&self) -> Vec<LoopPlan> {
+        match &self.program {
+            Some(p) => p.loops(),
+            None => solver_loops(&self.outputs().tracker),
+        }
+    }
+
+    fn outputs(&self) -> &Outputs<'s> {
+        match &self.walk {
+            Walk::First(o) | Walk::Second(o) | Walk::Third(o) => o,
+        }
+    }
+
+    /// The row at `phi` from the run-time evaluator, if it proves the step there.
+    fn program_row(&mut self, phi: f64, row: &mut Vec<f64>) -> bool {
+        let Some(p) = &mut self.program else {
+            return false;
+        };
+        let width = p.width();
+        let Some(values) = p.move_to(phi) else {
+            return false;
+        };
+        let scene = self.scene;
+        match &mut self.walk {
+            Walk::First(o) => o.push_code::<1>(scene, values, width, row),
+            Walk::Second(o) => o.push_code::<2>(scene, values, width, row),
+            Walk::Third(o) => o.push_code::<3>(scene, values, width, row),
+        }
+        let (amplification, l) = p.amplification();
+        if is_worse(amplification, self.worst.as_ref()) {
+            self.worst = Some((amplification, phi, l));
+        }
+        true
     }
 
     /// Moves to drive position `phi` (SI) and writes its row into `row` (cleared first):
@@ -107,7 +149,18 @@ impl<'s> Sweeper<'s> {
     pub fn row(&mut self, phi: f64, row: &mut Vec<f64>) -> Result<()> {
         row.clear();
         row.push(phi);
+        if self.program_row(phi, row) {
+            return Ok(());
+        }
         let scene = self.scene;
+        if let Some(at) = self.program.as_ref().map(ProgramPath::phi) {
+            // The solver takes this step from where the program stands (it has not moved
+            // since the last step it took; the steps between were proven).
+            let tracker = &mut self.outputs_mut().tracker;
+            if tracker.phi() != at {
+                tracker.move_to(at).map_err(|e| solver_error(scene, e))?;
+            }
+        }
         // The solver moves the driven joint: φ itself, or s(θ) for a cam drive.
         let joint = scene.drive.joint_position(phi);
         let o = match &mut self.walk {
@@ -131,6 +184,13 @@ impl<'s> Sweeper<'s> {
         if is_worse(amplification, self.worst.as_ref()) {
             self.worst = Some((amplification, phi, l));
         }
+        if let Some(p) = &mut self.program
+            && !p.restart(phi)
+        {
+            // The solver accepted a position whose guard the program's rounding fails:
+            // the solver goes on alone.
+            self.program = None;
+        }
         Ok(())
     }
 
@@ -143,16 +203,24 @@ impl<'s> Sweeper<'s> {
         let previous = |o: &Outputs<'_>| -> Vec<Option<u64>> {
             o.previous.iter().map(|p| p.map(f64::to_bits)).collect()
         };
-        a.tracker.same_state(&b.tracker) && previous(a) == previous(b)
+        // The run-time evaluator's state is not compared: a sweep on it is never taken as
+        // continuing another (its pieces are solved again in order).
+        self.program.is_none()
+            && other.program.is_none()
+            && a.tracker.same_state(&b.tracker)
+            && previous(a) == previous(b)
     }
 
     /// Whether the sweep's state after a position is a function of the position alone and
     /// the turns of its angles, so that a sweep solved in pieces from states reached by
     /// other routes usually finds them [`Sweeper::same_state`] as the sequential ones:
-    /// every loop in closed form. Newton's poses differ in their last bits with the route
-    /// (its start and its steps), so a sweep with a loop on Newton is best walked in order.
+    /// every loop in closed form, on the solver. Newton's poses differ in their last bits
+    /// with the route (its start and its steps), so a sweep with a loop on Newton is best
+    /// walked in order; so is one on the run-time evaluator (its state is not compared).
     pub fn is_route_independent(&self) -> bool {
-        self.outputs()
+        self.program.is_none()
+            && self
+                .outputs()
             .tracker
             .closed_form_loops()
             .iter()
@@ -179,8 +247,8 @@ impl<'s> Sweeper<'s> {
         *self = later;
     }
 
-    fn outputs(&self) -> &Outputs<'s> {
-        match &self.walk {
+    fn outputs_mut(&mut self) -> &mut Outputs<'s> {
+        match &mut self.walk {
             Walk::First(o) | Walk::Second(o) | Walk::Third(o) => o,
         }
     }
@@ -205,6 +273,26 @@ impl<'s> Sweeper<'s> {
 }
 
 impl Outputs<'_> {
+    /// Pushes the columns of every output from the generated code's `values` (each output
+    /// row `[x, x′, …]`, `width` values).
+    fn push_code<const N: usize>(
+        &mut self,
+        scene: &Scene,
+        values: &[f64],
+        width: usize,
+        row: &mut Vec<f64>,
+    ) {
+        let mut at = 0;
+        for (resolved, previous) in self.outputs.iter().zip(self.previous.iter_mut()) {
+            let jets = from_code::<N>(scene, resolved, values, &mut at, width, previous);
+            for q in &resolved.output.quantities {
+                for v in &jets {
+                    row.push(quantity(v, *q, &self.drive));
+                }
+            }
+        }
+    }
+
     fn push<const N: usize>(
         &mut self,
         scene: &Scene,

@@ -121,10 +121,11 @@ pub struct Streamed {
 /// [`Error::Write`] naming the output that failed. The caller discards partial files.
 pub fn run(scene: &Scene, sinks: &mut Sinks<'_>, options: &Options) -> Result<Streamed> {
     let mechanism = build::mechanism(scene)?;
-    let plan = Plan::of(scene);
+    let mut plan = Plan::of(scene);
     let columns = kinematic_columns(scene);
     let positions = streamed_positions(scene, &mechanism)?;
     let mut sweeper = Sweeper::new(scene, &mechanism, &plan)?;
+    plan.loops = sweeper.loops();
     let format = RowFormat::new(&columns);
     let streamed_table = positions.len() > options.table_from_values;
     let mut kept_rows: Vec<Vec<f64>> = Vec::new();

@@ -37,7 +37,7 @@
 //! ([`Tracker::value`], [`Tracker::position`]: no [`Kinematics`] built).
 
 mod closed_path;
-mod interval;
+pub(crate) mod interval;
 mod newton_path;
 mod range;
 mod reading;

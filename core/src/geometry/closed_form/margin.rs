@@ -38,11 +38,7 @@ impl ClosedForm {
     /// length in the sketch over its length now), `1/|margin|` for a slide's slope, 1 for
     /// a loop that always closes.
     pub fn amplification(&self, l: usize, margin: f64) -> f64 {
-        match self.kinds.get(l).copied().flatten() {
-            Some(true) => 1.0 / margin.abs().sqrt(),
-            Some(false) => 1.0 / margin.abs(),
-            None => 1.0,
-        }
+        amplification(self.kinds.get(l).copied().flatten(), margin)
     }
 
     /// Whether loop `l` has a margin that can vanish (a square root or a slope).
@@ -100,5 +96,16 @@ impl ClosedForm {
             return Err(Failure::Singular { condition });
         }
         Ok(slope)
+    }
+}
+
+/// How much a loop amplifies rounding at a pose where its margin is `margin`: `root` is
+/// `Some(true)` for a square-root pattern (`1/√|margin|`), `Some(false)` for a slide's
+/// slope (`1/|margin|`), `None` for a loop that always closes (1).
+pub(crate) fn amplification(root: Option<bool>, margin: f64) -> f64 {
+    match root {
+        Some(true) => 1.0 / margin.abs().sqrt(),
+        Some(false) => 1.0 / margin.abs(),
+        None => 1.0,
     }
 }

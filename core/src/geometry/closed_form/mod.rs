@@ -63,7 +63,7 @@ use super::branch::Loop;
 use super::constraints::{Body, Equations, Frames, Line, Slide};
 use super::frames::rotate;
 use crate::{Scalar, atan2};
-pub(crate) use margin::Margin;
+pub(crate) use margin::{Margin, amplification};
 use matching::pattern;
 use std::f64::consts::{PI, TAU};
 

@@ -106,7 +106,7 @@ impl Tracker<'_> {
 
     /// The longest step checked at once: 1/8 rad for an angle, 1/8 of the sketch for a
     /// displacement (see [`interval::passes`]).
-    pub(super) fn longest_step(&self) -> f64 {
+    pub(crate) fn longest_step(&self) -> f64 {
         match self.mechanism.drive_kind() {
             crate::geometry::DriveKind::Angle => interval::LONGEST_TURN,
             crate::geometry::DriveKind::Displacement => interval::LONGEST_TURN * self.size,

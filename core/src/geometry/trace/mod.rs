@@ -27,9 +27,11 @@
 
 mod program;
 mod scalar;
+mod tracker;
 
 pub use program::Program;
 pub use scalar::Traced;
+pub use tracker::ProgramTracker;
 
 use super::constraints::Frames;
 use super::output::{PointOutput, Scalar as Quantity, ScalarOutput};
@@ -95,6 +97,8 @@ pub enum GuardKind {
 /// One loop's guard: nodes of the graph and how to read them.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Guard {
+    /// The loop's index in the solver's tracker (`Tracker::joints_of_loop`).
+    pub loop_index: usize,
     /// The joints of the loop (as the solver's errors name them).
     pub joints: Vec<String>,
     /// What the guard measures.
@@ -103,6 +107,9 @@ pub struct Guard {
     pub discriminant: Id,
     /// The condition estimate (dimensionless).
     pub condition: Id,
+    /// The factor that makes the discriminant (or slope) the solver's margin: its sign and
+    /// size in the sketch (1 in the sketch's shape; see [`ProgramTracker`]).
+    pub scale: f64,
 }
 
 /// Why a loop fails at a drive position, as [`GuardKind::verdict`] finds it.
@@ -209,13 +216,13 @@ pub fn trace(
             sketch,
             &mut pose.q,
             &mut pose.frames,
-            |l, margin, _| {
+            |l, margin, scale| {
                 let (kind, condition) = match margin.root {
                     None => (GuardKind::Always, Traced::from(1.0)),
                     Some(true) => (GuardKind::Root, (margin.now / margin.value.abs()).sqrt()),
                     Some(false) => (GuardKind::Slope, margin.value.abs().recip()),
                 };
-                guards.push((l, kind, margin.value.id(), condition.id()));
+                guards.push((l, kind, margin.value.id(), condition.id(), scale));
             },
         );
         let values: Vec<Id> = outputs(&pose).into_iter().map(Traced::id).collect();
@@ -236,11 +243,13 @@ pub fn trace(
         outputs: values,
         guards: guards
             .into_iter()
-            .map(|(l, kind, discriminant, condition)| Guard {
+            .map(|(l, kind, discriminant, condition, scale)| Guard {
+                loop_index: l,
                 joints: tracker.joints_of_loop(l),
                 kind,
                 discriminant,
                 condition,
+                scale,
             })
             .collect(),
         limit: tracker.solver_singular_threshold(),

@@ -1,0 +1,221 @@
+//! A sweep walked by the run-time evaluator: the traced position solution evaluated by a
+//! [`Program`] at each drive position, each step between two positions accepted only when
+//! the solver itself would accept it at once.
+//!
+//! The solver's closed-form path ([`super::super::Tracker::move_to`]) accepts a step when
+//! every loop's guard holds at its end and every loop's margin (the discriminant or slope
+//! of the guard, scaled to 1 in the sketch, with its first two derivatives in φ) is shown
+//! positive over the whole step by the Hermite test of `solver::interval`, steps capped at
+//! the solver's longest step. [`ProgramTracker::move_to`] makes the same checks, on the
+//! program's values of the same formulas (equal to the solver's to rounding), and says
+//! `None` where any of them fails: a guard, a margin, a non-finite drive position, a move
+//! of more sub-steps than the solver allows. The caller then asks the solver, which halves
+//! the step, locates the end of the branch, and reports — so every error and every
+//! position the evaluator cannot prove is the solver's own answer.
+
+use super::{DRIVE, GuardKind, PositionGraph, Program};
+use crate::Error;
+use crate::geometry::Tracker;
+use crate::geometry::closed_form::amplification;
+use crate::geometry::solver::interval::{MAX_SUBSTEPS, passes};
+use crate::symbolic::{Id, rules};
+use num_dual::Dual2_64;
+
+/// One loop's guard as the program reads it.
+#[derive(Debug, Clone, Copy)]
+struct Loop {
+    kind: GuardKind,
+    /// The solver's margin is the discriminant (or slope) times this.
+    scale: f64,
+}
+
+/// The run-time evaluator walking a sweep (see the module documentation).
+///
+/// ```
+/// use mechdiff_core::geometry::{Drive, Mechanism, Solver, trace};
+/// let m = Mechanism::builder()
+///     .point("O", [0.0, 0.0]).point("A", [2.0, 0.0])
+///     .ground(["O"]).link("crank", ["O", "A"])
+///     .revolute("O", "ground", "crank", "O")
+///     .drive(Drive::angle("O"))
+///     .build().unwrap();
+/// let tip = m.point_output("crank", "A").unwrap();
+/// let t = Solver::default().track(&m).unwrap();
+/// let mut traced = trace::trace(&t, |pose| pose.point(&tip).to_vec()).unwrap();
+/// let x = traced.outputs[0];
+/// let mut walk = trace::ProgramTracker::new(&t, &mut traced, &[x]).unwrap();
+/// let values = walk.move_to(0.5).unwrap();
+/// assert!((values[0] - 2.0 * 0.5f64.cos()).abs() < 1e-15);
+/// assert!(walk.move_to(f64::NAN).is_none());
+/// ```
+#[derive(Debug, Clone)]
+pub struct ProgramTracker {
+    program: Program,
+    registers: Vec<f64>,
+    /// The program's outputs: the caller's values, then `[disc, condition, disc′, disc″]`
+    /// loop by loop.
+    out: Vec<f64>,
+    values: usize,
+    loops: Vec<Loop>,
+    /// The solver's singular threshold.
+    limit: f64,
+    /// The solver's longest step.
+    longest: f64,
+    /// The drive position reached, and each loop's margin there.
+    phi: f64,
+    margins: Vec<Dual2_64>,
+    /// Margins at a step's end, and at the start of the move (restored if it fails).
+    trial: Vec<Dual2_64>,
+    start: Vec<Dual2_64>,
+}
+
+impl ProgramTracker {
+    /// Compiles `values` (nodes of `position`'s graph: what the caller reads at every
+    /// position) with every loop's guard and margin derivatives, and starts at the drive
+    /// position of `tracker` (the sketch), whose mechanism `position` traces.
+    ///
+    /// # Errors
+    /// The symbolic engine's limits ([`Error::ExpressionTooLarge`], …) differentiating the
+    /// margins; [`Error::NoClosedForm`] if the program's guards fail at the sketch (the
+    /// solver's do not: a bug, reported rather than walked).
+    pub fn new(
+        tracker: &Tracker<'_>,
+        position: &mut PositionGraph,
+        values: &[Id],
+    ) -> Result<Self, Error> {
+        let mut roots = values.to_vec();
+        for guard in &position.guards {
+            let jet =
+                position
+                    .graph
+                    .try_derivatives(guard.discriminant, DRIVE, 2, rules::MAX_NODES)?;
+            roots.extend([guard.discriminant, guard.condition, jet[1], jet[2]]);
+        }
+        let program = Program::compile(&position.graph, &roots, DRIVE)?;
+        let loops: Vec<Loop> = (position.guards.iter())
+            .map(|g| Loop {
+                kind: g.kind,
+                scale: g.scale,
+            })
+            .collect();
+        let one = Dual2_64::from(1.0);
+        let mut walk = ProgramTracker {
+            registers: program.registers(),
+            out: vec![0.0; roots.len()],
+            program,
+            values: values.len(),
+            limit: position.limit,
+            longest: tracker.longest_step(),
+            phi: tracker.phi(),
+            margins: vec![one; loops.len()],
+            trial: vec![one; loops.len()],
+            start: vec![one; loops.len()],
+            loops,
+        };
+        if !walk.restart(tracker.phi()) {
+            return Err(Error::NoClosedForm {
+                what: "the run-time evaluator (its guards fail at the sketch)".to_owned(),
+                joints: position
+                    .guards
+                    .first()
+                    .map_or_else(Vec::new, |g| g.joints.clone()),
+            });
+        }
+        Ok(walk)
+    }
+
+    /// The drive position reached.
+    pub fn phi(&self) -> f64 {
+        self.phi
+    }
+
+    /// Number of instructions of the program (see [`Program::instructions`]).
+    pub fn instructions(&self) -> usize {
+        self.program.instructions()
+    }
+
+    /// Evaluates at `phi` into `out` and the trial margins; `false` if a guard fails.
+    fn evaluate(&mut self, phi: f64) -> bool {
+        self.program
+            .evaluate(phi, &mut self.registers, &mut self.out);
+        let guards = &self.out[self.values..];
+        for (l, (lp, g)) in self.loops.iter().zip(guards.chunks_exact(4)).enumerate() {
+            if lp.kind.verdict(g[0], g[1], self.limit).is_err() {
+                return false;
+            }
+            self.trial[l] = Dual2_64::new(g[0], g[2], g[3]) * lp.scale;
+        }
+        true
+    }
+
+    /// Moves to `phi` as the solver's closed-form path would in whole steps: the values
+    /// asked for at `phi`, or `None` (the tracker stays where it was) where the solver
+    /// must decide — a guard failing at a step's end, a margin not shown positive over a
+    /// step, a drive position that is not finite, a move of more sub-steps than the
+    /// solver takes.
+    pub fn move_to(&mut self, phi: f64) -> Option<&[f64]> {
+        if !phi.is_finite() {
+            return None;
+        }
+        let (from, mut steps) = (self.phi, 0);
+        self.start.copy_from_slice(&self.margins);
+        while self.phi != phi || steps == 0 {
+            let remaining = phi - self.phi;
+            let target = if remaining.abs() > self.longest {
+                self.phi + self.longest.copysign(remaining)
+            } else {
+                phi
+            };
+            let h = target - self.phi;
+            let proven = steps < MAX_SUBSTEPS
+                && self.evaluate(target)
+                && (self.loops.iter().zip(&self.margins).zip(&self.trial))
+                    .all(|((l, &a), &b)| l.kind == GuardKind::Always || passes(a, b, h));
+            if !proven {
+                self.phi = from;
+                self.margins.copy_from_slice(&self.start);
+                return None;
+            }
+            self.margins.copy_from_slice(&self.trial);
+            self.phi = target;
+            steps += 1;
+        }
+        Some(&self.out[..self.values])
+    }
+
+    /// Places the tracker at `phi` (where the solver stands after deciding a step):
+    /// `false`, the tracker unmoved, if a guard fails there.
+    pub fn restart(&mut self, phi: f64) -> bool {
+        if !(phi.is_finite() && self.evaluate(phi)) {
+            return false;
+        }
+        self.margins.copy_from_slice(&self.trial);
+        self.phi = phi;
+        true
+    }
+
+    /// How much the current pose amplifies rounding, and in which loop (its index), as
+    /// [`Tracker::amplification`] computes it from the same margins.
+    pub fn amplification(&self) -> (f64, usize) {
+        let mut worst = (1.0, 0);
+        for (l, (lp, m)) in self.loops.iter().zip(&self.margins).enumerate() {
+            let k = amplification(lp.kind.root(), m.re);
+            if k > worst.0 || k.is_nan() {
+                worst = (k, l);
+            }
+        }
+        worst
+    }
+}
+
+impl GuardKind {
+    /// As the solver's closed form records it: `Some(true)` for a square root's
+    /// discriminant, `Some(false)` for a slope, `None` for a loop that always closes.
+    fn root(self) -> Option<bool> {
+        match self {
+            GuardKind::Always => None,
+            GuardKind::Root => Some(true),
+            GuardKind::Slope => Some(false),
+        }
+    }
+}

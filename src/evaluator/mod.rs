@@ -1,0 +1,94 @@
+//! How `mechdiff run` evaluates the positions of a sweep: by the geometry solver, or by the
+//! run-time evaluator of the scene's traced closed forms (`--evaluator`).
+//!
+//! When every loop of a scene has a closed form, its whole position solution — every
+//! output with its derivatives, every loop's guard — is one expression graph
+//! ([`mechdiff_core::geometry::trace`]), the very graph `mechdiff codegen` emits as Rust.
+//! Compiled into an instruction list ([`mechdiff_core::geometry::trace::Program`]), it is
+//! evaluated at each drive position without the solver's dual numbers and implicit
+//! differentiation. Each step between two positions is accepted only as the solver would
+//! accept it at once ([`mechdiff_core::geometry::trace::ProgramTracker`]); a step the
+//! evaluator cannot prove (a toggle, a limit position, a branch's end, a margin too close
+//! to zero to prove) is taken by the solver, which reports it exactly as in a solver run.
+//! The results agree with the solver's to rounding (1e-13 relative, tested on every scene
+//! of `scenes/`).
+//!
+//! `auto` (the default) is the solver for now: measured under today's load, the
+//! evaluator's rows cost 0.76× the solver's in one run and 1.22× in another (BENCHMARKS.md,
+//! "The run-time evaluator in `mechdiff run`"), so it is not shown faster; `auto` is where
+//! that choice will change when it is.
+
+mod program;
+
+pub(crate) use program::{ProgramPath, solver_loops};
+
+use std::fmt;
+
+/// How a run evaluates positions (`mechdiff run --evaluator`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum Evaluator {
+    /// The faster path by measurement: the solver today (see the module documentation).
+    #[default]
+    Auto,
+    /// The geometry solver: closed forms (or Newton) in dual numbers at every position.
+    Solver,
+    /// The run-time evaluator of the traced closed forms; an error for a scene that has a
+    /// loop without a closed form or a cam drive.
+    Program,
+}
+
+/// Which path evaluates a loop in a run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LoopPath {
+    /// The run-time evaluator of the traced closed forms.
+    Program,
+    /// The solver's closed form, in dual numbers.
+    ClosedForm,
+    /// The solver's Newton iteration with implicit differentiation (a loop's closed form,
+    /// if it has one, only seeds it).
+    Newton,
+}
+
+/// One loop of a run and the path that evaluates it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct LoopPlan {
+    /// The loop's joints (the drive as `drive <joint>`), as the solver names them.
+    pub joints: Vec<String>,
+    /// The path.
+    pub path: LoopPath,
+}
+
+impl fmt::Display for LoopPath {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            LoopPath::Program => "program",
+            LoopPath::ClosedForm => "closed form",
+            LoopPath::Newton => "Newton",
+        })
+    }
+}
+
+impl fmt::Display for LoopPlan {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "[{}] {}", self.joints.join(", "), self.path)
+    }
+}
+
+/// The words of the plan line for a run whose loops take `loops`: by whom, and each
+/// loop's path (`by the geometry solver (exact): loops [O2, drive `O2`] closed form, …`).
+pub fn describe(loops: &[LoopPlan]) -> String {
+    let each: Vec<String> = loops.iter().map(LoopPlan::to_string).collect();
+    let each = each.join(", ");
+    if loops.iter().any(|l| l.path == LoopPath::Program) {
+        format!(
+            "by the run-time evaluator of the traced closed forms (exact; a step it cannot \
+             prove is taken by the geometry solver): loops {each}"
+        )
+    } else if loops.iter().any(|l| l.path == LoopPath::Newton) {
+        format!(
+            "by the geometry solver (exact; Newton with implicit differentiation): loops {each}"
+        )
+    } else {
+        format!("by the geometry solver (exact): loops {each}")
+    }
+}

@@ -1,0 +1,293 @@
+//! `mechdiff run --evaluator solver|program|auto`: the run-time evaluator of a scene's
+//! traced closed forms gives the solver's results (to rounding) and the solver's errors
+//! (exactly), and the plan line says which path evaluates each loop.
+
+use std::path::Path;
+
+use mechdiff::evaluator::{Evaluator, LoopPath};
+use mechdiff::scene::{self, Report, Scene};
+use mechdiff::{Error, Result};
+
+mod common;
+use common::{mechdiff, stderr, stdout, temp_file};
+
+fn with(mut scene: Scene, evaluator: Evaluator) -> Scene {
+    scene.evaluator = evaluator;
+    scene
+}
+
+/// Every linkage scene file of `scenes/`.
+fn linkage_scenes() -> Vec<String> {
+    let mut paths: Vec<String> = std::fs::read_dir("scenes")
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .filter(|p| scene::kind(&std::fs::read_to_string(p).unwrap()) == scene::Kind::Linkage)
+        .map(|p| p.display().to_string())
+        .collect();
+    paths.sort();
+    paths
+}
+
+/// Asserts that two reports of one scene agree: same columns, same rows, every value to
+/// 1e-13 of its column's largest magnitude. Both evaluate the same closed forms in f64, the
+/// solver in dual numbers and the program through their symbolic derivatives, so they
+/// round differently: a few ulps per operation amplified by the loops' conditioning (the
+/// generated code, the same graph, is measured within 2e-15 of the solver over these
+/// sweeps in tests/scene_codegen.rs); 1e-13 is issue 15's bound. Angles are compared as
+/// they are (both kept continuous along the sweep from the sketch's turn), not modulo 2π.
+fn assert_agree(path: &str, solver: &Report, program: &Report) -> usize {
+    assert_eq!(solver.columns, program.columns, "{path}");
+    assert_eq!(solver.rows.len(), program.rows.len(), "{path}");
+    let mut compared = 0;
+    for (c, column) in solver.columns.iter().enumerate() {
+        let largest = (solver.rows.iter()).fold(0.0f64, |m, r| m.max(r[c].abs()));
+        for (a, b) in solver.rows.iter().zip(&program.rows) {
+            let gap = (a[c] - b[c]).abs();
+            assert!(
+                gap <= 1e-13 * largest,
+                "{path}: {} at φ = {}: solver {} program {} (gap {gap:e}, scale {largest:e})",
+                column.name,
+                a[0],
+                a[c],
+                b[c]
+            );
+            compared += 1;
+        }
+    }
+    compared
+}
+
+#[test]
+fn every_scene_runs_the_same_by_the_program_and_by_the_solver() {
+    let mut programs = 0;
+    for path in linkage_scenes() {
+        let scene = scene::load(&path).unwrap();
+        let solver = scene::run(&with(scene.clone(), Evaluator::Solver)).unwrap();
+        assert!(
+            solver
+                .plan
+                .loops
+                .iter()
+                .all(|l| l.path != LoopPath::Program),
+            "{path}"
+        );
+        match scene::run(&with(scene.clone(), Evaluator::Program)) {
+            Ok(program) => {
+                assert!(
+                    program
+                        .plan
+                        .loops
+                        .iter()
+                        .all(|l| l.path == LoopPath::Program),
+                    "{path}: {:?}",
+                    program.plan.loops
+                );
+                assert_agree(&path, &solver, &program);
+                assert_eq!(solver.warnings, program.warnings, "{path}");
+                programs += 1;
+            }
+            // A cam-driven linkage: the program would be a function of the follower's
+            // position, not of the cam angle; refused by name, never mislabelled.
+            Err(Error::NoEvaluator { reason, .. }) => {
+                assert!(scene.drive.cam.is_some(), "{path}: {reason}");
+                assert!(reason.contains("cam"), "{path}: {reason}");
+            }
+            Err(e) => panic!("{path}: {e}"),
+        }
+    }
+    assert!(programs >= 11, "only {programs} scenes ran by the program");
+}
+
+/// The four-bar of tests/data cannot assemble with its crank near 180°.
+fn unassemblable(sweep: &str) -> Scene {
+    let text = std::fs::read_to_string("tests/data/four_bar_unassemblable.toml").unwrap();
+    let text = text.replace("from = 90\nto = 120\nstep = 5\n", sweep);
+    assert!(text.contains(sweep), "the sweep was not replaced");
+    scene::parse("four_bar_unassemblable.toml", &text).unwrap()
+}
+
+/// Runs `scene` both ways: the solver's result and the program's.
+fn both(scene: &Scene) -> [Result<Report>; 2] {
+    [Evaluator::Solver, Evaluator::Program].map(|e| scene::run(&with(scene.clone(), e)))
+}
+
+#[test]
+fn a_sweep_into_an_unassemblable_range_stops_with_the_solvers_error() {
+    // Steps of 2° into the blocked range; one step of 170° over it (the solver subdivides
+    // it and locates the limit position); a position exactly inside it; and a sweep in
+    // the other direction. Each time the program proves no step past the limit, the solver
+    // takes that step and reports: the same error, word for word.
+    for sweep in [
+        "from = 90\nto = 270\nstep = 2\n",
+        "from = 90\nto = 260\nstep = 170\n",
+        "positions = [100, 180]\n",
+        "from = 120\nto = -100\nstep = -4\n",
+    ] {
+        let scene = unassemblable(sweep);
+        let [solver, program] = both(&scene);
+        let (solver, program) = (solver.unwrap_err(), program.unwrap_err());
+        assert!(
+            matches!(solver, Error::Blocked { .. } | Error::Unassemblable { .. }),
+            "{sweep}: {solver}"
+        );
+        assert_eq!(solver.to_string(), program.to_string(), "{sweep}");
+    }
+}
+
+#[test]
+fn the_cli_reports_the_limit_position_the_same_both_ways() {
+    // Steps of 0.5° up to 270°: the loop A, B, O4 reaches its limit position inside the
+    // step from 139° to 139.5°; the program proves no step past it, the solver locates it.
+    let text = std::fs::read_to_string("tests/data/four_bar_unassemblable.toml")
+        .unwrap()
+        .replace("to = 120\nstep = 5\n", "to = 270\nstep = 0.5\n");
+    let file = temp_file("four_bar_blocked.toml");
+    std::fs::write(&file, text).unwrap();
+    let run = |how: &str| mechdiff(&["run", file.to_str().unwrap(), "--evaluator", how]);
+    let (solver, program) = (run("solver"), run("program"));
+    std::fs::remove_file(&file).unwrap();
+    assert!(!solver.status.success() && !program.status.success());
+    assert_eq!(stderr(&solver), stderr(&program));
+    assert_eq!(stdout(&solver), stdout(&program));
+    let message = stderr(&program);
+    assert!(
+        message.contains("cannot assemble between drive positions 139 deg and 139.5 deg")
+            && message.contains("the loop of joints A, B, O4 first fails at 139.1715"),
+        "{message}"
+    );
+}
+
+#[test]
+fn the_plan_line_names_each_loops_path() {
+    let run = |how: &str| {
+        let output = mechdiff(&["run", "scenes/whitworth.toml", "--evaluator", how]);
+        assert!(output.status.success(), "{}", stderr(&output));
+        stdout(&output)
+    };
+    let program = run("program");
+    assert!(
+        program.contains(
+            "by the run-time evaluator of the traced closed forms (exact; a step it cannot \
+             prove is taken by the geometry solver): loops [crank_bearing, drive \
+             `crank_bearing`] program, [rocker_bearing, crank_pin] program, [ram_pin, \
+             ram_guide] program;"
+        ),
+        "{program}"
+    );
+    // `auto` is the solver while the program is not measured faster.
+    for how in ["solver", "auto"] {
+        let solver = run(how);
+        assert!(
+            solver.contains(
+                "by the geometry solver (exact): loops [crank_bearing, drive `crank_bearing`] \
+                 closed form, [rocker_bearing, crank_pin] closed form, [ram_pin, ram_guide] \
+                 closed form;"
+            ),
+            "{how}: {solver}"
+        );
+    }
+}
+
+#[test]
+fn a_long_sweep_by_the_program_agrees_with_the_solver() {
+    // 3 601 positions (0.1°): the program's steps are each checked; `auto` keeps the solver
+    // while the program is not measured faster (BENCHMARKS.md).
+    let text = std::fs::read_to_string("scenes/slider_crank.toml")
+        .unwrap()
+        .replace("step = 5\n", "step = 0.1\n");
+    let scene = scene::parse("slider_crank.toml", &text).unwrap();
+    let auto = scene::run(&scene).unwrap();
+    assert!(
+        auto.plan
+            .loops
+            .iter()
+            .all(|l| l.path == LoopPath::ClosedForm),
+        "{:?}",
+        auto.plan.loops
+    );
+    let program = scene::run(&with(scene, Evaluator::Program)).unwrap();
+    assert_agree("slider_crank.toml at 0.1°", &auto, &program);
+}
+
+/// A triad (a class-III group) matches no closed form: its loop is solved by Newton.
+const TRIAD: &str = r#"
+[units]
+angle = "deg"
+[points]
+O2 = [0, 0]
+A = [0, 1]
+B = [2, 2]
+C = [3, 3.5]
+D = [4, 2]
+G2 = [3, 6]
+G3 = [6, 0]
+[links]
+ground = ["O2", "G2", "G3"]
+crank = ["O2", "A"]
+first = ["A", "B"]
+ternary = ["B", "C", "D"]
+second = ["G2", "C"]
+third = ["G3", "D"]
+[joints]
+O2 = { type = "revolute", at = "O2", links = ["ground", "crank"] }
+A = { type = "revolute", at = "A", links = ["crank", "first"] }
+B = { type = "revolute", at = "B", links = ["first", "ternary"] }
+C = { type = "revolute", at = "C", links = ["ternary", "second"] }
+D = { type = "revolute", at = "D", links = ["ternary", "third"] }
+G2 = { type = "revolute", at = "G2", links = ["ground", "second"] }
+G3 = { type = "revolute", at = "G3", links = ["ground", "third"] }
+[drive]
+joint = "O2"
+line = ["O2", "A"]
+[sweep]
+from = 90
+to = 91
+step = 0.5
+[[output]]
+point = "C"
+quantities = ["position"]
+"#;
+
+#[test]
+fn a_loop_without_a_closed_form_stays_on_newton() {
+    let scene = scene::parse("triad.toml", TRIAD).unwrap();
+    let auto = scene::run(&scene).unwrap();
+    assert!(
+        auto.plan.loops.iter().any(|l| l.path == LoopPath::Newton),
+        "{:?}",
+        auto.plan.loops
+    );
+    assert!(
+        auto.plan
+            .describe(&scene)
+            .contains("by the geometry solver (exact; Newton with implicit differentiation)")
+    );
+    let error = scene::run(&with(scene, Evaluator::Program)).unwrap_err();
+    let message = error.to_string();
+    for part in [
+        "triad.toml: --evaluator program cannot evaluate this scene",
+        "closed form",
+        "G2",
+        "--evaluator solver",
+    ] {
+        assert!(message.contains(part), "`{part}` missing from: {message}");
+    }
+}
+
+#[test]
+fn a_cam_scene_refuses_the_option() {
+    let cams = Path::new("scenes/cams");
+    let cam = std::fs::read_dir(cams)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .find(|p| p.extension().is_some_and(|e| e == "toml"))
+        .unwrap();
+    let output = mechdiff(&["run", cam.to_str().unwrap(), "--evaluator", "program"]);
+    assert!(!output.status.success());
+    assert!(
+        stderr(&output).contains("--evaluator"),
+        "{}",
+        stderr(&output)
+    );
+}
