@@ -208,12 +208,34 @@ fn generate_code(expression: &str, args: &Args) -> Result<String, mechdiff_core:
     Ok(format!(
         "// `{shown}`: value and derivatives 1 to {} with respect to `{}`\n\
          // operations: {}\n\
-         // without common-subexpression elimination: {}\n{source}",
+         // without common-subexpression elimination: {}\n{}{source}",
         args.order,
         args.wrt,
         graph.operation_count(&outputs),
         graph.naive_operation_count(&outputs),
+        singular_points_note(&graph, value, &args.wrt),
     ))
+}
+
+/// A comment for a formula that can meet a 0/0 or a zero base of a root or power (it
+/// divides, or calls sqrt, cbrt or powf): the generated code evaluates it as written, NaN
+/// at such a point, which it cannot know in general; empty for other formulas.
+fn singular_points_note(graph: &Graph, value: mechdiff_core::symbolic::Id, wrt: &str) -> String {
+    let count = graph.operation_count(&[value]);
+    let roots = ["sqrt", "cbrt", "powf"]
+        .iter()
+        .any(|name| count.calls.contains_key(*name));
+    if count.div == 0 && !roots {
+        return String::new();
+    }
+    format!(
+        "// NaN where the formula is 0/0 as written (sin({wrt})/{wrt} at 0) or a root or power \
+         meets a zero base\n\
+         // (cbrt({wrt}^3), {wrt}^3.5 at 0): evaluated as written, it cannot know such points. \
+         Write the limit\n\
+         // there with if({wrt} == 0, ..., ...); `mechdiff accuracy` finds them on a sweep and \
+         takes the limit.\n"
+    )
 }
 
 /// Runs `mechdiff codegen`: prints the generated function.
