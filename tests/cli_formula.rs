@@ -37,7 +37,10 @@ fn run_of_a_removable_singularity_takes_the_limit_with_a_note() {
         printed.contains("note: removable singularity at φ = 0 rad: limit taken"),
         "{printed}"
     );
-    assert!(!printed.contains("NaN") && !printed.contains("inf"), "{printed}");
+    assert!(
+        !printed.contains("NaN") && !printed.contains("inf"),
+        "{printed}"
+    );
 }
 
 /// φ^3.5 from 0: the one-sided limit (all 0) with a note saying it is one-sided.
@@ -74,7 +77,10 @@ fn run_without_a_limit_fails_naming_the_position() {
         assert!(!output.status.success(), "{formula}");
         let message = stderr(&output);
         for part in ["φ = 0 rad", reason] {
-            assert!(message.contains(part), "{formula}: `{part}` missing: {message}");
+            assert!(
+                message.contains(part),
+                "{formula}: `{part}` missing: {message}"
+            );
         }
         assert!(stdout(&output).is_empty());
     }
@@ -91,5 +97,9 @@ fn run_of_a_formula_scene_refuses_options_it_cannot_honour() {
         "x.json",
     ]);
     assert!(!output.status.success());
-    assert!(stderr(&output).contains("--json does not apply"), "{}", stderr(&output));
+    assert!(
+        stderr(&output).contains("--json does not apply"),
+        "{}",
+        stderr(&output)
+    );
 }

@@ -280,9 +280,9 @@ fn a_true_pole_in_a_formula_is_refused_with_its_position() {
     }
 }
 
-/// φ^3.5 and (φ + φ²)^3.5 from φ = 0 (scenes/hard/one_sided_power.toml): real only for
-/// φ ≥ 0, so at 0 the value and derivatives are one-sided limits, all 0 (the k-th
-/// derivative is a multiple of φ^(3.5 − k)); the title says so, the reference and every
+/// φ^3.5 from φ = 0 (scenes/hard/one_sided_power.toml): real only for φ ≥ 0, so at 0 the
+/// value and derivatives are one-sided limits, all 0 (the k-th derivative is a multiple of
+/// φ^(3.5 − k)); the title says so, the reference and every
 /// exact method return exactly 0 there (no rounding: every term is 0), and no method fails
 /// or returns NaN anywhere (num-dual's powf alone would: exp(3.5·ln 0)).
 #[test]
@@ -304,7 +304,12 @@ fn a_power_real_on_one_side_takes_the_one_sided_limit_flagged() {
     for method in &mut case.methods {
         (method.evaluate)(0.0, &mut values).unwrap();
         for v in &values {
-            assert_eq!(&v[..=method.order], &[0.0; 4][..=method.order], "{}", method.name);
+            assert_eq!(
+                &v[..=method.order],
+                &[0.0; 4][..=method.order],
+                "{}",
+                method.name
+            );
         }
     }
     let violations = case.bound_violations().unwrap();
@@ -334,7 +339,10 @@ fn a_power_without_derivatives_is_refused_with_the_reason() {
             .expect("refused")
             .to_string();
         for part in ["`y`", position, reason] {
-            assert!(error.contains(part), "{formula}: `{part}` missing from: {error}");
+            assert!(
+                error.contains(part),
+                "{formula}: `{part}` missing from: {error}"
+            );
         }
     }
 }

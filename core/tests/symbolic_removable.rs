@@ -178,10 +178,20 @@ const POWERS: [(&str, [f64; 4], bool, Option<Side>); 8] = [
     ("powf(x, 3.5)", [0.0; 4], true, Some(Side::Above)),
     ("(-x)^3.5", [0.0; 4], true, Some(Side::Below)),
     ("cbrt(x^3)", [0.0, 1.0, 0.0, 0.0], true, None),
-    ("cbrt(x^3 + x^4)", [0.0, 1.0, 2.0 / 3.0, -6.0 / 9.0], true, None),
+    (
+        "cbrt(x^3 + x^4)",
+        [0.0, 1.0, 2.0 / 3.0, -6.0 / 9.0],
+        true,
+        None,
+    ),
     ("sqrt(x^4)", [0.0, 0.0, 2.0, 0.0], true, None),
     ("powf(x^2, 1.75)", [0.0; 4], true, None),
-    ("powf(x^3, 1/3)", [0.0, 1.0, 0.0, 0.0], true, Some(Side::Above)),
+    (
+        "powf(x^3, 1/3)",
+        [0.0, 1.0, 0.0, 0.0],
+        true,
+        Some(Side::Above),
+    ),
 ];
 
 #[test]
@@ -279,7 +289,10 @@ fn closed_form_power(
     let (above, below) = if integer_p || odd {
         (true, true)
     } else {
-        (a > 0.0, a * if m % 2 == 0 { 1.0 } else { -1.0 } > 0.0)
+        (
+            a > 0.0,
+            a * if m.is_multiple_of(2) { 1.0 } else { -1.0 } > 0.0,
+        )
     };
     let side = match (above, below) {
         (true, true) => None,
@@ -290,7 +303,11 @@ fn closed_form_power(
     let Some(q) = q else {
         // |t|^q with q not an integer: 0 below order q, infinite above.
         let qf = m as f64 * p;
-        return if qf > 3.0 { Ok(([0.0; 4], side)) } else { Err(()) };
+        return if qf > 3.0 {
+            Ok(([0.0; 4], side))
+        } else {
+            Err(())
+        };
     };
     // The sign of the leading factor on the side taken: aᵖ·tᵠ for integer p and for odd
     // roots; |a|ᵖ·|t|ᵠ for a real power, where |t|ᵠ = (−t)ᵠ below.
@@ -301,7 +318,11 @@ fn closed_form_power(
     } else {
         a.abs().powf(p)
     };
-    let sign = if side == Some(Side::Below) && q % 2 == 1 { -1.0 } else { 1.0 };
+    let sign = if side == Some(Side::Below) && q % 2 == 1 {
+        -1.0
+    } else {
+        1.0
+    };
     if side.is_none() && !integer_p && !odd && q % 2 == 1 {
         // |t|^q, q odd, both sides: the q-th derivatives differ.
         return if q > 3 { Ok(([0.0; 4], None)) } else { Err(()) };
@@ -357,11 +378,10 @@ proptest! {
             (Ok((want, side)), Ok(limits)) => {
                 prop_assert_eq!(limits.side, side);
                 let scale = a.abs().powf(p) * (1.0 + c.abs()).powi(3);
-                for k in 0..4 {
-                    let got = limits.jets[0][k];
-                    let bound = 1e-13 * want[k].abs().max(scale);
-                    prop_assert!((got - want[k]).abs() <= bound,
-                        "{} m={} p={} order {}: {} vs {}", text, m, p, k, got, want[k]);
+                for (k, (&got, want)) in limits.jets[0].iter().zip(want).enumerate() {
+                    let bound = 1e-13 * want.abs().max(scale);
+                    prop_assert!((got - want).abs() <= bound,
+                        "{} m={} p={} order {}: {} vs {}", text, m, p, k, got, want);
                 }
             }
             (Err(()), Err(Error::NotDifferentiable { .. })) => {}

@@ -485,10 +485,12 @@ pub struct Table {
 pub fn table(scene: &FormulaScene, file: &str) -> Result<Table, Error> {
     let (evaluator, positions) = prepare(scene, file)?;
     let names: Vec<&str> = evaluator.names.iter().map(String::as_str).collect();
-    let at = |phi: f64| move |source: CoreError| Error::FormulaAt {
-        file: file.to_owned(),
-        phi,
-        source,
+    let at = |phi: f64| {
+        move |source: CoreError| Error::FormulaAt {
+            file: file.to_owned(),
+            phi,
+            source,
+        }
     };
     let mut rows = Vec::with_capacity(positions.len());
     let mut notes = Vec::new();

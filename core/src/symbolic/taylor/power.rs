@@ -60,9 +60,7 @@ impl<T: Scalar> Power<T> {
         match self {
             Power::Sqrt => a.sqrt(),
             Power::Cbrt => a.cbrt(),
-            Power::Powf(p) if p.re().fract() == 0.0 && p.re().abs() <= 1e9 => {
-                a.powi(p.re() as i32)
-            }
+            Power::Powf(p) if p.re().fract() == 0.0 && p.re().abs() <= 1e9 => a.powi(p.re() as i32),
             Power::Powf(p) => a.powd(p),
         }
     }
@@ -157,9 +155,13 @@ impl<T: Scalar> TaylorArithmetic<T> {
             integral((T::from(m as f64) * p).re())
         };
         // ũ with a positive leading coefficient where the power needs a positive base.
-        let sign = if real_for_negative { 1.0 } else { a.re().signum() };
+        let sign = if real_for_negative {
+            1.0
+        } else {
+            a.re().signum()
+        };
         let tilde: Vec<T> = u.c[m..].iter().map(|&x| x * T::from(sign)).collect();
-        let below_factor = if m % 2 == 0 { 1.0 } else { -1.0 };
+        let below_factor = if m.is_multiple_of(2) { 1.0 } else { -1.0 };
         let (above, below) = if real_for_negative {
             (true, true)
         } else {
@@ -195,7 +197,7 @@ impl<T: Scalar> TaylorArithmetic<T> {
         }
         let q = q as usize;
         let w = power_series(&tilde, p, power.of(tilde[0]));
-        if power == Power::Cbrt || above && below && q % 2 == 0 {
+        if power == Power::Cbrt || above && below && q.is_multiple_of(2) {
             return shifted(&w, q, 1.0);
         }
         if above && below {
@@ -207,7 +209,11 @@ impl<T: Scalar> TaylorArithmetic<T> {
         }
         // Real on one side only: the one-sided series (±t)^q·|ũ|^p.
         self.one_side(above, below);
-        let sign = if above || q % 2 == 0 { 1.0 } else { -1.0 };
+        let sign = if above || q.is_multiple_of(2) {
+            1.0
+        } else {
+            -1.0
+        };
         shifted(&w, q, sign)
     }
 
