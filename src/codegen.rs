@@ -218,14 +218,24 @@ fn generate_code(expression: &str, args: &Args) -> Result<String, mechdiff_core:
 }
 
 /// A comment for a formula that can meet a 0/0 or a zero base of a root or power (it
-/// divides, or calls sqrt, cbrt or powf): the generated code evaluates it as written, NaN
-/// at such a point, which it cannot know in general; empty for other formulas.
+/// divides by, or takes sqrt, cbrt or powf of, a quantity that varies): the generated code
+/// evaluates it as written, NaN at such a point, which it cannot know in general; empty for
+/// other formulas.
 fn singular_points_note(graph: &Graph, value: mechdiff_core::symbolic::Id, wrt: &str) -> String {
-    let count = graph.operation_count(&[value]);
-    let roots = ["sqrt", "cbrt", "powf"]
-        .iter()
-        .any(|name| count.calls.contains_key(*name));
-    if count.div == 0 && !roots {
+    use mechdiff_core::symbolic::{Binary, Node, Unary};
+    let varies = |id| graph.symbols(&[id]).iter().any(|s| !is_named_constant(s));
+    let needed = graph.reachable(&[value]);
+    let can_meet_zero = graph.nodes().iter().zip(&needed).any(|(node, &needed)| {
+        needed
+            && match *node {
+                Node::Binary(Binary::Div, _, b) => varies(b),
+                Node::Binary(Binary::Powf, a, _) | Node::Unary(Unary::Sqrt | Unary::Cbrt, a) => {
+                    varies(a)
+                }
+                _ => false,
+            }
+    });
+    if !can_meet_zero {
         return String::new();
     }
     format!(
