@@ -282,9 +282,9 @@ fn a_true_pole_in_a_formula_is_refused_with_its_position() {
 
 /// φ^3.5 from φ = 0 (scenes/hard/one_sided_power.toml): real only for φ ≥ 0, so at 0 the
 /// value and derivatives are one-sided limits, all 0 (the k-th derivative is a multiple of
-/// φ^(3.5 − k)); the title says so, the reference and every
-/// exact method return exactly 0 there (no rounding: every term is 0), and no method fails
-/// or returns NaN anywhere (num-dual's powf alone would: exp(3.5·ln 0)).
+/// φ^(3.5 − k)); the title says so, the reference and every exact method return exactly 0
+/// there (no rounding: every term is 0), and no exact method fails or returns NaN (num-dual's
+/// powf alone would: exp(3.5·ln 0)); differences stepping below 0 fail there, reported.
 #[test]
 fn a_power_real_on_one_side_takes_the_one_sided_limit_flagged() {
     let mut case = case("one_sided_power");
@@ -314,9 +314,14 @@ fn a_power_real_on_one_side_takes_the_one_sided_limit_flagged() {
     }
     let violations = case.bound_violations().unwrap();
     assert!(violations.is_empty(), "{violations:?}");
+    // Exact methods never fail; a difference stencil reaching below 0 is NaN there, and is
+    // reported as failing at φ = 0 (not averaged in silently).
     let report = case.measure(&Timing::quick()).unwrap();
     for m in &report.measurements {
-        assert!(m.failure.is_none(), "{}: {:?}", m.name, m.failure);
+        match &m.failure {
+            None => {}
+            Some(f) => assert!(!m.is_exact() && f.phi == 0.0, "{}: {f:?}", m.name),
+        }
     }
 }
 
