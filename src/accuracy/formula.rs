@@ -201,7 +201,9 @@ pub fn case(scene: &FormulaScene, file: &str) -> Result<Case<'static>, Error> {
                     flags += &format!("; {}", limit_note(phi, &limits));
                 }
                 Ok(_) => {}
-                Err(e) => series_error = Some(e),
+                // A reason found (|φ| at 0, not real): named; else a pole or a deeper 0/0.
+                Err(e @ CoreError::NotDifferentiable { .. }) => series_error = Some(e),
+                Err(_) => {}
             }
         }
         if let Some((o, k)) = (0..r.len())
