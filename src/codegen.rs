@@ -208,12 +208,44 @@ fn generate_code(expression: &str, args: &Args) -> Result<String, mechdiff_core:
     Ok(format!(
         "// `{shown}`: value and derivatives 1 to {} with respect to `{}`\n\
          // operations: {}\n\
-         // without common-subexpression elimination: {}\n{source}",
+         // without common-subexpression elimination: {}\n{}{source}",
         args.order,
         args.wrt,
         graph.operation_count(&outputs),
         graph.naive_operation_count(&outputs),
+        singular_points_note(&graph, value, &args.wrt),
     ))
+}
+
+/// A comment for a formula that can meet a 0/0 or a zero base of a root or power (it
+/// divides by, or takes sqrt, cbrt or powf of, a quantity that varies): the generated code
+/// evaluates it as written, NaN at such a point, which it cannot know in general; empty for
+/// other formulas.
+fn singular_points_note(graph: &Graph, value: mechdiff_core::symbolic::Id, wrt: &str) -> String {
+    use mechdiff_core::symbolic::{Binary, Node, Unary};
+    let varies = |id| graph.symbols(&[id]).iter().any(|s| !is_named_constant(s));
+    let needed = graph.reachable(&[value]);
+    let can_meet_zero = graph.nodes().iter().zip(&needed).any(|(node, &needed)| {
+        needed
+            && match *node {
+                Node::Binary(Binary::Div, _, b) => varies(b),
+                Node::Binary(Binary::Powf, a, _) | Node::Unary(Unary::Sqrt | Unary::Cbrt, a) => {
+                    varies(a)
+                }
+                _ => false,
+            }
+    });
+    if !can_meet_zero {
+        return String::new();
+    }
+    format!(
+        "// NaN where the formula is 0/0 as written (sin({wrt})/{wrt} at 0) or a root or power \
+         meets a zero base\n\
+         // (cbrt({wrt}^3), {wrt}^3.5 at 0): evaluated as written, it cannot know such points. \
+         Write the limit\n\
+         // there with if({wrt} == 0, ..., ...); `mechdiff accuracy` finds them on a sweep and \
+         takes the limit.\n"
+    )
 }
 
 /// Runs `mechdiff codegen`: prints the generated function.

@@ -412,6 +412,17 @@ pub enum Error {
         /// What went wrong there.
         source: Box<Error>,
     },
+    /// A formula scene's formulas have no value or derivatives at a drive position, not even
+    /// as a limit (`mechdiff run` of a formula scene).
+    #[error("{file}: at drive position φ = {phi} rad: {source}")]
+    FormulaAt {
+        /// The scene file.
+        file: String,
+        /// The drive position (rad).
+        phi: f64,
+        /// The engine's reason.
+        source: mechdiff_core::Error,
+    },
     /// A command-line option that does not apply to this kind of scene.
     #[error("{option} does not apply to {scene}: {why}")]
     OptionNotApplicable {

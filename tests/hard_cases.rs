@@ -194,7 +194,7 @@ fn removable_singularity_written_as_its_limit_is_exact_at_the_point() {
 /// `limits[output][order]` at `point`, the outputs in the file's (alphabetical) order, from
 /// the closed-form series in each file's header (sin φ/φ = 1 − φ²/6 + …: 1, 0, −1/3, 0).
 #[allow(clippy::type_complexity)]
-const REMOVABLE: [(&str, f64, &[(usize, [f64; 4])]); 3] = [
+const REMOVABLE: [(&str, f64, &[(usize, [f64; 4])]); 4] = [
     (
         "removable_sinc_unguarded",
         0.0,
@@ -210,6 +210,16 @@ const REMOVABLE: [(&str, f64, &[(usize, [f64; 4])]); 3] = [
         ],
     ),
     ("removable_forms", 1.0, &[(0, [2.0, 1.0, 0.0, 0.0])]), // difference_quotient
+    (
+        // cbrt(φ³) = φ, cbrt(φ³ + φ⁴) = φ + φ²/3 − φ³/9 + …, sqrt(φ⁴) = φ²
+        "removable_roots",
+        0.0,
+        &[
+            (0, [0.0, 1.0, 0.0, 0.0]),
+            (1, [0.0, 1.0, 2.0 / 3.0, -2.0 / 3.0]),
+            (2, [0.0, 0.0, 2.0, 0.0]),
+        ],
+    ),
 ];
 
 /// The bare quotients swept through their 0/0 succeed: the limit is taken and flagged in the
@@ -267,5 +277,77 @@ fn a_true_pole_in_a_formula_is_refused_with_its_position() {
         .to_string();
     for part in ["`inverse`", "order 0", "phi = 0", "true singularity"] {
         assert!(error.contains(part), "`{part}` missing from: {error}");
+    }
+}
+
+/// φ^3.5 from φ = 0 (scenes/hard/one_sided_power.toml): real only for φ ≥ 0, so at 0 the
+/// value and derivatives are one-sided limits, all 0 (the k-th derivative is a multiple of
+/// φ^(3.5 − k)); the title says so, the reference and every exact method return exactly 0
+/// there (no rounding: every term is 0), and no exact method fails or returns NaN (num-dual's
+/// powf alone would: exp(3.5·ln 0)); differences stepping below 0 fail there, reported.
+#[test]
+fn a_power_real_on_one_side_takes_the_one_sided_limit_flagged() {
+    let mut case = case("one_sided_power");
+    assert!(
+        case.title
+            .contains("one-sided limit at φ = 0 rad (real only for φ ≥ 0)"),
+        "{}",
+        case.title
+    );
+    assert_eq!(case.positions[0], 0.0);
+    for o in 0..case.outputs.len() {
+        for k in 0..4 {
+            assert_eq!(case.reference[0][o][k].hi, 0.0, "reference {o} {k}");
+        }
+    }
+    let mut values = vec![[f64::NAN; 4]; case.outputs.len()];
+    for method in &mut case.methods {
+        (method.evaluate)(0.0, &mut values).unwrap();
+        for v in &values {
+            assert_eq!(
+                &v[..=method.order],
+                &[0.0; 4][..=method.order],
+                "{}",
+                method.name
+            );
+        }
+    }
+    let violations = case.bound_violations().unwrap();
+    assert!(violations.is_empty(), "{violations:?}");
+    // Exact methods never fail; a difference stencil reaching below 0 is NaN there, and is
+    // reported as failing at φ = 0 (not averaged in silently).
+    let report = case.measure(&Timing::quick()).unwrap();
+    for m in &report.measurements {
+        match &m.failure {
+            None => {}
+            Some(f) => assert!(!m.is_exact() && f.phi == 0.0, "{}: {f:?}", m.name),
+        }
+    }
+}
+
+/// Where a power has no derivatives, not even one-sided, the case is refused with the
+/// output, the position and the reason: φ^3.5 at φ = −0.5 (not real), sqrt(φ²) = |φ| at
+/// 0 (the one-sided derivatives differ: a two-sided jet would be wrong).
+#[test]
+fn a_power_without_derivatives_is_refused_with_the_reason() {
+    for (formula, position, reason) in [
+        ("phi^3.5", "phi = -0.5", "not real"),
+        ("sqrt(phi^2)", "phi = 0", "differ on the two sides"),
+    ] {
+        let text = format!(
+            "title = \"t\"\n[outputs]\ny = \"{formula}\"\n[sweep]\nfrom = -0.5\nto = 0.5\n\
+             step = 0.5\nunit = \"rad\"\n"
+        );
+        let scene = formula::parse(&text, "t.toml").unwrap();
+        let error = formula::case(&scene, "t.toml")
+            .err()
+            .expect("refused")
+            .to_string();
+        for part in ["`y`", position, reason] {
+            assert!(
+                error.contains(part),
+                "{formula}: `{part}` missing from: {error}"
+            );
+        }
     }
 }

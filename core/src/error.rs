@@ -211,6 +211,29 @@ pub enum Error {
         /// The quotient, as an S-expression (shortened).
         expression: String,
     },
+    /// `powf` with a base of exactly 0 in dual numbers: num-dual forms `u^v` as
+    /// `exp(v·ln u)`, whose derivatives at `u = 0` are NaN even where the true ones are
+    /// finite limits (`x^3.5` at 0: 0, 0, 0, 0, one-sided).
+    #[error(
+        "powf with base 0 in `{expression}`: the chain rule through exp(v·ln u) is undefined \
+         there; its derivatives, where they exist, are limits (x^3.5 at 0: 0, 0, 0, 0 from \
+         above), which `mechdiff accuracy` takes by Taylor series; elsewhere move the point \
+         off the zero of the base"
+    )]
+    PowerOfZero {
+        /// The power, as an S-expression (shortened).
+        expression: String,
+    },
+    /// A formula has no value and derivatives to order 3 at a point, not even as a limit:
+    /// its series there is not a Taylor series (`|x|` at 0, `x^2.5` at 0 to order 3), or it
+    /// is not real on either side of the point.
+    #[error("`{expression}` has no derivatives to order 3 at the point: {reason}")]
+    NotDifferentiable {
+        /// The output, as an S-expression (shortened).
+        expression: String,
+        /// Why, naming the function and the order of the zero that causes it.
+        reason: String,
+    },
     /// A derivative is infinite where it is used: `function` at the edge of its domain.
     #[error(
         "the derivative of {function} is infinite at {at} (in `{expression}`): a true \

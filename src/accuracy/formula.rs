@@ -28,9 +28,14 @@
 //! reference is the derivative formulas at 256 bits; the condition numbers follow from their
 //! gradients (see [`super::reference`]).
 //!
-//! At a position where a formula is 0/0 with a limit (sin φ/φ at 0), the limit is taken by
-//! truncated Taylor series ([`Graph::limit_jets`]): the reference in double-double, every
-//! method in `f64`; the case's title says "removable singularity at φ = … rad: limit taken".
+//! At a position where a formula is 0/0 with a limit (sin φ/φ at 0), or where the chain rule
+//! divides by zero (`cbrt(φ³)`, `φ^3.5` at 0: num-dual's `powf` is `exp(v·ln u)`), the
+//! limit is taken by truncated Taylor series ([`Graph::limit_jets`]): the reference in
+//! double-double, every method in `f64`; the case's title says "removable singularity at
+//! φ = … rad: limit taken", or "one-sided limit at φ = … rad (real only for φ ≥ …)" where the
+//! formula is real on one side only (`φ^3.5`). Where the series has no answer either
+//! (`sqrt(φ²)` = |φ| at 0, `φ^2.5`'s ‴ at 0, `φ^3.5` at φ < 0), the case is refused with the
+//! output, the position and the reason; a method that fails there is reported failing.
 
 use std::collections::BTreeMap;
 use std::sync::Arc;
@@ -39,6 +44,7 @@ use mechdiff_core::Scalar;
 use mechdiff_core::error::Error as CoreError;
 use mechdiff_core::num_dual::{Dual2_64, Dual3_64, Dual64, HyperDual64};
 use mechdiff_core::symbolic::constants::is_named_constant;
+use mechdiff_core::symbolic::taylor::{Limits, Side};
 use mechdiff_core::symbolic::{Graph, Id};
 use serde::Deserialize;
 
@@ -169,6 +175,97 @@ pub fn parse(text: &str, file: &str) -> Result<FormulaScene, Error> {
 /// [`Error::Syntax`] if a formula does not parse or uses a symbol that is neither `phi` nor
 /// a parameter; [`Error::Reference`] if the reference does not evaluate.
 pub fn case(scene: &FormulaScene, file: &str) -> Result<Case<'static>, Error> {
+    let (evaluator, positions) = prepare(scene, file)?;
+    let names: Vec<&str> = evaluator.names.iter().map(String::as_str).collect();
+    let (formulas, values) = (&evaluator.formulas, &evaluator.values);
+    let mut reference = Vec::new();
+    let mut condition = Vec::new();
+    let mut flags = String::new();
+    let outputs: Vec<&String> = scene.outputs.keys().collect();
+    for &phi in &positions {
+        let (mut r, mut c) = formulas.reference(phi, values)?;
+        let mut series_error = None;
+        if r.iter().flatten().any(|x| !x.is_finite()) || evaluator.chain_rule_fails(phi) {
+            // A 0/0 at this position, or a power at a zero of its base: the limit, in
+            // double-double Taylor series (about 32 digits), if it exists. The condition
+            // numbers' formulas are 0/0 there too: where not finite they are taken as 0 (the
+            // bound is then 16 ε of the scale).
+            match limit_jets::<Reference>(formulas, &names, values, phi) {
+                Ok(limits) if limits.removed || limits.side.is_some() => {
+                    for (o, jet) in limits.jets.iter().enumerate() {
+                        r[o] = *jet;
+                    }
+                    for x in c.iter_mut().flatten().filter(|x| !x.is_finite()) {
+                        *x = 0.0;
+                    }
+                    flags += &format!("; {}", limit_note(phi, &limits));
+                }
+                Ok(_) => {}
+                // A reason found (|φ| at 0, not real): named; else a pole or a deeper 0/0.
+                Err(e @ CoreError::NotDifferentiable { .. }) => series_error = Some(e),
+                Err(_) => {}
+            }
+        }
+        if let Some((o, k)) = (0..r.len())
+            .flat_map(|o| (0..=MAX_ORDER).map(move |k| (o, k)))
+            .find(|&(o, k)| !r[o][k].is_finite())
+        {
+            return Err(Error::Reference {
+                what: file.to_owned(),
+                reason: format!(
+                    "output `{}`, derivative order {k}, is not finite at phi = {phi} even at \
+                     256 bits, and has no limit there that a Taylor series to order 7 finds \
+                     ({}); write the value there with `if`, e.g. \
+                     \"if(phi == 0, 1, sin(phi)/phi)\" (scenes/hard/removable_sinc.toml), or \
+                     leave the point out of the sweep",
+                    outputs[o],
+                    series_error.map_or_else(
+                        || "a true singularity, or a 0/0 of higher order".to_owned(),
+                        |e| e.to_string()
+                    ),
+                ),
+            });
+        }
+        reference.push(r);
+        condition.push(c);
+    }
+    let evaluator = Arc::new(evaluator);
+    let methods = evaluator.methods();
+    let f = evaluator.clone();
+    Ok(Case {
+        title: format!("{} (reference: 256-bit symbolic{flags})", scene.title),
+        outputs: scene.outputs.keys().cloned().collect(),
+        positions,
+        reference,
+        condition: Some(condition),
+        relative: scene.error.as_deref() == Some("relative"),
+        jumps: Vec::new(),
+        notes: Vec::new(),
+        methods,
+        positions_f64: Box::new(move |phi, out| {
+            let v = f.jets(phi, 0, |&x| [x, f64::NAN, f64::NAN, f64::NAN])?;
+            for (o, jet) in out.iter_mut().zip(v) {
+                *o = jet[0];
+            }
+            Ok(())
+        }),
+    })
+}
+
+/// What a limit taken at the drive `phi` is: "removable singularity at φ = … rad: limit
+/// taken", or "one-sided limit at φ = … rad (real only for φ ≥ …)".
+fn limit_note<T>(phi: f64, limits: &Limits<T>) -> String {
+    match limits.side {
+        None => format!("removable singularity at φ = {phi} rad: limit taken"),
+        Some(side) => format!(
+            "one-sided limit at φ = {phi} rad (real only for φ {} {phi})",
+            if side == Side::Above { "≥" } else { "≤" }
+        ),
+    }
+}
+
+/// The formulas of `scene` ready to evaluate, and its drive positions (rad, sorted).
+fn prepare(scene: &FormulaScene, file: &str) -> Result<(Evaluator, Vec<f64>), Error> {
     let mut graph = Graph::new();
     let names: Vec<&str> = scene.parameters.keys().map(String::as_str).collect();
     let values: Vec<f64> = scene.parameters.values().copied().collect();
@@ -211,75 +308,12 @@ pub fn case(scene: &FormulaScene, file: &str) -> Result<Case<'static>, Error> {
     }
     positions.sort_by(f64::total_cmp);
     positions.dedup();
-    let formulas = Formulas::new(graph, &roots, "phi", &names);
-    let mut reference = Vec::new();
-    let mut condition = Vec::new();
-    let mut removable = Vec::new();
-    let outputs: Vec<&String> = scene.outputs.keys().collect();
-    for &phi in &positions {
-        let (mut r, mut c) = formulas.reference(phi, &values)?;
-        if r.iter().flatten().any(|x| !x.is_finite()) {
-            // A 0/0 at this position: its limit, in double-double Taylor series (about
-            // 32 digits), if it exists. The condition numbers' formulas are 0/0 there too:
-            // where not finite they are taken as 0 (the bound is then 16 ε of the scale).
-            if let Ok((jets, true)) = limit_jets::<Reference>(&formulas, &names, &values, phi) {
-                for (o, jet) in jets.iter().enumerate() {
-                    r[o] = *jet;
-                }
-                for x in c.iter_mut().flatten().filter(|x| !x.is_finite()) {
-                    *x = 0.0;
-                }
-                removable.push(phi);
-            }
-        }
-        if let Some((o, k)) = (0..r.len())
-            .flat_map(|o| (0..=MAX_ORDER).map(move |k| (o, k)))
-            .find(|&(o, k)| !r[o][k].is_finite())
-        {
-            return Err(Error::Reference {
-                what: file.to_owned(),
-                reason: format!(
-                    "output `{}`, derivative order {k}, is not finite at phi = {phi} even at \
-                     256 bits, and has no limit there that a Taylor series to order 7 finds \
-                     (a true singularity, or a 0/0 of higher order); write the value there \
-                     with `if`, e.g. \"if(phi == 0, 1, sin(phi)/phi)\" \
-                     (scenes/hard/removable_sinc.toml), or leave the point out of the sweep",
-                    outputs[o]
-                ),
-            });
-        }
-        reference.push(r);
-        condition.push(c);
-    }
-    let evaluator = Arc::new(Evaluator {
-        formulas,
+    let evaluator = Evaluator {
+        formulas: Formulas::new(graph, &roots, "phi", &names),
         names: names.iter().map(|s| s.to_string()).collect(),
         values,
-    });
-    let methods = evaluator.methods();
-    let f = evaluator.clone();
-    let flag = removable
-        .iter()
-        .map(|phi| format!("; removable singularity at φ = {phi} rad: limit taken"))
-        .collect::<String>();
-    Ok(Case {
-        title: format!("{} (reference: 256-bit symbolic{flag})", scene.title),
-        outputs: scene.outputs.keys().cloned().collect(),
-        positions,
-        reference,
-        condition: Some(condition),
-        relative: scene.error.as_deref() == Some("relative"),
-        jumps: Vec::new(),
-        notes: Vec::new(),
-        methods,
-        positions_f64: Box::new(move |phi, out| {
-            let v = f.jets(phi, 0, |&x| [x, f64::NAN, f64::NAN, f64::NAN])?;
-            for (o, jet) in out.iter_mut().zip(v) {
-                *o = jet[0];
-            }
-            Ok(())
-        }),
-    })
+    };
+    Ok((evaluator, positions))
 }
 
 /// The positions from, from + step, …, to (in radians).
@@ -305,9 +339,29 @@ struct Evaluator {
 }
 
 impl Evaluator {
+    /// The outputs in `Dual3` at the drive `phi`.
+    fn dual3(&self, phi: f64) -> Result<Vec<Dual3_64>, CoreError> {
+        let roots: Vec<Id> = self.formulas.jets().iter().map(|j| j[0]).collect();
+        let mut bindings: Vec<(&str, Dual3_64)> = vec![("phi", Dual3_64::from(phi).derivative())];
+        bindings.extend(
+            self.names
+                .iter()
+                .map(String::as_str)
+                .zip(self.values.iter().map(|&v| Dual3_64::from(v))),
+        );
+        self.formulas.graph().evaluate_dual(&roots, &bindings)
+    }
+
+    /// Whether the chain rule in `Dual3` fails at the drive `phi` (a 0/0, a power or root
+    /// at a zero of its base): the Taylor series decides there.
+    fn chain_rule_fails(&self, phi: f64) -> bool {
+        matches!(self.dual3(phi), Err(e) if chain_rule_failure(&e))
+    }
+
     /// `[f, f′, f″, f‴]` per output at the drive `seed` (a num-dual seed, or `f64`),
-    /// through `to_values`; at a removable singularity (0/0 with a limit), the limit from
-    /// truncated Taylor series instead, to order `order` (NaN above).
+    /// through `to_values`; where the chain rule fails (0/0, a power or root at a zero of its
+    /// base), the limit from truncated Taylor series instead, to order `order` (NaN above),
+    /// or the series' error.
     fn jets<D: Scalar>(
         &self,
         seed: D,
@@ -325,8 +379,10 @@ impl Evaluator {
         );
         match self.formulas.graph().evaluate_dual(&roots, &bindings) {
             Ok(v) => Ok(v.iter().map(to_values).collect()),
-            Err(CoreError::ZeroOverZero { .. }) => {
-                let (jets, _) = limit_jets::<f64>(&self.formulas, &names, &self.values, seed.re())?;
+            Err(e) if chain_rule_failure(&e) => {
+                let jets = limit_jets::<f64>(&self.formulas, &names, &self.values, seed.re())
+                    .map_err(formulas_error)?
+                    .jets;
                 Ok(jets
                     .into_iter()
                     .map(|j| std::array::from_fn(|k| if k <= order { j[k] } else { f64::NAN }))
@@ -355,9 +411,10 @@ impl Evaluator {
                         }
                     }
                     Err(CoreError::ZeroOverZero { .. }) => {
-                        let (jets, _) =
-                            limit_jets::<f64>(&symbolic.formulas, &names, &symbolic.values, phi)?;
-                        write(out, jets.into_iter());
+                        let limits =
+                            limit_jets::<f64>(&symbolic.formulas, &names, &symbolic.values, phi)
+                                .map_err(formulas_error)?;
+                        write(out, limits.jets.into_iter());
                     }
                     Err(e) => return Err(formulas_error(e)),
                 }
@@ -394,6 +451,91 @@ impl Evaluator {
     }
 }
 
+/// Whether `e` is a failure of the chain rule that a Taylor series may resolve (a 0/0, a
+/// power or root at a zero of its base).
+fn chain_rule_failure(e: &CoreError) -> bool {
+    matches!(
+        e,
+        CoreError::ZeroOverZero { .. }
+            | CoreError::PowerOfZero { .. }
+            | CoreError::InfiniteDerivative { .. }
+    )
+}
+
+/// A formula scene's outputs and their derivatives to order 3 at its drive positions, as
+/// `mechdiff run` prints them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Table {
+    /// The outputs' names, in the file's (alphabetical) order.
+    pub outputs: Vec<String>,
+    /// The drive positions (rad).
+    pub positions: Vec<f64>,
+    /// `rows[position][output]`: `[f, f′, f″, f‴]`.
+    pub rows: Vec<Vec<Values>>,
+    /// One note per position where a limit was taken ("removable singularity at φ = 0 rad:
+    /// limit taken", "one-sided limit at φ = 0 rad (real only for φ ≥ 0)").
+    pub notes: Vec<String>,
+}
+
+/// The outputs of a formula scene and their derivatives to order 3 (`Dual3` through the
+/// evaluator) at every drive position; where the chain rule fails (0/0, a power or root at a
+/// zero of its base), the limit by truncated Taylor series ([`Graph::limit_jets`]), with a
+/// note naming the position.
+///
+/// # Errors
+/// [`Error::Syntax`] as [`case`]; [`Error::FormulaAt`] where the formulas have no value or
+/// derivatives, not even as a limit (a true pole, `sqrt(phi^2)` at 0, `phi^3.5` below 0),
+/// naming the position and the reason.
+pub fn table(scene: &FormulaScene, file: &str) -> Result<Table, Error> {
+    let (evaluator, positions) = prepare(scene, file)?;
+    let names: Vec<&str> = evaluator.names.iter().map(String::as_str).collect();
+    let at = |phi: f64| {
+        move |source: CoreError| Error::FormulaAt {
+            file: file.to_owned(),
+            phi,
+            source,
+        }
+    };
+    let mut rows = Vec::with_capacity(positions.len());
+    let mut notes = Vec::new();
+    for &phi in &positions {
+        let row: Vec<Values> = match evaluator.dual3(phi) {
+            Ok(v) => v.iter().map(|x| [x.re, x.v1, x.v2, x.v3]).collect(),
+            Err(e) if chain_rule_failure(&e) => {
+                let limits = limit_jets::<f64>(&evaluator.formulas, &names, &evaluator.values, phi)
+                    .map_err(at(phi))?;
+                if limits.removed || limits.side.is_some() {
+                    notes.push(limit_note(phi, &limits));
+                }
+                limits.jets
+            }
+            Err(e) => return Err(at(phi)(e)),
+        };
+        if let Some((o, k)) = (0..row.len())
+            .flat_map(|o| (0..=MAX_ORDER).map(move |k| (o, k)))
+            .find(|&(o, k)| !row[o][k].is_finite())
+        {
+            return Err(Error::NotFinite {
+                file: file.to_owned(),
+                quantity: format!("`{}`, derivative order {k},", scene_output(scene, o)),
+                value: row[o][k].to_string(),
+                position: format!("φ = {phi} rad"),
+            });
+        }
+        rows.push(row);
+    }
+    Ok(Table {
+        outputs: scene.outputs.keys().cloned().collect(),
+        positions,
+        rows,
+        notes,
+    })
+}
+
+fn scene_output(scene: &FormulaScene, o: usize) -> &str {
+    scene.outputs.keys().nth(o).map_or("?", String::as_str)
+}
+
 fn formulas_error(e: CoreError) -> Error {
     Error::Reference {
         what: "the formulas".into(),
@@ -402,13 +544,14 @@ fn formulas_error(e: CoreError) -> Error {
 }
 
 /// The limit jets `[f, f′, f″, f‴]` in `T` of every output at the drive `phi`, through a
-/// removable singularity there (see [`Graph::limit_jets`]), and whether a 0/0 was resolved.
+/// removable singularity there (see [`Graph::limit_jets`]), with whether a 0/0 was resolved
+/// and whether the limit is one-sided.
 fn limit_jets<T: Scalar>(
     formulas: &Formulas,
     names: &[&str],
     values: &[f64],
     phi: f64,
-) -> Result<(Vec<[T; MAX_ORDER + 1]>, bool), Error> {
+) -> Result<Limits<T>, CoreError> {
     let roots: Vec<Id> = formulas.jets().iter().map(|j| j[0]).collect();
     let mut bindings: Vec<(&str, T)> = vec![("phi", T::from(phi))];
     bindings.extend(
@@ -417,11 +560,7 @@ fn limit_jets<T: Scalar>(
             .copied()
             .zip(values.iter().map(|&v| T::from(v))),
     );
-    let limits = formulas
-        .graph()
-        .limit_jets(&roots, "phi", &bindings)
-        .map_err(formulas_error)?;
-    Ok((limits.jets, limits.removed))
+    formulas.graph().limit_jets(&roots, "phi", &bindings)
 }
 
 fn write(out: &mut [Values], values: impl Iterator<Item = Values>) {

@@ -3,6 +3,7 @@
 pub mod accuracy;
 pub mod cam;
 pub mod check;
+pub mod formula;
 pub mod import;
 pub mod rotor;
 pub mod run;

@@ -84,6 +84,11 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
             });
         }
     }
+    if let Ok(text) = files::read_scene(&args.scene)
+        && mechdiff::accuracy::formula::is_formula_scene(&text)
+    {
+        return super::formula::run(args, &text);
+    }
     let kind = super::scene_kind(&args.scene);
     let given = [
         ("--set", !args.set.is_empty()),

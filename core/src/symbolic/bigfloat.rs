@@ -126,6 +126,18 @@ impl Arithmetic for BigArithmetic {
             Binary::Sub => x.sub(y, p, ROUNDING),
             Binary::Mul => x.mul(y, p, ROUNDING),
             Binary::Div => x.div(y, p, ROUNDING),
+            // A zero base as f64's powf has it (0 for y > 0, 1 for y = 0, ∞ for y < 0):
+            // astro-float's pow goes through ln 0 there and does not return in practice.
+            Binary::Powf if x.is_zero() && !y.is_nan() => {
+                let value = if y.is_zero() {
+                    1.0
+                } else if y.is_negative() {
+                    f64::INFINITY
+                } else {
+                    0.0
+                };
+                BigFloat::from_f64(value, p)
+            }
             Binary::Powf => x.pow(y, p, ROUNDING, &mut self.consts),
             Binary::Hypot => {
                 let sum = x

@@ -70,7 +70,9 @@ pub trait Arithmetic {
 pub enum Trouble {
     /// 0/0: the value is undefined (a removable singularity if the quotient has a limit).
     ZeroOverZero,
-    /// The derivative of `op` is infinite at `at` (asin and acos at ±1, sqrt at 0).
+    /// `powf` at a base of exactly 0 in dual numbers (`exp(v·ln 0)`: NaN derivatives).
+    PowerOfZero,
+    /// The derivative of `op` is infinite at `at` (asin and acos at ±1, sqrt and cbrt at 0).
     InfiniteDerivative {
         /// The function.
         op: Unary,
@@ -105,11 +107,11 @@ impl<D: Scalar> Arithmetic for DualArithmetic<D> {
 
     fn unary(&mut self, op: Unary, u: &D) -> D {
         let x = u.re();
-        // Derivatives of these are 1/√(1 − x²) and 1/(2√x): infinite at the domain's edge,
-        // and NaN once multiplied by a zero derivative of u.
+        // Derivatives of these are 1/√(1 − x²), 1/(2√x) and 1/(3∛x²): infinite at the
+        // domain's edge or at 0, and NaN once multiplied by a zero derivative of u.
         let edge = match op {
             Unary::Asin | Unary::Acos => x.abs() == 1.0,
-            Unary::Sqrt => x == 0.0,
+            Unary::Sqrt | Unary::Cbrt => x == 0.0,
             _ => false,
         };
         if edge && D::NDERIV > 0 {
@@ -151,7 +153,12 @@ impl<D: Scalar> Arithmetic for DualArithmetic<D> {
                 }
                 *a / *b
             }
-            Binary::Powf => a.powd(*b),
+            Binary::Powf => {
+                if a.re() == 0.0 && D::NDERIV > 0 {
+                    self.trouble = Some(Trouble::PowerOfZero);
+                }
+                a.powd(*b)
+            }
             // Plain f64: libm's atan2, as the emitted code calls it (bit for bit). Dual
             // numbers: the project's atan2, exact derivatives on the y axis too (num-dual's
             // differentiates atan(y/x): NaN at x = 0).
@@ -302,6 +309,7 @@ impl Graph {
         }
         Err(match trouble {
             Trouble::ZeroOverZero => Error::ZeroOverZero { expression },
+            Trouble::PowerOfZero => Error::PowerOfZero { expression },
             Trouble::InfiniteDerivative { op, at } => Error::InfiniteDerivative {
                 function: op.name().to_owned(),
                 at,

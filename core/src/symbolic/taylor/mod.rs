@@ -9,9 +9,17 @@
 //! Each cancelled zero costs one coefficient at the top (set to NaN, so that a result which
 //! needed more is seen as unresolved, never as a wrong number).
 //!
+//! Powers through a zero of their base (`x³·⁵`, `∛(x³)`, `√(x⁴)` at 0) follow `uᵖ = tᵐᵖ·ũᵖ`
+//! ([`power`]): a Taylor series where there is one, a one-sided series (flagged with its
+//! [`Side`]) where the power is real on one side only, and an error naming the reason
+//! where the derivatives do not exist (`√(x²) = |x|` at 0).
+//!
 //! [`Graph::limit_jets`] evaluates formulas this way and returns value and derivatives to
 //! order 3.
 
+mod power;
+
+use self::power::Power;
 use super::graph::{Graph, Id};
 use super::ops::{Binary, Comparison, Unary};
 use crate::Scalar;
@@ -32,6 +40,21 @@ pub struct Taylor<T> {
 
 fn nan<T: Scalar>() -> T {
     T::from(f64::NAN)
+}
+
+/// Whether a coefficient is exactly zero (not merely tiny).
+fn zero<T: Scalar>(x: &T) -> bool {
+    x.re() == 0.0 && x.is_zero()
+}
+
+/// The side of the point on which a formula is real, where that is one side only: its
+/// limits there are one-sided.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Side {
+    /// Real for `x ≥ x₀` only (`x³·⁵` at 0).
+    Above,
+    /// Real for `x ≤ x₀` only (`(−x)³·⁵` at 0).
+    Below,
 }
 
 impl<T: Scalar> Taylor<T> {
@@ -115,7 +138,6 @@ impl<T: Scalar> Taylor<T> {
 
     /// `a/b`, cancelling common leading zeros; the second value says whether any were.
     pub fn div(a: &Self, b: &Self) -> (Self, bool) {
-        let zero = |x: &T| x.re() == 0.0 && x.is_zero();
         let Some(k) = b.c.iter().position(|x| !zero(x)) else {
             return (Self::constant(nan()), false);
         };
@@ -169,16 +191,6 @@ impl<T: Scalar> Taylor<T> {
         (Taylor { c: s }, Taylor { c })
     }
 
-    fn sqrt(u: &Self) -> Self {
-        let mut f = [T::from(0.0); TERMS];
-        f[0] = u.c[0].sqrt();
-        for k in 1..TERMS {
-            let s: T = (1..k).map(|j| f[j] * f[k - j]).sum();
-            f[k] = (u.c[k] - s) / (f[0] * T::from(2.0));
-        }
-        Taylor { c: f }
-    }
-
     fn powi(u: &Self, n: i32) -> (Self, bool) {
         let mut result = Self::constant(T::from(1.0));
         let mut base = *u;
@@ -201,16 +213,45 @@ impl<T: Scalar> Taylor<T> {
 /// Evaluation in truncated Taylor series of `T`; records whether a 0/0 was cancelled.
 #[derive(Debug, Clone)]
 pub struct TaylorArithmetic<T> {
-    /// Whether a division cancelled common leading zeros (a removable singularity).
+    /// Whether a division cancelled common leading zeros, or a power through a zero of its
+    /// base had a chain rule of 0·∞ (a removable singularity: the limit is taken).
     pub removed: bool,
+    /// The side on which the formula is real, where only one is (see [`Side`]).
+    pub side: Option<Side>,
+    /// Whether one part is real only above the point and another only below.
+    conflict: bool,
+    /// Why a coefficient became unknown, first reason first.
+    reason: Option<String>,
     scalar: std::marker::PhantomData<T>,
 }
 
 impl<T: Scalar> TaylorArithmetic<T> {
+    /// An arithmetic that has resolved nothing yet.
+    pub fn new() -> Self {
+        TaylorArithmetic {
+            removed: false,
+            side: None,
+            conflict: false,
+            reason: None,
+            scalar: std::marker::PhantomData,
+        }
+    }
+
+    /// Keeps `reason` for the error if no earlier one is kept.
+    fn note(&mut self, reason: String) {
+        self.reason.get_or_insert(reason);
+    }
+
     fn divide(&mut self, a: &Taylor<T>, b: &Taylor<T>) -> Taylor<T> {
         let (q, removed) = Taylor::div(a, b);
         self.removed |= removed;
         q
+    }
+}
+
+impl<T: Scalar> Default for TaylorArithmetic<T> {
+    fn default() -> Self {
+        Self::new()
     }
 }
 
@@ -227,20 +268,13 @@ impl<T: Scalar> Arithmetic for TaylorArithmetic<T> {
         // 1 − u² and its square root, for asin and acos.
         let root = |this: &mut Self| {
             let w = Taylor::map2(&one, &Taylor::mul(u, u), |a, b| a - b);
-            let r = Taylor::sqrt(&w);
+            let r = this.power(&w, Power::Sqrt);
             this.divide(&du, &r)
         };
         match op {
             Unary::Neg => u.scale(T::from(-1.0)),
-            Unary::Sqrt => Taylor::sqrt(u),
-            Unary::Cbrt => {
-                let x = u.c[0].re();
-                let sign = T::from(x.signum());
-                let ln = self.unary(Unary::Ln, &u.scale(sign));
-                let mut f = Taylor::exp(&ln.scale(T::from(1.0 / 3.0))).scale(sign);
-                f.c[0] = u.c[0].cbrt();
-                f
-            }
+            Unary::Sqrt => self.power(u, Power::Sqrt),
+            Unary::Cbrt => self.power(u, Power::Cbrt),
             Unary::Exp => Taylor::exp(u),
             Unary::Ln => self.divide(&du, u).integral(u.c[0].ln()),
             Unary::Sin => Taylor::sin_cos(u, false).0,
@@ -265,14 +299,7 @@ impl<T: Scalar> Arithmetic for TaylorArithmetic<T> {
             }
             Unary::Asin => root(self).integral(u.c[0].asin()),
             Unary::Acos => root(self).scale(T::from(-1.0)).integral(u.c[0].acos()),
-            Unary::Abs => {
-                let first = u.c.iter().find(|x| !x.is_zero()).map_or(0.0, |x| x.re());
-                if first < 0.0 {
-                    u.scale(T::from(-1.0))
-                } else {
-                    *u
-                }
-            }
+            Unary::Abs => self.abs(u),
         }
     }
 
@@ -282,7 +309,13 @@ impl<T: Scalar> Arithmetic for TaylorArithmetic<T> {
             Binary::Sub => Taylor::map2(a, b, |x, y| x - y),
             Binary::Mul => Taylor::mul(a, b),
             Binary::Div => self.divide(a, b),
+            // A constant exponent (a number or a subgraph of constants): the power's own
+            // series, through a zero of the base.
+            Binary::Powf if b.c[1..].iter().all(zero) => self.power(a, Power::Powf(b.c[0])),
             Binary::Powf => {
+                if a.c[0].re() == 0.0 {
+                    self.note("powf with a variable exponent at base 0: ln 0".to_owned());
+                }
                 let ln = self.unary(Unary::Ln, a);
                 let mut f = Taylor::exp(&Taylor::mul(b, &ln));
                 f.c[0] = a.c[0].powd(b.c[0]);
@@ -301,7 +334,7 @@ impl<T: Scalar> Arithmetic for TaylorArithmetic<T> {
             }
             Binary::Hypot => {
                 let r2 = Taylor::map2(&Taylor::mul(a, a), &Taylor::mul(b, b), |p, q| p + q);
-                let mut f = Taylor::sqrt(&r2);
+                let mut f = self.power(&r2, Power::Sqrt);
                 f.c[0] = crate::scalar::hypot(a.c[0], b.c[0]);
                 f
             }
@@ -326,6 +359,9 @@ pub struct Limits<T> {
     pub jets: Vec<[T; 4]>,
     /// Whether a 0/0 was resolved on the way (a removable singularity: the limit was taken).
     pub removed: bool,
+    /// `Some` if the formula is real on one side of the point only: the jets are that
+    /// side's limits (`x^3.5` at 0: from above).
+    pub side: Option<Side>,
 }
 
 impl Graph {
@@ -344,10 +380,15 @@ impl Graph {
     /// assert!(limits.removed);
     /// ```
     ///
+    /// A power through a zero of its base is taken as `tᵐᵖ·ũᵖ` (see [`Side`] and the module
+    /// documentation): `cbrt(x^3)` at 0 gives `x`'s jet, `x^3.5` gives zeros from above.
+    ///
     /// # Errors
-    /// [`Error::UnboundSymbol`] if a symbol has no value; [`Error::ZeroOverZero`] if a
-    /// result is still not finite (a 0/0 whose cancellation needs more than four orders, or
-    /// a true pole).
+    /// [`Error::UnboundSymbol`] if a symbol has no value; [`Error::NotDifferentiable`] if a
+    /// result is not finite for a reason found (`sqrt(x^2)` at 0 is `|x|`; `x^2.5` has no
+    /// third derivative at 0; a formula real on neither side, or above in one part and below
+    /// in another); [`Error::ZeroOverZero`] otherwise (a 0/0 whose cancellation needs more
+    /// than four orders, or a true pole).
     pub fn limit_jets<T: Scalar>(
         &self,
         outputs: &[Id],
@@ -363,26 +404,39 @@ impl Graph {
                 }
             })
         };
-        let mut arithmetic = TaylorArithmetic::<T> {
-            removed: false,
-            scalar: std::marker::PhantomData,
-        };
+        let mut arithmetic = TaylorArithmetic::<T>::new();
         let series = self.evaluate(&mut arithmetic, outputs, &lookup)?;
+        let shortened = |id: Id| {
+            let expression = self.to_sexpr(id);
+            if expression.chars().count() > 80 {
+                expression.chars().take(77).collect::<String>() + "..."
+            } else {
+                expression
+            }
+        };
+        if arithmetic.conflict {
+            return Err(Error::NotDifferentiable {
+                expression: shortened(outputs[0]),
+                reason: "one part is real only above the point and another only below it:                          the formula is defined at the point alone"
+                    .to_owned(),
+            });
+        }
         let mut jets = Vec::with_capacity(series.len());
         for (s, &id) in series.iter().zip(outputs) {
             let jet = s.jet();
             if jet.iter().any(|x| !x.re().is_finite()) {
-                let mut expression = self.to_sexpr(id);
-                if expression.chars().count() > 80 {
-                    expression = expression.chars().take(77).collect::<String>() + "...";
-                }
-                return Err(Error::ZeroOverZero { expression });
+                let expression = shortened(id);
+                return Err(match arithmetic.reason.take() {
+                    Some(reason) => Error::NotDifferentiable { expression, reason },
+                    None => Error::ZeroOverZero { expression },
+                });
             }
             jets.push(jet);
         }
         Ok(Limits {
             jets,
             removed: arithmetic.removed,
+            side: arithmetic.side,
         })
     }
 }
