@@ -10,7 +10,7 @@ use crate::error::{Error, Result};
 use crate::scene::model::Scene;
 
 /// The program of a scene walking its sweep.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub(crate) struct ProgramPath {
     tracker: ProgramTracker,
     /// Values per output row: the value and its derivatives (`order + 1`).
