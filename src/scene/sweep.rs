@@ -221,10 +221,10 @@ impl<'s> Sweeper<'s> {
         self.program.is_none()
             && self
                 .outputs()
-            .tracker
-            .closed_form_loops()
-            .iter()
-            .all(|&c| c)
+                .tracker
+                .closed_form_loops()
+                .iter()
+                .all(|&c| c)
     }
 
     /// Forgets the most ill-conditioned position seen so far: a piece of a sweep counts its
