@@ -105,36 +105,9 @@ fn exact_methods_on_the_example_scenes_stay_within_1e_14() {
 
 /// A triad (a ternary link held by three binary links: a class-III Assur group, four links
 /// in one loop) matches no closed form: its loop is solved by Newton only.
-const TRIAD: &str = r#"
-title = "Triad"
-[units]
-angle = "deg"
-[points]
-O2 = [0, 0]
-A = [0, 1]
-B = [2, 2]
-C = [3, 3.5]
-D = [4, 2]
-G2 = [3, 6]
-G3 = [6, 0]
-[links]
-ground = ["O2", "G2", "G3"]
-crank = ["O2", "A"]
-first = ["A", "B"]
-ternary = ["B", "C", "D"]
-second = ["G2", "C"]
-third = ["G3", "D"]
-[joints]
-O2 = { type = "revolute", at = "O2", links = ["ground", "crank"] }
-A = { type = "revolute", at = "A", links = ["crank", "first"] }
-B = { type = "revolute", at = "B", links = ["first", "ternary"] }
-C = { type = "revolute", at = "C", links = ["ternary", "second"] }
-D = { type = "revolute", at = "D", links = ["ternary", "third"] }
-G2 = { type = "revolute", at = "G2", links = ["ground", "second"] }
-G3 = { type = "revolute", at = "G3", links = ["ground", "third"] }
-[drive]
-joint = "O2"
-line = ["O2", "A"]
+fn triad() -> String {
+    common::triad(
+        r#"
 [sweep]
 from = 60
 to = 90
@@ -142,7 +115,9 @@ step = 10
 [[output]]
 point = "C"
 quantities = ["position"]
-"#;
+"#,
+    )
+}
 
 /// The triad's report: the reference is the double-double Newton solve (the note names the
 /// loop's joints), and both geometry paths (the crank's loop in closed form, the triad by
@@ -152,7 +127,7 @@ quantities = ["position"]
 /// derivative that lost its exactness would be off by the best central difference's 3e-6.
 #[test]
 fn a_loop_solved_by_newton_only_gets_a_double_double_newton_reference() {
-    let scene = scene::parse("triad.toml", TRIAD).unwrap();
+    let scene = scene::parse("triad.toml", &triad()).unwrap();
     let mechanism = scene::build::mechanism(&scene).unwrap();
     let case = scene_case::case(&scene, &mechanism).unwrap();
     let note = case.notes.join("\n");

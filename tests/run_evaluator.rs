@@ -211,35 +211,9 @@ fn a_long_sweep_by_the_program_agrees_with_the_solver() {
 }
 
 /// A triad (a class-III group) matches no closed form: its loop is solved by Newton.
-const TRIAD: &str = r#"
-[units]
-angle = "deg"
-[points]
-O2 = [0, 0]
-A = [0, 1]
-B = [2, 2]
-C = [3, 3.5]
-D = [4, 2]
-G2 = [3, 6]
-G3 = [6, 0]
-[links]
-ground = ["O2", "G2", "G3"]
-crank = ["O2", "A"]
-first = ["A", "B"]
-ternary = ["B", "C", "D"]
-second = ["G2", "C"]
-third = ["G3", "D"]
-[joints]
-O2 = { type = "revolute", at = "O2", links = ["ground", "crank"] }
-A = { type = "revolute", at = "A", links = ["crank", "first"] }
-B = { type = "revolute", at = "B", links = ["first", "ternary"] }
-C = { type = "revolute", at = "C", links = ["ternary", "second"] }
-D = { type = "revolute", at = "D", links = ["ternary", "third"] }
-G2 = { type = "revolute", at = "G2", links = ["ground", "second"] }
-G3 = { type = "revolute", at = "G3", links = ["ground", "third"] }
-[drive]
-joint = "O2"
-line = ["O2", "A"]
+fn triad() -> String {
+    common::triad(
+        r#"
 [sweep]
 from = 90
 to = 91
@@ -247,11 +221,13 @@ step = 0.5
 [[output]]
 point = "C"
 quantities = ["position"]
-"#;
+"#,
+    )
+}
 
 #[test]
 fn a_loop_without_a_closed_form_stays_on_newton() {
-    let scene = scene::parse("triad.toml", TRIAD).unwrap();
+    let scene = scene::parse("triad.toml", &triad()).unwrap();
     let auto = scene::run(&scene).unwrap();
     assert!(
         auto.plan.loops.iter().any(|l| l.path == LoopPath::Newton),

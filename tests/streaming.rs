@@ -3,6 +3,8 @@
 //! poses inside the sweep); the first error in drive order with the rows before it; files whole or not at all; no cap on
 //! the number of drive positions of a streamed run.
 
+mod common;
+
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::Command;
@@ -435,36 +437,8 @@ fn parallel_pieces_report_the_first_error_in_drive_order() {
 /// pieces again and still gives the bytes of one thread; left to itself it walks in order.
 #[test]
 fn a_newton_scene_in_pieces_gives_the_bytes_of_one_thread() {
-    let text = r#"
-title = "Triad"
-[units]
-angle = "deg"
-[points]
-O2 = [0, 0]
-A = [0, 1]
-B = [2, 2]
-C = [3, 3.5]
-D = [4, 2]
-G2 = [3, 6]
-G3 = [6, 0]
-[links]
-ground = ["O2", "G2", "G3"]
-crank = ["O2", "A"]
-first = ["A", "B"]
-ternary = ["B", "C", "D"]
-second = ["G2", "C"]
-third = ["G3", "D"]
-[joints]
-O2 = { type = "revolute", at = "O2", links = ["ground", "crank"] }
-A = { type = "revolute", at = "A", links = ["crank", "first"] }
-B = { type = "revolute", at = "B", links = ["first", "ternary"] }
-C = { type = "revolute", at = "C", links = ["ternary", "second"] }
-D = { type = "revolute", at = "D", links = ["ternary", "third"] }
-G2 = { type = "revolute", at = "G2", links = ["ground", "second"] }
-G3 = { type = "revolute", at = "G3", links = ["ground", "third"] }
-[drive]
-joint = "O2"
-line = ["O2", "A"]
+    let text = common::triad(
+        r#"
 [sweep]
 from = -1.4
 to = 91.1
@@ -476,8 +450,9 @@ quantities = ["position", "velocity_coefficient", "acceleration_coefficient"]
 name = "third"
 angle = ["G3", "D"]
 quantities = ["position", "velocity_coefficient"]
-"#;
-    let scene = scene::parse("triad.toml", text).unwrap();
+"#,
+    );
+    let scene = scene::parse("triad.toml", &text).unwrap();
     assert_eq!(scene.positions.len(), 926);
     let one = streamed(&scene, &pieces(1, 1 << 14, 1 << 12, Speculation::Never));
     one.result.as_ref().unwrap();

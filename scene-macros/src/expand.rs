@@ -65,33 +65,10 @@ mod tests {
     fn a_loop_without_a_closed_form_is_an_error_naming_it() {
         // A triad (a class-III group): its loop is solved by Newton, so there is no closed
         // form to generate code from.
-        let text = r#"
-[points]
-O2 = [0, 0]
-A = [0, 1]
-B = [2, 2]
-C = [3, 3.5]
-D = [4, 2]
-G2 = [3, 6]
-G3 = [6, 0]
-[links]
-ground = ["O2", "G2", "G3"]
-crank = ["O2", "A"]
-first = ["A", "B"]
-ternary = ["B", "C", "D"]
-second = ["G2", "C"]
-third = ["G3", "D"]
-[joints]
-O2 = { type = "revolute", at = "O2", links = ["ground", "crank"] }
-A = { type = "revolute", at = "A", links = ["crank", "first"] }
-B = { type = "revolute", at = "B", links = ["first", "ternary"] }
-C = { type = "revolute", at = "C", links = ["ternary", "second"] }
-D = { type = "revolute", at = "D", links = ["ternary", "third"] }
-G2 = { type = "revolute", at = "G2", links = ["ground", "second"] }
-G3 = { type = "revolute", at = "G3", links = ["ground", "third"] }
-[drive]
-joint = "O2"
-line = ["O2", "A"]
+        let text = format!(
+            "{}{}",
+            include_str!("../../tests/data/triad.toml"),
+            r#"
 [sweep]
 from = 90
 to = 100
@@ -99,7 +76,8 @@ step = 5
 [[output]]
 point = "C"
 quantities = ["position"]
-"#;
+"#
+        );
         let file = std::env::temp_dir().join(format!("mechdiff-triad-{}.toml", std::process::id()));
         std::fs::write(&file, text).unwrap();
         let result = scene_module(&literal(file.to_str().unwrap()));

@@ -90,3 +90,9 @@ pub fn assert_message(error: &Error, line: usize, parts: &[&str]) {
         assert!(message.contains(part), "`{part}` missing from: {message}");
     }
 }
+
+/// The triad of `tests/data/triad.toml` (a loop solved by Newton only) with `rest` appended:
+/// its `[sweep]` and `[[output]]` sections.
+pub fn triad(rest: &str) -> String {
+    format!("{}{rest}", include_str!("../data/triad.toml"))
+}
