@@ -470,3 +470,17 @@ fn the_cli_prints_the_study_and_refuses_it_with_a_parameter_sweep() {
     );
     std::fs::remove_file(&path).unwrap();
 }
+
+/// `--monte-carlo` on a scene with no study at all is refused with the fix, not ignored.
+#[test]
+fn monte_carlo_without_any_study_is_refused() {
+    let scene = common::scene_path("four_bar.toml");
+    let out = common::mechdiff(&["run", scene.to_str().unwrap(), "--monte-carlo", "10"]);
+    assert!(!out.status.success());
+    let err = common::stderr(&out);
+    assert!(
+        err.contains("`--monte-carlo` checks a tolerance study"),
+        "{err}"
+    );
+    assert!(err.contains("add one"), "{err}");
+}

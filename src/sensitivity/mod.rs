@@ -129,10 +129,9 @@ pub fn run(
     let values = parameters::read_with_own_units(text, &source, settings)?;
     let scene = crate::scene::parse_with(file, text, settings)?;
     let mut report = crate::scene::run(&scene)?;
-    let Some(spec) = spec::read(&source, text, &values, &report.columns)? else {
-        return Ok((scene, report, None));
-    };
-    if options.monte_carlo.is_some() && !spec.has_tolerances() {
+    let spec = spec::read(&source, text, &values, &report.columns)?;
+    // `--monte-carlo` on a scene without any study is refused, not ignored.
+    if options.monte_carlo.is_some() && !spec.as_ref().is_some_and(Spec::has_tolerances) {
         return Err(Error::Study {
             file: file.to_owned(),
             message: "`--monte-carlo` checks a tolerance study, and the scene has no \
@@ -141,6 +140,9 @@ pub fn run(
                 .to_owned(),
         });
     }
+    let Some(spec) = spec else {
+        return Ok((scene, report, None));
+    };
     let nominal = report.clone();
     let runner = Runner {
         file,
