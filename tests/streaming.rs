@@ -371,26 +371,8 @@ fn parallel_pieces_give_the_bytes_of_one_thread_up_to_two_limit_positions() {
 /// or lies inside one, and the warning names it.
 #[test]
 fn the_most_ill_conditioned_position_is_the_same_in_pieces() {
-    let text = r#"
-[units]
-length = "m"
-angle = "deg"
-[points]
-O = [0, 1]
-B0 = [0, 0]
-A = [0, 1.999999]
-S = [0, 1]
-[links]
-ground = ["O", "B0"]
-crank = ["O", "A"]
-lever = ["B0", "S"]
-[joints]
-O = { type = "revolute", at = "O", links = ["ground", "crank"] }
-B0 = { type = "revolute", at = "B0", links = ["ground", "lever"] }
-slot = { type = "pin_in_slot", pin = "A", slot = ["B0", "S"], links = ["lever", "crank"] }
-[drive]
-joint = "O"
-line = ["O", "A"]
+    let text = common::slotted_lever(
+        r#"
 [sweep]
 from = -100
 to = -80
@@ -399,8 +381,9 @@ step = 0.01
 name = "psi"
 angle = ["B0", "S"]
 quantities = ["position", "velocity_coefficient"]
-"#;
-    let scene = scene::parse("lever.toml", text).unwrap();
+"#,
+    );
+    let scene = scene::parse("lever.toml", &text).unwrap();
     let one = streamed(&scene, &pieces(1, 1 << 14, 1 << 12, Speculation::Never));
     let warnings = one.result.as_ref().unwrap().warnings.clone();
     assert_eq!(warnings.len(), 1, "{warnings:?}");

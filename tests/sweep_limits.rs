@@ -2,6 +2,8 @@
 //! `run` reports them (never a table that jumps them), `check` prints the drive's motion
 //! range, and unrelated far points change nothing.
 
+mod common;
+
 use mechdiff::Error;
 use mechdiff::scene;
 
@@ -110,34 +112,17 @@ fn an_ill_conditioned_position_is_computed_with_a_warning() {
     // Slotted lever: crank l1 = 0.999999 m about O = (0, 1), pin A in the slot of a lever
     // hinged at B0 = (0, 0). At φ = 0 (crank pointing down) the pin passes 1e-6 m from B0
     // and ψ′ = −l1/(l0 − l1) ≈ −1e6: regular, computed, flagged.
-    let text = r#"
-[units]
-length = "m"
-angle = "deg"
-[points]
-O = [0, 1]
-B0 = [0, 0]
-A = [0, 1.999999]
-S = [0, 1]
-[links]
-ground = ["O", "B0"]
-crank = ["O", "A"]
-lever = ["B0", "S"]
-[joints]
-O = { type = "revolute", at = "O", links = ["ground", "crank"] }
-B0 = { type = "revolute", at = "B0", links = ["ground", "lever"] }
-slot = { type = "pin_in_slot", pin = "A", slot = ["B0", "S"], links = ["lever", "crank"] }
-[drive]
-joint = "O"
-line = ["O", "A"]
+    let text = common::slotted_lever(
+        r#"
 [sweep]
 positions = [-90]
 [[output]]
 name = "psi"
 angle = ["B0", "S"]
 quantities = ["position", "velocity_coefficient"]
-"#;
-    let s = scene::parse("lever.toml", text).unwrap();
+"#,
+    );
+    let s = scene::parse("lever.toml", &text).unwrap();
     let report = scene::run(&s).unwrap();
     let psi1 = report.column("psi'").unwrap()[0];
     // −l1/(l0 − l1) to 1e-8 relative (expected error ~ amplification·ε ≈ 4e-10).

@@ -96,3 +96,12 @@ pub fn assert_message(error: &Error, line: usize, parts: &[&str]) {
 pub fn triad(rest: &str) -> String {
     format!("{}{rest}", include_str!("../data/triad.toml"))
 }
+
+/// The slotted lever of `tests/data/slotted_lever_near_hinge.toml` (ill-conditioned at
+/// −90°) with `rest` appended: its `[sweep]` and `[[output]]` sections.
+pub fn slotted_lever(rest: &str) -> String {
+    format!(
+        "{}{rest}",
+        include_str!("../data/slotted_lever_near_hinge.toml")
+    )
+}
