@@ -13,10 +13,11 @@
 //! The results agree with the solver's to rounding (1e-13 relative, tested on every scene
 //! of `scenes/`).
 //!
-//! `auto` (the default) is the solver for now: measured under today's load, the
-//! evaluator's rows cost 0.76× the solver's in one run and 1.22× in another (BENCHMARKS.md,
-//! "The run-time evaluator in `mechdiff run`"), so it is not shown faster; `auto` is where
-//! that choice will change when it is.
+//! `auto` (the default) is the solver for now. On a quiet machine the evaluator's rows cost
+//! 0.57× the solver's (BENCHMARKS.md, "Quiet-machine run"), but its values agree with the
+//! solver's to 1e-13, not bit for bit: making it the default changes the last printed digits
+//! of existing runs, so `auto` is where that choice changes once the outputs are
+//! re-baselined.
 
 mod program;
 
@@ -27,7 +28,7 @@ use std::fmt;
 /// How a run evaluates positions (`mechdiff run --evaluator`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
 pub enum Evaluator {
-    /// The faster path by measurement: the solver today (see the module documentation).
+    /// The default path: the solver today (see the module documentation).
     #[default]
     Auto,
     /// The geometry solver: closed forms (or Newton) in dual numbers at every position.

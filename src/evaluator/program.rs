@@ -31,7 +31,7 @@ impl ProgramPath {
     /// without a closed form, a cam drive, or an output the trace cannot follow.
     pub fn choose(scene: &Scene, tracker: &Tracker<'_>) -> Result<Option<Self>> {
         match scene.evaluator {
-            // `auto`: the solver, not yet measured slower (see `evaluator`).
+            // `auto`: the solver for now (see `evaluator`).
             Evaluator::Solver | Evaluator::Auto => Ok(None),
             Evaluator::Program => Self::new(scene, tracker).map(Some),
         }
