@@ -103,3 +103,23 @@ fn run_of_a_formula_scene_refuses_options_it_cannot_honour() {
         stderr(&output)
     );
 }
+
+/// Options added for linkages (`--monte-carlo`, `--evaluator`) are refused for a formula
+/// scene too (the table of refused options is one for every kind of scene).
+#[test]
+fn run_of_a_formula_scene_refuses_linkage_only_options() {
+    for options in [
+        &["--monte-carlo", "10"][..],
+        &["--evaluator", "program"][..],
+    ] {
+        let mut args = vec!["run", "scenes/hard/removable_sinc_unguarded.toml"];
+        args.extend_from_slice(options);
+        let output = mechdiff(&args);
+        assert!(!output.status.success(), "{options:?}");
+        assert!(
+            stderr(&output).contains(&format!("{} does not apply", options[0])),
+            "{}",
+            stderr(&output)
+        );
+    }
+}

@@ -93,10 +93,7 @@ pub struct Sweep {
 /// Whether a TOML text is a formula scene (it has `[outputs]` as a table of formulas)
 /// rather than a mechanism scene.
 pub fn is_formula_scene(text: &str) -> bool {
-    text.parse::<toml::Table>()
-        .ok()
-        .and_then(|t| t.get("outputs").map(toml::Value::is_table))
-        .unwrap_or(false)
+    crate::scene::kind(text) == crate::scene::Kind::Formula
 }
 
 fn syntax(file: &str, message: String) -> Error {

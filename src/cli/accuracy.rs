@@ -57,27 +57,26 @@ pub fn accuracy(args: &AccuracyArgs) -> Result<(), Error> {
     } else {
         let path = PathBuf::from(&args.subject);
         let text = mechdiff::files::read_scene(&path)?;
-        if formula::is_formula_scene(&text) {
-            let scene = formula::parse(&text, &args.subject)?;
-            thin(positions, formula::case(&scene, &args.subject)?)?.measure(&timing)?
-        } else {
-            match mechdiff::scene::kind(&text) {
-                Kind::Cam => {
-                    let scene = mechdiff::scene::cam::parse(&args.subject, &text)?;
-                    accuracy::cam::case(&scene, positions)?.measure(&timing)?
-                }
-                Kind::Rotor => {
-                    let scene = mechdiff::scene::balancing::rotor_scene::load(&path)?;
-                    return write_rotor(args, &accuracy::rotor::report(&scene)?);
-                }
-                Kind::Linkage => {
-                    let mut scene = mechdiff::scene::parse(&args.subject, &text)?;
-                    let defaulted = accuracy::scene::default_outputs(&mut scene);
-                    let mechanism = mechdiff::scene::build::mechanism(&scene)?;
-                    let mut case = accuracy::scene::case_at(&scene, &mechanism, positions)?;
-                    case.notes.extend(defaulted);
-                    case.measure(&timing)?
-                }
+        match mechdiff::scene::kind(&text) {
+            Kind::Formula => {
+                let scene = formula::parse(&text, &args.subject)?;
+                thin(positions, formula::case(&scene, &args.subject)?)?.measure(&timing)?
+            }
+            Kind::Cam => {
+                let scene = mechdiff::scene::cam::parse(&args.subject, &text)?;
+                accuracy::cam::case(&scene, positions)?.measure(&timing)?
+            }
+            Kind::Rotor => {
+                let scene = mechdiff::scene::balancing::rotor_scene::load(&path)?;
+                return write_rotor(args, &accuracy::rotor::report(&scene)?);
+            }
+            Kind::Linkage => {
+                let mut scene = mechdiff::scene::parse(&args.subject, &text)?;
+                let defaulted = accuracy::scene::default_outputs(&mut scene);
+                let mechanism = mechdiff::scene::build::mechanism(&scene)?;
+                let mut case = accuracy::scene::case_at(&scene, &mechanism, positions)?;
+                case.notes.extend(defaulted);
+                case.measure(&timing)?
             }
         }
     };

@@ -27,7 +27,8 @@ pub fn check(args: &CheckArgs) -> Result<(), Error> {
     match kind {
         scene::Kind::Cam => return check_cam(args),
         scene::Kind::Rotor => return super::rotor::check(args),
-        scene::Kind::Linkage => {}
+        // A formula scene is read by the linkage reader, which names what it lacks.
+        scene::Kind::Linkage | scene::Kind::Formula => {}
     }
     let scene = scene::load_with(&args.scene, &args.set)?;
     let checked = scene::check(&scene)?;

@@ -8,33 +8,16 @@ use mechdiff::{Error, files};
 
 use super::run::RunArgs;
 
-/// Prints the table of the formula scene `text` (and writes `--csv`); refuses the options a
-/// formula scene cannot honour.
+/// Prints the table of the formula scene `args.scene` (and writes `--csv`); the options it
+/// cannot honour were refused by [`super::refuse_options`].
 ///
 /// # Errors
-/// [`Error::OptionNotApplicable`] for an option other than `--csv`; the errors of
+/// [`Error::Read`] if the file cannot be read; the errors of
 /// [`formula::parse`] and [`formula::table`]; [`Error::Write`] if the output fails.
-pub fn run(args: &RunArgs, text: &str) -> Result<(), Error> {
-    let given = [
-        ("--set", !args.set.is_empty()),
-        ("--sweep", args.sweep.is_some()),
-        ("--json", args.json.is_some()),
-        ("--jsonl", args.jsonl.is_some()),
-        ("--plot", args.plot.is_some()),
-        ("--report", args.report.is_some()),
-        ("--profile-csv", args.profile_csv.is_some()),
-    ];
-    if let Some((option, _)) = given.iter().find(|(_, given)| *given) {
-        return Err(Error::OptionNotApplicable {
-            option: (*option).to_owned(),
-            scene: args.scene.clone(),
-            why: "a formula scene (an `[outputs]` table of formulas) prints its table and \
-                  writes --csv; `mechdiff accuracy` measures it"
-                .to_owned(),
-        });
-    }
+pub fn run(args: &RunArgs) -> Result<(), Error> {
+    let text = files::read_scene(&args.scene)?;
     let file = args.scene.display().to_string();
-    let scene = formula::parse(text, &file)?;
+    let scene = formula::parse(&text, &file)?;
     let table = formula::table(&scene, &file)?;
     if let Some(path) = &args.csv {
         files::write_atomically(path, |out| write_csv(&table, out))?;

@@ -49,6 +49,21 @@ pub fn refuse_options(
             "a cam scene has no `[parameters]` and no linkage to evaluate, and writes its SVAJ \
              table with --csv, its profile with --profile-csv and its pictures with --plot",
         ),
+        scene::Kind::Formula => (
+            &[
+                "--set",
+                "--sweep",
+                "--json",
+                "--jsonl",
+                "--plot",
+                "--report",
+                "--profile-csv",
+                "--monte-carlo",
+                "--evaluator",
+            ],
+            "a formula scene (an `[outputs]` table of formulas) prints its table and writes \
+             --csv; `mechdiff accuracy` measures it",
+        ),
         scene::Kind::Rotor => (
             &[
                 "--set",

@@ -85,17 +85,13 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
             });
         }
     }
-    if let Ok(text) = files::read_scene(&args.scene)
-        && mechdiff::accuracy::formula::is_formula_scene(&text)
-    {
-        return super::formula::run(args, &text);
-    }
     let kind = super::scene_kind(&args.scene);
     let given = [
         ("--set", !args.set.is_empty()),
         ("--sweep", args.sweep.is_some()),
         ("--json", args.json.is_some()),
         ("--jsonl", args.jsonl.is_some()),
+        ("--plot", args.plot.is_some()),
         ("--report", args.report.is_some()),
         ("--profile-csv", args.profile_csv.is_some()),
         ("--monte-carlo", args.monte_carlo.is_some()),
@@ -105,6 +101,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
     match kind {
         scene::Kind::Cam => return super::cam::run(args),
         scene::Kind::Rotor => return super::rotor::run(args),
+        scene::Kind::Formula => return super::formula::run(args),
         scene::Kind::Linkage => {}
     }
     let text = files::read_scene(&args.scene)?;

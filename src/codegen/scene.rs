@@ -322,7 +322,10 @@ pub fn write_module(scene: impl AsRef<Path>, out: impl AsRef<Path>) -> Result<()
 pub fn load(path: &Path) -> Result<Scene> {
     let text = crate::files::read_scene(path)?;
     let file = path.display().to_string();
-    if crate::scene::kind(&text) != crate::scene::Kind::Linkage {
+    if matches!(
+        crate::scene::kind(&text),
+        crate::scene::Kind::Cam | crate::scene::Kind::Rotor
+    ) {
         return Err(Error::Codegen {
             origin: file,
             source: mechdiff_core::Error::Untraceable {

@@ -85,12 +85,16 @@ pub enum Kind {
     Cam,
     /// A rotor alone (a `[rotor]` section and no `[points]`; see [`balancing::RotorScene`]).
     Rotor,
+    /// Formulas of the drive (an `[outputs]` table of formulas; see
+    /// `crate::accuracy::formula`).
+    Formula,
 }
 
 /// Which kind of scene `text` is. Text that is not TOML is a [`Kind::Linkage`], whose
 /// reader reports the syntax error at its place.
 pub fn kind(text: &str) -> Kind {
     match text.parse::<toml::Table>() {
+        Ok(table) if table.get("outputs").is_some_and(toml::Value::is_table) => Kind::Formula,
         Ok(table) if table.contains_key("cam") => Kind::Cam,
         Ok(table) if table.contains_key("rotor") && !table.contains_key("points") => Kind::Rotor,
         _ => Kind::Linkage,
