@@ -328,52 +328,51 @@ fn exact_methods_on_every_scene_meet_their_bound() {
             continue;
         }
         let text = std::fs::read_to_string(&path).unwrap();
-        let report = if formula::is_formula_scene(&text) {
-            let parsed = formula::parse(&text, file).unwrap();
-            let mut case = formula::case(&parsed, file).unwrap().thinned(5).unwrap();
-            let violations = case.bound_violations().unwrap();
-            assert!(violations.is_empty(), "{file}: {violations:?}");
-            continue;
-        } else {
-            match scene::kind(&text) {
-                scene::Kind::Rotor => {
-                    let parsed = scene::balancing::rotor_scene::load(&path).unwrap();
-                    let report = rotor::report(&parsed).unwrap();
-                    for answer in &report.answers {
-                        assert!(
-                            answer.negligible || answer.error <= 1e-14,
-                            "{file}: {answer:?}"
-                        );
-                    }
-                    assert!(report.answers[0].negligible, "{file}: static balance holds");
-                    continue;
+        let report = match scene::kind(&text) {
+            scene::Kind::Formula => {
+                let parsed = formula::parse(&text, file).unwrap();
+                let mut case = formula::case(&parsed, file).unwrap().thinned(5).unwrap();
+                let violations = case.bound_violations().unwrap();
+                assert!(violations.is_empty(), "{file}: {violations:?}");
+                continue;
+            }
+            scene::Kind::Rotor => {
+                let parsed = scene::balancing::rotor_scene::load(&path).unwrap();
+                let report = rotor::report(&parsed).unwrap();
+                for answer in &report.answers {
+                    assert!(
+                        answer.negligible || answer.error <= 1e-14,
+                        "{file}: {answer:?}"
+                    );
                 }
-                scene::Kind::Cam => {
-                    let parsed = scene::cam::parse(file, &text).unwrap();
-                    cam::case(&parsed, Some(5))
-                        .unwrap()
-                        .measure(&Timing::quick())
-                        .unwrap()
+                assert!(report.answers[0].negligible, "{file}: static balance holds");
+                continue;
+            }
+            scene::Kind::Cam => {
+                let parsed = scene::cam::parse(file, &text).unwrap();
+                cam::case(&parsed, Some(5))
+                    .unwrap()
+                    .measure(&Timing::quick())
+                    .unwrap()
+            }
+            scene::Kind::Linkage => {
+                let mut parsed = scene::parse(file, &text).unwrap();
+                scene_case::default_outputs(&mut parsed);
+                let mechanism = scene::build::mechanism(&parsed).unwrap();
+                let report = scene_case::case_at(&parsed, &mechanism, Some(5))
+                    .unwrap()
+                    .measure(&Timing::quick())
+                    .unwrap();
+                if parsed.drive.cam.is_none() {
+                    assert!(
+                        report
+                            .measurements
+                            .iter()
+                            .any(|m| m.name == mechdiff::accuracy::evaluator::NAME),
+                        "{file}: every loop has a closed form: the evaluator is measured"
+                    );
                 }
-                scene::Kind::Linkage => {
-                    let mut parsed = scene::parse(file, &text).unwrap();
-                    scene_case::default_outputs(&mut parsed);
-                    let mechanism = scene::build::mechanism(&parsed).unwrap();
-                    let report = scene_case::case_at(&parsed, &mechanism, Some(5))
-                        .unwrap()
-                        .measure(&Timing::quick())
-                        .unwrap();
-                    if parsed.drive.cam.is_none() {
-                        assert!(
-                            report
-                                .measurements
-                                .iter()
-                                .any(|m| m.name == mechdiff::accuracy::evaluator::NAME),
-                            "{file}: every loop has a closed form: the evaluator is measured"
-                        );
-                    }
-                    report
-                }
+                report
             }
         };
         let exact: Vec<_> = report
