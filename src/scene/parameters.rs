@@ -20,7 +20,7 @@ use crate::error::{Error, Result};
 use super::format::Name;
 use super::source::Source;
 use super::units::unit_factor;
-use super::values::{formula, formula_names};
+use super::values::{check_names, formula, formula_names};
 
 thread_local! {
     /// The parameters of the scene being read on this thread.
@@ -309,7 +309,10 @@ fn evaluate(pending: &[Pending], source: &Source) -> Result<Vec<(String, f64, f6
         .map(|(i, p)| (p.name, i))
         .collect();
     let mut uses: Vec<Vec<usize>> = Vec::with_capacity(pending.len());
+    let mut names_in_scene: Vec<&str> = pending.iter().map(|p| p.name).collect();
+    names_in_scene.sort_unstable();
     for p in pending {
+        check_names(&p.text, &names_in_scene).map_err(|e| fail(p, e))?;
         let names = formula_names(&p.text).map_err(|e| fail(p, e))?;
         // Unknown names are reported when the formula is evaluated, with their column.
         uses.push(
@@ -407,6 +410,20 @@ mod tests {
         assert!(e.to_string().contains("`bb` (column 5"), "{e}");
         // At `bb` itself: column 5 is the quote, `bb` is the 5th character inside it.
         assert!(e.to_string().starts_with("t.toml:2:10"), "{e}");
+        // The names a formula could use are every parameter of the scene, whether or not
+        // it has been evaluated yet (a `--set` value is evaluated before the others).
+        assert!(e.to_string().contains("the parameters are: a;"), "{e}");
+        let set = [Setting::from_str("a=nan").unwrap()];
+        let e = read_str(
+            "[parameters]
+a = 1
+b = 2
+",
+            &set,
+        )
+        .unwrap_err();
+        assert!(e.to_string().contains("the parameters are: a, b;"), "{e}");
+        assert!(!e.to_string().contains("has no `[parameters]`"), "{e}");
         let e = read_str(
             "[parameters]\na = 1\n",
             &[Setting::from_str("z=1").unwrap()],

@@ -88,24 +88,10 @@ pub fn formula(text: &str, bindings: &HashMap<String, f64>) -> Result<f64, Strin
     let quoted = format!("the formula \"{text}\"");
     let (graph, id) = parse_formula(text)?;
     let constants = [("pi", std::f64::consts::PI), ("tau", std::f64::consts::TAU)];
-    let known = |s: &str| {
-        is_named_constant(s) || constants.iter().any(|(c, _)| *c == s) || bindings.contains_key(s)
-    };
     let symbols = graph.symbols(&[id]);
-    if let Some(name) = symbols.iter().copied().find(|s| !known(s)) {
-        let column = name_column(text, name);
-        let parameters = if bindings.is_empty() {
-            "the scene has no `[parameters]`".to_owned()
-        } else {
-            let mut names: Vec<&str> = bindings.keys().map(String::as_str).collect();
-            names.sort_unstable();
-            format!("the parameters are: {}", names.join(", "))
-        };
-        return Err(format!(
-            "{quoted} uses `{name}` (column {column} of the formula), which is neither a \
-             parameter nor a constant; {parameters}; {ALLOWED}"
-        ));
-    }
+    let mut parameters: Vec<&str> = bindings.keys().map(String::as_str).collect();
+    parameters.sort_unstable();
+    unknown_name(text, &symbols, &parameters)?;
     // Only the names the formula uses are bound (a scene may have many parameters).
     let mut all: Vec<(&str, f64)> = constants.to_vec();
     all.extend(
@@ -123,6 +109,36 @@ pub fn formula(text: &str, bindings: &HashMap<String, f64>) -> Result<f64, Strin
         ));
     }
     Ok(value + 0.0)
+}
+
+/// The error for the first name `text` uses (of its `symbols`) that is neither a constant
+/// nor one of the scene's `parameters`, with its column and the names it could be.
+fn unknown_name(text: &str, symbols: &[&str], parameters: &[&str]) -> Result<(), String> {
+    let known =
+        |s: &str| is_named_constant(s) || matches!(s, "pi" | "tau") || parameters.contains(&s);
+    let Some(name) = symbols.iter().copied().find(|s| !known(s)) else {
+        return Ok(());
+    };
+    let column = name_column(text, name);
+    let listed = if parameters.is_empty() {
+        "the scene has no `[parameters]`".to_owned()
+    } else {
+        format!("the parameters are: {}", parameters.join(", "))
+    };
+    Err(format!(
+        "the formula \"{text}\" uses `{name}` (column {column} of the formula), which is \
+         neither a parameter nor a constant; {listed}; {ALLOWED}"
+    ))
+}
+
+/// Checks that every name `text` uses is a constant or one of the scene's `parameters`
+/// (all of them, evaluated or not: a formula's error lists what it could use).
+///
+/// # Errors
+/// As [`constant_formula`], for a formula that cannot be read or an unknown name.
+pub(crate) fn check_names(text: &str, parameters: &[&str]) -> Result<(), String> {
+    let (graph, id) = parse_formula(text)?;
+    unknown_name(text, &graph.symbols(&[id]), parameters)
 }
 
 /// What a formula may contain, for messages.
