@@ -357,42 +357,46 @@ fn error_of(sections: &str, marker: &str, options: &Options) -> (Error, usize) {
     (e, line)
 }
 
+/// Studies appended to Norton's scene that must be refused: the sections, a marker of the
+/// line the error is at, and what the message says.
+const BAD_STUDIES: [(&str, &str, &str); 6] = [
+    (
+        "[sensitivity]\ncolumns = [\"d(psi)/d(zz)\"]\n",
+        "d(psi)/d(zz)",
+        "the scene has no parameter `zz`; its parameters are: a, b, c, d, theta",
+    ),
+    (
+        "[sensitivity]\ncolumns = [\"d(omega)/d(a)\"]\n",
+        "d(omega)/d(a)",
+        "the table has no column `omega`",
+    ),
+    (
+        "[sensitivity]\ncolumns = [\"dpsi/da\"]\n",
+        "dpsi/da",
+        "is not a derivative; write \"d(COLUMN)/d(PARAMETER)\"",
+    ),
+    (
+        "[tolerances]\ncolumns = [\"psi\"]\nparameters = { a = 0.001, speed = 0.1 }\n",
+        "speed = 0.1",
+        "`speed` is not a parameter of the scene",
+    ),
+    (
+        "[tolerances]\ncolumns = [\"psi\"]\nparameters = { a = -0.001 }\n",
+        "-0.001",
+        "a tolerance is the half-width of ± in the parameter's unit: a positive finite \
+         number (write 0.001)",
+    ),
+    (
+        "[tolerances]\ncolumns = [\"psy\"]\nparameters = { a = 0.001 }\n",
+        "psy",
+        "the table has no column `psy`",
+    ),
+];
+
 #[test]
 fn bad_studies_are_refused_at_their_place_with_what_to_write() {
     let plain = Options::default();
-    let cases = [
-        (
-            "[sensitivity]\ncolumns = [\"d(psi)/d(zz)\"]\n",
-            "d(psi)/d(zz)",
-            "the scene has no parameter `zz`; its parameters are: a, b, c, d, theta",
-        ),
-        (
-            "[sensitivity]\ncolumns = [\"d(omega)/d(a)\"]\n",
-            "d(omega)/d(a)",
-            "the table has no column `omega`",
-        ),
-        (
-            "[sensitivity]\ncolumns = [\"dpsi/da\"]\n",
-            "dpsi/da",
-            "is not a derivative; write \"d(COLUMN)/d(PARAMETER)\"",
-        ),
-        (
-            "[tolerances]\ncolumns = [\"psi\"]\nparameters = { a = 0.001, speed = 0.1 }\n",
-            "speed = 0.1",
-            "`speed` is not a parameter of the scene",
-        ),
-        (
-            "[tolerances]\ncolumns = [\"psi\"]\nparameters = { a = -0.001 }\n",
-            "-0.001",
-            "a tolerance is the half-width of ± in the parameter's unit: a positive finite \
-             number (write 0.001)",
-        ),
-        (
-            "[tolerances]\ncolumns = [\"psy\"]\nparameters = { a = 0.001 }\n",
-            "psy",
-            "the table has no column `psy`",
-        ),
-    ];
+    let cases = BAD_STUDIES;
     for (sections, marker, message) in cases {
         let (e, line) = error_of(sections, marker, &plain);
         let text = e.to_string();
@@ -419,6 +423,73 @@ fn bad_studies_are_refused_at_their_place_with_what_to_write() {
     let (e, line) = error_of("[tolerances]\ncolumn = [\"psi\"]\n", "column =", &plain);
     assert!(e.to_string().starts_with(&format!("t.toml:{line}:")), "{e}");
     assert!(e.to_string().contains("columns"), "{e}");
+}
+
+/// `mechdiff check` validates `[sensitivity]` and `[tolerances]` against the columns a run
+/// would have, with the errors `run` gives (same place, same message), before printing
+/// anything; a good study is summarised, including a column of `[[dynamics]]`.
+#[test]
+fn check_refuses_bad_studies_with_the_located_errors_of_run() {
+    let path = common::temp_file("norton_bad_study.toml");
+    let scene = path.to_str().unwrap();
+    for (sections, marker, message) in BAD_STUDIES {
+        let text = norton_with(sections);
+        let line = text.lines().position(|l| l.contains(marker)).unwrap() + 1;
+        std::fs::write(&path, &text).unwrap();
+        let out = common::mechdiff(&["check", scene]);
+        let err = common::stderr(&out);
+        assert!(
+            !out.status.success(),
+            "{sections}: {}",
+            common::stdout(&out)
+        );
+        assert!(err.contains(&format!("{scene}:{line}:")), "{err}");
+        assert!(err.contains(message), "{err}");
+        assert!(common::stdout(&out).is_empty(), "{}", common::stdout(&out));
+        // The same error as `run` gives (its file name aside).
+        let (e, _) = error_of(sections, marker, &Options::default());
+        let run = e.to_string();
+        let run = run.strip_prefix("t.toml").unwrap();
+        assert!(err.contains(run), "check: {err}\nrun: {run}");
+    }
+    std::fs::write(
+        &path,
+        norton_with(
+            "[sensitivity]\ncolumns = [\"d(psi')/d(a)\"]\n\
+             [tolerances]\ncolumns = [\"psi\"]\nparameters = { a = 0.0005 }\n",
+        ),
+    )
+    .unwrap();
+    let out = common::mechdiff(&["check", scene]);
+    assert!(out.status.success(), "{}", common::stderr(&out));
+    let stdout = common::stdout(&out);
+    assert!(
+        stdout.contains(
+            "study: derivative columns d(psi')/d(a); tolerance study of psi with a ± 0.0005"
+        ),
+        "{stdout}"
+    );
+    // A derivative of the drive torque: a column of `[[dynamics]]`, known to `check`.
+    // `SLIDER_CRANK` asks for it.
+    let with_torque = SLIDER_CRANK;
+    std::fs::write(&path, with_torque.replace("M_drive)/", "M_drve)/")).unwrap();
+    let out = common::mechdiff(&["check", scene]);
+    let err = common::stderr(&out);
+    assert!(!out.status.success());
+    assert!(
+        err.contains("the table has no column `M_drve`") && err.contains("M_drive"),
+        "{err}"
+    );
+    std::fs::write(&path, with_torque).unwrap();
+    let out = common::mechdiff(&["check", scene]);
+    assert!(out.status.success(), "{}", common::stderr(&out));
+    assert!(
+        common::stdout(&out)
+            .contains("study: derivative columns d(s)/d(r), d(s)/d(e), d(M_drive)/d(m3)"),
+        "{}",
+        common::stdout(&out)
+    );
+    std::fs::remove_file(&path).unwrap();
 }
 
 #[test]

@@ -109,6 +109,25 @@ pub fn requested(text: &str) -> bool {
         .is_ok_and(|t| t.contains_key("sensitivity") || t.contains_key("tolerances"))
 }
 
+/// Reads and checks the `[sensitivity]` and `[tolerances]` of the scene `text` (named
+/// `file`, with `settings`) against the table's `columns`, without running anything:
+/// `mechdiff check` calls it with the columns a run would have
+/// ([`crate::scene::run::columns`]), [`run`] with those of its run, so both give the same
+/// located errors. `None` when the scene has neither section.
+///
+/// # Errors
+/// As [`parameters::read_with_own_units`] and [`spec::read`].
+pub fn check(
+    file: &str,
+    text: &str,
+    settings: &[Setting],
+    columns: &[Column],
+) -> Result<Option<Spec>> {
+    let source = Source::new(file, text);
+    let values = parameters::read_with_own_units(text, &source, settings)?;
+    spec::read(&source, text, &values, columns)
+}
+
 /// Reads and runs the scene `text` (named `file`) with `settings` (`--set`), then its
 /// `[sensitivity]` columns and `[tolerances]` study: the derivative columns
 /// `d(COLUMN)/d(PARAMETER)` and, per studied column, `wc(COLUMN)` and `rss(COLUMN)` are
@@ -125,11 +144,9 @@ pub fn run(
     settings: &[Setting],
     options: &Options,
 ) -> Result<(Scene, Report, Option<Study>)> {
-    let source = Source::new(file, text);
-    let values = parameters::read_with_own_units(text, &source, settings)?;
     let scene = crate::scene::parse_with(file, text, settings)?;
     let mut report = crate::scene::run(&scene)?;
-    let spec = spec::read(&source, text, &values, &report.columns)?;
+    let spec = check(file, text, settings, &report.columns)?;
     // `--monte-carlo` on a scene without any study is refused, not ignored.
     if options.monte_carlo.is_some() && !spec.as_ref().is_some_and(Spec::has_tolerances) {
         return Err(Error::Study {
