@@ -90,12 +90,27 @@ pub struct ColumnStudy {
     pub rss: (f64, usize),
 }
 
-/// The tolerance study of a scene.
+/// How one derivative column was computed and how far it may be off.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DerivativeColumn {
+    /// Its name, `d(COLUMN)/d(PARAMETER)`.
+    pub name: String,
+    /// The first step `h` of the differences, in the parameter's unit.
+    pub step: f64,
+    /// The largest disagreement of the last two extrapolations over the sweep, relative to
+    /// the column's largest value (0 for a column that is 0): the estimate of its error.
+    pub estimated_error: f64,
+}
+
+/// The study of a scene: how its derivative columns were computed, and its tolerance study.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Study {
-    /// The tolerances, `(parameter, ± half-width)` in the parameter's unit.
+    /// Per derivative column of `[sensitivity]`, in order.
+    pub derivatives: Vec<DerivativeColumn>,
+    /// The tolerances, `(parameter, ± half-width)` in the parameter's unit; empty without
+    /// `[tolerances]`.
     pub tolerances: Vec<(String, f64)>,
-    /// Per studied column.
+    /// Per studied column; empty without `[tolerances]`.
     pub columns: Vec<ColumnStudy>,
     /// The drive positions (SI) and their column, to say where the largest values are.
     pub drive: (Column, Vec<f64>),
@@ -131,7 +146,7 @@ pub fn check(
 /// Reads and runs the scene `text` (named `file`) with `settings` (`--set`), then its
 /// `[sensitivity]` columns and `[tolerances]` study: the derivative columns
 /// `d(COLUMN)/d(PARAMETER)` and, per studied column, `wc(COLUMN)` and `rss(COLUMN)` are
-/// appended to the report. The study is `None` without `[tolerances]`.
+/// appended to the report. The study is `None` when the scene has neither section.
 ///
 /// # Errors
 /// As [`crate::scene::parse_with`] and [`crate::scene::run`]; a malformed study
@@ -171,12 +186,22 @@ pub fn run(
     for p in &spec.parameters {
         derivatives.push(runner.derivative(p)?);
     }
+    let mut derivative_columns = Vec::with_capacity(spec.derivatives.len());
     for &(k, p) in &spec.derivatives {
         let (column, parameter) = (&nominal.columns[k], &spec.parameters[p]);
         let name = format!("d({})/d({})", column.name, parameter.name);
         let d = &derivatives[p];
         let scale = d.values.iter().map(|r| r[k].abs()).fold(0.0, f64::max);
         let disagreement = d.disagreement.iter().map(|r| r[k]).fold(0.0, f64::max);
+        derivative_columns.push(DerivativeColumn {
+            name: name.clone(),
+            step: d.step,
+            estimated_error: if scale > 0.0 {
+                disagreement / scale
+            } else {
+                0.0
+            },
+        });
         if disagreement > WARN_DISAGREEMENT * scale {
             report.warnings.push(format!(
                 "{name}: the extrapolated differences agree only to {} relative (the column \
@@ -197,8 +222,19 @@ pub fn run(
             d.values.iter().map(|r| r[k]),
         );
     }
+    let drive = (
+        nominal.columns[0].clone(),
+        nominal.rows.iter().map(|r| r[0]).collect(),
+    );
     if !spec.has_tolerances() {
-        return Ok((scene, report, None));
+        let study = Study {
+            derivatives: derivative_columns,
+            tolerances: Vec::new(),
+            columns: Vec::new(),
+            drive,
+            monte_carlo: None,
+        };
+        return Ok((scene, report, Some(study)));
     }
     let toleranced: Vec<usize> = (0..spec.parameters.len())
         .filter(|&p| spec.parameters[p].tolerance.is_some())
@@ -241,6 +277,7 @@ pub fn run(
         None => None,
     };
     let study = Study {
+        derivatives: derivative_columns,
         tolerances: toleranced
             .iter()
             .filter_map(|&p| {
@@ -249,10 +286,7 @@ pub fn run(
             })
             .collect(),
         columns,
-        drive: (
-            nominal.columns[0].clone(),
-            nominal.rows.iter().map(|r| r[0]).collect(),
-        ),
+        drive,
         monte_carlo,
     };
     Ok((scene, report, Some(study)))
@@ -419,9 +453,30 @@ fn significant(v: f64) -> String {
     }
 }
 
-/// Writes the tolerance study's summary: per studied column the largest worst case and
+/// Writes the study's summary: how each derivative column was computed and its estimated
+/// error; then, with `[tolerances]`, per studied column the largest worst case and
 /// root-sum-square over the sweep, where they are, and the Monte-Carlo check.
 pub fn write_summary(study: &Study, out: &mut impl Write) -> io::Result<()> {
+    if !study.derivatives.is_empty() {
+        writeln!(
+            out,
+            "derivative columns: Richardson-extrapolated central differences of whole runs \
+             (steps h, h/2, h/4), not exact derivatives; estimated error = the last two \
+             extrapolations' largest disagreement, relative to the column's largest value:"
+        )?;
+        for d in &study.derivatives {
+            writeln!(
+                out,
+                "  {}: estimated error {:.0e} (h = {})",
+                d.name,
+                d.estimated_error,
+                Units::tidy(d.step)
+            )?;
+        }
+    }
+    if study.columns.is_empty() {
+        return Ok(());
+    }
     let tolerances: Vec<String> = study
         .tolerances
         .iter()
