@@ -20,20 +20,26 @@
 //! root-sum-square ([`tolerance`]) at every position and their largest values over the
 //! sweep; `--monte-carlo N` checks them against `N` runs at random parameters.
 //!
-//! **How the derivatives are computed, and how exact they are.** The scene is run again with
-//! the parameter moved by `±h`, `±h/2`, `±h/4` (as `--set` moves it: every formula follows),
-//! and the three central differences are Richardson-extrapolated twice, which cancels the
-//! `h²` and `h⁴` terms of their error: what remains is `O(h⁶)` and the rounding of the runs
-//! (about `ε·|y|/h`). With `h` = 1 % of the parameter's value that is about 1e-11 relative
-//! for a smooth output (measured in `tests/sensitivity.rs` against the symbolic derivative
-//! of the closed form in 256-bit arithmetic); the difference between the last two
-//! extrapolations estimates it, and a column where it exceeds 1e-6 relative (an output that
-//! is not smooth within `±h`, e.g. near a limit position) is named in a warning. These are
-//! **not** dual-number derivatives: the scene's numbers (parameters, units, constructions of
-//! points, the compiled constraint equations, the outputs' link-local data, the masses)
-//! are `f64` from the moment the file is read, and only the drive position is carried as a
-//! dual number through the solver. An exact derivative with respect to a parameter needs
-//! that data generic over the scalar (see CHANGELOG, issue 14 item 5, "Known gap").
+//! **How the derivatives are computed, and how exact they are: not exact.** The scene is run
+//! again with the parameter moved by `±h`, `±h/2`, `±h/4` (as `--set` moves it: every
+//! formula follows), and the three central differences are Richardson-extrapolated twice,
+//! which cancels the `h²` and `h⁴` terms of their error: what remains is `O(h⁶)` and the
+//! rounding of the runs (about `ε·|y|/h`). With `h` = 1 % of the parameter's value that is
+//! measured at 2e-13 to 2e-11 of the column in `tests/sensitivity.rs` (against the symbolic
+//! derivative of Norton's closed form in 256-bit arithmetic, and against implicit
+//! differentiation of the triad's hand-written closure, a loop solved by Newton). The
+//! difference between the last two extrapolations is reported per column as its estimated
+//! error ([`DerivativeColumn`], printed by [`write_summary`]; it is the error of the
+//! extrapolation before the last, so it overestimates the value's); a column where it
+//! exceeds 1e-6 relative (an output that is not smooth within `±h`, e.g. near a limit
+//! position) is named in a warning. These are **not** dual-number derivatives: the scene's
+//! numbers (parameters, units, constructions of points, the compiled constraint equations,
+//! the outputs' link-local data, the masses) are `f64` from the moment the file is read,
+//! and only the drive position is carried as a dual number through the solver. What an
+//! exact derivative needs is listed in CHANGELOG, issue 14, "Not done".
+//!
+//! [`check`] reads and checks the sections against a table's columns without running
+//! anything (`mechdiff check` gives it the columns a run would have).
 //!
 //! Cost: six runs of the scene per parameter differentiated, and one per Monte-Carlo sample.
 
@@ -149,7 +155,7 @@ pub fn check(
 /// appended to the report. The study is `None` when the scene has neither section.
 ///
 /// # Errors
-/// As [`crate::scene::parse_with`] and [`crate::scene::run`]; a malformed study
+/// As [`crate::scene::parse_with`] and [`crate::scene::run()`]; a malformed study
 /// ([`spec::read`]); a run with a parameter moved that fails ([`Error::Perturbed`]) or
 /// whose drive positions differ from the nominal run's ([`Error::Study`]); `--monte-carlo`
 /// without `[tolerances]`.
