@@ -600,15 +600,12 @@ columns = ["d(x_C)/d(g)", "d(y_C)/d(g)"]
 /// A→B, of the ternary link (0 in the sketch), of G2→C and of G3→D; the crank O2→A of
 /// length 1 at angle `phi`; `g` the x of G3. Returns the residual and the point C.
 fn triad_closure<D: mechdiff::core::Scalar>(x: [D; 4], phi: f64, g: D) -> ([D; 4], [D; 2]) {
-    let (a, b0, c0, d0, g2) = (
-        [phi.cos(), phi.sin()],
-        [2.0, 2.0],
-        [3.0, 3.5],
-        [4.0, 2.0],
-        [3.0, 6.0],
-    );
-    let l1 = ((b0[0] - 0.0_f64).powi(2) + (b0[1] - 1.0_f64).powi(2)).sqrt();
-    let l2 = ((c0[0] - g2[0]) as f64).hypot(c0[1] - g2[1]);
+    // The sketch: O2 at the origin, A = (0, 1), the lengths of the links from it.
+    let a = [phi.cos(), phi.sin()];
+    let (b0, c0, d0, g2): ([f64; 2], [f64; 2], [f64; 2], [f64; 2]) =
+        ([2.0, 2.0], [3.0, 3.5], [4.0, 2.0], [3.0, 6.0]);
+    let l1 = b0[0].hypot(b0[1] - 1.0);
+    let l2 = (c0[0] - g2[0]).hypot(c0[1] - g2[1]);
     let l3 = ((-g + d0[0]).powi(2) + d0[1] * d0[1]).sqrt();
     let b = [x[0].cos() * l1 + a[0], x[0].sin() * l1 + a[1]];
     let (s, c) = x[1].sin_cos();
