@@ -70,7 +70,8 @@ fn largest(values: &[f64]) -> f64 {
 #[test]
 fn norton_derivatives_match_the_symbolic_derivative_in_256_bits_to_1e_10() {
     let text = norton_with("[sensitivity]\ncolumns = [\"d(psi)/d(a)\", \"d(psi')/d(a)\"]\n");
-    let (report, _) = study(&text, &Options::default());
+    let (report, found) = study(&text, &Options::default());
+    let estimates = found.expect("a study").derivatives;
     let mut graph = Graph::new();
     let ids = norton_closed_form(&mut graph);
     let phi = report.column("phi").unwrap();
@@ -99,7 +100,18 @@ fn norton_derivatives_match_the_symbolic_derivative_in_256_bits_to_1e_10() {
             .iter()
             .zip(&want)
             .fold(0.0, |m: f64, (g, w)| m.max((g - w).abs()));
-        eprintln!("column {k}: largest error {worst:e} of {scale:e}");
+        eprintln!(
+            "column {k}: largest error {worst:e} of {scale:e}; estimated {:e}",
+            estimates[k].estimated_error
+        );
+        // The estimate printed with the study (the disagreement of the last two
+        // extrapolations, i.e. the error of the one before the last) bounds the error:
+        // measured 2.8e-10 and 1.9e-9 against errors of 2e-13 and 1e-12 relative.
+        assert!(
+            worst <= estimates[k].estimated_error * scale,
+            "column {k}: error {worst:e} above the estimate {:e}",
+            estimates[k].estimated_error
+        );
         for (row, (g, w)) in got.iter().zip(&want).enumerate() {
             // 1e-10 of the column's largest value (the issue's bound): the extrapolated
             // differences are O(h⁶) with h = 1 % of a, plus ε·|ψ|/h ≈ 1e-13 of rounding.
@@ -357,42 +369,46 @@ fn error_of(sections: &str, marker: &str, options: &Options) -> (Error, usize) {
     (e, line)
 }
 
+/// Studies appended to Norton's scene that must be refused: the sections, a marker of the
+/// line the error is at, and what the message says.
+const BAD_STUDIES: [(&str, &str, &str); 6] = [
+    (
+        "[sensitivity]\ncolumns = [\"d(psi)/d(zz)\"]\n",
+        "d(psi)/d(zz)",
+        "the scene has no parameter `zz`; its parameters are: a, b, c, d, theta",
+    ),
+    (
+        "[sensitivity]\ncolumns = [\"d(omega)/d(a)\"]\n",
+        "d(omega)/d(a)",
+        "the table has no column `omega`",
+    ),
+    (
+        "[sensitivity]\ncolumns = [\"dpsi/da\"]\n",
+        "dpsi/da",
+        "is not a derivative; write \"d(COLUMN)/d(PARAMETER)\"",
+    ),
+    (
+        "[tolerances]\ncolumns = [\"psi\"]\nparameters = { a = 0.001, speed = 0.1 }\n",
+        "speed = 0.1",
+        "`speed` is not a parameter of the scene",
+    ),
+    (
+        "[tolerances]\ncolumns = [\"psi\"]\nparameters = { a = -0.001 }\n",
+        "-0.001",
+        "a tolerance is the half-width of ± in the parameter's unit: a positive finite \
+         number (write 0.001)",
+    ),
+    (
+        "[tolerances]\ncolumns = [\"psy\"]\nparameters = { a = 0.001 }\n",
+        "psy",
+        "the table has no column `psy`",
+    ),
+];
+
 #[test]
 fn bad_studies_are_refused_at_their_place_with_what_to_write() {
     let plain = Options::default();
-    let cases = [
-        (
-            "[sensitivity]\ncolumns = [\"d(psi)/d(zz)\"]\n",
-            "d(psi)/d(zz)",
-            "the scene has no parameter `zz`; its parameters are: a, b, c, d, theta",
-        ),
-        (
-            "[sensitivity]\ncolumns = [\"d(omega)/d(a)\"]\n",
-            "d(omega)/d(a)",
-            "the table has no column `omega`",
-        ),
-        (
-            "[sensitivity]\ncolumns = [\"dpsi/da\"]\n",
-            "dpsi/da",
-            "is not a derivative; write \"d(COLUMN)/d(PARAMETER)\"",
-        ),
-        (
-            "[tolerances]\ncolumns = [\"psi\"]\nparameters = { a = 0.001, speed = 0.1 }\n",
-            "speed = 0.1",
-            "`speed` is not a parameter of the scene",
-        ),
-        (
-            "[tolerances]\ncolumns = [\"psi\"]\nparameters = { a = -0.001 }\n",
-            "-0.001",
-            "a tolerance is the half-width of ± in the parameter's unit: a positive finite \
-             number (write 0.001)",
-        ),
-        (
-            "[tolerances]\ncolumns = [\"psy\"]\nparameters = { a = 0.001 }\n",
-            "psy",
-            "the table has no column `psy`",
-        ),
-    ];
+    let cases = BAD_STUDIES;
     for (sections, marker, message) in cases {
         let (e, line) = error_of(sections, marker, &plain);
         let text = e.to_string();
@@ -421,6 +437,73 @@ fn bad_studies_are_refused_at_their_place_with_what_to_write() {
     assert!(e.to_string().contains("columns"), "{e}");
 }
 
+/// `mechdiff check` validates `[sensitivity]` and `[tolerances]` against the columns a run
+/// would have, with the errors `run` gives (same place, same message), before printing
+/// anything; a good study is summarised, including a column of `[[dynamics]]`.
+#[test]
+fn check_refuses_bad_studies_with_the_located_errors_of_run() {
+    let path = common::temp_file("norton_bad_study.toml");
+    let scene = path.to_str().unwrap();
+    for (sections, marker, message) in BAD_STUDIES {
+        let text = norton_with(sections);
+        let line = text.lines().position(|l| l.contains(marker)).unwrap() + 1;
+        std::fs::write(&path, &text).unwrap();
+        let out = common::mechdiff(&["check", scene]);
+        let err = common::stderr(&out);
+        assert!(
+            !out.status.success(),
+            "{sections}: {}",
+            common::stdout(&out)
+        );
+        assert!(err.contains(&format!("{scene}:{line}:")), "{err}");
+        assert!(err.contains(message), "{err}");
+        assert!(common::stdout(&out).is_empty(), "{}", common::stdout(&out));
+        // The same error as `run` gives (its file name aside).
+        let (e, _) = error_of(sections, marker, &Options::default());
+        let run = e.to_string();
+        let run = run.strip_prefix("t.toml").unwrap();
+        assert!(err.contains(run), "check: {err}\nrun: {run}");
+    }
+    std::fs::write(
+        &path,
+        norton_with(
+            "[sensitivity]\ncolumns = [\"d(psi')/d(a)\"]\n\
+             [tolerances]\ncolumns = [\"psi\"]\nparameters = { a = 0.0005 }\n",
+        ),
+    )
+    .unwrap();
+    let out = common::mechdiff(&["check", scene]);
+    assert!(out.status.success(), "{}", common::stderr(&out));
+    let stdout = common::stdout(&out);
+    assert!(
+        stdout.contains(
+            "study: derivative columns d(psi')/d(a); tolerance study of psi with a ± 0.0005"
+        ),
+        "{stdout}"
+    );
+    // A derivative of the drive torque: a column of `[[dynamics]]`, known to `check`.
+    // `SLIDER_CRANK` asks for it.
+    let with_torque = SLIDER_CRANK;
+    std::fs::write(&path, with_torque.replace("M_drive)/", "M_drve)/")).unwrap();
+    let out = common::mechdiff(&["check", scene]);
+    let err = common::stderr(&out);
+    assert!(!out.status.success());
+    assert!(
+        err.contains("the table has no column `M_drve`") && err.contains("M_drive"),
+        "{err}"
+    );
+    std::fs::write(&path, with_torque).unwrap();
+    let out = common::mechdiff(&["check", scene]);
+    assert!(out.status.success(), "{}", common::stderr(&out));
+    assert!(
+        common::stdout(&out)
+            .contains("study: derivative columns d(s)/d(r), d(s)/d(e), d(M_drive)/d(m3)"),
+        "{}",
+        common::stdout(&out)
+    );
+    std::fs::remove_file(&path).unwrap();
+}
+
 #[test]
 fn sweep_positions_that_move_with_the_parameter_are_refused() {
     // `to` follows `a`: the moved runs have other drive positions, where a sensitivity at
@@ -447,6 +530,12 @@ fn the_cli_prints_the_study_and_refuses_it_with_a_parameter_sweep() {
     assert!(out.status.success(), "{}", common::stderr(&out));
     assert!(
         stdout.contains("d(psi)/d(a)") && stdout.contains("[deg per a]"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("central differences of whole runs")
+            && stdout.contains("not exact derivatives")
+            && stdout.contains("  d(psi)/d(a): estimated error "),
         "{stdout}"
     );
     assert!(
@@ -483,4 +572,146 @@ fn monte_carlo_without_any_study_is_refused() {
         "{err}"
     );
     assert!(err.contains("add one"), "{err}");
+}
+
+/// The triad of `tests/data/triad.toml` with the x of its ground pivot `G3` a parameter `g`
+/// (so `g` moves a ground point and changes the length of link `third`): its loop is solved
+/// by Newton only.
+fn triad_with_g() -> String {
+    common::triad(
+        r#"
+[parameters]
+g = 6
+[sweep]
+from = 50
+to = 80
+step = 10
+[[output]]
+point = "C"
+quantities = ["position"]
+[sensitivity]
+columns = ["d(x_C)/d(g)", "d(y_C)/d(g)"]
+"#,
+    )
+    .replace("G3 = [6, 0]", "G3 = [\"g\", 0]")
+}
+
+/// The triad's closure written by hand, independently of the scene: unknowns the angles of
+/// A→B, of the ternary link (0 in the sketch), of G2→C and of G3→D; the crank O2→A of
+/// length 1 at angle `phi`; `g` the x of G3. Returns the residual and the point C.
+fn triad_closure<D: mechdiff::core::Scalar>(x: [D; 4], phi: f64, g: D) -> ([D; 4], [D; 2]) {
+    // The sketch: O2 at the origin, A = (0, 1), the lengths of the links from it.
+    let a = [phi.cos(), phi.sin()];
+    let (b0, c0, d0, g2): ([f64; 2], [f64; 2], [f64; 2], [f64; 2]) =
+        ([2.0, 2.0], [3.0, 3.5], [4.0, 2.0], [3.0, 6.0]);
+    let l1 = b0[0].hypot(b0[1] - 1.0);
+    let l2 = (c0[0] - g2[0]).hypot(c0[1] - g2[1]);
+    let l3 = ((-g + d0[0]).powi(2) + d0[1] * d0[1]).sqrt();
+    let b = [x[0].cos() * l1 + a[0], x[0].sin() * l1 + a[1]];
+    let (s, c) = x[1].sin_cos();
+    let turn = |v: [f64; 2]| [b[0] + c * v[0] - s * v[1], b[1] + s * v[0] + c * v[1]];
+    let pc = turn([c0[0] - b0[0], c0[1] - b0[1]]);
+    let pd = turn([d0[0] - b0[0], d0[1] - b0[1]]);
+    let residual = [
+        pc[0] - x[2].cos() * l2 - g2[0],
+        pc[1] - x[2].sin() * l2 - g2[1],
+        pd[0] - x[3].cos() * l3 - g,
+        pd[1] - x[3].sin() * l3,
+    ];
+    (residual, pc)
+}
+
+/// The triad's pose at `phi` by Newton from `x` (f64, Jacobian by dual numbers), and the
+/// exact derivative of C with respect to `g` by implicit differentiation:
+/// x_g = −Φ_x⁻¹ Φ_g, then C_g = C_x x_g.
+fn triad_reference(x: [f64; 4], phi: f64, g: f64) -> ([f64; 4], [f64; 2], [f64; 2]) {
+    use nalgebra::{SMatrix, SVector};
+    use num_dual::Dual64;
+    let jacobian = |x: [f64; 4]| {
+        let mut j = SMatrix::<f64, 4, 4>::zeros();
+        for k in 0..4 {
+            let xd = std::array::from_fn(|i| Dual64::new(x[i], if i == k { 1.0 } else { 0.0 }));
+            let (r, _) = triad_closure(xd, phi, Dual64::from(g));
+            for i in 0..4 {
+                j[(i, k)] = r[i].eps;
+            }
+        }
+        j
+    };
+    let mut x = x;
+    for _ in 0..50 {
+        let (r, _) = triad_closure(x, phi, g);
+        let step = jacobian(x).lu().solve(&SVector::from(r)).unwrap();
+        for i in 0..4 {
+            x[i] -= step[i];
+        }
+        if step.amax() < 1e-15 {
+            break;
+        }
+    }
+    let xd = x.map(Dual64::from);
+    let (r, _) = triad_closure(xd, phi, Dual64::new(g, 1.0));
+    let phi_g = SVector::<f64, 4>::from(r.map(|v| v.eps));
+    let x_g = jacobian(x).lu().solve(&(-phi_g)).unwrap();
+    let lifted = std::array::from_fn(|i| Dual64::new(x[i], x_g[i]));
+    let (_, c) = triad_closure(lifted, phi, Dual64::from(g));
+    (x, [c[0].re, c[1].re], [c[0].eps, c[1].eps])
+}
+
+#[test]
+fn triad_sensitivities_match_implicit_differentiation_of_the_hand_written_closure() {
+    let (report, _) = study(&triad_with_g(), &Options::default());
+    let phi = report.column("phi").unwrap();
+    // From the sketch (φ = 90°, every angle known) down to 50° in 1° steps of Newton.
+    let g = 6.0;
+    let mut x = [
+        1.0_f64.atan2(2.0),
+        0.0,
+        -std::f64::consts::FRAC_PI_2,
+        2.0_f64.atan2(-2.0),
+    ];
+    let mut reference = Vec::new();
+    for degrees in (50..=90).rev() {
+        let (solved, c, c_g) = triad_reference(x, f64::from(degrees).to_radians(), g);
+        x = solved;
+        if degrees % 10 == 0 && degrees <= 80 {
+            reference.push((f64::from(degrees).to_radians(), c, c_g));
+        }
+    }
+    reference.reverse();
+    assert_eq!(phi.len(), reference.len(), "50°, 60°, 70°, 80°");
+    let columns = [("x_C", "d(x_C)/d(g)"), ("y_C", "d(y_C)/d(g)")];
+    for (axis, (position, derivative)) in columns.iter().enumerate() {
+        let (position, derivative) = (
+            report.column(position).unwrap(),
+            report.column(derivative).unwrap(),
+        );
+        let scale = largest(&reference.iter().map(|r| r.2[axis]).collect::<Vec<_>>());
+        for (row, (p, c, c_g)) in reference.iter().enumerate() {
+            assert!(
+                (phi[row] - p).abs() < 1e-15,
+                "row {row}: {} vs {p}",
+                phi[row]
+            );
+            // The same mechanism: C agrees to the two Newton solves' convergence (1e-12 m
+            // on coordinates of a few m).
+            assert!(
+                (position[row] - c[axis]).abs() < 1e-12,
+                "{axis} at row {row}: {} vs {}",
+                position[row],
+                c[axis]
+            );
+            let error = (derivative[row] - c_g[axis]).abs();
+            eprintln!("triad axis {axis} row {row}: error {error:e} of {scale:e}");
+            // 1e-10 of the column's largest value: the extrapolated differences' O(h⁶) and
+            // rounding (see the module doc of `sensitivity`); the reference is exact to
+            // about κ(Φ_x)·ε ≈ 1e-14, 40° and more from the triad's limit position (91.17°).
+            assert!(
+                error <= 1e-10 * scale,
+                "d/dg of axis {axis} at row {row}: {} vs {} (error {error:e} of {scale:e})",
+                derivative[row],
+                c_g[axis]
+            );
+        }
+    }
 }

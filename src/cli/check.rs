@@ -3,9 +3,9 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use mechdiff::Error;
 use mechdiff::scene;
 use mechdiff::scene::units::{Dimension, Units};
+use mechdiff::{Error, files, sensitivity};
 
 /// Arguments of `mechdiff check`.
 #[derive(Debug, Args)]
@@ -30,8 +30,13 @@ pub fn check(args: &CheckArgs) -> Result<(), Error> {
         // A formula scene is read by the linkage reader, which names what it lacks.
         scene::Kind::Linkage | scene::Kind::Formula => {}
     }
-    let scene = scene::load_with(&args.scene, &args.set)?;
+    let text = files::read_scene(&args.scene)?;
+    let file = args.scene.display().to_string();
+    let scene = scene::parse_with(&file, &text, &args.set)?;
     let checked = scene::check(&scene)?;
+    // The study is checked against the columns a run would have, with the errors `run`
+    // gives, before anything is printed.
+    let study = sensitivity::check(&file, &text, &args.set, &checked.columns)?;
     let m = &checked.mechanism;
     println!(
         "{}: ok: {} points, {} links (ground included), {} joints; {} coordinates, {} joint \
@@ -72,6 +77,9 @@ pub fn check(args: &CheckArgs) -> Result<(), Error> {
         println!("length {link}: {a}–{b} = {length} {unit}");
     }
     println!("{}", checked.plan.describe(&scene));
+    if let Some(study) = &study {
+        println!("{}", study.describe(&checked.columns));
+    }
     Ok(())
 }
 

@@ -88,6 +88,8 @@ pub struct Checked {
     pub motion_range: std::result::Result<MotionRange, String>,
     /// The plan a run would carry out.
     pub plan: Plan,
+    /// The columns a run's table would have ([`columns`]).
+    pub columns: Vec<Column>,
 }
 
 /// Checks a scene without running its sweep: builds the model and checks its mobility and
@@ -112,13 +114,32 @@ pub fn check(scene: &Scene) -> Result<Checked> {
         )
     };
     Ok(Checked {
-        mechanism,
         mobility,
         loops,
         closed_form,
         motion_range,
         plan: Plan::of(scene),
+        columns: columns(scene, &mechanism),
+        mechanism,
     })
+}
+
+/// The columns of a run's table, known before anything is solved: the drive, the outputs'
+/// columns, then those of `[[dynamics]]` and `[balancing]`, as [`run`] fills them.
+pub fn columns(scene: &Scene, mechanism: &Mechanism) -> Vec<Column> {
+    let mut all = kinematic_columns(scene);
+    if let Some(d) = &scene.dynamics {
+        all.extend(super::dynamics::columns(
+            scene,
+            d,
+            mechanism,
+            &d.plan(mechanism),
+        ));
+    }
+    if let Some(b) = &scene.balancing {
+        all.extend(super::balancing::columns(scene, b));
+    }
+    all
 }
 
 /// Runs a scene: solves every drive position of the sweep (keeping the sketch's assembly

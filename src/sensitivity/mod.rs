@@ -20,20 +20,26 @@
 //! root-sum-square ([`tolerance`]) at every position and their largest values over the
 //! sweep; `--monte-carlo N` checks them against `N` runs at random parameters.
 //!
-//! **How the derivatives are computed, and how exact they are.** The scene is run again with
-//! the parameter moved by `±h`, `±h/2`, `±h/4` (as `--set` moves it: every formula follows),
-//! and the three central differences are Richardson-extrapolated twice, which cancels the
-//! `h²` and `h⁴` terms of their error: what remains is `O(h⁶)` and the rounding of the runs
-//! (about `ε·|y|/h`). With `h` = 1 % of the parameter's value that is about 1e-11 relative
-//! for a smooth output (measured in `tests/sensitivity.rs` against the symbolic derivative
-//! of the closed form in 256-bit arithmetic); the difference between the last two
-//! extrapolations estimates it, and a column where it exceeds 1e-6 relative (an output that
-//! is not smooth within `±h`, e.g. near a limit position) is named in a warning. These are
-//! **not** dual-number derivatives: the scene's numbers (parameters, units, constructions of
-//! points, the compiled constraint equations, the outputs' link-local data, the masses)
-//! are `f64` from the moment the file is read, and only the drive position is carried as a
-//! dual number through the solver. An exact derivative with respect to a parameter needs
-//! that data generic over the scalar (see CHANGELOG, issue 14 item 5, "Known gap").
+//! **How the derivatives are computed, and how exact they are: not exact.** The scene is run
+//! again with the parameter moved by `±h`, `±h/2`, `±h/4` (as `--set` moves it: every
+//! formula follows), and the three central differences are Richardson-extrapolated twice,
+//! which cancels the `h²` and `h⁴` terms of their error: what remains is `O(h⁶)` and the
+//! rounding of the runs (about `ε·|y|/h`). With `h` = 1 % of the parameter's value that is
+//! measured at 2e-13 to 2e-11 of the column in `tests/sensitivity.rs` (against the symbolic
+//! derivative of Norton's closed form in 256-bit arithmetic, and against implicit
+//! differentiation of the triad's hand-written closure, a loop solved by Newton). The
+//! difference between the last two extrapolations is reported per column as its estimated
+//! error ([`DerivativeColumn`], printed by [`write_summary`]; it is the error of the
+//! extrapolation before the last, so it overestimates the value's); a column where it
+//! exceeds 1e-6 relative (an output that is not smooth within `±h`, e.g. near a limit
+//! position) is named in a warning. These are **not** dual-number derivatives: the scene's
+//! numbers (parameters, units, constructions of points, the compiled constraint equations,
+//! the outputs' link-local data, the masses) are `f64` from the moment the file is read,
+//! and only the drive position is carried as a dual number through the solver. What an
+//! exact derivative needs is listed in CHANGELOG, issue 14, "Not done".
+//!
+//! [`check`] reads and checks the sections against a table's columns without running
+//! anything (`mechdiff check` gives it the columns a run would have).
 //!
 //! Cost: six runs of the scene per parameter differentiated, and one per Monte-Carlo sample.
 
@@ -90,12 +96,27 @@ pub struct ColumnStudy {
     pub rss: (f64, usize),
 }
 
-/// The tolerance study of a scene.
+/// How one derivative column was computed and how far it may be off.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DerivativeColumn {
+    /// Its name, `d(COLUMN)/d(PARAMETER)`.
+    pub name: String,
+    /// The first step `h` of the differences, in the parameter's unit.
+    pub step: f64,
+    /// The largest disagreement of the last two extrapolations over the sweep, relative to
+    /// the column's largest value (0 for a column that is 0): the estimate of its error.
+    pub estimated_error: f64,
+}
+
+/// The study of a scene: how its derivative columns were computed, and its tolerance study.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Study {
-    /// The tolerances, `(parameter, ± half-width)` in the parameter's unit.
+    /// Per derivative column of `[sensitivity]`, in order.
+    pub derivatives: Vec<DerivativeColumn>,
+    /// The tolerances, `(parameter, ± half-width)` in the parameter's unit; empty without
+    /// `[tolerances]`.
     pub tolerances: Vec<(String, f64)>,
-    /// Per studied column.
+    /// Per studied column; empty without `[tolerances]`.
     pub columns: Vec<ColumnStudy>,
     /// The drive positions (SI) and their column, to say where the largest values are.
     pub drive: (Column, Vec<f64>),
@@ -109,13 +130,32 @@ pub fn requested(text: &str) -> bool {
         .is_ok_and(|t| t.contains_key("sensitivity") || t.contains_key("tolerances"))
 }
 
+/// Reads and checks the `[sensitivity]` and `[tolerances]` of the scene `text` (named
+/// `file`, with `settings`) against the table's `columns`, without running anything:
+/// `mechdiff check` calls it with the columns a run would have
+/// ([`crate::scene::run::columns`]), [`run`] with those of its run, so both give the same
+/// located errors. `None` when the scene has neither section.
+///
+/// # Errors
+/// As [`parameters::read_with_own_units`] and [`spec::read`].
+pub fn check(
+    file: &str,
+    text: &str,
+    settings: &[Setting],
+    columns: &[Column],
+) -> Result<Option<Spec>> {
+    let source = Source::new(file, text);
+    let values = parameters::read_with_own_units(text, &source, settings)?;
+    spec::read(&source, text, &values, columns)
+}
+
 /// Reads and runs the scene `text` (named `file`) with `settings` (`--set`), then its
 /// `[sensitivity]` columns and `[tolerances]` study: the derivative columns
 /// `d(COLUMN)/d(PARAMETER)` and, per studied column, `wc(COLUMN)` and `rss(COLUMN)` are
-/// appended to the report. The study is `None` without `[tolerances]`.
+/// appended to the report. The study is `None` when the scene has neither section.
 ///
 /// # Errors
-/// As [`crate::scene::parse_with`] and [`crate::scene::run`]; a malformed study
+/// As [`crate::scene::parse_with`] and [`crate::scene::run()`]; a malformed study
 /// ([`spec::read`]); a run with a parameter moved that fails ([`Error::Perturbed`]) or
 /// whose drive positions differ from the nominal run's ([`Error::Study`]); `--monte-carlo`
 /// without `[tolerances]`.
@@ -125,11 +165,9 @@ pub fn run(
     settings: &[Setting],
     options: &Options,
 ) -> Result<(Scene, Report, Option<Study>)> {
-    let source = Source::new(file, text);
-    let values = parameters::read_with_own_units(text, &source, settings)?;
     let scene = crate::scene::parse_with(file, text, settings)?;
     let mut report = crate::scene::run(&scene)?;
-    let spec = spec::read(&source, text, &values, &report.columns)?;
+    let spec = check(file, text, settings, &report.columns)?;
     // `--monte-carlo` on a scene without any study is refused, not ignored.
     if options.monte_carlo.is_some() && !spec.as_ref().is_some_and(Spec::has_tolerances) {
         return Err(Error::Study {
@@ -154,12 +192,22 @@ pub fn run(
     for p in &spec.parameters {
         derivatives.push(runner.derivative(p)?);
     }
+    let mut derivative_columns = Vec::with_capacity(spec.derivatives.len());
     for &(k, p) in &spec.derivatives {
         let (column, parameter) = (&nominal.columns[k], &spec.parameters[p]);
         let name = format!("d({})/d({})", column.name, parameter.name);
         let d = &derivatives[p];
         let scale = d.values.iter().map(|r| r[k].abs()).fold(0.0, f64::max);
         let disagreement = d.disagreement.iter().map(|r| r[k]).fold(0.0, f64::max);
+        derivative_columns.push(DerivativeColumn {
+            name: name.clone(),
+            step: d.step,
+            estimated_error: if scale > 0.0 {
+                disagreement / scale
+            } else {
+                0.0
+            },
+        });
         if disagreement > WARN_DISAGREEMENT * scale {
             report.warnings.push(format!(
                 "{name}: the extrapolated differences agree only to {} relative (the column \
@@ -180,8 +228,19 @@ pub fn run(
             d.values.iter().map(|r| r[k]),
         );
     }
+    let drive = (
+        nominal.columns[0].clone(),
+        nominal.rows.iter().map(|r| r[0]).collect(),
+    );
     if !spec.has_tolerances() {
-        return Ok((scene, report, None));
+        let study = Study {
+            derivatives: derivative_columns,
+            tolerances: Vec::new(),
+            columns: Vec::new(),
+            drive,
+            monte_carlo: None,
+        };
+        return Ok((scene, report, Some(study)));
     }
     let toleranced: Vec<usize> = (0..spec.parameters.len())
         .filter(|&p| spec.parameters[p].tolerance.is_some())
@@ -224,6 +283,7 @@ pub fn run(
         None => None,
     };
     let study = Study {
+        derivatives: derivative_columns,
         tolerances: toleranced
             .iter()
             .filter_map(|&p| {
@@ -232,10 +292,7 @@ pub fn run(
             })
             .collect(),
         columns,
-        drive: (
-            nominal.columns[0].clone(),
-            nominal.rows.iter().map(|r| r[0]).collect(),
-        ),
+        drive,
         monte_carlo,
     };
     Ok((scene, report, Some(study)))
@@ -402,9 +459,30 @@ fn significant(v: f64) -> String {
     }
 }
 
-/// Writes the tolerance study's summary: per studied column the largest worst case and
+/// Writes the study's summary: how each derivative column was computed and its estimated
+/// error; then, with `[tolerances]`, per studied column the largest worst case and
 /// root-sum-square over the sweep, where they are, and the Monte-Carlo check.
 pub fn write_summary(study: &Study, out: &mut impl Write) -> io::Result<()> {
+    if !study.derivatives.is_empty() {
+        writeln!(
+            out,
+            "derivative columns: Richardson-extrapolated central differences of whole runs \
+             (steps h, h/2, h/4), not exact derivatives; estimated error = the last two \
+             extrapolations' largest disagreement, relative to the column's largest value:"
+        )?;
+        for d in &study.derivatives {
+            writeln!(
+                out,
+                "  {}: estimated error {:.0e} (h = {})",
+                d.name,
+                d.estimated_error,
+                Units::tidy(d.step)
+            )?;
+        }
+    }
+    if study.columns.is_empty() {
+        return Ok(());
+    }
     let tolerances: Vec<String> = study
         .tolerances
         .iter()

@@ -62,6 +62,33 @@ impl Spec {
     pub fn has_tolerances(&self) -> bool {
         !self.studied.is_empty()
     }
+
+    /// One line saying what the study computes, with the table's `columns` (as
+    /// `mechdiff check` prints it).
+    pub fn describe(&self, columns: &[Column]) -> String {
+        let derivatives: Vec<String> = (self.derivatives.iter())
+            .map(|&(k, p)| format!("d({})/d({})", columns[k].name, self.parameters[p].name))
+            .collect();
+        let mut line = if derivatives.is_empty() {
+            "study: no derivative columns".to_owned()
+        } else {
+            format!("study: derivative columns {}", derivatives.join(", "))
+        };
+        if self.has_tolerances() {
+            let tolerances: Vec<String> = (self.parameters.iter())
+                .filter_map(|p| Some(format!("{} ± {}", p.name, p.tolerance?)))
+                .collect();
+            let studied: Vec<&str> = (self.studied.iter())
+                .map(|&k| columns[k].name.as_str())
+                .collect();
+            line.push_str(&format!(
+                "; tolerance study of {} with {}",
+                studied.join(", "),
+                tolerances.join(", ")
+            ));
+        }
+        line
+    }
 }
 
 /// Splits `d(COLUMN)/d(PARAMETER)` into its column and parameter.

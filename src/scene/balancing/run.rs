@@ -42,6 +42,25 @@ fn core_error(location: &Location, e: mechdiff_core::Error) -> Error {
     }
 }
 
+/// The columns the balancing sections `b` of `scene` add to the table (those of the
+/// counterweights' linkage balance), known before anything is solved.
+pub(crate) fn columns(scene: &Scene, b: &SceneBalancing) -> Vec<Column> {
+    if b.counterweights.is_none() {
+        return Vec::new();
+    }
+    let torque = if scene.drive.kind == DriveKind::Angle {
+        ("M_drive_bal", "N m")
+    } else {
+        ("F_drive_bal", "N")
+    };
+    vec![
+        column("SumF_x_bal", "N"),
+        column("SumF_y_bal", "N"),
+        column("M_shaking_bal", "N m"),
+        column(torque.0, torque.1),
+    ]
+}
+
 /// Runs the balancing sections of `scene` at the drive positions `positions`.
 pub(crate) fn run(
     scene: &Scene,
@@ -127,22 +146,13 @@ pub(crate) fn run(
             mechdiff_core::Error::DuplicateName { ref name, .. } => core_error(at(name), e),
             other => core_error(location, other),
         })?;
-        let torque = if scene.drive.kind == DriveKind::Angle {
-            ("M_drive_bal", "N m")
-        } else {
-            ("F_drive_bal", "N")
-        };
-        report.columns = vec![
-            column("SumF_x_bal", "N"),
-            column("SumF_y_bal", "N"),
-            column("M_shaking_bal", "N m"),
-            column(torque.0, torque.1),
-        ];
+        report.columns = columns(scene, b);
+        let torque = &report.columns[3].unit;
         let a = &result.after;
         report.rows = (0..a.phi.len())
             .map(|j| vec![a.force[j][0], a.force[j][1], a.moment[j], a.drive_torque[j]])
             .collect();
-        report.lines.extend(linkage_lines(scene, &result, torque.1));
+        report.lines.extend(linkage_lines(scene, &result, torque));
         report.linkage = Some(result);
     }
     Ok(report)

@@ -39,4 +39,4 @@ pub use format::{
 pub(crate) use resolve::resolve;
 pub use resolve::{DynamicsOutput, SceneDynamics};
 pub use run::DynamicsReport;
-pub(crate) use run::run;
+pub(crate) use run::{columns, run};

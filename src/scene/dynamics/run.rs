@@ -101,72 +101,9 @@ pub(crate) fn run(
         },
         other => crate::scene::run::solver_error(scene, other),
     })?;
+    let columns = columns(scene, d, mechanism, &plan);
     let m = mechanism;
-    let torque_unit = if scene.drive.joint_kind() == DriveKind::Angle {
-        ("M_drive", "N m")
-    } else {
-        ("F_drive", "N")
-    };
     let mass_links: Vec<&str> = model_links(d);
-    // With a cam the balance gives the cam-shaft torque.
-    let balance_unit = if scene.drive.cam.is_some() {
-        "N m"
-    } else {
-        torque_unit.1
-    };
-    let mut columns = Vec::new();
-    for o in &d.outputs {
-        match o.quantity {
-            DynamicQuantity::ShakingForce => columns.extend([
-                column("SumF_x", "N"),
-                column("SumF_y", "N"),
-                column("M_shaking", "N m"),
-            ]),
-            DynamicQuantity::InertialForces => {
-                for l in selected(&o.names, &mass_links) {
-                    columns.extend([
-                        column(format!("Fx_{l}"), "N"),
-                        column(format!("Fy_{l}"), "N"),
-                        column(format!("M_{l}"), "N m"),
-                    ]);
-                }
-            }
-            DynamicQuantity::Reactions => {
-                let all: Vec<&str> = m.joints().iter().map(|j| j.name.as_str()).collect();
-                for j in selected(&o.names, &all) {
-                    columns.extend(reaction_columns(scene, j));
-                }
-            }
-            DynamicQuantity::DriveTorque => {
-                columns.push(column(torque_unit.0, torque_unit.1));
-                if scene.drive.cam.is_some() {
-                    columns.push(column("M_cam", "N m"));
-                }
-                if d.data.motor.is_some() && plan.effects.motor {
-                    columns.push(column("M_motor", "N m"));
-                }
-            }
-            DynamicQuantity::KineticEnergy => columns.push(column("T", "J")),
-            DynamicQuantity::ReducedInertia => {
-                let u = if scene.drive.kind == DriveKind::Angle {
-                    ["kg m^2", "kg m^2/rad"]
-                } else {
-                    ["kg", "kg/m"]
-                };
-                columns.extend([column("J_red", u[0]), column("J_red'", u[1])]);
-            }
-            DynamicQuantity::PowerBalance => columns.extend([
-                column("M_balance", balance_unit),
-                column("dM", balance_unit),
-                column("P_drive", "W"),
-                column("dT/dt", "W"),
-                column("P_losses", "W"),
-            ]),
-        }
-    }
-    for c in &mut columns {
-        in_file_units(c, &scene.units);
-    }
     let mut rows = Vec::with_capacity(result.steps.len());
     for (step, &phi) in result.steps.iter().zip(positions) {
         let cam = (scene.drive.cam.as_ref()).map(|c| (c.joint.svaj(phi), c));
@@ -329,6 +266,83 @@ fn in_file_units(column: &mut Column, units: &Units) {
         };
         column.factor = factor;
     }
+}
+
+/// The columns the dynamic outputs `d` of `scene` add to the table, in order, in the file's
+/// units: what [`run`] fills, known before anything is solved (`mechdiff check` checks a
+/// study's columns against them).
+pub(crate) fn columns(
+    scene: &Scene,
+    d: &SceneDynamics,
+    mechanism: &Mechanism,
+    plan: &Plan,
+) -> Vec<Column> {
+    let torque_unit = if scene.drive.joint_kind() == DriveKind::Angle {
+        ("M_drive", "N m")
+    } else {
+        ("F_drive", "N")
+    };
+    let mass_links: Vec<&str> = model_links(d);
+    // With a cam the balance gives the cam-shaft torque.
+    let balance_unit = if scene.drive.cam.is_some() {
+        "N m"
+    } else {
+        torque_unit.1
+    };
+    let mut columns = Vec::new();
+    for o in &d.outputs {
+        match o.quantity {
+            DynamicQuantity::ShakingForce => columns.extend([
+                column("SumF_x", "N"),
+                column("SumF_y", "N"),
+                column("M_shaking", "N m"),
+            ]),
+            DynamicQuantity::InertialForces => {
+                for l in selected(&o.names, &mass_links) {
+                    columns.extend([
+                        column(format!("Fx_{l}"), "N"),
+                        column(format!("Fy_{l}"), "N"),
+                        column(format!("M_{l}"), "N m"),
+                    ]);
+                }
+            }
+            DynamicQuantity::Reactions => {
+                let all: Vec<&str> = mechanism.joints().iter().map(|j| j.name.as_str()).collect();
+                for j in selected(&o.names, &all) {
+                    columns.extend(reaction_columns(scene, j));
+                }
+            }
+            DynamicQuantity::DriveTorque => {
+                columns.push(column(torque_unit.0, torque_unit.1));
+                if scene.drive.cam.is_some() {
+                    columns.push(column("M_cam", "N m"));
+                }
+                if d.data.motor.is_some() && plan.effects.motor {
+                    columns.push(column("M_motor", "N m"));
+                }
+            }
+            DynamicQuantity::KineticEnergy => columns.push(column("T", "J")),
+            DynamicQuantity::ReducedInertia => {
+                let u = if scene.drive.kind == DriveKind::Angle {
+                    ["kg m^2", "kg m^2/rad"]
+                } else {
+                    ["kg", "kg/m"]
+                };
+                columns.extend([column("J_red", u[0]), column("J_red'", u[1])]);
+            }
+            DynamicQuantity::PowerBalance => columns.extend([
+                column("M_balance", balance_unit),
+                column("dM", balance_unit),
+                column("P_drive", "W"),
+                column("dT/dt", "W"),
+                column("P_losses", "W"),
+            ]),
+        }
+    }
+    for c in &mut columns {
+        in_file_units(c, &scene.units);
+    }
+    columns
 }
 
 fn model_links(d: &SceneDynamics) -> Vec<&str> {
