@@ -9,7 +9,8 @@
 //! to the file's unit of that dimension. A `--set` value is in the parameter's unit.
 
 use std::cell::RefCell;
-use std::collections::{BTreeMap, HashMap};
+use std::cmp::Reverse;
+use std::collections::{BTreeMap, BinaryHeap, HashMap};
 use std::str::FromStr;
 
 use serde::Deserialize;
@@ -197,8 +198,8 @@ struct Pending<'a> {
 }
 
 /// Reads and evaluates the `[parameters]` of `text`, with `settings` replacing the values
-/// of the file; the result is in the order of evaluation (every parameter after those it
-/// uses).
+/// of the file; the result is in the order of evaluation: every parameter after those it
+/// uses, otherwise in the file's order.
 ///
 /// # Errors
 /// A TOML syntax error; a parameter name that is not a plain name or is a constant; a
@@ -267,6 +268,9 @@ pub fn read_with_own_units(
             scale,
         });
     }
+    // In the file's order, so that the evaluation order follows it where the dependencies
+    // allow (`mechdiff check` lists the parameters in that order).
+    pending.sort_by_key(|p| p.span.as_ref().map_or(0, |s| s.start));
     for setting in settings {
         let Some(p) = pending.iter_mut().find(|p| p.name == setting.name) else {
             let known: Vec<&str> = pending.iter().map(|p| p.name).collect();
@@ -329,10 +333,14 @@ fn evaluate(pending: &[Pending], source: &Source) -> Result<Vec<(String, f64, f6
             used_by[j].push(i);
         }
     }
-    let mut ready: Vec<usize> = (0..pending.len()).filter(|&i| waiting[i] == 0).collect();
+    // The first ready parameter in the file's order next (Kahn's algorithm with a heap).
+    let mut ready: BinaryHeap<Reverse<usize>> = (0..pending.len())
+        .filter(|&i| waiting[i] == 0)
+        .map(Reverse)
+        .collect();
     let mut values: Vec<(String, f64, f64)> = Vec::with_capacity(pending.len());
     let mut known: HashMap<String, f64> = HashMap::with_capacity(pending.len());
-    while let Some(i) = ready.pop() {
+    while let Some(Reverse(i)) = ready.pop() {
         let p = &pending[i];
         let own = formula(&p.text, &known).map_err(|e| fail(p, e))?;
         let value = own * p.scale;
@@ -341,7 +349,7 @@ fn evaluate(pending: &[Pending], source: &Source) -> Result<Vec<(String, f64, f6
         for &k in &used_by[i] {
             waiting[k] -= 1;
             if waiting[k] == 0 {
-                ready.push(k);
+                ready.push(Reverse(k));
             }
         }
     }
@@ -381,6 +389,10 @@ mod tests {
         let values = read_str("[parameters]\nb = \"2*a\"\na = 0.5\n", &[]).unwrap();
         // 2*0.5 is exact in f64.
         assert_eq!(values, [("a".to_owned(), 0.5), ("b".to_owned(), 1.0)]);
+        // Without dependencies, the file's order (not the alphabet's, nor its reverse).
+        let values = read_str("[parameters]\nz = 1\nm = 2\na = 3\n", &[]).unwrap();
+        let names: Vec<&str> = values.iter().map(|(n, _)| n.as_str()).collect();
+        assert_eq!(names, ["z", "m", "a"]);
         let set = [Setting::from_str("a=0.25").unwrap()];
         let values = read_str("[parameters]\nb = \"2*a\"\na = 0.5\n", &set).unwrap();
         assert_eq!(values[1], ("b".to_owned(), 0.5));
