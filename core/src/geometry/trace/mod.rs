@@ -25,10 +25,12 @@
 //! assemble ([`crate::Error::Unassemblable`]): [`GuardKind::verdict`] decides this from the
 //! two values exactly as the solver's closed form does.
 
+mod jit;
 mod program;
 mod scalar;
 mod tracker;
 
+pub use jit::JitProgram;
 pub use program::Program;
 pub use scalar::Traced;
 pub use tracker::ProgramTracker;
