@@ -34,9 +34,20 @@ pub enum Evaluator {
     /// The geometry solver: closed forms (or Newton) in dual numbers at every position.
     Solver,
     /// The run-time evaluator of the traced closed forms; an error for a scene that has a
-    /// loop without a closed form or a cam drive.
+    /// loop without a closed form or a cam drive. Compiled to native code for a sweep of
+    /// at least [`JIT_FROM_POSITIONS`] positions, interpreted for a shorter one (see the
+    /// module documentation).
     Program,
+    /// The run-time evaluator, always interpreted.
+    Interpreter,
+    /// The run-time evaluator, always compiled to native code by cranelift (interpreted,
+    /// with a warning, on a host cranelift does not generate code for).
+    Jit,
 }
+
+/// From how many drive positions `--evaluator program` compiles the program to native code
+/// rather than interpreting it: where the compilation has paid for itself (BENCHMARKS.md).
+pub const JIT_FROM_POSITIONS: usize = 2000;
 
 /// Which path evaluates a loop in a run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -4,10 +4,11 @@
 //! Each register becomes an SSA value (cranelift allocates machine registers and spills);
 //! `+ − × ÷`, `√`, negation, `|x|`, comparisons and selects are native instructions,
 //! each rounded once as in the interpreter (no fused multiply-add: cranelift never fuses
-//! on its own). Every other primitive (`sin_cos`, `atan2`, `powi`, `exp`, `hypot`, …) is a
-//! call to a small `extern "C"` shim around the very Rust function the interpreter calls
-//! ([`f64::sin_cos`], [`f64::atan2`], [`f64::powi`], [`DualArithmetic`]), so the compiled
-//! code, the interpreter and [`crate::symbolic::Graph::evaluate_f64`] agree to the bit.
+//! on its own); an integer power is unrolled into the products [`f64::powi`] computes.
+//! Every other primitive (`sin_cos`, `atan2`, `exp`, `hypot`, …) is a call to a small
+//! `extern "C"` shim around the very Rust function the interpreter calls ([`f64::sin_cos`],
+//! [`f64::atan2`], [`DualArithmetic`]), so the compiled code, the interpreter and
+//! [`crate::symbolic::Graph::evaluate_f64`] agree to the bit.
 //!
 //! **Why a JIT beside the interpreter** (measured in `benches/scene_codegen.rs`, see
 //! BENCHMARKS.md): the interpreter's cost is its dispatch, one indirect jump and the
@@ -73,7 +74,10 @@ struct Code {
 
 impl Drop for Code {
     fn drop(&mut self) {
-        let module = self.module.get_mut().unwrap_or_else(PoisonError::into_inner);
+        let module = self
+            .module
+            .get_mut()
+            .unwrap_or_else(PoisonError::into_inner);
         if let Some(module) = module.take() {
             // SAFETY: the last owner of `function` is being dropped: no call of it is
             // running (calls borrow a `JitProgram`) and none can follow.
@@ -101,9 +105,14 @@ impl JitProgram {
         let isa = cranelift_native::builder()
             .map_err(|m| unavailable(format!("cranelift does not support this host ({m})")))?;
         let mut flags = settings::builder();
-        let verify = if cfg!(debug_assertions) { "true" } else { "false" };
+        let verify = if cfg!(debug_assertions) {
+            "true"
+        } else {
+            "false"
+        };
         for (name, value) in [
             ("opt_level", "speed"),
+            ("regalloc_algorithm", "single_pass"),
             // Calls to the shims by absolute address: the JIT's memory may lie anywhere.
             ("use_colocated_libcalls", "false"),
             ("is_pic", "false"),
@@ -117,11 +126,12 @@ impl JitProgram {
             .finish(settings::Flags::new(flags))
             .map_err(|e| unavailable(e.to_string()))?;
         let mut builder = JITBuilder::with_isa(isa, default_libcall_names());
-        for shim in SHIMS {
-            builder.symbol(shim.name, shim.address);
+        let shims = shims();
+        for shim in &shims {
+            builder.symbol(&shim.name, shim.address);
         }
         let mut module = JITModule::new(builder);
-        let function = define(&mut module, program)
+        let function = define(&mut module, &shims, program)
             .and_then(|id| module.finalize_definitions().map(|()| id))
             .map(|id| module.get_finalized_function(id));
         match function {
@@ -167,7 +177,7 @@ impl JitProgram {
 
 /// A Rust function the compiled code calls.
 struct Shim {
-    name: &'static str,
+    name: String,
     address: *const u8,
     params: &'static [Type],
     returns: &'static [Type],
@@ -189,66 +199,69 @@ extern "C" fn atan2(a: f64, b: f64) -> f64 {
     a.atan2(b)
 }
 
-extern "C" fn powi(a: f64, n: i32) -> f64 {
-    a.powi(n)
+/// `Unary::ALL[K](a)` in the symbolic engine's `f64` arithmetic (one shim per primitive:
+/// the primitive is known when the shim is compiled, so it dispatches nothing).
+extern "C" fn unary<const K: usize>(a: f64) -> f64 {
+    DualArithmetic::<f64>::new().unary(Unary::ALL[K], &a)
 }
 
-/// `Unary::ALL[op](a)` in the symbolic engine's `f64` arithmetic.
-extern "C" fn unary(op: u32, a: f64) -> f64 {
-    DualArithmetic::<f64>::new().unary(Unary::ALL[op as usize], &a)
+/// `Binary::ALL[K](a, b)` in the symbolic engine's `f64` arithmetic.
+extern "C" fn binary<const K: usize>(a: f64, b: f64) -> f64 {
+    DualArithmetic::<f64>::new().binary(Binary::ALL[K], &a, &b)
 }
 
-/// `Binary::ALL[op](a, b)` in the symbolic engine's `f64` arithmetic.
-extern "C" fn binary(op: u32, a: f64, b: f64) -> f64 {
-    DualArithmetic::<f64>::new().binary(Binary::ALL[op as usize], &a, &b)
+/// `[f::<0>, f::<1>, …]` as addresses.
+macro_rules! instances {
+    ($f:ident; $($k:literal)*) => {
+        [$($f::<$k> as *const u8),*]
+    };
 }
+
+const UNARY: [*const u8; 15] = instances!(unary; 0 1 2 3 4 5 6 7 8 9 10 11 12 13 14);
+const BINARY: [*const u8; 7] = instances!(binary; 0 1 2 3 4 5 6);
+const _: () = assert!(UNARY.len() == Unary::ALL.len() && BINARY.len() == Binary::ALL.len());
 
 const F64: Type = types::F64;
-const I32: Type = types::I32;
 /// Pointers are passed as 64-bit integers (every host cranelift supports is 64-bit).
 const PTR: Type = types::I64;
 
-/// The shims, in the order [`Imports`] lists them.
-const SHIMS: [Shim; 5] = [
-    Shim {
-        name: "mechdiff_sin_cos",
-        address: sin_cos as *const u8,
-        params: &[F64, PTR],
-        returns: &[],
-    },
-    Shim {
-        name: "mechdiff_atan2",
-        address: atan2 as *const u8,
-        params: &[F64, F64],
-        returns: &[F64],
-    },
-    Shim {
-        name: "mechdiff_powi",
-        address: powi as *const u8,
-        params: &[F64, I32],
-        returns: &[F64],
-    },
-    Shim {
-        name: "mechdiff_unary",
-        address: unary as *const u8,
-        params: &[I32, F64],
-        returns: &[F64],
-    },
-    Shim {
-        name: "mechdiff_binary",
-        address: binary as *const u8,
-        params: &[I32, F64, F64],
-        returns: &[F64],
-    },
-];
+/// Index of the first unary shim in [`shims`] (the binary ones follow).
+const FIRST_UNARY: usize = 2;
 
-/// The shims as the function being built calls them.
-struct Imports {
-    sin_cos: FuncRef,
-    atan2: FuncRef,
-    powi: FuncRef,
-    unary: FuncRef,
-    binary: FuncRef,
+/// The shims: `sin_cos`, `atan2`, then one per unary and binary primitive.
+fn shims() -> Vec<Shim> {
+    let mut all = vec![
+        Shim {
+            name: "mechdiff_sin_cos".into(),
+            address: sin_cos as *const u8,
+            params: &[F64, PTR],
+            returns: &[],
+        },
+        Shim {
+            name: "mechdiff_atan2".into(),
+            address: atan2 as *const u8,
+            params: &[F64, F64],
+            returns: &[F64],
+        },
+    ];
+    for (op, &address) in Unary::ALL.iter().zip(&UNARY) {
+        all.push(Shim {
+            name: format!("mechdiff_{}", op.name()),
+            address,
+            params: &[F64],
+            returns: &[F64],
+        });
+    }
+    for (k, &address) in BINARY.iter().enumerate() {
+        all.push(Shim {
+            // Named by position: `+` and `-` are no symbol names.
+            name: format!("mechdiff_binary_{k}"),
+            address,
+            params: &[F64, F64],
+            returns: &[F64],
+        });
+    }
+    all
 }
 
 /// The SSA value of each register, constants placed where first read.
@@ -272,8 +285,8 @@ impl Registers<'_> {
     }
 }
 
-/// Declares and defines the function computing `program` in `module`.
-fn define(module: &mut JITModule, program: &Program) -> ModuleResult<FuncId> {
+/// Declares and defines the function computing `program` in `module`, calling `shims`.
+fn define(module: &mut JITModule, shims: &[Shim], program: &Program) -> ModuleResult<FuncId> {
     assert_eq!(
         module.target_config().pointer_type(),
         PTR,
@@ -285,23 +298,20 @@ fn define(module: &mut JITModule, program: &Program) -> ModuleResult<FuncId> {
         s.returns.extend(returns.iter().map(|&t| AbiParam::new(t)));
         s
     };
-    let mut ids = Vec::with_capacity(SHIMS.len());
-    for shim in &SHIMS {
+    let mut ids = Vec::with_capacity(shims.len());
+    for shim in shims {
         let s = signature(module, shim.params, shim.returns);
-        ids.push(module.declare_function(shim.name, Linkage::Import, &s)?);
+        ids.push(module.declare_function(&shim.name, Linkage::Import, &s)?);
     }
     let mut ctx = module.make_context();
     ctx.func.signature = signature(module, &[F64, PTR], &[]);
     let id = module.declare_anonymous_function(&ctx.func.signature)?;
     let mut context = FunctionBuilderContext::new();
     let mut b = FunctionBuilder::new(&mut ctx.func, &mut context);
-    let mut import = |k: usize| module.declare_func_in_func(ids[k], b.func);
-    let calls = Imports {
-        sin_cos: import(0),
-        atan2: import(1),
-        powi: import(2),
-        unary: import(3),
-        binary: import(4),
+    // Each shim declared in the function where first called.
+    let mut imported: Vec<Option<FuncRef>> = vec![None; shims.len()];
+    let mut shim = |b: &mut FunctionBuilder<'_>, k: usize| {
+        *imported[k].get_or_insert_with(|| module.declare_func_in_func(ids[k], b.func))
     };
     let block = b.create_block();
     b.append_block_params_for_function_params(block);
@@ -356,28 +366,27 @@ fn define(module: &mut JITModule, program: &Program) -> ModuleResult<FuncId> {
             }
             Op::Atan2 => {
                 let y = x.get(&mut b, ins.b);
-                call(&mut b, calls.atan2, &[a, y])
+                let f = shim(&mut b, 1);
+                call(&mut b, f, &[a, y])
             }
             Op::SinCos => {
                 let at = b.ins().stack_addr(PTR, pair, 0);
-                b.ins().call(calls.sin_cos, &[a, at]);
+                let f = shim(&mut b, 0);
+                b.ins().call(f, &[a, at]);
                 let cos = b.ins().stack_load(F64, pair, 8);
                 x.values[ins.to as usize + 1] = Some(cos);
                 b.ins().stack_load(F64, pair, 0)
             }
             Op::Unary(op) => {
-                let k = b.ins().iconst(I32, index(Unary::ALL, op));
-                call(&mut b, calls.unary, &[k, a])
+                let f = shim(&mut b, FIRST_UNARY + index(Unary::ALL, op));
+                call(&mut b, f, &[a])
             }
             Op::Binary(op) => {
                 let y = x.get(&mut b, ins.b);
-                let k = b.ins().iconst(I32, index(Binary::ALL, op));
-                call(&mut b, calls.binary, &[k, a, y])
+                let f = shim(&mut b, FIRST_UNARY + UNARY.len() + index(Binary::ALL, op));
+                call(&mut b, f, &[a, y])
             }
-            Op::Powi => {
-                let n = b.ins().iconst(I32, i64::from(ins.c as i32));
-                call(&mut b, calls.powi, &[a, n])
-            }
+            Op::Powi => powi(&mut b, a, ins.c as i32, one),
             // 1 or 0, as the interpreter's register holds it.
             Op::Compare(cmp) => {
                 let y = x.get(&mut b, ins.b);
@@ -404,9 +413,33 @@ fn define(module: &mut JITModule, program: &Program) -> ModuleResult<FuncId> {
     Ok(id)
 }
 
-/// The position of `op` in `all` (the shims' operation code).
-fn index<T: PartialEq>(all: &[T], op: T) -> i64 {
-    all.iter().position(|o| *o == op).expect("an operation of `ALL`") as i64
+/// The position of `op` in `all`.
+fn index<T: PartialEq>(all: &[T], op: T) -> usize {
+    all.iter()
+        .position(|o| *o == op)
+        .expect("an operation of `ALL`")
+}
+
+/// `a` to the power `n` (a constant) by the steps of [`f64::powi`] (compiler-builtins'
+/// `__powidf2`: square and multiply from the lowest bit, then one reciprocal for `n < 0`),
+/// each product rounded as there: the interpreter's bits without a call.
+fn powi(b: &mut FunctionBuilder<'_>, a: Value, n: i32, one: Value) -> Value {
+    let (mut base, mut power, mut product) = (a, n.unsigned_abs(), one);
+    loop {
+        if power & 1 != 0 {
+            product = b.ins().fmul(product, base);
+        }
+        power >>= 1;
+        if power == 0 {
+            break;
+        }
+        base = b.ins().fmul(base, base);
+    }
+    if n < 0 {
+        b.ins().fdiv(one, product)
+    } else {
+        product
+    }
 }
 
 /// The comparison as cranelift's condition, true or false on NaN as Rust's operator.
@@ -471,7 +504,18 @@ mod tests {
                 "-x / (x - 1)",
                 "atan2(0.65, 0) + 2",
             ],
-            &[-1.7, -0.0, 0.0, 0.25, 0.5, 0.9, 1.0, 3.3, f64::NAN, f64::INFINITY],
+            &[
+                -1.7,
+                -0.0,
+                0.0,
+                0.25,
+                0.5,
+                0.9,
+                1.0,
+                3.3,
+                f64::NAN,
+                f64::INFINITY,
+            ],
         );
     }
 

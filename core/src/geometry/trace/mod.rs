@@ -33,7 +33,7 @@ mod tracker;
 pub use jit::JitProgram;
 pub use program::Program;
 pub use scalar::Traced;
-pub use tracker::ProgramTracker;
+pub use tracker::{Backend, ProgramTracker};
 
 use super::constraints::Frames;
 use super::output::{PointOutput, Scalar as Quantity, ScalarOutput};
