@@ -60,7 +60,7 @@ pub struct RunArgs {
     pub profile_csv: Option<PathBuf>,
     /// How positions are evaluated: `solver` (the geometry solver in dual numbers),
     /// `program` (the run-time evaluator of the scene's traced closed forms: every loop
-    /// must have one; compiled to native code from 2000 positions on, interpreted below),
+    /// must have one; compiled to native code from 2500 positions on, interpreted below),
     /// `interpreter` or `jit` (the same evaluator always interpreted, or always compiled:
     /// the same values bit for bit), or `auto`: the default (today the solver, whose digits
     /// existing runs print; the program's rows are faster: BENCHMARKS.md). Results agree to

@@ -112,6 +112,8 @@ impl JitProgram {
         };
         for (name, value) in [
             ("opt_level", "speed"),
+            // Measured (callgrind, Whitworth's ψ program): 43 % fewer instructions to
+            // compile than the backtracking allocator, 2.4 % more per evaluation.
             ("regalloc_algorithm", "single_pass"),
             // Calls to the shims by absolute address: the JIT's memory may lie anywhere.
             ("use_colocated_libcalls", "false"),
