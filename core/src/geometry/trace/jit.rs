@@ -26,7 +26,7 @@ use cranelift_codegen::ir::{
 use cranelift_codegen::settings::{self, Configurable};
 use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
 use cranelift_jit::{JITBuilder, JITModule};
-use cranelift_module::{FuncId, Linkage, Module, ModuleResult, default_libcall_names};
+use cranelift_module::{FuncId, Linkage, Module, ModuleError, default_libcall_names};
 
 use super::Program;
 use super::program::Op;
@@ -134,7 +134,7 @@ impl JitProgram {
         }
         let mut module = JITModule::new(builder);
         let function = define(&mut module, &shims, program)
-            .and_then(|id| module.finalize_definitions().map(|()| id))
+            .and_then(|id| module.finalize_definitions().map_err(text).map(|()| id))
             .map(|id| module.get_finalized_function(id));
         match function {
             Ok(address) => Ok(JitProgram {
@@ -149,7 +149,7 @@ impl JitProgram {
             Err(e) => {
                 // SAFETY: no pointer into the module was kept.
                 unsafe { module.free_memory() };
-                Err(unavailable(e.to_string()))
+                Err(unavailable(e))
             }
         }
     }
@@ -288,7 +288,7 @@ impl Registers<'_> {
 }
 
 /// Declares and defines the function computing `program` in `module`, calling `shims`.
-fn define(module: &mut JITModule, shims: &[Shim], program: &Program) -> ModuleResult<FuncId> {
+fn define(module: &mut JITModule, shims: &[Shim], program: &Program) -> Result<FuncId, String> {
     assert_eq!(
         module.target_config().pointer_type(),
         PTR,
@@ -303,11 +303,17 @@ fn define(module: &mut JITModule, shims: &[Shim], program: &Program) -> ModuleRe
     let mut ids = Vec::with_capacity(shims.len());
     for shim in shims {
         let s = signature(module, shim.params, shim.returns);
-        ids.push(module.declare_function(&shim.name, Linkage::Import, &s)?);
+        ids.push(
+            module
+                .declare_function(&shim.name, Linkage::Import, &s)
+                .map_err(text)?,
+        );
     }
     let mut ctx = module.make_context();
     ctx.func.signature = signature(module, &[F64, PTR], &[]);
-    let id = module.declare_anonymous_function(&ctx.func.signature)?;
+    let id = module
+        .declare_anonymous_function(&ctx.func.signature)
+        .map_err(text)?;
     let mut context = FunctionBuilderContext::new();
     let mut b = FunctionBuilder::new(&mut ctx.func, &mut context);
     // Each shim declared in the function where first called.
@@ -411,8 +417,13 @@ fn define(module: &mut JITModule, shims: &[Shim], program: &Program) -> ModuleRe
     b.ins().return_(&[]);
     b.seal_all_blocks();
     b.finalize();
-    module.define_function(id, &mut ctx)?;
+    module.define_function(id, &mut ctx).map_err(text)?;
     Ok(id)
+}
+
+/// cranelift's error as text (its type is large: clippy's `result_large_err`).
+fn text(e: ModuleError) -> String {
+    e.to_string()
 }
 
 /// The position of `op` in `all`.
