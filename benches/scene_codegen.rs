@@ -8,19 +8,25 @@
 //! with ′ and ″) generated from `tests/data/whitworth_pose.toml` against the hand-derived
 //! `whitworth::hand::pose`.
 //!
+//! The evaluator's program compiled to native code (`trace::JitProgram`, cranelift) beside
+//! the interpreter, and what compiling each costs for ψ.
+//!
 //! Then the sweep of `mechdiff run` in process on the same scene (10⁴ positions over a
 //! turn, every column of the scene to second order): `Sweeper::row` by the solver and by
-//! the run-time evaluator (`--evaluator solver|program`), and what setting up each sweep
-//! costs (the program's: trace, differentiate, compile) — where `auto` starts to pay.
+//! the run-time evaluator interpreted and compiled (`--evaluator
+//! solver|interpreter|jit`), and what setting up each sweep costs (the program's: trace,
+//! differentiate, compile) — where `auto` would start to pay, and from how many positions
+//! `--evaluator program` compiles (`evaluator::JIT_FROM_POSITIONS`).
 //!
 //! ```sh
-//! cargo bench -p mechdiff --bench scene_codegen -- --warm-up-time 1 --measurement-time 3
+//! cargo bench -p mechdiff --bench scene_codegen -- --warm-up-time 1 --measurement-time 4
 //! ```
 
 use criterion::{BatchSize, Criterion, Throughput, criterion_group, criterion_main};
 use mechdiff::codegen::scene::SceneCode;
 use mechdiff::evaluator::Evaluator;
 use mechdiff::scene::{Plan, Scene, Sweeper, build};
+use mechdiff_core::geometry::trace::JitProgram;
 use mechdiff_core::method::{Differentiator, Dual2};
 use mechdiff_mechanisms::Whitworth;
 use mechdiff_mechanisms::whitworth::hand;
@@ -57,6 +63,9 @@ fn whitworth_from_scene(c: &mut Criterion) {
     let psi_program = psi_code.program(&psi_scene).unwrap();
     let (mut psi_registers, mut psi_out) =
         (psi_program.registers(), vec![0.0; psi_program.outputs()]);
+    let jit = JitProgram::compile(&program).unwrap();
+    let psi_jit = JitProgram::compile(&psi_program).unwrap();
+    let (mut jit_out, mut psi_jit_out) = (out.clone(), psi_out.clone());
 
     let mut group =
         c.benchmark_group("whitworth from its scene, ψ,ψ′,ψ″: hand vs generated vs dual2");
@@ -70,6 +79,12 @@ fn whitworth_from_scene(c: &mut Criterion) {
         b.iter(|| {
             psi_program.evaluate(black_box(PHI), &mut psi_registers, &mut psi_out);
             psi_code.read(&psi_out).map(|v| v[0] + v[1] + v[2]).ok()
+        })
+    });
+    group.bench_function("JIT ψ (+ guards)", |b| {
+        b.iter(|| {
+            psi_jit.evaluate(black_box(PHI), &mut psi_jit_out);
+            psi_code.read(&psi_jit_out).map(|v| v[0] + v[1] + v[2]).ok()
         })
     });
     group.bench_function("dual2 ψ (closed form)", |b| {
@@ -97,6 +112,24 @@ fn whitworth_from_scene(c: &mut Criterion) {
         b.iter(|| {
             program.evaluate(black_box(PHI), &mut registers, &mut out);
             code.read(&out).map(|v| v[0] + v[3]).ok()
+        })
+    });
+    group.bench_function("JIT ψ, x_C (+ guards)", |b| {
+        b.iter(|| {
+            jit.evaluate(black_box(PHI), &mut jit_out);
+            code.read(&jit_out).map(|v| v[0] + v[3]).ok()
+        })
+    });
+    group.finish();
+
+    let mut group = c.benchmark_group("whitworth ψ,ψ′,ψ″ evaluator set-up: interpreter vs JIT");
+    group.bench_function("interpreter (Program::compile)", |b| {
+        b.iter(|| psi_code.program(black_box(&psi_scene)).unwrap().outputs())
+    });
+    group.bench_function("JIT (Program::compile, then JitProgram::compile)", |b| {
+        b.iter(|| {
+            let program = psi_code.program(black_box(&psi_scene)).unwrap();
+            JitProgram::compile(&program).unwrap().outputs()
         })
     });
     group.finish();
@@ -139,7 +172,8 @@ fn sweep_solver_vs_program(c: &mut Criterion) {
     group.throughput(Throughput::Elements(POSITIONS as u64 + 1));
     for (name, evaluator) in [
         ("solver", Evaluator::Solver),
-        ("program", Evaluator::Program),
+        ("interpreter", Evaluator::Interpreter),
+        ("JIT (what `program` chooses at 10^4)", Evaluator::Jit),
     ] {
         let scene = whitworth_sweep(evaluator);
         let mechanism = build::mechanism(&scene).unwrap();
@@ -165,8 +199,12 @@ fn sweep_solver_vs_program(c: &mut Criterion) {
     for (name, evaluator) in [
         ("solver", Evaluator::Solver),
         (
-            "program (trace, differentiate, compile)",
-            Evaluator::Program,
+            "interpreter (trace, differentiate, compile)",
+            Evaluator::Interpreter,
+        ),
+        (
+            "JIT (trace, differentiate, compile, cranelift)",
+            Evaluator::Jit,
         ),
     ] {
         let scene = whitworth_sweep(evaluator);

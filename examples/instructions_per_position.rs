@@ -18,7 +18,8 @@
 //! hand-derived ψ, ψ′, ψ″), `generated` (ψ, ψ′, ψ″ generated from the scene, with guards),
 //! `hand_pose` (the hand-derived whole pose: ψ, A, C, S1, S2, S3 with ′ and ″),
 //! `generated_pose` (the same generated from `tests/data/whitworth_pose.toml`, with guards),
-//! `program` (the Whitworth ψ graph by the run-time evaluator, `trace::Program`).
+//! `program` (the Whitworth ψ graph by the run-time evaluator, `trace::Program`), `jit`
+//! (the same program compiled to native code, `trace::JitProgram`).
 
 use mechdiff::core::geometry::{ScalarOutput, Solver, Tracker};
 use mechdiff::core::method::{Differentiator, Dual2};
@@ -67,7 +68,7 @@ fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
     let (Some(which), Some(reps)) = (args.get(1), args.get(2)) else {
         eprintln!(
             "usage: instructions_per_position \
-             geometry|newton|psi|pose|rack|hand|generated|hand_pose|generated_pose|program \
+             geometry|newton|psi|pose|rack|hand|generated|hand_pose|generated_pose|program|jit \
              REPETITIONS"
         );
         return Ok(ExitCode::FAILURE);
@@ -103,6 +104,7 @@ fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
     let psi_code = mechdiff::codegen::scene::SceneCode::of(&psi_scene)?;
     let program = psi_code.program(&psi_scene)?;
     let (mut registers, mut out) = (program.registers(), vec![0.0; program.outputs()]);
+    let jit = mechdiff::core::geometry::trace::JitProgram::compile(&program)?;
     let mut acc = 0.0;
     for _ in 0..reps {
         acc += match which.as_str() {
@@ -158,10 +160,20 @@ fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
                     }
                 })
                 .sum(),
+            "jit" => phis
+                .iter()
+                .map(|&phi| {
+                    jit.evaluate(black_box(phi), &mut out);
+                    match psi_code.read(&out) {
+                        Ok(v) => v[0] + v[1] + v[2],
+                        Err(_) => f64::NAN,
+                    }
+                })
+                .sum(),
             other => {
                 eprintln!(
                     "unknown loop `{other}`: geometry, newton, psi, pose, rack, hand, generated, \
-                     hand_pose, generated_pose or program"
+                     hand_pose, generated_pose, program or jit"
                 );
                 return Ok(ExitCode::FAILURE);
             }

@@ -58,6 +58,19 @@ fn assert_agree(path: &str, solver: &Report, program: &Report) -> usize {
     compared
 }
 
+/// Asserts that two reports of one scene by the run-time evaluator, interpreted and
+/// compiled, are the same: the same values to the bit (both round each operation once, in
+/// the same order, and call the same functions), the same plan and warnings.
+fn assert_same_bits(path: &str, interpreted: &Report, compiled: &Report) {
+    assert_eq!(interpreted.plan, compiled.plan, "{path}");
+    assert_eq!(interpreted.warnings, compiled.warnings, "{path}");
+    assert_eq!(interpreted.rows.len(), compiled.rows.len(), "{path}");
+    for (a, b) in interpreted.rows.iter().zip(&compiled.rows) {
+        let bits = |r: &[f64]| r.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(a), bits(b), "{path} at φ = {}", a[0]);
+    }
+}
+
 #[test]
 fn every_scene_runs_the_same_by_the_program_and_by_the_solver() {
     let mut programs = 0;
@@ -72,7 +85,7 @@ fn every_scene_runs_the_same_by_the_program_and_by_the_solver() {
                 .all(|l| l.path != LoopPath::Program),
             "{path}"
         );
-        match scene::run(&with(scene.clone(), Evaluator::Program)) {
+        match scene::run(&with(scene.clone(), Evaluator::Interpreter)) {
             Ok(program) => {
                 assert!(
                     program
@@ -85,6 +98,9 @@ fn every_scene_runs_the_same_by_the_program_and_by_the_solver() {
                 );
                 assert_agree(&path, &solver, &program);
                 assert_eq!(solver.warnings, program.warnings, "{path}");
+                // The compiled program: the interpreter's rows, bit for bit.
+                let jit = scene::run(&with(scene.clone(), Evaluator::Jit)).unwrap();
+                assert_same_bits(&path, &program, &jit);
                 programs += 1;
             }
             // A cam-driven linkage: the program would be a function of the follower's
@@ -107,9 +123,20 @@ fn unassemblable(sweep: &str) -> Scene {
     scene::parse("four_bar_unassemblable.toml", &text).unwrap()
 }
 
-/// Runs `scene` both ways: the solver's result and the program's.
+/// Runs `scene` both ways: the solver's result and the program's (interpreted and
+/// compiled to native code: the same results, checked here, errors word for word).
 fn both(scene: &Scene) -> [Result<Report>; 2] {
-    [Evaluator::Solver, Evaluator::Program].map(|e| scene::run(&with(scene.clone(), e)))
+    let [solver, interpreted, compiled] =
+        [Evaluator::Solver, Evaluator::Interpreter, Evaluator::Jit]
+            .map(|e| scene::run(&with(scene.clone(), e)));
+    match (&interpreted, &compiled) {
+        (Ok(a), Ok(b)) => assert_same_bits("both", a, b),
+        (a, b) => assert_eq!(
+            a.as_ref().map_err(ToString::to_string).err(),
+            b.as_ref().map_err(ToString::to_string).err()
+        ),
+    }
+    [solver, interpreted]
 }
 
 #[test]
@@ -145,11 +172,13 @@ fn the_cli_reports_the_limit_position_the_same_both_ways() {
     let file = temp_file("four_bar_blocked.toml");
     std::fs::write(&file, text).unwrap();
     let run = |how: &str| mechdiff(&["run", file.to_str().unwrap(), "--evaluator", how]);
-    let (solver, program) = (run("solver"), run("program"));
+    let (solver, program, jit) = (run("solver"), run("program"), run("jit"));
     std::fs::remove_file(&file).unwrap();
-    assert!(!solver.status.success() && !program.status.success());
-    assert_eq!(stderr(&solver), stderr(&program));
-    assert_eq!(stdout(&solver), stdout(&program));
+    assert!(!solver.status.success() && !program.status.success() && !jit.status.success());
+    for other in [&program, &jit] {
+        assert_eq!(stderr(&solver), stderr(other));
+        assert_eq!(stdout(&solver), stdout(other));
+    }
     let message = stderr(&program);
     assert!(
         message.contains("cannot assemble between drive positions 139 deg and 139.5 deg")
@@ -166,6 +195,8 @@ fn the_plan_line_names_each_loops_path() {
         stdout(&output)
     };
     let program = run("program");
+    // The compiled program prints the same plan and table.
+    assert_eq!(program, run("jit"));
     assert!(
         program.contains(
             "by the run-time evaluator of the traced closed forms (exact; a step it cannot \
@@ -206,8 +237,13 @@ fn a_long_sweep_by_the_program_agrees_with_the_solver() {
         "{:?}",
         auto.plan.loops
     );
-    let program = scene::run(&with(scene, Evaluator::Program)).unwrap();
+    let program = scene::run(&with(scene.clone(), Evaluator::Program)).unwrap();
     assert_agree("slider_crank.toml at 0.1°", &auto, &program);
+    // 3 601 positions: `program` compiles to native code (JIT_FROM_POSITIONS); the same
+    // bits as the interpreter.
+    assert!(scene.positions.len() >= mechdiff::evaluator::JIT_FROM_POSITIONS);
+    let interpreted = scene::run(&with(scene, Evaluator::Interpreter)).unwrap();
+    assert_same_bits("slider_crank.toml at 0.1°", &interpreted, &program);
 }
 
 /// A triad (a class-III group) matches no closed form: its loop is solved by Newton.

@@ -462,6 +462,17 @@ pub enum Error {
         /// The parser's message.
         reason: String,
     },
+    /// The run-time evaluator cannot be compiled to native code here (`JitProgram`): the
+    /// host's instruction set is not one cranelift generates code for, or code generation
+    /// failed. The interpreter (`Program`) computes the same values.
+    #[error(
+        "the run-time evaluator cannot be compiled to native code: {reason} (interpret it \
+         instead)"
+    )]
+    JitUnavailable {
+        /// What cranelift said.
+        reason: String,
+    },
 }
 
 /// `message` followed by the input with a caret under character `position` (a long input is

@@ -10,6 +10,7 @@
 //! few ulp of the largest term (1e3 × 1e-16 × ~100 terms) are allowed — far below any error
 //! of a wrong rule, which shows up at O(1).
 
+use mechdiff_core::geometry::trace::{JitProgram, Program};
 use mechdiff_core::symbolic::{Graph, Id};
 use num_dual::{Dual3_64, HyperDual64};
 use proptest::prelude::*;
@@ -72,14 +73,15 @@ fn tree() -> impl Strategy<Value = Tree> {
     })
 }
 
-/// Builds the tree in the graph as an s-expression (domain-safe forms spelled out).
-fn sexpr(tree: &Tree) -> String {
+/// Builds the tree in the graph as an s-expression (domain-safe forms spelled out), with
+/// `a` for the leaf `A` (a symbol or a number).
+fn sexpr(tree: &Tree, a_leaf: &str) -> String {
     match tree {
         Tree::X => "x".into(),
-        Tree::A => "a".into(),
+        Tree::A => a_leaf.into(),
         Tree::Constant(c) => format!("{c}"),
         Tree::Unary(op, a) => {
-            let a = sexpr(a);
+            let a = sexpr(a, a_leaf);
             match *op {
                 "exp_sin" => format!("(exp (sin {a}))"),
                 "ln_safe" => format!("(ln (+ 2 (sin {a})))"),
@@ -97,7 +99,7 @@ fn sexpr(tree: &Tree) -> String {
             }
         }
         Tree::Binary(op, a, b) => {
-            let (a, b) = (sexpr(a), sexpr(b));
+            let (a, b) = (sexpr(a, a_leaf), sexpr(b, a_leaf));
             match *op {
                 "div_safe" => format!("(/ {a} (+ 2 (cos {b})))"),
                 "atan2" => format!("(atan2 {a} (+ 2 (cos {b})))"),
@@ -127,7 +129,7 @@ proptest! {
     fn symbolic_derivatives_agree_with_dual_numbers(
         t in tree(), x in -2.0f64..2.0, a in -2.0f64..2.0
     ) {
-        let expression = sexpr(&t);
+        let expression = sexpr(&t, "a");
         let mut graph = Graph::new();
         let f = graph.parse_sexpr(&expression).unwrap();
         let jet: Vec<Id> = graph.derivatives(f, "x", 3);
@@ -147,5 +149,41 @@ proptest! {
         ];
         let dual = graph.evaluate_dual(&[f], &seeded).unwrap()[0];
         close("∂²/∂x∂a", symbolic, dual.eps1eps2, &expression);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// The run-time evaluator compiled to native code computes the interpreter's bits, and
+    /// both those of the graph's own `f64` evaluation, for a random expression in `x` and
+    /// its derivatives 1 to 3 (no tolerance: all three round each operation once, in the
+    /// same order, and call the same functions for the rest).
+    #[test]
+    fn compiled_and_interpreted_programs_compute_the_graphs_bits(
+        t in tree(), a in -2.0f64..2.0, xs in prop::collection::vec(-2.0f64..2.0, 4)
+    ) {
+        let expression = sexpr(&t, &format!("{a:?}"));
+        let mut graph = Graph::new();
+        let f = graph.parse_sexpr(&expression).unwrap();
+        let jet: Vec<Id> = graph.derivatives(f, "x", 3);
+        let program = Program::compile(&graph, &jet, "x").unwrap();
+        let jit = JitProgram::compile(&program).unwrap();
+        let (mut registers, mut interpreted, mut compiled) =
+            (program.registers(), [0.0; 4], [0.0; 4]);
+        for x in xs {
+            let graph_values = graph.evaluate_f64(&jet, &[("x", x)]).unwrap();
+            program.evaluate(x, &mut registers, &mut interpreted);
+            jit.evaluate(x, &mut compiled);
+            for k in 0..4 {
+                let bits = [graph_values[k], interpreted[k], compiled[k]].map(f64::to_bits);
+                prop_assert!(
+                    bits[0] == bits[1] && bits[1] == bits[2],
+                    "order {k} of {expression} at x = {x}: graph {:e}, interpreted {:e}, \
+                     compiled {:e}",
+                    graph_values[k], interpreted[k], compiled[k]
+                );
+            }
+        }
     }
 }

@@ -13,11 +13,27 @@
 //! The results agree with the solver's to rounding (1e-13 relative, tested on every scene
 //! of `scenes/`).
 //!
-//! `auto` (the default) is the solver for now. On a quiet machine the evaluator's rows cost
-//! 0.57× the solver's (BENCHMARKS.md, "Quiet-machine run"), but its values agree with the
-//! solver's to 1e-13, not bit for bit: making it the default changes the last printed digits
-//! of existing runs, so `auto` is where that choice changes once the outputs are
-//! re-baselined.
+//! **Interpreter or native code.** The program runs on one of two back ends that compute the
+//! same values bit for bit (tested on every scene of `scenes/`, on random formulas and on
+//! the guards' errors): the interpreter ([`mechdiff_core::geometry::trace::Program`]) or
+//! the same instruction list compiled to machine code by cranelift
+//! ([`mechdiff_core::geometry::trace::JitProgram`]). Measured in one criterion run of
+//! `benches/scene_codegen.rs` (BENCHMARKS.md, "The run-time evaluator compiled to native
+//! code"): Whitworth's ψ, ψ′, ψ″ cost 1.73× the hand-derived formulas compiled and 2.97×
+//! interpreted (callgrind: 1.75× and 3.38× the hand formulas' instructions, the issue's
+//! bound being 2.5×), and the rows of `mechdiff run` 0.70× the interpreter's; but compiling
+//! costs 0.22 ms more than the interpreter's set-up for `scenes/whitworth.toml` (0.34 ms
+//! against 0.12 ms), which the faster rows repay after about 2 600 positions. So
+//! `--evaluator program` interprets a sweep of fewer than [`JIT_FROM_POSITIONS`] positions
+//! (the scenes' usual hundreds) and compiles a longer one;
+//! `--evaluator interpreter|jit` force one. On a host cranelift does not generate code for,
+//! the JIT falls back to the interpreter with a warning.
+//!
+//! `auto` (the default) is the solver for now. The evaluator's rows cost 0.46× (compiled)
+//! and 0.66× (interpreted) the solver's, but its values agree with the solver's to 1e-13, not bit for bit (the JIT is
+//! bit for bit the *interpreter*, not the solver: they differentiate differently):
+//! making it the default changes the last printed digits of existing runs, so `auto` is
+//! where that choice changes once the outputs are re-baselined.
 
 mod program;
 
@@ -34,9 +50,20 @@ pub enum Evaluator {
     /// The geometry solver: closed forms (or Newton) in dual numbers at every position.
     Solver,
     /// The run-time evaluator of the traced closed forms; an error for a scene that has a
-    /// loop without a closed form or a cam drive.
+    /// loop without a closed form or a cam drive. Compiled to native code for a sweep of
+    /// at least [`JIT_FROM_POSITIONS`] positions, interpreted for a shorter one (see the
+    /// module documentation).
     Program,
+    /// The run-time evaluator, always interpreted.
+    Interpreter,
+    /// The run-time evaluator, always compiled to native code by cranelift (interpreted,
+    /// with a warning, on a host cranelift does not generate code for).
+    Jit,
 }
+
+/// From how many drive positions `--evaluator program` compiles the program to native code
+/// rather than interpreting it: where the compilation has paid for itself (BENCHMARKS.md).
+pub const JIT_FROM_POSITIONS: usize = 2500;
 
 /// Which path evaluates a loop in a run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -2,9 +2,9 @@
 //! once, then one program evaluation per drive position.
 
 use mechdiff_core::geometry::Tracker;
-use mechdiff_core::geometry::trace::ProgramTracker;
+use mechdiff_core::geometry::trace::{Backend, ProgramTracker};
 
-use super::{Evaluator, LoopPath, LoopPlan};
+use super::{Evaluator, JIT_FROM_POSITIONS, LoopPath, LoopPlan};
 use crate::codegen::scene::SceneCode;
 use crate::error::{Error, Result};
 use crate::scene::model::Scene;
@@ -27,18 +27,23 @@ impl ProgramPath {
     /// tracker at the sketch: `None` for the solver.
     ///
     /// # Errors
-    /// For `--evaluator program` only: [`Error::NoEvaluator`] when the scene has a loop
-    /// without a closed form, a cam drive, or an output the trace cannot follow.
+    /// For `--evaluator program|interpreter|jit` only: [`Error::NoEvaluator`] when the
+    /// scene has a loop without a closed form, a cam drive, or an output the trace cannot
+    /// follow.
     pub fn choose(scene: &Scene, tracker: &Tracker<'_>) -> Result<Option<Self>> {
-        match scene.evaluator {
+        let backend = match scene.evaluator {
             // `auto`: the solver for now (see `evaluator`).
-            Evaluator::Solver | Evaluator::Auto => Ok(None),
-            Evaluator::Program => Self::new(scene, tracker).map(Some),
-        }
+            Evaluator::Solver | Evaluator::Auto => return Ok(None),
+            Evaluator::Program if scene.positions.len() >= JIT_FROM_POSITIONS => Backend::Jit,
+            Evaluator::Program | Evaluator::Interpreter => Backend::Interpreter,
+            Evaluator::Jit => Backend::Jit,
+        };
+        Self::new(scene, tracker, backend).map(Some)
     }
 
-    /// Traces `scene` (as `mechdiff codegen` does), with its loops' margins, and compiles it.
-    fn new(scene: &Scene, tracker: &Tracker<'_>) -> Result<Self> {
+    /// Traces `scene` (as `mechdiff codegen` does), with its loops' margins, and compiles it
+    /// for `backend`.
+    fn new(scene: &Scene, tracker: &Tracker<'_>, backend: Backend) -> Result<Self> {
         let unavailable = |reason: String| Error::NoEvaluator {
             file: scene.file.clone(),
             reason,
@@ -49,7 +54,7 @@ impl ProgramPath {
             unavailable(text.strip_prefix(&file).unwrap_or(&text).to_owned())
         })?;
         let values: Vec<_> = code.jets.iter().flatten().copied().collect();
-        let tracker = ProgramTracker::new(tracker, &mut code.position, &values)
+        let tracker = ProgramTracker::new(tracker, &mut code.position, &values, backend)
             .map_err(|e| unavailable(e.to_string()))?;
         Ok(ProgramPath {
             tracker,
@@ -62,6 +67,20 @@ impl ProgramPath {
                 .map(|g| g.joints.clone())
                 .collect(),
         })
+    }
+
+    /// The back end evaluating the program.
+    #[cfg(test)]
+    pub fn backend(&self) -> Backend {
+        self.tracker.backend()
+    }
+
+    /// The warning of a run whose JIT is not available on this host (the program is
+    /// interpreted instead: the same values).
+    pub fn jit_warning(&self) -> Option<String> {
+        self.tracker
+            .jit_unavailable()
+            .map(|e| format!("{e}: the run-time evaluator is interpreted (the same values)"))
     }
 
     /// The drive position the program stands at.
@@ -118,4 +137,48 @@ pub(crate) fn solver_loops(tracker: &Tracker<'_>) -> Vec<LoopPlan> {
             },
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `program` interprets a short sweep and compiles a long one to native code
+    /// ([`JIT_FROM_POSITIONS`]); `interpreter` and `jit` do what they say whatever the length.
+    #[test]
+    fn the_back_end_follows_the_number_of_positions() {
+        let text = std::fs::read_to_string("scenes/slider_crank.toml").unwrap();
+        for (step, positions) in [("step = 5\n", 73), ("step = 0.1\n", 3601)] {
+            let mut scene =
+                crate::scene::parse("slider_crank.toml", &text.replace("step = 5\n", step))
+                    .unwrap();
+            assert_eq!(scene.positions.len(), positions);
+            let mechanism = crate::scene::build::mechanism(&scene).unwrap();
+            let tracker = mechdiff_core::geometry::Solver::default()
+                .track(&mechanism)
+                .unwrap();
+            let long = positions >= JIT_FROM_POSITIONS;
+            for (evaluator, want) in [
+                (Evaluator::Interpreter, Backend::Interpreter),
+                (Evaluator::Jit, Backend::Jit),
+                (
+                    Evaluator::Program,
+                    if long {
+                        Backend::Jit
+                    } else {
+                        Backend::Interpreter
+                    },
+                ),
+            ] {
+                scene.evaluator = evaluator;
+                let path = ProgramPath::choose(&scene, &tracker).unwrap().unwrap();
+                assert_eq!(
+                    path.backend(),
+                    want,
+                    "{evaluator:?} over {positions} positions"
+                );
+                assert_eq!(path.jit_warning(), None);
+            }
+        }
+    }
 }

@@ -59,6 +59,8 @@ pub struct Sweeper<'s> {
     /// The run-time evaluator, when the scene's `evaluator` chose it: it takes every step
     /// it can prove, the solver the others (see [`crate::evaluator`]).
     program: Option<ProgramPath>,
+    /// Why the run-time evaluator is interpreted where the JIT was asked for.
+    jit_warning: Option<String>,
 }
 
 /// The walk at the derivative order the plan needs.
@@ -89,6 +91,7 @@ impl<'s> Sweeper<'s> {
             .map(|output| Resolved::new(scene, mechanism, output))
             .collect::<Result<Vec<_>>>()?;
         let program = ProgramPath::choose(scene, &tracker)?;
+        let jit_warning = program.as_ref().and_then(ProgramPath::jit_warning);
         let outputs = Outputs {
             tracker,
             drive: plan.drive.unwrap_or(DriveState::constant_speed(0.0)),
@@ -105,6 +108,7 @@ impl<'s> Sweeper<'s> {
             walk,
             worst: None,
             program,
+            jit_warning,
         })
     }
 
@@ -253,22 +257,24 @@ impl<'s> Sweeper<'s> {
         }
     }
 
-    /// The warnings about the rows so far: the most ill-conditioned position, if its
-    /// rounding error is worth a word.
+    /// The warnings about the rows so far: a JIT asked for but not available on this host,
+    /// and the most ill-conditioned position, if its rounding error is worth a word.
     pub fn warnings(&self) -> Vec<String> {
+        let mut warnings: Vec<String> = self.jit_warning.iter().cloned().collect();
         let Some((amplification, phi, l)) = self.worst.as_ref().filter(|w| w.0 > ILL_CONDITIONED)
         else {
-            return Vec::new();
+            return warnings;
         };
         let joints = self.outputs().tracker.joints_of_loop(*l);
-        vec![format!(
+        warnings.push(format!(
             "ill-conditioned position at drive position {}: the loop of joints {} amplifies \
              rounding by {amplification:.1e} (its lever is that much shorter than in the \
              sketch); expect a relative error of about {:.0e} in the results there",
             self.scene.drive_text(*phi),
             joints.join(", "),
             amplification * f64::EPSILON,
-        )]
+        ));
+        warnings
     }
 }
 

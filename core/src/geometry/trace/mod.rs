@@ -25,13 +25,15 @@
 //! assemble ([`crate::Error::Unassemblable`]): [`GuardKind::verdict`] decides this from the
 //! two values exactly as the solver's closed form does.
 
+mod jit;
 mod program;
 mod scalar;
 mod tracker;
 
+pub use jit::JitProgram;
 pub use program::Program;
 pub use scalar::Traced;
-pub use tracker::ProgramTracker;
+pub use tracker::{Backend, ProgramTracker};
 
 use super::constraints::Frames;
 use super::output::{PointOutput, Scalar as Quantity, ScalarOutput};

@@ -25,7 +25,7 @@ use crate::symbolic::{Binary, Comparison, Graph, Id, Node, Unary};
 
 /// What an instruction computes from its argument registers `a`, `b`, `c`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-enum Op {
+pub(super) enum Op {
     Add,
     Sub,
     Mul,
@@ -56,12 +56,12 @@ enum Op {
 
 /// One instruction: `registers[to] = op(registers[a], registers[b], registers[c])`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct Instruction {
-    op: Op,
-    to: u32,
-    a: u32,
-    b: u32,
-    c: u32,
+pub(super) struct Instruction {
+    pub(super) op: Op,
+    pub(super) to: u32,
+    pub(super) a: u32,
+    pub(super) b: u32,
+    pub(super) c: u32,
 }
 
 impl Instruction {
@@ -104,12 +104,12 @@ impl Instruction {
 pub struct Program {
     /// The registers' initial values: the constants, the drive position (0), and the
     /// values of the instructions folded at compile time (every argument a constant).
-    initial: Vec<f64>,
+    pub(super) initial: Vec<f64>,
     /// The drive position's register.
-    drive: u32,
+    pub(super) drive: u32,
     /// The instructions, in order; every register they name is below `size`.
-    code: Vec<Instruction>,
-    outputs: Vec<u32>,
+    pub(super) code: Vec<Instruction>,
+    pub(super) outputs: Vec<u32>,
     size: usize,
 }
 

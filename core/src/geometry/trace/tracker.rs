@@ -13,13 +13,42 @@
 //! the step, locates the end of the branch, and reports — so every error and every
 //! position the evaluator cannot prove is the solver's own answer.
 
-use super::{DRIVE, GuardKind, PositionGraph, Program};
+use super::{DRIVE, GuardKind, JitProgram, PositionGraph, Program};
 use crate::Error;
 use crate::geometry::Tracker;
 use crate::geometry::closed_form::amplification;
 use crate::geometry::solver::interval::{MAX_SUBSTEPS, passes};
 use crate::symbolic::{Id, rules};
 use num_dual::Dual2_64;
+
+/// Which back end evaluates a [`ProgramTracker`]'s program: the same values, bit for bit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Backend {
+    /// The interpreter ([`Program`]): ready as soon as compiled to instructions.
+    Interpreter,
+    /// Native code ([`JitProgram`]): costs a compilation by cranelift once, then each
+    /// evaluation less (BENCHMARKS.md); the interpreter where the host has no JIT.
+    Jit,
+}
+
+/// The program, interpreted or compiled.
+#[derive(Debug, Clone)]
+enum Code {
+    Interpreted {
+        program: Program,
+        registers: Vec<f64>,
+    },
+    Compiled(JitProgram),
+}
+
+impl Code {
+    fn evaluate(&mut self, phi: f64, out: &mut [f64]) {
+        match self {
+            Code::Interpreted { program, registers } => program.evaluate(phi, registers, out),
+            Code::Compiled(jit) => jit.evaluate(phi, out),
+        }
+    }
+}
 
 /// One loop's guard as the program reads it.
 #[derive(Debug, Clone, Copy)]
@@ -43,15 +72,19 @@ struct Loop {
 /// let t = Solver::default().track(&m).unwrap();
 /// let mut traced = trace::trace(&t, |pose| pose.point(&tip).to_vec()).unwrap();
 /// let x = traced.outputs[0];
-/// let mut walk = trace::ProgramTracker::new(&t, &mut traced, &[x]).unwrap();
+/// let jit = trace::Backend::Jit;
+/// let mut walk = trace::ProgramTracker::new(&t, &mut traced, &[x], jit).unwrap();
 /// let values = walk.move_to(0.5).unwrap();
 /// assert!((values[0] - 2.0 * 0.5f64.cos()).abs() < 1e-15);
 /// assert!(walk.move_to(f64::NAN).is_none());
 /// ```
 #[derive(Debug, Clone)]
 pub struct ProgramTracker {
-    program: Program,
-    registers: Vec<f64>,
+    code: Code,
+    /// The program's number of instructions.
+    instructions: usize,
+    /// Why the JIT asked for is not used, if it is not.
+    jit_unavailable: Option<Error>,
     /// The program's outputs: the caller's values, then `[disc, condition, disc′, disc″]`
     /// loop by loop.
     out: Vec<f64>,
@@ -72,7 +105,9 @@ pub struct ProgramTracker {
 impl ProgramTracker {
     /// Compiles `values` (nodes of `position`'s graph: what the caller reads at every
     /// position) with every loop's guard and margin derivatives, and starts at the drive
-    /// position of `tracker` (the sketch), whose mechanism `position` traces.
+    /// position of `tracker` (the sketch), whose mechanism `position` traces; evaluated by
+    /// `backend` (the interpreter if the JIT is not available: see
+    /// [`ProgramTracker::jit_unavailable`]).
     ///
     /// # Errors
     /// The symbolic engine's limits ([`Error::ExpressionTooLarge`], …) differentiating the
@@ -82,6 +117,7 @@ impl ProgramTracker {
         tracker: &Tracker<'_>,
         position: &mut PositionGraph,
         values: &[Id],
+        backend: Backend,
     ) -> Result<Self, Error> {
         let mut roots = values.to_vec();
         for guard in &position.guards {
@@ -92,6 +128,26 @@ impl ProgramTracker {
             roots.extend([guard.discriminant, guard.condition, jet[1], jet[2]]);
         }
         let program = Program::compile(&position.graph, &roots, DRIVE)?;
+        let instructions = program.instructions();
+        let (code, jit_unavailable) = match backend {
+            Backend::Interpreter => (
+                Code::Interpreted {
+                    registers: program.registers(),
+                    program,
+                },
+                None,
+            ),
+            Backend::Jit => match JitProgram::compile(&program) {
+                Ok(jit) => (Code::Compiled(jit), None),
+                Err(e) => (
+                    Code::Interpreted {
+                        registers: program.registers(),
+                        program,
+                    },
+                    Some(e),
+                ),
+            },
+        };
         let loops: Vec<Loop> = (position.guards.iter())
             .map(|g| Loop {
                 kind: g.kind,
@@ -100,9 +156,10 @@ impl ProgramTracker {
             .collect();
         let one = Dual2_64::from(1.0);
         let mut walk = ProgramTracker {
-            registers: program.registers(),
+            code,
+            instructions,
+            jit_unavailable,
             out: vec![0.0; roots.len()],
-            program,
             values: values.len(),
             limit: position.limit,
             longest: tracker.longest_step(),
@@ -131,13 +188,25 @@ impl ProgramTracker {
 
     /// Number of instructions of the program (see [`Program::instructions`]).
     pub fn instructions(&self) -> usize {
-        self.program.instructions()
+        self.instructions
+    }
+
+    /// The back end evaluating the program.
+    pub fn backend(&self) -> Backend {
+        match self.code {
+            Code::Interpreted { .. } => Backend::Interpreter,
+            Code::Compiled(_) => Backend::Jit,
+        }
+    }
+
+    /// Why the JIT asked for is not used ([`Error::JitUnavailable`]), if it is not.
+    pub fn jit_unavailable(&self) -> Option<&Error> {
+        self.jit_unavailable.as_ref()
     }
 
     /// Evaluates at `phi` into `out` and the trial margins; `false` if a guard fails.
     fn evaluate(&mut self, phi: f64) -> bool {
-        self.program
-            .evaluate(phi, &mut self.registers, &mut self.out);
+        self.code.evaluate(phi, &mut self.out);
         let guards = &self.out[self.values..];
         for (l, (lp, g)) in self.loops.iter().zip(guards.chunks_exact(4)).enumerate() {
             if lp.kind.verdict(g[0], g[1], self.limit).is_err() {
