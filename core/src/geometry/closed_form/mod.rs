@@ -356,15 +356,36 @@ impl ClosedForm {
         previous: &[f64],
         q: &mut [D],
         frames: &mut [(D, D)],
-        mut margin_of: impl FnMut(usize, &Margin<D>, f64),
+        margin_of: impl FnMut(usize, &Margin<D>, f64),
     ) -> Result<(), (usize, Failure)> {
-        for (i, step) in self.steps.iter().enumerate() {
-            let step = step.as_ref().ok_or((
+        let mut no_newton = |i: usize, _: &mut [D], _: &mut [(D, D)]| {
+            Err((
                 i,
                 Failure::Singular {
                     condition: f64::NAN,
                 },
-            ))?;
+            ))
+        };
+        self.solve_each_or(phi, previous, q, frames, margin_of, &mut no_newton)
+    }
+
+    /// [`ClosedForm::solve_each`], placing each loop without a closed form (or whose
+    /// closed form is not in use: `closed` false there) by `newton` instead, which may fail
+    /// with its own loop index and failure.
+    pub(crate) fn solve_each_or<D: Scalar>(
+        &self,
+        phi: D,
+        previous: &[f64],
+        q: &mut [D],
+        frames: &mut [(D, D)],
+        mut margin_of: impl FnMut(usize, &Margin<D>, f64),
+        newton: &mut dyn FnMut(usize, &mut [D], &mut [(D, D)]) -> Result<(), (usize, Failure)>,
+    ) -> Result<(), (usize, Failure)> {
+        for (i, step) in self.steps.iter().enumerate() {
+            let Some(step) = step.as_ref() else {
+                newton(i, q, frames)?;
+                continue;
+            };
             let mut margin = Margin::none();
             let solved = self.solve(step, phi, previous, q, frames, &mut margin);
             margin_of(i, &margin, step.inv_scale);

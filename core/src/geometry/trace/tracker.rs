@@ -76,13 +76,22 @@ impl ProgramTracker {
     ///
     /// # Errors
     /// The symbolic engine's limits ([`Error::ExpressionTooLarge`], …) differentiating the
-    /// margins; [`Error::NoClosedForm`] if the program's guards fail at the sketch (the
+    /// margins; [`Error::NoClosedForm`] if `position` has a Newton loop, or if the
+    /// program's guards fail at the sketch (the
     /// solver's do not: a bug, reported rather than walked).
     pub fn new(
         tracker: &Tracker<'_>,
         position: &mut PositionGraph,
         values: &[Id],
     ) -> Result<Self, Error> {
+        if let Some(block) = position.newton.first() {
+            return Err(Error::NoClosedForm {
+                what: "the run-time evaluator (mixed plans are evaluated by generated code \
+                       or the solver)"
+                    .to_owned(),
+                joints: block.joints.clone(),
+            });
+        }
         let mut roots = values.to_vec();
         for guard in &position.guards {
             let jet =
