@@ -105,9 +105,11 @@ macro_rules! mixed {
 }
 
 // Scenes with a loop the closed forms do not match: the triad (the crank in closed form,
-// then the triad by Newton).
+// then the triad by Newton), and the triad driving a slider (then a dyad in closed form on
+// the triad's links).
 mixed! {
     triad_codegen => "tests/data/triad_codegen.toml",
+    triad_slider => "tests/data/triad_slider.toml",
 }
 
 fn generated_path(scene: &str) -> String {
@@ -392,4 +394,52 @@ fn codegen_command_prints_the_module_and_refuses_other_scenes() {
         let message = String::from_utf8(refused.stderr).unwrap();
         assert!(message.contains(what), "{path}: {message}");
     }
+}
+
+#[test]
+fn mixed_plans_fail_where_and_as_the_solver_does() {
+    // The triad stops at a limit position near φ = 91.17°: a sweep from 80° to 100° in
+    // steps of 0.5°, walked by the generated tracker and by the solver's, fails at the same
+    // positions with the same error (kind and loop).
+    let path = "tests/data/triad_codegen.toml";
+    let (_, loops, _, walk) = MIXED.iter().find(|(p, ..)| *p == path).unwrap();
+    let scene = scene::load(path).unwrap();
+    let m = scene::build::mechanism(&scene).unwrap();
+    let mut solver = mechdiff_core::geometry::Solver::default()
+        .track(&m)
+        .unwrap();
+    let phis: Vec<f64> = (0..=40)
+        .map(|k| (80.0 + 0.5 * k as f64).to_radians())
+        .collect();
+    let (mut failed, mut assembled) = (0, 0);
+    for (&phi, generated) in phis.iter().zip(walk(&phis)) {
+        use mechdiff_core::Error as Core;
+        match (generated, solver.move_to(phi)) {
+            (Ok(_), Ok(_)) => assembled += 1,
+            (Err((l, kind)), Err(error)) => {
+                let (expected, joints) = match &error {
+                    Core::Unassemblable { joints, .. } => ("unassemblable", joints),
+                    Core::Singular { joints, .. } => ("singular", joints),
+                    Core::BranchFlip { joints, .. } => ("branch flip", joints),
+                    other => panic!("φ = {phi}: solver {other}"),
+                };
+                assert_eq!(
+                    (kind, loops[l]),
+                    (expected, &*joints.join(", ")),
+                    "φ = {phi}"
+                );
+                if failed == 0 {
+                    println!("first failure at φ = {phi}: {error}");
+                }
+                failed += 1;
+            }
+            (generated, solver) => {
+                panic!("φ = {phi}: generated {generated:?}, solver {solver:?}")
+            }
+        }
+    }
+    assert!(
+        failed > 10 && assembled > 10,
+        "{failed} failed, {assembled} assembled"
+    );
 }

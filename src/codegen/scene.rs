@@ -303,9 +303,7 @@ fn mixed_module(scene: &Scene, shown_path: &str, code: &SceneCode) -> Result<Str
     let outputs = &code.names;
     let mut loops: Vec<(usize, String)> = (code.position.guards.iter())
         .map(|g| (g.loop_index, g.joints.join(", ")))
-        .chain(
-            (code.position.newton.iter()).map(|b| (b.loop_index, b.joints.join(", "))),
-        )
+        .chain((code.position.newton.iter()).map(|b| (b.loop_index, b.joints.join(", "))))
         .collect();
     loops.sort();
     let paths: Vec<String> = (0..loops.len())

@@ -74,11 +74,7 @@ pub(super) fn total(
     next: &HashMap<String, String>,
     skip: &dyn Fn(&str) -> bool,
 ) -> Result<Id, Error> {
-    let symbols: Vec<String> = graph
-        .symbols(&[f])
-        .into_iter()
-        .map(str::to_owned)
-        .collect();
+    let symbols: Vec<String> = graph.symbols(&[f]).into_iter().map(str::to_owned).collect();
     let mut sum = graph.number(0.0);
     for s in symbols {
         let successor = match next.get(&s) {
@@ -106,7 +102,9 @@ impl NewtonBlock {
         let mut jacobian = Vec::with_capacity(self.residual.len() * self.columns.len());
         for &r in &self.residual {
             for &c in &self.columns {
-                jacobian.push(graph.try_derivatives(r, &coordinate_symbol(c, 0), 1, rules::MAX_NODES)?[1]);
+                jacobian.push(
+                    graph.try_derivatives(r, &coordinate_symbol(c, 0), 1, rules::MAX_NODES)?[1],
+                );
             }
         }
         self.jacobian = jacobian;
