@@ -366,23 +366,26 @@ impl ClosedForm {
                 },
             ))
         };
-        self.solve_each_or(phi, previous, q, frames, margin_of, &mut no_newton)
+        let all = vec![true; self.steps.len()];
+        self.solve_each_or(phi, previous, q, frames, &all, margin_of, &mut no_newton)
     }
 
     /// [`ClosedForm::solve_each`], placing each loop without a closed form (or whose
-    /// closed form is not in use: `closed` false there) by `newton` instead, which may fail
+    /// closed form is not in use: `in_use` false there) by `newton` instead, which may fail
     /// with its own loop index and failure.
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn solve_each_or<D: Scalar>(
         &self,
         phi: D,
         previous: &[f64],
         q: &mut [D],
         frames: &mut [(D, D)],
+        in_use: &[bool],
         mut margin_of: impl FnMut(usize, &Margin<D>, f64),
         newton: &mut dyn FnMut(usize, &mut [D], &mut [(D, D)]) -> Result<(), (usize, Failure)>,
     ) -> Result<(), (usize, Failure)> {
         for (i, step) in self.steps.iter().enumerate() {
-            let Some(step) = step.as_ref() else {
+            let Some(step) = step.as_ref().filter(|_| in_use[i]) else {
                 newton(i, q, frames)?;
                 continue;
             };

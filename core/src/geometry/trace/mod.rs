@@ -206,6 +206,8 @@ pub fn trace(
     outputs: impl FnOnce(&Pose) -> Vec<Traced>,
 ) -> Result<PositionGraph, Error> {
     let closed = tracker.closed_form_table();
+    // The loops the solver solves in closed form (all that match, unless turned off).
+    let in_use = tracker.closed_form_loops();
     let (eq, loops, size) = tracker.structure();
     let sketch = tracker.coordinates();
     let phi0 = tracker.phi();
@@ -245,6 +247,7 @@ pub fn trace(
             sketch,
             &mut pose.q,
             &mut pose.frames,
+            &in_use,
             |l, margin, scale| {
                 let (kind, condition) = match margin.root {
                     None => (GuardKind::Always, Traced::from(1.0)),
