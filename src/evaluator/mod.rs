@@ -33,8 +33,8 @@ pub enum Evaluator {
     Auto,
     /// The geometry solver: closed forms (or Newton) in dual numbers at every position.
     Solver,
-    /// The run-time evaluator of the traced closed forms; an error for a scene that has a
-    /// loop without a closed form or a cam drive.
+    /// The run-time evaluator of the traced closed forms (a loop without one solved by
+    /// Newton inside it); an error for a scene with a cam drive.
     Program,
 }
 
@@ -48,6 +48,9 @@ pub enum LoopPath {
     /// The solver's Newton iteration with implicit differentiation (a loop's closed form,
     /// if it has one, only seeds it).
     Newton,
+    /// Newton's iteration inside the run-time evaluator (a loop without a closed form in a
+    /// mixed plan: its residual, Jacobian and implicit derivatives traced).
+    NewtonInProgram,
 }
 
 /// One loop of a run and the path that evaluates it.
@@ -65,6 +68,7 @@ impl fmt::Display for LoopPath {
             LoopPath::Program => "program",
             LoopPath::ClosedForm => "closed form",
             LoopPath::Newton => "Newton",
+            LoopPath::NewtonInProgram => "Newton in program",
         })
     }
 }
@@ -80,7 +84,13 @@ impl fmt::Display for LoopPlan {
 pub fn describe(loops: &[LoopPlan]) -> String {
     let each: Vec<String> = loops.iter().map(LoopPlan::to_string).collect();
     let each = each.join(", ");
-    if loops.iter().any(|l| l.path == LoopPath::Program) {
+    if loops.iter().any(|l| l.path == LoopPath::NewtonInProgram) {
+        format!(
+            "by the run-time evaluator of the traced closed forms and, for loops without \
+             one, Newton in the program (exact; a step it cannot prove is taken by the \
+             geometry solver): loops {each}"
+        )
+    } else if loops.iter().any(|l| l.path == LoopPath::Program) {
         format!(
             "by the run-time evaluator of the traced closed forms (exact; a step it cannot \
              prove is taken by the geometry solver): loops {each}"

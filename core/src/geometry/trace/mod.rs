@@ -25,11 +25,13 @@
 //! assemble ([`crate::Error::Unassemblable`]): [`GuardKind::verdict`] decides this from the
 //! two values exactly as the solver's closed form does.
 
+mod mixed;
 mod newton;
 mod program;
 mod scalar;
 mod tracker;
 
+pub use mixed::MixedTracker;
 pub use newton::{NewtonBlock, coordinate_symbol};
 pub use program::Program;
 pub use scalar::Traced;
