@@ -443,3 +443,34 @@ fn mixed_plans_fail_where_and_as_the_solver_does() {
         "{failed} failed, {assembled} assembled"
     );
 }
+
+#[test]
+fn run_time_evaluator_of_mixed_plans_agrees_with_the_generated_code() {
+    // Bit for bit, walking the scene's sweep in order: the evaluator's programs compute the
+    // same graph's operations in the same order as the emitted Rust, and both solve the
+    // Newton loops with the same predictor, the same Newton steps and polish, and the same
+    // Gaussian elimination. Every step is taken by the evaluator itself (`Some`): none is
+    // left to the solver inside these sweeps.
+    for (path, _, _, walk) in MIXED {
+        let scene = scene::load(path).unwrap();
+        let code = SceneCode::of(&scene).unwrap();
+        let m = scene::build::mechanism(&scene).unwrap();
+        let solver = mechdiff_core::geometry::Solver::default()
+            .track(&m)
+            .unwrap();
+        let values: Vec<_> = code.jets.iter().flatten().copied().collect();
+        let mut program =
+            mechdiff_core::geometry::trace::MixedTracker::new(&solver, &code.position, &values)
+                .unwrap();
+        let report = run(&scene).unwrap();
+        let phis: Vec<f64> = report.rows.iter().map(|row| row[0]).collect();
+        for (&phi, generated) in phis.iter().zip(walk(&phis)) {
+            let rows: Vec<f64> = generated.unwrap().concat();
+            let values = program
+                .move_to(phi)
+                .unwrap_or_else(|| panic!("{path}: the evaluator left φ = {phi} to the solver"));
+            let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(values), bits(&rows), "{path} at φ = {phi}");
+        }
+    }
+}

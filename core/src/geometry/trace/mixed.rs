@@ -9,10 +9,13 @@
 //! the Taylor predictor `q + h q′ + h²/2 q″`, Newton until max |Φ| ≤ tolerance × size, the
 //! loop's condition (the solver's own measure, `branch::condition`, on Φ_q scaled as the
 //! solver scales it) and branch (the sign of det Φ_q), one polishing step, Φ_q factorised
-//! again at the polished pose, then q′, q″, … with that factorisation. A step is accepted
-//! only when all this succeeds at once and every guard holds; otherwise
-//! [`MixedTracker::move_to`] says `None` and the solver takes the step (halving it,
-//! reporting its errors), as for [`super::ProgramTracker`].
+//! again at the polished pose, then q′, q″, … with that factorisation, and every guard of
+//! the closed-form loops. A step that fails (Newton, the branch, a guard) is halved as the
+//! solver halves it; where the solver would report an error (a toggle, or a step still
+//! failing after its halvings), [`MixedTracker::move_to`] says `None` and the solver takes
+//! the move from the last position and reports, as for [`super::ProgramTracker`]. The
+//! generated code of the same scene (`mechdiff codegen`) runs the same algorithm on the
+//! same graph: the two agree bit for bit (tests/scene_codegen.rs).
 
 use nalgebra::DMatrix;
 
@@ -21,6 +24,16 @@ use crate::Error;
 use crate::geometry::Tracker;
 use crate::geometry::branch::{self, Loop};
 use crate::symbolic::Id;
+
+/// How a step ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Step {
+    Accepted,
+    /// Newton failed, a branch flipped, a guard failed: the step is halved.
+    Failed,
+    /// A toggle (the solver reports it at once).
+    Singular,
+}
 
 /// One Newton loop as the evaluator solves it.
 #[derive(Debug, Clone)]
@@ -67,6 +80,7 @@ pub struct MixedTracker {
     tolerance: f64,
     max_iterations: usize,
     max_substeps: usize,
+    max_subdivisions: usize,
     longest: f64,
 }
 
@@ -80,7 +94,11 @@ impl MixedTracker {
     /// [`super::ProgramTracker`]) or the program cannot solve the sketch (the solver can: a
     /// bug, reported rather than walked); [`Error::UnboundSymbol`] for a symbol the graph
     /// should not have.
-    pub fn new(tracker: &Tracker<'_>, position: &PositionGraph, values: &[Id]) -> Result<Self, Error> {
+    pub fn new(
+        tracker: &Tracker<'_>,
+        position: &PositionGraph,
+        values: &[Id],
+    ) -> Result<Self, Error> {
         let first = position.newton.first().ok_or_else(|| Error::NoClosedForm {
             what: "the mixed-plan evaluator (every loop has a closed form: use the program)"
                 .to_owned(),
@@ -149,11 +167,12 @@ impl MixedTracker {
             tolerance: position.newton_tolerance,
             max_iterations: position.max_iterations,
             max_substeps: position.max_substeps,
+            max_subdivisions: position.max_subdivisions,
             longest: position.longest_step,
             blocks: compiled,
             outputs,
         };
-        if !walk.step(tracker.phi()) {
+        if walk.step(tracker.phi()) != Step::Accepted {
             return Err(Error::NoClosedForm {
                 what: "the mixed-plan evaluator (its Newton fails at the sketch)".to_owned(),
                 joints: first.joints.clone(),
@@ -190,29 +209,58 @@ impl MixedTracker {
         self.blocks.iter().map(|b| b.loop_index).collect()
     }
 
-    /// Walks to `phi` in steps of at most the solver's longest; on failure restores the
-    /// state of the start.
+    /// Walks to `phi` as the solver's Newton path does: steps of at most the solver's
+    /// longest, a failing step halved (at most the solver's number of times; a toggle is
+    /// not retried). On failure restores the state of the start.
     fn walk(&mut self, phi: f64) -> bool {
         if !phi.is_finite() {
             return false;
         }
         let start = (self.inputs.clone(), self.branches.clone());
-        let mut steps = 0;
-        while self.phi() != phi || steps == 0 {
-            let remaining = phi - self.phi();
-            let target = if remaining.abs() > self.longest {
-                self.phi() + self.longest.copysign(remaining)
-            } else {
-                phi
-            };
-            if steps >= self.max_substeps || !self.step(target) {
-                (self.inputs, self.branches) = start;
-                return false;
+        let (mut halvings, mut substeps) = (0usize, 0usize);
+        let mut failed = false;
+        while self.phi() != phi || substeps == 0 {
+            if substeps >= self.max_substeps {
+                failed = true;
+                break;
             }
-            self.accept();
-            steps += 1;
+            substeps += 1;
+            let remaining = phi - self.phi();
+            let full = if remaining.abs() > self.longest {
+                self.longest.copysign(remaining)
+            } else {
+                remaining
+            };
+            let halved = |k: usize| full / f64::powi(2.0, k.min(1074) as i32);
+            let target = if halvings == 0 && full == remaining {
+                phi
+            } else {
+                self.phi() + halved(halvings)
+            };
+            match self.step(target) {
+                Step::Accepted => {
+                    self.accept();
+                    halvings = halvings.saturating_sub(1);
+                }
+                Step::Singular => {
+                    failed = true;
+                    break;
+                }
+                Step::Failed => {
+                    halvings += 1;
+                    if halvings > self.max_subdivisions
+                        || self.phi() + halved(halvings) == self.phi()
+                    {
+                        failed = true;
+                        break;
+                    }
+                }
+            }
         }
-        true
+        if failed {
+            (self.inputs, self.branches) = start;
+        }
+        !failed
     }
 
     fn accept(&mut self) {
@@ -220,28 +268,29 @@ impl MixedTracker {
         self.branches.copy_from_slice(&self.trial_branches);
     }
 
-    /// One step to `target` into `trial` (and `out`): `false` where the solver must decide.
-    fn step(&mut self, target: f64) -> bool {
+    /// One step to `target` into `trial` (and `out`).
+    fn step(&mut self, target: f64) -> Step {
         let h = target - self.phi();
         self.trial.copy_from_slice(&self.inputs);
         self.trial[0] = target;
         let mut program = 1;
         for b in 0..self.blocks.len() {
-            if !self.solve_block(b, h, program) {
-                return false;
+            match self.solve_block(b, h, program) {
+                Step::Accepted => program += 1 + self.blocks[b].lifts.len(),
+                failure => return failure,
             }
-            program += 1 + self.blocks[b].lifts.len();
         }
         self.outputs
             .evaluate_inputs(&self.trial, &mut self.registers[0], &mut self.out);
         let guards = &self.out[self.values..];
-        (self.kinds.iter().zip(guards.chunks_exact(2)))
-            .all(|(kind, g)| kind.verdict(g[0], g[1], self.limit).is_ok())
+        let closed = (self.kinds.iter().zip(guards.chunks_exact(2)))
+            .all(|(kind, g)| kind.verdict(g[0], g[1], self.limit).is_ok());
+        if closed { Step::Accepted } else { Step::Failed }
     }
 
     /// Newton on block `b` from the predictor, the checks, the polish and the derivatives
     /// (`program`: the index of the block's first program in `registers`).
-    fn solve_block(&mut self, b: usize, h: f64, program: usize) -> bool {
+    fn solve_block(&mut self, b: usize, h: f64, program: usize) -> Step {
         let block = &self.blocks[b];
         let (at, n) = (block.at, block.n);
         for i in at..at + n {
@@ -264,24 +313,23 @@ impl MixedTracker {
                 break;
             }
         }
-        if !converged || !self.regular(b) {
-            return false;
+        if !converged {
+            return Step::Failed;
         }
-        // Factorised at the converged pose: its branch, then the polishing step.
-        if !self.factor(n) {
-            return false;
+        // The solver's checks at the converged pose: a toggle, then the branch.
+        if !self.regular(b) || !self.factor(n) {
+            return Step::Singular;
         }
         let sign = self.determinant(n).signum();
         if self.branches[b] != 0.0 && sign != self.branches[b] {
-            return false;
+            return Step::Failed;
         }
         self.trial_branches[b] = sign;
-        if !self.newton_step_factorised(b) {
-            return false;
-        }
+        // The polishing step with that factorisation, then Φ_q factorised again.
+        self.newton_step_factorised(b);
         self.evaluate_system(b, program);
         if !self.factor(n) {
-            return false;
+            return Step::Singular;
         }
         for k in 1..=self.order {
             let lift = &self.blocks[b].lifts[k - 1];
@@ -293,9 +341,8 @@ impl MixedTracker {
             let to = at + k * n;
             self.trial[to..to + n].copy_from_slice(&self.rhs[..n]);
         }
-        self.trial[at..at + (self.order + 1) * n]
-            .iter()
-            .all(|x| x.is_finite())
+        let finite = (self.trial[at..at + (self.order + 1) * n].iter()).all(|x| x.is_finite());
+        if finite { Step::Accepted } else { Step::Failed }
     }
 
     /// Φ and Φ_q of block `b` at the trial inputs, into `system_out`.
@@ -326,18 +373,21 @@ impl MixedTracker {
 
     /// One Newton step of block `b` from `system_out`: `false` if Φ_q is singular.
     fn newton_step(&mut self, b: usize) -> bool {
-        self.factor(self.blocks[b].n) && self.newton_step_factorised(b)
+        let factored = self.factor(self.blocks[b].n);
+        if factored {
+            self.newton_step_factorised(b);
+        }
+        factored
     }
 
     /// `q −= Φ_q⁻¹ Φ` with Φ from `system_out` and Φ_q factorised in `lu`.
-    fn newton_step_factorised(&mut self, b: usize) -> bool {
+    fn newton_step_factorised(&mut self, b: usize) {
         let (at, n) = (self.blocks[b].at, self.blocks[b].n);
         self.rhs[..n].copy_from_slice(&self.system_out[..n]);
         lu_solve(&self.lu[..n * n], &self.pivots[..n], &mut self.rhs[..n]);
         for (q, s) in self.trial[at..at + n].iter_mut().zip(&self.rhs[..n]) {
             *q -= s;
         }
-        true
     }
 
     /// Whether block `b`'s Φ_q (in `system_out`) is regular by the solver's measure: the
