@@ -299,7 +299,14 @@ quantities = ["position", "velocity_coefficient"]
         matches!(solver, Error::Singular { .. } | Error::Unassemblable { .. }),
         "{solver}"
     );
-    assert_eq!(solver.to_string(), program.to_string());
+    // The same error at the same position; the condition number is printed from the pose
+    // each reached the toggle by (the program hands the solver its last position, so their
+    // routes there differ), and agrees only to a few digits that close to a toggle.
+    let text = |e: &Error| {
+        let t = e.to_string();
+        t[..t.find("(condition number").unwrap_or(t.len())].to_owned()
+    };
+    assert_eq!(text(&solver), text(&program));
 }
 
 #[test]

@@ -45,7 +45,7 @@ fn the_macro_expands_a_mixed_plan_to_the_printed_module() {
         let phi = (1.0 + k as f64).to_radians();
         match (a.pose(phi), b.pose(phi)) {
             (Ok(x), Ok(y)) => {
-                let bits = |rows: [[f64; 3]; 4]| rows.map(|r| r.map(f64::to_bits));
+                let bits = |rows: [[f64; 3]; 3]| rows.map(|r| r.map(f64::to_bits));
                 assert_eq!(bits(x), bits(y), "φ = {phi}");
             }
             (Err(x), Err(y)) => assert_eq!(format!("{x:?}"), format!("{y:?}"), "φ = {phi}"),
