@@ -11,6 +11,10 @@
 //! drive position, in SI units (rad, m), after checking each loop's guard as the solver
 //! checks it. Angles agree with the solver's modulo 2π (the solver keeps them continuous
 //! along a sweep; the module has no sweep).
+//!
+//! A scene with a loop that has no closed form (a mixed plan) gets a `Tracker` instead
+//! (`Tracker::new()`, `tracker.pose(phi)`): it keeps the Newton loops' state between calls
+//! and solves them as the solver does (see `mixed`).
 
 use mechdiff_core::geometry::trace::{self, GuardKind, PositionGraph, Program};
 use mechdiff_core::geometry::{Mechanism, Solver};
@@ -50,8 +54,8 @@ impl SceneCode {
     /// Traces `scene`.
     ///
     /// # Errors
-    /// The scene's model and sketch errors; [`mechdiff_core::Error::NoClosedForm`] (as
-    /// [`Error::Codegen`]) if a loop has no closed form.
+    /// The scene's model and sketch errors; the symbolic engine's limits (as
+    /// [`Error::Codegen`]).
     pub fn of(scene: &Scene) -> Result<Self> {
         if scene.drive.cam.is_some() {
             // The generated pose would be a function of the follower's position, not of the

@@ -1,9 +1,11 @@
 //! How `mechdiff run` evaluates the positions of a sweep: by the geometry solver, or by the
 //! run-time evaluator of the scene's traced closed forms (`--evaluator`).
 //!
-//! When every loop of a scene has a closed form, its whole position solution — every
-//! output with its derivatives, every loop's guard — is one expression graph
-//! ([`mechdiff_core::geometry::trace`]), the very graph `mechdiff codegen` emits as Rust.
+//! A scene's whole position solution — every output with its derivatives, every loop's
+//! guard — is one expression graph ([`mechdiff_core::geometry::trace`]), the very graph
+//! `mechdiff codegen` emits as Rust; a loop without a closed form is a Newton block of it,
+//! solved by Newton inside the evaluator as the solver solves it
+//! ([`mechdiff_core::geometry::trace::MixedTracker`]; plan line: `Newton in program`).
 //! Compiled into an instruction list ([`mechdiff_core::geometry::trace::Program`]), it is
 //! evaluated at each drive position without the solver's dual numbers and implicit
 //! differentiation. Each step between two positions is accepted only as the solver would

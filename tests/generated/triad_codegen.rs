@@ -67,6 +67,7 @@ pub const LONGEST_STEP: f64 = 0.125;
 /// The most sub-steps of one move (the solver's).
 pub const MAX_SUBSTEPS: usize = 100000;
 /// The drive position of the sketch, where a `Tracker` starts (SI).
+#[allow(clippy::approx_constant)]
 pub const SKETCH_DRIVE: f64 = 1.5707963267948966;
 /// A Newton loop's state: its coordinates, their derivatives 1 to `ORDER`, and its
 /// branch (the sign of det Φ_q; 0 before the first pose).
@@ -801,6 +802,7 @@ impl Tracker {
 }
 /// Newton on `system` (Φ and Φ_q) from `q`, until max |Φ| ≤ `RESIDUAL_TOLERANCE`:
 /// `false` if it does not converge in `MAX_ITERATIONS` (or Φ_q is singular).
+#[allow(clippy::all)]
 fn newton<const K: usize>(
     system: &impl Fn(&[f64; K]) -> ([f64; K], [[f64; K]; K]),
     q: &mut [f64; K],

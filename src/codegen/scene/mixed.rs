@@ -267,6 +267,7 @@ pub(super) fn tracker(code: &SceneCode) -> TokenStream {
         /// The most sub-steps of one move (the solver's).
         pub const MAX_SUBSTEPS: usize = #substeps;
         /// The drive position of the sketch, where a `Tracker` starts (SI).
+        #[allow(clippy::approx_constant)]
         pub const SKETCH_DRIVE: f64 = #sketch;
 
         /// A Newton loop's state: its coordinates, their derivatives 1 to `ORDER`, and its
@@ -361,6 +362,7 @@ pub(super) fn tracker(code: &SceneCode) -> TokenStream {
 
         /// Newton on `system` (Φ and Φ_q) from `q`, until max |Φ| ≤ `RESIDUAL_TOLERANCE`:
         /// `false` if it does not converge in `MAX_ITERATIONS` (or Φ_q is singular).
+        #[allow(clippy::all)]
         fn newton<const K: usize>(
             system: &impl Fn(&[f64; K]) -> ([f64; K], [[f64; K]; K]),
             q: &mut [f64; K],

@@ -195,6 +195,11 @@ pub(crate) enum Failure {
     Singular { condition: f64 },
 }
 
+/// Places loop `l`'s links (in `q` and its frames) by other means than a closed form (see
+/// [`ClosedForm::solve_each_or`]), or fails naming a loop.
+pub(crate) type PlaceByNewton<'a, D> =
+    dyn FnMut(usize, &mut [D], &mut [(D, D)]) -> Result<(), (usize, Failure)> + 'a;
+
 /// The closed forms of a mechanism's loops (`None`: that loop is solved by Newton).
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct ClosedForm {
@@ -382,7 +387,7 @@ impl ClosedForm {
         frames: &mut [(D, D)],
         in_use: &[bool],
         mut margin_of: impl FnMut(usize, &Margin<D>, f64),
-        newton: &mut dyn FnMut(usize, &mut [D], &mut [(D, D)]) -> Result<(), (usize, Failure)>,
+        newton: &mut PlaceByNewton<'_, D>,
     ) -> Result<(), (usize, Failure)> {
         for (i, step) in self.steps.iter().enumerate() {
             let Some(step) = step.as_ref().filter(|_| in_use[i]) else {

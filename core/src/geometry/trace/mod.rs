@@ -10,6 +10,13 @@
 //! subexpressions, and emits it as Rust or compiles it into a [`Program`] for the
 //! allocation-free run-time evaluator.
 //!
+//! **Mixed plans.** A loop without a closed form is a [`NewtonBlock`]: its coordinates are
+//! symbols of the graph, its residual, Jacobian and implicit-differentiation right-hand
+//! sides are nodes, and the formulas after it read the symbols (their derivatives by the
+//! chain rule, see `newton`). Where the graph is evaluated — the generated module's
+//! `Tracker`, the run-time [`MixedTracker`] — the block is solved by Newton as the solver
+//! solves it.
+//!
 //! **What is fixed at the trace.** The trace is taken at the sketch pose: each loop's
 //! branch sign (the assembly closure the sketch shows, as the solver keeps it) and the turn
 //! each angle is unwrapped to are constants of the graph. Angles from `atan2` are recorded
