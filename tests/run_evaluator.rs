@@ -275,6 +275,18 @@ fn mixed_plans_run_the_same_by_the_program_and_by_the_solver() {
         );
         assert!(assert_agree(path, &solver, &program) > 250, "{path}");
     }
+    // With jerk coefficients (order 3: q‴ of the Newton loop from R₃ and the same
+    // factorisation), the same bound.
+    let text = std::fs::read_to_string("tests/data/triad_slider.toml").unwrap();
+    let text = text.replace(
+        r#""acceleration_coefficient"]"#,
+        r#""acceleration_coefficient", "jerk_coefficient"]"#,
+    );
+    let scene = scene::parse("triad_slider.toml", &text).unwrap();
+    let solver = scene::run(&with(scene.clone(), Evaluator::Solver)).unwrap();
+    let program = scene::run(&with(scene, Evaluator::Program)).unwrap();
+    assert!(solver.columns.iter().any(|c| c.name == "theta'''"));
+    assert!(assert_agree("triad_slider.toml (jerk)", &solver, &program) > 350);
 }
 
 #[test]
