@@ -117,7 +117,8 @@ impl SceneCode {
     /// The run-time program: [`SceneCode::evaluate`] reads its outputs.
     ///
     /// # Errors
-    /// [`Error::Codegen`] if the graph has a symbol other than φ (a bug).
+    /// [`Error::Codegen`] if the graph has a symbol other than φ: a mixed plan's coordinate
+    /// symbols (run it with [`mechdiff_core::geometry::trace::MixedTracker`]), else a bug.
     pub fn program(&self, scene: &Scene) -> Result<Program> {
         Program::compile(&self.position.graph, &self.roots(), trace::DRIVE).map_err(|source| {
             Error::Codegen {
@@ -142,7 +143,8 @@ impl SceneCode {
 }
 
 /// The error the solver gives for `scene` at drive position `phi` (SI), when the
-/// generated code's guard fails there: the solver's closed forms evaluated at `phi`.
+/// generated code's guard fails there: the solver's closed forms evaluated at `phi`
+/// (`None` for a mixed plan: its failures depend on the route, walk the solver's tracker).
 ///
 /// # Errors
 /// The scene's model errors.
