@@ -18,6 +18,10 @@
 //! differentiate, compile) — where `auto` would start to pay, and from how many positions
 //! `--evaluator program` compiles (`evaluator::JIT_FROM_POSITIONS`).
 //!
+//! Last, a mixed plan (`tests/data/triad_slider.toml`: the triad by Newton, the crank and
+//! a slider dyad in closed form), its sweep at 0.05° (1501 positions): the solver, the
+//! run-time evaluator (Newton inside it) and the generated `Tracker`.
+//!
 //! ```sh
 //! cargo bench -p mechdiff --bench scene_codegen -- --warm-up-time 1 --measurement-time 4
 //! ```
@@ -45,6 +49,11 @@ mod generated_psi {
 #[allow(dead_code, clippy::all)]
 mod generated_pose {
     include!("../tests/generated/whitworth_pose.rs");
+}
+
+#[allow(dead_code, clippy::all)]
+mod generated_triad_slider {
+    include!("../tests/generated/triad_slider.rs");
 }
 
 /// The crank angle (rad): a generic position, as in `derivative_methods`.
@@ -222,5 +231,67 @@ fn sweep_solver_vs_program(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, whitworth_from_scene, sweep_solver_vs_program);
+fn mixed_plan_sweep(c: &mut Criterion) {
+    let text = std::fs::read_to_string("tests/data/triad_slider.toml").unwrap();
+    let text = text.replace("step = 2.5\n", "step = 0.05\n");
+    let scene = mechdiff::scene::parse("triad_slider.toml", &text).unwrap();
+    assert_eq!(
+        scene.positions.len(),
+        1501,
+        "the sweep's step was not replaced"
+    );
+    let mut group = c.benchmark_group(
+        "triad_slider.toml (mixed plan) sweep rows, 1501 positions: solver vs run-time \
+         evaluator vs generated Tracker",
+    );
+    group.throughput(Throughput::Elements(scene.positions.len() as u64));
+    for (name, evaluator) in [
+        ("solver", Evaluator::Solver),
+        ("program", Evaluator::Program),
+    ] {
+        let mut scene = scene.clone();
+        scene.evaluator = evaluator;
+        let mechanism = build::mechanism(&scene).unwrap();
+        let plan = Plan::of(&scene);
+        group.bench_function(format!("rows, {name}"), |b| {
+            b.iter_batched(
+                || Sweeper::new(&scene, &mechanism, &plan).unwrap(),
+                |mut sweeper| {
+                    let mut row = Vec::new();
+                    let mut sum = 0.0;
+                    for phi in scene.positions.iter() {
+                        sweeper.row(black_box(phi), &mut row).unwrap();
+                        sum += row[1];
+                    }
+                    sum
+                },
+                BatchSize::PerIteration,
+            )
+        });
+    }
+    group.bench_function(
+        "generated Tracker::pose (SI values, no row formatting)",
+        |b| {
+            b.iter_batched(
+                || generated_triad_slider::Tracker::new().unwrap(),
+                |mut tracker| {
+                    let mut sum = 0.0;
+                    for phi in scene.positions.iter() {
+                        sum += tracker.pose(black_box(phi)).unwrap()[0][0];
+                    }
+                    sum
+                },
+                BatchSize::PerIteration,
+            )
+        },
+    );
+    group.finish();
+}
+
+criterion_group!(
+    benches,
+    whitworth_from_scene,
+    sweep_solver_vs_program,
+    mixed_plan_sweep
+);
 criterion_main!(benches);

@@ -262,11 +262,13 @@ quantities = ["position"]
 }
 
 #[test]
-fn a_loop_without_a_closed_form_stays_on_newton() {
+fn a_loop_without_a_closed_form_is_solved_by_newton_in_the_program() {
+    // The solver runs a mixed plan wholly by Newton; the program evaluates the crank's
+    // closed form and solves the triad by Newton itself (traced residual and Jacobian).
     let scene = scene::parse("triad.toml", &triad()).unwrap();
     let auto = scene::run(&scene).unwrap();
     assert!(
-        auto.plan.loops.iter().any(|l| l.path == LoopPath::Newton),
+        auto.plan.loops.iter().all(|l| l.path == LoopPath::Newton),
         "{:?}",
         auto.plan.loops
     );
@@ -275,16 +277,101 @@ fn a_loop_without_a_closed_form_stays_on_newton() {
             .describe(&scene)
             .contains("by the geometry solver (exact; Newton with implicit differentiation)")
     );
-    let error = scene::run(&with(scene, Evaluator::Program)).unwrap_err();
-    let message = error.to_string();
+    let scene = with(scene, Evaluator::Program);
+    let program = scene::run(&scene).unwrap();
+    let paths: Vec<LoopPath> = program.plan.loops.iter().map(|l| l.path).collect();
+    assert_eq!(paths, [LoopPath::Program, LoopPath::NewtonInProgram]);
+    let line = program.plan.describe(&scene);
     for part in [
-        "triad.toml: --evaluator program cannot evaluate this scene",
-        "closed form",
-        "G2",
-        "--evaluator solver",
+        "Newton in program",
+        "[A, B, C, D, G2, G3] Newton in program",
     ] {
-        assert!(message.contains(part), "`{part}` missing from: {message}");
+        assert!(line.contains(part), "`{part}` missing from: {line}");
     }
+    assert_agree("triad.toml", &auto, &program);
+    // `--evaluator jit` on a mixed plan: its programs (inputs: the drive and the Newton
+    // loop's coordinates) are interpreted, the same values bit for bit, and a warning says so.
+    let jit = scene::run(&with(scene, Evaluator::Jit)).unwrap();
+    assert_eq!(jit.rows, program.rows);
+    assert!(
+        jit.warnings
+            .iter()
+            .any(|w| w.contains("--evaluator jit") && w.contains("interpreted")),
+        "{:?}",
+        jit.warnings
+    );
+    assert!(
+        !program
+            .warnings
+            .iter()
+            .any(|w| w.contains("--evaluator jit"))
+    );
+}
+
+#[test]
+fn mixed_plans_run_the_same_by_the_program_and_by_the_solver() {
+    // The mixed scenes of tests/data (the triad; the triad driving a slider, a closed-form
+    // loop after the Newton loop) over 10°–85°, with ′ and ″ (see `assert_agree`: 1e-13
+    // of each column's largest magnitude; both solve the triad by Newton to rounding and lift
+    // it by implicit differentiation, the generated code of the same graph is measured
+    // within 3e-14 of the solver in tests/scene_codegen.rs).
+    for path in [
+        "tests/data/triad_codegen.toml",
+        "tests/data/triad_slider.toml",
+    ] {
+        let scene = scene::load(path).unwrap();
+        let solver = scene::run(&with(scene.clone(), Evaluator::Solver)).unwrap();
+        let program = scene::run(&with(scene, Evaluator::Program)).unwrap();
+        assert!(
+            (program.plan.loops.iter()).any(|l| l.path == LoopPath::NewtonInProgram),
+            "{path}"
+        );
+        assert!(assert_agree(path, &solver, &program) > 250, "{path}");
+    }
+    // With jerk coefficients (order 3: q‴ of the Newton loop from R₃ and the same
+    // factorisation), the same bound.
+    let text = std::fs::read_to_string("tests/data/triad_slider.toml").unwrap();
+    let text = text.replace(
+        r#""acceleration_coefficient"]"#,
+        r#""acceleration_coefficient", "jerk_coefficient"]"#,
+    );
+    let scene = scene::parse("triad_slider.toml", &text).unwrap();
+    let solver = scene::run(&with(scene.clone(), Evaluator::Solver)).unwrap();
+    let program = scene::run(&with(scene, Evaluator::Program)).unwrap();
+    assert!(solver.columns.iter().any(|c| c.name == "theta'''"));
+    assert!(assert_agree("triad_slider.toml (jerk)", &solver, &program) > 350);
+}
+
+#[test]
+fn a_mixed_plan_past_its_limit_position_fails_as_the_solver_does() {
+    // The triad's limit position (91.17°) inside the sweep: the program cannot prove the
+    // step there, the solver takes it and reports the toggle, the same error either way.
+    let text = common::triad(
+        r#"
+[sweep]
+from = 80
+to = 100
+step = 1
+[[output]]
+point = "C"
+quantities = ["position", "velocity_coefficient"]
+"#,
+    );
+    let scene = scene::parse("triad.toml", &text).unwrap();
+    let solver = scene::run(&with(scene.clone(), Evaluator::Solver)).unwrap_err();
+    let program = scene::run(&with(scene, Evaluator::Program)).unwrap_err();
+    assert!(
+        matches!(solver, Error::Singular { .. } | Error::Unassemblable { .. }),
+        "{solver}"
+    );
+    // The same error at the same position; the condition number is printed from the pose
+    // each reached the toggle by (the program hands the solver its last position, so their
+    // routes there differ), and agrees only to a few digits that close to a toggle.
+    let text = |e: &Error| {
+        let t = e.to_string();
+        t[..t.find("(condition number").unwrap_or(t.len())].to_owned()
+    };
+    assert_eq!(text(&solver), text(&program));
 }
 
 #[test]

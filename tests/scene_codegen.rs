@@ -62,6 +62,56 @@ generated! {
     whitworth_pose => "tests/data/whitworth_pose.toml",
 }
 
+/// A generated `Tracker` walking drive positions in order: each position's rows, or its
+/// failure as (loop, "unassemblable"/"singular"/"branch flip"/…).
+type Walk = fn(&[f64]) -> Vec<Result<Vec<Vec<f64>>, (usize, &'static str)>>;
+
+macro_rules! mixed {
+    ($($name:ident => $path:literal,)*) => {
+        $(
+            #[allow(dead_code, clippy::all)]
+            mod $name {
+                include!(concat!("generated/", stringify!($name), ".rs"));
+            }
+        )*
+        /// Every scene with a mixed plan: its path, its module's `LOOPS` and `PATHS`, and a
+        /// walk of a new `Tracker`.
+        const MIXED: &[(&str, &[&str], &[&str], Walk)] = &[$(
+            ($path, &$name::LOOPS, &$name::PATHS, |phis| {
+                let mut tracker = $name::Tracker::new().expect("the sketch assembles");
+                phis.iter()
+                    .map(|&phi| {
+                        tracker
+                            .pose(phi)
+                            .map(|rows| rows.iter().map(|r| r.to_vec()).collect())
+                            .map_err(|f| match f {
+                                $name::LoopFailure::Unassemblable { loop_index, .. } => {
+                                    (loop_index, "unassemblable")
+                                }
+                                $name::LoopFailure::Singular { loop_index, .. } => {
+                                    (loop_index, "singular")
+                                }
+                                $name::LoopFailure::BranchFlip { loop_index, .. } => {
+                                    (loop_index, "branch flip")
+                                }
+                                $name::LoopFailure::MoveTooLong { .. } => (0, "move too long"),
+                                $name::LoopFailure::NonFinite { .. } => (0, "non-finite"),
+                            })
+                    })
+                    .collect()
+            }),
+        )*];
+    };
+}
+
+// Scenes with a loop the closed forms do not match: the triad (the crank in closed form,
+// then the triad by Newton), and the triad driving a slider (then a dyad in closed form on
+// the triad's links).
+mixed! {
+    triad_codegen => "tests/data/triad_codegen.toml",
+    triad_slider => "tests/data/triad_slider.toml",
+}
+
 fn generated_path(scene: &str) -> String {
     let stem = Path::new(scene).file_stem().unwrap().to_str().unwrap();
     format!("tests/generated/{stem}.rs")
@@ -69,7 +119,8 @@ fn generated_path(scene: &str) -> String {
 
 #[test]
 fn generated_modules_are_current() {
-    for (path, ..) in SCENES {
+    let paths = SCENES.iter().map(|s| s.0).chain(MIXED.iter().map(|s| s.0));
+    for path in paths {
         let text = module(&scene::load(path).unwrap(), path).unwrap();
         let file = generated_path(path);
         if std::env::var_os("MECHDIFF_BLESS").is_some() {
@@ -99,6 +150,74 @@ fn agree(a: f64, b: f64, angle: bool, tolerance: f64) -> bool {
     d.abs() <= tolerance * b.abs().max(1.0)
 }
 
+/// The generated code's rows (`walk`: at the drive positions asked, in order) against the
+/// solver's report of the scene at `path`, each value within `tolerance` (relative,
+/// absolute below 1); the number of values compared and the largest difference (scaled
+/// as the tolerance).
+fn compare_with_solver(
+    path: &str,
+    walk: impl FnOnce(&[f64]) -> Vec<Result<Vec<Vec<f64>>, (usize, &'static str)>>,
+    tolerance: f64,
+) -> (usize, f64) {
+    let scene = scene::load(path).unwrap();
+    let code = SceneCode::of(&scene).unwrap();
+    let report = run(&scene).unwrap();
+    let angles: Vec<bool> = scene
+        .outputs
+        .iter()
+        .flat_map(|o| {
+            let n = if matches!(o.kind, scene::model::OutputKind::Point(_)) {
+                2
+            } else {
+                1
+            };
+            vec![matches!(o.kind, scene::model::OutputKind::Angle { .. }); n]
+        })
+        .collect();
+    // The report's columns of each generated row: value, ′, ″ (those the scene asks for).
+    let columns: Vec<[Option<usize>; 3]> = code
+        .names
+        .iter()
+        .map(|name| {
+            let base = match name.split_once('.') {
+                Some((n, axis)) => format!("{axis}_{n}"),
+                None => name.clone(),
+            };
+            let at = |c: String| report.columns.iter().position(|k| k.name == c);
+            [
+                at(base.clone()),
+                at(format!("{base}'")),
+                at(format!("{base}''")),
+            ]
+        })
+        .collect();
+    let phis: Vec<f64> = report.rows.iter().map(|row| row[0]).collect();
+    let (mut compared, mut worst) = (0, 0.0f64);
+    for (row, generated) in report.rows.iter().zip(walk(&phis)) {
+        let phi = row[0];
+        let generated = generated.unwrap_or_else(|f| panic!("{path} at {phi}: {f:?}"));
+        for ((g, k), &angle) in generated.iter().zip(&columns).zip(&angles) {
+            for order in 0..3 {
+                let Some(c) = k[order] else { continue };
+                assert!(
+                    agree(g[order], row[c], angle && order == 0, tolerance),
+                    "{path} at φ = {phi}: {} order {order}: generated {} solver {}",
+                    report.columns[c].name,
+                    g[order],
+                    row[c]
+                );
+                let mut d = g[order] - row[c];
+                if angle && order == 0 {
+                    d -= (d / std::f64::consts::TAU).round() * std::f64::consts::TAU;
+                }
+                worst = worst.max(d.abs() / row[c].abs().max(1.0));
+                compared += 1;
+            }
+        }
+    }
+    (compared, worst)
+}
+
 #[test]
 fn generated_code_agrees_with_the_solver() {
     // 1e-13 relative (absolute below 1): the generated code and the solver evaluate the same
@@ -109,57 +228,26 @@ fn generated_code_agrees_with_the_solver() {
     // worst (rack_slotted_link_other_branch, rho8''), 1e-13 leaves margin.
     let mut compared = 0;
     for (path, _, pose) in SCENES {
-        let scene = scene::load(path).unwrap();
-        let code = SceneCode::of(&scene).unwrap();
-        let report = run(&scene).unwrap();
-        let angles: Vec<bool> = scene
-            .outputs
-            .iter()
-            .flat_map(|o| {
-                let n = if matches!(o.kind, scene::model::OutputKind::Point(_)) {
-                    2
-                } else {
-                    1
-                };
-                vec![matches!(o.kind, scene::model::OutputKind::Angle { .. }); n]
-            })
-            .collect();
-        // The report's columns of each generated row: value, ′, ″ (those the scene asks for).
-        let columns: Vec<[Option<usize>; 3]> = code
-            .names
-            .iter()
-            .map(|name| {
-                let base = match name.split_once('.') {
-                    Some((n, axis)) => format!("{axis}_{n}"),
-                    None => name.clone(),
-                };
-                let at = |c: String| report.columns.iter().position(|k| k.name == c);
-                [
-                    at(base.clone()),
-                    at(format!("{base}'")),
-                    at(format!("{base}''")),
-                ]
-            })
-            .collect();
-        for row in &report.rows {
-            let phi = row[0];
-            let generated = pose(phi).unwrap_or_else(|f| panic!("{path} at {phi}: {f:?}"));
-            for ((g, k), &angle) in generated.iter().zip(&columns).zip(&angles) {
-                for order in 0..3 {
-                    let Some(c) = k[order] else { continue };
-                    assert!(
-                        agree(g[order], row[c], angle && order == 0, 1e-13),
-                        "{path} at φ = {phi}: {} order {order}: generated {} solver {}",
-                        report.columns[c].name,
-                        g[order],
-                        row[c]
-                    );
-                    compared += 1;
-                }
-            }
-        }
+        let walk = |phis: &[f64]| phis.iter().map(|&p| pose(p)).collect();
+        compared += compare_with_solver(path, walk, 1e-13).0;
     }
     assert!(compared > 5_000, "only {compared} values compared");
+}
+
+#[test]
+fn generated_code_of_mixed_plans_agrees_with_the_solver() {
+    // 1e-13 relative (absolute below 1): both solve the triad's loop by Newton to the same
+    // tolerance and polish it to rounding (Φ_q factorised again at the polished pose), then
+    // lift q′, q″ by implicit differentiation with one factorisation of Φ_q each; the
+    // solver in dual numbers over the whole system, the generated code with the traced
+    // residual's symbolic derivatives and its own Gaussian elimination. The two roundings
+    // differ by a few ulps times the condition of Φ_q (≤ ~1e2 over 10°–90°).
+    for (path, loops, paths, walk) in MIXED {
+        assert!(paths.contains(&"Newton"), "{path}: {loops:?} {paths:?}");
+        let (compared, worst) = compare_with_solver(path, walk, 1e-13);
+        println!("{path}: {compared} values, largest difference {worst:.1e}");
+        assert!(compared > 250, "{path}: only {compared} values compared");
+    }
 }
 
 #[test]
@@ -305,5 +393,84 @@ fn codegen_command_prints_the_module_and_refuses_other_scenes() {
         assert!(!refused.status.success(), "{path} was generated");
         let message = String::from_utf8(refused.stderr).unwrap();
         assert!(message.contains(what), "{path}: {message}");
+    }
+}
+
+#[test]
+fn mixed_plans_fail_where_and_as_the_solver_does() {
+    // The triad stops at a limit position near φ = 91.17°: a sweep from 80° to 100° in
+    // steps of 0.5°, walked by the generated tracker and by the solver's, fails at the same
+    // positions with the same error (kind and loop).
+    let path = "tests/data/triad_codegen.toml";
+    let (_, loops, _, walk) = MIXED.iter().find(|(p, ..)| *p == path).unwrap();
+    let scene = scene::load(path).unwrap();
+    let m = scene::build::mechanism(&scene).unwrap();
+    let mut solver = mechdiff_core::geometry::Solver::default()
+        .track(&m)
+        .unwrap();
+    let phis: Vec<f64> = (0..=40)
+        .map(|k| (80.0 + 0.5 * k as f64).to_radians())
+        .collect();
+    let (mut failed, mut assembled) = (0, 0);
+    for (&phi, generated) in phis.iter().zip(walk(&phis)) {
+        use mechdiff_core::Error as Core;
+        match (generated, solver.move_to(phi)) {
+            (Ok(_), Ok(_)) => assembled += 1,
+            (Err((l, kind)), Err(error)) => {
+                let (expected, joints) = match &error {
+                    Core::Unassemblable { joints, .. } => ("unassemblable", joints),
+                    Core::Singular { joints, .. } => ("singular", joints),
+                    Core::BranchFlip { joints, .. } => ("branch flip", joints),
+                    other => panic!("φ = {phi}: solver {other}"),
+                };
+                assert_eq!(
+                    (kind, loops[l]),
+                    (expected, &*joints.join(", ")),
+                    "φ = {phi}"
+                );
+                if failed == 0 {
+                    println!("first failure at φ = {phi}: {error}");
+                }
+                failed += 1;
+            }
+            (generated, solver) => {
+                panic!("φ = {phi}: generated {generated:?}, solver {solver:?}")
+            }
+        }
+    }
+    assert!(
+        failed > 10 && assembled > 10,
+        "{failed} failed, {assembled} assembled"
+    );
+}
+
+#[test]
+fn run_time_evaluator_of_mixed_plans_agrees_with_the_generated_code() {
+    // Bit for bit, walking the scene's sweep in order: the evaluator's programs compute the
+    // same graph's operations in the same order as the emitted Rust, and both solve the
+    // Newton loops with the same predictor, the same Newton steps and polish, and the same
+    // Gaussian elimination. Every step is taken by the evaluator itself (`Some`): none is
+    // left to the solver inside these sweeps.
+    for (path, _, _, walk) in MIXED {
+        let scene = scene::load(path).unwrap();
+        let code = SceneCode::of(&scene).unwrap();
+        let m = scene::build::mechanism(&scene).unwrap();
+        let solver = mechdiff_core::geometry::Solver::default()
+            .track(&m)
+            .unwrap();
+        let values: Vec<_> = code.jets.iter().flatten().copied().collect();
+        let mut program =
+            mechdiff_core::geometry::trace::MixedTracker::new(&solver, &code.position, &values)
+                .unwrap();
+        let report = run(&scene).unwrap();
+        let phis: Vec<f64> = report.rows.iter().map(|row| row[0]).collect();
+        for (&phi, generated) in phis.iter().zip(walk(&phis)) {
+            let rows: Vec<f64> = generated.unwrap().concat();
+            let values = program
+                .move_to(phi)
+                .unwrap_or_else(|| panic!("{path}: the evaluator left φ = {phi} to the solver"));
+            let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(values), bits(&rows), "{path} at φ = {phi}");
+        }
     }
 }

@@ -62,33 +62,6 @@ mod tests {
     }
 
     #[test]
-    fn a_loop_without_a_closed_form_is_an_error_naming_it() {
-        // A triad (a class-III group): its loop is solved by Newton, so there is no closed
-        // form to generate code from.
-        let text = format!(
-            "{}{}",
-            include_str!("../../tests/data/triad.toml"),
-            r#"
-[sweep]
-from = 90
-to = 100
-step = 5
-[[output]]
-point = "C"
-quantities = ["position"]
-"#
-        );
-        let file = std::env::temp_dir().join(format!("mechdiff-triad-{}.toml", std::process::id()));
-        std::fs::write(&file, text).unwrap();
-        let result = scene_module(&literal(file.to_str().unwrap()));
-        std::fs::remove_file(&file).unwrap();
-        let message = result.unwrap_err().to_string();
-        for part in ["closed form", "G2"] {
-            assert!(message.contains(part), "`{part}` missing from: {message}");
-        }
-    }
-
-    #[test]
     fn the_expansion_is_the_printed_module_and_tracks_the_file() {
         let tokens = scene_module(&literal("../scenes/slider_crank.toml"))
             .unwrap()

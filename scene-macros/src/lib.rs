@@ -26,9 +26,11 @@ mod expand;
 /// ```
 ///
 /// The generated code needs nothing but `core` and `std`. An edit of the scene file
-/// recompiles the crate (the file is included as bytes). A scene the code generator
-/// refuses (a parse error, a loop without a closed form, a cam drive) is a compile error
-/// at the path, with the scene's message.
+/// recompiles the crate (the file is included as bytes). A scene with a loop that has no
+/// closed form (a mixed plan) expands to a module with a `Tracker` instead of `pose`: it
+/// solves that loop by Newton's method as the solver does, warm-started from the last
+/// position (see `mechdiff codegen` in docs/). A scene the code generator refuses (a parse
+/// error, a cam drive) is a compile error at the path, with the scene's message.
 #[proc_macro]
 pub fn mechdiff_scene(input: TokenStream) -> TokenStream {
     let path = syn::parse_macro_input!(input as syn::LitStr);

@@ -1,9 +1,11 @@
 //! How `mechdiff run` evaluates the positions of a sweep: by the geometry solver, or by the
 //! run-time evaluator of the scene's traced closed forms (`--evaluator`).
 //!
-//! When every loop of a scene has a closed form, its whole position solution — every
-//! output with its derivatives, every loop's guard — is one expression graph
-//! ([`mechdiff_core::geometry::trace`]), the very graph `mechdiff codegen` emits as Rust.
+//! A scene's whole position solution — every output with its derivatives, every loop's
+//! guard — is one expression graph ([`mechdiff_core::geometry::trace`]), the very graph
+//! `mechdiff codegen` emits as Rust; a loop without a closed form is a Newton block of it,
+//! solved by Newton inside the evaluator as the solver solves it
+//! ([`mechdiff_core::geometry::trace::MixedTracker`]; plan line: `Newton in program`).
 //! Compiled into an instruction list ([`mechdiff_core::geometry::trace::Program`]), it is
 //! evaluated at each drive position without the solver's dual numbers and implicit
 //! differentiation. Each step between two positions is accepted only as the solver would
@@ -49,10 +51,10 @@ pub enum Evaluator {
     Auto,
     /// The geometry solver: closed forms (or Newton) in dual numbers at every position.
     Solver,
-    /// The run-time evaluator of the traced closed forms; an error for a scene that has a
-    /// loop without a closed form or a cam drive. Compiled to native code for a sweep of
-    /// at least [`JIT_FROM_POSITIONS`] positions, interpreted for a shorter one (see the
-    /// module documentation).
+    /// The run-time evaluator of the traced closed forms (a loop without one solved by
+    /// Newton inside it); an error for a scene with a cam drive. Compiled to native code
+    /// for a sweep of at least [`JIT_FROM_POSITIONS`] positions whose loops all have closed
+    /// forms, interpreted otherwise (see the module documentation).
     Program,
     /// The run-time evaluator, always interpreted.
     Interpreter,
@@ -75,6 +77,9 @@ pub enum LoopPath {
     /// The solver's Newton iteration with implicit differentiation (a loop's closed form,
     /// if it has one, only seeds it).
     Newton,
+    /// Newton's iteration inside the run-time evaluator (a loop without a closed form in a
+    /// mixed plan: its residual, Jacobian and implicit derivatives traced).
+    NewtonInProgram,
 }
 
 /// One loop of a run and the path that evaluates it.
@@ -92,6 +97,7 @@ impl fmt::Display for LoopPath {
             LoopPath::Program => "program",
             LoopPath::ClosedForm => "closed form",
             LoopPath::Newton => "Newton",
+            LoopPath::NewtonInProgram => "Newton in program",
         })
     }
 }
@@ -107,7 +113,13 @@ impl fmt::Display for LoopPlan {
 pub fn describe(loops: &[LoopPlan]) -> String {
     let each: Vec<String> = loops.iter().map(LoopPlan::to_string).collect();
     let each = each.join(", ");
-    if loops.iter().any(|l| l.path == LoopPath::Program) {
+    if loops.iter().any(|l| l.path == LoopPath::NewtonInProgram) {
+        format!(
+            "by the run-time evaluator of the traced closed forms and, for loops without \
+             one, Newton in the program (exact; a step it cannot prove is taken by the \
+             geometry solver): loops {each}"
+        )
+    } else if loops.iter().any(|l| l.path == LoopPath::Program) {
         format!(
             "by the run-time evaluator of the traced closed forms (exact; a step it cannot \
              prove is taken by the geometry solver): loops {each}"

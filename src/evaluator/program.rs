@@ -2,7 +2,7 @@
 //! once, then one program evaluation per drive position.
 
 use mechdiff_core::geometry::Tracker;
-use mechdiff_core::geometry::trace::{Backend, ProgramTracker};
+use mechdiff_core::geometry::trace::{Backend, MixedTracker, ProgramTracker};
 
 use super::{Evaluator, JIT_FROM_POSITIONS, LoopPath, LoopPlan};
 use crate::codegen::scene::SceneCode;
@@ -12,14 +12,24 @@ use crate::scene::model::Scene;
 /// The program of a scene walking its sweep.
 #[derive(Debug, Clone)]
 pub(crate) struct ProgramPath {
-    tracker: ProgramTracker,
+    tracker: Walker,
     /// Values per output row: the value and its derivatives (`order + 1`).
     width: usize,
-    /// Each loop's joints, for the plan line.
-    joints: Vec<Vec<String>>,
-    /// Each loop's index in the solver's tracker, for the warning about the most
-    /// ill-conditioned position.
+    /// Each loop's joints and path, in solving order, for the plan line.
+    loops: Vec<LoopPlan>,
+    /// Each closed-form loop's index in the solver's tracker, for the warning about the
+    /// most ill-conditioned position.
     loop_indices: Vec<usize>,
+    /// Why `--evaluator jit` interprets this scene's programs (a mixed plan), if it does.
+    jit_refused: Option<String>,
+}
+
+/// The evaluator of a scene whose every loop has a closed form, or of a mixed plan (its
+/// loops without one solved by Newton inside the evaluator).
+#[derive(Debug, Clone)]
+enum Walker {
+    Closed(ProgramTracker),
+    Mixed(MixedTracker),
 }
 
 impl ProgramPath {
@@ -28,8 +38,7 @@ impl ProgramPath {
     ///
     /// # Errors
     /// For `--evaluator program|interpreter|jit` only: [`Error::NoEvaluator`] when the
-    /// scene has a loop without a closed form, a cam drive, or an output the trace cannot
-    /// follow.
+    /// scene has a cam drive or an output the trace cannot follow.
     pub fn choose(scene: &Scene, tracker: &Tracker<'_>) -> Result<Option<Self>> {
         let backend = match scene.evaluator {
             // `auto`: the solver for now (see `evaluator`).
@@ -54,38 +63,68 @@ impl ProgramPath {
             unavailable(text.strip_prefix(&file).unwrap_or(&text).to_owned())
         })?;
         let values: Vec<_> = code.jets.iter().flatten().copied().collect();
-        let tracker = ProgramTracker::new(tracker, &mut code.position, &values, backend)
-            .map_err(|e| unavailable(e.to_string()))?;
+        // A mixed plan's programs have several inputs (the Newton loops' coordinates): they
+        // are interpreted (`JitProgram` compiles programs of the drive position alone).
+        let mut jit_refused = None;
+        let walker = if code.position.newton.is_empty() {
+            ProgramTracker::new(tracker, &mut code.position, &values, backend).map(Walker::Closed)
+        } else {
+            if scene.evaluator == Evaluator::Jit {
+                jit_refused = Some(
+                    "--evaluator jit: the scene has loops solved by Newton inside the \
+                     run-time evaluator, whose programs are interpreted (the JIT compiles \
+                     programs of the drive position alone; the same values)"
+                        .to_owned(),
+                );
+            }
+            MixedTracker::new(tracker, &code.position, &values).map(Walker::Mixed)
+        };
+        let walker = walker.map_err(|e| unavailable(e.to_string()))?;
+        let position = &code.position;
+        let mut loops: Vec<(usize, LoopPlan)> = (position.guards.iter())
+            .map(|g| (g.loop_index, g.joints.clone(), LoopPath::Program))
+            .chain(
+                (position.newton.iter())
+                    .map(|b| (b.loop_index, b.joints.clone(), LoopPath::NewtonInProgram)),
+            )
+            .map(|(l, joints, path)| (l, LoopPlan { joints, path }))
+            .collect();
+        loops.sort_by_key(|(l, _)| *l);
         Ok(ProgramPath {
-            tracker,
+            tracker: walker,
             width: code.order + 1,
-            loop_indices: code.position.guards.iter().map(|g| g.loop_index).collect(),
-            joints: code
-                .position
-                .guards
-                .iter()
-                .map(|g| g.joints.clone())
-                .collect(),
+            loop_indices: position.guards.iter().map(|g| g.loop_index).collect(),
+            loops: loops.into_iter().map(|(_, plan)| plan).collect(),
+            jit_refused,
         })
     }
 
     /// The back end evaluating the program.
     #[cfg(test)]
     pub fn backend(&self) -> Backend {
-        self.tracker.backend()
+        match &self.tracker {
+            Walker::Closed(t) => t.backend(),
+            Walker::Mixed(_) => Backend::Interpreter,
+        }
     }
 
-    /// The warning of a run whose JIT is not available on this host (the program is
-    /// interpreted instead: the same values).
+    /// The warning of a run whose JIT is not available on this host, or that asked for the
+    /// JIT on a mixed plan (the programs are interpreted instead: the same values).
     pub fn jit_warning(&self) -> Option<String> {
-        self.tracker
-            .jit_unavailable()
-            .map(|e| format!("{e}: the run-time evaluator is interpreted (the same values)"))
+        match &self.tracker {
+            Walker::Closed(t) => t
+                .jit_unavailable()
+                .map(|e| format!("{e}: the run-time evaluator is interpreted (the same values)")),
+            Walker::Mixed(_) => self.jit_refused.clone(),
+        }
     }
 
     /// The drive position the program stands at.
     pub fn phi(&self) -> f64 {
-        self.tracker.phi()
+        match &self.tracker {
+            Walker::Closed(t) => t.phi(),
+            Walker::Mixed(t) => t.phi(),
+        }
     }
 
     /// Values per output row (value and derivatives).
@@ -96,30 +135,37 @@ impl ProgramPath {
     /// Moves to `phi`: every output row's `[x, x′, …]` in turn, or `None` where the solver
     /// must take the step (see [`ProgramTracker::move_to`]).
     pub fn move_to(&mut self, phi: f64) -> Option<&[f64]> {
-        self.tracker.move_to(phi)
+        match &mut self.tracker {
+            Walker::Closed(t) => t.move_to(phi),
+            Walker::Mixed(t) => t.move_to(phi),
+        }
     }
 
     /// Places the program at `phi`, where the solver now stands: `false` if its guards
     /// fail there (rounding at a guard's edge; the caller then keeps the solver).
     pub fn restart(&mut self, phi: f64) -> bool {
-        self.tracker.restart(phi)
+        match &mut self.tracker {
+            Walker::Closed(t) => t.restart(phi),
+            Walker::Mixed(t) => t.restart(phi),
+        }
     }
 
     /// How much the current pose amplifies rounding, and the solver's index of the loop
-    /// that does (as the solver's `Tracker::amplification_loop`).
+    /// that does (as the solver's `Tracker::amplification_loop`, which measures it on
+    /// closed-form plans only: 1 for a mixed plan).
     pub fn amplification(&self) -> (f64, usize) {
-        let (k, l) = self.tracker.amplification();
-        (k, self.loop_indices[l])
+        match &self.tracker {
+            Walker::Closed(t) => {
+                let (k, l) = t.amplification();
+                (k, self.loop_indices[l])
+            }
+            Walker::Mixed(_) => (1.0, 0),
+        }
     }
 
-    /// Each loop on the program path.
+    /// Each loop and its path in the evaluator.
     pub fn loops(&self) -> Vec<LoopPlan> {
-        (self.joints.iter())
-            .map(|joints| LoopPlan {
-                joints: joints.clone(),
-                path: LoopPath::Program,
-            })
-            .collect()
+        self.loops.clone()
     }
 }
 

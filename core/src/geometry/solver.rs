@@ -442,6 +442,23 @@ impl<'m> Tracker<'m> {
         self.closed_only.then_some(&self.closed)
     }
 
+    /// The loops' closed forms, every loop's (`None` steps are solved by Newton), for a
+    /// trace of a mixed plan (see `geometry::trace`).
+    pub(crate) fn closed_form_table(&self) -> &ClosedForm {
+        &self.closed
+    }
+
+    /// The equations, the loops' rows and columns, and the sketch size (the solver's scales,
+    /// for a trace of a Newton loop).
+    pub(crate) fn structure(&self) -> (&Equations, &[Loop], f64) {
+        (&self.eq, &self.loops, self.size)
+    }
+
+    /// The solver's configuration.
+    pub(crate) fn solver(&self) -> Solver {
+        self.solver
+    }
+
     /// The singular threshold of the solver tracking (see [`Solver::singular_threshold`]).
     pub(crate) fn solver_singular_threshold(&self) -> f64 {
         self.solver.singular_threshold()

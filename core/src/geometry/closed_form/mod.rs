@@ -195,6 +195,11 @@ pub(crate) enum Failure {
     Singular { condition: f64 },
 }
 
+/// Places loop `l`'s links (in `q` and its frames) by other means than a closed form (see
+/// [`ClosedForm::solve_each_or`]), or fails naming a loop.
+pub(crate) type PlaceByNewton<'a, D> =
+    dyn FnMut(usize, &mut [D], &mut [(D, D)]) -> Result<(), (usize, Failure)> + 'a;
+
 /// The closed forms of a mechanism's loops (`None`: that loop is solved by Newton).
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct ClosedForm {
@@ -356,15 +361,39 @@ impl ClosedForm {
         previous: &[f64],
         q: &mut [D],
         frames: &mut [(D, D)],
-        mut margin_of: impl FnMut(usize, &Margin<D>, f64),
+        margin_of: impl FnMut(usize, &Margin<D>, f64),
     ) -> Result<(), (usize, Failure)> {
-        for (i, step) in self.steps.iter().enumerate() {
-            let step = step.as_ref().ok_or((
+        let mut no_newton = |i: usize, _: &mut [D], _: &mut [(D, D)]| {
+            Err((
                 i,
                 Failure::Singular {
                     condition: f64::NAN,
                 },
-            ))?;
+            ))
+        };
+        let all = vec![true; self.steps.len()];
+        self.solve_each_or(phi, previous, q, frames, &all, margin_of, &mut no_newton)
+    }
+
+    /// [`ClosedForm::solve_each`], placing each loop without a closed form (or whose
+    /// closed form is not in use: `in_use` false there) by `newton` instead, which may fail
+    /// with its own loop index and failure.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn solve_each_or<D: Scalar>(
+        &self,
+        phi: D,
+        previous: &[f64],
+        q: &mut [D],
+        frames: &mut [(D, D)],
+        in_use: &[bool],
+        mut margin_of: impl FnMut(usize, &Margin<D>, f64),
+        newton: &mut PlaceByNewton<'_, D>,
+    ) -> Result<(), (usize, Failure)> {
+        for (i, step) in self.steps.iter().enumerate() {
+            let Some(step) = step.as_ref().filter(|_| in_use[i]) else {
+                newton(i, q, frames)?;
+                continue;
+            };
             let mut margin = Margin::none();
             let solved = self.solve(step, phi, previous, q, frames, &mut margin);
             margin_of(i, &margin, step.inv_scale);

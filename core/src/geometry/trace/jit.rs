@@ -99,9 +99,19 @@ impl JitProgram {
     ///
     /// # Errors
     /// [`Error::JitUnavailable`] if cranelift does not generate code for the host's
-    /// instruction set (or fails to compile: a bug, reported rather than run).
+    /// instruction set (or fails to compile: a bug, reported rather than run), or for a
+    /// program of several inputs ([`Program::compile_inputs`]), which stays interpreted.
     pub fn compile(program: &Program) -> Result<Self, Error> {
         let unavailable = |reason: String| Error::JitUnavailable { reason };
+        if program.inputs != 1 {
+            // The compiled function takes the drive position alone; a program of several
+            // inputs (a mixed plan's, [`Program::compile_inputs`]) stays interpreted.
+            return Err(unavailable(format!(
+                "the program has {} inputs; the JIT compiles programs of the drive position \
+                 alone",
+                program.inputs
+            )));
+        }
         let isa = cranelift_native::builder()
             .map_err(|m| unavailable(format!("cranelift does not support this host ({m})")))?;
         let mut flags = settings::builder();
@@ -550,5 +560,20 @@ mod tests {
         .unwrap();
         let want = g.evaluate_f64(&[f], &[("x", 0.5)]).unwrap()[0];
         assert_eq!(value.to_bits(), want.to_bits());
+    }
+
+    /// A program of several inputs (a mixed plan's) is refused, not compiled with its
+    /// other inputs frozen at their placeholder values.
+    #[test]
+    fn a_program_of_several_inputs_is_refused() {
+        let mut g = Graph::new();
+        let f = g.parse_infix("phi * q").unwrap();
+        let program = Program::compile_inputs(&g, &[f], &["phi", "q"]).unwrap();
+        match JitProgram::compile(&program) {
+            Err(Error::JitUnavailable { reason }) => {
+                assert!(reason.contains("2 inputs"), "{reason}")
+            }
+            other => panic!("expected JitUnavailable, got {:?}", other.map(|_| ())),
+        }
     }
 }

@@ -10,6 +10,13 @@
 //! subexpressions, and emits it as Rust or compiles it into a [`Program`] for the
 //! allocation-free run-time evaluator.
 //!
+//! **Mixed plans.** A loop without a closed form is a [`NewtonBlock`]: its coordinates are
+//! symbols of the graph, its residual, Jacobian and implicit-differentiation right-hand
+//! sides are nodes, and the formulas after it read the symbols (their derivatives by the
+//! chain rule, see `newton`). Where the graph is evaluated — the generated module's
+//! `Tracker`, the run-time [`MixedTracker`] — the block is solved by Newton as the solver
+//! solves it.
+//!
 //! **What is fixed at the trace.** The trace is taken at the sketch pose: each loop's
 //! branch sign (the assembly closure the sketch shows, as the solver keeps it) and the turn
 //! each angle is unwrapped to are constants of the graph. Angles from `atan2` are recorded
@@ -26,11 +33,15 @@
 //! two values exactly as the solver's closed form does.
 
 mod jit;
+mod mixed;
+mod newton;
 mod program;
 mod scalar;
 mod tracker;
 
 pub use jit::JitProgram;
+pub use mixed::MixedTracker;
+pub use newton::{NewtonBlock, coordinate_symbol};
 pub use program::Program;
 pub use scalar::Traced;
 pub use tracker::{Backend, ProgramTracker};
@@ -162,13 +173,25 @@ pub struct PositionGraph {
     pub limit: f64,
     /// The drive position of the sketch, where the trace was taken.
     pub sketch_drive: f64,
+    /// The loops solved by Newton's method, in solving order (empty when every loop has a
+    /// closed form).
+    pub newton: Vec<NewtonBlock>,
+    /// Newton's convergence limit on max |Φ| (m or rad): the solver's tolerance times the
+    /// sketch size (see [`super::Solver::tolerance`]).
+    pub newton_tolerance: f64,
+    /// The solver's Newton iterations per attempt.
+    pub max_iterations: usize,
+    /// The solver's step halvings before a failure is reported.
+    pub max_subdivisions: usize,
+    /// The solver's longest step of the drive (rad or m).
+    pub longest_step: f64,
+    /// The solver's most sub-steps in one move.
+    pub max_substeps: usize,
 }
 
-/// What needs the closed forms, for [`Error::NoClosedForm`].
-const CODE_GENERATION: &str = "code generation (run the scene with `mechdiff run` instead)";
-
-/// Traces the position solution of `tracker`'s mechanism (every loop in closed form) and
-/// the outputs `outputs` computes from its pose.
+/// Traces the position solution of `tracker`'s mechanism and the outputs `outputs`
+/// computes from its pose: the loops with a closed form as formulas, each other loop as a
+/// [`NewtonBlock`] (its coordinates as symbols, its residual and Jacobian as nodes).
 ///
 /// ```
 /// use mechdiff_core::geometry::{Drive, Mechanism, Solver, trace};
@@ -181,25 +204,22 @@ const CODE_GENERATION: &str = "code generation (run the scene with `mechdiff run
 /// let tip = m.point_output("crank", "A").unwrap();
 /// let t = Solver::default().track(&m).unwrap();
 /// let traced = trace::trace(&t, |pose| pose.point(&tip).to_vec()).unwrap();
+/// assert!(traced.newton.is_empty());
 /// let x = traced.graph.evaluate_f64(&traced.outputs[..1], &[("phi", 0.5)]).unwrap();
 /// assert!((x[0] - 2.0 * 0.5f64.cos()).abs() < 1e-15);
 /// ```
 ///
 /// # Errors
-/// [`Error::NoClosedForm`] if a loop is solved by Newton; [`Error::Untraceable`] if the
-/// outputs use an operation without a symbolic form.
+/// [`Error::Untraceable`] if the outputs use an operation without a symbolic form;
+/// [`Error::ExpressionTooLarge`] if a Newton loop's Jacobian outgrows the engine's limit.
 pub fn trace(
     tracker: &Tracker<'_>,
     outputs: impl FnOnce(&Pose) -> Vec<Traced>,
 ) -> Result<PositionGraph, Error> {
-    let closed = tracker.closed_forms().ok_or_else(|| {
-        let loops = tracker.closed_form_loops();
-        let first = loops.iter().position(|&c| !c).unwrap_or(0);
-        Error::NoClosedForm {
-            what: CODE_GENERATION.to_owned(),
-            joints: tracker.joints_of_loop(first),
-        }
-    })?;
+    let closed = tracker.closed_form_table();
+    // The loops the solver solves in closed form (all that match, unless turned off).
+    let in_use = tracker.closed_form_loops();
+    let (eq, loops, size) = tracker.structure();
     let sketch = tracker.coordinates();
     let phi0 = tracker.phi();
     let (graph, traced) = record(Graph::new(), || {
@@ -213,11 +233,32 @@ pub fn trace(
                 .collect(),
         };
         let mut guards = Vec::new();
-        let solved = closed.solve_each(
+        let mut blocks: Vec<(usize, Vec<Id>)> = Vec::new();
+        // A loop without a closed form: its coordinates become symbols, its rows of Φ the
+        // block's residual.
+        let mut newton = |l: usize, q: &mut [Traced], frames: &mut [(Traced, Traced)]| {
+            let columns = &loops[l].columns;
+            for &c in columns {
+                q[c] = Traced::symbol(&coordinate_symbol(c, 0), sketch[c]);
+                if c % 3 == 2 {
+                    frames[c / 3] = q[c].sin_cos();
+                }
+            }
+            let mut out = vec![Traced::from(0.0); eq.rows()];
+            let f = Frames {
+                q: &*q,
+                frames: &*frames,
+            };
+            eq.evaluate_with(&f, phi, &mut out);
+            blocks.push((l, loops[l].rows.iter().map(|&r| out[r].id()).collect()));
+            Ok(())
+        };
+        let solved = closed.solve_each_or(
             phi,
             sketch,
             &mut pose.q,
             &mut pose.frames,
+            &in_use,
             |l, margin, scale| {
                 let (kind, condition) = match margin.root {
                     None => (GuardKind::Always, Traced::from(1.0)),
@@ -226,21 +267,22 @@ pub fn trace(
                 };
                 guards.push((l, kind, margin.value.id(), condition.id(), scale));
             },
+            &mut newton,
         );
         let values: Vec<Id> = outputs(&pose).into_iter().map(Traced::id).collect();
-        (solved, guards, values)
+        (solved, guards, blocks, values)
     });
-    let (solved, guards, values) = traced.map_err(|operation| Error::Untraceable {
+    let (solved, guards, blocks, values) = traced.map_err(|operation| Error::Untraceable {
         operation: operation.to_owned(),
     })?;
     // The sketch pose assembles (the tracker was built there), so every loop closes.
     if let Err((l, _)) = solved {
         return Err(Error::NoClosedForm {
-            what: CODE_GENERATION.to_owned(),
+            what: "code generation (its closed form fails at the sketch: a bug)".to_owned(),
             joints: tracker.joints_of_loop(l),
         });
     }
-    Ok(PositionGraph {
+    let mut position = PositionGraph {
         graph,
         outputs: values,
         guards: guards
@@ -254,9 +296,36 @@ pub fn trace(
                 scale,
             })
             .collect(),
+        newton: Vec::new(),
         limit: tracker.solver_singular_threshold(),
         sketch_drive: phi0,
-    })
+        newton_tolerance: tracker.solver().tolerance * size,
+        max_iterations: tracker.solver().max_iterations,
+        max_subdivisions: tracker.solver().max_subdivisions,
+        longest_step: tracker.longest_step(),
+        max_substeps: super::solver::interval::MAX_SUBSTEPS,
+    };
+    for (l, residual) in blocks {
+        let columns = loops[l].columns.clone();
+        let mut block = NewtonBlock {
+            loop_index: l,
+            joints: tracker.joints_of_loop(l),
+            sketch: columns.iter().map(|&c| sketch[c]).collect(),
+            row_scales: (loops[l].rows.iter())
+                .map(|&r| if eq.angular[r] { size } else { 1.0 })
+                .collect(),
+            column_scales: (columns.iter())
+                .map(|&c| if c % 3 == 2 { size } else { 1.0 })
+                .collect(),
+            columns,
+            residual,
+            jacobian: Vec::new(),
+            derivatives: Vec::new(),
+        };
+        block.differentiate(&mut position.graph)?;
+        position.newton.push(block);
+    }
+    Ok(position)
 }
 
 impl PositionGraph {
@@ -266,15 +335,42 @@ impl PositionGraph {
     /// # Errors
     /// [`Error::DerivativeOrderTooHigh`], [`Error::ExpressionTooLarge`] beyond the
     /// symbolic engine's limits.
+    ///
+    /// With Newton loops, the derivatives are total ones (through the loops' derivative
+    /// symbols, see [`NewtonBlock`]), and each block's right-hand sides `R_1 … R_order`
+    /// ([`NewtonBlock::derivatives`]) are set too.
     pub fn jets(&mut self, order: usize) -> Result<Vec<Vec<Id>>, Error> {
-        self.outputs
-            .clone()
-            .into_iter()
-            .map(|x| {
-                self.graph
-                    .try_derivatives(x, DRIVE, order, rules::MAX_NODES)
-            })
-            .collect()
+        if self.newton.is_empty() {
+            return self
+                .outputs
+                .clone()
+                .into_iter()
+                .map(|x| {
+                    self.graph
+                        .try_derivatives(x, DRIVE, order, rules::MAX_NODES)
+                })
+                .collect();
+        }
+        if order > rules::MAX_DERIVATIVE_ORDER {
+            return Err(Error::DerivativeOrderTooHigh {
+                order,
+                limit: rules::MAX_DERIVATIVE_ORDER,
+            });
+        }
+        let next = newton::successors(&self.newton, order);
+        for block in &mut self.newton {
+            block.lift(&mut self.graph, &next, order)?;
+        }
+        let mut jets = Vec::with_capacity(self.outputs.len());
+        for &x in &self.outputs {
+            let mut jet = vec![x];
+            for _ in 0..order {
+                let last = *jet.last().expect("not empty");
+                jet.push(newton::total(&mut self.graph, last, &next, &|_| false)?);
+            }
+            jets.push(jet);
+        }
+        Ok(jets)
     }
 
     /// The guards' nodes, `[discriminant, condition]` loop by loop.

@@ -105,8 +105,10 @@ pub struct Program {
     /// The registers' initial values: the constants, the drive position (0), and the
     /// values of the instructions folded at compile time (every argument a constant).
     pub(super) initial: Vec<f64>,
-    /// The drive position's register.
+    /// The drive position's register (the first input's, see [`Program::compile_inputs`]).
     pub(super) drive: u32,
+    /// Number of inputs, in registers `drive..drive + inputs`.
+    pub(super) inputs: u32,
     /// The instructions, in order; every register they name is below `size`.
     pub(super) code: Vec<Instruction>,
     pub(super) outputs: Vec<u32>,
@@ -120,6 +122,18 @@ impl Program {
     /// # Errors
     /// [`Error::UnboundSymbol`] for any other symbol.
     pub fn compile(graph: &Graph, outputs: &[Id], variable: &str) -> Result<Self, Error> {
+        Self::compile_inputs(graph, outputs, &[variable])
+    }
+
+    /// Compiles `outputs` of `graph` with several inputs (`inputs[0]` the drive position),
+    /// for [`Program::evaluate_inputs`]: a mixed plan's programs read the Newton loops'
+    /// coordinates too (see [`super::NewtonBlock`]).
+    ///
+    /// # Errors
+    /// [`Error::UnboundSymbol`] for a symbol that is neither an input nor a named constant.
+    pub fn compile_inputs(graph: &Graph, outputs: &[Id], inputs: &[&str]) -> Result<Self, Error> {
+        let variable = inputs.first().copied().unwrap_or(super::DRIVE);
+        let input = |name: &str| inputs.iter().position(|&i| i == name);
         let needed = graph.reachable(outputs);
         let mut arithmetic = DualArithmetic::<f64>::new();
         // Constants first: their registers are written once, by `registers`.
@@ -129,7 +143,7 @@ impl Program {
             let value = match node {
                 _ if !needed[index] => continue,
                 Node::Num(n) => n.value(),
-                Node::Sym(name) if &**name != variable => arithmetic
+                Node::Sym(name) if &**name != variable && input(name).is_none() => arithmetic
                     .named_constant(name)
                     .filter(|_| constants::is_named_constant(name))
                     .ok_or_else(|| Error::UnboundSymbol {
@@ -141,9 +155,10 @@ impl Program {
             constants.push(value);
         }
         let drive = constants.len() as u32;
-        constants.push(0.0);
+        let count = inputs.len().max(1) as u32;
+        constants.resize(constants.len() + count as usize, 0.0);
         let mut code: Vec<Instruction> = Vec::new();
-        let mut next = drive + 1;
+        let mut next = drive + count;
         // The `SinCos` register of each argument whose sine or cosine is computed.
         let mut sin_cos: std::collections::HashMap<u32, u32> = Default::default();
         for (index, node) in graph.nodes().iter().enumerate() {
@@ -152,10 +167,10 @@ impl Program {
             }
             let r = |id: &Id| register[id.index()];
             let (op, a, b, c) = match node {
-                // Constants have their registers (above); the one other symbol is φ.
+                // Constants have their registers (above); the other symbols are inputs.
                 Node::Num(_) => continue,
-                Node::Sym(_) => {
-                    register[index] = drive;
+                Node::Sym(name) => {
+                    register[index] = drive + input(name).unwrap_or(0) as u32;
                     continue;
                 }
                 Node::Unary(op @ (Unary::Sin | Unary::Cos), a) => {
@@ -194,6 +209,7 @@ impl Program {
         let mut program = Program {
             initial,
             drive,
+            inputs: count,
             code,
             outputs,
             size: next as usize,
@@ -239,7 +255,7 @@ impl Program {
     /// drive, earlier instructions) and writes below `size`, and every output is a register:
     /// what [`Program::evaluate`] relies on to skip bounds checks.
     fn registers_in_order(&self) -> bool {
-        let mut written = self.drive + 1;
+        let mut written = self.drive + self.inputs;
         let in_order = self.code.iter().all(|ins| {
             // `b` is read by every instruction (a register of its own, or 0).
             let reads = ins.b < ins.to && ins.reads().iter().all(|&k| ins.operand(k) < ins.to);
@@ -266,6 +282,18 @@ impl Program {
     /// every evaluation).
     pub fn registers(&self) -> Vec<f64> {
         self.initial.clone()
+    }
+
+    /// Evaluates at the inputs `inputs` (in the order of [`Program::compile_inputs`]) into
+    /// `out` (one value per output), with `registers` from [`Program::registers`]. Does not
+    /// allocate.
+    ///
+    /// # Panics
+    /// If `inputs`, `registers` or `out` are shorter than needed (a caller's bug).
+    pub fn evaluate_inputs(&self, inputs: &[f64], registers: &mut [f64], out: &mut [f64]) {
+        let at = self.drive as usize;
+        registers[at..at + self.inputs as usize].copy_from_slice(&inputs[..self.inputs as usize]);
+        self.evaluate(inputs[0], registers, out);
     }
 
     /// Evaluates at drive position `phi` into `out` (one value per output), with

@@ -111,7 +111,8 @@ impl ProgramTracker {
     ///
     /// # Errors
     /// The symbolic engine's limits ([`Error::ExpressionTooLarge`], …) differentiating the
-    /// margins; [`Error::NoClosedForm`] if the program's guards fail at the sketch (the
+    /// margins; [`Error::NoClosedForm`] if `position` has a Newton loop, or if the
+    /// program's guards fail at the sketch (the
     /// solver's do not: a bug, reported rather than walked).
     pub fn new(
         tracker: &Tracker<'_>,
@@ -119,6 +120,14 @@ impl ProgramTracker {
         values: &[Id],
         backend: Backend,
     ) -> Result<Self, Error> {
+        if let Some(block) = position.newton.first() {
+            return Err(Error::NoClosedForm {
+                what: "the run-time evaluator (mixed plans are evaluated by generated code \
+                       or the solver)"
+                    .to_owned(),
+                joints: block.joints.clone(),
+            });
+        }
         let mut roots = values.to_vec();
         for guard in &position.guards {
             let jet =
