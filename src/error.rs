@@ -323,14 +323,16 @@ pub enum Error {
         /// The engine's reason.
         source: mechdiff_core::Error,
     },
-    /// `mechdiff run --evaluator program` cannot evaluate this scene.
+    /// `mechdiff run --evaluator program|interpreter|jit` cannot evaluate this scene.
     #[error(
-        "{file}: --evaluator program cannot evaluate this scene: {reason}; use --evaluator \
+        "{file}: --evaluator {evaluator} cannot evaluate this scene: {reason}; use --evaluator \
          solver (or auto, which chooses)"
     )]
     NoEvaluator {
         /// The scene file.
         file: String,
+        /// The value of `--evaluator` asked for (`program`, `interpreter` or `jit`).
+        evaluator: String,
         /// Why (a loop without a closed form, a cam drive, …).
         reason: String,
     },

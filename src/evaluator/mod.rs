@@ -43,6 +43,8 @@ pub(crate) use program::{ProgramPath, solver_loops};
 
 use std::fmt;
 
+use mechdiff_core::geometry::trace::Backend;
+
 /// How a run evaluates positions (`mechdiff run --evaluator`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
 pub enum Evaluator {
@@ -61,6 +63,15 @@ pub enum Evaluator {
     /// The run-time evaluator, always compiled to native code by cranelift (interpreted,
     /// with a warning, on a host cranelift does not generate code for).
     Jit,
+}
+
+impl fmt::Display for Evaluator {
+    /// The option's value as written on the command line (`program`, `jit`, …).
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        use clap::ValueEnum;
+        let value = self.to_possible_value().expect("no variant is skipped");
+        f.write_str(value.get_name())
+    }
 }
 
 /// From how many drive positions `--evaluator program` compiles the program to native code
@@ -108,21 +119,27 @@ impl fmt::Display for LoopPlan {
     }
 }
 
-/// The words of the plan line for a run whose loops take `loops`: by whom, and each
-/// loop's path (`by the geometry solver (exact): loops [O2, drive `O2`] closed form, …`).
-pub fn describe(loops: &[LoopPlan]) -> String {
+/// The words of the plan line for a run whose loops take `loops`, the run-time evaluator
+/// on `backend` if it runs: by whom, and each loop's path (`by the geometry solver
+/// (exact): loops [O2, drive `O2`] closed form, …`).
+pub fn describe(loops: &[LoopPlan], backend: Option<Backend>) -> String {
     let each: Vec<String> = loops.iter().map(LoopPlan::to_string).collect();
     let each = each.join(", ");
+    let how = match backend {
+        Some(Backend::Jit) => "compiled to native code; ",
+        Some(Backend::Interpreter) => "interpreted; ",
+        None => "",
+    };
     if loops.iter().any(|l| l.path == LoopPath::NewtonInProgram) {
         format!(
             "by the run-time evaluator of the traced closed forms and, for loops without \
-             one, Newton in the program (exact; a step it cannot prove is taken by the \
+             one, Newton in the program ({how}exact; a step it cannot prove is taken by the \
              geometry solver): loops {each}"
         )
     } else if loops.iter().any(|l| l.path == LoopPath::Program) {
         format!(
-            "by the run-time evaluator of the traced closed forms (exact; a step it cannot \
-             prove is taken by the geometry solver): loops {each}"
+            "by the run-time evaluator of the traced closed forms ({how}exact; a step it \
+             cannot prove is taken by the geometry solver): loops {each}"
         )
     } else if loops.iter().any(|l| l.path == LoopPath::Newton) {
         format!(

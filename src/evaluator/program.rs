@@ -55,6 +55,7 @@ impl ProgramPath {
     fn new(scene: &Scene, tracker: &Tracker<'_>, backend: Backend) -> Result<Self> {
         let unavailable = |reason: String| Error::NoEvaluator {
             file: scene.file.clone(),
+            evaluator: scene.evaluator.to_string(),
             reason,
         };
         let mut code = SceneCode::of(scene).map_err(|e| {
@@ -100,7 +101,6 @@ impl ProgramPath {
     }
 
     /// The back end evaluating the program.
-    #[cfg(test)]
     pub fn backend(&self) -> Backend {
         match &self.tracker {
             Walker::Closed(t) => t.backend(),

@@ -31,6 +31,8 @@ pub struct Plan {
     /// Each loop and the path that evaluates it, once the sweep is set up
     /// ([`super::Sweeper::loops`]); empty before.
     pub loops: Vec<crate::evaluator::LoopPlan>,
+    /// The run-time evaluator's back end, when it evaluates the sweep (set with `loops`).
+    pub backend: Option<mechdiff_core::geometry::trace::Backend>,
 }
 
 impl Plan {
@@ -69,7 +71,14 @@ impl Plan {
                 .filter(|d| !d.outputs.is_empty())
                 .and_then(|d| super::build::mechanism(scene).ok().map(|m| d.plan(&m))),
             loops: Vec::new(),
+            backend: None,
         }
+    }
+    /// Records who evaluates `sweeper`'s positions: each loop's path and the run-time
+    /// evaluator's back end (for the plan line).
+    pub(crate) fn evaluated_by(&mut self, sweeper: &super::Sweeper<'_>) {
+        self.loops = sweeper.loops();
+        self.backend = sweeper.backend();
     }
 
     /// The plan as one line, in the scene's units.
@@ -149,7 +158,7 @@ impl Plan {
              group, else Newton with implicit differentiation)"
                 .to_owned()
         } else {
-            crate::evaluator::describe(&self.loops)
+            crate::evaluator::describe(&self.loops, self.backend)
         };
         format!(
             "plan: {range}; {what} {by}{motion}; {} columns{dead}{dynamics}",

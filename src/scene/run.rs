@@ -150,7 +150,7 @@ pub fn run(scene: &Scene) -> Result<Report> {
     let mut all = kinematic_columns(scene);
     let positions = drive_positions(scene, &mechanism)?;
     let mut sweeper = Sweeper::new(scene, &mechanism, &plan)?;
-    plan.loops = sweeper.loops();
+    plan.evaluated_by(&sweeper);
     let mut rows = Vec::with_capacity(positions.len());
     for &phi in &positions {
         let mut row = Vec::with_capacity(all.len());

@@ -7,6 +7,7 @@ use mechdiff_core::geometry::{Kinematics, Mechanism, Tracker};
 
 use crate::error::{Error, Result};
 use crate::evaluator::{LoopPlan, ProgramPath, solver_loops};
+use mechdiff_core::geometry::trace::Backend;
 
 use super::evaluate::{Resolved, evaluate, from_code, quantity};
 use super::model::Scene;
@@ -110,6 +111,11 @@ impl<'s> Sweeper<'s> {
             program,
             jit_warning,
         })
+    }
+
+    /// The run-time evaluator's back end, `None` on the solver (for the plan line).
+    pub fn backend(&self) -> Option<Backend> {
+        self.program.as_ref().map(ProgramPath::backend)
     }
 
     /// Each loop and the path that evaluates it (for the plan line).

@@ -125,7 +125,7 @@ pub fn run(scene: &Scene, sinks: &mut Sinks<'_>, options: &Options) -> Result<St
     let columns = kinematic_columns(scene);
     let positions = streamed_positions(scene, &mechanism)?;
     let mut sweeper = Sweeper::new(scene, &mechanism, &plan)?;
-    plan.loops = sweeper.loops();
+    plan.evaluated_by(&sweeper);
     let format = RowFormat::new(&columns);
     let streamed_table = positions.len() > options.table_from_values;
     let mut kept_rows: Vec<Vec<f64>> = Vec::new();
