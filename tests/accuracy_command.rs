@@ -96,6 +96,31 @@ fn mechanism_scene_is_measured() {
     }
 }
 
+/// A mixed plan (a closed-form crank driving a triad solved by Newton) is measured by the
+/// geometry methods against the double-double Newton reference; the run-time evaluator's
+/// row, which evaluates each position on its own, says why it is not measured.
+#[test]
+fn mixed_plan_is_measured_and_the_evaluator_row_says_why_not() {
+    let output = mechdiff(&[
+        "accuracy",
+        "tests/data/triad_slider.toml",
+        "--repeats",
+        "1",
+        "--positions",
+        "2",
+    ]);
+    assert!(output.status.success(), "{output:?}");
+    let text = String::from_utf8(output.stdout).unwrap();
+    for part in [
+        "Newton and implicit derivatives in double-double",
+        "geometry closed form + Newton (mixed)",
+        "symbolic (run-time evaluator): not measured: a mixed plan: the loop [A, B, C, D, G2, \
+         G3] is solved by Newton inside the evaluator",
+    ] {
+        assert!(text.contains(part), "{part} missing:\n{text}");
+    }
+}
+
 /// A cam scene is measured (its laws by the dual-number methods against the program in
 /// double-double), and a rotor scene gets its table of balancing answers, with the line that
 /// says why it has no method table; `--svg` is refused for the rotor (nothing to plot).

@@ -26,7 +26,7 @@ pub const NAME: &str = "symbolic (run-time evaluator)";
 ///
 /// # Errors
 /// Why there is no traced form, as a sentence: a cam-driven joint (the cam program is not
-/// traced), a loop without a closed form (named), derivatives beyond the engine's limits.
+/// traced), a mixed plan (its Newton loop named), derivatives beyond the engine's limits.
 pub fn method<'a>(
     scene: &'a Scene,
     angle: &[bool],
@@ -41,6 +41,16 @@ pub fn method<'a>(
         );
     }
     let mut code = SceneCode::of(scene).map_err(|e| e.to_string())?;
+    if let Some(block) = code.position.newton.first() {
+        // The row evaluates the program at each drive position on its own; a Newton loop
+        // inside it needs the sweep walked in order from the sketch (`MixedTracker`).
+        return Err(format!(
+            "a mixed plan: the loop [{}] is solved by Newton inside the evaluator, which walks \
+             the sweep in order (`mechdiff run --evaluator program`); this row measures plans \
+             whose every loop has a closed form",
+            block.joints.join(", ")
+        ));
+    }
     code.jets = code
         .position
         .jets(MAX_ORDER)
