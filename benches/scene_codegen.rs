@@ -26,7 +26,10 @@
 //! cargo bench -p mechdiff --bench scene_codegen -- --warm-up-time 1 --measurement-time 4
 //! ```
 
-use criterion::{BatchSize, Criterion, Throughput, criterion_group, criterion_main};
+use criterion::measurement::WallTime;
+use criterion::{
+    BatchSize, BenchmarkGroup, Criterion, Throughput, criterion_group, criterion_main,
+};
 use mechdiff::codegen::scene::SceneCode;
 use mechdiff::evaluator::Evaluator;
 use mechdiff::scene::{Plan, Scene, Sweeper, build};
@@ -184,24 +187,7 @@ fn sweep_solver_vs_program(c: &mut Criterion) {
         ("interpreter", Evaluator::Interpreter),
         ("JIT (what `program` chooses at 10^4)", Evaluator::Jit),
     ] {
-        let scene = whitworth_sweep(evaluator);
-        let mechanism = build::mechanism(&scene).unwrap();
-        let plan = Plan::of(&scene);
-        group.bench_function(format!("rows, {name}"), |b| {
-            b.iter_batched(
-                || Sweeper::new(&scene, &mechanism, &plan).unwrap(),
-                |mut sweeper| {
-                    let mut row = Vec::new();
-                    let mut sum = 0.0;
-                    for phi in scene.positions.iter() {
-                        sweeper.row(black_box(phi), &mut row).unwrap();
-                        sum += row[1];
-                    }
-                    sum
-                },
-                BatchSize::PerIteration,
-            )
-        });
+        bench_rows(&mut group, name, &whitworth_sweep(evaluator));
     }
     group.finish();
     let mut group = c.benchmark_group("whitworth.toml sweep set-up: solver vs run-time evaluator");
@@ -231,6 +217,28 @@ fn sweep_solver_vs_program(c: &mut Criterion) {
     group.finish();
 }
 
+/// `mechdiff run`'s rows of `scene` in process (`Sweeper::row` at every drive position; the
+/// sweeper's set-up outside the measurement), as `rows, {name}`.
+fn bench_rows(group: &mut BenchmarkGroup<'_, WallTime>, name: &str, scene: &Scene) {
+    let mechanism = build::mechanism(scene).unwrap();
+    let plan = Plan::of(scene);
+    group.bench_function(format!("rows, {name}"), |b| {
+        b.iter_batched(
+            || Sweeper::new(scene, &mechanism, &plan).unwrap(),
+            |mut sweeper| {
+                let mut row = Vec::new();
+                let mut sum = 0.0;
+                for phi in scene.positions.iter() {
+                    sweeper.row(black_box(phi), &mut row).unwrap();
+                    sum += row[1];
+                }
+                sum
+            },
+            BatchSize::PerIteration,
+        )
+    });
+}
+
 fn mixed_plan_sweep(c: &mut Criterion) {
     let text = std::fs::read_to_string("tests/data/triad_slider.toml").unwrap();
     let text = text.replace("step = 2.5\n", "step = 0.05\n");
@@ -251,23 +259,7 @@ fn mixed_plan_sweep(c: &mut Criterion) {
     ] {
         let mut scene = scene.clone();
         scene.evaluator = evaluator;
-        let mechanism = build::mechanism(&scene).unwrap();
-        let plan = Plan::of(&scene);
-        group.bench_function(format!("rows, {name}"), |b| {
-            b.iter_batched(
-                || Sweeper::new(&scene, &mechanism, &plan).unwrap(),
-                |mut sweeper| {
-                    let mut row = Vec::new();
-                    let mut sum = 0.0;
-                    for phi in scene.positions.iter() {
-                        sweeper.row(black_box(phi), &mut row).unwrap();
-                        sum += row[1];
-                    }
-                    sum
-                },
-                BatchSize::PerIteration,
-            )
-        });
+        bench_rows(&mut group, name, &scene);
     }
     group.bench_function(
         "generated Tracker::pose (SI values, no row formatting)",
