@@ -67,6 +67,9 @@ pub struct MixedTracker {
     /// Each block's branch (the sign of det Φ_q; 0 before the first position).
     branches: Vec<f64>,
     trial_branches: Vec<f64>,
+    /// `inputs` and `branches` at the start of a move, restored if it fails.
+    saved_inputs: Vec<f64>,
+    saved_branches: Vec<f64>,
     /// Registers of each program (`outputs`, then the blocks' `system` and `lifts`).
     registers: Vec<Vec<f64>>,
     out: Vec<f64>,
@@ -155,9 +158,11 @@ impl MixedTracker {
             values: values.len(),
             order,
             trial: inputs.clone(),
+            saved_inputs: inputs.clone(),
             inputs,
             branches: vec![0.0; compiled.len()],
             trial_branches: vec![0.0; compiled.len()],
+            saved_branches: vec![0.0; compiled.len()],
             registers,
             system_out: vec![0.0; largest + largest * largest],
             lu: vec![0.0; largest * largest],
@@ -216,7 +221,8 @@ impl MixedTracker {
         if !phi.is_finite() {
             return false;
         }
-        let start = (self.inputs.clone(), self.branches.clone());
+        self.saved_inputs.copy_from_slice(&self.inputs);
+        self.saved_branches.copy_from_slice(&self.branches);
         let (mut halvings, mut substeps) = (0usize, 0usize);
         let mut failed = false;
         while self.phi() != phi || substeps == 0 {
@@ -258,7 +264,8 @@ impl MixedTracker {
             }
         }
         if failed {
-            (self.inputs, self.branches) = start;
+            self.inputs.copy_from_slice(&self.saved_inputs);
+            self.branches.copy_from_slice(&self.saved_branches);
         }
         !failed
     }
