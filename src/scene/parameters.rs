@@ -21,7 +21,7 @@ use crate::error::{Error, Result};
 use super::format::Name;
 use super::source::Source;
 use super::units::unit_factor;
-use super::values::{check_names, formula, formula_names};
+use super::values::{formula, formula_names, parameters_used};
 
 thread_local! {
     /// The parameters of the scene being read on this thread.
@@ -316,9 +316,8 @@ fn evaluate(pending: &[Pending], source: &Source) -> Result<Vec<(String, f64, f6
     let mut names_in_scene: Vec<&str> = pending.iter().map(|p| p.name).collect();
     names_in_scene.sort_unstable();
     for p in pending {
-        check_names(&p.text, &names_in_scene).map_err(|e| fail(p, e))?;
-        let names = formula_names(&p.text).map_err(|e| fail(p, e))?;
-        // Unknown names are reported when the formula is evaluated, with their column.
+        // An unknown name is reported here, with its column and every parameter's name.
+        let names = parameters_used(&p.text, &names_in_scene).map_err(|e| fail(p, e))?;
         uses.push(
             names
                 .iter()

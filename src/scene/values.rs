@@ -131,14 +131,21 @@ fn unknown_name(text: &str, symbols: &[&str], parameters: &[&str]) -> Result<(),
     ))
 }
 
-/// Checks that every name `text` uses is a constant or one of the scene's `parameters`
-/// (all of them, evaluated or not: a formula's error lists what it could use).
+/// The parameters `text` uses, once every name it uses is checked to be a constant or one
+/// of the scene's `parameters` (all of them, evaluated or not: a formula's error lists what
+/// it could use).
 ///
 /// # Errors
 /// As [`constant_formula`], for a formula that cannot be read or an unknown name.
-pub(crate) fn check_names(text: &str, parameters: &[&str]) -> Result<(), String> {
+pub(crate) fn parameters_used(text: &str, parameters: &[&str]) -> Result<Vec<String>, String> {
     let (graph, id) = parse_formula(text)?;
-    unknown_name(text, &graph.symbols(&[id]), parameters)
+    let symbols = graph.symbols(&[id]);
+    unknown_name(text, &symbols, parameters)?;
+    Ok(symbols
+        .into_iter()
+        .filter(|s| parameters.contains(s))
+        .map(str::to_owned)
+        .collect())
 }
 
 /// What a formula may contain, for messages.
