@@ -1,8 +1,12 @@
 //! Ruler-and-compass constructions that place a sketch point from lengths: the RRR dyad
 //! (two circles), the RRP dyad (a circle and a line) and a polar offset.
 //!
-//! Pure plane geometry in f64 (SI); the scene ([`super::placement`]) names the points,
+//! Pure plane geometry (SI), in any [`Carried`] scalar: `f64`, or dual numbers carrying
+//! the derivative of every length with respect to a parameter (the scene's tangent,
+//! [`super::tangent`]), whose real parts are the `f64` results bit for bit. The scene ([`super::placement`]) names the points,
 //! converts units and turns a [`NoSolution`] into a message at the place in the file.
+
+use super::tangent::Carried;
 
 /// Which of the two intersections of two circles: on the left or right of the directed line
 /// from the first centre to the second.
@@ -57,27 +61,28 @@ pub enum NoSolution {
 ///
 /// # Errors
 /// [`NoSolution`] when the circles do not meet or are concentric.
-pub fn circles(
-    c1: [f64; 2],
-    r1: f64,
-    c2: [f64; 2],
-    r2: f64,
+pub fn circles<D: Carried>(
+    c1: [D; 2],
+    r1: D,
+    c2: [D; 2],
+    r2: D,
     side: Side,
-) -> Result<[f64; 2], NoSolution> {
+) -> Result<[D; 2], NoSolution> {
     let (dx, dy) = (c2[0] - c1[0], c2[1] - c1[1]);
     let d = dx.hypot(dy);
-    if d == 0.0 {
+    let (dr, r1r, r2r) = (d.re(), r1.re(), r2.re());
+    if dr == 0.0 {
         return Err(NoSolution::Concentric);
     }
-    if d > r1 + r2 {
-        return Err(NoSolution::TooFar { distance: d });
+    if dr > r1r + r2r {
+        return Err(NoSolution::TooFar { distance: dr });
     }
-    if d < (r1 - r2).abs() {
-        return Err(NoSolution::Inside { distance: d });
+    if dr < (r1r - r2r).abs() {
+        return Err(NoSolution::Inside { distance: dr });
     }
     // Along c1 → c2 by a, then across by h (the law of cosines, Heron-free form).
-    let a = (r1 * r1 - r2 * r2 + d * d) / (2.0 * d);
-    let h = (r1 * r1 - a * a).max(0.0).sqrt();
+    let a = (r1 * r1 - r2 * r2 + d * d) / (d * 2.0);
+    let h = (r1 * r1 - a * a).non_negative().sqrt();
     let (ux, uy) = (dx / d, dy / d);
     let h = match side {
         Side::Left => h,
@@ -91,25 +96,27 @@ pub fn circles(
 ///
 /// # Errors
 /// [`NoSolution`] when the line misses the circle or `p` = `q`.
-pub fn circle_line(
-    c: [f64; 2],
-    r: f64,
-    [p, q]: [[f64; 2]; 2],
+pub fn circle_line<D: Carried>(
+    c: [D; 2],
+    r: D,
+    [p, q]: [[D; 2]; 2],
     along: Along,
-) -> Result<[f64; 2], NoSolution> {
+) -> Result<[D; 2], NoSolution> {
     let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
     let length = dx.hypot(dy);
-    if length == 0.0 {
+    if length.re() == 0.0 {
         return Err(NoSolution::NoLine);
     }
     let (ux, uy) = (dx / length, dy / length);
     // The foot of the perpendicular from c, at s along the line and e across it.
     let s = (c[0] - p[0]) * ux + (c[1] - p[1]) * uy;
     let e = (c[1] - p[1]) * ux - (c[0] - p[0]) * uy;
-    if e.abs() > r {
-        return Err(NoSolution::Misses { distance: e.abs() });
+    if e.re().abs() > r.re() {
+        return Err(NoSolution::Misses {
+            distance: e.re().abs(),
+        });
     }
-    let t = (r * r - e * e).max(0.0).sqrt();
+    let t = (r * r - e * e).non_negative().sqrt();
     let t = match along {
         Along::Forward => s + t,
         Along::Backward => s - t,
@@ -119,7 +126,7 @@ pub fn circle_line(
 
 /// The point at `length` from `origin` in the direction `angle` (radians, counter-clockwise
 /// from +x).
-pub fn polar(origin: [f64; 2], length: f64, angle: f64) -> [f64; 2] {
+pub fn polar<D: Carried>(origin: [D; 2], length: D, angle: D) -> [D; 2] {
     [
         origin[0] + length * angle.cos(),
         origin[1] + length * angle.sin(),

@@ -12,6 +12,7 @@ use mechdiff_core::cams::{CamJoint, Follower};
 use super::model::{Drive, DriveCam, DriveKind, Joint, JointKind, Output, OutputKind};
 use super::positions::Positions;
 use super::resolve::{Context, GROUND, Geometry};
+use super::tangent::Carried;
 use super::units::Dimension;
 
 /// The most drive positions a `positions = [...]` list may have (the file is parsed whole).
@@ -21,10 +22,46 @@ pub const MAX_POSITIONS: usize = 1_000_000;
 /// with an exact `i`. A longer sweep is bounded by time and disk, not memory (it streams).
 const MAX_INTERVALS: f64 = 9_007_199_254_740_992.0;
 
-/// Direction angle of the line `a → b` in the sketch (rad).
-pub(crate) fn direction(geometry: &Geometry, [a, b]: [&str; 2]) -> f64 {
-    let (a, b) = (geometry.sketch(a), geometry.sketch(b));
-    (b[1] - a[1]).atan2(b[0] - a[0])
+/// What the drive measures, checked: the angle of a line of the driven link (from a line of
+/// the other link, or from +x), or a slider's displacement along its line.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum DriveMeasure {
+    /// The angle of `line` from `reference` (or +x), counter-clockwise.
+    Angle {
+        line: [String; 2],
+        reference: Option<[String; 2]>,
+    },
+    /// The displacement of `point` along `line` from its first point.
+    Displacement { line: [String; 2], point: String },
+}
+
+impl DriveMeasure {
+    /// Angle or displacement.
+    pub(crate) fn kind(&self) -> DriveKind {
+        match self {
+            DriveMeasure::Angle { .. } => DriveKind::Angle,
+            DriveMeasure::Displacement { .. } => DriveKind::Displacement,
+        }
+    }
+
+    /// Its value with the points at `sketch(name)` (rad or m), in any [`Carried`] scalar.
+    pub(crate) fn at<D: Carried>(&self, sketch: impl Fn(&str) -> [D; 2]) -> D {
+        let direction = |[a, b]: &[String; 2]| {
+            let (a, b) = (sketch(a), sketch(b));
+            (b[1] - a[1]).atan2(b[0] - a[0])
+        };
+        match self {
+            DriveMeasure::Angle { line, reference } => match reference {
+                Some(reference) => direction(line) - direction(reference),
+                None => direction(line),
+            },
+            DriveMeasure::Displacement { line, point } => {
+                let (a, b, p) = (sketch(&line[0]), sketch(&line[1]), sketch(point));
+                let (ux, uy) = (b[0] - a[0], b[1] - a[1]);
+                ((p[0] - a[0]) * ux + (p[1] - a[1]) * uy) / ux.hypot(uy)
+            }
+        }
+    }
 }
 
 impl Context<'_> {
@@ -35,88 +72,8 @@ impl Context<'_> {
         joints: &[Joint],
     ) -> Result<Drive> {
         let d = section.get_ref();
-        let Some(joint) = joints.iter().find(|j| &j.name == d.joint.get_ref()) else {
-            let known: Vec<&str> = joints.iter().map(|j| j.name.as_str()).collect();
-            return Err(Error::UnknownName {
-                location: self.at(&d.joint),
-                what: "joint",
-                name: d.joint.get_ref().clone(),
-                context: "`[drive]`".to_owned(),
-                known: known.join(", "),
-            });
-        };
-        let (kind, at_sketch) = match &joint.kind {
-            JointKind::Revolute { links, .. } => {
-                let Some(line) = &d.line else {
-                    return Err(self.invalid(
-                        section,
-                        format!(
-                            "`[drive]` of revolute joint `{}` needs `line = [\"P\", \"Q\"]`: two \
-                            points of link `{}` whose angle is the drive",
-                            joint.name, links[1]
-                        ),
-                    ));
-                };
-                let context = format!("`[drive] line` (of the driven link `{}`)", links[1]);
-                let line = self.line(line, &links[1], geometry, &context)?;
-                let mut angle = direction(geometry, [&line[0], &line[1]]);
-                match &d.reference {
-                    Some(reference) => {
-                        let context = format!("`[drive] reference` (of link `{}`)", links[0]);
-                        let reference = self.line(reference, &links[0], geometry, &context)?;
-                        angle -= direction(geometry, [&reference[0], &reference[1]]);
-                    }
-                    None if links[0] != GROUND => {
-                        return Err(self.invalid(
-                            section,
-                            format!(
-                                "`[drive]`: joint `{}` turns relative to link `{}`, not the \
-                                ground; give `reference = [\"P\", \"Q\"]`, two points of `{}`",
-                                joint.name, links[0], links[0]
-                            ),
-                        ));
-                    }
-                    None => {}
-                }
-                (DriveKind::Angle, angle)
-            }
-            JointKind::Prismatic { line, point, .. } => {
-                if let Some(extra) = d
-                    .line
-                    .as_ref()
-                    .map(|l| l.span())
-                    .or(d.reference.as_ref().map(|r| r.span()))
-                {
-                    return Err(Error::Invalid {
-                        location: self.source.location(extra),
-                        message: format!(
-                            "`[drive]`: joint `{}` is prismatic, its displacement is measured \
-                            along its own line; `line` and `reference` apply to a revolute drive \
-                            only",
-                            joint.name
-                        ),
-                    });
-                }
-                let (a, b, p) = (
-                    geometry.sketch(&line[0]),
-                    geometry.sketch(&line[1]),
-                    geometry.sketch(point),
-                );
-                let (ux, uy) = (b[0] - a[0], b[1] - a[1]);
-                let s = ((p[0] - a[0]) * ux + (p[1] - a[1]) * uy) / ux.hypot(uy);
-                (DriveKind::Displacement, s)
-            }
-            other => {
-                return Err(self.invalid(
-                    &d.joint,
-                    format!(
-                        "`[drive]`: joint `{}` is {}; expected a revolute or prismatic joint",
-                        joint.name,
-                        other.type_name()
-                    ),
-                ));
-            }
-        };
+        let (joint, measure) = self.drive_measure(section, geometry, joints)?;
+        let (kind, at_sketch) = (measure.kind(), measure.at(|n| geometry.sketch(n)));
         let cam = match &d.cam {
             Some(path) => Some(self.drive_cam(path, &joint.name, kind)?),
             None => None,
@@ -148,6 +105,93 @@ impl Context<'_> {
             location: self.at(section),
             cam,
         })
+    }
+
+    /// The drive's joint and what it measures, checked (see [`Context::drive`]).
+    pub(crate) fn drive_measure<'j>(
+        &self,
+        section: &Spanned<DriveSection>,
+        geometry: &Geometry,
+        joints: &'j [Joint],
+    ) -> Result<(&'j Joint, DriveMeasure)> {
+        let d = section.get_ref();
+        let Some(joint) = joints.iter().find(|j| &j.name == d.joint.get_ref()) else {
+            let known: Vec<&str> = joints.iter().map(|j| j.name.as_str()).collect();
+            return Err(Error::UnknownName {
+                location: self.at(&d.joint),
+                what: "joint",
+                name: d.joint.get_ref().clone(),
+                context: "`[drive]`".to_owned(),
+                known: known.join(", "),
+            });
+        };
+        let measure = match &joint.kind {
+            JointKind::Revolute { links, .. } => {
+                let Some(line) = &d.line else {
+                    return Err(self.invalid(
+                        section,
+                        format!(
+                            "`[drive]` of revolute joint `{}` needs `line = [\"P\", \"Q\"]`: two \
+                            points of link `{}` whose angle is the drive",
+                            joint.name, links[1]
+                        ),
+                    ));
+                };
+                let context = format!("`[drive] line` (of the driven link `{}`)", links[1]);
+                let line = self.line(line, &links[1], geometry, &context)?;
+                let reference = match &d.reference {
+                    Some(reference) => {
+                        let context = format!("`[drive] reference` (of link `{}`)", links[0]);
+                        Some(self.line(reference, &links[0], geometry, &context)?)
+                    }
+                    None if links[0] != GROUND => {
+                        return Err(self.invalid(
+                            section,
+                            format!(
+                                "`[drive]`: joint `{}` turns relative to link `{}`, not the \
+                                ground; give `reference = [\"P\", \"Q\"]`, two points of `{}`",
+                                joint.name, links[0], links[0]
+                            ),
+                        ));
+                    }
+                    None => None,
+                };
+                DriveMeasure::Angle { line, reference }
+            }
+            JointKind::Prismatic { line, point, .. } => {
+                if let Some(extra) = d
+                    .line
+                    .as_ref()
+                    .map(|l| l.span())
+                    .or(d.reference.as_ref().map(|r| r.span()))
+                {
+                    return Err(Error::Invalid {
+                        location: self.source.location(extra),
+                        message: format!(
+                            "`[drive]`: joint `{}` is prismatic, its displacement is measured \
+                            along its own line; `line` and `reference` apply to a revolute drive \
+                            only",
+                            joint.name
+                        ),
+                    });
+                }
+                DriveMeasure::Displacement {
+                    line: line.clone(),
+                    point: point.clone(),
+                }
+            }
+            other => {
+                return Err(self.invalid(
+                    &d.joint,
+                    format!(
+                        "`[drive]`: joint `{}` is {}; expected a revolute or prismatic joint",
+                        joint.name,
+                        other.type_name()
+                    ),
+                ));
+            }
+        };
+        Ok((joint, measure))
     }
 
     /// Loads the cam scene `path` (relative to this file) for `[drive] cam` of joint `joint`

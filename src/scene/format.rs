@@ -96,8 +96,8 @@ pub struct UnitsSection {
 /// How a point is placed in the sketch.
 #[derive(Debug, Clone, PartialEq)]
 pub enum PointDef {
-    /// `[x, y]`: global coordinates.
-    Xy([f64; 2]),
+    /// `[x, y]`: global coordinates, each with its span.
+    Xy([Spanned<f64>; 2]),
     /// `{ from = "B", length = 1.065, angle = 63 }`: polar from another point
     /// (angle counter-clockwise from +x).
     Polar {
@@ -162,16 +162,16 @@ impl<'de> Visitor<'de> for PointVisitor {
     }
 
     fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<PointDef, A::Error> {
-        let Number(x) = seq
+        let x = seq
             .next_element()?
             .ok_or_else(|| de::Error::invalid_length(0, &self))?;
-        let Number(y) = seq
+        let y = seq
             .next_element()?
             .ok_or_else(|| de::Error::invalid_length(1, &self))?;
         if seq.next_element::<de::IgnoredAny>()?.is_some() {
             return Err(de::Error::invalid_length(3, &self));
         }
-        Ok(PointDef::Xy([x, y]))
+        Ok(PointDef::Xy([number(x), number(y)]))
     }
 
     fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<PointDef, A::Error> {

@@ -57,6 +57,7 @@ pub mod study;
 pub mod sweep;
 pub mod sweep_limits;
 pub mod table;
+pub mod tangent;
 pub mod units;
 pub mod values;
 

@@ -20,8 +20,10 @@ use crate::error::{Error, Result};
 
 use super::format::Name;
 use super::source::Source;
+use super::tangent::Carried;
 use super::units::unit_factor;
-use super::values::{formula, formula_names, parameters_used};
+use super::values::{formula_in, formula_names, parameters_used};
+use mechdiff_core::num_dual::Dual64;
 
 thread_local! {
     /// The parameters of the scene being read on this thread.
@@ -224,6 +226,36 @@ pub fn read_with_own_units(
     source: &Source,
     settings: &[Setting],
 ) -> Result<Vec<(String, f64, f64)>> {
+    read_in::<f64>(text, source, settings, None)
+}
+
+/// As [`read`], each value with its derivative with respect to the parameter `by` (per
+/// unit of `by` in its own unit, as `--set` moves it): the dual part of each value. `by`
+/// itself is then independent: its own formula, if it has one, is set aside, as `--set`
+/// sets it aside.
+///
+/// # Errors
+/// As [`read`].
+pub(crate) fn read_tangent(
+    text: &str,
+    source: &Source,
+    settings: &[Setting],
+    by: &str,
+) -> Result<Vec<(String, Dual64)>> {
+    Ok(read_in::<Dual64>(text, source, settings, Some(by))?
+        .into_iter()
+        .map(|(name, value, _)| (name, value))
+        .collect())
+}
+
+/// As [`read_with_own_units`], in the scalar `D`, with the parameter `seed` (if any) the
+/// independent variable of `D`'s dual part.
+fn read_in<D: Carried>(
+    text: &str,
+    source: &Source,
+    settings: &[Setting],
+    seed: Option<&str>,
+) -> Result<Vec<(String, D, f64)>> {
     let first: ParametersOnly = toml::from_str(text).map_err(|e| source.syntax_error(&e))?;
     let file_units = super::resolve::units(&first.units);
     let table = first
@@ -291,11 +323,17 @@ pub fn read_with_own_units(
         p.text.clone_from(&setting.value);
         p.span = None;
     }
-    evaluate(&pending, source)
+    evaluate(&pending, source, seed)
 }
 
-/// Evaluates the parameters in the order of their dependencies (Kahn's algorithm).
-fn evaluate(pending: &[Pending], source: &Source) -> Result<Vec<(String, f64, f64)>> {
+/// Evaluates the parameters in the order of their dependencies (Kahn's algorithm), in the
+/// scalar `D`, `seed` (if any) the independent variable: `(name, value in the file's unit,
+/// value in its own unit)`.
+fn evaluate<D: Carried>(
+    pending: &[Pending],
+    source: &Source,
+    seed: Option<&str>,
+) -> Result<Vec<(String, D, f64)>> {
     let fail = |p: &Pending, message: String| match &p.span {
         Some(span) => Error::Invalid {
             location: source.location(source.inside_formula(span.clone(), &message)),
@@ -337,14 +375,17 @@ fn evaluate(pending: &[Pending], source: &Source) -> Result<Vec<(String, f64, f6
         .filter(|&i| waiting[i] == 0)
         .map(Reverse)
         .collect();
-    let mut values: Vec<(String, f64, f64)> = Vec::with_capacity(pending.len());
-    let mut known: HashMap<String, f64> = HashMap::with_capacity(pending.len());
+    let mut values: Vec<(String, D, f64)> = Vec::with_capacity(pending.len());
+    let mut known: HashMap<String, D> = HashMap::with_capacity(pending.len());
     while let Some(Reverse(i)) = ready.pop() {
         let p = &pending[i];
-        let own = formula(&p.text, &known).map_err(|e| fail(p, e))?;
+        let mut own: D = formula_in(&p.text, &known).map_err(|e| fail(p, e))?;
+        if seed == Some(p.name) {
+            own = D::with_tangent(own.re(), 1.0);
+        }
         let value = own * p.scale;
         known.insert(p.name.to_owned(), value);
-        values.push((p.name.to_owned(), value, own));
+        values.push((p.name.to_owned(), value, own.re()));
         for &k in &used_by[i] {
             waiting[k] -= 1;
             if waiting[k] == 0 {

@@ -12,6 +12,7 @@ use super::construct::{self, NoSolution};
 use super::format::{Name, PointDef};
 use super::model::Point;
 use super::resolve::Context;
+use super::tangent::Carried;
 use super::units::{Dimension, Units};
 
 /// The definitions of the points by name, for placing them in order.
@@ -23,6 +24,15 @@ impl Context<'_> {
         &self,
         table: &Spanned<BTreeMap<Name, Spanned<PointDef>>>,
     ) -> Result<Vec<Point>> {
+        Ok(self.points_in::<f64>(table)?.1)
+    }
+
+    /// As [`Context::points`], each point's coordinates also in the scalar `D` (with their
+    /// derivatives, when the context carries a tangent), in the same order.
+    pub(crate) fn points_in<D: Carried>(
+        &self,
+        table: &Spanned<BTreeMap<Name, Spanned<PointDef>>>,
+    ) -> Result<(Vec<[D; 2]>, Vec<Point>)> {
         let mut entries: Vec<(&Name, &Spanned<PointDef>)> = table.get_ref().iter().collect();
         entries.sort_by_key(|(name, _)| name.span().start);
         if entries.is_empty() {
@@ -32,27 +42,30 @@ impl Context<'_> {
             .iter()
             .map(|(n, d)| (n.get_ref().as_str(), *d))
             .collect();
-        let mut placed: HashMap<&str, [f64; 2]> = HashMap::with_capacity(entries.len());
+        let mut placed: HashMap<&str, [D; 2]> = HashMap::with_capacity(entries.len());
         for (name, _) in &entries {
             self.place(name.get_ref(), &defs, &mut placed)?;
         }
-        Ok(entries
-            .iter()
-            .map(|(name, _)| Point {
+        let carried: Vec<[D; 2]> = (entries.iter())
+            .map(|(name, _)| placed[name.get_ref().as_str()])
+            .collect();
+        let points = (entries.iter().zip(&carried))
+            .map(|((name, _), xy)| Point {
                 name: name.get_ref().clone(),
-                sketch: placed[name.get_ref().as_str()],
+                sketch: [xy[0].re(), xy[1].re()],
                 location: self.at(name),
             })
-            .collect())
+            .collect();
+        Ok((carried, points))
     }
 
     /// Places `name` after the points it is built from, depth first with a stack of its
     /// own (so a chain of any length is placed without recursion).
-    fn place<'d>(
+    fn place<'d, D: Carried>(
         &self,
         name: &'d str,
         defs: &Defs<'d>,
-        placed: &mut HashMap<&'d str, [f64; 2]>,
+        placed: &mut HashMap<&'d str, [D; 2]>,
     ) -> Result<()> {
         let mut path: Vec<&'d str> = vec![name];
         let mut on_path: HashSet<&'d str> = HashSet::from([name]);
@@ -111,24 +124,23 @@ impl Context<'_> {
     }
 
     /// Sketch coordinates of a point whose sources are placed.
-    fn construct(
+    fn construct<D: Carried>(
         &self,
         name: &str,
         def: &Spanned<PointDef>,
-        placed: &HashMap<&str, [f64; 2]>,
-    ) -> Result<[f64; 2]> {
+        placed: &HashMap<&str, [D; 2]>,
+    ) -> Result<[D; 2]> {
         let at = |p: &Name| placed[p.get_ref().as_str()];
         let length = |v: &Spanned<f64>, what: &str| {
-            self.positive(v, &format!("{what} of point `{name}`"), Dimension::Length)
+            self.positive_in::<D>(v, &format!("{what} of point `{name}`"), Dimension::Length)
         };
         Ok(match def.get_ref() {
-            PointDef::Xy(xy) => {
-                let what = |axis: &str| format!("the {axis} coordinate of point `{name}`");
-                let coordinate = |v: f64, axis: &str| {
-                    let v = Spanned::new(def.span(), v);
-                    self.number(&v, &what(axis), Dimension::Length)
+            PointDef::Xy([x, y]) => {
+                let coordinate = |v: &Spanned<f64>, axis: &str| {
+                    let what = format!("the {axis} coordinate of point `{name}`");
+                    self.number_in::<D>(v, &what, Dimension::Length)
                 };
-                [coordinate(xy[0], "x")?, coordinate(xy[1], "y")?]
+                [coordinate(x, "x")?, coordinate(y, "y")?]
             }
             PointDef::Polar {
                 from,
@@ -136,7 +148,7 @@ impl Context<'_> {
                 angle,
             } => {
                 let l = length(l, "`length`")?;
-                let angle = self.number(
+                let angle = self.number_in::<D>(
                     angle,
                     &format!("`angle` of point `{name}`"),
                     Dimension::Angle,
@@ -156,9 +168,9 @@ impl Context<'_> {
                         "point `{name}`: the circle about `{}` of radius {} and the circle \
                          about `{}` of radius {}",
                         a.get_ref(),
-                        self.length_text(r1),
+                        self.length_text(r1.re()),
                         b.get_ref(),
-                        self.length_text(r2)
+                        self.length_text(r2.re())
                     );
                     self.no_solution(def, &what, why)
                 })?
@@ -177,7 +189,7 @@ impl Context<'_> {
                             "point `{name}`: the circle about `{}` of radius {} and the line \
                              `{}`–`{}`",
                             circle.get_ref(),
-                            self.length_text(r),
+                            self.length_text(r.re()),
                             p.get_ref(),
                             q.get_ref()
                         );

@@ -15,6 +15,7 @@ use super::limits;
 use super::model::{DriveKind, Joint, JointKind, Link, Point, Scene};
 use super::outputs;
 use super::source::Source;
+use super::tangent::{Carried, Tangents};
 use super::units::{Dimension, Units};
 
 /// The name of the frame link, which every scene has.
@@ -42,13 +43,7 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
         .map(|(i, p)| (p.name.as_str(), i))
         .collect();
     let links = cx.links(&file.links, &names)?;
-    let scale = sketch_scale(&points);
-    let geometry = Geometry {
-        points: &points,
-        names: &names,
-        links: &links,
-        scale,
-    };
+    let geometry = Geometry::new(&points, &names, &links);
     let joints = cx.joints(&file.joints, &geometry)?;
     let mut drive = cx.drive(&file.drive, &geometry, &joints)?;
     let outputs = outputs::resolve(&cx, &file.outputs, &geometry, &joints, &drive)?;
@@ -162,7 +157,21 @@ pub(crate) struct Geometry<'a> {
     pub(crate) scale: f64,
 }
 
-impl Geometry<'_> {
+impl<'a> Geometry<'a> {
+    /// The geometry of the resolved `points` (with their indices by name) and `links`.
+    pub(crate) fn new(
+        points: &'a [Point],
+        names: &'a HashMap<&'a str, usize>,
+        links: &'a [Link],
+    ) -> Self {
+        Geometry {
+            points,
+            names,
+            links,
+            scale: sketch_scale(points),
+        }
+    }
+
     /// Sketch coordinates of a point known to exist.
     pub(crate) fn sketch(&self, name: &str) -> [f64; 2] {
         self.points[self.names[name]].sketch
@@ -180,15 +189,63 @@ impl Geometry<'_> {
     }
 }
 
-/// The source and units, for turning spans into locations and numbers into SI.
+/// The source and units, for turning spans into locations and numbers into SI; when a
+/// scene's tangent is taken, the derivatives of its numbers ([`super::tangent`]).
 pub(crate) struct Context<'a> {
     pub(crate) source: &'a Source,
     pub(crate) units: Units,
+    tangents: Option<&'a Tangents>,
 }
 
 impl<'a> Context<'a> {
     pub(crate) fn new(source: &'a Source, units: Units) -> Self {
-        Context { source, units }
+        Context {
+            source,
+            units,
+            tangents: None,
+        }
+    }
+
+    /// A context whose numbers carry the derivatives `tangents`.
+    pub(crate) fn with_tangents(source: &'a Source, units: Units, tangents: &'a Tangents) -> Self {
+        Context {
+            source,
+            units,
+            tangents: Some(tangents),
+        }
+    }
+
+    /// The derivative (SI, per unit of the parameter) of the number `value` of the file, of
+    /// `dimension`; 0 without tangents or for a number that does not move.
+    pub(crate) fn tangent(&self, value: &Spanned<f64>, dimension: Dimension) -> f64 {
+        self.units.to_si(self.tangent_plain(value), dimension)
+    }
+
+    /// As [`Context::tangent`], for a number the file writes in SI (a ratio).
+    pub(crate) fn tangent_plain(&self, value: &Spanned<f64>) -> f64 {
+        self.tangents.map_or(0.0, |t| t.at(value.span()))
+    }
+
+    /// As [`Context::number`], in the scalar `D`: with its derivative.
+    pub(crate) fn number_in<D: Carried>(
+        &self,
+        value: &Spanned<f64>,
+        what: &str,
+        dimension: Dimension,
+    ) -> Result<D> {
+        let si = self.number(value, what, dimension)?;
+        Ok(D::with_tangent(si, self.tangent(value, dimension)))
+    }
+
+    /// As [`Context::positive`], in the scalar `D`: with its derivative.
+    pub(crate) fn positive_in<D: Carried>(
+        &self,
+        value: &Spanned<f64>,
+        what: &str,
+        dimension: Dimension,
+    ) -> Result<D> {
+        let si = self.positive(value, what, dimension)?;
+        Ok(D::with_tangent(si, self.tangent(value, dimension)))
     }
 
     pub(crate) fn at<T>(&self, spanned: &Spanned<T>) -> Location {
@@ -364,7 +421,7 @@ impl<'a> Context<'a> {
         })
     }
 
-    fn links(
+    pub(crate) fn links(
         &self,
         table: &Spanned<BTreeMap<Name, Spanned<Vec<Name>>>>,
         names: &HashMap<&str, usize>,
@@ -417,7 +474,7 @@ impl<'a> Context<'a> {
         Ok(links)
     }
 
-    fn joints(
+    pub(crate) fn joints(
         &self,
         table: &Spanned<BTreeMap<Name, Spanned<JointDef>>>,
         geometry: &Geometry,

@@ -7,6 +7,7 @@
 use std::collections::HashMap;
 use std::fmt;
 
+use mechdiff_core::Scalar;
 use mechdiff_core::symbolic::Graph;
 use mechdiff_core::symbolic::constants::is_named_constant;
 use serde::Deserialize;
@@ -85,29 +86,44 @@ pub fn constant_formula(text: &str) -> Result<f64, String> {
 /// # Errors
 /// As [`constant_formula`].
 pub fn formula(text: &str, bindings: &HashMap<String, f64>) -> Result<f64, String> {
+    formula_in(text, bindings)
+}
+
+/// The value of a formula in any scalar `D` (see [`constant_formula`]): with dual numbers
+/// for the `bindings`, the formula's derivative with respect to what they carry (the
+/// tangent of a scene, [`super::tangent`]). Its real part is the `f64` value, bit for bit.
+///
+/// # Errors
+/// As [`constant_formula`].
+pub fn formula_in<D: Scalar>(text: &str, bindings: &HashMap<String, D>) -> Result<D, String> {
     let quoted = format!("the formula \"{text}\"");
     let (graph, id) = parse_formula(text)?;
-    let constants = [("pi", std::f64::consts::PI), ("tau", std::f64::consts::TAU)];
+    let constants = [
+        ("pi", D::constant(std::f64::consts::PI)),
+        ("tau", D::constant(std::f64::consts::TAU)),
+    ];
     let symbols = graph.symbols(&[id]);
     let mut parameters: Vec<&str> = bindings.keys().map(String::as_str).collect();
     parameters.sort_unstable();
     unknown_name(text, &symbols, &parameters)?;
     // Only the names the formula uses are bound (a scene may have many parameters).
-    let mut all: Vec<(&str, f64)> = constants.to_vec();
+    let mut all: Vec<(&str, D)> = constants.to_vec();
     all.extend(
         symbols
             .iter()
             .filter_map(|s| bindings.get(*s).map(|v| (*s, *v))),
     );
     let value = graph
-        .evaluate_f64(&[id], &all)
+        .evaluate_dual(&[id], &all)
         .map_err(|e| format!("{quoted} cannot be evaluated: {e}"))?[0];
-    if !value.is_finite() {
+    if !value.re().is_finite() {
         return Err(format!(
-            "{quoted} evaluates to {value}; expected a finite number (check for a division \
-             by zero, a square root or logarithm of a negative number, or an overflow)"
+            "{quoted} evaluates to {}; expected a finite number (check for a division \
+             by zero, a square root or logarithm of a negative number, or an overflow)",
+            value.re()
         ));
     }
+    // + 0 turns a −0 into 0.
     Ok(value + 0.0)
 }
 
