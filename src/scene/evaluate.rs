@@ -15,17 +15,26 @@ use super::run::solver_error;
 /// beyond the jet's order reads as zero; the plan asks for the order the outputs need).
 pub(crate) fn quantity<const N: usize>(jet: &Jet<N>, q: Quantity, drive: &DriveState) -> f64 {
     let d = |k: usize| jet.derivative(k).unwrap_or(0.0);
+    quantity_in(
+        [jet.value, d(1), d(2), d(3)],
+        q,
+        [drive.omega, drive.alpha, drive.jerk],
+    )
+}
+
+/// One quantity from a value and its drive derivatives `[x, x′, x″, x‴]` (zero beyond the
+/// order computed) and the drive's `[ω, α, φ⃛]`, in any scalar: `f64`, or dual numbers
+/// carrying the derivative with respect to a parameter (which ω and α may depend on too).
+pub(crate) fn quantity_in<S: Scalar>(d: [S; 4], q: Quantity, [omega, alpha, jerk]: [S; 3]) -> S {
     match q {
-        Quantity::Position => jet.value,
-        Quantity::VelocityCoefficient => d(1),
-        Quantity::AccelerationCoefficient => d(2),
-        Quantity::Velocity => drive.omega * d(1),
-        Quantity::Acceleration => drive.alpha * d(1) + drive.omega * drive.omega * d(2),
-        Quantity::JerkCoefficient => d(3),
+        Quantity::Position => d[0],
+        Quantity::VelocityCoefficient => d[1],
+        Quantity::AccelerationCoefficient => d[2],
+        Quantity::Velocity => omega * d[1],
+        Quantity::Acceleration => alpha * d[1] + omega * omega * d[2],
+        Quantity::JerkCoefficient => d[3],
         // The chain rule of `mechdiff_core::motion` (φ⃛ = drive.jerk, zero in a scene).
-        Quantity::Jerk => {
-            drive.jerk * d(1) + 3.0 * drive.omega * drive.alpha * d(2) + drive.omega.powi(3) * d(3)
-        }
+        Quantity::Jerk => jerk * d[1] + omega * 3.0 * alpha * d[2] + omega.powi(3) * d[3],
     }
 }
 
@@ -42,19 +51,11 @@ pub(crate) struct Resolved<'s> {
 impl<'s> Resolved<'s> {
     /// Resolves `output`'s points in `mechanism` (built from `scene`).
     pub fn new(scene: &Scene, mechanism: &Mechanism, output: &'s Output) -> Result<Self> {
-        let points = point_names(output)
+        let points = points_on_links(scene, output)?
             .into_iter()
-            .map(|name| {
-                let link = scene
-                    .links
-                    .iter()
-                    .find(|l| l.points.iter().any(|p| p == name))
-                    .ok_or_else(|| Error::Invalid {
-                        location: output.location.clone(),
-                        message: format!("output `{}`: point `{name}` is on no link", output.name),
-                    })?;
+            .map(|(link, name)| {
                 mechanism
-                    .point_output(&link.name, name)
+                    .point_output(link, name)
                     .map_err(|e| solver_error(scene, e))
             })
             .collect::<Result<_>>()?;
@@ -65,6 +66,26 @@ impl<'s> Resolved<'s> {
     pub fn points(&self) -> &[PointOutput] {
         &self.points
     }
+}
+
+/// The points an output is computed from, each with a link that carries it: `(link,
+/// point)`, in the order [`values`] reads them.
+pub(crate) fn points_on_links<'a>(
+    scene: &'a Scene,
+    output: &'a Output,
+) -> Result<Vec<(&'a str, &'a str)>> {
+    point_names(output)
+        .into_iter()
+        .map(|name| {
+            let link = (scene.links.iter())
+                .find(|l| l.points.iter().any(|p| p == name))
+                .ok_or_else(|| Error::Invalid {
+                    location: output.location.clone(),
+                    message: format!("output `{}`: point `{name}` is on no link", output.name),
+                })?;
+            Ok((link.name.as_str(), name))
+        })
+        .collect()
 }
 
 /// The points an output is computed from: the point; the line, then the reference line;

@@ -43,6 +43,7 @@
 //!
 //! Cost: six runs of the scene per parameter differentiated, and one per Monte-Carlo sample.
 
+pub mod exact;
 pub mod spec;
 pub mod tolerance;
 
@@ -96,16 +97,51 @@ pub struct ColumnStudy {
     pub rss: (f64, usize),
 }
 
+/// How a derivative column was computed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Method {
+    /// Exact (dual numbers): the scene's tangent ([`crate::scene::tangent`]) carried through
+    /// the pose's implicit differentiation ([`exact`]); exact in f64, to rounding.
+    Exact,
+    /// Richardson-extrapolated central differences of whole runs (steps `h`, `h/2`, `h/4`),
+    /// where the exact route does not reach the column.
+    Richardson {
+        /// The first step `h` of the differences, in the parameter's unit.
+        step: f64,
+        /// The largest disagreement of the last two extrapolations over the sweep, relative
+        /// to the column's largest value (0 for a column that is 0): the estimate of its
+        /// error.
+        estimated_error: f64,
+        /// Why the exact route does not reach the column.
+        why: String,
+    },
+}
+
 /// How one derivative column was computed and how far it may be off.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DerivativeColumn {
     /// Its name, `d(COLUMN)/d(PARAMETER)`.
     pub name: String,
-    /// The first step `h` of the differences, in the parameter's unit.
-    pub step: f64,
-    /// The largest disagreement of the last two extrapolations over the sweep, relative to
-    /// the column's largest value (0 for a column that is 0): the estimate of its error.
-    pub estimated_error: f64,
+    /// How it was computed.
+    pub method: Method,
+}
+
+impl DerivativeColumn {
+    /// Whether it is exact (dual numbers).
+    pub fn is_exact(&self) -> bool {
+        self.method == Method::Exact
+    }
+
+    /// The estimated error relative to the column's largest value: 0 for an exact column
+    /// (its error is rounding), the extrapolations' disagreement for a Richardson one.
+    pub fn estimated_error(&self) -> f64 {
+        match &self.method {
+            Method::Exact => 0.0,
+            Method::Richardson {
+                estimated_error, ..
+            } => *estimated_error,
+        }
+    }
 }
 
 /// The study of a scene: how its derivative columns were computed, and its tolerance study.
@@ -188,36 +224,46 @@ pub fn run(
         settings,
         nominal: &nominal,
     };
+    let classes = ColumnClasses::of(&scene, nominal.columns.len());
     let mut derivatives = Vec::with_capacity(spec.parameters.len());
-    for p in &spec.parameters {
-        derivatives.push(runner.derivative(p)?);
+    for (i, p) in spec.parameters.iter().enumerate() {
+        // The columns this parameter's derivatives are asked of: its derivative columns,
+        // and with a tolerance the studied ones.
+        let mut needed: Vec<usize> = (spec.derivatives.iter())
+            .filter(|&&(_, q)| q == i)
+            .map(|&(k, _)| k)
+            .collect();
+        if p.tolerance.is_some() {
+            needed.extend(&spec.studied);
+        }
+        derivatives.push(runner.derivative(&scene, &classes, p, &needed)?);
     }
     let mut derivative_columns = Vec::with_capacity(spec.derivatives.len());
     for &(k, p) in &spec.derivatives {
         let (column, parameter) = (&nominal.columns[k], &spec.parameters[p]);
         let name = format!("d({})/d({})", column.name, parameter.name);
         let d = &derivatives[p];
-        let scale = d.values.iter().map(|r| r[k].abs()).fold(0.0, f64::max);
-        let disagreement = d.disagreement.iter().map(|r| r[k]).fold(0.0, f64::max);
-        derivative_columns.push(DerivativeColumn {
-            name: name.clone(),
-            step: d.step,
-            estimated_error: if scale > 0.0 {
-                disagreement / scale
-            } else {
-                0.0
-            },
-        });
-        if disagreement > WARN_DISAGREEMENT * scale {
+        let method = d.methods[k].clone().unwrap_or(Method::Exact);
+        if let Method::Richardson {
+            step,
+            estimated_error,
+            ..
+        } = &method
+            && *estimated_error > WARN_DISAGREEMENT
+        {
             report.warnings.push(format!(
                 "{name}: the extrapolated differences agree only to {} relative (the column \
                  is not smooth in `{}` within ±{}: a limit position or a change of branch \
                  nearby?)",
-                Units::tidy(disagreement / scale),
+                Units::tidy(*estimated_error),
                 parameter.name,
-                Units::tidy(d.step)
+                Units::tidy(*step)
             ));
         }
+        derivative_columns.push(DerivativeColumn {
+            name: name.clone(),
+            method,
+        });
         push_column(
             &mut report,
             Column {
@@ -314,19 +360,44 @@ fn push_column(report: &mut Report, column: Column, values: impl Iterator<Item =
     }
 }
 
-/// The derivatives of every column with respect to one parameter.
+/// The derivatives of the columns asked of one parameter.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Derivative {
-    /// `values[row][column]` (SI per unit of the parameter).
+    /// `values[row][column]` (SI per unit of the parameter; 0 in the columns not asked).
     pub values: Vec<Vec<f64>>,
-    /// `|last extrapolation − the one before|` per entry: an estimate of the error.
-    pub disagreement: Vec<Vec<f64>>,
-    /// The first step used, in the parameter's unit.
-    pub step: f64,
+    /// Per column, how it was computed (`None`: not asked).
+    pub methods: Vec<Option<Method>>,
+}
+
+/// Which columns of a scene's table the exact routes reach: the kinematic columns (the
+/// drive's first), the dynamics columns, then the balancing columns.
+struct ColumnClasses {
+    kinematic: usize,
+    dynamics_end: usize,
+}
+
+impl ColumnClasses {
+    fn of(scene: &Scene, columns: usize) -> Self {
+        let balancing = scene
+            .balancing
+            .as_ref()
+            .map_or(0, |b| crate::scene::balancing::columns(scene, b).len());
+        ColumnClasses {
+            kinematic: crate::scene::sweep::kinematic_columns(scene).len(),
+            dynamics_end: columns - balancing,
+        }
+    }
+}
+
+/// Differences of whole runs: the values and their disagreement, per entry.
+struct Extrapolated {
+    values: Vec<Vec<f64>>,
+    disagreement: Vec<Vec<f64>>,
+    step: f64,
 }
 
 /// Runs the scene with parameters moved, checked against the nominal run.
-struct Runner<'a> {
+pub(crate) struct Runner<'a> {
     file: &'a str,
     text: &'a str,
     settings: &'a [Setting],
@@ -372,8 +443,81 @@ impl Runner<'_> {
         Ok(report)
     }
 
-    /// The derivatives of every column with respect to `p` (see the module's doc).
-    fn derivative(&self, p: &Parameter) -> Result<Derivative> {
+    /// The derivatives of the columns `needed` with respect to `p`: exact where the exact
+    /// routes reach, Richardson-extrapolated differences elsewhere (see the module's doc).
+    fn derivative(
+        &self,
+        scene: &Scene,
+        classes: &ColumnClasses,
+        p: &Parameter,
+        needed: &[usize],
+    ) -> Result<Derivative> {
+        let (rows, width) = (self.nominal.rows.len(), self.nominal.columns.len());
+        let mut values = vec![vec![0.0; width]; rows];
+        let mut methods: Vec<Option<Method>> = vec![None; width];
+        // The kinematic columns, by the scene's tangent and the pose's.
+        let kinematic = if needed.iter().any(|&k| k < classes.kinematic) {
+            Some(exact::kinematic(self, scene, &p.name))
+        } else {
+            None
+        };
+        // The single place where the dynamics columns' exact derivatives plug in.
+        let dynamics =
+            if (needed.iter()).any(|&k| (classes.kinematic..classes.dynamics_end).contains(&k)) {
+                Some(exact::dynamics(self, scene, &p.name))
+            } else {
+                None
+            };
+        let mut fallback: Vec<(usize, String)> = Vec::new();
+        for &k in needed {
+            let exact = if k == 0 {
+                // The drive's column: fixed positions, whatever the parameter.
+                Ok(None)
+            } else if k < classes.kinematic {
+                kinematic
+                    .as_ref()
+                    .map_or(Ok(None), |r| r.as_ref().map(Some).map_err(Clone::clone))
+            } else if k < classes.dynamics_end {
+                dynamics
+                    .as_ref()
+                    .map_or(Ok(None), |r| r.as_ref().map(Some).map_err(Clone::clone))
+            } else {
+                Err("balancing columns have no exact route".to_owned())
+            };
+            match exact {
+                Ok(columns) => {
+                    for (row, r) in values.iter_mut().enumerate() {
+                        r[k] = columns.map_or(0.0, |c: &Vec<Vec<f64>>| c[row][k]);
+                    }
+                    methods[k] = Some(Method::Exact);
+                }
+                Err(why) => fallback.push((k, why)),
+            }
+        }
+        if !fallback.is_empty() {
+            let d = self.richardson(p)?;
+            for (k, why) in fallback {
+                let scale = d.values.iter().map(|r| r[k].abs()).fold(0.0, f64::max);
+                let disagreement = d.disagreement.iter().map(|r| r[k]).fold(0.0, f64::max);
+                for (r, dr) in values.iter_mut().zip(&d.values) {
+                    r[k] = dr[k];
+                }
+                methods[k] = Some(Method::Richardson {
+                    step: d.step,
+                    estimated_error: if scale > 0.0 {
+                        disagreement / scale
+                    } else {
+                        0.0
+                    },
+                    why,
+                });
+            }
+        }
+        Ok(Derivative { values, methods })
+    }
+
+    /// Richardson-extrapolated differences of every column with respect to `p`.
+    fn richardson(&self, p: &Parameter) -> Result<Extrapolated> {
         let mut step = if p.value != 0.0 {
             RELATIVE_STEP * p.value.abs()
         } else {
@@ -393,7 +537,7 @@ impl Runner<'_> {
     }
 
     /// Central differences with steps `h`, `h/2`, `h/4`, extrapolated twice.
-    fn extrapolated(&self, p: &Parameter, h: f64) -> Result<Derivative> {
+    fn extrapolated(&self, p: &Parameter, h: f64) -> Result<Extrapolated> {
         let purpose = format!("for the derivative with respect to `{}`", p.name);
         let mut differences: Vec<Vec<Vec<f64>>> = Vec::with_capacity(3);
         for level in 0..3 {
@@ -438,7 +582,7 @@ impl Runner<'_> {
             .zip(&second)
             .map(|(a, b)| a.iter().zip(b).map(|(x, y)| (x - y).abs()).collect())
             .collect();
-        Ok(Derivative {
+        Ok(Extrapolated {
             values,
             disagreement,
             step: h,
@@ -464,20 +608,29 @@ fn significant(v: f64) -> String {
 /// root-sum-square over the sweep, where they are, and the Monte-Carlo check.
 pub fn write_summary(study: &Study, out: &mut impl Write) -> io::Result<()> {
     if !study.derivatives.is_empty() {
-        writeln!(
-            out,
-            "derivative columns: Richardson-extrapolated central differences of whole runs \
-             (steps h, h/2, h/4), not exact derivatives; estimated error = the last two \
-             extrapolations' largest disagreement, relative to the column's largest value:"
-        )?;
+        writeln!(out, "derivative columns:")?;
         for d in &study.derivatives {
-            writeln!(
-                out,
-                "  {}: estimated error {:.0e} (h = {})",
-                d.name,
-                d.estimated_error,
-                Units::tidy(d.step)
-            )?;
+            match &d.method {
+                Method::Exact => writeln!(
+                    out,
+                    "  {}: exact (dual numbers: the scene's tangent through the pose's \
+                     implicit differentiation)",
+                    d.name
+                )?,
+                Method::Richardson {
+                    step,
+                    estimated_error,
+                    why,
+                } => writeln!(
+                    out,
+                    "  {}: Richardson-extrapolated central differences of whole runs (steps \
+                     h, h/2, h/4, h = {}), not exact, estimated error {estimated_error:.0e} \
+                     (the last two extrapolations' largest disagreement, relative to the \
+                     column's largest value); not exact because {why}",
+                    d.name,
+                    Units::tidy(*step)
+                )?,
+            }
         }
     }
     if study.columns.is_empty() {
