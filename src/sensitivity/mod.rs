@@ -389,11 +389,39 @@ impl ColumnClasses {
     }
 }
 
-/// Differences of whole runs: the values and their disagreement, per entry.
-struct Extrapolated {
-    values: Vec<Vec<f64>>,
-    disagreement: Vec<Vec<f64>>,
-    step: f64,
+/// Richardson-extrapolated central differences of whole runs with respect to one
+/// parameter: every column's, with their error estimate.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Extrapolated {
+    /// `values[row][column]` (SI per unit of the parameter).
+    pub values: Vec<Vec<f64>>,
+    /// `|last extrapolation − the one before|` per entry: an estimate of the error.
+    pub disagreement: Vec<Vec<f64>>,
+    /// The first step used, in the parameter's unit.
+    pub step: f64,
+}
+
+/// The Richardson-extrapolated differences of every column of the scene `text` (named
+/// `file`, with `settings`) with respect to `parameter`: the fallback of the exact route,
+/// also for comparing the two.
+///
+/// # Errors
+/// As [`run`].
+pub fn extrapolated(
+    file: &str,
+    text: &str,
+    settings: &[Setting],
+    parameter: &Parameter,
+) -> Result<Extrapolated> {
+    let scene = crate::scene::parse_with(file, text, settings)?;
+    let nominal = crate::scene::run(&scene)?;
+    Runner {
+        file,
+        text,
+        settings,
+        nominal: &nominal,
+    }
+    .richardson(parameter)
 }
 
 /// Runs the scene with parameters moved, checked against the nominal run.
