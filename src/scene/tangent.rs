@@ -186,22 +186,14 @@ pub struct NotCarried {
 }
 
 impl NotCarried {
-    /// Whether the number is one of a section that only dynamics or balancing read (a
-    /// kinematic output does not depend on it).
-    pub fn is_dynamics_only(&self) -> bool {
-        const DYNAMICS: [&str; 9] = [
-            "masses",
-            "gravity",
-            "loads",
-            "friction",
-            "efficiency",
-            "motor",
-            "dynamics",
-            "rotor",
-            "balancing",
-        ];
+    /// Whether the number is one of a section the kinematic outputs are computed from
+    /// (`[points]`, `[links]`, `[joints]`, `[drive]`, `[sweep]`, `[[output]]`); the others
+    /// (masses, loads, balancing, the title, pictures) only reach the dynamics and balancing
+    /// columns, if any.
+    pub fn affects_kinematics(&self) -> bool {
+        const KINEMATIC: [&str; 6] = ["points", "links", "joints", "drive", "sweep", "output"];
         let section = self.path.split(['.', '[']).next().unwrap_or_default();
-        DYNAMICS.contains(&section) || matches!(section, "plot" | "sensitivity" | "tolerances")
+        KINEMATIC.contains(&section)
     }
 }
 
@@ -231,7 +223,7 @@ pub struct SceneTangent {
 impl SceneTangent {
     /// Whether the tangent carries every number the kinematic outputs depend on.
     pub fn carries_kinematics(&self) -> bool {
-        self.not_carried.iter().all(NotCarried::is_dynamics_only)
+        !self.not_carried.iter().any(NotCarried::affects_kinematics)
     }
 }
 

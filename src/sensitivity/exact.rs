@@ -49,7 +49,7 @@ fn reach(scene: &Scene, tangent: &SceneTangent) -> std::result::Result<(), Strin
                 .to_owned(),
         );
     }
-    if let Some(n) = tangent.not_carried.iter().find(|n| !n.is_dynamics_only()) {
+    if let Some(n) = tangent.not_carried.iter().find(|n| n.affects_kinematics()) {
         return Err(format!(
             "`{}` moves `{}` ({}), a number the exact route does not carry",
             tangent.parameter, n.path, n.location

@@ -20,28 +20,35 @@
 //! root-sum-square ([`tolerance`]) at every position and their largest values over the
 //! sweep; `--monte-carlo N` checks them against `N` runs at random parameters.
 //!
-//! **How the derivatives are computed, and how exact they are: not exact.** The scene is run
+//! **How the derivatives are computed: exact where the exact route reaches, said per
+//! column.** A kinematic column (a point's coordinates, an angle, a slider's displacement;
+//! their position, coefficients, velocity, acceleration, jerk) is **exact** (dual numbers,
+//! [`exact`]): the scene's tangent ([`crate::scene::tangent`]: the d/dp of every number of
+//! the built mechanism — the points from their formulas, units and constructions, the joints'
+//! numbers, the drive's value at the sketch, its speed and acceleration) is carried through
+//! the pose's implicit differentiation (`mechdiff_core::geometry::Parametric`) and the
+//! outputs' generic code; its error is rounding (measured against Norton's closed form in
+//! 256-bit arithmetic in `tests/sensitivity.rs`).
+//!
+//! Elsewhere — a cam-driven scene, `[sweep] of`, a number of the kinematic sections that the
+//! tangent does not carry, the dynamics columns (until their exact route plugs in, in
+//! [`exact`]'s one place for it), the balancing columns — the column is a **Richardson
+//! extrapolation**, labelled so with the reason ([`Method::Richardson`]): the scene is run
 //! again with the parameter moved by `±h`, `±h/2`, `±h/4` (as `--set` moves it: every
-//! formula follows), and the three central differences are Richardson-extrapolated twice,
-//! which cancels the `h²` and `h⁴` terms of their error: what remains is `O(h⁶)` and the
-//! rounding of the runs (about `ε·|y|/h`). With `h` = 1 % of the parameter's value that is
-//! measured at 2e-13 to 2e-11 of the column in `tests/sensitivity.rs` (against the symbolic
-//! derivative of Norton's closed form in 256-bit arithmetic, and against implicit
-//! differentiation of the triad's hand-written closure, a loop solved by Newton). The
-//! difference between the last two extrapolations is reported per column as its estimated
-//! error ([`DerivativeColumn`], printed by [`write_summary`]; it is the error of the
-//! extrapolation before the last, so it overestimates the value's); a column where it
-//! exceeds 1e-6 relative (an output that is not smooth within `±h`, e.g. near a limit
-//! position) is named in a warning. These are **not** dual-number derivatives: the scene's
-//! numbers (parameters, units, constructions of points, the compiled constraint equations,
-//! the outputs' link-local data, the masses) are `f64` from the moment the file is read,
-//! and only the drive position is carried as a dual number through the solver. What an
-//! exact derivative needs is listed in CHANGELOG, issue 14, "Not done".
+//! formula follows), and the three central differences are extrapolated twice, which
+//! cancels the `h²` and `h⁴` terms of their error: what remains is `O(h⁶)` and the rounding
+//! of the runs (about `ε·|y|/h`). With `h` = 1 % of the parameter's value that is measured at
+//! 2e-13 to 2e-11 of the column. The difference between the last two extrapolations is
+//! reported per column as its estimated error (it is the error of the extrapolation before
+//! the last, so it overestimates the value's); a column where it exceeds 1e-6 relative (an
+//! output that is not smooth within `±h`, e.g. near a limit position) is named in a
+//! warning. [`write_summary`] prints each column's method.
 //!
 //! [`check`] reads and checks the sections against a table's columns without running
 //! anything (`mechdiff check` gives it the columns a run would have).
 //!
-//! Cost: six runs of the scene per parameter differentiated, and one per Monte-Carlo sample.
+//! Cost: per parameter, one pass over the sweep in dual numbers for the exact columns, and
+//! six runs of the scene only if a column falls back; one run per Monte-Carlo sample.
 
 pub mod exact;
 pub mod spec;
