@@ -273,6 +273,61 @@ fn slider_crank_displacement_derivatives_match_the_hand_closed_form() {
     }
 }
 
+/// A slider-crank driven by the slider's displacement x (no `at_sketch`: φ₀ is implied by
+/// the sketch, and moves with the crank length a). The crank angle by hand, from the law of
+/// cosines: θ = acos((a² + x² − b²)/(2ax)). Moving a moves A, B and φ₀
+/// ([`DataTangent::implied_drive_at_sketch`]); at fixed φ = x, ∂θ/∂a and its φ-derivatives
+/// against the hand formula in `Dual3<Dual64>`: 1e-12 relative, as above.
+#[test]
+fn a_displacement_drive_with_an_implied_sketch_value_matches_the_hand_closed_form() {
+    let (theta_s, b) = (1.0f64, 0.4);
+    let a = Dual64::new(0.1, 1.0);
+    let pin = [a * theta_s.cos(), a * theta_s.sin()];
+    let x_s = pin[0] + (a * a * (-theta_s.sin() * theta_s.sin()) + b * b).sqrt();
+    let re = |x: Dual64| x.re;
+    let m = Mechanism::builder()
+        .point("O", [0.0, 0.0])
+        .point("A", [re(pin[0]), re(pin[1])])
+        .point("B", [re(x_s), 0.0])
+        .point("X", [1.0, 0.0])
+        .ground(["O", "X"])
+        .link("crank", ["O", "A"])
+        .link("rod", ["A", "B"])
+        .link("slider", ["B"])
+        .revolute("O", "ground", "crank", "O")
+        .revolute("A", "crank", "rod", "A")
+        .revolute("B", "rod", "slider", "B")
+        .prismatic("guide", "ground", ["O", "X"], "slider", "B")
+        .drive(Drive::displacement("guide"))
+        .build()
+        .unwrap();
+    let mut tangent = DataTangent::zero(&m);
+    tangent.points[1] = [pin[0].eps, pin[1].eps];
+    tangent.points[2] = [x_s.eps, 0.0];
+    tangent.drive_at_sketch = tangent.implied_drive_at_sketch(&m).unwrap();
+    // The implied φ₀ is x_B at the sketch: its d/dp is x_B's (1e-15: a few roundings).
+    assert!((tangent.drive_at_sketch - x_s.eps).abs() < 1e-15);
+    let exact = Parametric::new(&m, &tangent).unwrap();
+    let theta = exact.angle_output("crank", "O", "A").unwrap();
+    let mut t = Solver::default().track(&m).unwrap();
+    for phi in [0.36, 0.40, 0.44, 0.48] {
+        t.move_to(phi).unwrap();
+        let pose = exact.pose(&t.kinematics::<3>().unwrap()).unwrap();
+        let x = D3::new(Dual64::from(phi), Dual64::from(1.0), 0.0.into(), 0.0.into());
+        let (a, b) = (D3::from_re(a), D3::from_re(Dual64::from(b)));
+        let want = ((a * a + x * x - b * b) / (a * x * 2.0)).acos();
+        let got = theta.value(&pose);
+        for k in 0..4 {
+            assert!(
+                error(tangents(got)[k], tangents(want)[k]) < 1e-12,
+                "φ = {phi}, order {k}: {} vs {}",
+                tangents(got)[k],
+                tangents(want)[k]
+            );
+        }
+    }
+}
+
 /// A pinion driven about W, a rack on a ground guide (`s − s₀ = R θ`), and a gear about V
 /// (`θ_V = ratio · θ_W`).
 fn rack_and_gear() -> Mechanism {

@@ -92,6 +92,43 @@ impl DataTangent {
         }
     }
 
+    /// d/dp of the drive value the sketch implies: 0 for an angle drive, the sketch
+    /// displacement `u·(r_point − r_line0)` of a displacement drive. This is the
+    /// [`DataTangent::drive_at_sketch`] of a model whose [`Drive`](super::Drive) has no
+    /// `at_sketch` (the value is then implied by the points); errors as [`Parametric::new`].
+    ///
+    /// ```
+    /// use mechdiff_core::geometry::{DataTangent, Drive, Mechanism};
+    /// // A slider at B = (p, 0) on the x axis, driven by its displacement (p at the sketch).
+    /// let m = Mechanism::builder()
+    ///     .point("O", [0.0, 0.0]).point("X", [1.0, 0.0]).point("B", [0.3, 0.0])
+    ///     .ground(["O", "X"]).link("slider", ["B"])
+    ///     .prismatic("guide", "ground", ["O", "X"], "slider", "B")
+    ///     .drive(Drive::displacement("guide"))
+    ///     .build().unwrap();
+    /// let mut tangent = DataTangent::zero(&m);
+    /// tangent.points[2] = [1.0, 0.0];
+    /// assert_eq!(tangent.implied_drive_at_sketch(&m).unwrap(), 1.0);
+    /// ```
+    pub fn implied_drive_at_sketch(&self, m: &Mechanism) -> Result<f64, Error> {
+        self.check(m)?;
+        Ok(constraints::sketch_drive_value(&self.data(m)).eps)
+    }
+
+    /// `m`'s numbers with this tangent as their ε parts (the shape checked).
+    fn data<'m>(&self, m: &'m Mechanism) -> Data<'m, Dual64> {
+        Data {
+            m,
+            points: (m.points.iter().zip(&self.points))
+                .map(|(p, d)| [0, 1].map(|i| Dual64::new(p.sketch[i], d[i])))
+                .collect(),
+            numbers: (m.joints.iter().zip(&self.joints))
+                .map(|(j, &d)| Dual64::new(joint_number(&j.kind), d))
+                .collect(),
+            drive_at_sketch: Dual64::new(m.drive_at_sketch, self.drive_at_sketch),
+        }
+    }
+
     /// Checks the shape (and finiteness) of the tangent against `m`.
     fn check(&self, m: &Mechanism) -> Result<(), Error> {
         let mismatch = |what: &str, problem: String| Error::ParametricMismatch {
@@ -210,16 +247,7 @@ impl<'m> Parametric<'m> {
     /// without one.
     pub fn new(m: &'m Mechanism, tangent: &DataTangent) -> Result<Self, Error> {
         tangent.check(m)?;
-        let data = Data {
-            m,
-            points: (m.points.iter().zip(&tangent.points))
-                .map(|(p, d)| [0, 1].map(|i| Dual64::new(p.sketch[i], d[i])))
-                .collect(),
-            numbers: (m.joints.iter().zip(&tangent.joints))
-                .map(|(j, &d)| Dual64::new(joint_number(&j.kind), d))
-                .collect(),
-            drive_at_sketch: Dual64::new(m.drive_at_sketch, tangent.drive_at_sketch),
-        };
+        let data = tangent.data(m);
         Ok(Parametric {
             mechanism: m,
             tangent: tangent.clone(),
