@@ -168,3 +168,33 @@ impl<T: Datum> Data<'_, T> {
         [at[0] - r[0], at[1] - r[1]]
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `Dual64`'s length and direction have exactly the `f64` values (so the parametric data's
+    /// values are the solver's bit for bit) and the derivatives of num-dual's chain rule
+    /// through `crate::hypot` and `crate::atan2` (1e-15 relative: a few roundings).
+    #[test]
+    fn dual_length_and_direction_are_the_f64_values_with_exact_derivatives() {
+        for (x, y) in [(3.0, 4.0), (-0.2, 1e-3), (1e-9, -2.0), (-5.0, -0.5)] {
+            let (dx, dy) = (0.3, -0.7);
+            let (xd, yd) = (Dual64::new(x, dx), Dual64::new(y, dy));
+            let r = Dual64::length(xd, yd);
+            assert_eq!(r.re, f64::hypot(x, y));
+            let want = crate::hypot(xd, yd).eps;
+            assert!(
+                (r.eps - want).abs() <= 1e-15 * want.abs().max(1.0),
+                "{x}, {y}"
+            );
+            let a = Dual64::direction(yd, xd);
+            assert_eq!(a.re, y.atan2(x));
+            let want = crate::atan2(yd, xd).eps;
+            assert!(
+                (a.eps - want).abs() <= 1e-15 * want.abs().max(1.0),
+                "{x}, {y}"
+            );
+        }
+    }
+}

@@ -374,8 +374,19 @@ impl<'m> Parametric<'m> {
     /// `Dual64`: entry `(i, j)` is `∂Φ_i/∂q_j` with its d/dp in `eps`. The pose is one
     /// [`Parametric::pose`] gave (only its values `re` and their d/dp are used). One
     /// evaluation of Φ in `Dual<Dual64>` per column.
+    ///
+    /// # Panics
+    ///
+    /// If `pose` does not have one entry per coordinate (a pose of another mechanism): the
+    /// poses [`Parametric::pose`] returns always have.
     pub fn jacobian(&self, pose: &[Dual3<Dual64>]) -> DMatrix<Dual64> {
         let n = pose.len();
+        assert_eq!(
+            n,
+            self.plain.coordinates(),
+            "Parametric::jacobian: a pose of {n} coordinates for a mechanism of {}",
+            self.plain.coordinates()
+        );
         let rows = self.plain.rows();
         let q: Vec<Dual64> = pose.iter().map(|x| x.re).collect();
         let frames: Vec<(Dual64, Dual64)> = (0..n / 3).map(|k| q[3 * k + 2].sin_cos()).collect();
