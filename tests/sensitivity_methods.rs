@@ -89,19 +89,22 @@ slider = { mass = "m3", center = "B" }
 [[dynamics]]
 output = "drive_torque"
 [sensitivity]
-columns = ["d(M_drive)/d(m3)", "d(M_drive)/d(r)"]
+columns = ["d(s)/d(r)", "d(M_drive)/d(m3)", "d(M_drive)/d(r)"]
 "#;
 
 #[test]
-fn dynamics_columns_are_labelled_richardson_until_their_exact_route_plugs_in() {
+fn kinematic_columns_are_exact_and_dynamics_columns_labelled_richardson() {
     let study = study_of("t.toml", SLIDER_CRANK);
+    // The slider's position by r is kinematic: exact.
+    assert_eq!(why(&study, "d(s)/d(r)"), None);
     for name in ["d(M_drive)/d(m3)", "d(M_drive)/d(r)"] {
         let reason = why(&study, name).expect("a Richardson column");
         assert!(reason.contains("dynamics"), "{name}: {reason}");
     }
     let printed = summary(&study);
     assert!(
-        printed.contains("d(M_drive)/d(m3): Richardson-extrapolated")
+        printed.contains("d(s)/d(r): exact (dual numbers")
+            && printed.contains("d(M_drive)/d(m3): Richardson-extrapolated")
             && printed.contains("not exact because the dynamics columns' exact route"),
         "{printed}"
     );

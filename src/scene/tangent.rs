@@ -22,6 +22,7 @@ use std::collections::{HashMap, HashSet};
 use std::ops::Range;
 
 use mechdiff_core::Scalar;
+use mechdiff_core::geometry::{DataTangent, Mechanism};
 use mechdiff_core::num_dual::Dual64;
 use toml::Spanned;
 use toml::de::{DeTable, DeValue};
@@ -221,6 +222,19 @@ pub struct SceneTangent {
 }
 
 impl SceneTangent {
+    /// The tangent of the mechanism built from the scene ([`super::build::mechanism`]),
+    /// as the core's parametric pose takes it. Its inertias are 0: the scene's tangent does
+    /// not carry the masses (see [`SceneTangent::not_carried`]); only the kinematics may use
+    /// it as exact.
+    pub fn data_tangent(&self, mechanism: &Mechanism) -> DataTangent {
+        DataTangent {
+            points: self.points.clone(),
+            joints: self.joints.clone(),
+            drive_at_sketch: self.drive_at_sketch,
+            ..DataTangent::zero(mechanism)
+        }
+    }
+
     /// Whether the tangent carries every number the kinematic outputs depend on.
     pub fn carries_kinematics(&self) -> bool {
         !self.not_carried.iter().any(NotCarried::affects_kinematics)

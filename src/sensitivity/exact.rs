@@ -11,8 +11,16 @@
 //! not carry — the function says why, and the caller falls back to Richardson-extrapolated
 //! differences, labelled with that reason.
 
-use crate::scene::Scene;
+use mechdiff_core::DriveState;
+use mechdiff_core::geometry::{Parametric, Solver};
+use mechdiff_core::num_dual::Dual64;
+
+use crate::error::Result;
+use crate::scene::evaluate::{points_on_links, quantity_in, values};
+use crate::scene::run::solver_error;
+use crate::scene::sweep::solve;
 use crate::scene::tangent::{SceneTangent, scene_tangent};
+use crate::scene::{Plan, Scene};
 
 use super::Runner;
 
@@ -26,10 +34,80 @@ pub(super) fn kinematic(
     let tangent = scene_tangent(runner.file, runner.text, runner.settings, parameter)
         .map_err(|e| format!("the scene's tangent could not be taken: {e}"))?;
     reach(scene, &tangent)?;
-    Err(
-        "the core's exact pose sensitivity (`Parametric`, branch exact-core) is not merged"
-            .to_owned(),
-    )
+    let positions: Vec<f64> = runner.nominal.rows.iter().map(|r| r[0]).collect();
+    kinematic_derivatives(scene, &tangent, &positions)
+        .map_err(|e| format!("the exact route failed ({e})"))
+}
+
+/// The d/dp of the kinematic columns of `scene` at the drive `positions` (in order, from
+/// the sketch, as a run walks them), the scene's tangent `tangent` carried exactly.
+///
+/// # Errors
+/// A position the solver does not reach; a singular pose (no derivative there).
+pub fn kinematic_derivatives(
+    scene: &Scene,
+    tangent: &SceneTangent,
+    positions: &[f64],
+) -> Result<Vec<Vec<f64>>> {
+    let mechanism = crate::scene::build::mechanism(scene)?;
+    let data = tangent.data_tangent(&mechanism);
+    let parametric = Parametric::new(&mechanism, &data).map_err(|e| solver_error(scene, e))?;
+    match scene.order() {
+        0 | 1 => walk::<1>(scene, &parametric, tangent, positions),
+        2 => walk::<2>(scene, &parametric, tangent, positions),
+        _ => walk::<3>(scene, &parametric, tangent, positions),
+    }
+}
+
+/// The walk at derivative order `N`.
+fn walk<const N: usize>(
+    scene: &Scene,
+    parametric: &Parametric<'_>,
+    tangent: &SceneTangent,
+    positions: &[f64],
+) -> Result<Vec<Vec<f64>>> {
+    let mechanism = parametric.mechanism();
+    let outputs = (scene.outputs.iter())
+        .map(|output| {
+            let points = points_on_links(scene, output)?
+                .into_iter()
+                .map(|(link, point)| {
+                    parametric
+                        .point_output(link, point)
+                        .map_err(|e| solver_error(scene, e))
+                })
+                .collect::<Result<Vec<_>>>()?;
+            Ok((output, points))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let state = Plan::of(scene)
+        .drive
+        .unwrap_or(DriveState::constant_speed(0.0));
+    let drive = [
+        Dual64::new(state.omega, tangent.speed),
+        Dual64::new(state.alpha, tangent.acceleration),
+        Dual64::from(state.jerk),
+    ];
+    let mut tracker = Solver::default()
+        .track(mechanism)
+        .map_err(|e| solver_error(scene, e))?;
+    let mut rows = Vec::with_capacity(positions.len());
+    for &phi in positions {
+        let k = solve::<N>(scene, &mut tracker, phi)?;
+        let pose = parametric.pose(&k).map_err(|e| solver_error(scene, e))?;
+        let mut row = vec![0.0];
+        for (output, points) in &outputs {
+            // An angle's whole turns (kept continuous by a run) do not change d/dp.
+            let values = values(output, |i| points[i].position(&pose));
+            for q in &output.quantities {
+                for v in &values {
+                    row.push(quantity_in([v.re, v.v1, v.v2, v.v3], *q, drive).eps);
+                }
+            }
+        }
+        rows.push(row);
+    }
+    Ok(rows)
 }
 
 /// Whether the exact route reaches the kinematic columns of `scene` with the tangent
