@@ -137,7 +137,6 @@ impl PowerBalance {
         .iter()
         .fold(0.0, |a: f64, v| a.max(v.abs()))
     }
-
 }
 
 impl<T: Scalar> PowerBalance<T> {
@@ -179,7 +178,10 @@ pub(crate) fn balance<T: Scalar>(
         T::zero()
     };
     let mesh = |j: &&crate::geometry::Joint| {
-        matches!(j.kind, JointKind::RackPinion { .. } | JointKind::Gear { .. })
+        matches!(
+            j.kind,
+            JointKind::RackPinion { .. } | JointKind::Gear { .. }
+        )
     };
     let friction: T = reactions
         .iter()

@@ -35,7 +35,10 @@ pub struct InertialLoad<T = f64> {
 }
 
 /// The inertial loads of every link with mass.
-pub(crate) fn loads<T: Scalar>(masses: &[Mass<T>], states: &[LinkState<T>]) -> Vec<InertialLoad<T>> {
+pub(crate) fn loads<T: Scalar>(
+    masses: &[Mass<T>],
+    states: &[LinkState<T>],
+) -> Vec<InertialLoad<T>> {
     masses
         .iter()
         .map(|m| {

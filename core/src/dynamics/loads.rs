@@ -2,8 +2,8 @@
 //! range of the drive (a cutting force on the forward stroke).
 
 use super::state::{Generalized, LinkState, dot, of};
-use crate::{Error, Scalar};
 use crate::geometry::{DriveKind, Mechanism};
+use crate::{Error, Scalar};
 
 /// What an external load is (in a [`super::EffectsTangent`], its derivative with respect to a
 /// parameter).

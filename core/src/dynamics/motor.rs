@@ -101,7 +101,11 @@ impl<T: Scalar> Motor<T> {
         let acceleration = alpha / self.ratio;
         let p_out = joint_torque * omega;
         let direct_flow = p_out.re() >= 0.0;
-        let eta = if efficiency { self.efficiency } else { T::one() };
+        let eta = if efficiency {
+            self.efficiency
+        } else {
+            T::one()
+        };
         let factor = if direct_flow { eta.recip() } else { eta };
         let rotor = if inertia {
             self.rotor_inertia * acceleration

@@ -267,9 +267,7 @@ impl<'a, 'm> ModelTangent<'a, 'm> {
                         m.links[mass.link].name
                     ),
                 })?;
-                let sketch = m.links[mass.link]
-                    .inertia
-                    .map_or([0.0; 2], |i| i.center);
+                let sketch = m.links[mass.link].inertia.map_or([0.0; 2], |i| i.center);
                 Ok(Mass {
                     link: mass.link,
                     mass: dual(mass.mass, d.mass),
