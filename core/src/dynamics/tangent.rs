@@ -190,6 +190,8 @@ pub struct SolutionTangent {
 pub struct ModelTangent<'a, 'm> {
     model: &'a CompiledModel<'m>,
     effects: Effects,
+    /// Whether the equilibrium is carried (see [`carried`]).
+    equilibrium: Result<(), NotCarried>,
     masses: Vec<Mass<Dual64>>,
     gravity: Option<[Dual64; 2]>,
     loads: Vec<CompiledLoad<Dual64>>,
@@ -226,8 +228,9 @@ impl<'a, 'm> ModelTangent<'a, 'm> {
     /// `DataTangent` (d/dp of every sketch point, in point order; of every link's inertia, in
     /// link order, ground first), `tangent` for the effects' numbers.
     ///
-    /// Errors: [`TangentError::NotCarried`] for an effect the route does not carry (see
-    /// [`carried`]), [`TangentError::Length`] for a tangent that does not match the model.
+    /// Errors: [`TangentError::Length`] or [`TangentError::Mismatch`] for a tangent that does
+    /// not match the model. An effect the route does not carry (see [`carried`]) is reported
+    /// by [`ModelTangent::solve`], the only result it changes.
     pub fn new(
         model: &'a CompiledModel<'m>,
         effects: &Effects,
@@ -237,7 +240,6 @@ impl<'a, 'm> ModelTangent<'a, 'm> {
         omega: f64,
         alpha: f64,
     ) -> Result<Self, TangentError> {
-        carried(model, effects).map_err(TangentError::NotCarried)?;
         let m = model.mechanism;
         length("points", m.points.len(), points.len())?;
         length("links (inertias)", m.links.len(), inertias.len())?;
@@ -311,6 +313,7 @@ impl<'a, 'm> ModelTangent<'a, 'm> {
         Ok(ModelTangent {
             model,
             effects: *effects,
+            equilibrium: carried(model, effects),
             masses,
             gravity: model.gravity.map(|g| dual2(g.g, tangent.gravity)),
             loads,
@@ -348,13 +351,15 @@ impl<'a, 'm> ModelTangent<'a, 'm> {
     /// each with its d/dp) and `jacobian`, `Φ_q` at that pose with its d/dp.
     ///
     /// The f64 LU of `Φ_qᵀ` solves both the value and (one more back-substitution) the
-    /// derivative; a singular `Φ_qᵀ` is [`Error::SingularEquilibrium`].
+    /// derivative; a singular `Φ_qᵀ` is [`Error::SingularEquilibrium`]. An effect of the plan
+    /// that the route does not carry is [`TangentError::NotCarried`].
     pub fn solve(
         &self,
         phi: f64,
         pose: &[Dual3<Dual64>],
         jacobian: &DMatrix<Dual64>,
     ) -> Result<SolutionTangent, TangentError> {
+        self.equilibrium.clone().map_err(TangentError::NotCarried)?;
         let n = self.model.equations.coordinates();
         length("rows of the Jacobian", n, jacobian.nrows())?;
         length("columns of the Jacobian", n, jacobian.ncols())?;
