@@ -281,6 +281,16 @@ pub enum Error {
         /// What is wrong.
         problem: String,
     },
+    /// Data given for the exact parameter sensitivities (`geometry::parametric`) does not
+    /// fit the mechanism: a [`crate::geometry::DataTangent`] of the wrong shape, or a pose
+    /// of another mechanism.
+    #[error("{what} does not fit the mechanism: {problem}")]
+    ParametricMismatch {
+        /// What was given, e.g. "the data tangent's points".
+        what: String,
+        /// What is wrong, and what would fit.
+        problem: String,
+    },
     // ---- dynamics (`dynamics` module) ----
     /// No friction forces consistent with the relative velocities exist at this drive
     /// position (the mechanism is self-locking there), or the iteration on the normal forces

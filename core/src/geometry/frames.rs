@@ -2,6 +2,7 @@
 //! and the lift, and kept up to date along Newton steps without calling `sin_cos`.
 
 use super::constraints::{Body, Line, Slide};
+use super::datum::Absorb;
 use num_dual::DualNum;
 
 /// Calls `body` with the sines and cosines of every body's angle, kept on the stack for up to
@@ -49,24 +50,22 @@ pub(crate) fn turn((s, c): (f64, f64), from: f64, to: f64) -> (f64, f64) {
     )
 }
 
-/// The vector fixed at `p` in body `b` (link-local), turned with the body: `(sin θ, cos θ)`
-/// of every body in `frames`.
+/// The vector fixed at `p` in body `b` (link-local data in `T`), turned with the body:
+/// `(sin θ, cos θ)` of every body in `frames`.
 #[inline]
-pub(crate) fn rotate<D: DualNum<Primitive = f64> + Copy>(
-    frames: &[(D, D)],
-    b: Body,
-    p: [f64; 2],
-) -> [D; 2] {
+pub(crate) fn rotate<T: Copy, D: Absorb<T>>(frames: &[(D, D)], b: Body, p: [T; 2]) -> [D; 2] {
     match b {
-        None => [D::from(p[0]), D::from(p[1])],
+        None => [D::datum(p[0]), D::datum(p[1])],
         Some(k) => {
             let (s, c) = frames[k];
-            [c * p[0] - s * p[1], s * p[0] + c * p[1]]
+            [c.times(p[0]) - s.times(p[1]), s.times(p[0]) + c.times(p[1])]
         }
     }
 }
 
-/// Sine and cosine of every body's angle, for evaluating point positions.
+/// Sine and cosine of every body's angle, for evaluating point positions. The link-local data
+/// the methods take is in any scalar `T` the evaluation scalar `D` absorbs (see
+/// [`super::datum`]).
 pub(crate) struct Frames<'a, D> {
     pub q: &'a [D],
     pub frames: &'a [(D, D)],
@@ -74,12 +73,18 @@ pub(crate) struct Frames<'a, D> {
 
 impl<D: DualNum<Primitive = f64> + Copy> Frames<'_, D> {
     #[inline]
-    pub fn rotate(&self, b: Body, p: [f64; 2]) -> [D; 2] {
+    pub fn rotate<T: Copy>(&self, b: Body, p: [T; 2]) -> [D; 2]
+    where
+        D: Absorb<T>,
+    {
         rotate(self.frames, b, p)
     }
 
     #[inline]
-    pub fn point(&self, b: Body, p: [f64; 2]) -> [D; 2] {
+    pub fn point<T: Copy>(&self, b: Body, p: [T; 2]) -> [D; 2]
+    where
+        D: Absorb<T>,
+    {
         let r = self.rotate(b, p);
         match b {
             None => r,
@@ -94,13 +99,19 @@ impl<D: DualNum<Primitive = f64> + Copy> Frames<'_, D> {
 
     /// Unit direction of `line` and the vector from its origin to `r`.
     #[inline]
-    pub fn along(&self, line: &Line, r: [D; 2]) -> ([D; 2], [D; 2]) {
+    pub fn along<T: Copy>(&self, line: &Line<T>, r: [D; 2]) -> ([D; 2], [D; 2])
+    where
+        D: Absorb<T>,
+    {
         let u = self.rotate(line.body, line.direction);
         let a = self.point(line.body, line.origin);
         (u, [r[0] - a[0], r[1] - a[1]])
     }
 
-    pub fn displacement(&self, slide: &Slide) -> D {
+    pub fn displacement<T: Copy>(&self, slide: &Slide<T>) -> D
+    where
+        D: Absorb<T>,
+    {
         let (u, d) = self.along(&slide.line, self.point(slide.slider, slide.point));
         u[0] * d[0] + u[1] * d[1]
     }

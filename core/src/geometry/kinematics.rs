@@ -1,6 +1,7 @@
 //! The pose and its exact derivatives at one drive position, and the outputs read from it.
 
 use super::constraints::Body;
+use super::datum::Absorb;
 use super::model::Mechanism;
 use super::output::{PointOutput, Scalar, ScalarOutput};
 use crate::{Error, Jet};
@@ -25,6 +26,11 @@ impl<'m, const N: usize> Kinematics<'m, N> {
             phi,
             coordinates,
         }
+    }
+
+    /// The mechanism the pose belongs to.
+    pub(crate) fn mechanism(&self) -> &'m Mechanism {
+        self.mechanism
     }
 
     /// Coordinate `i` as a third-order dual number (derivatives above `N` are zero).
@@ -109,21 +115,26 @@ pub(crate) fn jet<const N: usize>(x: Dual3_64) -> Jet<N> {
     Jet::new(x.re, std::array::from_fn(|k| d[k]))
 }
 
-/// `A(θ_b)·v` for a link-local vector `v`, coordinate `i` of the pose being `coordinate(i)`.
+/// `A(θ_b)·v` for a link-local vector `v` (data in `T`), coordinate `i` of the pose being
+/// `coordinate(i)`.
 #[inline]
-fn rotate<D: crate::Scalar>(coordinate: &impl Fn(usize) -> D, b: Body, v: [f64; 2]) -> [D; 2] {
+fn rotate<T: Copy, D: Absorb<T>>(coordinate: &impl Fn(usize) -> D, b: Body, v: [T; 2]) -> [D; 2] {
     match b {
-        None => [D::from(v[0]), D::from(v[1])],
+        None => [D::datum(v[0]), D::datum(v[1])],
         Some(k) => {
             let (s, c) = coordinate(3 * k + 2).sin_cos();
-            [c * v[0] - s * v[1], s * v[0] + c * v[1]]
+            [c.times(v[0]) - s.times(v[1]), s.times(v[0]) + c.times(v[1])]
         }
     }
 }
 
 /// Position of the point of body `b` at link-local `p`.
 #[inline]
-fn place<D: crate::Scalar>(coordinate: &impl Fn(usize) -> D, b: Body, p: [f64; 2]) -> [D; 2] {
+pub(crate) fn place<T: Copy, D: Absorb<T>>(
+    coordinate: &impl Fn(usize) -> D,
+    b: Body,
+    p: [T; 2],
+) -> [D; 2] {
     let r = rotate(coordinate, b, p);
     match b {
         None => r,
@@ -149,8 +160,17 @@ pub(crate) fn position<D: crate::Scalar>(
 /// `coordinate(i)`.
 #[inline]
 pub(crate) fn value<D: crate::Scalar>(coordinate: impl Fn(usize) -> D, output: &ScalarOutput) -> D {
-    match output.0 {
-        Scalar::Rotation { body, offset } => rotation_of(&coordinate, body) + offset,
+    scalar(coordinate, &output.0)
+}
+
+/// [`value`] for a resolved output whose data is in `T`.
+#[inline]
+pub(crate) fn scalar<T: Copy, D: Absorb<T>>(
+    coordinate: impl Fn(usize) -> D,
+    output: &Scalar<T>,
+) -> D {
+    match *output {
+        Scalar::Rotation { body, offset } => rotation_of(&coordinate, body).plus(offset),
         Scalar::Relative { a, b } => rotation_of(&coordinate, b) - rotation_of(&coordinate, a),
         Scalar::Displacement(slide) => {
             let u = rotate(&coordinate, slide.line.body, slide.line.direction);

@@ -4,18 +4,21 @@
 //! equations Φ(q, φ) = 0 ([`Equations`], generic over the scalar type), checked for mobility
 //! ([`check_mobility`]), solved for the pose at each drive position by Newton's method
 //! keeping the sketch's assembly branch ([`Solver`]), and lifted to exact derivatives
-//! q′, q″, q‴ with respect to φ by implicit differentiation ([`Kinematics`]).
+//! q′, q″, q‴ with respect to φ by implicit differentiation ([`Kinematics`]), and the exact
+//! derivatives of all of these with respect to a parameter of the data ([`Parametric`]).
 
 mod block_lu;
 pub mod branch;
 mod closed_form;
 mod constraints;
+mod datum;
 mod frames;
 pub mod implicit;
 mod kinematics;
 mod mobility;
 mod model;
 mod output;
+pub mod parametric;
 mod solver;
 pub mod trace;
 mod validate;
@@ -27,4 +30,5 @@ pub use model::{
     Drive, DriveKind, GROUND, Inertia, Joint, JointKind, Link, Mechanism, MechanismBuilder, Point,
 };
 pub use output::{PointOutput, ScalarOutput};
+pub use parametric::{DataTangent, Parametric, ParametricPoint, ParametricScalar, PoseTangent};
 pub use solver::{DriveLimit, LimitKind, MotionRange, SolveReport, Solver, Tracker};

@@ -21,6 +21,7 @@
 //! ```
 
 use super::constraints::{self, Body, Slide};
+use super::datum::{Data, Datum};
 use super::model::{JointKind, Mechanism};
 use crate::Error;
 
@@ -38,14 +39,16 @@ pub struct PointOutput {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ScalarOutput(pub(crate) Scalar);
 
+/// A resolved angle or displacement, its data in `T` (`f64`, or `Dual64` in
+/// [`super::parametric`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) enum Scalar {
+pub(crate) enum Scalar<T = f64> {
     /// θ of a body plus a constant (a segment's direction at the sketch).
-    Rotation { body: Body, offset: f64 },
+    Rotation { body: Body, offset: T },
     /// θ_b − θ_a.
     Relative { a: Body, b: Body },
     /// Displacement along a prismatic joint.
-    Displacement(Slide),
+    Displacement(Slide<T>),
 }
 
 fn invalid(name: &str, problem: impl Into<String>) -> Error {
@@ -61,7 +64,8 @@ impl Mechanism {
             .map_err(|_| invalid(name, "no link of this name"))
     }
 
-    fn output_point_on(&self, link: usize, point: &str) -> Result<[f64; 2], Error> {
+    /// Index of point `point`, which must be carried by link `link`.
+    fn output_point_on(&self, link: usize, point: &str) -> Result<usize, Error> {
         let p = self
             .point_index(point)
             .map_err(|_| invalid(point, "no point of this name"))?;
@@ -69,7 +73,7 @@ impl Mechanism {
             let problem = format!("point is not on link `{}`", self.links[link].name);
             return Err(invalid(point, problem));
         }
-        Ok(self.points[p].sketch)
+        Ok(p)
     }
 
     fn output_joint(&self, name: &str) -> Result<usize, Error> {
@@ -79,9 +83,20 @@ impl Mechanism {
 
     /// Point `point` carried by link `link`.
     pub fn point_output(&self, link: &str, point: &str) -> Result<PointOutput, Error> {
+        let (body, local) = self.resolve_point(&Data::of(self), link, point)?;
+        Ok(PointOutput { body, local })
+    }
+
+    /// Point `point` of link `link`: its body and link-local coordinates from `data`.
+    pub(crate) fn resolve_point<T: Datum>(
+        &self,
+        data: &Data<'_, T>,
+        link: &str,
+        point: &str,
+    ) -> Result<(Body, [T; 2]), Error> {
         let k = self.output_link(link)?;
-        let at = self.output_point_on(k, point)?;
-        Ok(self.point_at_index(k, at))
+        let p = self.output_point_on(k, point)?;
+        Ok((constraints::body(k), data.local(k, data.point(p))))
     }
 
     /// The point of link `link` that is at `sketch` (global, m) in the sketch.
@@ -92,10 +107,15 @@ impl Mechanism {
     /// The centre of gravity of link `link` (its [`super::Inertia`] must be given).
     pub fn center_of_gravity_output(&self, link: &str) -> Result<PointOutput, Error> {
         let k = self.output_link(link)?;
+        Ok(self.point_at_index(k, self.output_center(k)?))
+    }
+
+    /// The centre of gravity of link `k` at the sketch (global).
+    pub(crate) fn output_center(&self, k: usize) -> Result<[f64; 2], Error> {
         let inertia = self.links[k]
             .inertia
-            .ok_or_else(|| invalid(link, "the link has no mass properties"))?;
-        Ok(self.point_at_index(k, inertia.center))
+            .ok_or_else(|| invalid(&self.links[k].name, "the link has no mass properties"))?;
+        Ok(inertia.center)
     }
 
     fn point_at_index(&self, k: usize, sketch: [f64; 2]) -> PointOutput {
@@ -114,30 +134,58 @@ impl Mechanism {
     /// Direction angle of the segment `from → to` (two points of link `link`), measured
     /// counter-clockwise from +x (rad; continuous from the sketch value, not wrapped).
     pub fn angle_output(&self, link: &str, from: &str, to: &str) -> Result<ScalarOutput, Error> {
+        Ok(ScalarOutput(self.resolve_angle(
+            &Data::of(self),
+            link,
+            from,
+            to,
+        )?))
+    }
+
+    /// [`Mechanism::angle_output`] with the sketch from `data`.
+    pub(crate) fn resolve_angle<T: Datum>(
+        &self,
+        data: &Data<'_, T>,
+        link: &str,
+        from: &str,
+        to: &str,
+    ) -> Result<Scalar<T>, Error> {
         let k = self.output_link(link)?;
         let (a, b) = (self.output_point_on(k, from)?, self.output_point_on(k, to)?);
-        if a == b {
+        if self.points[a].sketch == self.points[b].sketch {
             return Err(invalid(
                 &format!("{from}–{to}"),
                 "the two points coincide; the direction is undefined",
             ));
         }
-        Ok(ScalarOutput(Scalar::Rotation {
+        let (a, b) = (data.point(a), data.point(b));
+        Ok(Scalar::Rotation {
             body: constraints::body(k),
-            offset: (b[1] - a[1]).atan2(b[0] - a[0]),
-        }))
+            offset: T::direction(b[1] - a[1], b[0] - a[0]),
+        })
     }
 
     /// Displacement in prismatic joint `joint` (m), measured as in the model.
     pub fn displacement_output(&self, joint: &str) -> Result<ScalarOutput, Error> {
+        Ok(ScalarOutput(
+            self.resolve_displacement(&Data::of(self), joint)?,
+        ))
+    }
+
+    /// [`Mechanism::displacement_output`] with the sketch from `data`.
+    pub(crate) fn resolve_displacement<T: Datum>(
+        &self,
+        data: &Data<'_, T>,
+        joint: &str,
+    ) -> Result<Scalar<T>, Error> {
         match self.joints[self.output_joint(joint)?].kind {
             JointKind::Prismatic {
                 guide,
                 line,
                 slider,
                 point,
-            } => Ok(ScalarOutput(Scalar::Displacement(
-                constraints::compile_slide(self, guide, line, slider, point),
+            } => Ok(Scalar::Displacement(constraints::compile_slide(
+                data, guide, line, slider, point,
             ))),
             _ => Err(invalid(joint, "a displacement needs a prismatic joint")),
         }
@@ -146,12 +194,22 @@ impl Mechanism {
     /// Relative rotation of link b with respect to link a in revolute joint `joint` since
     /// the sketch (rad).
     pub fn joint_rotation_output(&self, joint: &str) -> Result<ScalarOutput, Error> {
+        Ok(ScalarOutput(self.resolve_joint_rotation(joint)?))
+    }
+
+    /// [`Mechanism::joint_rotation_output`], for data in any `T` (it has none).
+    pub(crate) fn resolve_joint_rotation<T>(&self, joint: &str) -> Result<Scalar<T>, Error> {
         match self.joints[self.output_joint(joint)?].kind {
-            JointKind::Revolute { link_a, link_b, .. } => Ok(ScalarOutput(Scalar::Relative {
+            JointKind::Revolute { link_a, link_b, .. } => Ok(Scalar::Relative {
                 a: constraints::body(link_a),
                 b: constraints::body(link_b),
-            })),
+            }),
             _ => Err(invalid(joint, "a joint rotation needs a revolute joint")),
         }
+    }
+
+    /// The body of link `link` (for a rotation output).
+    pub(crate) fn output_body(&self, link: &str) -> Result<Body, Error> {
+        Ok(constraints::body(self.output_link(link)?))
     }
 }

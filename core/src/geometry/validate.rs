@@ -156,7 +156,7 @@ pub(super) fn build(b: MechanismBuilder) -> Result<Mechanism, Error> {
     };
     m.drive_at_sketch = match drive_at_sketch {
         Some(v) => v,
-        None => constraints::sketch_drive_value(&m),
+        None => constraints::sketch_drive_value(&super::datum::Data::of(&m)),
     };
     check_sketch(&m)?;
     Ok(m)
