@@ -5,27 +5,27 @@
 
 use super::inertia::Mass;
 use super::kinetostatics::JointReaction;
-use super::model::CompiledModel;
+use super::model::{CompiledModel, Data};
 use super::motor::MotorState;
 use super::plan::Effects;
 use super::state::{self, LinkState, dot, of};
 use super::{gravity, loads};
-use crate::geometry::Mechanism;
-use crate::{DriveState, Jet};
+use crate::geometry::{JointKind, Mechanism};
+use crate::{DriveState, Jet, Scalar};
 
 /// Kinetic energy and reduced moment of inertia at one drive position.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Energy {
+pub struct Energy<T = f64> {
     /// Kinetic energy `T = ½ J_red ω²` (J), the motor's rotor included.
-    pub kinetic: f64,
+    pub kinetic: T,
     /// Reduced moment of inertia `J_red = Σ m |r_G′|² + J θ′² (+ J_d/τ²)` (kg·m², or kg for
     /// a linear drive).
-    pub reduced_inertia: f64,
+    pub reduced_inertia: T,
     /// `dJ_red/dφ = 2 Σ (m r_G′·r_G″ + J θ′ θ″)` (kg·m²/rad); `None` from first derivatives
     /// only.
-    pub reduced_inertia_derivative: Option<f64>,
+    pub reduced_inertia_derivative: Option<T>,
     /// `dT/dt = J_red ω α + ½ J_red′ ω³` (W); `None` from first derivatives only.
-    pub kinetic_rate: Option<f64>,
+    pub kinetic_rate: Option<T>,
 }
 
 /// The kinetic energy of the links with mass (and of the motor's rotor) at the pose of
@@ -48,59 +48,79 @@ pub fn energy<const N: usize>(
             )
         })
         .collect();
-    // With ω = 1 and α = 0 the "velocities" are the φ-derivatives r′, θ′ and the
-    // "accelerations" the second derivatives r″, θ″.
-    let d = state::link_states(&padded, &DriveState::constant_speed(1.0));
-    let (j, dj) = reduced(&model.masses, &d);
-    let rotor = model
-        .motor
-        .map_or(0.0, |mo| mo.rotor_inertia / (mo.ratio * mo.ratio));
-    let j = j + rotor;
-    let w = drive.omega;
+    let e = energy_of(
+        &model.data(),
+        &padded,
+        |j| [j.value, j.derivatives[0], j.derivatives[1]],
+        drive.omega,
+        drive.alpha,
+    );
     Energy {
-        kinetic: 0.5 * j * w * w,
-        reduced_inertia: j,
-        reduced_inertia_derivative: (N >= 2).then_some(dj),
-        kinetic_rate: (N >= 2).then_some(j * w * drive.alpha + 0.5 * dj * w * w * w),
+        reduced_inertia_derivative: e.reduced_inertia_derivative.filter(|_| N >= 2),
+        kinetic_rate: e.kinetic_rate.filter(|_| N >= 2),
+        ..e
     }
 }
 
-fn reduced(masses: &[Mass], d: &[LinkState]) -> (f64, f64) {
-    let mut j = 0.0;
-    let mut dj = 0.0;
+/// [`energy`] in any scalar, from `(q, q′, q″)` of every coordinate (`jet`) and the drive's
+/// speed and acceleration.
+pub(crate) fn energy_of<C, T: Scalar>(
+    data: &Data<'_, T>,
+    coordinates: &[C],
+    jet: impl Fn(&C) -> [T; 3],
+    omega: T,
+    alpha: T,
+) -> Energy<T> {
+    // With ω = 1 and α = 0 the "velocities" are the φ-derivatives r′, θ′ and the
+    // "accelerations" the second derivatives r″, θ″.
+    let d = state::states_of(coordinates, jet, T::one(), T::zero());
+    let (j, dj) = reduced(data.masses, &d);
+    let j = j + data.motor.map_or(T::zero(), |mo| mo.reduced_rotor());
+    let w = omega;
+    Energy {
+        kinetic: j * w * w * 0.5,
+        reduced_inertia: j,
+        reduced_inertia_derivative: Some(dj),
+        kinetic_rate: Some(j * w * alpha + dj * w * w * w * 0.5),
+    }
+}
+
+fn reduced<T: Scalar>(masses: &[Mass<T>], d: &[LinkState<T>]) -> (T, T) {
+    let mut j = T::zero();
+    let mut dj = T::zero();
     for m in masses {
         let s = of(d, m.link);
         let g = s.position(m.center);
         let (v, a) = (s.velocity_at(g), s.acceleration_at(g));
         j += m.mass * dot(v, v) + m.moment * s.omega * s.omega;
-        dj += 2.0 * (m.mass * dot(v, a) + m.moment * s.omega * s.alpha);
+        dj += (m.mass * dot(v, a) + m.moment * s.omega * s.alpha) * 2.0;
     }
     (j, dj)
 }
 
 /// The power balance at one drive position (W); the loss terms are ≤ 0.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PowerBalance {
+pub struct PowerBalance<T = f64> {
     /// Power of the drive: the motor's `M_d ω_d` with a motor, else the drive joint's `M φ̇`.
-    pub drive: f64,
+    pub drive: T,
     /// Rate of change of the kinetic energy, `Σ (m a_G·v_G + J θ̈ θ̇)` (+ `J_d ω̇_d ω_d`);
     /// 0 when inertia is not in the plan.
-    pub kinetic_rate: f64,
+    pub kinetic_rate: T,
     /// Power of the weights.
-    pub gravity: f64,
+    pub gravity: T,
     /// Power of the external loads.
-    pub loads: f64,
+    pub loads: T,
     /// Power lost by friction.
-    pub friction: f64,
+    pub friction: T,
     /// Power lost in meshes and in the motor's gearbox.
-    pub efficiency: f64,
+    pub efficiency: T,
     /// The drive torque from the balance, `(dT/dt − P_gravity − P_loads − P_friction −
     /// P_efficiency)/ω` (the motor's torque with a motor); `None` at rest.
-    pub torque: Option<f64>,
+    pub torque: Option<T>,
     /// The drive torque from the equilibrium equations (the motor's with a motor).
-    pub kinetostatic_torque: f64,
+    pub kinetostatic_torque: T,
     /// `drive + gravity + loads + friction + efficiency − kinetic_rate` (0 up to rounding).
-    pub residual: f64,
+    pub residual: T,
 }
 
 impl PowerBalance {
@@ -117,64 +137,62 @@ impl PowerBalance {
         .iter()
         .fold(0.0, |a: f64, v| a.max(v.abs()))
     }
+}
 
+impl<T: Scalar> PowerBalance<T> {
     /// Difference of the two drive torques, `None` at rest.
-    pub fn torque_difference(&self) -> Option<f64> {
+    pub fn torque_difference(&self) -> Option<T> {
         self.torque.map(|t| self.kinetostatic_torque - t)
     }
 }
 
+/// The power balance from the data `data` of `m`, in any scalar; `omega` is the drive speed.
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn balance(
-    model: &CompiledModel<'_>,
+pub(crate) fn balance<T: Scalar>(
+    m: &Mechanism,
+    data: &Data<'_, T>,
     effects: &Effects,
     phi: f64,
-    drive: &DriveState,
-    states: &[LinkState],
-    drive_torque: f64,
-    reactions: &[JointReaction],
-    motor: Option<&MotorState>,
-) -> PowerBalance {
-    let mut kinetic_rate = 0.0;
+    omega: T,
+    states: &[LinkState<T>],
+    drive_torque: T,
+    reactions: &[JointReaction<T>],
+    motor: Option<&MotorState<T>>,
+) -> PowerBalance<T> {
+    let mut kinetic_rate = T::zero();
     if effects.inertia {
-        for m in &model.masses {
+        for m in data.masses {
             let s = of(states, m.link);
             let g = s.position(m.center);
             kinetic_rate +=
                 m.mass * dot(s.acceleration_at(g), s.velocity_at(g)) + m.moment * s.alpha * s.omega;
         }
     }
-    let gravity = match (&model.gravity, effects.gravity) {
-        (Some(g), true) => gravity::power(g, &model.masses, states),
-        _ => 0.0,
+    let gravity = match (data.gravity, effects.gravity) {
+        (Some(g), true) => gravity::power(g, data.masses, states),
+        _ => T::zero(),
     };
     let loads = if effects.loads {
-        loads::power(&model.loads, phi, states)
+        loads::power(data.loads, phi, states)
     } else {
-        0.0
+        T::zero()
     };
-    let friction: f64 = reactions
+    let mesh = |j: &&crate::geometry::Joint| {
+        matches!(
+            j.kind,
+            JointKind::RackPinion { .. } | JointKind::Gear { .. }
+        )
+    };
+    let friction: T = reactions
         .iter()
-        .zip(&model.mechanism.joints)
-        .filter(|(_, j)| {
-            !matches!(
-                j.kind,
-                crate::geometry::JointKind::RackPinion { .. }
-                    | crate::geometry::JointKind::Gear { .. }
-            )
-        })
+        .zip(&m.joints)
+        .filter(|(_, j)| !mesh(j))
         .map(|(r, _)| r.power_loss)
         .sum();
-    let mut efficiency: f64 = reactions
+    let mut efficiency: T = reactions
         .iter()
-        .zip(&model.mechanism.joints)
-        .filter(|(_, j)| {
-            matches!(
-                j.kind,
-                crate::geometry::JointKind::RackPinion { .. }
-                    | crate::geometry::JointKind::Gear { .. }
-            )
-        })
+        .zip(&m.joints)
+        .filter(|(_, j)| mesh(j))
         .map(|(r, _)| r.power_loss)
         .sum();
     let (power, speed, torque) = match motor {
@@ -183,7 +201,7 @@ pub(crate) fn balance(
             kinetic_rate += ms.rotor_power;
             (ms.torque * ms.speed, ms.speed, ms.torque)
         }
-        None => (drive_torque * drive.omega, drive.omega, drive_torque),
+        None => (drive_torque * omega, omega, drive_torque),
     };
     let others = gravity + loads + friction + efficiency;
     PowerBalance {
@@ -193,7 +211,7 @@ pub(crate) fn balance(
         loads,
         friction,
         efficiency,
-        torque: (speed != 0.0).then(|| (kinetic_rate - others) / speed),
+        torque: (speed.re() != 0.0).then(|| (kinetic_rate - others) / speed),
         kinetostatic_torque: torque,
         residual: power + others - kinetic_rate,
     }

@@ -11,7 +11,7 @@ use super::plan::{Effects, Trace};
 use super::state::{Generalized, LinkState, of};
 use super::teeth::{self, Tooth};
 use crate::geometry::JointKind;
-use crate::{DriveState, Error};
+use crate::{DriveState, Error, Scalar, hypot};
 use nalgebra::{DMatrix, DVector};
 
 /// Iterations allowed for friction and efficiency before a position is reported self-locking.
@@ -340,12 +340,16 @@ impl Assembly<'_, '_> {
         let model = self.model;
         let m = model.mechanism;
         let drive_torque = -lambda[model.drive_row];
-        let mut reactions: Vec<JointReaction> = m
-            .joints
-            .iter()
-            .enumerate()
-            .map(|(j, joint)| {
-                self.ideal_reaction(j, &joint.kind, &lambda, &joint.name, signs.as_ref())
+        let mut reactions: Vec<JointReaction> = (0..m.joints.len())
+            .map(|j| {
+                ideal_reaction(
+                    model,
+                    j,
+                    &self.states,
+                    &lambda,
+                    |i| m.points[i].sketch,
+                    || self.bearing_force(j, model.rows[j], &lambda, signs.as_ref()),
+                )
             })
             .collect();
         if let Some(signs) = &signs {
@@ -393,10 +397,11 @@ impl Assembly<'_, '_> {
             _ => None,
         };
         let balance = energy::balance(
-            model,
+            m,
+            &model.data(),
             effects,
             phi,
-            drive,
+            drive.omega,
             &self.states,
             drive_torque,
             &reactions,
@@ -415,76 +420,78 @@ impl Assembly<'_, '_> {
             trace,
         })
     }
+}
 
-    /// The reaction of joint `j` from its multipliers, without friction or efficiency.
-    fn ideal_reaction(
-        &self,
-        j: usize,
-        kind: &JointKind,
-        lambda: &DVector<f64>,
-        name: &str,
-        signs: Option<&Signs>,
-    ) -> JointReaction {
-        let r = self.model.rows[j];
-        let l = |i: usize| lambda[r + i];
-        let mut out = JointReaction {
-            joint: name.to_owned(),
-            force: [0.0; 2],
-            couple: 0.0,
-            normal: 0.0,
-            friction: 0.0,
-            power_loss: 0.0,
-        };
-        let guide_dir = |guide: usize, line: [usize; 2]| {
-            let m = self.model.mechanism;
-            let (a, b) = (m.points[line[0]].sketch, m.points[line[1]].sketch);
-            let d = [b[0] - a[0], b[1] - a[1]];
-            let len = d[0].hypot(d[1]);
-            of(&self.states, guide).arm([d[0] / len, d[1] / len])
-        };
-        match *kind {
-            // Row r_a(p) − r_b(p): the force on link b is +λ.
-            // (plus the tooth force of a mesh whose wheel turns in this joint).
-            JointKind::Revolute { .. } => {
-                out.force = self.bearing_force(j, r, lambda, signs);
-                out.normal = out.force[0].hypot(out.force[1]);
-            }
-            // Rows θ_s − θ_g and c(u, r_s(p) − r_g(a)): couple −λ₀, normal force −λ₁ along n.
-            JointKind::Prismatic { guide, line, .. } => {
+/// The reaction of joint `j` from the multipliers `lambda`, without friction or efficiency, in
+/// any scalar: `sketch(i)` is point `i`'s sketch position, `bearing()` the force of a revolute
+/// joint (its multipliers, plus the tooth force of a mesh whose wheel turns in it).
+pub(super) fn ideal_reaction<T: Scalar>(
+    model: &CompiledModel<'_>,
+    j: usize,
+    states: &[LinkState<T>],
+    lambda: &DVector<T>,
+    sketch: impl Fn(usize) -> [T; 2],
+    bearing: impl FnOnce() -> [T; 2],
+) -> JointReaction<T> {
+    let m = model.mechanism;
+    let joint = &m.joints[j];
+    let r = model.rows[j];
+    let l = |i: usize| lambda[r + i];
+    let zero = T::zero();
+    let mut out = JointReaction {
+        joint: joint.name.clone(),
+        force: [zero; 2],
+        couple: zero,
+        normal: zero,
+        friction: zero,
+        power_loss: zero,
+    };
+    let guide_dir = |guide: usize, line: [usize; 2]| {
+        let (a, b) = (sketch(line[0]), sketch(line[1]));
+        let d = [b[0] - a[0], b[1] - a[1]];
+        let len = hypot(d[0], d[1]);
+        of(states, guide).arm([d[0] / len, d[1] / len])
+    };
+    match joint.kind {
+        // Row r_a(p) − r_b(p): the force on link b is +λ.
+        // (plus the tooth force of a mesh whose wheel turns in this joint).
+        JointKind::Revolute { .. } => {
+            out.force = bearing();
+            out.normal = hypot(out.force[0], out.force[1]);
+        }
+        // Rows θ_s − θ_g and c(u, r_s(p) − r_g(a)): couple −λ₀, normal force −λ₁ along n.
+        JointKind::Prismatic { guide, line, .. } => {
+            let u = guide_dir(guide, line);
+            out.couple = -l(0);
+            out.normal = -l(1);
+            out.force = [-(out.normal * u[1]), out.normal * u[0]];
+        }
+        JointKind::PinInSlot {
+            slot_link, line, ..
+        } => {
+            let u = guide_dir(slot_link, line);
+            out.normal = -l(0);
+            out.force = [-(out.normal * u[1]), out.normal * u[0]];
+        }
+        // Row (s − s₀) − R(θ_b − θ_a): force −λ on the rack along u.
+        JointKind::RackPinion { rack, .. } => {
+            if let JointKind::Prismatic { guide, line, .. } = m.joints[rack].kind {
                 let u = guide_dir(guide, line);
-                out.couple = -l(0);
-                out.normal = -l(1);
-                out.force = [-out.normal * u[1], out.normal * u[0]];
-            }
-            JointKind::PinInSlot {
-                slot_link, line, ..
-            } => {
-                let u = guide_dir(slot_link, line);
                 out.normal = -l(0);
-                out.force = [-out.normal * u[1], out.normal * u[0]];
-            }
-            // Row (s − s₀) − R(θ_b − θ_a): force −λ on the rack along u.
-            JointKind::RackPinion { rack, .. } => {
-                if let JointKind::Prismatic { guide, line, .. } =
-                    self.model.mechanism.joints[rack].kind
-                {
-                    let u = guide_dir(guide, line);
-                    out.normal = -l(0);
-                    out.force = [out.normal * u[0], out.normal * u[1]];
-                }
-            }
-            // Row (θ_b2 − θ_a2) − ratio(θ_b1 − θ_a1): torque −λ on the second gear's link.
-            JointKind::Gear { .. } => {
-                out.normal = -l(0);
-                out.couple = -l(0);
-            }
-            // Rows r_b − r_a(p), θ_b − θ_a: force −λ and couple −λ₂ on link b.
-            JointKind::Rigid { .. } => {
-                out.force = [-l(0), -l(1)];
-                out.couple = -l(2);
-                out.normal = l(0).hypot(l(1));
+                out.force = [out.normal * u[0], out.normal * u[1]];
             }
         }
-        out
+        // Row (θ_b2 − θ_a2) − ratio(θ_b1 − θ_a1): torque −λ on the second gear's link.
+        JointKind::Gear { .. } => {
+            out.normal = -l(0);
+            out.couple = -l(0);
+        }
+        // Rows r_b − r_a(p), θ_b − θ_a: force −λ and couple −λ₂ on link b.
+        JointKind::Rigid { .. } => {
+            out.force = [-l(0), -l(1)];
+            out.couple = -l(2);
+            out.normal = hypot(l(0), l(1));
+        }
     }
+    out
 }

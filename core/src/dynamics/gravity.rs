@@ -2,7 +2,7 @@
 
 use super::inertia::Mass;
 use super::state::{Generalized, LinkState, dot, of};
-use crate::Error;
+use crate::{Error, Scalar};
 
 /// The gravitational acceleration vector (m/s²).
 ///
@@ -36,26 +36,31 @@ impl Gravity {
     }
 }
 
-/// Adds the weights of `masses` to the generalized loads.
-pub(crate) fn load(g: &Gravity, masses: &[Mass], states: &[LinkState], q: &mut Generalized) {
+/// Adds the weights of `masses` under gravity `g` (m/s²) to the generalized loads.
+pub(crate) fn load<T: Scalar>(
+    g: [T; 2],
+    masses: &[Mass<T>],
+    states: &[LinkState<T>],
+    q: &mut Generalized<T>,
+) {
     for m in masses {
         let s = of(states, m.link);
         q.force(
             states,
             m.link,
             s.position(m.center),
-            [m.mass * g.g[0], m.mass * g.g[1]],
+            [m.mass * g[0], m.mass * g[1]],
         );
     }
 }
 
-/// Power of the weights (W): `Σ m g·v_G`.
-pub(crate) fn power(g: &Gravity, masses: &[Mass], states: &[LinkState]) -> f64 {
+/// Power of the weights under gravity `g` (W): `Σ m g·v_G`.
+pub(crate) fn power<T: Scalar>(g: [T; 2], masses: &[Mass<T>], states: &[LinkState<T>]) -> T {
     masses
         .iter()
         .map(|m| {
             let s = of(states, m.link);
-            m.mass * dot(g.g, s.velocity_at(s.position(m.center)))
+            m.mass * dot(g, s.velocity_at(s.position(m.center)))
         })
         .sum()
 }

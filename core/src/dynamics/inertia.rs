@@ -2,39 +2,43 @@
 //! of every link with mass properties.
 
 use super::state::{Generalized, LinkState, of};
+use crate::Scalar;
 
 /// Mass properties of one link, compiled: the centre of gravity in link-local coordinates.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Mass {
+pub(crate) struct Mass<T = f64> {
     /// Link index in the mechanism.
     pub link: usize,
     /// Mass (kg).
-    pub mass: f64,
+    pub mass: T,
     /// Centre of gravity relative to the link's reference point, unrotated (m).
-    pub center: [f64; 2],
+    pub center: [T; 2],
     /// Moment of inertia about the centre of gravity (kg·m²).
-    pub moment: f64,
+    pub moment: T,
 }
 
 /// The inertial (d'Alembert) load of one link at an instant.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct InertialLoad {
+pub struct InertialLoad<T = f64> {
     /// Link index in the mechanism.
     pub link: usize,
     /// Centre of gravity, global (m).
-    pub center: [f64; 2],
+    pub center: [T; 2],
     /// Velocity of the centre of gravity (m/s).
-    pub velocity: [f64; 2],
+    pub velocity: [T; 2],
     /// Acceleration of the centre of gravity (m/s²).
-    pub acceleration: [f64; 2],
+    pub acceleration: [T; 2],
     /// Inertial force `−m·a_G` (N).
-    pub force: [f64; 2],
+    pub force: [T; 2],
     /// Inertial couple `−J_G·θ̈` (N·m).
-    pub couple: f64,
+    pub couple: T,
 }
 
 /// The inertial loads of every link with mass.
-pub(crate) fn loads(masses: &[Mass], states: &[LinkState]) -> Vec<InertialLoad> {
+pub(crate) fn loads<T: Scalar>(
+    masses: &[Mass<T>],
+    states: &[LinkState<T>],
+) -> Vec<InertialLoad<T>> {
     masses
         .iter()
         .map(|m| {
@@ -46,15 +50,19 @@ pub(crate) fn loads(masses: &[Mass], states: &[LinkState]) -> Vec<InertialLoad> 
                 center,
                 velocity: s.velocity_at(center),
                 acceleration,
-                force: [-m.mass * acceleration[0], -m.mass * acceleration[1]],
-                couple: -m.moment * s.alpha,
+                force: [-(m.mass * acceleration[0]), -(m.mass * acceleration[1])],
+                couple: -(m.moment * s.alpha),
             }
         })
         .collect()
 }
 
 /// Adds the inertial loads to the generalized loads.
-pub(crate) fn load(inertial: &[InertialLoad], states: &[LinkState], q: &mut Generalized) {
+pub(crate) fn load<T: Scalar>(
+    inertial: &[InertialLoad<T>],
+    states: &[LinkState<T>],
+    q: &mut Generalized<T>,
+) {
     for l in inertial {
         q.force(states, l.link, l.center, l.force);
         q.couple(l.link, l.couple);

@@ -17,13 +17,13 @@ use super::energy::PowerBalance;
 use super::equilibrium::Assembly;
 use super::friction::CompiledFriction;
 use super::inertia::{self, InertialLoad};
-use super::model::CompiledModel;
+use super::model::{CompiledModel, Data};
 use super::motor::MotorState;
 use super::plan::{Effects, Trace};
-use super::state::{self, Generalized};
+use super::state::{self, Generalized, LinkState};
 use super::{gravity, loads};
 use crate::geometry::Kinematics;
-use crate::{DriveState, Error, Jet};
+use crate::{DriveState, Error, Jet, Scalar};
 use nalgebra::{DMatrix, DVector};
 
 /// The reaction in one joint.
@@ -39,23 +39,24 @@ use nalgebra::{DMatrix, DVector};
 /// circles) when the meshing members turn on a common link, a frame or one carrier (see the
 /// `teeth` module); otherwise the mesh acts on the wheels as couples only.
 #[derive(Debug, Clone, PartialEq)]
-pub struct JointReaction {
+pub struct JointReaction<T = f64> {
     /// Joint name.
     pub joint: String,
     /// Force on link b (N, global components).
-    pub force: [f64; 2],
+    pub force: [T; 2],
     /// Couple on link b (N·m): the prismatic joint's reaction couple, a rigid joint's couple,
     /// a revolute joint's friction torque, the torque on a gear's second link.
-    pub couple: f64,
+    pub couple: T,
     /// Normal force on link b along the guide's normal `n` (prismatic, pin in slot), the
-    /// magnitude `|R|` (revolute), the tooth force on the rack along its guide (rack-and-pinion)
+    /// magnitude `|R|` (revolute; its derivative with respect to a parameter is not defined
+    /// where `R = 0`), the tooth force on the rack along its guide (rack-and-pinion)
     /// or the torque on the second gear's link (gear) (N or N·m).
-    pub normal: f64,
+    pub normal: T,
     /// Friction force on link b along the guide direction `u` (sliding joints, N) or friction
     /// torque on link b (revolute, N·m); 0 without friction.
-    pub friction: f64,
+    pub friction: T,
     /// Power lost in the joint by friction or imperfect efficiency (W, ≤ 0).
-    pub power_loss: f64,
+    pub power_loss: T,
 }
 
 /// The equilibrium at one drive position.
@@ -102,7 +103,6 @@ pub fn solve_at(
     coordinates: &[Jet<2>],
     drive: &DriveState,
 ) -> Result<Solution, Error> {
-    let m = model.mechanism;
     let states = state::link_states(coordinates, drive);
     let n = model.equations.coordinates();
     let q: Vec<f64> = coordinates.iter().map(|j| j.value).collect();
@@ -113,23 +113,7 @@ pub fn solve_at(
     let mut jac = DMatrix::zeros(n, n);
     model.equations.jacobian(&q, &mut jac);
     let mut trace = Trace::default();
-    let mut load = Generalized::zeros(m.links.len() - 1);
-    let mut inertial = Vec::new();
-    if effects.inertia && !model.masses.is_empty() {
-        inertial = inertia::loads(&model.masses, &states);
-        inertia::load(&inertial, &states, &mut load);
-        trace.inertia += 1;
-    }
-    if effects.gravity
-        && let Some(g) = &model.gravity
-    {
-        gravity::load(g, &model.masses, &states, &mut load);
-        trace.gravity += 1;
-    }
-    if effects.loads && !model.loads.is_empty() {
-        loads::load(&model.loads, phi, &states, &mut load);
-        trace.loads += 1;
-    }
+    let (load, inertial) = applied(&model.data(), effects, phi, &states, &mut trace);
     let friction: &[CompiledFriction] = if effects.friction {
         &model.friction
     } else {
@@ -154,4 +138,33 @@ pub fn solve_at(
     asm.finish(
         effects, phi, drive, lambda, signs, iterations, inertial, trace,
     )
+}
+
+/// The generalized applied and inertial loads `Q` of the effects in `effects` (the right-hand
+/// side of `Φ_qᵀ λ = Q`) and the inertial loads, in any scalar; counts what it evaluates.
+pub(crate) fn applied<T: Scalar>(
+    data: &Data<'_, T>,
+    effects: &Effects,
+    phi: f64,
+    states: &[LinkState<T>],
+    trace: &mut Trace,
+) -> (Generalized<T>, Vec<InertialLoad<T>>) {
+    let mut load = Generalized::zeros(states.len());
+    let mut inertial = Vec::new();
+    if effects.inertia && !data.masses.is_empty() {
+        inertial = inertia::loads(data.masses, states);
+        inertia::load(&inertial, states, &mut load);
+        trace.inertia += 1;
+    }
+    if effects.gravity
+        && let Some(g) = data.gravity
+    {
+        gravity::load(g, data.masses, states, &mut load);
+        trace.gravity += 1;
+    }
+    if effects.loads && !data.loads.is_empty() {
+        loads::load(data.loads, phi, states, &mut load);
+        trace.loads += 1;
+    }
+    (load, inertial)
 }

@@ -2,16 +2,17 @@
 //! range of the drive (a cutting force on the forward stroke).
 
 use super::state::{Generalized, LinkState, dot, of};
-use crate::Error;
 use crate::geometry::{DriveKind, Mechanism};
+use crate::{Error, Scalar};
 
-/// What an external load is.
+/// What an external load is (in a [`super::EffectsTangent`], its derivative with respect to a
+/// parameter).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum LoadKind {
+pub enum LoadKind<T = f64> {
     /// A force (N, global components) at a point of the link.
-    Force([f64; 2]),
+    Force([T; 2]),
     /// A torque (N·m, counter-clockwise positive) on the link.
-    Torque(f64),
+    Torque(T),
 }
 
 /// An external load on a link.
@@ -65,11 +66,13 @@ impl Load {
 
 /// A load compiled to indices.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct CompiledLoad {
+pub(crate) struct CompiledLoad<T = f64> {
     pub link: usize,
+    /// The point of application (a force's), by index.
+    pub point: Option<usize>,
     /// Point of application relative to the link's reference point, unrotated.
-    pub local: [f64; 2],
-    pub kind: LoadKind,
+    pub local: [T; 2],
+    pub kind: LoadKind<T>,
     pub active: Option<[f64; 2]>,
     /// Whether the drive is an angle (ranges wrap modulo 2π).
     pub periodic: bool,
@@ -82,6 +85,7 @@ pub(crate) fn compile(m: &Mechanism, load: &Load, index: usize) -> Result<Compil
         name: load.link.clone(),
         context: context.clone(),
     })?;
+    let mut point = None;
     let local = match (&load.kind, &load.point) {
         (LoadKind::Force(_), None) => {
             return Err(Error::MissingData {
@@ -102,6 +106,7 @@ pub(crate) fn compile(m: &Mechanism, load: &Load, index: usize) -> Result<Compil
                     context,
                 });
             }
+            point = Some(pi);
             m.local(link, m.points[pi].sketch)
         }
         (LoadKind::Torque(_), _) => [0.0, 0.0],
@@ -120,6 +125,7 @@ pub(crate) fn compile(m: &Mechanism, load: &Load, index: usize) -> Result<Compil
     }
     Ok(CompiledLoad {
         link,
+        point,
         local,
         kind: load.kind,
         active: load.active,
@@ -127,7 +133,7 @@ pub(crate) fn compile(m: &Mechanism, load: &Load, index: usize) -> Result<Compil
     })
 }
 
-impl CompiledLoad {
+impl<T> CompiledLoad<T> {
     /// Whether the load acts at drive position `phi`.
     pub fn acts_at(&self, phi: f64) -> bool {
         match self.active {
@@ -143,7 +149,12 @@ impl CompiledLoad {
 }
 
 /// Adds the loads acting at `phi` to the generalized loads.
-pub(crate) fn load(loads: &[CompiledLoad], phi: f64, states: &[LinkState], q: &mut Generalized) {
+pub(crate) fn load<T: Scalar>(
+    loads: &[CompiledLoad<T>],
+    phi: f64,
+    states: &[LinkState<T>],
+    q: &mut Generalized<T>,
+) {
     for l in loads.iter().filter(|l| l.acts_at(phi)) {
         match l.kind {
             LoadKind::Force(f) => q.force(states, l.link, of(states, l.link).position(l.local), f),
@@ -153,7 +164,7 @@ pub(crate) fn load(loads: &[CompiledLoad], phi: f64, states: &[LinkState], q: &m
 }
 
 /// Power of the loads acting at `phi` (W).
-pub(crate) fn power(loads: &[CompiledLoad], phi: f64, states: &[LinkState]) -> f64 {
+pub(crate) fn power<T: Scalar>(loads: &[CompiledLoad<T>], phi: f64, states: &[LinkState<T>]) -> T {
     loads
         .iter()
         .filter(|l| l.acts_at(phi))
@@ -174,6 +185,7 @@ mod tests {
     fn load(active: [f64; 2], periodic: bool) -> CompiledLoad {
         CompiledLoad {
             link: 1,
+            point: None,
             local: [0.0; 2],
             kind: LoadKind::Torque(1.0),
             active: Some(active),

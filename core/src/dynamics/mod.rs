@@ -6,7 +6,9 @@
 //! equations of every moving link (Newton–Euler with d'Alembert's inertial loads) and solves
 //! them for the joint reactions and the drive torque at one drive position; [`energy`](mod@energy) checks
 //! the result against the power balance and gives the kinetic energy and the reduced moment of
-//! inertia; [`shaking`] sums the inertial forces on the frame. A [`Plan`] (see [`plan`]) says
+//! inertia; [`shaking`] sums the inertial forces on the frame; [`tangent`] gives the exact
+//! derivative of every result with respect to one parameter, through the same
+//! (scalar-generic) effect code. A [`Plan`] (see [`plan`]) says
 //! which derivative order and which effects the requested outputs need, and nothing else is
 //! evaluated (the [`Trace`] of a solution counts every effect evaluation).
 //!
@@ -59,6 +61,7 @@ pub mod plan;
 pub mod run;
 pub mod shaking;
 pub(crate) mod state;
+pub mod tangent;
 mod teeth;
 
 pub use efficiency::{Driving, Efficiency};
@@ -74,3 +77,6 @@ pub use motor::{Motor, MotorState};
 pub use plan::{Effects, Plan, Request, Trace};
 pub use shaking::{Extreme, ShakingForce, ShakingSummary, shaking_force};
 pub use state::LinkState;
+pub use tangent::{
+    EffectsTangent, ModelTangent, NotCarried, SolutionTangent, TangentError, carried,
+};

@@ -161,7 +161,28 @@ pub struct CompiledModel<'m> {
     pub(crate) motor: Option<Motor>,
 }
 
+/// The numbers of the effects in scalar `T`, borrowed: what the generic effect code reads
+/// (`f64` from a [`CompiledModel`], `Dual64` from a [`super::ModelTangent`]).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Data<'a, T> {
+    pub masses: &'a [Mass<T>],
+    /// Gravity vector (m/s²), if given.
+    pub gravity: Option<[T; 2]>,
+    pub loads: &'a [CompiledLoad<T>],
+    pub motor: Option<Motor<T>>,
+}
+
 impl<'m> CompiledModel<'m> {
+    /// The effects' numbers in `f64`.
+    pub(crate) fn data(&self) -> Data<'_, f64> {
+        Data {
+            masses: &self.masses,
+            gravity: self.gravity.map(|g| g.g),
+            loads: &self.loads,
+            motor: self.motor,
+        }
+    }
+
     /// The mechanism.
     pub fn mechanism(&self) -> &'m Mechanism {
         self.mechanism

@@ -6,9 +6,10 @@
 //! `W_e = η·P_out` for reverse flow; the motor torque is `M_d = W_e/ω_d + J_d·ω̇_d`
 //! (equivalently `M_d = J_d ω̇_d + M′ τ/η` or `+ M′ τ η`).
 
-use crate::{DriveState, Error};
+use crate::{DriveState, Error, Scalar};
 
-/// Motor data.
+/// Motor data (in an [`super::EffectsTangent`], the derivatives of its numbers with respect to
+/// a parameter).
 ///
 /// ```
 /// use mechdiff_core::dynamics::Motor;
@@ -17,30 +18,30 @@ use crate::{DriveState, Error};
 /// assert!((s.torque - 0.9981773363503413).abs() < 1e-12);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Motor {
+pub struct Motor<T = f64> {
     /// Rotor moment of inertia `J_d` (kg·m²).
-    pub rotor_inertia: f64,
+    pub rotor_inertia: T,
     /// Gear ratio `τ = φ̇ / ω_d` (drive-joint speed over motor speed; for a linear drive m/rad).
-    pub ratio: f64,
+    pub ratio: T,
     /// Gearbox efficiency `η ∈ (0, 1]`.
-    pub efficiency: f64,
+    pub efficiency: T,
 }
 
 /// The motor at one instant.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct MotorState {
+pub struct MotorState<T = f64> {
     /// Motor speed `ω_d = φ̇/τ` (rad/s).
-    pub speed: f64,
+    pub speed: T,
     /// Motor acceleration `ω̇_d = φ̈/τ` (rad/s²).
-    pub acceleration: f64,
+    pub acceleration: T,
     /// Motor torque `M_d` (N·m).
-    pub torque: f64,
+    pub torque: T,
     /// Power entering the gearbox, `W_e = (M_d − J_d ω̇_d)·ω_d` (W).
-    pub gearbox_input: f64,
+    pub gearbox_input: T,
     /// Power lost in the gearbox, `P_out − W_e` (W, ≤ 0).
-    pub gearbox_loss: f64,
+    pub gearbox_loss: T,
     /// Rate of change of the rotor's kinetic energy, `J_d ω̇_d ω_d` (W).
-    pub rotor_power: f64,
+    pub rotor_power: T,
     /// Whether power flows from the motor to the mechanism.
     pub direct_flow: bool,
 }
@@ -75,16 +76,41 @@ impl Motor {
         inertia: bool,
         efficiency: bool,
     ) -> MotorState {
-        let speed = drive.omega / self.ratio;
-        let acceleration = drive.alpha / self.ratio;
-        let p_out = joint_torque * drive.omega;
-        let direct_flow = p_out >= 0.0;
-        let eta = if efficiency { self.efficiency } else { 1.0 };
-        let factor = if direct_flow { 1.0 / eta } else { eta };
+        self.state_of(joint_torque, drive.omega, drive.alpha, inertia, efficiency)
+    }
+}
+
+impl<T: Scalar> Motor<T> {
+    /// The rotor's inertia reduced to the drive joint, `J_d/τ²`.
+    pub(crate) fn reduced_rotor(&self) -> T {
+        self.rotor_inertia / (self.ratio * self.ratio)
+    }
+
+    /// [`Motor::state`] in any scalar, for drive speed `omega` and acceleration `alpha`. The
+    /// direction of power flow is the sign of the real part (a discrete choice: a derivative
+    /// is that of the branch taken).
+    pub(crate) fn state_of(
+        &self,
+        joint_torque: T,
+        omega: T,
+        alpha: T,
+        inertia: bool,
+        efficiency: bool,
+    ) -> MotorState<T> {
+        let speed = omega / self.ratio;
+        let acceleration = alpha / self.ratio;
+        let p_out = joint_torque * omega;
+        let direct_flow = p_out.re() >= 0.0;
+        let eta = if efficiency {
+            self.efficiency
+        } else {
+            T::one()
+        };
+        let factor = if direct_flow { eta.recip() } else { eta };
         let rotor = if inertia {
             self.rotor_inertia * acceleration
         } else {
-            0.0
+            T::zero()
         };
         let gearbox_torque = joint_torque * self.ratio * factor;
         let gearbox_input = gearbox_torque * speed;

@@ -2,22 +2,22 @@
 //! `Σ −m a_G` and of their moments about the origin, `Σ (r_G × (−m a_G) − J θ̈)` — what the
 //! foundation must carry (reference 000: ΣF_x, ΣF_y).
 
-use super::inertia::{self, InertialLoad};
+use super::inertia::{self, InertialLoad, Mass};
 use super::model::CompiledModel;
-use super::state::{self, cross};
-use crate::{DriveState, Jet};
+use super::state::{self, LinkState, cross};
+use crate::{DriveState, Jet, Scalar};
 
 /// The shaking force at one drive position.
 #[derive(Debug, Clone, PartialEq)]
-pub struct ShakingForce {
+pub struct ShakingForce<T = f64> {
     /// Drive position.
     pub phi: f64,
     /// `Σ −m a_G` (N).
-    pub force: [f64; 2],
+    pub force: [T; 2],
     /// Moment of the inertial loads about the global origin (N·m).
-    pub moment: f64,
+    pub moment: T,
     /// The inertial load of each link with mass.
-    pub links: Vec<InertialLoad>,
+    pub links: Vec<InertialLoad<T>>,
 }
 
 /// The shaking force of `model` at the pose of `coordinates` for drive state `drive`.
@@ -27,10 +27,18 @@ pub fn shaking_force(
     coordinates: &[Jet<2>],
     drive: &DriveState,
 ) -> ShakingForce {
-    let states = state::link_states(coordinates, drive);
-    let links = inertia::loads(&model.masses, &states);
-    let mut force = [0.0; 2];
-    let mut moment = 0.0;
+    shaking_of(&model.masses, phi, &state::link_states(coordinates, drive))
+}
+
+/// [`shaking_force`] in any scalar, from the links' states.
+pub(crate) fn shaking_of<T: Scalar>(
+    masses: &[Mass<T>],
+    phi: f64,
+    states: &[LinkState<T>],
+) -> ShakingForce<T> {
+    let links = inertia::loads(masses, states);
+    let mut force = [T::zero(); 2];
+    let mut moment = T::zero();
     for l in &links {
         force[0] += l.force[0];
         force[1] += l.force[1];

@@ -1,23 +1,27 @@
 //! The motion of every link at one instant, and the rigid-body formulas every effect uses.
+//!
+//! Everything here is generic over the scalar `T` ([`Scalar`]): `f64` for a run, and
+//! `Dual64` for the exact derivative of every result with respect to a parameter (see
+//! [`super::tangent`]); one implementation serves both.
 
-use crate::{DriveState, Jet};
+use crate::{DriveState, Jet, Scalar};
 
 /// Position, velocity and acceleration of one moving link at an instant: its reference point
 /// `r` (the link's first point), its rotation `θ` since the sketch, and their time derivatives.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct LinkState {
+pub struct LinkState<T = f64> {
     /// Reference point (m).
-    pub r: [f64; 2],
+    pub r: [T; 2],
     /// Velocity of the reference point (m/s).
-    pub v: [f64; 2],
+    pub v: [T; 2],
     /// Acceleration of the reference point (m/s²).
-    pub a: [f64; 2],
+    pub a: [T; 2],
     /// Rotation since the sketch (rad).
-    pub theta: f64,
+    pub theta: T,
     /// Angular velocity (rad/s).
-    pub omega: f64,
+    pub omega: T,
     /// Angular acceleration (rad/s²).
-    pub alpha: f64,
+    pub alpha: T,
 }
 
 impl LinkState {
@@ -30,21 +34,36 @@ impl LinkState {
         omega: 0.0,
         alpha: 0.0,
     };
+}
+
+impl<T: Scalar> LinkState<T> {
+    /// The ground in scalar `T` (see [`LinkState::GROUND`]).
+    pub fn ground() -> Self {
+        let z = T::zero();
+        LinkState {
+            r: [z; 2],
+            v: [z; 2],
+            a: [z; 2],
+            theta: z,
+            omega: z,
+            alpha: z,
+        }
+    }
 
     /// Global vector `ρ = A(θ)·local` from the reference point to the point at `local`.
-    pub fn arm(&self, local: [f64; 2]) -> [f64; 2] {
+    pub fn arm(&self, local: [T; 2]) -> [T; 2] {
         let (s, c) = self.theta.sin_cos();
         [c * local[0] - s * local[1], s * local[0] + c * local[1]]
     }
 
     /// Global position of the point at `local` (m).
-    pub fn position(&self, local: [f64; 2]) -> [f64; 2] {
+    pub fn position(&self, local: [T; 2]) -> [T; 2] {
         let rho = self.arm(local);
         [self.r[0] + rho[0], self.r[1] + rho[1]]
     }
 
     /// Velocity `v + ω k×ρ` of the point of this link that is at global position `p` (m/s).
-    pub fn velocity_at(&self, p: [f64; 2]) -> [f64; 2] {
+    pub fn velocity_at(&self, p: [T; 2]) -> [T; 2] {
         let rho = [p[0] - self.r[0], p[1] - self.r[1]];
         [
             self.v[0] - self.omega * rho[1],
@@ -53,7 +72,7 @@ impl LinkState {
     }
 
     /// Acceleration `a + α k×ρ − ω² ρ` of the point of this link at global position `p`.
-    pub fn acceleration_at(&self, p: [f64; 2]) -> [f64; 2] {
+    pub fn acceleration_at(&self, p: [T; 2]) -> [T; 2] {
         let rho = [p[0] - self.r[0], p[1] - self.r[1]];
         let w2 = self.omega * self.omega;
         [
@@ -63,7 +82,7 @@ impl LinkState {
     }
 
     /// Moment about the reference point of a force `f` acting at global position `p`.
-    pub fn moment(&self, p: [f64; 2], f: [f64; 2]) -> f64 {
+    pub fn moment(&self, p: [T; 2], f: [T; 2]) -> T {
         cross([p[0] - self.r[0], p[1] - self.r[1]], f)
     }
 }
@@ -71,52 +90,71 @@ impl LinkState {
 /// The states of all moving links (index `k − 1` for link `k`) from the pose coordinates and
 /// their φ-derivatives, for the drive state `drive`: `q̇ = ω q′`, `q̈ = α q′ + ω² q″`.
 pub(crate) fn link_states(coordinates: &[Jet<2>], drive: &DriveState) -> Vec<LinkState> {
-    let vel = |j: &Jet<2>| drive.omega * j.derivatives[0];
-    let acc =
-        |j: &Jet<2>| drive.alpha * j.derivatives[0] + drive.omega * drive.omega * j.derivatives[1];
+    states_of(
+        coordinates,
+        |j| [j.value, j.derivatives[0], j.derivatives[1]],
+        drive.omega,
+        drive.alpha,
+    )
+}
+
+/// [`link_states`] in any scalar: `jet` gives `(q, q′, q″)` of one coordinate, `omega` and
+/// `alpha` are the drive's speed and acceleration.
+pub(crate) fn states_of<C, T: Scalar>(
+    coordinates: &[C],
+    jet: impl Fn(&C) -> [T; 3],
+    omega: T,
+    alpha: T,
+) -> Vec<LinkState<T>> {
+    let w2 = omega * omega;
     coordinates
         .chunks_exact(3)
-        .map(|c| LinkState {
-            r: [c[0].value, c[1].value],
-            v: [vel(&c[0]), vel(&c[1])],
-            a: [acc(&c[0]), acc(&c[1])],
-            theta: c[2].value,
-            omega: vel(&c[2]),
-            alpha: acc(&c[2]),
+        .map(|c| {
+            let [x, y, t] = [jet(&c[0]), jet(&c[1]), jet(&c[2])];
+            let vel = |j: [T; 3]| omega * j[1];
+            let acc = |j: [T; 3]| alpha * j[1] + w2 * j[2];
+            LinkState {
+                r: [x[0], y[0]],
+                v: [vel(x), vel(y)],
+                a: [acc(x), acc(y)],
+                theta: t[0],
+                omega: vel(t),
+                alpha: acc(t),
+            }
         })
         .collect()
 }
 
 /// State of link `link` (0 = ground) among `states`.
-pub(crate) fn of(states: &[LinkState], link: usize) -> LinkState {
+pub(crate) fn of<T: Scalar>(states: &[LinkState<T>], link: usize) -> LinkState<T> {
     if link == 0 {
-        LinkState::GROUND
+        LinkState::ground()
     } else {
         states[link - 1]
     }
 }
 
 /// The planar cross product `a_x b_y − a_y b_x`.
-pub(crate) fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
+pub(crate) fn cross<T: Scalar>(a: [T; 2], b: [T; 2]) -> T {
     a[0] * b[1] - a[1] * b[0]
 }
 
 /// The dot product.
-pub(crate) fn dot(a: [f64; 2], b: [f64; 2]) -> f64 {
+pub(crate) fn dot<T: Scalar>(a: [T; 2], b: [T; 2]) -> T {
     a[0] * b[0] + a[1] * b[1]
 }
 
 /// Generalized loads: 3 per moving link (`F_x`, `F_y`, moment about the reference point).
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Generalized(pub Vec<f64>);
+pub(crate) struct Generalized<T = f64>(pub Vec<T>);
 
-impl Generalized {
+impl<T: Scalar> Generalized<T> {
     pub fn zeros(links: usize) -> Self {
-        Generalized(vec![0.0; 3 * links])
+        Generalized(vec![T::zero(); 3 * links])
     }
 
     /// Adds force `f` at global point `p` on link `link` (nothing for the ground).
-    pub fn force(&mut self, states: &[LinkState], link: usize, p: [f64; 2], f: [f64; 2]) {
+    pub fn force(&mut self, states: &[LinkState<T>], link: usize, p: [T; 2], f: [T; 2]) {
         if link == 0 {
             return;
         }
@@ -128,7 +166,7 @@ impl Generalized {
     }
 
     /// Adds couple `c` on link `link` (nothing for the ground).
-    pub fn couple(&mut self, link: usize, c: f64) {
+    pub fn couple(&mut self, link: usize, c: T) {
         if link > 0 {
             self.0[3 * (link - 1) + 2] += c;
         }

@@ -31,6 +31,7 @@
 mod format;
 mod resolve;
 mod run;
+mod tangent;
 
 pub use format::{
     CenterDef, DrivingSide, DynamicQuantity, DynamicsOutputDef, DynamicsSections, EfficiencyDef,
@@ -40,3 +41,4 @@ pub(crate) use resolve::resolve;
 pub use resolve::{DynamicsOutput, SceneDynamics};
 pub use run::DynamicsReport;
 pub(crate) use run::{columns, run};
+pub use tangent::{DynamicsTangent, column_derivatives};

@@ -1,9 +1,11 @@
 //! Running the `[[dynamics]]` outputs: the planned sweep and its columns.
 
-use mechdiff_core::DriveState;
 use mechdiff_core::dynamics::run::{Run, run_states};
-use mechdiff_core::dynamics::{Plan, ShakingSummary};
+use mechdiff_core::dynamics::{
+    Energy, JointReaction, Plan, PowerBalance, ShakingForce, ShakingSummary,
+};
 use mechdiff_core::geometry::{Mechanism, Solver};
+use mechdiff_core::{DriveState, Scalar};
 
 use crate::error::{Error, Result};
 use crate::scene::model::{DriveKind, JointKind, Scene};
@@ -11,7 +13,7 @@ use crate::scene::outputs::Column;
 use crate::scene::units::{Dimension, Units};
 
 use super::format::DynamicQuantity;
-use super::resolve::SceneDynamics;
+use super::resolve::{DynamicsOutput, SceneDynamics};
 
 /// The dynamic columns of a run, their values per drive position, and summary lines.
 #[derive(Debug, Clone, PartialEq)]
@@ -52,16 +54,7 @@ pub(crate) fn run(
         source,
     })?;
     let plan = d.plan(mechanism);
-    let drive = match speed {
-        Some(omega) => DriveState::accelerating(omega, scene.drive.acceleration),
-        None if plan.order >= 1 => {
-            return Err(Error::Invalid {
-                location: scene.drive.location.clone(),
-                message: "the `[[dynamics]]` outputs need the drive's `speed`".to_owned(),
-            });
-        }
-        None => DriveState::constant_speed(0.0),
-    };
+    let drive = drive_state(scene, &plan, speed)?;
     if drive.omega == 0.0
         && let Some(o) = d
             .outputs
@@ -102,94 +95,23 @@ pub(crate) fn run(
         other => crate::scene::run::solver_error(scene, other),
     })?;
     let columns = columns(scene, d, mechanism, &plan);
-    let m = mechanism;
-    let mass_links: Vec<&str> = model_links(d);
     let mut rows = Vec::with_capacity(result.steps.len());
     for (step, &phi) in result.steps.iter().zip(positions) {
-        let cam = (scene.drive.cam.as_ref()).map(|c| (c.joint.svaj(phi), c));
-        let mut row = Vec::with_capacity(columns.len());
-        for o in &d.outputs {
-            match o.quantity {
-                DynamicQuantity::ShakingForce => {
-                    let s = step.shaking.as_ref().expect("planned");
-                    row.extend([s.force[0], s.force[1], s.moment]);
-                }
-                DynamicQuantity::InertialForces => {
-                    let s = step.shaking.as_ref().expect("planned");
-                    for l in selected(&o.names, &mass_links) {
-                        let k = m.link_index(l).expect("checked");
-                        let f = s
-                            .links
-                            .iter()
-                            .find(|x| x.link == k)
-                            .expect("a link with mass");
-                        row.extend([f.force[0], f.force[1], f.couple]);
-                    }
-                }
-                DynamicQuantity::Reactions => {
-                    let s = step.solution.as_ref().expect("planned");
-                    let all: Vec<&str> = m.joints().iter().map(|j| j.name.as_str()).collect();
-                    for j in selected(&o.names, &all) {
-                        let r = s
-                            .reactions
-                            .iter()
-                            .find(|r| r.joint == j)
-                            .expect("every joint");
-                        row.extend(reaction_values(scene, r));
-                    }
-                }
-                DynamicQuantity::DriveTorque => {
-                    let s = step.solution.as_ref().expect("planned");
-                    row.push(s.drive_torque);
-                    if let Some((_, c)) = &cam {
-                        row.push(c.joint.torque(phi, s.drive_torque));
-                    }
-                    if let Some(ms) = &s.motor {
-                        row.push(ms.torque);
-                    }
-                }
-                DynamicQuantity::KineticEnergy => row.push(step.energy.expect("planned").kinetic),
-                DynamicQuantity::ReducedInertia => {
-                    let e = step.energy.expect("planned");
-                    let (j, dj) = (
-                        e.reduced_inertia,
-                        e.reduced_inertia_derivative.unwrap_or(f64::NAN),
-                    );
-                    row.extend(match &cam {
-                        // Reduced to the cam shaft: J_θ = J_s s′², J_θ′ = J_s′ s′³ + 2 J_s s′ s″.
-                        Some((s, _)) => {
-                            let [s1, s2, _] = s.derivatives;
-                            [j * s1 * s1, dj * s1 * s1 * s1 + 2.0 * j * s1 * s2]
-                        }
-                        None => [j, dj],
-                    });
-                }
-                DynamicQuantity::PowerBalance => {
-                    let s = step.solution.as_ref().expect("planned");
-                    let b = s.balance;
-                    let (t, kinetostatic) = match &cam {
-                        // The cam-shaft torque from the balance, (dT/dt − P_others)/ω, against
-                        // F_s s′ (defined in a dwell too, where the follower stands still).
-                        Some((_, c)) => {
-                            let others = b.gravity + b.loads + b.friction + b.efficiency;
-                            (
-                                (b.kinetic_rate - others) / drive.omega,
-                                c.joint.torque(phi, s.drive_torque),
-                            )
-                        }
-                        None => (b.torque.unwrap_or(f64::NAN), b.kinetostatic_torque),
-                    };
-                    row.extend([
-                        t,
-                        kinetostatic - t,
-                        b.drive,
-                        b.kinetic_rate,
-                        b.friction + b.efficiency,
-                    ]);
-                }
-            }
-        }
-        rows.push(row);
+        let cam = (scene.drive.cam.as_ref()).map(|c| {
+            let [s1, s2, _] = c.joint.svaj(phi).derivatives;
+            Cam { s1, s2 }
+        });
+        let values = StepValues {
+            solution: step.solution.as_ref().map(|s| SolutionValues {
+                drive_torque: s.drive_torque,
+                reactions: &s.reactions,
+                motor_torque: s.motor.map(|m| m.torque),
+                balance: s.balance,
+            }),
+            energy: step.energy,
+            shaking: step.shaking.as_ref(),
+        };
+        rows.push(row(scene, d, mechanism, &values, drive.omega, cam));
     }
     let mut summary = Vec::new();
     if d.outputs
@@ -241,6 +163,148 @@ pub(crate) fn run(
     }))
 }
 
+/// The drive's speed (`speed`, when the scene gives one) and acceleration for `plan`: an
+/// error naming the drive when the plan needs velocities and no speed is given.
+pub(super) fn drive_state(scene: &Scene, plan: &Plan, speed: Option<f64>) -> Result<DriveState> {
+    match speed {
+        Some(omega) => Ok(DriveState::accelerating(omega, scene.drive.acceleration)),
+        None if plan.order >= 1 => Err(Error::Invalid {
+            location: scene.drive.location.clone(),
+            message: "the `[[dynamics]]` outputs need the drive's `speed`".to_owned(),
+        }),
+        None => Ok(DriveState::constant_speed(0.0)),
+    }
+}
+
+/// The equilibrium's numbers one row reads, in scalar `T` (`f64`, or `Dual64` for the
+/// exact derivatives).
+pub(super) struct SolutionValues<'a, T> {
+    pub drive_torque: T,
+    pub reactions: &'a [JointReaction<T>],
+    pub motor_torque: Option<T>,
+    pub balance: PowerBalance<T>,
+}
+
+/// The results at one drive position one row reads; what the plan did not ask for is `None`.
+pub(super) struct StepValues<'a, T> {
+    pub solution: Option<SolutionValues<'a, T>>,
+    pub energy: Option<Energy<T>>,
+    pub shaking: Option<&'a ShakingForce<T>>,
+}
+
+/// A cam drive's follower motion at one position: `s′`, `s″` with respect to the cam angle.
+#[derive(Clone, Copy)]
+pub(super) struct Cam<T> {
+    pub s1: T,
+    pub s2: T,
+}
+
+/// One row of the dynamic columns (in the order of [`columns`]), from one position's results
+/// in any scalar: the `f64` table, and (with `Dual64`) its exact derivatives. `omega` is the
+/// drive speed.
+pub(super) fn row<T: Scalar>(
+    scene: &Scene,
+    d: &SceneDynamics,
+    m: &Mechanism,
+    step: &StepValues<'_, T>,
+    omega: T,
+    cam: Option<Cam<T>>,
+) -> Vec<T> {
+    (d.outputs.iter())
+        .flat_map(|o| output_row(scene, d, m, o, step, omega, cam))
+        .collect()
+}
+
+/// The values of output `o`'s columns in one row (see [`row`]).
+pub(super) fn output_row<T: Scalar>(
+    scene: &Scene,
+    d: &SceneDynamics,
+    m: &Mechanism,
+    o: &DynamicsOutput,
+    step: &StepValues<'_, T>,
+    omega: T,
+    cam: Option<Cam<T>>,
+) -> Vec<T> {
+    let mass_links: Vec<&str> = model_links(d);
+    let nan = T::from(f64::NAN);
+    let mut row = Vec::new();
+    match o.quantity {
+        DynamicQuantity::ShakingForce => {
+            let s = step.shaking.expect("planned");
+            row.extend([s.force[0], s.force[1], s.moment]);
+        }
+        DynamicQuantity::InertialForces => {
+            let s = step.shaking.expect("planned");
+            for l in selected(&o.names, &mass_links) {
+                let k = m.link_index(l).expect("checked");
+                let f = s
+                    .links
+                    .iter()
+                    .find(|x| x.link == k)
+                    .expect("a link with mass");
+                row.extend([f.force[0], f.force[1], f.couple]);
+            }
+        }
+        DynamicQuantity::Reactions => {
+            let s = step.solution.as_ref().expect("planned");
+            let all: Vec<&str> = m.joints().iter().map(|j| j.name.as_str()).collect();
+            for j in selected(&o.names, &all) {
+                let r = s
+                    .reactions
+                    .iter()
+                    .find(|r| r.joint == j)
+                    .expect("every joint");
+                row.extend(reaction_values(scene, r));
+            }
+        }
+        DynamicQuantity::DriveTorque => {
+            let s = step.solution.as_ref().expect("planned");
+            row.push(s.drive_torque);
+            if let Some(c) = cam {
+                // F_s s′ (CamJoint::torque).
+                row.push(s.drive_torque * c.s1);
+            }
+            if let Some(t) = s.motor_torque {
+                row.push(t);
+            }
+        }
+        DynamicQuantity::KineticEnergy => row.push(step.energy.expect("planned").kinetic),
+        DynamicQuantity::ReducedInertia => {
+            let e = step.energy.expect("planned");
+            let (j, dj) = (
+                e.reduced_inertia,
+                e.reduced_inertia_derivative.unwrap_or(nan),
+            );
+            row.extend(match cam {
+                // Reduced to the cam shaft: J_θ = J_s s′², J_θ′ = J_s′ s′³ + 2 J_s s′ s″.
+                Some(Cam { s1, s2 }) => [j * s1 * s1, dj * s1 * s1 * s1 + j * s1 * s2 * 2.0],
+                None => [j, dj],
+            });
+        }
+        DynamicQuantity::PowerBalance => {
+            let s = step.solution.as_ref().expect("planned");
+            let b = s.balance;
+            let (t, kinetostatic) = match cam {
+                // The cam-shaft torque from the balance, (dT/dt − P_others)/ω, against
+                // F_s s′ (defined in a dwell too, where the follower stands still).
+                Some(c) => {
+                    let others = b.gravity + b.loads + b.friction + b.efficiency;
+                    ((b.kinetic_rate - others) / omega, s.drive_torque * c.s1)
+                }
+                None => (b.torque.unwrap_or(nan), b.kinetostatic_torque),
+            };
+            row.extend([
+                t,
+                kinetostatic - t,
+                b.drive,
+                b.kinetic_rate,
+                b.friction + b.efficiency,
+            ]);
+        }
+    }
+    row
+}
+
 /// Prints a force, torque, mass or moment-of-inertia column (and a reduced inertia's
 /// derivative) in the file's unit of that dimension when `[units]` names one other than
 /// SI (`force = "lbf"`, `torque = "lbf*in"`, ...); energies and powers stay in J and W.
@@ -277,6 +341,23 @@ pub(crate) fn columns(
     mechanism: &Mechanism,
     plan: &Plan,
 ) -> Vec<Column> {
+    let mut columns: Vec<Column> = (d.outputs.iter())
+        .flat_map(|o| output_columns(scene, d, mechanism, plan, o))
+        .collect();
+    for c in &mut columns {
+        in_file_units(c, &scene.units);
+    }
+    columns
+}
+
+/// The columns of output `o` (in SI; [`columns`] puts them in the file's units).
+pub(super) fn output_columns(
+    scene: &Scene,
+    d: &SceneDynamics,
+    mechanism: &Mechanism,
+    plan: &Plan,
+    o: &DynamicsOutput,
+) -> Vec<Column> {
     let torque_unit = if scene.drive.joint_kind() == DriveKind::Angle {
         ("M_drive", "N m")
     } else {
@@ -290,57 +371,52 @@ pub(crate) fn columns(
         torque_unit.1
     };
     let mut columns = Vec::new();
-    for o in &d.outputs {
-        match o.quantity {
-            DynamicQuantity::ShakingForce => columns.extend([
-                column("SumF_x", "N"),
-                column("SumF_y", "N"),
-                column("M_shaking", "N m"),
-            ]),
-            DynamicQuantity::InertialForces => {
-                for l in selected(&o.names, &mass_links) {
-                    columns.extend([
-                        column(format!("Fx_{l}"), "N"),
-                        column(format!("Fy_{l}"), "N"),
-                        column(format!("M_{l}"), "N m"),
-                    ]);
-                }
+    match o.quantity {
+        DynamicQuantity::ShakingForce => columns.extend([
+            column("SumF_x", "N"),
+            column("SumF_y", "N"),
+            column("M_shaking", "N m"),
+        ]),
+        DynamicQuantity::InertialForces => {
+            for l in selected(&o.names, &mass_links) {
+                columns.extend([
+                    column(format!("Fx_{l}"), "N"),
+                    column(format!("Fy_{l}"), "N"),
+                    column(format!("M_{l}"), "N m"),
+                ]);
             }
-            DynamicQuantity::Reactions => {
-                let all: Vec<&str> = mechanism.joints().iter().map(|j| j.name.as_str()).collect();
-                for j in selected(&o.names, &all) {
-                    columns.extend(reaction_columns(scene, j));
-                }
-            }
-            DynamicQuantity::DriveTorque => {
-                columns.push(column(torque_unit.0, torque_unit.1));
-                if scene.drive.cam.is_some() {
-                    columns.push(column("M_cam", "N m"));
-                }
-                if d.data.motor.is_some() && plan.effects.motor {
-                    columns.push(column("M_motor", "N m"));
-                }
-            }
-            DynamicQuantity::KineticEnergy => columns.push(column("T", "J")),
-            DynamicQuantity::ReducedInertia => {
-                let u = if scene.drive.kind == DriveKind::Angle {
-                    ["kg m^2", "kg m^2/rad"]
-                } else {
-                    ["kg", "kg/m"]
-                };
-                columns.extend([column("J_red", u[0]), column("J_red'", u[1])]);
-            }
-            DynamicQuantity::PowerBalance => columns.extend([
-                column("M_balance", balance_unit),
-                column("dM", balance_unit),
-                column("P_drive", "W"),
-                column("dT/dt", "W"),
-                column("P_losses", "W"),
-            ]),
         }
-    }
-    for c in &mut columns {
-        in_file_units(c, &scene.units);
+        DynamicQuantity::Reactions => {
+            let all: Vec<&str> = mechanism.joints().iter().map(|j| j.name.as_str()).collect();
+            for j in selected(&o.names, &all) {
+                columns.extend(reaction_columns(scene, j));
+            }
+        }
+        DynamicQuantity::DriveTorque => {
+            columns.push(column(torque_unit.0, torque_unit.1));
+            if scene.drive.cam.is_some() {
+                columns.push(column("M_cam", "N m"));
+            }
+            if d.data.motor.is_some() && plan.effects.motor {
+                columns.push(column("M_motor", "N m"));
+            }
+        }
+        DynamicQuantity::KineticEnergy => columns.push(column("T", "J")),
+        DynamicQuantity::ReducedInertia => {
+            let u = if scene.drive.kind == DriveKind::Angle {
+                ["kg m^2", "kg m^2/rad"]
+            } else {
+                ["kg", "kg/m"]
+            };
+            columns.extend([column("J_red", u[0]), column("J_red'", u[1])]);
+        }
+        DynamicQuantity::PowerBalance => columns.extend([
+            column("M_balance", balance_unit),
+            column("dM", balance_unit),
+            column("P_drive", "W"),
+            column("dT/dt", "W"),
+            column("P_losses", "W"),
+        ]),
     }
     columns
 }
@@ -393,7 +469,7 @@ fn reaction_columns(scene: &Scene, j: &str) -> Vec<Column> {
     }
 }
 
-fn reaction_values(scene: &Scene, r: &mechdiff_core::dynamics::JointReaction) -> Vec<f64> {
+fn reaction_values<T: Scalar>(scene: &Scene, r: &JointReaction<T>) -> Vec<T> {
     match joint_kind(scene, &r.joint) {
         JointKind::Revolute { .. } => vec![r.force[0], r.force[1], r.friction],
         JointKind::Prismatic { .. } => vec![r.normal, r.friction, r.couple],

@@ -1,0 +1,370 @@
+//! Exact derivatives of the `[[dynamics]]` columns with respect to one parameter p: the
+//! same row code as the table ([`super::run::row`]) evaluated with `Dual64` numbers from
+//! [`mechdiff_core::dynamics::tangent`].
+
+use mechdiff_core::dynamics::tangent::{
+    EffectsTangent, ModelTangent, NotCarried, SolutionTangent, TangentError, carried,
+};
+use mechdiff_core::geometry::{Inertia, Mechanism};
+use mechdiff_core::num_dual::{Dual3, Dual64};
+use nalgebra::DMatrix;
+
+use crate::error::{Error, Result};
+use crate::scene::model::Scene;
+
+use super::format::DynamicQuantity;
+use super::resolve::SceneDynamics;
+use super::run::{SolutionValues, StepValues, drive_state, output_columns, output_row};
+
+/// The exact derivatives d/dp of the dynamic columns of a run, or why a column has none.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DynamicsTangent {
+    /// Per column (the order of the table's dynamic columns): `None` when its derivative is
+    /// exact, else why the exact route does not reach it (the caller then uses another
+    /// method for that column and says so).
+    pub not_carried: Vec<Option<String>>,
+    /// One row per drive position: d/dp of each column, in SI units like
+    /// [`super::DynamicsReport::rows`]; `None` in a column that is not carried.
+    pub rows: Vec<Vec<Option<f64>>>,
+}
+
+/// Does output `quantity` read the equilibrium (reactions, drive torque, power balance)?
+fn needs_equilibrium(quantity: DynamicQuantity) -> bool {
+    matches!(
+        quantity,
+        DynamicQuantity::Reactions | DynamicQuantity::DriveTorque | DynamicQuantity::PowerBalance
+    )
+}
+
+/// The exact derivative with respect to one parameter p of every `[[dynamics]]` column of
+/// `scene` at each drive position of `positions` (the run's, in order), in the order of the
+/// table's dynamic columns and in SI units (as [`super::DynamicsReport::rows`]).
+///
+/// Inputs: the scene's dynamics `d` and its built `mechanism`; the d/dp of the mechanism's
+/// data as the geometry's `DataTangent` holds it (`points`: every sketch point, in point
+/// order; `inertias`: every link's inertia, in link order, ground first); `effects`, the d/dp
+/// of gravity, loads, motor, ω and α; `speed`, the drive speed the run used; and
+/// `pose_at(φ)`, the pose at drive position φ (q, q′, q″ per coordinate with their d/dp, as
+/// `Parametric::pose::<2>`) with `Φ_q` there and its d/dp (`Parametric::jacobian`).
+///
+/// A column the exact route does not reach is `None` in every row, with the reason in
+/// [`DynamicsTangent::not_carried`]: all columns of a cam-driven scene; the drive torque,
+/// reactions and power balance when the plan has friction, mesh efficiencies or tooth
+/// forces in the bearings of meshes on a common link. Errors: a singular equilibrium (as the
+/// run's), a non-finite derivative (naming the column and the position), a tangent that
+/// does not match the mechanism.
+#[allow(clippy::too_many_arguments)]
+pub fn column_derivatives(
+    scene: &Scene,
+    d: &SceneDynamics,
+    mechanism: &Mechanism,
+    points: &[[f64; 2]],
+    inertias: &[Option<Inertia>],
+    effects: &EffectsTangent,
+    positions: &[f64],
+    speed: Option<f64>,
+    mut pose_at: impl FnMut(f64) -> Result<(Vec<Dual3<Dual64>>, DMatrix<Dual64>)>,
+) -> Result<DynamicsTangent> {
+    let plan = d.plan(mechanism);
+    let widths: Vec<usize> = (d.outputs.iter())
+        .map(|o| output_columns(scene, d, mechanism, &plan, o).len())
+        .collect();
+    let all_not_carried = |reason: String| DynamicsTangent {
+        not_carried: vec![Some(reason); widths.iter().sum()],
+        rows: vec![vec![None; widths.iter().sum()]; positions.len()],
+    };
+    if scene.drive.cam.is_some() {
+        return Ok(all_not_carried(
+            "a cam drive (the exact route does not follow the cam's follower)".to_owned(),
+        ));
+    }
+    let model = d.data.compile(mechanism).map_err(|source| Error::Model {
+        file: scene.file.clone(),
+        source,
+    })?;
+    let drive = drive_state(scene, &plan, speed)?;
+    let internal = |e: TangentError| Error::Invalid {
+        location: scene.drive.location.clone(),
+        message: format!("the exact derivative of the dynamics: {e}"),
+    };
+    // The equilibrium's columns need every effect of the plan carried; the others (shaking
+    // and inertial forces, energy) need inertia only, always carried.
+    let equilibrium: Option<NotCarried> = carried(&model, &plan.effects).err();
+    let tangent = ModelTangent::new(
+        &model,
+        &plan.effects,
+        points,
+        inertias,
+        effects,
+        drive.omega,
+        drive.alpha,
+    )
+    .map_err(internal)?;
+    let carried_output = |q: DynamicQuantity| !(needs_equilibrium(q) && equilibrium.is_some());
+    let not_carried: Vec<Option<String>> = (d.outputs.iter().zip(&widths))
+        .flat_map(|(o, &w)| {
+            let reason = (!carried_output(o.quantity)).then(|| {
+                format!(
+                    "the exact route does not carry {}",
+                    equilibrium.as_ref().expect("not carried")
+                )
+            });
+            vec![reason; w]
+        })
+        .collect();
+    let needs_solution = d
+        .outputs
+        .iter()
+        .any(|o| needs_equilibrium(o.quantity) && carried_output(o.quantity));
+    let omega = Dual64::new(drive.omega, effects.omega);
+    let mut rows = Vec::with_capacity(positions.len());
+    for &phi in positions {
+        let (pose, jacobian) = pose_at(phi)?;
+        let solution: Option<SolutionTangent> = if plan.kinetostatics && needs_solution {
+            Some(tangent.solve(phi, &pose, &jacobian).map_err(|e| match e {
+                TangentError::Model(source) => crate::scene::run::solver_error(scene, source),
+                other => internal(other),
+            })?)
+        } else {
+            None
+        };
+        let energy = if plan.energy {
+            Some(tangent.energy(&pose).map_err(internal)?)
+        } else {
+            None
+        };
+        let shaking = if plan.shaking {
+            Some(tangent.shaking_force(phi, &pose).map_err(internal)?)
+        } else {
+            None
+        };
+        let step = StepValues {
+            solution: solution.as_ref().map(|s| SolutionValues {
+                drive_torque: s.drive_torque,
+                reactions: &s.reactions,
+                motor_torque: s.motor.map(|m| m.torque),
+                balance: s.balance,
+            }),
+            energy,
+            shaking: shaking.as_ref(),
+        };
+        let mut row = Vec::with_capacity(not_carried.len());
+        for (o, &w) in d.outputs.iter().zip(&widths) {
+            if carried_output(o.quantity) {
+                let values = output_row(scene, d, mechanism, o, &step, omega, None);
+                row.extend(values.iter().map(|v| Some(v.eps)));
+            } else {
+                row.extend(std::iter::repeat_n(None, w));
+            }
+        }
+        if let Some(i) = row.iter().position(|v| v.is_some_and(|x| !x.is_finite())) {
+            let c = (d.outputs.iter())
+                .flat_map(|o| output_columns(scene, d, mechanism, &plan, o))
+                .nth(i)
+                .expect("a column per value");
+            return Err(Error::NotFinite {
+                file: scene.file.clone(),
+                quantity: format!("the derivative of {} [{}]", c.name, c.unit),
+                value: row[i].expect("a value").to_string(),
+                position: scene.drive_text(phi),
+            });
+        }
+        rows.push(row);
+    }
+    Ok(DynamicsTangent { not_carried, rows })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::parameters::Setting;
+    use mechdiff_core::geometry::{Equations, Solver};
+
+    /// An offset slider-crank with the rod's mass `m2` (its moment `m2·l²/12`), every
+    /// dynamic output, gravity and a load on the slider.
+    const SCENE: &str = r#"
+title = "slider-crank with every dynamic output"
+[parameters]
+m2 = 2.0
+[points]
+O = [0, 0]
+A = [0, 0.1]
+B = [0.384, -0.012]
+G0 = [0, -0.012]
+G1 = [1, -0.012]
+[links]
+ground = ["O", "G0", "G1"]
+crank = ["O", "A"]
+rod = ["A", "B"]
+slider = ["B"]
+[joints]
+O = { type = "revolute", at = "O", links = ["ground", "crank"] }
+A = { type = "revolute", at = "A", links = ["crank", "rod"] }
+B = { type = "revolute", at = "B", links = ["rod", "slider"] }
+guide = { type = "prismatic", line = ["G0", "G1"], point = "B", links = ["ground", "slider"] }
+[drive]
+joint = "O"
+line = ["O", "A"]
+speed = 30
+acceleration = 4
+[sweep]
+from = 0
+to = 6
+step = 1.5
+[masses]
+crank = { mass = 0.8, center = [0.0, 0.04], inertia = 0.002 }
+rod = { mass = "m2", center = [0.2, 0.03], inertia = "m2*0.16/12" }
+slider = { mass = 1.5, center = "B" }
+[gravity]
+g = 9.81
+[[load]]
+link = "slider"
+point = "B"
+force = [-150, 0]
+[[dynamics]]
+output = "drive_torque"
+[[dynamics]]
+output = "reactions"
+[[dynamics]]
+output = "shaking_force"
+[[dynamics]]
+output = "inertial_forces"
+[[dynamics]]
+output = "kinetic_energy"
+[[dynamics]]
+output = "reduced_inertia"
+[[dynamics]]
+output = "power_balance"
+"#;
+
+    fn scene(text: &str, m2: f64) -> Scene {
+        let set: Setting = format!("m2={m2:.17e}").parse().unwrap();
+        crate::scene::parse_with("t.toml", text, &[set]).unwrap()
+    }
+
+    /// The derivative rows with respect to m2 (mass 1, moment l²/12 per unit; no point moves,
+    /// so the pose's and Φ_q's derivatives are zero).
+    fn exact(text: &str) -> (DynamicsTangent, Vec<f64>) {
+        let s = scene(text, 2.0);
+        let m = crate::scene::build::mechanism(&s).unwrap();
+        let report = crate::scene::run(&s).unwrap();
+        let positions = report.column("phi").unwrap();
+        let d = s.dynamics.as_ref().unwrap();
+        let mut inertias: Vec<Option<Inertia>> = vec![None; m.links().len()];
+        let zero = Inertia {
+            mass: 0.0,
+            center: [0.0; 2],
+            moment: 0.0,
+        };
+        for (link, _) in &d.masses {
+            let k = m.link_index(link).unwrap();
+            inertias[k] = Some(if link == "rod" {
+                Inertia {
+                    mass: 1.0,
+                    moment: 0.16 / 12.0,
+                    ..zero
+                }
+            } else {
+                zero
+            });
+        }
+        let points = vec![[0.0; 2]; m.points().len()];
+        let mut tracker = Solver::default().track(&m).unwrap();
+        let equations = Equations::new(&m);
+        let pose_at = |phi: f64| {
+            tracker.move_to(phi).unwrap();
+            let k = tracker.kinematics::<2>().unwrap();
+            let pose: Vec<Dual3<Dual64>> = (k.coordinates.iter())
+                .map(|j| {
+                    let [a, b] = j.derivatives;
+                    Dual3::new(j.value.into(), a.into(), b.into(), 0.0.into())
+                })
+                .collect();
+            let q: Vec<f64> = k.coordinates.iter().map(|j| j.value).collect();
+            let mut jac = DMatrix::zeros(q.len(), q.len());
+            equations.jacobian(&q, &mut jac);
+            Ok((pose, jac.map(Dual64::from)))
+        };
+        let t = column_derivatives(
+            &s,
+            d,
+            &m,
+            &points,
+            &inertias,
+            &EffectsTangent::zero(&d.data),
+            &positions,
+            s.drive.speed,
+            pose_at,
+        )
+        .unwrap();
+        (t, positions)
+    }
+
+    /// Every dynamic column is affine in a link's mass and moment at a fixed pose, so central
+    /// differences of the scene's own f64 run (at m2 ± 0.01) have no truncation error, only
+    /// rounding, ≈ ε·|column|/h ≈ 1e-12 of the column's scale: tolerance 1e-9 of it.
+    #[test]
+    fn every_dynamic_column_derivative_matches_differences_of_the_run() {
+        let (t, positions) = exact(SCENE);
+        let h = 0.01;
+        let rows = |m2: f64| {
+            crate::scene::run(&scene(SCENE, m2))
+                .unwrap()
+                .dynamics
+                .unwrap()
+        };
+        let (up, down) = (rows(2.0 + h), rows(2.0 - h));
+        assert!(
+            t.not_carried.iter().all(Option::is_none),
+            "{:?}",
+            t.not_carried
+        );
+        assert_eq!(t.rows.len(), positions.len());
+        let width = up.columns.len();
+        assert_eq!(t.not_carried.len(), width);
+        for c in 0..width {
+            let central: Vec<f64> = (up.rows.iter().zip(&down.rows))
+                .map(|(a, b)| (a[c] - b[c]) / (2.0 * h))
+                .collect();
+            let scale = (up.rows.iter().chain(&down.rows)).fold(1.0f64, |a, r| a.max(r[c].abs()));
+            for (row, want) in central.iter().enumerate() {
+                let got = t.rows[row][c].unwrap();
+                assert!(
+                    (got - want).abs() <= 1e-9 * scale,
+                    "d({})/d(m2) at row {row}: {got} vs differences {want}",
+                    up.columns[c].name
+                );
+            }
+        }
+        // Not a vacuous agreement: the drive torque does depend on m2.
+        assert!(t.rows.iter().any(|r| r[0].unwrap().abs() > 1e-3));
+    }
+
+    /// With friction in the plan, the equilibrium's columns (drive torque, reactions, power
+    /// balance) say why they are not carried; the shaking force and energies stay exact.
+    #[test]
+    fn friction_leaves_only_the_equilibrium_columns_uncarried() {
+        let text = format!("{SCENE}\n[friction]\nguide = {{ coefficient = 0.1 }}\n");
+        let (t, _) = exact(&text);
+        let s = scene(&text, 2.0);
+        let m = crate::scene::build::mechanism(&s).unwrap();
+        let d = s.dynamics.as_ref().unwrap();
+        let plan = d.plan(&m);
+        let mut k = 0;
+        for o in &d.outputs {
+            for _ in output_columns(&s, d, &m, &plan, o) {
+                let reason = &t.not_carried[k];
+                if needs_equilibrium(o.quantity) {
+                    let reason = reason.as_deref().unwrap();
+                    assert!(reason.contains("friction (joint `guide`)"), "{reason}");
+                    assert!(t.rows.iter().all(|r| r[k].is_none()));
+                } else {
+                    assert!(reason.is_none(), "{:?}", o.quantity);
+                    assert!(t.rows.iter().all(|r| r[k].is_some()));
+                }
+                k += 1;
+            }
+        }
+        assert_eq!(k, t.not_carried.len());
+    }
+}
