@@ -97,15 +97,53 @@ fn kinematic_columns_are_exact_and_dynamics_columns_labelled_richardson() {
     let study = study_of("t.toml", SLIDER_CRANK);
     // The slider's position by r is kinematic: exact.
     assert_eq!(why(&study, "d(s)/d(r)"), None);
-    for name in ["d(M_drive)/d(m3)", "d(M_drive)/d(r)"] {
-        let reason = why(&study, name).expect("a Richardson column");
-        assert!(reason.contains("dynamics"), "{name}: {reason}");
-    }
+    // A mass: the scene's tangent does not carry `[masses]` (read in f64 by the dynamics'
+    // resolver); a length moves points, on which the inertias may depend.
+    let reason = why(&study, "d(M_drive)/d(m3)").expect("a Richardson column");
+    assert!(
+        reason.contains("`m3` moves `masses.slider.mass` (t.toml:") && reason.contains("masses"),
+        "{reason}"
+    );
+    let reason = why(&study, "d(M_drive)/d(r)").expect("a Richardson column");
+    assert!(
+        reason.contains("`r` moves points of the sketch"),
+        "{reason}"
+    );
     let printed = summary(&study);
     assert!(
         printed.contains("d(s)/d(r): exact (dual numbers")
             && printed.contains("d(M_drive)/d(m3): Richardson-extrapolated")
-            && printed.contains("not exact because the dynamics columns' exact route"),
+            && printed.contains("not exact because `m3` moves `masses.slider.mass`"),
         "{printed}"
     );
+}
+
+#[test]
+fn the_drive_torques_derivative_by_the_speed_is_exact_and_matches_its_closed_form() {
+    // ω = w: a slider alone, no gravity, α = 0: M_drive·ω = m3·ṡ·s̈ = m3·ω³·s′·s″, so
+    // M_drive = m3·ω²·s′·s″ and ∂M_drive/∂w = 2·m3·w·s′·s″, from the run's own s′, s″ (exact).
+    let text = SLIDER_CRANK
+        .replace("m3 = 2.0", "m3 = 2.0\nw = 50")
+        .replace("speed = 50", "speed = \"w\"")
+        .replace(
+            "quantities = [\"position\"]",
+            "quantities = [\"position\", \"velocity_coefficient\", \"acceleration_coefficient\"]",
+        )
+        .replace("\"d(M_drive)/d(r)\"]", "\"d(M_drive)/d(w)\"]");
+    let (_, report, study) = sensitivity::run("t.toml", &text, &[], &Options::default()).unwrap();
+    let study = study.unwrap();
+    assert_eq!(why(&study, "d(M_drive)/d(w)"), None);
+    let got = report.column("d(M_drive)/d(w)").unwrap();
+    let (s1, s2) = (report.column("s'").unwrap(), report.column("s''").unwrap());
+    let want: Vec<f64> = s1
+        .iter()
+        .zip(&s2)
+        .map(|(a, b)| 2.0 * 2.0 * 50.0 * a * b)
+        .collect();
+    let scale = want.iter().fold(0.0, |m: f64, v| m.max(v.abs()));
+    for (row, (g, w)) in got.iter().zip(&want).enumerate() {
+        // 1e-12 of the column: both exact in f64 (the drive torque's equilibrium solved in
+        // Dual64, the closed form from the run's exact s′, s″).
+        assert!((g - w).abs() <= 1e-12 * scale, "row {row}: {g} vs {w}");
+    }
 }

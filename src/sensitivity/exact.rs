@@ -11,11 +11,15 @@
 //! not carry — the function says why, and the caller falls back to Richardson-extrapolated
 //! differences, labelled with that reason.
 
+use std::collections::HashMap;
+
 use mechdiff_core::DriveState;
+use mechdiff_core::dynamics::tangent::EffectsTangent;
 use mechdiff_core::geometry::{Parametric, Solver};
 use mechdiff_core::num_dual::Dual64;
 
 use crate::error::Result;
+use crate::scene::dynamics::column_derivatives;
 use crate::scene::evaluate::{points_on_links, quantity_in, values};
 use crate::scene::run::solver_error;
 use crate::scene::sweep::solve;
@@ -30,13 +34,17 @@ pub(super) fn kinematic(
     runner: &Runner<'_>,
     scene: &Scene,
     parameter: &str,
-) -> std::result::Result<Vec<Vec<f64>>, String> {
+) -> std::result::Result<ExactColumns, String> {
     let tangent = scene_tangent(runner.file, runner.text, runner.settings, parameter)
         .map_err(|e| format!("the scene's tangent could not be taken: {e}"))?;
     reach(scene, &tangent)?;
     let positions: Vec<f64> = runner.nominal.rows.iter().map(|r| r[0]).collect();
-    kinematic_derivatives(scene, &tangent, &positions)
-        .map_err(|e| format!("the exact route failed ({e})"))
+    let values = kinematic_derivatives(scene, &tangent, &positions)
+        .map_err(|e| format!("the exact route failed ({e})"))?;
+    Ok(ExactColumns {
+        values,
+        not_reached: HashMap::new(),
+    })
 }
 
 /// The d/dp of the kinematic columns of `scene` at the drive `positions` (in order, from
@@ -136,12 +144,89 @@ fn reach(scene: &Scene, tangent: &SceneTangent) -> std::result::Result<(), Strin
     Ok(())
 }
 
-/// The single place where the exact d/dp of the dynamics columns plugs in (the `dyn`
-/// helper's `src/scene/dynamics`): until it does, they are Richardson-extrapolated.
+/// The exact d/dp of the dynamics columns (`[row][column]`, the table's column indices from
+/// `first`, where the table's dynamics columns start), each column with the reason where
+/// the route does not reach it: the single place where the dynamics' exact route
+/// ([`crate::scene::dynamics::column_derivatives`]) plugs in.
+///
+/// The scene's tangent carries the mechanism's numbers, ω and α, not the masses and the
+/// effects' numbers (`[masses]`, `[gravity]`, `[[load]]`, … are read in `f64` by
+/// `src/scene/dynamics/resolve.rs`): the route is taken only when the parameter moves none of
+/// them and no point of the sketch (which centres, bars and points of application may be),
+/// so that their derivatives are 0, exactly.
 pub(super) fn dynamics(
-    _runner: &Runner<'_>,
-    _scene: &Scene,
-    _parameter: &str,
-) -> std::result::Result<Vec<Vec<f64>>, String> {
-    Err("the dynamics columns' exact route is not merged (src/scene/dynamics)".to_owned())
+    runner: &Runner<'_>,
+    scene: &Scene,
+    parameter: &str,
+    first: usize,
+) -> std::result::Result<ExactColumns, String> {
+    let Some(d) = &scene.dynamics else {
+        return Err("the scene has no dynamics".to_owned());
+    };
+    let tangent = scene_tangent(runner.file, runner.text, runner.settings, parameter)
+        .map_err(|e| format!("the scene's tangent could not be taken: {e}"))?;
+    reach(scene, &tangent)?;
+    if let Some(n) = tangent.not_carried.first() {
+        return Err(format!(
+            "`{parameter}` moves `{}` ({}), and the scene's tangent does not carry the \
+             masses' and effects' numbers",
+            n.path, n.location
+        ));
+    }
+    if tangent.points.iter().any(|t| *t != [0.0, 0.0]) {
+        return Err(format!(
+            "`{parameter}` moves points of the sketch, on which the inertias and loads may \
+             depend, and the scene's tangent does not carry the inertias"
+        ));
+    }
+    let positions: Vec<f64> = runner.nominal.rows.iter().map(|r| r[0]).collect();
+    let failed = |e: crate::error::Error| format!("the exact route failed ({e})");
+    let mechanism = crate::scene::build::mechanism(scene).map_err(failed)?;
+    let data = tangent.data_tangent(&mechanism);
+    let parametric =
+        Parametric::new(&mechanism, &data).map_err(|e| failed(solver_error(scene, e)))?;
+    let mut effects = EffectsTangent::zero(&d.data);
+    (effects.omega, effects.alpha) = (tangent.speed, tangent.acceleration);
+    let mut tracker = Solver::default()
+        .track(&mechanism)
+        .map_err(|e| failed(solver_error(scene, e)))?;
+    let columns = column_derivatives(
+        scene,
+        d,
+        &mechanism,
+        &data.points,
+        &data.inertias,
+        &effects,
+        &positions,
+        scene.drive.speed,
+        |phi| {
+            let k = solve::<2>(scene, &mut tracker, phi)?;
+            let pose = parametric.pose(&k).map_err(|e| solver_error(scene, e))?;
+            let jacobian = parametric.jacobian(&pose);
+            Ok((pose, jacobian))
+        },
+    )
+    .map_err(failed)?;
+    let width = runner.nominal.columns.len();
+    let mut values = vec![vec![0.0; width]; positions.len()];
+    for (row, derivatives) in values.iter_mut().zip(&columns.rows) {
+        for (i, v) in derivatives.iter().enumerate() {
+            row[first + i] = v.unwrap_or(0.0);
+        }
+    }
+    let not_reached = (columns.not_carried.into_iter().enumerate())
+        .filter_map(|(i, why)| Some((first + i, why?)))
+        .collect();
+    Ok(ExactColumns {
+        values,
+        not_reached,
+    })
+}
+
+/// Exact derivative columns of one kind.
+pub(super) struct ExactColumns {
+    /// `values[row][column]`, the table's column indices (0 where not computed).
+    pub values: Vec<Vec<f64>>,
+    /// The columns of the kind the route does not reach, with the reason.
+    pub not_reached: HashMap<usize, String>,
 }

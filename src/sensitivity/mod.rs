@@ -499,34 +499,32 @@ impl Runner<'_> {
         // The single place where the dynamics columns' exact derivatives plug in.
         let dynamics =
             if (needed.iter()).any(|&k| (classes.kinematic..classes.dynamics_end).contains(&k)) {
-                Some(exact::dynamics(self, scene, &p.name))
+                Some(exact::dynamics(self, scene, &p.name, classes.kinematic))
             } else {
                 None
             };
         let mut fallback: Vec<(usize, String)> = Vec::new();
         for &k in needed {
-            let exact = if k == 0 {
-                // The drive's column: fixed positions, whatever the parameter.
-                Ok(None)
+            let class = if k == 0 {
+                // The drive's column: fixed positions, whatever the parameter (0).
+                None
             } else if k < classes.kinematic {
-                kinematic
-                    .as_ref()
-                    .map_or(Ok(None), |r| r.as_ref().map(Some).map_err(Clone::clone))
+                kinematic.as_ref()
             } else if k < classes.dynamics_end {
-                dynamics
-                    .as_ref()
-                    .map_or(Ok(None), |r| r.as_ref().map(Some).map_err(Clone::clone))
+                dynamics.as_ref()
             } else {
-                Err("balancing columns have no exact route".to_owned())
+                fallback.push((k, "balancing columns have no exact route".to_owned()));
+                continue;
             };
-            match exact {
-                Ok(columns) => {
-                    for (row, r) in values.iter_mut().enumerate() {
-                        r[k] = columns.map_or(0.0, |c: &Vec<Vec<f64>>| c[row][k]);
+            match class.map(|c| c.as_ref().map(|c| (c.not_reached.get(&k), c))) {
+                None => methods[k] = Some(Method::Exact),
+                Some(Ok((None, columns))) => {
+                    for (r, c) in values.iter_mut().zip(&columns.values) {
+                        r[k] = c[k];
                     }
                     methods[k] = Some(Method::Exact);
                 }
-                Err(why) => fallback.push((k, why)),
+                Some(Ok((Some(why), _))) | Some(Err(why)) => fallback.push((k, why.clone())),
             }
         }
         if !fallback.is_empty() {
