@@ -30,10 +30,12 @@
 //! outputs' generic code; its error is rounding (measured against Norton's closed form in
 //! 256-bit arithmetic in `tests/sensitivity.rs`).
 //!
-//! Elsewhere — a cam-driven scene, `[sweep] of`, a number of the kinematic sections that the
-//! tangent does not carry, the dynamics columns (until their exact route plugs in, in
-//! [`exact`]'s one place for it), the balancing columns — the column is a **Richardson
-//! extrapolation**, labelled so with the reason ([`Method::Richardson`]): the scene is run
+//! A dynamics column is exact too ([`exact`]'s one place for it, the dynamics' own exact
+//! route) when the parameter moves no point and no number of the dynamics sections (the
+//! tangent does not carry the masses and the effects' numbers: their derivatives are then 0
+//! exactly). Elsewhere — a cam-driven scene, `[sweep] of`, a number of the kinematic sections
+//! that the tangent does not carry, a dynamics column by a mass, an effect's number or a
+//! length, the balancing columns — the column is a **Richardson extrapolation**, labelled so with the reason ([`Method::Richardson`]): the scene is run
 //! again with the parameter moved by `±h`, `±h/2`, `±h/4` (as `--set` moves it: every
 //! formula follows), and the three central differences are extrapolated twice, which
 //! cancels the `h²` and `h⁴` terms of their error: what remains is `O(h⁶)` and the rounding
