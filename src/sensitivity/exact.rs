@@ -3,7 +3,7 @@
 //! The kinematic columns: the scene's tangent ([`crate::scene::tangent`], the d/dp of every
 //! number of the built mechanism) and the pose's exact sensitivity by implicit
 //! differentiation (`mechdiff_core::geometry::Parametric`) give every output's value and
-//! drive derivatives with their d/dp as `Dual3<Dual64, f64>`; the outputs are read by the
+//! drive derivatives with their d/dp as `Dual3<Dual64>`; the outputs are read by the
 //! same generic code as a run's ([`crate::scene::evaluate`]), the quantities too (ω and α
 //! with their own d/dp).
 //!
@@ -33,13 +33,12 @@ use super::Runner;
 pub(super) fn kinematic(
     runner: &Runner<'_>,
     scene: &Scene,
-    parameter: &str,
+    tangent: &std::result::Result<SceneTangent, String>,
 ) -> std::result::Result<ExactColumns, String> {
-    let tangent = scene_tangent(runner.file, runner.text, runner.settings, parameter)
-        .map_err(|e| format!("the scene's tangent could not be taken: {e}"))?;
-    reach(scene, &tangent)?;
+    let tangent = tangent.as_ref().map_err(Clone::clone)?;
+    reach(scene, tangent)?;
     let positions: Vec<f64> = runner.nominal.rows.iter().map(|r| r[0]).collect();
-    let values = kinematic_derivatives(scene, &tangent, &positions)
+    let values = kinematic_derivatives(scene, tangent, &positions)
         .map_err(|e| format!("the exact route failed ({e})"))?;
     Ok(ExactColumns {
         values,
@@ -157,15 +156,15 @@ fn reach(scene: &Scene, tangent: &SceneTangent) -> std::result::Result<(), Strin
 pub(super) fn dynamics(
     runner: &Runner<'_>,
     scene: &Scene,
-    parameter: &str,
+    tangent: &std::result::Result<SceneTangent, String>,
     first: usize,
 ) -> std::result::Result<ExactColumns, String> {
     let Some(d) = &scene.dynamics else {
         return Err("the scene has no dynamics".to_owned());
     };
-    let tangent = scene_tangent(runner.file, runner.text, runner.settings, parameter)
-        .map_err(|e| format!("the scene's tangent could not be taken: {e}"))?;
-    reach(scene, &tangent)?;
+    let tangent = tangent.as_ref().map_err(Clone::clone)?;
+    let parameter = &tangent.parameter;
+    reach(scene, tangent)?;
     if let Some(n) = tangent.not_carried.first() {
         return Err(format!(
             "`{parameter}` moves `{}` ({}), and the scene's tangent does not carry the \
@@ -229,4 +228,13 @@ pub(super) struct ExactColumns {
     pub values: Vec<Vec<f64>>,
     /// The columns of the kind the route does not reach, with the reason.
     pub not_reached: HashMap<usize, String>,
+}
+
+/// The scene's tangent with respect to `parameter`, or why it could not be taken.
+pub(super) fn tangent(
+    runner: &Runner<'_>,
+    parameter: &str,
+) -> std::result::Result<SceneTangent, String> {
+    scene_tangent(runner.file, runner.text, runner.settings, parameter)
+        .map_err(|e| format!("the scene's tangent could not be taken: {e}"))
 }

@@ -492,16 +492,17 @@ impl Runner<'_> {
         let (rows, width) = (self.nominal.rows.len(), self.nominal.columns.len());
         let mut values = vec![vec![0.0; width]; rows];
         let mut methods: Vec<Option<Method>> = vec![None; width];
+        let tangent = exact::tangent(self, &p.name);
         // The kinematic columns, by the scene's tangent and the pose's.
         let kinematic = if needed.iter().any(|&k| k < classes.kinematic) {
-            Some(exact::kinematic(self, scene, &p.name))
+            Some(exact::kinematic(self, scene, &tangent))
         } else {
             None
         };
         // The single place where the dynamics columns' exact derivatives plug in.
         let dynamics =
             if (needed.iter()).any(|&k| (classes.kinematic..classes.dynamics_end).contains(&k)) {
-                Some(exact::dynamics(self, scene, &p.name, classes.kinematic))
+                Some(exact::dynamics(self, scene, &tangent, classes.kinematic))
             } else {
                 None
             };
