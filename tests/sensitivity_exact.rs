@@ -114,3 +114,29 @@ fn a_parameter_in_inches_is_differentiated_per_inch() {
         }
     }
 }
+
+#[test]
+fn a_velocity_by_the_drive_speed_is_the_velocity_coefficient() {
+    // ψ̇ = ω·ψ′ with ω = w: ∂ψ̇/∂w = ψ′ (in the file's speed unit per w), and ∂ψ/∂w = 0.
+    let text = NORTON
+        .replace("speed = 10 ", "speed = \"w\" ")
+        .replace("theta = 30", "theta = 30\nw = 10");
+    let (_, report, study) = sensitivity::run(
+        "t.toml",
+        &with_study(&text, &["d(psi_dot)/d(w)", "d(psi)/d(w)"]),
+        &[],
+        &Options::default(),
+    )
+    .unwrap();
+    assert!(study.unwrap().derivatives.iter().all(|d| d.is_exact()));
+    let (got, zero) = (
+        report.column("d(psi_dot)/d(w)").unwrap(),
+        report.column("d(psi)/d(w)").unwrap(),
+    );
+    let psi1 = report.column("psi'").unwrap();
+    for row in 0..got.len() {
+        // One product in Dual64: ω·ψ′'s ε part is 1·ψ′ exactly.
+        assert_eq!(got[row], psi1[row], "row {row}");
+        assert_eq!(zero[row], 0.0, "row {row}");
+    }
+}

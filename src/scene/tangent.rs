@@ -112,16 +112,22 @@ impl Tangents {
     /// Evaluates every quoted string of `text` that is a formula of the `parameters` (values
     /// in the file's units with their derivatives) and keeps the derivatives that are not
     /// zero. `[parameters]` itself is skipped (its values are the bindings).
-    fn of_file(text: &str, parameters: &HashMap<String, Dual64>) -> Self {
+    ///
+    /// # Errors
+    /// The TOML error of a text that does not parse (never an empty table: every formula
+    /// would be taken as not moving).
+    fn of_file(
+        text: &str,
+        parameters: &HashMap<String, Dual64>,
+    ) -> std::result::Result<Self, toml::de::Error> {
         let mut tangents = Tangents::default();
-        if let Ok(table) = DeTable::parse(text) {
-            for (key, value) in table.get_ref() {
-                if key.get_ref() != "parameters" {
-                    tangents.walk(value, key.get_ref(), parameters);
-                }
+        let table = DeTable::parse(text)?;
+        for (key, value) in table.get_ref() {
+            if key.get_ref() != "parameters" {
+                tangents.walk(value, key.get_ref(), parameters);
             }
         }
-        tangents
+        Ok(tangents)
     }
 
     fn walk(
@@ -257,7 +263,8 @@ pub fn scene_tangent(
     let bindings: Vec<(String, f64)> = duals.iter().map(|(n, v)| (n.clone(), v.re)).collect();
     let raw: SceneFile = parameters::with_scope(bindings, || toml::from_str(text))
         .map_err(|e| source.syntax_error(&e))?;
-    let tangents = Tangents::of_file(text, &duals.into_iter().collect());
+    let tangents = Tangents::of_file(text, &duals.into_iter().collect())
+        .map_err(|e| source.syntax_error(&e))?;
     let cx = Context::with_tangents(&source, super::resolve::units(&raw.units), &tangents);
     let (points, placed) = cx.points_in::<Dual64>(&raw.points)?;
     let names: HashMap<&str, usize> = (placed.iter().enumerate())
