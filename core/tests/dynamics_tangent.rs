@@ -9,8 +9,8 @@ mod common;
 
 use common::slider_crank_parts;
 use mechdiff_core::dynamics::{
-    Dynamics, Effects, EffectsTangent, Friction, Gravity, Load, LoadKind, ModelTangent, NotCarried,
-    TangentError, carried, kinetostatics,
+    Dynamics, Effects, EffectsTangent, Friction, Gravity, Load, LoadKind, ModelTangent, Motor,
+    NotCarried, TangentError, carried, kinetostatics,
 };
 use mechdiff_core::geometry::{
     DataTangent, Drive, Equations, Inertia, Mechanism, Parametric, Solver,
@@ -508,4 +508,75 @@ fn friction_is_reported_as_not_carried() {
         matches!(error, TangentError::Length { what: "points", .. }),
         "{error:?}"
     );
+}
+
+/// With a motor behind a gearbox (rotor J_d, ratio τ, efficiency η, each moved by p as well
+/// as the data): the motor torque `M_d = J_d α/τ + M τ/η` (`M τ η` where power flows back,
+/// M ω < 0) and the kinetic energy with the rotor's `½ J_d ω²/τ²`, from the hand drive
+/// torque, agree with the exact route to 1e-12 of |x| + 1 (both exact in f64; the direction
+/// of flow is the nominal run's on both sides).
+#[test]
+fn motor_torque_derivative_matches_hand_virtual_work() {
+    let v = values(0.0);
+    let m = mechanism(R, &v);
+    let motor = Motor {
+        rotor_inertia: 0.002,
+        ratio: 1.0 / 30.0,
+        efficiency: 0.9,
+    };
+    let rate = Motor {
+        rotor_inertia: 0.001,
+        ratio: 0.002,
+        efficiency: -0.05,
+    };
+    let d = dynamics(&v).with_motor(motor);
+    let model = d.compile(&m).unwrap();
+    let effects = d.available(&m);
+    assert!(effects.motor && effects.efficiency);
+    let tangent = ModelTangent::new(
+        &model,
+        &effects,
+        &data_tangent(&m, true, 0.0),
+        &EffectsTangent {
+            motor: Some(rate),
+            ..effects_tangent(&d, true)
+        },
+        v.omega,
+        v.alpha,
+    )
+    .unwrap();
+    let t = rates();
+    let dual = |x: f64, dx: f64| Dual64::new(x, dx);
+    let (omega, alpha) = (dual(v.omega, t.omega), dual(v.alpha, t.alpha));
+    let (j_d, tau, eta) = (
+        dual(motor.rotor_inertia, rate.rotor_inertia),
+        dual(motor.ratio, rate.ratio),
+        dual(motor.efficiency, rate.efficiency),
+    );
+    let mut flows = [false, false];
+    for phi in PHIS {
+        let (pose, jac) = pose_and_jacobian(&m, phi);
+        let s = tangent.solve(phi, &pose, &jac).unwrap();
+        let (torque, kinetic, _) = hand(phi, true, 0.0);
+        let direct = torque.re * omega.re >= 0.0;
+        flows[usize::from(direct)] = true;
+        let gearbox = if direct { tau / eta } else { tau * eta };
+        let want = j_d * alpha / tau + torque * gearbox;
+        let got = s.motor.unwrap().torque;
+        for (g, w) in [(got.re, want.re), (got.eps, want.eps)] {
+            assert!(
+                (g - w).abs() <= 1e-12 * (w.abs() + 1.0),
+                "M_d at φ = {phi}: {g} vs {w}"
+            );
+        }
+        let want = kinetic + j_d / (tau * tau) * omega * omega * 0.5;
+        let got = tangent.energy(&pose).unwrap().kinetic;
+        for (g, w) in [(got.re, want.re), (got.eps, want.eps)] {
+            assert!(
+                (g - w).abs() <= 1e-12 * (w.abs() + 1.0),
+                "T at φ = {phi}: {g} vs {w}"
+            );
+        }
+    }
+    assert_eq!(flows, [true, true], "both directions of power flow are met");
 }
