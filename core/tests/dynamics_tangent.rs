@@ -580,3 +580,18 @@ fn motor_torque_derivative_matches_hand_virtual_work() {
     }
     assert_eq!(flows, [true, true], "both directions of power flow are met");
 }
+
+/// Two gear wheels on the frame: the tooth force goes through the bearings (see
+/// `JointReaction`), which the exact route does not carry: named, with the mesh.
+#[test]
+fn tooth_forces_in_bearings_are_reported_as_not_carried() {
+    let m = common::gear_pair(false, false);
+    let d = Dynamics::new();
+    let model = d.compile(&m).unwrap();
+    assert_eq!(
+        carried(&model, &Effects::none()),
+        Err(NotCarried::ToothForces {
+            joint: "mesh".to_owned()
+        })
+    );
+}
