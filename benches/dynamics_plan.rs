@@ -1,11 +1,14 @@
 //! What does a plan cost? The same Whitworth sweep (360 positions, one revolution) run for
 //! positions only, for kinematics (accelerations), and for full dynamics (inertia, gravity, a
-//! cutting force on the forward stroke: reactions, drive torque, power balance).
+//! cutting force on the forward stroke: reactions, drive torque, power balance), and what
+//! the exact derivative of every dynamic result with respect to one parameter adds.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use mechdiff_core::dynamics::run::run;
-use mechdiff_core::dynamics::{Dynamics, Friction, Gravity, Load, Plan, Request};
-use mechdiff_core::geometry::Solver;
+use mechdiff_core::dynamics::{
+    Dynamics, EffectsTangent, Friction, Gravity, Load, ModelTangent, Plan, Request,
+};
+use mechdiff_core::geometry::{DataTangent, Parametric, Solver};
 use mechdiff_mechanisms::whitworth::Whitworth;
 use std::hint::black_box;
 
@@ -43,6 +46,64 @@ fn plans(c: &mut Criterion) {
             b.iter(|| run(black_box(&plan), &model, &solver, black_box(&phis), drive).unwrap())
         });
     }
+    // The same sweep with, at each position, the exact d/dp of every dynamic result for a
+    // parameter that moves the crank pin A's sketch down and adds mass to the ram: the parametric pose (q, q′, q″ and their d/dp), Φ_q with its d/dp, and the
+    // equilibrium's derivative (one more back-substitution), on top of the f64 dynamics.
+    let mut data = DataTangent::zero(&m);
+    data.points[m.point_index("A").unwrap()] = [0.0, -1.0];
+    for (k, l) in m.links().iter().enumerate() {
+        if l.inertia.is_some() {
+            data.inertias[k] = Some(mechdiff_core::geometry::Inertia {
+                mass: f64::from(u8::from(l.name == "ram")),
+                center: [0.0; 2],
+                moment: 0.0,
+            });
+        }
+    }
+    let exact = Parametric::new(&m, &data).unwrap();
+    let full = Plan::for_requests(
+        &[
+            Request::Reactions,
+            Request::DriveTorque,
+            Request::PowerBalance,
+        ],
+        available,
+    );
+    let state = shaper.drive();
+    let tangent = ModelTangent::new(
+        &model,
+        &full.effects,
+        &data,
+        &EffectsTangent::zero(&d),
+        state.omega,
+        state.alpha,
+    )
+    .unwrap();
+    group.bench_function(
+        "full dynamics and its exact d/dp for one parameter (order 2; inertia, gravity, loads)",
+        |b| {
+            b.iter(|| {
+                let mut tracker = solver.track(&m).unwrap();
+                let mut torque = 0.0;
+                for &phi in black_box(&phis) {
+                    tracker.move_to(phi).unwrap();
+                    let k = tracker.kinematics::<2>().unwrap();
+                    let s = mechdiff_core::dynamics::kinetostatics::solve(
+                        &model,
+                        &full.effects,
+                        &k,
+                        &state,
+                    )
+                    .unwrap();
+                    let pose = exact.pose(&k).unwrap();
+                    let jac = exact.jacobian(&pose);
+                    let t = tangent.solve(phi, &pose, &jac).unwrap();
+                    torque += s.drive_torque + t.drive_torque.eps;
+                }
+                torque
+            })
+        },
+    );
     // Every effect the Whitworth can have: friction circles in the two bearings and Coulomb
     // friction in both slots and the ram guide, resolved by iteration at each position.
     let with_friction = d

@@ -2,10 +2,11 @@
 //! drive speed, …): forward-mode dual numbers (`Dual64`, whose `eps` part is d/dp) through the
 //! same generic effect code the `f64` run uses.
 //!
-//! The inputs are the pose and its φ-derivatives with their d/dp (the geometry's parametric
-//! pose), `Φ_q` with its d/dp, and the d/dp of every number of the data: the geometry's
-//! (sketch points, masses, centres of gravity, moments: `DataTangent`) and the effects' own
-//! ([`EffectsTangent`]: gravity, loads, motor, the drive's ω and α).
+//! The inputs are the pose and its φ-derivatives with their d/dp
+//! ([`crate::geometry::Parametric::pose`]), `Φ_q` with its d/dp
+//! ([`crate::geometry::Parametric::jacobian`]), and the d/dp of every number of the data: the
+//! geometry's (sketch points, masses, centres of gravity, moments: [`DataTangent`]) and the
+//! effects' own ([`EffectsTangent`]: gravity, loads, motor, the drive's ω and α).
 //!
 //! The equilibrium `Φ_qᵀ λ = Q` is not solved by a generic LU: with `A = Φ_qᵀ` the real part
 //! is solved by the `f64` LU of `A.re`, and the derivative by one more back-substitution with
@@ -32,7 +33,7 @@ use super::state::{self, LinkState};
 use super::teeth;
 use super::{PowerBalance, energy::energy_of};
 use crate::Error;
-use crate::geometry::Inertia;
+use crate::geometry::DataTangent;
 use nalgebra::{DMatrix, DVector};
 use num_dual::{Dual3, Dual64};
 
@@ -224,9 +225,10 @@ fn dual2(re: [f64; 2], eps: [f64; 2]) -> [Dual64; 2] {
 
 impl<'a, 'm> ModelTangent<'a, 'm> {
     /// The model `model` evaluated with `effects` (the plan's) at drive speed and acceleration
-    /// `omega`, `alpha`, with the derivatives: `points` and `inertias` as the geometry's
-    /// `DataTangent` (d/dp of every sketch point, in point order; of every link's inertia, in
-    /// link order, ground first), `tangent` for the effects' numbers.
+    /// `omega`, `alpha`, with the derivatives: `data` for the mechanism's numbers (the sketch
+    /// points and the links' inertias are read here; the joints' numbers and the drive's
+    /// sketch value enter through the pose and `Φ_q` given to [`ModelTangent::solve`]),
+    /// `tangent` for the effects' numbers.
     ///
     /// Errors: [`TangentError::Length`] or [`TangentError::Mismatch`] for a tangent that does
     /// not match the model. An effect the route does not carry (see [`carried`]) is reported
@@ -234,13 +236,13 @@ impl<'a, 'm> ModelTangent<'a, 'm> {
     pub fn new(
         model: &'a CompiledModel<'m>,
         effects: &Effects,
-        points: &[[f64; 2]],
-        inertias: &[Option<Inertia>],
+        data: &DataTangent,
         tangent: &EffectsTangent,
         omega: f64,
         alpha: f64,
     ) -> Result<Self, TangentError> {
         let m = model.mechanism;
+        let (points, inertias) = (&data.points, &data.inertias);
         length("points", m.points.len(), points.len())?;
         length("links (inertias)", m.links.len(), inertias.len())?;
         length("loads", model.loads.len(), tangent.loads.len())?;

@@ -5,9 +5,8 @@
 use mechdiff_core::dynamics::tangent::{
     EffectsTangent, ModelTangent, NotCarried, SolutionTangent, TangentError, carried,
 };
-use mechdiff_core::geometry::{Inertia, Mechanism};
-use mechdiff_core::num_dual::{Dual3, Dual64};
-use nalgebra::DMatrix;
+use mechdiff_core::geometry::{Parametric, Solver};
+use mechdiff_core::num_dual::Dual64;
 
 use crate::error::{Error, Result};
 use crate::scene::model::Scene;
@@ -40,31 +39,27 @@ fn needs_equilibrium(quantity: DynamicQuantity) -> bool {
 /// `scene` at each drive position of `positions` (the run's, in order), in the order of the
 /// table's dynamic columns and in SI units (as [`super::DynamicsReport::rows`]).
 ///
-/// Inputs: the scene's dynamics `d` and its built `mechanism`; the d/dp of the mechanism's
-/// data as the geometry's `DataTangent` holds it (`points`: every sketch point, in point
-/// order; `inertias`: every link's inertia, in link order, ground first); `effects`, the d/dp
-/// of gravity, loads, motor, ω and α; `speed`, the drive speed the run used; and
-/// `pose_at(φ)`, the pose at drive position φ (q, q′, q″ per coordinate with their d/dp, as
-/// `Parametric::pose::<2>`) with `Φ_q` there and its d/dp (`Parametric::jacobian`).
+/// Inputs: the scene's dynamics `d`; `parametric`, the built mechanism with the d/dp of its
+/// data (`DataTangent`: sketch points, joints' numbers, the drive's sketch value, inertias);
+/// `effects`, the d/dp of gravity, loads, motor, ω and α; `speed`, the drive speed the run
+/// used. At each position the pose is tracked as the run tracks it and lifted with
+/// `Parametric::pose` and `Parametric::jacobian`.
 ///
 /// A column the exact route does not reach is `None` in every row, with the reason in
 /// [`DynamicsTangent::not_carried`]: all columns of a cam-driven scene; the drive torque,
 /// reactions and power balance when the plan has friction, mesh efficiencies or tooth
-/// forces in the bearings of meshes on a common link. Errors: a singular equilibrium (as the
-/// run's), a non-finite derivative (naming the column and the position), a tangent that
-/// does not match the mechanism.
-#[allow(clippy::too_many_arguments)]
+/// forces in the bearings of meshes on a common link. Errors: a singular position or
+/// equilibrium (as the run's), a non-finite derivative (naming the column and the position),
+/// a tangent that does not match the mechanism.
 pub fn column_derivatives(
     scene: &Scene,
     d: &SceneDynamics,
-    mechanism: &Mechanism,
-    points: &[[f64; 2]],
-    inertias: &[Option<Inertia>],
+    parametric: &Parametric<'_>,
     effects: &EffectsTangent,
     positions: &[f64],
     speed: Option<f64>,
-    mut pose_at: impl FnMut(f64) -> Result<(Vec<Dual3<Dual64>>, DMatrix<Dual64>)>,
 ) -> Result<DynamicsTangent> {
+    let mechanism = parametric.mechanism();
     let plan = d.plan(mechanism);
     let widths: Vec<usize> = (d.outputs.iter())
         .map(|o| output_columns(scene, d, mechanism, &plan, o).len())
@@ -93,8 +88,7 @@ pub fn column_derivatives(
     let tangent = ModelTangent::new(
         &model,
         &plan.effects,
-        points,
-        inertias,
+        parametric.tangent(),
         effects,
         drive.omega,
         drive.alpha,
@@ -118,8 +112,13 @@ pub fn column_derivatives(
         .any(|o| needs_equilibrium(o.quantity) && carried_output(o.quantity));
     let omega = Dual64::new(drive.omega, effects.omega);
     let mut rows = Vec::with_capacity(positions.len());
+    let solver_error = |e| crate::scene::run::solver_error(scene, e);
+    let mut tracker = Solver::default().track(mechanism).map_err(solver_error)?;
     for &phi in positions {
-        let (pose, jacobian) = pose_at(phi)?;
+        tracker.move_to(phi).map_err(solver_error)?;
+        let k = tracker.kinematics::<2>().map_err(solver_error)?;
+        let pose = parametric.pose(&k).map_err(solver_error)?;
+        let jacobian = parametric.jacobian(&pose);
         let solution: Option<SolutionTangent> = if plan.kinetostatics && needs_solution {
             Some(tangent.solve(phi, &pose, &jacobian).map_err(|e| match e {
                 TangentError::Model(source) => crate::scene::run::solver_error(scene, source),
@@ -178,7 +177,7 @@ pub fn column_derivatives(
 mod tests {
     use super::*;
     use crate::scene::parameters::Setting;
-    use mechdiff_core::geometry::{Equations, Solver};
+    use mechdiff_core::geometry::{DataTangent, Inertia};
 
     /// An offset slider-crank with the rod's mass `m2` (its moment `m2·l²/12`), every
     /// dynamic output, gravity and a load on the slider.
@@ -186,9 +185,10 @@ mod tests {
 title = "slider-crank with every dynamic output"
 [parameters]
 m2 = 2.0
+ya = 0.1
 [points]
 O = [0, 0]
-A = [0, 0.1]
+A = [0, "ya"]
 B = [0.384, -0.012]
 G0 = [0, -0.012]
 G1 = [1, -0.012]
@@ -237,64 +237,51 @@ output = "reduced_inertia"
 output = "power_balance"
 "#;
 
-    fn scene(text: &str, m2: f64) -> Scene {
-        let set: Setting = format!("m2={m2:.17e}").parse().unwrap();
+    fn scene_at(text: &str, name: &str, value: f64) -> Scene {
+        let set: Setting = format!("{name}={value:.17e}").parse().unwrap();
         crate::scene::parse_with("t.toml", text, &[set]).unwrap()
     }
 
-    /// The derivative rows with respect to m2 (mass 1, moment l²/12 per unit; no point moves,
-    /// so the pose's and Φ_q's derivatives are zero).
+    fn scene(text: &str, m2: f64) -> Scene {
+        scene_at(text, "m2", m2)
+    }
+
+    /// The derivative rows with respect to m2 (mass 1, moment l²/12 per unit; no point moves).
     fn exact(text: &str) -> (DynamicsTangent, Vec<f64>) {
+        exact_with(text, |m, data| {
+            for (k, link) in m.links().iter().enumerate() {
+                if link.inertia.is_some() {
+                    data.inertias[k] = Some(Inertia {
+                        mass: f64::from(u8::from(link.name == "rod")),
+                        center: [0.0; 2],
+                        moment: if link.name == "rod" { 0.16 / 12.0 } else { 0.0 },
+                    });
+                }
+            }
+        })
+    }
+
+    /// The derivative rows of the scene (at its parameters' values) for the data tangent
+    /// `tangent` fills in.
+    fn exact_with(
+        text: &str,
+        tangent: impl FnOnce(&mechdiff_core::geometry::Mechanism, &mut DataTangent),
+    ) -> (DynamicsTangent, Vec<f64>) {
         let s = scene(text, 2.0);
         let m = crate::scene::build::mechanism(&s).unwrap();
         let report = crate::scene::run(&s).unwrap();
         let positions = report.column("phi").unwrap();
         let d = s.dynamics.as_ref().unwrap();
-        let mut inertias: Vec<Option<Inertia>> = vec![None; m.links().len()];
-        let zero = Inertia {
-            mass: 0.0,
-            center: [0.0; 2],
-            moment: 0.0,
-        };
-        for (link, _) in &d.masses {
-            let k = m.link_index(link).unwrap();
-            inertias[k] = Some(if link == "rod" {
-                Inertia {
-                    mass: 1.0,
-                    moment: 0.16 / 12.0,
-                    ..zero
-                }
-            } else {
-                zero
-            });
-        }
-        let points = vec![[0.0; 2]; m.points().len()];
-        let mut tracker = Solver::default().track(&m).unwrap();
-        let equations = Equations::new(&m);
-        let pose_at = |phi: f64| {
-            tracker.move_to(phi).unwrap();
-            let k = tracker.kinematics::<2>().unwrap();
-            let pose: Vec<Dual3<Dual64>> = (k.coordinates.iter())
-                .map(|j| {
-                    let [a, b] = j.derivatives;
-                    Dual3::new(j.value.into(), a.into(), b.into(), 0.0.into())
-                })
-                .collect();
-            let q: Vec<f64> = k.coordinates.iter().map(|j| j.value).collect();
-            let mut jac = DMatrix::zeros(q.len(), q.len());
-            equations.jacobian(&q, &mut jac);
-            Ok((pose, jac.map(Dual64::from)))
-        };
+        let mut data = DataTangent::zero(&m);
+        tangent(&m, &mut data);
+        let parametric = Parametric::new(&m, &data).unwrap();
         let t = column_derivatives(
             &s,
             d,
-            &m,
-            &points,
-            &inertias,
+            &parametric,
             &EffectsTangent::zero(&d.data),
             &positions,
             s.drive.speed,
-            pose_at,
         )
         .unwrap();
         (t, positions)
@@ -338,6 +325,66 @@ output = "power_balance"
         }
         // Not a vacuous agreement: the drive torque does depend on m2.
         assert!(t.rows.iter().any(|r| r[0].unwrap().abs() > 1e-3));
+    }
+
+    /// p = the crank pin's sketch height `ya` (the crank's and the rod's lengths; the drive
+    /// line O→A keeps its direction): every dynamic column against central differences of
+    /// the scene's run at ya ± h. Truncation O(h²) and rounding O(ε/h): at h = 1e-5 (1e-4
+    /// of ya) about 1e-7 of the column's scale; the error must shrink ≥ 20× from h = 1e-4,
+    /// so the agreement is the derivative's: tolerance 1e-6 of the scale.
+    #[test]
+    fn a_point_parameter_gives_every_dynamic_column_derivative() {
+        let (t, _) = exact_with(SCENE, |m, data| {
+            data.points[m.point_index("A").unwrap()] = [0.0, 1.0];
+            // The rod's mass, centre and moment do not depend on ya (its centre is given as
+            // sketch coordinates); the other links' neither.
+            for (k, link) in m.links().iter().enumerate() {
+                if link.inertia.is_some() {
+                    data.inertias[k] = Some(Inertia {
+                        mass: 0.0,
+                        center: [0.0; 2],
+                        moment: 0.0,
+                    });
+                }
+            }
+        });
+        assert!(t.not_carried.iter().all(Option::is_none));
+        let rows = |ya: f64| {
+            crate::scene::run(&scene_at(SCENE, "ya", ya))
+                .unwrap()
+                .dynamics
+                .unwrap()
+        };
+        let central = |h: f64| {
+            let (up, down) = (rows(0.1 + h), rows(0.1 - h));
+            let d: Vec<Vec<f64>> = (up.rows.iter().zip(&down.rows))
+                .map(|(a, b)| {
+                    (a.iter().zip(b))
+                        .map(|(x, y)| (x - y) / (2.0 * h))
+                        .collect()
+                })
+                .collect();
+            (d, up)
+        };
+        let ((coarse, _), (fine, up)) = (central(1e-4), central(1e-5));
+        for c in 0..up.columns.len() {
+            let scale = (t.rows.iter()).fold(1.0f64, |a, r| a.max(r[c].unwrap().abs()));
+            let error = |d: &[Vec<f64>]| {
+                (t.rows.iter().zip(d))
+                    .map(|(r, x)| (r[c].unwrap() - x[c]).abs())
+                    .fold(0.0, f64::max)
+            };
+            let (e1, e2) = (error(&coarse), error(&fine));
+            let name = &up.columns[c].name;
+            assert!(
+                e2 <= 1e-6 * scale,
+                "d({name})/d(ya): {e2:e} of scale {scale}"
+            );
+            assert!(
+                e2 <= e1 / 20.0 || e1 <= 1e-9 * scale,
+                "d({name})/d(ya): no O(h²) convergence ({e1:e} → {e2:e})"
+            );
+        }
     }
 
     /// With friction in the plan, the equilibrium's columns (drive torque, reactions, power
