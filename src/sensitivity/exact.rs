@@ -186,24 +186,13 @@ pub(super) fn dynamics(
         Parametric::new(&mechanism, &data).map_err(|e| failed(solver_error(scene, e)))?;
     let mut effects = EffectsTangent::zero(&d.data);
     (effects.omega, effects.alpha) = (tangent.speed, tangent.acceleration);
-    let mut tracker = Solver::default()
-        .track(&mechanism)
-        .map_err(|e| failed(solver_error(scene, e)))?;
     let columns = column_derivatives(
         scene,
         d,
-        &mechanism,
-        &data.points,
-        &data.inertias,
+        &parametric,
         &effects,
         &positions,
         scene.drive.speed,
-        |phi| {
-            let k = solve::<2>(scene, &mut tracker, phi)?;
-            let pose = parametric.pose(&k).map_err(|e| solver_error(scene, e))?;
-            let jacobian = parametric.jacobian(&pose);
-            Ok((pose, jacobian))
-        },
     )
     .map_err(failed)?;
     let width = runner.nominal.columns.len();
