@@ -138,9 +138,10 @@ fn a_formula_chain_and_a_unit_are_followed() {
 }
 
 #[test]
-fn the_drive_speed_moves_and_a_mass_is_named_as_not_carried() {
+fn the_drive_speed_and_a_mass_move_and_a_friction_coefficient_is_named_as_not_carried() {
     let text = NORTON.replace("speed = 10 ", "speed = \"10*a/0.86\" ")
-        + "\n[masses]\ncrank = { mass = \"2*a\", center = \"A\" }\n";
+        + "\n[masses]\ncrank = { mass = \"2*a\", center = \"A\", inertia = \"a*a\" }\n\
+           [friction]\nO2 = { coefficient = \"0.1*a\", pin_radius = 0.01 }\n";
     let t = tangent(&text, "a");
     // ω = 10·a/0.86 in the file's unit of speed: dω/da = ω/0.86 (SI).
     let scene = mechdiff::scene::parse("t.toml", &text).unwrap();
@@ -150,8 +151,16 @@ fn the_drive_speed_moves_and_a_mass_is_named_as_not_carried() {
         "{}",
         t.speed
     );
+    // The crank's mass 2a, moment a², centre at A (which moves with a): d/da = 2, 2a, A's.
+    assert_eq!(t.masses.len(), 1);
+    let (link, m) = &t.masses[0];
+    assert_eq!(link, "crank");
+    assert!((m.mass - 2.0).abs() <= TOLERANCE * 2.0, "{}", m.mass);
+    assert!((m.moment - 2.0 * 0.86).abs() <= TOLERANCE * 2.0, "{}", m.moment);
+    close(m.center, t.points[index(&scene, "A")], "the crank's centre by a");
+    // The friction coefficient moves and is not carried.
     assert_eq!(t.not_carried.len(), 1, "{:?}", t.not_carried);
-    assert_eq!(t.not_carried[0].path, "masses.crank.mass");
+    assert_eq!(t.not_carried[0].path, "friction.O2.coefficient");
     assert!(t.not_carried[0].location.starts_with("t.toml:"));
     assert!(t.carries_kinematics());
 }

@@ -93,29 +93,72 @@ columns = ["d(s)/d(r)", "d(M_drive)/d(m3)", "d(M_drive)/d(r)"]
 "#;
 
 #[test]
-fn kinematic_columns_are_exact_and_dynamics_columns_labelled_richardson() {
-    let study = study_of("t.toml", SLIDER_CRANK);
-    // The slider's position by r is kinematic: exact.
-    assert_eq!(why(&study, "d(s)/d(r)"), None);
-    // A mass: the scene's tangent does not carry `[masses]` (read in f64 by the dynamics'
-    // resolver); a length moves points, on which the inertias may depend.
-    let reason = why(&study, "d(M_drive)/d(m3)").expect("a Richardson column");
+fn a_mass_and_a_length_are_exact_and_an_uncarried_number_falls_back_labelled() {
+    // A force's components are read without a place per component: `F` moves a number the
+    // scene's tangent does not carry.
+    let text = SLIDER_CRANK
+        .replace("m3 = 2.0", "m3 = 2.0\nF = -100")
+        .replace(
+            "[[dynamics]]",
+            "[[load]]\nlink = \"slider\"\npoint = \"B\"\nforce = [\"F\", 0]\n[[dynamics]]",
+        )
+        .replace("\"d(M_drive)/d(r)\"]", "\"d(M_drive)/d(r)\", \"d(M_drive)/d(F)\"]");
+    let study = study_of("t.toml", &text);
+    // The slider's position by r is kinematic: exact; the drive torque by the slider's mass
+    // and by the crank's length (which moves A and B, the slider's centre): exact.
+    for exact in ["d(s)/d(r)", "d(M_drive)/d(m3)", "d(M_drive)/d(r)"] {
+        assert_eq!(why(&study, exact), None, "{exact}");
+    }
+    let reason = why(&study, "d(M_drive)/d(F)").expect("a Richardson column");
     assert!(
-        reason.contains("`m3` moves `masses.slider.mass` (t.toml:") && reason.contains("masses"),
-        "{reason}"
-    );
-    let reason = why(&study, "d(M_drive)/d(r)").expect("a Richardson column");
-    assert!(
-        reason.contains("`r` moves points of the sketch"),
+        reason.contains("`F` moves `load[0].force[0]` (t.toml:")
+            && reason.contains("does not carry"),
         "{reason}"
     );
     let printed = summary(&study);
     assert!(
-        printed.contains("d(s)/d(r): exact (dual numbers")
-            && printed.contains("d(M_drive)/d(m3): Richardson-extrapolated")
-            && printed.contains("not exact because `m3` moves `masses.slider.mass`"),
+        printed.contains("d(M_drive)/d(m3): exact (dual numbers")
+            && printed.contains("d(M_drive)/d(F): Richardson-extrapolated")
+            && printed.contains("not exact because `F` moves `load[0].force[0]`"),
         "{printed}"
     );
+}
+
+#[test]
+fn friction_in_the_plan_leaves_the_drive_torque_by_a_mass_to_richardson_labelled() {
+    let text = SLIDER_CRANK.replace(
+        "[[dynamics]]",
+        "[friction]\nguide = { coefficient = 0.1 }\n[[dynamics]]",
+    );
+    let study = study_of("t.toml", &text);
+    assert_eq!(why(&study, "d(s)/d(r)"), None);
+    let reason = why(&study, "d(M_drive)/d(m3)").expect("a Richardson column");
+    assert!(reason.contains("friction (joint `guide`)"), "{reason}");
+}
+
+#[test]
+fn the_drive_torques_derivative_by_a_mass_is_exact_and_matches_its_closed_form() {
+    // A slider alone, no gravity, α = 0: M_drive·ω = m3·ṡ·s̈ = m3·ω³·s′·s″, so
+    // M_drive = m3·ω²·s′·s″ and ∂M_drive/∂m3 = ω²·s′·s″, from the run's own s′, s″ (exact).
+    let text = SLIDER_CRANK.replace(
+        "quantities = [\"position\"]",
+        "quantities = [\"position\", \"velocity_coefficient\", \"acceleration_coefficient\"]",
+    );
+    let (_, report, study) = sensitivity::run("t.toml", &text, &[], &Options::default()).unwrap();
+    let study = study.unwrap();
+    assert_eq!(why(&study, "d(M_drive)/d(m3)"), None);
+    let got = report.column("d(M_drive)/d(m3)").unwrap();
+    let (s1, s2) = (report.column("s'").unwrap(), report.column("s''").unwrap());
+    let want: Vec<f64> = (s1.iter().zip(&s2))
+        .map(|(a, b)| 50.0 * 50.0 * a * b)
+        .collect();
+    let scale = want.iter().fold(0.0, |m: f64, v| m.max(v.abs()));
+    assert!(scale > 1.0, "not a vacuous comparison: {scale}");
+    for (row, (g, w)) in got.iter().zip(&want).enumerate() {
+        // 1e-12 of the column: both exact in f64 (the equilibrium solved in Dual64, the
+        // closed form from the run's exact s′, s″).
+        assert!((g - w).abs() <= 1e-12 * scale, "row {row}: {g} vs {w}");
+    }
 }
 
 #[test]

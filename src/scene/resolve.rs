@@ -47,15 +47,7 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
     let joints = cx.joints(&file.joints, &geometry)?;
     let mut drive = cx.drive(&file.drive, &geometry, &joints)?;
     let outputs = outputs::resolve(&cx, &file.outputs, &geometry, &joints, &drive)?;
-    let sections = super::dynamics::DynamicsSections {
-        masses: file.masses.as_ref(),
-        gravity: file.gravity.as_ref(),
-        loads: &file.loads,
-        friction: file.friction.as_ref(),
-        efficiency: file.efficiency.as_ref(),
-        motor: file.motor.as_ref(),
-        outputs: &file.dynamics,
-    };
+    let sections = super::dynamics::DynamicsSections::of(&file);
     let dynamics = super::dynamics::resolve(&cx, &sections, &geometry, &joints, drive.kind)?;
     let balancing =
         super::balancing::resolve(&cx, file.rotor.as_ref(), file.balancing.as_ref(), &geometry)?;

@@ -22,13 +22,16 @@ use std::collections::{HashMap, HashSet};
 use std::ops::Range;
 
 use mechdiff_core::Scalar;
-use mechdiff_core::geometry::{DataTangent, Mechanism};
+use mechdiff_core::dynamics::tangent::EffectsTangent;
+use mechdiff_core::dynamics::{LoadKind, Motor};
+use mechdiff_core::geometry::{DataTangent, Inertia, Mechanism};
 use mechdiff_core::num_dual::Dual64;
 use toml::Spanned;
 use toml::de::{DeTable, DeValue};
 
 use crate::error::Result;
 
+use super::dynamics::{DynamicsSections, numbers_in};
 use super::format::{JointDef, SceneFile};
 use super::model::JointKind;
 use super::parameters::{self, Setting};
@@ -222,22 +225,51 @@ pub struct SceneTangent {
     pub speed: f64,
     /// d/dp of the drive's acceleration α.
     pub acceleration: f64,
-    /// The numbers that move with the parameter and that this tangent does not carry (masses
-    /// and other dynamics data, a cam's): the derivatives that need them are not exact.
+    /// d/dp of each link's mass properties (`[masses]`, SI; a uniform bar's follow its
+    /// ends), by link name in the order of `[masses]`.
+    pub masses: Vec<(String, Inertia)>,
+    /// d/dp of the magnitude of gravity (m/s²).
+    pub gravity: f64,
+    /// d/dp of each `[[load]]`'s force or torque, in file order.
+    pub loads: Vec<LoadKind>,
+    /// d/dp of the motor's rotor inertia, ratio and efficiency.
+    pub motor: Option<Motor>,
+    /// The numbers that move with the parameter and that this tangent does not carry
+    /// (friction, mesh efficiencies, a load's force components, a centre's coordinates, a
+    /// cam's data, …): the derivatives that need them are not exact.
     pub not_carried: Vec<NotCarried>,
 }
 
 impl SceneTangent {
     /// The tangent of the mechanism built from the scene ([`super::build::mechanism`]),
-    /// as the core's parametric pose takes it. Its inertias are 0: the scene's tangent does
-    /// not carry the masses (see [`SceneTangent::not_carried`]); only the kinematics may use
-    /// it as exact.
+    /// as the core's parametric pose takes it, with the inertias of the links with a mass.
     pub fn data_tangent(&self, mechanism: &Mechanism) -> DataTangent {
-        DataTangent {
+        let mut data = DataTangent {
             points: self.points.clone(),
             joints: self.joints.clone(),
             drive_at_sketch: self.drive_at_sketch,
             ..DataTangent::zero(mechanism)
+        };
+        for (link, inertia) in &self.masses {
+            let k = mechanism.links().iter().position(|l| l.name == *link);
+            if let Some(slot) = k.and_then(|k| data.inertias.get_mut(k))
+                && slot.is_some()
+            {
+                *slot = Some(*inertia);
+            }
+        }
+        data
+    }
+
+    /// The d/dp of the effects' numbers as the core's exact dynamics take them (gravity,
+    /// loads, motor, the drive's ω and α).
+    pub fn effects_tangent(&self) -> EffectsTangent {
+        EffectsTangent {
+            gravity: [0.0, -self.gravity],
+            loads: self.loads.clone(),
+            motor: self.motor,
+            omega: self.speed,
+            alpha: self.acceleration,
         }
     }
 
@@ -297,6 +329,14 @@ pub fn scene_tangent(
     let acceleration = drive.acceleration.as_ref().map_or(0.0, |v| {
         cx.tangent(v, measure.kind().acceleration_dimension())
     });
+    // The dynamic sections' numbers, read by the run's own code in dual numbers.
+    let dynamics = numbers_in::<Dual64>(
+        &cx,
+        &DynamicsSections::of(&raw),
+        &geometry,
+        measure.kind(),
+        &|name: &str| points[names[name]],
+    )?;
     let mut not_carried: Vec<NotCarried> = tangents
         .not_read()
         .into_iter()
@@ -322,6 +362,28 @@ pub fn scene_tangent(
         drive_at_sketch,
         speed,
         acceleration,
+        masses: (dynamics.masses.into_iter())
+            .map(|(link, m)| {
+                let inertia = Inertia {
+                    mass: m.mass.eps,
+                    center: [m.center[0].eps, m.center[1].eps],
+                    moment: m.moment.eps,
+                };
+                (link, inertia)
+            })
+            .collect(),
+        gravity: dynamics.gravity.map_or(0.0, |g| g.eps),
+        loads: (dynamics.loads.iter())
+            .map(|(_, kind)| match kind {
+                LoadKind::Force([x, y]) => LoadKind::Force([x.eps, y.eps]),
+                LoadKind::Torque(t) => LoadKind::Torque(t.eps),
+            })
+            .collect(),
+        motor: dynamics.motor.map(|m| Motor {
+            rotor_inertia: m.rotor_inertia.eps,
+            ratio: m.ratio.eps,
+            efficiency: m.efficiency.eps,
+        }),
         not_carried,
     })
 }

@@ -14,7 +14,6 @@
 use std::collections::HashMap;
 
 use mechdiff_core::DriveState;
-use mechdiff_core::dynamics::tangent::EffectsTangent;
 use mechdiff_core::geometry::{Parametric, Solver};
 use mechdiff_core::num_dual::Dual64;
 
@@ -148,11 +147,12 @@ fn reach(scene: &Scene, tangent: &SceneTangent) -> std::result::Result<(), Strin
 /// the route does not reach it: the single place where the dynamics' exact route
 /// ([`crate::scene::dynamics::column_derivatives`]) plugs in.
 ///
-/// The scene's tangent carries the mechanism's numbers, ω and α, not the masses and the
-/// effects' numbers (`[masses]`, `[gravity]`, `[[load]]`, … are read in `f64` by
-/// `src/scene/dynamics/resolve.rs`): the route is taken only when the parameter moves none of
-/// them and no point of the sketch (which centres, bars and points of application may be),
-/// so that their derivatives are 0, exactly.
+/// The scene's tangent carries the mechanism's numbers, the masses (a uniform bar's with its
+/// moving ends), gravity, the loads' torques, the motor, ω and α: the route is taken when
+/// the parameter moves no other number (friction, a mesh efficiency, a force's components, a
+/// centre's coordinates, balancing data, …: then every dynamics column falls back, with
+/// the number named). The dynamics' own route then says which columns it does not carry
+/// (friction or mesh efficiencies in the plan: the equilibrium's columns).
 pub(super) fn dynamics(
     runner: &Runner<'_>,
     scene: &Scene,
@@ -163,19 +163,11 @@ pub(super) fn dynamics(
         return Err("the scene has no dynamics".to_owned());
     };
     let tangent = tangent.as_ref().map_err(Clone::clone)?;
-    let parameter = &tangent.parameter;
     reach(scene, tangent)?;
     if let Some(n) = tangent.not_carried.first() {
         return Err(format!(
-            "`{parameter}` moves `{}` ({}), and the scene's tangent does not carry the \
-             masses' and effects' numbers",
-            n.path, n.location
-        ));
-    }
-    if tangent.points.iter().any(|t| *t != [0.0, 0.0]) {
-        return Err(format!(
-            "`{parameter}` moves points of the sketch, on which the inertias and loads may \
-             depend, and the scene's tangent does not carry the inertias"
+            "`{}` moves `{}` ({}), a number the exact route does not carry",
+            tangent.parameter, n.path, n.location
         ));
     }
     let positions: Vec<f64> = runner.nominal.rows.iter().map(|r| r[0]).collect();
@@ -184,8 +176,7 @@ pub(super) fn dynamics(
     let data = tangent.data_tangent(&mechanism);
     let parametric =
         Parametric::new(&mechanism, &data).map_err(|e| failed(solver_error(scene, e)))?;
-    let mut effects = EffectsTangent::zero(&d.data);
-    (effects.omega, effects.alpha) = (tangent.speed, tangent.acceleration);
+    let effects = tangent.effects_tangent();
     let columns = column_derivatives(
         scene,
         d,

@@ -172,3 +172,18 @@ pub struct DynamicsSections<'a> {
     /// `[[dynamics]]`.
     pub outputs: &'a [Spanned<DynamicsOutputDef>],
 }
+
+impl<'a> DynamicsSections<'a> {
+    /// The dynamic sections of the scene file `file`.
+    pub fn of(file: &'a crate::scene::format::SceneFile) -> Self {
+        DynamicsSections {
+            masses: file.masses.as_ref(),
+            gravity: file.gravity.as_ref(),
+            loads: &file.loads,
+            friction: file.friction.as_ref(),
+            efficiency: file.efficiency.as_ref(),
+            motor: file.motor.as_ref(),
+            outputs: &file.dynamics,
+        }
+    }
+}

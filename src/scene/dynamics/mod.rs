@@ -37,7 +37,7 @@ pub use format::{
     CenterDef, DrivingSide, DynamicQuantity, DynamicsOutputDef, DynamicsSections, EfficiencyDef,
     FrictionDef, GravityDef, LoadDef, MassDef, MotorDef,
 };
-pub(crate) use resolve::resolve;
+pub(crate) use resolve::{numbers_in, resolve};
 pub use resolve::{DynamicsOutput, SceneDynamics};
 pub use run::DynamicsReport;
 pub(crate) use run::{columns, run};

@@ -1,7 +1,7 @@
 //! Checking the dynamic sections: names resolved, values in range, every error located.
 
 use mechdiff_core::dynamics::{
-    Driving, Dynamics, Efficiency, Friction, Gravity, Load, Motor, Plan, Request,
+    Driving, Dynamics, Efficiency, Friction, Gravity, Load, LoadKind, Motor, Plan, Request,
 };
 use mechdiff_core::geometry::{Inertia, Mechanism};
 use toml::Spanned;
@@ -11,6 +11,7 @@ use crate::scene::format::Name;
 use crate::scene::limits;
 use crate::scene::model::{DriveKind, Joint, JointKind};
 use crate::scene::resolve::{Context, Geometry};
+use crate::scene::tangent::Carried;
 use crate::scene::units::Dimension;
 
 use super::format::{CenterDef, DrivingSide, DynamicQuantity, DynamicsSections, LoadDef, MassDef};
@@ -61,28 +62,38 @@ impl SceneDynamics {
     }
 }
 
-fn non_negative(cx: &Context, v: &Spanned<f64>, what: &str, largest: f64) -> Result<f64> {
-    cx.in_range(v, what, 0.0..=largest, "")
+/// A non-negative number the file writes in SI (m/s², a ratio), at most `largest`, in the
+/// scalar `D` (with its derivative).
+fn non_negative<D: Carried>(
+    cx: &Context,
+    v: &Spanned<f64>,
+    what: &str,
+    largest: f64,
+) -> Result<D> {
+    let x = cx.in_range(v, what, 0.0..=largest, "")?;
+    Ok(D::with_tangent(x, cx.tangent_plain(v)))
 }
 
-/// A non-negative quantity in the file's unit of `dimension`, converted to SI.
-fn non_negative_in(
+/// A non-negative quantity in the file's unit of `dimension`, converted to SI, in the scalar
+/// `D` (with its derivative).
+fn non_negative_in<D: Carried>(
     cx: &Context,
     v: &Spanned<f64>,
     what: &str,
     dimension: Dimension,
-) -> Result<f64> {
-    let si = cx.number(v, what, dimension)?;
+) -> Result<D> {
+    let si = cx.number_in::<D>(v, what, dimension)?;
     cx.in_range(v, what, 0.0..=f64::MAX, cx.units.symbol(dimension))?;
     Ok(si)
 }
 
-fn efficiency(cx: &Context, v: &Spanned<f64>, what: &str) -> Result<f64> {
+/// An efficiency in (0, 1], in the scalar `D` (with its derivative).
+fn efficiency<D: Carried>(cx: &Context, v: &Spanned<f64>, what: &str) -> Result<D> {
     let x = *v.get_ref();
     if !(x.is_finite() && x > 0.0 && x <= 1.0) {
         return Err(cx.invalid(v, format!("{what} must be in (0, 1], found {x}")));
     }
-    Ok(x)
+    Ok(D::with_tangent(x, cx.tangent_plain(v)))
 }
 
 fn joint<'j>(cx: &Context, name: &Name, joints: &'j [Joint], context: &str) -> Result<&'j Joint> {
@@ -120,23 +131,21 @@ pub(crate) fn resolve(
     if !any {
         return Ok(None);
     }
-    let mut masses = Vec::new();
-    for (name, def) in s.masses.map(|m| m.get_ref().iter()).into_iter().flatten() {
-        let link = cx.link(name, geometry.links, "`[masses]`")?;
-        masses.push((link.to_owned(), mass_properties(cx, link, def, geometry)?));
-    }
+    let numbers = numbers_in::<f64>(cx, s, geometry, drive, &|name| geometry.sketch(name))?;
+    let masses: Vec<(String, Inertia)> = (numbers.masses.into_iter())
+        .map(|(link, m)| {
+            let inertia = Inertia {
+                mass: m.mass,
+                center: m.center,
+                moment: m.moment,
+            };
+            (link, inertia)
+        })
+        .collect();
     let mut data = Dynamics::new();
-    if let Some(g) = s.gravity {
-        data.gravity = Some(Gravity::down(non_negative(
-            cx,
-            &g.get_ref().g,
-            "g (m/s²)",
-            limits::ACCELERATION,
-        )?));
-    }
-    for def in s.loads {
-        data.loads.push(load(cx, def, geometry, drive)?);
-    }
+    data.gravity = numbers.gravity.map(Gravity::down);
+    data.loads = numbers.loads.into_iter().map(|(load, _)| load).collect();
+    data.motor = numbers.motor;
     for (name, def) in s.friction.map(|m| m.get_ref().iter()).into_iter().flatten() {
         let j = joint(cx, name, joints, "`[friction]`")?;
         let d = def.get_ref();
@@ -203,7 +212,7 @@ pub(crate) fn resolve(
             ));
         }
         let d = def.get_ref();
-        let eta = efficiency(
+        let eta = efficiency::<f64>(
             cx,
             &d.efficiency,
             &format!("the efficiency of joint `{}`", j.name),
@@ -214,29 +223,6 @@ pub(crate) fn resolve(
         };
         data.efficiency
             .push(Efficiency::new(&j.name, eta).driven_from(driving));
-    }
-    if let Some(m) = s.motor {
-        let d = m.get_ref();
-        let ratio = *d.ratio.get_ref();
-        cx.in_range(
-            &Spanned::new(d.ratio.span(), ratio.abs()),
-            "the magnitude of the motor's `ratio`",
-            limits::RATIO,
-            "",
-        )?;
-        data.motor = Some(Motor {
-            rotor_inertia: non_negative_in(
-                cx,
-                &d.rotor_inertia,
-                "the motor's `rotor_inertia`",
-                Dimension::MomentOfInertia,
-            )?,
-            ratio,
-            efficiency: match &d.efficiency {
-                Some(e) => efficiency(cx, e, "the motor's gearbox `efficiency`")?,
-                None => 1.0,
-            },
-        });
     }
     let mut outputs = Vec::new();
     for def in s.outputs {
@@ -294,18 +280,110 @@ pub(crate) fn resolve(
     }))
 }
 
-fn load(
+/// A link's mass properties (SI) in the scalar `D`: with `D = Dual64`, with their
+/// derivatives with respect to the parameter the context carries.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct MassIn<D> {
+    /// Mass (kg).
+    pub mass: D,
+    /// Centre of gravity at the sketch pose (m).
+    pub center: [D; 2],
+    /// Moment of inertia about the centre (kg·m²).
+    pub moment: D,
+}
+
+/// The numbers of the dynamic sections that the exact dynamics carry, read in the scalar
+/// `D`: `[masses]`, `[gravity]`, the `[[load]]`s' magnitudes and `[motor]`. Friction, mesh
+/// efficiencies, a force's components and a load's `active` range are read in `f64` only
+/// (by [`resolve`]): a scene tangent lists them as not carried when they move.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct NumbersIn<D> {
+    /// Mass properties by link, in the order of `[masses]`.
+    pub masses: Vec<(String, MassIn<D>)>,
+    /// The magnitude of gravity (m/s², along −y).
+    pub gravity: Option<D>,
+    /// Each load (its `f64` value) with its force or torque in `D`, in file order.
+    pub loads: Vec<(Load, LoadKind<D>)>,
+    /// The motor.
+    pub motor: Option<Motor<D>>,
+}
+
+/// Reads and checks the numbers of the dynamic sections `s` in the scalar `D` (one code for
+/// the run, `f64`, and for a scene's tangent, `Dual64`); `at` gives a point's sketch
+/// coordinates in `D` (a uniform bar's ends and a centre at a point move with the points).
+pub(crate) fn numbers_in<D: Carried>(
+    cx: &Context,
+    s: &DynamicsSections,
+    geometry: &Geometry,
+    drive: DriveKind,
+    at: &dyn Fn(&str) -> [D; 2],
+) -> Result<NumbersIn<D>> {
+    let mut masses = Vec::new();
+    for (name, def) in s.masses.map(|m| m.get_ref().iter()).into_iter().flatten() {
+        let link = cx.link(name, geometry.links, "`[masses]`")?;
+        masses.push((link.to_owned(), mass_properties(cx, link, def, geometry, at)?));
+    }
+    let gravity = match s.gravity {
+        Some(g) => Some(non_negative::<D>(
+            cx,
+            &g.get_ref().g,
+            "g (m/s²)",
+            limits::ACCELERATION,
+        )?),
+        None => None,
+    };
+    let loads = (s.loads.iter())
+        .map(|def| load(cx, def, geometry, drive))
+        .collect::<Result<Vec<_>>>()?;
+    let motor = match s.motor {
+        Some(m) => {
+            let d = m.get_ref();
+            let ratio = *d.ratio.get_ref();
+            cx.in_range(
+                &Spanned::new(d.ratio.span(), ratio.abs()),
+                "the magnitude of the motor's `ratio`",
+                limits::RATIO,
+                "",
+            )?;
+            Some(Motor {
+                rotor_inertia: non_negative_in::<D>(
+                    cx,
+                    &d.rotor_inertia,
+                    "the motor's `rotor_inertia`",
+                    Dimension::MomentOfInertia,
+                )?,
+                ratio: D::with_tangent(ratio, cx.tangent_plain(&d.ratio)),
+                efficiency: match &d.efficiency {
+                    Some(e) => efficiency::<D>(cx, e, "the motor's gearbox `efficiency`")?,
+                    None => D::constant(1.0),
+                },
+            })
+        }
+        None => None,
+    };
+    Ok(NumbersIn {
+        masses,
+        gravity,
+        loads,
+        motor,
+    })
+}
+
+/// A load (`f64`) with its force or torque in `D`. A force's components are read in `f64`
+/// (its `[Fx, Fy]` keeps no place per component, so a scene tangent lists them as not
+/// carried when they move), as is the `active` range (a discrete choice, not differentiated).
+fn load<D: Carried>(
     cx: &Context,
     def: &Spanned<LoadDef>,
     geometry: &Geometry,
     drive: DriveKind,
-) -> Result<Load> {
+) -> Result<(Load, LoadKind<D>)> {
     let d = def.get_ref();
     let link = cx.link(&d.link, geometry.links, "`[[load]]`")?;
     let bounded = |v: f64, at: &Spanned<[f64; 2]>, what: &str| {
         cx.number(&Spanned::new(at.span(), v), what, Dimension::Force)
     };
-    let mut load = match (&d.force, &d.torque) {
+    let (mut load, kind) = match (&d.force, &d.torque) {
         (Some(f), None) => {
             let point = d.point.as_ref().ok_or_else(|| {
                 cx.invalid(def, "a `force` needs the `point` of the link where it acts")
@@ -314,9 +392,15 @@ fn load(
             let [fx, fy] = *f.get_ref();
             let fx = bounded(fx, f, "the force's x component")?;
             let fy = bounded(fy, f, "the force's y component")?;
-            Load::force(link, p, [fx, fy])
+            (
+                Load::force(link, p, [fx, fy]),
+                LoadKind::Force([D::constant(fx), D::constant(fy)]),
+            )
         }
-        (None, Some(t)) => Load::torque(link, cx.number(t, "the torque", Dimension::Torque)?),
+        (None, Some(t)) => {
+            let torque = cx.number_in::<D>(t, "the torque", Dimension::Torque)?;
+            (Load::torque(link, torque.re()), LoadKind::Torque(torque))
+        }
         _ => {
             return Err(cx.invalid(
                 def,
@@ -333,16 +417,18 @@ fn load(
             end(to, "the end of `active`")?,
         );
     }
-    Ok(load)
+    Ok((load, kind))
 }
 
-/// A link's mass, centre and moment: given, or from a density per length (uniform bar).
-fn mass_properties(
+/// A link's mass, centre and moment in `D`: given, or from a density per length (a uniform
+/// bar between two points, which move with the sketch: `at`).
+fn mass_properties<D: Carried>(
     cx: &Context,
     link: &str,
     def: &Spanned<MassDef>,
     geometry: &Geometry,
-) -> Result<Inertia> {
+    at: &dyn Fn(&str) -> [D; 2],
+) -> Result<MassIn<D>> {
     let d = def.get_ref();
     let (mass, bar) = match (&d.mass, &d.density) {
         (Some(_), Some(_)) | (None, None) => {
@@ -355,45 +441,48 @@ fn mass_properties(
             ));
         }
         (None, Some(density)) => {
-            let density = non_negative_in(
+            let density = non_negative_in::<D>(
                 cx,
                 density,
                 &format!("the density of link `{link}`"),
                 Dimension::Density,
             )?;
             let [a, b] = bar_ends(cx, link, def, geometry)?;
-            let bar = Inertia::uniform_bar(density, geometry.sketch(&a), geometry.sketch(&b));
+            let bar = uniform_bar(density, at(&a), at(&b));
             (bar.mass, Some(bar))
         }
         (Some(m), None) => {
             let what = format!("the mass of link `{link}`");
-            (non_negative_in(cx, m, &what, Dimension::Mass)?, None)
+            (non_negative_in::<D>(cx, m, &what, Dimension::Mass)?, None)
         }
     };
     let moment = match (&d.inertia, &bar) {
-        (Some(i), _) => non_negative_in(
+        (Some(i), _) => non_negative_in::<D>(
             cx,
             i,
             &format!("the moment of inertia of link `{link}`"),
             Dimension::MomentOfInertia,
         )?,
         (None, Some(bar)) => bar.moment,
-        (None, None) => 0.0,
+        (None, None) => D::constant(0.0),
     };
     let center = match (&d.center, &bar) {
         (Some(center), _) => match center.get_ref() {
             CenterDef::Point(p) => {
                 let spanned = Spanned::new(center.span(), p.clone());
-                let p =
-                    cx.point_on(&spanned, link, geometry, &format!("`masses.{link}.center`"))?;
-                geometry.sketch(p)
+                at(cx.point_on(&spanned, link, geometry, &format!("`masses.{link}.center`"))?)
             }
+            // Read in f64: `[x, y]` keeps no place per coordinate, so a scene tangent lists
+            // a coordinate that moves as not carried.
             CenterDef::Xy(xy) => {
                 let coordinate = |v: f64, axis: &str| {
                     let what = format!("the {axis} coordinate of the centre of link `{link}`");
                     cx.number(&Spanned::new(center.span(), v), &what, Dimension::Length)
                 };
-                [coordinate(xy[0].0, "x")?, coordinate(xy[1].0, "y")?]
+                [
+                    D::constant(coordinate(xy[0].0, "x")?),
+                    D::constant(coordinate(xy[1].0, "y")?),
+                ]
             }
         },
         (None, Some(bar)) => bar.center,
@@ -407,11 +496,23 @@ fn mass_properties(
             ));
         }
     };
-    Ok(Inertia {
+    Ok(MassIn {
         mass,
         center,
         moment,
     })
+}
+
+/// A uniform slender bar of mass per length `density` from `a` to `b`: mass ρ·L at the
+/// midpoint, moment m·L²/12 about it (as `Inertia::uniform_bar`, in `D`).
+fn uniform_bar<D: Carried>(density: D, a: [D; 2], b: [D; 2]) -> MassIn<D> {
+    let length = Carried::hypot(b[0] - a[0], b[1] - a[1]);
+    let mass = density * length;
+    MassIn {
+        mass,
+        center: [(a[0] + b[0]) * 0.5, (a[1] + b[1]) * 0.5],
+        moment: mass * length * length / 12.0,
+    }
 }
 
 /// The ends of a uniform bar: `bar`, or the link's two points.
