@@ -156,8 +156,16 @@ fn the_drive_speed_and_a_mass_move_and_a_friction_coefficient_is_named_as_not_ca
     let (link, m) = &t.masses[0];
     assert_eq!(link, "crank");
     assert!((m.mass - 2.0).abs() <= TOLERANCE * 2.0, "{}", m.mass);
-    assert!((m.moment - 2.0 * 0.86).abs() <= TOLERANCE * 2.0, "{}", m.moment);
-    close(m.center, t.points[index(&scene, "A")], "the crank's centre by a");
+    assert!(
+        (m.moment - 2.0 * 0.86).abs() <= TOLERANCE * 2.0,
+        "{}",
+        m.moment
+    );
+    close(
+        m.center,
+        t.points[index(&scene, "A")],
+        "the crank's centre by a",
+    );
     // The friction coefficient moves and is not carried.
     assert_eq!(t.not_carried.len(), 1, "{:?}", t.not_carried);
     assert_eq!(t.not_carried[0].path, "friction.O2.coefficient");

@@ -102,7 +102,10 @@ fn a_mass_and_a_length_are_exact_and_an_uncarried_number_falls_back_labelled() {
             "[[dynamics]]",
             "[[load]]\nlink = \"slider\"\npoint = \"B\"\nforce = [\"F\", 0]\n[[dynamics]]",
         )
-        .replace("\"d(M_drive)/d(r)\"]", "\"d(M_drive)/d(r)\", \"d(M_drive)/d(F)\"]");
+        .replace(
+            "\"d(M_drive)/d(r)\"]",
+            "\"d(M_drive)/d(r)\", \"d(M_drive)/d(F)\"]",
+        );
     let study = study_of("t.toml", &text);
     // The slider's position by r is kinematic: exact; the drive torque by the slider's mass
     // and by the crank's length (which moves A and B, the slider's centre): exact.

@@ -37,8 +37,8 @@ pub use format::{
     CenterDef, DrivingSide, DynamicQuantity, DynamicsOutputDef, DynamicsSections, EfficiencyDef,
     FrictionDef, GravityDef, LoadDef, MassDef, MotorDef,
 };
-pub(crate) use resolve::{numbers_in, resolve};
 pub use resolve::{DynamicsOutput, SceneDynamics};
+pub(crate) use resolve::{numbers_in, resolve};
 pub use run::DynamicsReport;
 pub(crate) use run::{columns, run};
 pub use tangent::{DynamicsTangent, column_derivatives};

@@ -64,12 +64,7 @@ impl SceneDynamics {
 
 /// A non-negative number the file writes in SI (m/s², a ratio), at most `largest`, in the
 /// scalar `D` (with its derivative).
-fn non_negative<D: Carried>(
-    cx: &Context,
-    v: &Spanned<f64>,
-    what: &str,
-    largest: f64,
-) -> Result<D> {
+fn non_negative<D: Carried>(cx: &Context, v: &Spanned<f64>, what: &str, largest: f64) -> Result<D> {
     let x = cx.in_range(v, what, 0.0..=largest, "")?;
     Ok(D::with_tangent(x, cx.tangent_plain(v)))
 }
@@ -321,7 +316,10 @@ pub(crate) fn numbers_in<D: Carried>(
     let mut masses = Vec::new();
     for (name, def) in s.masses.map(|m| m.get_ref().iter()).into_iter().flatten() {
         let link = cx.link(name, geometry.links, "`[masses]`")?;
-        masses.push((link.to_owned(), mass_properties(cx, link, def, geometry, at)?));
+        masses.push((
+            link.to_owned(),
+            mass_properties(cx, link, def, geometry, at)?,
+        ));
     }
     let gravity = match s.gravity {
         Some(g) => Some(non_negative::<D>(
