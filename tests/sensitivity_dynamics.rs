@@ -35,7 +35,8 @@ output = \"kinetic_energy\"
 
 /// An offset slider-crank whose rod is a uniform bar of `rho` kg/m from A to B (the rod's
 /// length `l` moves B, its mass and moment), the crank another of length `r`, gravity `gr`,
-/// a motor of rotor inertia `J` and a torque load `ml` on the rod.
+/// a motor of rotor inertia `J`, a torque load `ml` on the rod and a force at B (which
+/// moves with r and l).
 const SLIDER_CRANK: &str = r#"
 [parameters]
 r = 0.1
@@ -81,6 +82,10 @@ ratio = 0.5
 [[load]]
 link = "rod"
 torque = "ml"
+[[load]]
+link = "slider"
+point = "B"
+force = [-50, 0]
 [[dynamics]]
 output = "drive_torque"
 [[dynamics]]

@@ -1,7 +1,7 @@
 //! The tangent of a scene: the exact derivative, with respect to one of its `[parameters]`,
 //! of every number of the mechanism it builds — each point's sketch coordinates, the joints'
 //! numbers (a rack's radius, a gear's ratio), the drive's value at the sketch, its speed and
-//! acceleration.
+//! acceleration, the links' inertias — and of the dynamics' effects (gravity, loads, motor).
 //!
 //! The scene is read once more in dual numbers ([`Dual64`]): the parameters are evaluated
 //! with the one differentiated as the independent variable ([`super::parameters`]), and
@@ -11,11 +11,14 @@
 //! constructions of [`super::construct`]; the drive's measure; the joints' numbers) then
 //! read each number with its derivative ([`super::resolve::Context::number_in`]) and are the
 //! same code in `f64` and in [`Dual64`], so a point built from lengths carries their
-//! derivatives through its construction exactly.
+//! derivatives through its construction exactly. The dynamic sections' numbers the exact
+//! dynamics take (`[masses]`, `[gravity]`, the loads' torques, `[motor]`) are read the same
+//! way ([`super::dynamics::numbers_in`]), a uniform bar's with its moving ends.
 //!
 //! Every formula whose derivative is not zero and that no step read is listed
-//! ([`SceneTangent::not_carried`]): a number the tangent does not carry (a mass, a load, a
-//! cam file's data), so that a derivative that would need it is not taken as exact.
+//! ([`SceneTangent::not_carried`]): a number the tangent does not carry (a friction
+//! coefficient, a mesh's efficiency, a force's components, a cam file's data), so that a
+//! derivative that would need it is not taken as exact.
 
 use std::cell::RefCell;
 use std::collections::{HashMap, HashSet};

@@ -5,7 +5,8 @@
 //! differentiation (`mechdiff_core::geometry::Parametric`) give every output's value and
 //! drive derivatives with their d/dp as `Dual3<Dual64>`; the outputs are read by the
 //! same generic code as a run's ([`crate::scene::evaluate`]), the quantities too (ω and α
-//! with their own d/dp).
+//! with their own d/dp). The dynamics columns: the same tangent with the inertias and the
+//! effects' numbers ([`dynamics`]) through the dynamics' exact route.
 //!
 //! Where the route does not reach — a cam drive, `[sweep] of`, a number the tangent does
 //! not carry — the function says why, and the caller falls back to Richardson-extrapolated
