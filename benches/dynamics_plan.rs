@@ -104,6 +104,19 @@ fn plans(c: &mut Criterion) {
             })
         },
     );
+    // The parametric pose and Φ_q alone (the geometry's part of the line above).
+    group.bench_function("parametric pose and Φ_q with their d/dp (order 2)", |b| {
+        b.iter(|| {
+            let mut tracker = solver.track(&m).unwrap();
+            let mut sum = 0.0;
+            for &phi in black_box(&phis) {
+                tracker.move_to(phi).unwrap();
+                let pose = exact.pose(&tracker.kinematics::<2>().unwrap()).unwrap();
+                sum += exact.jacobian(&pose)[(0, 0)].eps;
+            }
+            sum
+        })
+    });
     // Every effect the Whitworth can have: friction circles in the two bearings and Coulomb
     // friction in both slots and the ram guide, resolved by iteration at each position.
     let with_friction = d
