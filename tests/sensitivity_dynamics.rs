@@ -35,8 +35,8 @@ output = \"kinetic_energy\"
 
 /// An offset slider-crank whose rod is a uniform bar of `rho` kg/m from A to B (the rod's
 /// length `l` moves B, its mass and moment), the crank another of length `r`, gravity `gr`,
-/// a motor of rotor inertia `J`, a torque load `ml` on the rod and a force at B (which
-/// moves with r and l).
+/// a motor of rotor inertia `J`, a torque load `ml` on the rod and a force `[fx, 0]` at B
+/// (which moves with r and l).
 const SLIDER_CRANK: &str = r#"
 [parameters]
 r = 0.1
@@ -45,6 +45,7 @@ rho = 3.0
 ml = 2.0
 gr = 9.81
 J = 0.002
+fx = -50
 [points]
 O = [0, 0]
 A = { from = "O", length = "r", angle = "pi/3" }
@@ -85,7 +86,7 @@ torque = "ml"
 [[load]]
 link = "slider"
 point = "B"
-force = [-50, 0]
+force = ["fx", 0]
 [[dynamics]]
 output = "drive_torque"
 [[dynamics]]
@@ -156,7 +157,7 @@ fn a_length_that_moves_a_bar_and_its_mass_and_the_effects_numbers_are_exact() {
     )
     .max(exact_against_richardson(
         SLIDER_CRANK,
-        &[("ml", 2.0), ("gr", 9.81)],
+        &[("ml", 2.0), ("gr", 9.81), ("fx", -50.0)],
         &["M_drive", "M_motor"],
     ));
     eprintln!("slider-crank: largest |exact − Richardson| / column = {worst:e}");

@@ -93,36 +93,46 @@ columns = ["d(s)/d(r)", "d(M_drive)/d(m3)", "d(M_drive)/d(r)"]
 "#;
 
 #[test]
-fn a_mass_and_a_length_are_exact_and_an_uncarried_number_falls_back_labelled() {
-    // A force's components are read without a place per component: `F` moves a number the
-    // scene's tangent does not carry.
+fn a_mass_a_length_and_a_force_are_exact_and_an_uncarried_number_falls_back_labelled() {
+    // A centre's `[x, y]` coordinates are read without a place per coordinate: `cx` moves a
+    // number the scene's tangent does not carry.
     let text = SLIDER_CRANK
-        .replace("m3 = 2.0", "m3 = 2.0\nF = -100")
+        .replace("m3 = 2.0", "m3 = 2.0\nF = -100\ncx = 0.2")
+        .replace(
+            "slider = { mass = \"m3\", center = \"B\" }",
+            "slider = { mass = \"m3\", center = \"B\" }\nrod = { mass = 1, center = [\"cx\", 0] }",
+        )
         .replace(
             "[[dynamics]]",
             "[[load]]\nlink = \"slider\"\npoint = \"B\"\nforce = [\"F\", 0]\n[[dynamics]]",
         )
         .replace(
             "\"d(M_drive)/d(r)\"]",
-            "\"d(M_drive)/d(r)\", \"d(M_drive)/d(F)\"]",
+            "\"d(M_drive)/d(r)\", \"d(M_drive)/d(F)\", \"d(M_drive)/d(cx)\"]",
         );
     let study = study_of("t.toml", &text);
-    // The slider's position by r is kinematic: exact; the drive torque by the slider's mass
-    // and by the crank's length (which moves A and B, the slider's centre): exact.
-    for exact in ["d(s)/d(r)", "d(M_drive)/d(m3)", "d(M_drive)/d(r)"] {
+    // The slider's position by r is kinematic: exact; the drive torque by the slider's mass,
+    // by the crank's length (which moves A and B, the slider's centre and the force's point)
+    // and by the force: exact.
+    for exact in [
+        "d(s)/d(r)",
+        "d(M_drive)/d(m3)",
+        "d(M_drive)/d(r)",
+        "d(M_drive)/d(F)",
+    ] {
         assert_eq!(why(&study, exact), None, "{exact}");
     }
-    let reason = why(&study, "d(M_drive)/d(F)").expect("a Richardson column");
+    let reason = why(&study, "d(M_drive)/d(cx)").expect("a Richardson column");
     assert!(
-        reason.contains("`F` moves `load[0].force[0]` (t.toml:")
+        reason.contains("`cx` moves `masses.rod.center[0]` (t.toml:")
             && reason.contains("does not carry"),
         "{reason}"
     );
     let printed = summary(&study);
     assert!(
         printed.contains("d(M_drive)/d(m3): exact (dual numbers")
-            && printed.contains("d(M_drive)/d(F): Richardson-extrapolated")
-            && printed.contains("not exact because `F` moves `load[0].force[0]`"),
+            && printed.contains("d(M_drive)/d(cx): Richardson-extrapolated")
+            && printed.contains("not exact because `cx` moves `masses.rod.center[0]`"),
         "{printed}"
     );
 }

@@ -12,12 +12,12 @@
 //! read each number with its derivative ([`super::resolve::Context::number_in`]) and are the
 //! same code in `f64` and in [`Dual64`], so a point built from lengths carries their
 //! derivatives through its construction exactly. The dynamic sections' numbers the exact
-//! dynamics take (`[masses]`, `[gravity]`, the loads' torques, `[motor]`) are read the same
+//! dynamics take (`[masses]`, `[gravity]`, the loads, `[motor]`) are read the same
 //! way ([`super::dynamics::numbers_in`]), a uniform bar's with its moving ends.
 //!
 //! Every formula whose derivative is not zero and that no step read is listed
 //! ([`SceneTangent::not_carried`]): a number the tangent does not carry (a friction
-//! coefficient, a mesh's efficiency, a force's components, a cam file's data), so that a
+//! coefficient, a mesh's efficiency, a centre's `[x, y]`, a cam file's data), so that a
 //! derivative that would need it is not taken as exact.
 
 use std::cell::RefCell;

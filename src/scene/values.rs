@@ -327,6 +327,22 @@ pub fn option_number_pair<'de, D: Deserializer<'de>>(
     exactly_two(Spanned::new(span, values), "numbers").map(Some)
 }
 
+/// An optional pair of numbers with each entry's span (a force's components, whose
+/// derivatives a scene's tangent keeps by place): exactly two (use with
+/// `#[serde(default)]`).
+pub fn option_spanned_number_pair<'de, D: Deserializer<'de>>(
+    deserializer: D,
+) -> Result<Option<Spanned<[Spanned<f64>; 2]>>, D::Error> {
+    let Some(list) = Option::<Spanned<Vec<Spanned<Number>>>>::deserialize(deserializer)? else {
+        return Ok(None);
+    };
+    let span = list.span();
+    let values = (list.into_inner().into_iter())
+        .map(|n| Spanned::new(n.span(), n.into_inner().0))
+        .collect();
+    exactly_two(Spanned::new(span, values), "numbers").map(Some)
+}
+
 /// `[sweep] positions`: at most [`MAX_POSITIONS`] numbers, counted as they are read, each
 /// with its span (use with `#[serde(default)]`).
 pub fn option_positions<'de, D: Deserializer<'de>>(

@@ -59,9 +59,12 @@ pub struct LoadDef {
     pub link: Name,
     /// Point of application of a force (a point of the link).
     pub point: Option<Name>,
-    /// Force (N), global components.
-    #[serde(default, deserialize_with = "crate::scene::values::option_number_pair")]
-    pub force: Option<Spanned<[f64; 2]>>,
+    /// Force (N), global components, each with its span.
+    #[serde(
+        default,
+        deserialize_with = "crate::scene::values::option_spanned_number_pair"
+    )]
+    pub force: Option<Spanned<[Spanned<f64>; 2]>>,
     /// Torque (N·m), counter-clockwise positive.
     #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub torque: Option<Spanned<f64>>,

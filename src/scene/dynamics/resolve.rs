@@ -289,7 +289,7 @@ pub(crate) struct MassIn<D> {
 
 /// The numbers of the dynamic sections that the exact dynamics carry, read in the scalar
 /// `D`: `[masses]`, `[gravity]`, the `[[load]]`s' magnitudes and `[motor]`. Friction, mesh
-/// efficiencies, a force's components and a load's `active` range are read in `f64` only
+/// efficiencies, a centre's `[x, y]` and a load's `active` range are read in `f64` only
 /// (by [`resolve`]): a scene tangent lists them as not carried when they move.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct NumbersIn<D> {
@@ -367,9 +367,9 @@ pub(crate) fn numbers_in<D: Carried>(
     })
 }
 
-/// A load (`f64`) with its force or torque in `D`. A force's components are read in `f64`
-/// (its `[Fx, Fy]` keeps no place per component, so a scene tangent lists them as not
-/// carried when they move), as is the `active` range (a discrete choice, not differentiated).
+/// A load (`f64`) with its force or torque in `D`. The `active` range is read in `f64` (a
+/// discrete choice, not differentiated; a scene tangent lists it as not carried when it
+/// moves).
 fn load<D: Carried>(
     cx: &Context,
     def: &Spanned<LoadDef>,
@@ -378,21 +378,18 @@ fn load<D: Carried>(
 ) -> Result<(Load, LoadKind<D>)> {
     let d = def.get_ref();
     let link = cx.link(&d.link, geometry.links, "`[[load]]`")?;
-    let bounded = |v: f64, at: &Spanned<[f64; 2]>, what: &str| {
-        cx.number(&Spanned::new(at.span(), v), what, Dimension::Force)
-    };
     let (mut load, kind) = match (&d.force, &d.torque) {
         (Some(f), None) => {
             let point = d.point.as_ref().ok_or_else(|| {
                 cx.invalid(def, "a `force` needs the `point` of the link where it acts")
             })?;
             let p = cx.point_on(point, link, geometry, "`[[load]] point`")?;
-            let [fx, fy] = *f.get_ref();
-            let fx = bounded(fx, f, "the force's x component")?;
-            let fy = bounded(fy, f, "the force's y component")?;
+            let [fx, fy] = f.get_ref();
+            let fx = cx.number_in::<D>(fx, "the force's x component", Dimension::Force)?;
+            let fy = cx.number_in::<D>(fy, "the force's y component", Dimension::Force)?;
             (
-                Load::force(link, p, [fx, fy]),
-                LoadKind::Force([D::constant(fx), D::constant(fy)]),
+                Load::force(link, p, [fx.re(), fy.re()]),
+                LoadKind::Force([fx, fy]),
             )
         }
         (None, Some(t)) => {
