@@ -93,46 +93,48 @@ columns = ["d(s)/d(r)", "d(M_drive)/d(m3)", "d(M_drive)/d(r)"]
 "#;
 
 #[test]
-fn a_mass_a_length_and_a_force_are_exact_and_an_uncarried_number_falls_back_labelled() {
-    // A centre's `[x, y]` coordinates are read without a place per coordinate: `cx` moves a
-    // number the scene's tangent does not carry.
+fn a_mass_a_length_a_force_and_a_centre_are_exact_and_an_uncarried_number_falls_back_labelled() {
+    // A load's `active` range is a discrete choice the exact route does not differentiate:
+    // `on` moves a number the scene's tangent does not carry.
     let text = SLIDER_CRANK
-        .replace("m3 = 2.0", "m3 = 2.0\nF = -100\ncx = 0.2")
+        .replace("m3 = 2.0", "m3 = 2.0\nF = -100\ncx = 0.2\non = 3.5")
         .replace(
             "slider = { mass = \"m3\", center = \"B\" }",
             "slider = { mass = \"m3\", center = \"B\" }\nrod = { mass = 1, center = [\"cx\", 0] }",
         )
         .replace(
             "[[dynamics]]",
-            "[[load]]\nlink = \"slider\"\npoint = \"B\"\nforce = [\"F\", 0]\n[[dynamics]]",
+            "[[load]]\nlink = \"slider\"\npoint = \"B\"\nforce = [\"F\", 0]\nactive = [0, \"on\"]\n\
+             [[dynamics]]",
         )
         .replace(
             "\"d(M_drive)/d(r)\"]",
-            "\"d(M_drive)/d(r)\", \"d(M_drive)/d(F)\", \"d(M_drive)/d(cx)\"]",
+            "\"d(M_drive)/d(r)\", \"d(M_drive)/d(F)\", \"d(M_drive)/d(cx)\", \"d(M_drive)/d(on)\"]",
         );
     let study = study_of("t.toml", &text);
     // The slider's position by r is kinematic: exact; the drive torque by the slider's mass,
-    // by the crank's length (which moves A and B, the slider's centre and the force's point)
-    // and by the force: exact.
+    // by the crank's length (which moves A and B, the slider's centre and the force's point),
+    // by the force and by the rod's centre: exact.
     for exact in [
         "d(s)/d(r)",
         "d(M_drive)/d(m3)",
         "d(M_drive)/d(r)",
         "d(M_drive)/d(F)",
+        "d(M_drive)/d(cx)",
     ] {
         assert_eq!(why(&study, exact), None, "{exact}");
     }
-    let reason = why(&study, "d(M_drive)/d(cx)").expect("a Richardson column");
+    let reason = why(&study, "d(M_drive)/d(on)").expect("a Richardson column");
     assert!(
-        reason.contains("`cx` moves `masses.rod.center[0]` (t.toml:")
+        reason.contains("`on` moves `load[0].active[1]` (t.toml:")
             && reason.contains("does not carry"),
         "{reason}"
     );
     let printed = summary(&study);
     assert!(
         printed.contains("d(M_drive)/d(m3): exact (dual numbers")
-            && printed.contains("d(M_drive)/d(cx): Richardson-extrapolated")
-            && printed.contains("not exact because `cx` moves `masses.rod.center[0]`"),
+            && printed.contains("d(M_drive)/d(on): Richardson-extrapolated")
+            && printed.contains("not exact because `on` moves `load[0].active[1]`"),
         "{printed}"
     );
 }

@@ -12,13 +12,13 @@
 //! read each number with its derivative ([`super::resolve::Context::number_in`]) and are the
 //! same code in `f64` and in [`Dual64`], so a point built from lengths carries their
 //! derivatives through its construction exactly. The dynamic sections' numbers the exact
-//! dynamics take (`[masses]`, `[gravity]`, the loads, `[motor]`) are read the same
-//! way ([`super::dynamics::numbers_in`]), a uniform bar's with its moving ends.
+//! dynamics take (`[masses]`, `[gravity]`, the loads, `[motor]`) are read the same way
+//! ([`super::dynamics::numbers_in`]), a uniform bar's with its moving ends.
 //!
 //! Every formula whose derivative is not zero and that no step read is listed
 //! ([`SceneTangent::not_carried`]): a number the tangent does not carry (a friction
-//! coefficient, a mesh's efficiency, a centre's `[x, y]`, a cam file's data), so that a
-//! derivative that would need it is not taken as exact.
+//! coefficient, a mesh's efficiency, a load's `active` range, a cam file's data), so that
+//! a derivative that would need it is not taken as exact.
 
 use std::cell::RefCell;
 use std::collections::{HashMap, HashSet};
@@ -238,8 +238,8 @@ pub struct SceneTangent {
     /// d/dp of the motor's rotor inertia, ratio and efficiency.
     pub motor: Option<Motor>,
     /// The numbers that move with the parameter and that this tangent does not carry
-    /// (friction, mesh efficiencies, a load's force components, a centre's coordinates, a
-    /// cam's data, …): the derivatives that need them are not exact.
+    /// (friction, mesh efficiencies, a load's `active` range, a cam's data, …): the
+    /// derivatives that need them are not exact.
     pub not_carried: Vec<NotCarried>,
 }
 

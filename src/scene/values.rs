@@ -327,12 +327,15 @@ pub fn option_number_pair<'de, D: Deserializer<'de>>(
     exactly_two(Spanned::new(span, values), "numbers").map(Some)
 }
 
+/// Two numbers, each with its span, and the pair's span.
+pub type SpannedPair = Spanned<[Spanned<f64>; 2]>;
+
 /// An optional pair of numbers with each entry's span (a force's components, whose
 /// derivatives a scene's tangent keeps by place): exactly two (use with
 /// `#[serde(default)]`).
 pub fn option_spanned_number_pair<'de, D: Deserializer<'de>>(
     deserializer: D,
-) -> Result<Option<Spanned<[Spanned<f64>; 2]>>, D::Error> {
+) -> Result<Option<SpannedPair>, D::Error> {
     let Some(list) = Option::<Spanned<Vec<Spanned<Number>>>>::deserialize(deserializer)? else {
         return Ok(None);
     };

@@ -149,9 +149,9 @@ fn reach(scene: &Scene, tangent: &SceneTangent) -> std::result::Result<(), Strin
 /// ([`crate::scene::dynamics::column_derivatives`]) plugs in.
 ///
 /// The scene's tangent carries the mechanism's numbers, the masses (a uniform bar's with its
-/// moving ends), gravity, the loads, the motor, ω and α: the route is taken when
-/// the parameter moves no other number (friction, a mesh efficiency, a centre's `[x, y]`, balancing data, …: then every dynamics column falls back, with
-/// the number named). The dynamics' own route then says which columns it does not carry
+/// moving ends), gravity, the loads, the motor, ω and α: the route is taken when the
+/// parameter moves no other number (friction, a mesh efficiency, a load's `active` range,
+/// balancing data, …: then every dynamics column falls back, with the number named). The dynamics' own route then says which columns it does not carry
 /// (friction or mesh efficiencies in the plan: the equilibrium's columns).
 pub(super) fn dynamics(
     runner: &Runner<'_>,

@@ -32,13 +32,12 @@
 //!
 //! A dynamics column is exact too ([`exact`]'s one place for it, the dynamics' own exact
 //! route): the scene's tangent carries `[masses]` (a uniform bar's mass, centre and moment
-//! with its moving ends), `[gravity]`, the loads' forces and torques and `[motor]`, read by the run's
-//! own code in dual numbers, so a column by a mass, a length, g or a load is exact.
-//! Elsewhere — a cam-driven scene, `[sweep] of`, a number that moves and that the tangent
-//! does not carry (a friction coefficient, a mesh's efficiency, a centre's
-//! `[x, y]`, a load's `active` range), the equilibrium's columns of a plan with
-//! friction or mesh efficiencies, the balancing columns — the column is a **Richardson
-//! extrapolation**, labelled so with the reason ([`Method::Richardson`]): the scene is run
+//! with its moving ends), `[gravity]`, the loads' forces and torques and `[motor]`, read by
+//! the run's own code in dual numbers, so a column by a mass, a length, g or a load is
+//! exact. Elsewhere — a cam-driven scene, `[sweep] of`, a number that moves and that the
+//! tangent does not carry (a friction coefficient, a mesh's efficiency, a load's `active`
+//! range), the equilibrium's columns of a plan with friction or mesh efficiencies, the
+//! balancing columns — the column is a **Richardson extrapolation**, labelled so with the reason ([`Method::Richardson`]): the scene is run
 //! again with the parameter moved by `±h`, `±h/2`, `±h/4` (as `--set` moves it: every
 //! formula follows), and the three central differences are extrapolated twice, which
 //! cancels the `h²` and `h⁴` terms of their error: what remains is `O(h⁶)` and the rounding

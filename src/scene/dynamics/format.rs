@@ -33,13 +33,47 @@ pub struct MassDef {
 }
 
 /// A centre of gravity: a named point or sketch coordinates.
-#[derive(Debug, Deserialize)]
-#[serde(untagged)]
+#[derive(Debug)]
 pub enum CenterDef {
     /// A point of the link.
     Point(String),
-    /// Sketch coordinates.
-    Xy([crate::scene::values::Number; 2]),
+    /// Sketch coordinates, each with its span (a scene's tangent keeps their derivatives by
+    /// place).
+    Xy([Spanned<f64>; 2]),
+}
+
+impl<'de> Deserialize<'de> for CenterDef {
+    fn deserialize<De: serde::Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
+        deserializer.deserialize_any(CenterVisitor)
+    }
+}
+
+struct CenterVisitor;
+
+impl<'de> serde::de::Visitor<'de> for CenterVisitor {
+    type Value = CenterDef;
+
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str("a centre: a point of the link (`\"P\"`) or sketch coordinates `[x, y]`")
+    }
+
+    fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<CenterDef, E> {
+        Ok(CenterDef::Point(v.to_owned()))
+    }
+
+    fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut seq: A) -> Result<CenterDef, A::Error> {
+        let mut xy = Vec::with_capacity(2);
+        while let Some(n) = seq.next_element::<Spanned<crate::scene::values::Number>>()? {
+            xy.push(Spanned::new(n.span(), n.into_inner().0));
+        }
+        let n = xy.len();
+        let xy: [Spanned<f64>; 2] = xy.try_into().map_err(|_| {
+            serde::de::Error::custom(format!(
+                "expected exactly two coordinates, found {n}; a centre is written `[x, y]`"
+            ))
+        })?;
+        Ok(CenterDef::Xy(xy))
+    }
 }
 
 /// `[gravity]`.
@@ -64,7 +98,7 @@ pub struct LoadDef {
         default,
         deserialize_with = "crate::scene::values::option_spanned_number_pair"
     )]
-    pub force: Option<Spanned<[Spanned<f64>; 2]>>,
+    pub force: Option<crate::scene::values::SpannedPair>,
     /// Torque (N·m), counter-clockwise positive.
     #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub torque: Option<Spanned<f64>>,

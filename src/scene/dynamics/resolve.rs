@@ -289,7 +289,7 @@ pub(crate) struct MassIn<D> {
 
 /// The numbers of the dynamic sections that the exact dynamics carry, read in the scalar
 /// `D`: `[masses]`, `[gravity]`, the `[[load]]`s' magnitudes and `[motor]`. Friction, mesh
-/// efficiencies, a centre's `[x, y]` and a load's `active` range are read in `f64` only
+/// efficiencies and a load's `active` range are read in `f64` only
 /// (by [`resolve`]): a scene tangent lists them as not carried when they move.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct NumbersIn<D> {
@@ -467,17 +467,12 @@ fn mass_properties<D: Carried>(
                 let spanned = Spanned::new(center.span(), p.clone());
                 at(cx.point_on(&spanned, link, geometry, &format!("`masses.{link}.center`"))?)
             }
-            // Read in f64: `[x, y]` keeps no place per coordinate, so a scene tangent lists
-            // a coordinate that moves as not carried.
-            CenterDef::Xy(xy) => {
-                let coordinate = |v: f64, axis: &str| {
+            CenterDef::Xy([x, y]) => {
+                let coordinate = |v: &Spanned<f64>, axis: &str| {
                     let what = format!("the {axis} coordinate of the centre of link `{link}`");
-                    cx.number(&Spanned::new(center.span(), v), &what, Dimension::Length)
+                    cx.number_in::<D>(v, &what, Dimension::Length)
                 };
-                [
-                    D::constant(coordinate(xy[0].0, "x")?),
-                    D::constant(coordinate(xy[1].0, "y")?),
-                ]
+                [coordinate(x, "x")?, coordinate(y, "y")?]
             }
         },
         (None, Some(bar)) => bar.center,
