@@ -28,6 +28,7 @@ pub use kinematics::Kinematics;
 pub use mobility::{Mobility, check_mobility};
 pub use model::{
     Drive, DriveKind, GROUND, Inertia, Joint, JointKind, Link, Mechanism, MechanismBuilder, Point,
+    uniform_bar_of,
 };
 pub use output::{PointOutput, ScalarOutput};
 pub use parametric::{DataTangent, Parametric, ParametricPoint, ParametricScalar, PoseTangent};

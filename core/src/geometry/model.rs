@@ -68,13 +68,30 @@ impl Inertia {
     /// ```
     pub fn uniform_bar(density: f64, a: [f64; 2], b: [f64; 2]) -> Inertia {
         let length = (b[0] - a[0]).hypot(b[1] - a[1]);
-        let mass = density * length;
+        let (mass, center, moment) = uniform_bar_of(density, length, a, b);
         Inertia {
             mass,
-            center: [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])],
-            moment: mass * length * length / 12.0,
+            center,
+            moment,
         }
     }
+}
+
+/// The mass properties `(mass, centre, moment about the centre)` of a uniform slender bar
+/// from `a` to `b` of mass `density` per length, in any scalar (a `Dual64` carries their
+/// derivatives with respect to a parameter): m = ρ·L at the midpoint, m·L²/12.
+///
+/// `length` is |b − a|, computed by the caller so that it rounds as the caller's other
+/// lengths do ([`Inertia::uniform_bar`] uses [`f64::hypot`]).
+pub fn uniform_bar_of<D: crate::Scalar>(
+    density: D,
+    length: D,
+    a: [D; 2],
+    b: [D; 2],
+) -> (D, [D; 2], D) {
+    let mass = density * length;
+    let center = [(a[0] + b[0]) * 0.5, (a[1] + b[1]) * 0.5];
+    (mass, center, mass * length * length / 12.0)
 }
 
 /// A rigid body carrying named points.

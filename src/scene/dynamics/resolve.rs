@@ -494,14 +494,15 @@ fn mass_properties<D: Carried>(
 }
 
 /// A uniform slender bar of mass per length `density` from `a` to `b`: mass ρ·L at the
-/// midpoint, moment m·L²/12 about it (as `Inertia::uniform_bar`, in `D`).
+/// midpoint, moment m·L²/12 about it (core's `uniform_bar_of`, with the length rounded as
+/// [`Carried::hypot`] rounds it).
 fn uniform_bar<D: Carried>(density: D, a: [D; 2], b: [D; 2]) -> MassIn<D> {
     let length = Carried::hypot(b[0] - a[0], b[1] - a[1]);
-    let mass = density * length;
+    let (mass, center, moment) = mechdiff_core::geometry::uniform_bar_of(density, length, a, b);
     MassIn {
         mass,
-        center: [(a[0] + b[0]) * 0.5, (a[1] + b[1]) * 0.5],
-        moment: mass * length * length / 12.0,
+        center,
+        moment,
     }
 }
 
