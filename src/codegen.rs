@@ -206,9 +206,10 @@ fn generate_code(expression: &str, args: &Args) -> Result<String, mechdiff_core:
         expression.to_owned()
     };
     Ok(format!(
-        "// `{shown}`: value and derivatives 1 to {} with respect to `{}`\n\
+        "// `{}`: value and derivatives 1 to {} with respect to `{}`\n\
          // operations: {}\n\
          // without common-subexpression elimination: {}\n{}{source}",
+        crate::escape::rust_comment(&shown),
         args.order,
         args.wrt,
         graph.operation_count(&outputs),
@@ -255,9 +256,10 @@ fn singular_points_note(graph: &Graph, value: mechdiff_core::symbolic::Id, wrt: 
 pub fn run(args: &Args) -> Result<(), Error> {
     if let Some(path) = &args.scene {
         let scene = scene::load(path)?;
-        print!("{}", scene::module(&scene, &path.display().to_string())?);
+        let module = scene::module(&scene, &path.display().to_string())?;
+        print!("{}", crate::escape::terminal(&module));
         return Ok(());
     }
-    print!("{}", generate(args)?);
+    print!("{}", crate::escape::terminal(&generate(args)?));
     Ok(())
 }

@@ -63,16 +63,44 @@ pub enum Error {
         /// The byte.
         byte: u8,
     },
-    /// The output file is the scene file itself (or a link to it).
+    /// An output file is one of the run's inputs (the scene, a cam file it names, an
+    /// imported file), through any name: a link, `..` or a hard link.
     #[error(
-        "refusing to write {output}: it is the scene file {scene} (the same file on disk); \
-         choose another output file"
+        "refusing to write {output}: it is {role} {input} (the same file on disk); choose \
+         another output file"
     )]
     OutputIsInput {
         /// The output path as given.
         output: PathBuf,
-        /// The scene path as given.
-        scene: PathBuf,
+        /// What the input is: `the scene file`, `the cam file`, `the imported file`.
+        role: &'static str,
+        /// The input's path as it was read.
+        input: PathBuf,
+    },
+    /// A file a scene names lies outside the scene's folder (after resolving links and
+    /// `..`), and the user did not allow its folder.
+    #[error(
+        "{path} lies outside the scene's folder {folder} (it resolves to {resolved}); a scene \
+         may name only files under its own folder: move the file there, or allow its folder \
+         with `--allow-path DIR`"
+    )]
+    OutsideSceneFolder {
+        /// The path as the scene's folder and the scene's text make it.
+        path: PathBuf,
+        /// The path with links and `..` resolved.
+        resolved: PathBuf,
+        /// The scene's folder, resolved.
+        folder: PathBuf,
+    },
+    /// A file a scene names is not a regular file (a FIFO, a device, a folder, a file of
+    /// `/proc`): refused before it is read, so the run neither hangs nor reads the kernel's
+    /// data.
+    #[error("cannot read {path}: it is {kind}, not a regular file; name a file holding the data")]
+    NotRegularFile {
+        /// The path.
+        path: PathBuf,
+        /// What it is instead.
+        kind: &'static str,
     },
     /// The worker threads of a streamed run could not be started.
     #[error("cannot start {threads} worker threads: {reason}; try `--threads 1`")]

@@ -19,6 +19,7 @@ pub use mechdiff_mechanisms as mechanisms;
 pub use mechdiff_macros::derivatives;
 
 pub mod error;
+pub mod escape;
 pub mod evaluator;
 pub mod files;
 pub mod import;

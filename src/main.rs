@@ -3,6 +3,7 @@
 mod cli;
 
 use clap::{Parser, Subcommand};
+use mechdiff::escape;
 use std::process::ExitCode;
 
 /// mechdiff: kinematics and dynamics of planar mechanisms with exact, automatic derivatives.
@@ -15,6 +16,10 @@ use std::process::ExitCode;
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
+    /// Let a scene name files (`[drive] cam`) under DIR too, besides its own folder
+    /// (repeatable; links and `..` are resolved before the check).
+    #[arg(long = "allow-path", value_name = "DIR", global = true)]
+    allow_path: Vec<std::path::PathBuf>,
 }
 
 #[derive(Debug, Subcommand)]
@@ -38,6 +43,19 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    // Ctrl-C or SIGTERM: the temporary files being written are removed before the exit.
+    if let Err(error) = mechdiff::files::remove_temporaries_on_signal() {
+        eprintln!("warning: temporary files will not be removed on Ctrl-C: {error}");
+    }
+    for dir in &cli.allow_path {
+        if let Err(error) = mechdiff::files::allow_folder(dir) {
+            eprintln!(
+                "error: --allow-path: {}",
+                escape::terminal(&error.to_string())
+            );
+            return ExitCode::FAILURE;
+        }
+    }
     let result: Result<(), Box<dyn std::error::Error>> = match cli.command {
         None | Some(Command::Whitworth) => whitworth(),
         Some(Command::Run(args)) => cli::run::run(&args).map_err(Into::into),
@@ -49,7 +67,7 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => {
-            eprintln!("error: {error}");
+            eprintln!("error: {}", escape::terminal(&error.to_string()));
             ExitCode::FAILURE
         }
     }

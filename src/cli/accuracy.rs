@@ -1,14 +1,14 @@
 //! `mechdiff accuracy <scene.toml | whitworth>`: every derivative method against an
 //! extended-precision reference, timed side by side.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::Args;
-use mechdiff::Error;
 use mechdiff::accuracy::{self, Timing, formula, whitworth};
 use mechdiff::mechanisms::Whitworth;
 use mechdiff::mechanisms::whitworth::Parameters;
 use mechdiff::scene::Kind;
+use mechdiff::{Error, files};
 
 /// Arguments of `mechdiff accuracy`.
 #[derive(Debug, Args)]
@@ -56,7 +56,7 @@ pub fn accuracy(args: &AccuracyArgs) -> Result<(), Error> {
         thin(positions, whitworth::case(&shaper, &linkage)?)?.measure(&timing)?
     } else {
         let path = PathBuf::from(&args.subject);
-        let text = mechdiff::files::read_scene(&path)?;
+        let text = files::read_scene(&path)?;
         match mechdiff::scene::kind(&text) {
             Kind::Formula => {
                 let scene = formula::parse(&text, &args.subject)?;
@@ -83,18 +83,16 @@ pub fn accuracy(args: &AccuracyArgs) -> Result<(), Error> {
     write(args, &report)
 }
 
-/// Writes `text` to `path`: to a temporary name, renamed when complete.
-fn save(path: &PathBuf, text: &str) -> Result<(), Error> {
-    let temporary = path.with_extension("partial");
-    std::fs::write(&temporary, text)
-        .and_then(|()| std::fs::rename(&temporary, path))
-        .map_err(|source| Error::Write {
-            path: path.clone(),
-            source,
-        })
+/// Writes `text` to `path` whole or not at all, never onto an input.
+fn save(path: &Path, text: &str) -> Result<(), Error> {
+    files::write_atomically(path, |out| out.write_all(text.as_bytes()))
 }
 
 fn write(args: &AccuracyArgs, report: &accuracy::Report) -> Result<(), Error> {
+    // Every output checked before the first is written.
+    let svgs = args.svg.iter().flat_map(|p| [p.clone(), angle_path(p)]);
+    let outputs: Vec<PathBuf> = svgs.chain(args.csv.iter().cloned()).collect();
+    files::refuse_inputs(outputs.iter().map(PathBuf::as_path))?;
     if let Some(path) = &args.svg {
         save(path, &accuracy::plot::pareto_svg(report, 900, 600)?)?;
         accuracy::plot::along_sweep(report).write_svg(&angle_path(path))?;
@@ -102,7 +100,7 @@ fn write(args: &AccuracyArgs, report: &accuracy::Report) -> Result<(), Error> {
     match &args.csv {
         Some(path) => save(path, &report.csv()),
         None => {
-            print!("{}", report.table());
+            print!("{}", mechdiff::escape::terminal(&report.table()));
             Ok(())
         }
     }
@@ -122,7 +120,7 @@ fn write_rotor(args: &AccuracyArgs, report: &accuracy::rotor::RotorReport) -> Re
     match &args.csv {
         Some(path) => save(path, &report.csv()),
         None => {
-            print!("{}", report.table());
+            print!("{}", mechdiff::escape::terminal(&report.table()));
             Ok(())
         }
     }

@@ -23,7 +23,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         mechdiff::pictures::cam::write_dir(&scene, dir)?;
     }
     let stdout = std::io::stdout();
-    let mut out = BufWriter::new(stdout.lock());
+    let mut out = BufWriter::new(mechdiff::escape::Terminal::new(stdout.lock()));
     match cam::write_report(&scene, &mut out).and_then(|()| out.flush()) {
         Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
         result => result.map_err(|source| Error::Write {

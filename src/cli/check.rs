@@ -5,7 +5,9 @@ use std::path::PathBuf;
 use clap::Args;
 use mechdiff::scene;
 use mechdiff::scene::units::{Dimension, Units};
-use mechdiff::{Error, files, sensitivity};
+use std::fmt::Write as _;
+
+use mechdiff::{Error, escape, files, sensitivity};
 
 /// Arguments of `mechdiff check`.
 #[derive(Debug, Args)]
@@ -38,7 +40,10 @@ pub fn check(args: &CheckArgs) -> Result<(), Error> {
     // gives, before anything is printed.
     let study = sensitivity::check(&file, &text, &args.set, &checked.columns)?;
     let m = &checked.mechanism;
-    println!(
+    // Written whole, then shown with the scene's text escaped for the terminal.
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
         "{}: ok: {} points, {} links (ground included), {} joints; {} coordinates, {} joint \
          equations, {} degree(s) of freedom; Jacobian rank {} at the sketch pose (drive included)",
         scene.file,
@@ -54,32 +59,35 @@ pub fn check(args: &CheckArgs) -> Result<(), Error> {
         checked.loops.iter().zip(&checked.closed_form).enumerate()
     {
         let how = if closed { "closed form" } else { "Newton" };
-        println!(
+        let _ = writeln!(
+            out,
             "loop {}: {} (branch certificate {branch:+} in the sketch; solved by {how})",
             k + 1,
             joints.join(", ")
         );
     }
-    match &checked.motion_range {
-        Ok(range) => println!(
+    let _ = match &checked.motion_range {
+        Ok(range) => writeln!(
+            out,
             "drive motion range: {}",
             scene::run::describe_motion_range(&scene, range)
         ),
-        Err(why) => println!("drive motion range: not found ({why})"),
-    }
+        Err(why) => writeln!(out, "drive motion range: not found ({why})"),
+    };
     for (name, value) in &scene.parameters {
-        println!("parameter {name} = {}", Units::tidy(*value));
+        let _ = writeln!(out, "parameter {name} = {}", Units::tidy(*value));
     }
     let units = scene.units;
     let unit = units.symbol(Dimension::Length);
     for (link, a, b, length) in scene.link_lengths() {
         let length = Units::tidy(units.from_si(length, Dimension::Length));
-        println!("length {link}: {a}–{b} = {length} {unit}");
+        let _ = writeln!(out, "length {link}: {a}–{b} = {length} {unit}");
     }
-    println!("{}", checked.plan.describe(&scene));
+    let _ = writeln!(out, "{}", checked.plan.describe(&scene));
     if let Some(study) = &study {
-        println!("{}", study.describe(&checked.columns));
+        let _ = writeln!(out, "{}", study.describe(&checked.columns));
     }
+    print!("{}", escape::terminal(&out));
     Ok(())
 }
 
@@ -87,11 +95,12 @@ pub fn check(args: &CheckArgs) -> Result<(), Error> {
 fn check_cam(args: &CheckArgs) -> Result<(), Error> {
     let cam = scene::cam::load(&args.scene)?;
     let m = &cam.mechanism;
-    println!(
+    let line = format!(
         "{}: ok: cam program of {} segment(s) over 360°, {} follower",
         cam.file,
         m.program.len(),
         m.dimensions.follower.describe()
     );
+    println!("{}", escape::terminal(&line));
     Ok(())
 }

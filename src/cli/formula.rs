@@ -22,7 +22,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
     if let Some(path) = &args.csv {
         files::write_atomically(path, |out| write_csv(&table, out))?;
     }
-    let mut out = std::io::stdout().lock();
+    let mut out = mechdiff::escape::Terminal::new(std::io::stdout().lock());
     match write_table(&scene.title, &table, &mut out).and_then(|()| out.flush()) {
         Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
         result => result.map_err(|source| Error::Write {

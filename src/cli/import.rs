@@ -24,13 +24,9 @@ pub struct ImportArgs {
 
 /// Reads the file, converts it and prints or writes the scene.
 pub fn import(args: &ImportArgs) -> Result<(), Error> {
+    let text = files::read_input(&args.file, "the imported file")?;
     if let Some(out) = &args.out {
-        if files::same_file(out, &args.file) {
-            return Err(Error::OutputIsInput {
-                output: out.clone(),
-                scene: args.file.clone(),
-            });
-        }
+        files::refuse_inputs([out.as_path()])?;
         if !args.force && out.exists() {
             return Err(Error::Write {
                 path: out.clone(),
@@ -41,7 +37,6 @@ pub fn import(args: &ImportArgs) -> Result<(), Error> {
             });
         }
     }
-    let text = files::read_scene(&args.file)?;
     let source = Source::new(args.file.display().to_string(), text);
     let scene = import::read(&source)?.to_scene(&source)?;
     match &args.out {

@@ -24,7 +24,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         mechdiff::pictures::balancing::write_rotor_dir(&scene.rotor, dir)?;
     }
     let stdout = std::io::stdout();
-    let mut out = BufWriter::new(stdout.lock());
+    let mut out = BufWriter::new(mechdiff::escape::Terminal::new(stdout.lock()));
     let written = lines
         .iter()
         .try_for_each(|line| writeln!(out, "{line}"))
@@ -51,10 +51,13 @@ pub fn check(args: &CheckArgs) -> Result<(), Error> {
         asked.push("couple-plane mass");
     }
     println!(
-        "{}: ok: rotor of {} mass(es), no linkage; {}",
-        scene.file,
-        r.rotor.masses().len(),
-        asked.join(", ")
+        "{}",
+        mechdiff::escape::terminal(&format!(
+            "{}: ok: rotor of {} mass(es), no linkage; {}",
+            scene.file,
+            r.rotor.masses().len(),
+            asked.join(", ")
+        ))
     );
     Ok(())
 }

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use clap::Args;
 use mechdiff::evaluator::Evaluator;
 use mechdiff::scene::{self, table};
-use mechdiff::{Error, files, pictures, sensitivity, stream};
+use mechdiff::{Error, escape, files, pictures, sensitivity, stream};
 
 /// Arguments of `mechdiff run`.
 #[derive(Debug, Args)]
@@ -71,22 +71,9 @@ pub struct RunArgs {
 
 /// Reads, checks and runs the scene; prints the plan, the table and the dead positions.
 pub fn run(args: &RunArgs) -> Result<(), Error> {
-    let outputs = [
-        &args.csv,
-        &args.jsonl,
-        &args.json,
-        &args.report,
-        &args.profile_csv,
-    ];
-    for output in outputs.into_iter().flatten() {
-        if files::same_file(output, &args.scene) {
-            return Err(Error::OutputIsInput {
-                output: output.clone(),
-                scene: args.scene.clone(),
-            });
-        }
-    }
+    // Reading the scene makes it one of the run's inputs, which no output may be.
     let kind = super::scene_kind(&args.scene);
+    files::refuse_inputs(outputs(args))?;
     let given = [
         ("--set", !args.set.is_empty()),
         ("--sweep", args.sweep.is_some()),
@@ -140,6 +127,8 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         }
         None => {
             let mut scene = scene::parse_with(&file, &text, &args.set)?;
+            // The scene's cam files are inputs now too: refused before the run.
+            files::refuse_inputs(outputs(args))?;
             scene.evaluator = args.evaluator;
             let in_memory = scene.dynamics.is_some()
                 || scene.balancing.is_some()
@@ -155,8 +144,12 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         Some(sweep) => scene::study::run_sweep(&file, &text, &args.set, sweep)?,
     };
     for warning in &report.warnings {
-        eprintln!("warning: {}: {warning}", scene.file);
+        eprintln!(
+            "{}",
+            escape::terminal(&format!("warning: {}: {warning}", scene.file))
+        );
     }
+    files::refuse_inputs(outputs(args))?;
     if let Some(path) = &args.csv {
         files::write_atomically(path, |mut out| table::write_csv(&report, &mut out))?;
     }
@@ -173,7 +166,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         pictures::report::write(&scene, &report, path)?;
     }
     let stdout = std::io::stdout();
-    let mut out = BufWriter::new(stdout.lock());
+    let mut out = BufWriter::new(escape::Terminal::new(stdout.lock()));
     let written = table::write_table(&scene, &report, &mut out).and_then(|()| match &study {
         Some(study) => sensitivity::write_summary(study, &mut out),
         None => Ok(()),
@@ -186,6 +179,20 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
             source,
         }),
     }
+}
+
+/// The output files asked for (`--plot`'s are checked by the picture writers).
+fn outputs(args: &RunArgs) -> impl Iterator<Item = &std::path::Path> {
+    [
+        &args.csv,
+        &args.jsonl,
+        &args.json,
+        &args.report,
+        &args.profile_csv,
+    ]
+    .into_iter()
+    .flatten()
+    .map(PathBuf::as_path)
 }
 
 /// Runs a kinematic scene streaming its rows: the table to stdout, `--csv` and `--jsonl`
@@ -201,7 +208,7 @@ fn stream(scene: &scene::Scene, args: &RunArgs) -> Result<(), Error> {
         .as_deref()
         .map(files::AtomicFile::create)
         .transpose()?;
-    let mut stdout = BufWriter::with_capacity(1 << 16, std::io::stdout());
+    let mut stdout = BufWriter::with_capacity(1 << 16, escape::Terminal::new(std::io::stdout()));
     fn sink(file: &mut files::AtomicFile) -> stream::Sink<'_> {
         let path = file.path().to_owned();
         stream::Sink {
@@ -226,7 +233,10 @@ fn stream(scene: &scene::Scene, args: &RunArgs) -> Result<(), Error> {
     let streamed = stream::run(scene, &mut sinks, &options)?;
     drop(sinks);
     for warning in &streamed.warnings {
-        eprintln!("warning: {}: {warning}", scene.file);
+        eprintln!(
+            "{}",
+            escape::terminal(&format!("warning: {}: {warning}", scene.file))
+        );
     }
     for file in [csv, jsonl].into_iter().flatten() {
         file.commit()?;

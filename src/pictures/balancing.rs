@@ -68,15 +68,15 @@ pub fn pictures(scene: &Scene, report: &Report) -> Result<Vec<(String, String)>>
 /// Writes a rotor's polygons into `dir` (created if needed): `rotor_force_polygon.svg/png`
 /// and `rotor_couple_polygon.svg/png`.
 pub fn write_rotor_dir(r: &SceneRotor, dir: &std::path::Path) -> Result<()> {
-    std::fs::create_dir_all(dir).map_err(|source| crate::Error::Write {
-        path: dir.to_owned(),
-        source,
-    })?;
+    let names = ["rotor_force_polygon", "rotor_couple_polygon"];
+    let paths: Vec<_> = names
+        .iter()
+        .flat_map(|name| ["svg", "png"].map(|ext| dir.join(format!("{name}.{ext}"))))
+        .collect();
+    crate::files::refuse_inputs(paths.iter().map(std::path::PathBuf::as_path))?;
+    crate::files::create_output_folder(dir)?;
     let [force, couple] = rotor_polygons(r)?;
-    for (name, drawing) in [
-        ("rotor_force_polygon", force),
-        ("rotor_couple_polygon", couple),
-    ] {
+    for (name, drawing) in names.into_iter().zip([force, couple]) {
         drawing.write_svg(&dir.join(format!("{name}.svg")))?;
         drawing.write_png(&dir.join(format!("{name}.png")))?;
     }

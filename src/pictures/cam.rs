@@ -9,7 +9,7 @@ use mechdiff_core::cams::{Follower, Side};
 
 use super::diagram::{Diagram, Marker, MarkerKind, Panel};
 use super::drawing::{Drawing, Style};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::scene::cam::CamScene;
 use crate::scene::units::Dimension;
 
@@ -157,10 +157,9 @@ pub fn profile_drawing(scene: &CamScene, theta: f64) -> Drawing {
 /// Writes `svaj.svg`, `svaj.png`, `profile.svg`, `profile.png` into `dir` (created if
 /// missing).
 pub fn write_dir(scene: &CamScene, dir: &Path) -> Result<()> {
-    std::fs::create_dir_all(dir).map_err(|source| Error::Write {
-        path: dir.to_owned(),
-        source,
-    })?;
+    let names = ["svaj.svg", "svaj.png", "profile.svg", "profile.png"];
+    crate::files::refuse_inputs(names.map(|name| dir.join(name)).iter().map(|p| p.as_path()))?;
+    crate::files::create_output_folder(dir)?;
     let diagram = svaj_diagram(scene);
     diagram.write_svg(&dir.join("svaj.svg"))?;
     diagram.write_png(&dir.join("svaj.png"))?;

@@ -282,7 +282,11 @@ impl Diagram {
         if let Some(end) = svg.rfind("</svg>") {
             svg.replace_range(end.., &extra);
         }
-        Ok(svg)
+        // A control character in a title or a name would leave the document ill-formed.
+        Ok(match crate::escape::controls(&svg) {
+            std::borrow::Cow::Borrowed(_) => svg,
+            std::borrow::Cow::Owned(shown) => shown,
+        })
     }
 
     fn draw_panel(

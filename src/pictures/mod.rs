@@ -55,7 +55,7 @@ pub mod scene;
 
 use std::path::Path;
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 
 pub use diagram::{Diagram, Marker, MarkerKind, Panel, Polar, Series};
 pub use drawing::{Drawing, Frame, Style};
@@ -68,31 +68,10 @@ pub const FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
 /// The font's family name, as written in the SVG files.
 pub const FONT_FAMILY: &str = "DejaVu Sans";
 
-/// Writes `bytes` to `path` through a temporary file in the same folder, renamed when
-/// complete (a reader never sees half a picture).
+/// Writes `bytes` to `path` through [`crate::files::write_atomically`] (a reader never sees
+/// half a picture; an input is never overwritten).
 pub(crate) fn write_file(path: &Path, bytes: &[u8]) -> Result<()> {
-    let error = |source| Error::Write {
-        path: path.to_owned(),
-        source,
-    };
-    let mut tmp = path.as_os_str().to_owned();
-    tmp.push(".tmp");
-    let tmp = std::path::PathBuf::from(tmp);
-    std::fs::write(&tmp, bytes).map_err(error)?;
-    std::fs::rename(&tmp, path).map_err(error)
+    crate::files::write_atomically(path, |out| out.write_all(bytes))
 }
 
-/// Escapes text for SVG and HTML (`&`, `<`, `>`, `"`).
-pub(crate) fn escape(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    for c in text.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            c => out.push(c),
-        }
-    }
-    out
-}
+pub(crate) use crate::escape::xml as escape;

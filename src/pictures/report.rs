@@ -72,8 +72,8 @@ pub fn html(
         "values": values,
         "xy": xy,
     })
-    .to_string()
-    .replace("</", "<\\/");
+    .to_string();
+    let data = crate::escape::script_json(&data);
     let mut dead = Vec::new();
     write_dead_positions(scene, report, &mut dead).map_err(|source| crate::Error::Write {
         path: "<report>".into(),

@@ -288,35 +288,30 @@ pub fn drawings(
 }
 
 /// Writes the pictures of a run into `dir` (created if missing): `diagram.svg/png`, one
-/// `mechanism_*.svg/png` per drawing, and `report.html`. Returns the files written.
+/// `mechanism_*.svg/png` per drawing, and `report.html`. Returns the files written. If any
+/// of them is one of the run's inputs (a scene named `report.html`), nothing is written.
 pub fn write_dir(scene: &Scene, report: &Report, dir: &Path) -> Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir).map_err(|source| Error::Write {
-        path: dir.to_owned(),
-        source,
-    })?;
-    let mut written = Vec::new();
-    let diagram = diagram(scene, report)?;
-    let svg = diagram.to_svg()?;
-    let mut save = |name: String, svg: &str| -> Result<()> {
-        let path = dir.join(format!("{name}.svg"));
-        super::write_file(&path, svg.as_bytes())?;
-        written.push(path);
-        let path = dir.join(format!("{name}.png"));
-        super::raster::write_png(svg, &path)?;
-        written.push(path);
-        Ok(())
-    };
-    save("diagram".to_owned(), &svg)?;
+    let diagram = diagram(scene, report)?.to_svg()?;
     let animation = Animation::of(scene, report)?;
-    for (name, drawing) in drawings(scene, report, &animation)? {
-        save(name, &drawing.to_svg())?;
+    let mut pictures = drawings(scene, report, &animation)?
+        .into_iter()
+        .map(|(name, drawing)| (name, drawing.to_svg()))
+        .collect::<Vec<_>>();
+    pictures.extend(super::balancing::pictures(scene, report)?);
+    pictures.insert(0, ("diagram".to_owned(), diagram));
+    let html = super::report::html(scene, report, &animation, &pictures[0].1)?;
+    let mut written = Vec::new();
+    for (name, _) in &pictures {
+        written.push(dir.join(format!("{name}.svg")));
+        written.push(dir.join(format!("{name}.png")));
     }
-    for (name, svg) in super::balancing::pictures(scene, report)? {
-        save(name, &svg)?;
+    written.push(dir.join("report.html"));
+    crate::files::refuse_inputs(written.iter().map(PathBuf::as_path))?;
+    crate::files::create_output_folder(dir)?;
+    for ((_, svg), paths) in pictures.iter().zip(written.chunks(2)) {
+        super::write_file(&paths[0], svg.as_bytes())?;
+        super::raster::write_png(svg, &paths[1])?;
     }
-    let html = super::report::html(scene, report, &animation, &svg)?;
-    let path = dir.join("report.html");
-    super::write_file(&path, html.as_bytes())?;
-    written.push(path);
+    super::write_file(&dir.join("report.html"), html.as_bytes())?;
     Ok(written)
 }

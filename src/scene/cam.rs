@@ -156,6 +156,32 @@ pub fn parse(file: &str, text: &str) -> Result<CamScene> {
     resolve(raw, &source)
 }
 
+/// Parses and checks a cam scene that another scene names (`[drive] cam`): the file was not
+/// named by the user, so an error never quotes its content unless it is a cam scene (a TOML
+/// document with a `[cam]` table). A file that is not TOML gets the place where the TOML
+/// parser stopped and a fixed reason, one without a `[cam]` table just that.
+pub(crate) fn parse_named(file: &str, text: &str) -> Result<CamScene> {
+    let source = Source::new(file, text);
+    let not_a_cam = |span: std::ops::Range<usize>, what: &str| Error::Syntax {
+        location: source.location(span),
+        message: format!(
+            "{what}; a cam scene is a TOML file with a `[cam]` table (see docs/scene-format.md); \
+             the file's text is not shown"
+        ),
+    };
+    match text.parse::<toml::Table>() {
+        Err(e) => Err(not_a_cam(
+            e.span().unwrap_or(0..0),
+            "not a TOML file: the TOML parser stopped here",
+        )),
+        Ok(table) if !table.get("cam").is_some_and(toml::Value::is_table) => Err(not_a_cam(
+            0..0,
+            "not a cam scene: the file has no `[cam]` table",
+        )),
+        Ok(_) => parse(file, text),
+    }
+}
+
 /// Reads and checks a cam scene file.
 pub fn load(path: &std::path::Path) -> Result<CamScene> {
     let text = crate::files::read_scene(path)?;

@@ -194,15 +194,14 @@ impl Context<'_> {
         Ok((joint, measure))
     }
 
-    /// Loads the cam scene `path` (relative to this file) for `[drive] cam` of joint `joint`
-    /// and checks that its follower moves a joint of kind `kind`.
+    /// Loads the cam scene `path` (relative to this file, and under its folder unless the
+    /// user allowed more: [`crate::files::read_referenced`]) for `[drive] cam` of joint
+    /// `joint` and checks that its follower moves a joint of kind `kind`.
     fn drive_cam(&self, path: &Spanned<String>, joint: &str, kind: DriveKind) -> Result<DriveCam> {
-        let dir = std::path::Path::new(&self.source.file).parent();
-        let file = dir.map_or_else(
-            || std::path::PathBuf::from(path.get_ref()),
-            |d| d.join(path.get_ref()),
-        );
-        let cam = super::cam::load(&file).map_err(|e| {
+        let scene = std::path::Path::new(&self.source.file);
+        let (file, text) = crate::files::read_referenced(path.get_ref(), scene, "the cam file")
+            .map_err(|e| self.invalid(path, format!("`[drive] cam`: {e}")))?;
+        let cam = super::cam::parse_named(&file.display().to_string(), &text).map_err(|e| {
             self.invalid(
                 path,
                 format!("`[drive] cam`: the cam scene does not load: {e}"),
