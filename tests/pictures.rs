@@ -1,6 +1,7 @@
 //! Pictures of every scene: diagrams, drawings and the HTML report are produced, render to
 //! pixels that are not blank, frame the whole mechanism, and draw each joint where the
-//! solver puts it; `[plot]` errors are located; a long sweep is drawn within a bounded size.
+//! solver puts it; `[plot]` errors are located; a long sweep is drawn within a bounded size;
+//! names that look like markup or hold control characters stay text (issue 22).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -339,4 +340,71 @@ fn the_command_writes_pictures_report_and_json() {
     }
     assert_eq!(json["dead_positions"].as_array().unwrap().len(), 2);
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Issue 22: a title holding ESC, BEL, `<!--<script>`, `&` and quotes, and an output named
+/// `<!--<script>` (which disabled the report's script): every SVG is well-formed XML
+/// (roxmltree) and renders (resvg); the report has exactly its two `<script>` elements, its
+/// data parses as JSON and holds the name as written, and no control character and no
+/// `<!--` is left in the page.
+#[test]
+fn names_that_look_like_markup_or_hold_control_characters_stay_text() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/slider_crank.toml");
+    let text = std::fs::read_to_string(path).unwrap();
+    let line = "title = \"Offset slider-crank, r = 100 mm, l = 400 mm, e = -12 mm\"";
+    assert!(text.contains(line) && text.contains("name = \"s\"\n"));
+    let text = text
+        .replace(
+            line,
+            r#"title = "T\u001b[31mRED\u0007 <!--<script> & 'q' \"d\"""#,
+        )
+        .replace("name = \"s\"\n", "name = \"<!--<script>\"\n")
+        .replace("step = 5\n", "step = 30\n");
+    let scene = scene::parse("markup.toml", &text).unwrap();
+    assert_eq!(
+        scene.title.as_deref(),
+        Some("T\u{1b}[31mRED\u{7} <!--<script> & 'q' \"d\"")
+    );
+    let report = scene::run(&scene).unwrap();
+    let animation = Animation::of(&scene, &report).unwrap();
+    let svg = diagram(&scene, &report).unwrap().to_svg().unwrap();
+    let mut svgs = vec![svg.clone()];
+    svgs.extend(
+        drawings(&scene, &report, &animation)
+            .unwrap()
+            .into_iter()
+            .map(|(_, drawing)| drawing.to_svg()),
+    );
+    for svg in &svgs {
+        if let Err(e) = roxmltree::Document::parse(svg) {
+            panic!("not well-formed: {e}");
+        }
+        raster::render(svg).unwrap();
+        assert!(!svg.contains(['\u{1b}', '\u{7}']));
+    }
+    assert!(
+        svgs.iter()
+            .any(|s| s.contains(r"T\u{1b}[31mRED\u{7} &lt;!--&lt;script&gt;"))
+    );
+    let page = html(&scene, &report, &animation, &svg).unwrap();
+    assert_eq!(
+        page.matches("<script").count(),
+        2,
+        "the data and the program"
+    );
+    assert_eq!(page.matches("</script>").count(), 2);
+    assert!(!page.contains("<!--"));
+    assert!(!page.contains(['\u{1b}', '\u{7}']));
+    let open = r#"<script type="application/json" id="data">"#;
+    let start = page.find(open).unwrap() + open.len();
+    let end = start + page[start..].find("</script>").unwrap();
+    let data: serde_json::Value = serde_json::from_str(&page[start..end]).unwrap();
+    let names: Vec<&str> = data["columns"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c["name"].as_str().unwrap())
+        .collect();
+    assert!(names.contains(&"<!--<script>"), "{names:?}");
+    assert!(names.contains(&"<!--<script>''"), "{names:?}");
 }

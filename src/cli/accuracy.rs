@@ -57,6 +57,8 @@ pub fn accuracy(args: &AccuracyArgs) -> Result<(), Error> {
     } else {
         let path = PathBuf::from(&args.subject);
         let text = files::read_scene(&path)?;
+        // Refused before the measurement (cam files a scene names are checked once read).
+        files::refuse_inputs(outputs(args).iter().map(PathBuf::as_path))?;
         match mechdiff::scene::kind(&text) {
             Kind::Formula => {
                 let scene = formula::parse(&text, &args.subject)?;
@@ -90,9 +92,7 @@ fn save(path: &Path, text: &str) -> Result<(), Error> {
 
 fn write(args: &AccuracyArgs, report: &accuracy::Report) -> Result<(), Error> {
     // Every output checked before the first is written.
-    let svgs = args.svg.iter().flat_map(|p| [p.clone(), angle_path(p)]);
-    let outputs: Vec<PathBuf> = svgs.chain(args.csv.iter().cloned()).collect();
-    files::refuse_inputs(outputs.iter().map(PathBuf::as_path))?;
+    files::refuse_inputs(outputs(args).iter().map(PathBuf::as_path))?;
     if let Some(path) = &args.svg {
         save(path, &accuracy::plot::pareto_svg(report, 900, 600)?)?;
         accuracy::plot::along_sweep(report).write_svg(&angle_path(path))?;
@@ -124,6 +124,12 @@ fn write_rotor(args: &AccuracyArgs, report: &accuracy::rotor::RotorReport) -> Re
             Ok(())
         }
     }
+}
+
+/// The files `accuracy` writes: `--svg` and its `-angle.svg`, `--csv`.
+fn outputs(args: &AccuracyArgs) -> Vec<PathBuf> {
+    let svgs = args.svg.iter().flat_map(|p| [p.clone(), angle_path(p)]);
+    svgs.chain(args.csv.iter().cloned()).collect()
 }
 
 /// `out.svg` → `out-angle.svg`: where the error-against-angle diagram goes.
