@@ -204,10 +204,13 @@ fn control_characters_reach_the_terminal_escaped() {
 /// code the path carries, and every line holding it is a comment.
 #[test]
 fn a_newline_in_the_scene_path_cannot_add_a_line_of_rust() {
-    let path = temp_file("x\nfn injected() {} */ .toml");
+    // A folder `…x⏎fn injected() {} *` holding `s.toml`: the path holds `*/` too.
+    let dir = temp_file("x\nfn injected() {} *");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("s.toml");
     std::fs::copy(scene_path("slider_crank.toml"), &path).unwrap();
     let output = mechdiff(&["codegen", path.to_str().unwrap()]);
-    std::fs::remove_file(&path).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
     assert!(output.status.success(), "{}", stderr(&output));
     let module = stdout(&output);
     let first = module.lines().next().unwrap();
@@ -216,7 +219,7 @@ fn a_newline_in_the_scene_path_cannot_add_a_line_of_rust() {
         "{first}"
     );
     assert!(
-        first.contains(r"x\u{a}fn injected() {} */ .toml"),
+        first.contains(r"x\u{a}fn injected() {} */s.toml"),
         "{first}"
     );
     for line in module.lines().filter(|l| l.contains("injected")) {
