@@ -15,7 +15,7 @@
 //! ```
 //! use mechdiff::escape;
 //! assert_eq!(escape::xml("a<b & \u{1b}"), "a&lt;b &amp; \\u{1b}");
-//! assert_eq!(escape::script_json(r#"{"n":"<!--<script>"}"#), r#"{"n":"\u003c!--\u003cscript>"}"#);
+//! assert_eq!(escape::script_json(r#"{"n":"<!--<script>"}"#), r#"{"n":"\u003c!--\u003cscript\u003e"}"#);
 //! assert_eq!(escape::terminal("\u{1b}[31mred"), "\\u{1b}[31mred");
 //! assert_eq!(escape::rust_comment("a\nfn evil() {}"), "a\\u{a}fn evil() {}");
 //! ```
