@@ -154,10 +154,11 @@ impl CamJoint {
     /// let joint = CamJoint::new(program);
     /// let offset = 1.6; // the follower's position at s = 0
     /// let mut tracker = Solver::default().track(&m).unwrap();
-    /// tracker.move_to(offset + joint.svaj(2.5).value).unwrap();
-    /// // Between 2.5 and 3.8 the follower passes s = 0.4 (x = 2, the rod's reach) at its
-    /// // peak (π): the step is refused, with the cam angle where s first reaches 0.4.
-    /// let Err(Error::Blocked { limit, .. }) = joint.move_tracker(&mut tracker, offset, 2.5, 3.8)
+    /// tracker.move_to(offset + joint.svaj(1.9).value).unwrap(); // s = 0.35
+    /// // Between 1.9 and 4.4 (s = 0.35 again) the follower passes s = 0.4 (x = 2, the rod's
+    /// // reach) before its peak (π): the step is refused, with the cam angle where s first
+    /// // reaches 0.4.
+    /// let Err(Error::Blocked { limit, .. }) = joint.move_tracker(&mut tracker, offset, 1.9, 4.4)
     /// else { panic!("the blocked range is jumped") };
     /// let u = joint.program().reaching(0.0, PI, 0.4, mechdiff_core::cams::Side::Right);
     /// assert!((limit - u).abs() < 1e-12);
