@@ -41,7 +41,7 @@ use super::law::Side;
 use super::program::CamProgram;
 use crate::dynamics::CompiledModel;
 use crate::dynamics::plan::{Plan, Trace};
-use crate::dynamics::run::{Step, run_states};
+use crate::dynamics::run::{Step, run_moved};
 use crate::error::{Error, Result};
 use crate::geometry::{Solver, Tracker};
 use crate::jet::Jet;
@@ -277,10 +277,15 @@ pub struct CamRun {
 /// Runs `plan` for the linkage `model` driven by the cam joint `joint` at the cam angles
 /// `thetas` (in order), the cam moving as `cam(θ)`.
 ///
+/// The linkage moves from one cam angle to the next through every displacement the
+/// follower passes ([`CamJoint::move_tracker`]; from the sketch to the first, straight).
+///
 /// # Errors
 /// [`Error::MissingData`] if the model has a motor (the motor belongs on the cam shaft, which
-/// the geometry model does not contain), and the errors of the geometry solver and of the
-/// kinetostatics at the follower's drive position.
+/// the geometry model does not contain); the errors of the geometry solver, at cam angles
+/// between two positions (see [`CamJoint::move_tracker`]), at the follower's drive position
+/// on the way to the first; and those of the kinetostatics at the follower's drive
+/// position.
 pub fn run(
     joint: &CamJoint,
     plan: &Plan,
@@ -300,7 +305,11 @@ pub fn run(
     let states: Vec<(f64, DriveState)> = (thetas.iter().zip(&cams))
         .map(|(&t, c)| joint.drive_at(t, c))
         .collect();
-    let run = run_states(plan, model, solver, &states)?;
+    // From the sketch straight to the first position, then along the cam.
+    let run = run_moved(plan, model, solver, &states, |tracker, k| match k {
+        0 => tracker.move_to(states[0].0).map(drop),
+        _ => joint.move_tracker(tracker, 0.0, thetas[k - 1], thetas[k]),
+    })?;
     let steps = (run.steps.into_iter().zip(thetas).zip(cams))
         .map(|((step, &theta), cam)| {
             let torque = (step.solution.as_ref()).map(|s| joint.torque(theta, s.drive_torque));
