@@ -547,3 +547,85 @@ fn a_sweep_without_a_blocked_range_writes_the_same_bytes_as_before() {
         );
     }
 }
+
+/// An oscillating follower turns the crank of a parallelogram four-bar (crank 100 mm,
+/// sketched at 20°) back by 20.01° and forth, turning back at 172.5°, between two positions
+/// of the 15° sweep: the crank passes the parallelogram's change point (φ = 0, coupler and
+/// rocker folded onto the ground line) inside the step, and the run reports it at the cam
+/// angle where the harmonic return reaches −20°: θ = 172.5° · acos(1 − 2·20/20.01)/π.
+#[test]
+fn a_change_point_inside_a_step_is_reported_at_its_cam_angle() {
+    let dir = common::temp_file("cam-change-point");
+    std::fs::create_dir_all(&dir).unwrap();
+    let cam = r#"
+[units]
+length = "mm"
+angle = "deg"
+[cam]
+base_radius = 40
+[cam.follower]
+type = "oscillating_roller"
+pivot_distance = 120
+arm_length = 100
+radius = 10
+[[cam.segment]]
+law = "simple_harmonic"
+return = 20.01
+extent = 172.5
+[[cam.segment]]
+law = "simple_harmonic"
+rise = 20.01
+extent = 187.5
+"#;
+    std::fs::write(dir.join("cam.toml"), cam).unwrap();
+    let scene_text = r#"
+[units]
+length = "mm"
+angle = "deg"
+[points]
+A0 = [0, 0]
+B0 = [300, 0]
+A = [93.96926207859084, 34.20201433256687]
+B = [393.96926207859084, 34.20201433256687]
+[links]
+ground = ["A0", "B0"]
+crank = ["A0", "A"]
+coupler = ["A", "B"]
+rocker = ["B0", "B"]
+[joints]
+A0 = { type = "revolute", at = "A0", links = ["ground", "crank"] }
+A = { type = "revolute", at = "A", links = ["crank", "coupler"] }
+B = { type = "revolute", at = "B", links = ["coupler", "rocker"] }
+B0 = { type = "revolute", at = "B0", links = ["ground", "rocker"] }
+[drive]
+joint = "A0"
+line = ["A0", "A"]
+cam = "cam.toml"
+[sweep]
+from = 0
+to = 360
+step = 15
+[[output]]
+name = "psi"
+angle = ["B0", "B"]
+quantities = ["position"]
+"#;
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, scene_text).unwrap();
+    let result = scene::load(&path).and_then(|s| scene::run(&s));
+    let _ = std::fs::remove_dir_all(&dir);
+    let want = 172.5 * (1.0 - 2.0 * 20.0 / 20.01_f64).acos() / std::f64::consts::PI;
+    match result {
+        Err(mechdiff::Error::ChangePoint { position, .. }) => {
+            let got: f64 = position.split(' ').next().unwrap().parse().unwrap();
+            // 1e-9 rad: the change point in the crank angle to rounding, s′ ≈ 0.1 rad/rad
+            // there.
+            assert!(
+                (got - want).to_radians().abs() < 1e-9,
+                "{position} vs {want} deg"
+            );
+        }
+        Err(e) => panic!("expected a change point, got: {e}"),
+        Ok(_) => panic!("the change point inside the step was jumped"),
+    }
+}
