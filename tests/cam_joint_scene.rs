@@ -498,6 +498,25 @@ quantities = ["position", "velocity_coefficient"]
         }
     }
 
+    /// On the command line, `run` and `accuracy` (which walks the sweep's positions too)
+    /// exit with the blocked range's message, never with a table that jumps it.
+    #[test]
+    fn the_commands_exit_with_the_blocked_range() {
+        let case = CASES[0];
+        let path = case.write("cli", 0.0, 360.0, 15.0);
+        for command in ["run", "accuracy"] {
+            let out = super::common::mechdiff(&[command, path.to_str().unwrap()]);
+            let message = super::common::stderr(&out);
+            assert!(!out.status.success(), "{command}: exit 0");
+            assert!(
+                message.contains("cannot assemble between drive positions 165 deg and 180 deg")
+                    && message.contains("first fails at 170.94705787858"),
+                "{command}: {message}"
+            );
+        }
+        let _ = std::fs::remove_dir_all(path.parent().unwrap());
+    }
+
     /// The same cams with a lift 1 mm short of the reach run through every position.
     #[test]
     fn a_follower_within_reach_runs_the_whole_sweep() {
