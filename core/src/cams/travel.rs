@@ -106,6 +106,10 @@ impl CamProgram {
                     })?;
             }
         }
+        if points.len() == 2 && candidates.is_empty() {
+            // One stretch of one segment, monotone: nothing to evaluate.
+            return Ok(Vec::new());
+        }
         points.extend(candidates);
         // In walk order, from `from`.
         points.sort_by(|a, b| ((a - from) * (end - from)).total_cmp(&((b - from) * (end - from))));
