@@ -269,3 +269,47 @@ fn a_motor_on_the_follower_is_refused() {
     .unwrap_err();
     assert!(error.to_string().contains("motor"), "{error}");
 }
+
+/// A cam that pushes the slider past the crank's reach (R + L from O) and back between two
+/// cam angles of the run: the run is refused with the blocked range between them, and the
+/// limit is the cam angle where the harmonic rise reaches R + L, solved by hand:
+/// s = x₀ + H (1 − cos θ)/2 = R + L.
+#[test]
+fn a_blocked_range_between_two_cam_angles_is_reported_at_its_cam_angle() {
+    let m = mechanism();
+    let d = Dynamics::new();
+    let model = d.compile(&m).unwrap();
+    let plan = Plan::for_requests(&[Request::Positions], d.available(&m));
+    let x0 = sketch_slider();
+    // 10 µm past the reach.
+    let lift = R + L - x0 + 1e-5;
+    let program = CamProgram::new(
+        vec![
+            Segment::law(MotionLaw::SimpleHarmonic, lift, PI),
+            Segment::law(MotionLaw::SimpleHarmonic, -lift, PI),
+        ],
+        x0,
+    )
+    .unwrap();
+    let cam = CamJoint::new(program);
+    let (a, b) = (PI - 0.1, PI + 0.1);
+    // Both cam angles are within reach (the peak lies between them).
+    for t in [a, b] {
+        assert!(cam.svaj(t).value < R + L - 1e-4, "θ = {t}");
+    }
+    let error = joint::run(&cam, &plan, &model, &Solver::default(), &[a, b], |_| {
+        DriveState::constant_speed(1.0)
+    })
+    .unwrap_err();
+    let mechdiff_core::Error::Blocked {
+        from, to, limit, ..
+    } = error
+    else {
+        panic!("expected a blocked range, got {error}");
+    };
+    assert_eq!((from, to), (a, b));
+    let want = (1.0 - 2.0 * (R + L - x0) / lift).acos();
+    // 1e-9 rad: the limit in s is the root of the dyad's margin to rounding (1e-17 m) and
+    // s′ = H sin θ / 2 ≈ 3e-4 m/rad there: ~1e-13 rad.
+    assert!((limit - want).abs() < 1e-9, "{limit} vs {want}");
+}

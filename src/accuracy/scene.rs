@@ -325,10 +325,20 @@ pub fn case_at<'a>(
     let mut reference = Vec::with_capacity(positions.len());
     // The tracker at each sweep position: finite differences start from the nearest one.
     let mut trackers = Vec::with_capacity(positions.len());
+    let mut previous = None;
     for &phi in &positions {
-        tracker
-            .move_to(drive.joint(phi))
-            .map_err(|e| crate::scene::run::solver_error(scene, e))?;
+        match (drive.cam, previous) {
+            // Along the cam from the previous position: every displacement the follower
+            // passes is proven (the other walks below then stay within what this one
+            // proved).
+            (Some(cam), Some(from)) => (cam.joint)
+                .move_tracker(&mut tracker, scene.drive.at_sketch, from, phi)
+                .map_err(|e| crate::scene::run::cam_error(scene, e))?,
+            _ => (tracker.move_to(drive.joint(phi)))
+                .map(drop)
+                .map_err(|e| crate::scene::run::solver_error(scene, e))?,
+        }
+        previous = Some(phi);
         trackers.push(tracker.clone());
         let q = reference_pose(&tracker, equations.as_ref(), &drive, phi).map_err(|e| {
             refuse(format!(

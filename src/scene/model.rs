@@ -348,6 +348,25 @@ impl Scene {
         )
     }
 
+    /// A cam angle (SI) of a cam drive with the follower's position there: `"21.5 deg (the
+    /// cam's follower at 425 mm, joint `guide`)"`; the drive text without a cam.
+    pub fn cam_angle_text(&self, theta: f64) -> String {
+        let Some(cam) = &self.drive.cam else {
+            return self.drive_text(theta);
+        };
+        let dimension = cam.joint_kind.dimension();
+        format!(
+            "{} (the cam's follower at {} {}, joint `{}`)",
+            self.drive_text(theta),
+            Units::tidy(
+                self.units
+                    .from_si(self.drive.joint_position(theta), dimension)
+            ),
+            self.units.symbol(dimension),
+            self.drive.joint
+        )
+    }
+
     /// A position of the driven joint (SI) as the geometry solver sees it: the drive text,
     /// or for a cam drive the follower's position in its own unit.
     pub fn joint_text(&self, value: f64) -> String {

@@ -416,6 +416,31 @@ pub fn describe_motion_range(scene: &Scene, range: &MotionRange) -> String {
 
 /// A core solver error, with drive positions in the scene's units.
 pub(crate) fn solver_error(scene: &Scene, source: mechdiff_core::Error) -> Error {
+    located_error(scene, source, &|x| scene.joint_text(x), &|x| {
+        scene.joint_text(x)
+    })
+}
+
+/// The error of a move along a cam ([`mechdiff_core::cams::CamJoint::move_tracker`]), whose
+/// drive positions are cam angles: in the scene's angle unit, a limit or singular position
+/// with the follower's position there.
+pub(crate) fn cam_error(scene: &Scene, source: mechdiff_core::Error) -> Error {
+    located_error(
+        scene,
+        source,
+        &|theta| scene.cam_angle_text(theta),
+        &|theta| scene.drive_text(theta),
+    )
+}
+
+/// The scene's error for the solver's `source`, each drive position written by `at` (a
+/// position where something happens) or `between` (the ends of a move).
+fn located_error(
+    scene: &Scene,
+    source: mechdiff_core::Error,
+    at: &dyn Fn(f64) -> String,
+    between: &dyn Fn(f64) -> String,
+) -> Error {
     use mechdiff_core::Error as Core;
     let joined = |joints: &[String]| joints.join(", ");
     match source {
@@ -426,8 +451,8 @@ pub(crate) fn solver_error(scene: &Scene, source: mechdiff_core::Error) -> Error
             residual,
         } => Error::Unassemblable {
             file: scene.file.clone(),
-            position: scene.joint_text(phi),
-            last: scene.joint_text(last_assembled),
+            position: at(phi),
+            last: between(last_assembled),
             loop_joints: joined(&joints),
             residual,
         },
@@ -437,7 +462,7 @@ pub(crate) fn solver_error(scene: &Scene, source: mechdiff_core::Error) -> Error
             joints,
         } => Error::Singular {
             file: scene.file.clone(),
-            position: scene.joint_text(phi),
+            position: at(phi),
             loop_joints: joined(&joints),
             condition,
         },
@@ -445,7 +470,7 @@ pub(crate) fn solver_error(scene: &Scene, source: mechdiff_core::Error) -> Error
             file: scene.file.clone(),
             quantity: quantity.to_owned(),
             value: "not finite".to_owned(),
-            position: scene.joint_text(phi),
+            position: at(phi),
         },
         Core::Blocked {
             from,
@@ -454,20 +479,20 @@ pub(crate) fn solver_error(scene: &Scene, source: mechdiff_core::Error) -> Error
             joints,
         } => Error::Blocked {
             file: scene.file.clone(),
-            from: scene.joint_text(from).into(),
-            to: scene.joint_text(to).into(),
-            limit: scene.joint_text(limit).into(),
+            from: between(from).into(),
+            to: between(to).into(),
+            limit: at(limit).into(),
             loop_joints: joined(&joints).into(),
         },
         Core::ChangePoint { phi, joints } => Error::ChangePoint {
             file: scene.file.clone(),
-            position: scene.joint_text(phi),
+            position: at(phi),
             loop_joints: joined(&joints),
         },
         Core::BranchFlip { from, to, joints } => Error::BranchFlip {
             file: scene.file.clone(),
-            from: scene.joint_text(from),
-            to: scene.joint_text(to),
+            from: between(from),
+            to: between(to),
             loop_joints: joined(&joints),
         },
         other => model_error(scene, other),

@@ -13,7 +13,7 @@ use super::evaluate::{Resolved, evaluate, from_code, quantity};
 use super::model::Scene;
 use super::outputs::{Column, columns};
 use super::plan::Plan;
-use super::run::solver_error;
+use super::run::{cam_error, solver_error};
 
 /// A pose that amplifies rounding more than this (see `Tracker::amplification`) is
 /// reported as ill-conditioned: its results carry a relative error above ~2e-12.
@@ -62,6 +62,9 @@ pub struct Sweeper<'s> {
     program: Option<ProgramPath>,
     /// Why the run-time evaluator is interpreted where the JIT was asked for.
     jit_warning: Option<String>,
+    /// The drive position of the last row (for a cam drive, the next move goes along the
+    /// cam from there); `None` at the sketch.
+    last: Option<f64>,
 }
 
 /// The walk at the derivative order the plan needs.
@@ -110,6 +113,7 @@ impl<'s> Sweeper<'s> {
             worst: None,
             program,
             jit_warning,
+            last: None,
         })
     }
 
@@ -160,6 +164,7 @@ impl<'s> Sweeper<'s> {
         row.clear();
         row.push(phi);
         if self.program_row(phi, row) {
+            self.last = Some(phi);
             return Ok(());
         }
         let scene = self.scene;
@@ -171,25 +176,25 @@ impl<'s> Sweeper<'s> {
                 tracker.move_to(at).map_err(|e| solver_error(scene, e))?;
             }
         }
-        // The solver moves the driven joint: φ itself, or s(θ) for a cam drive.
-        let joint = scene.drive.joint_position(phi);
+        let last = self.last;
         let o = match &mut self.walk {
             Walk::First(o) => {
-                let k = solve::<1>(scene, &mut o.tracker, joint)?;
+                let k = solve_along::<1>(scene, &mut o.tracker, last, phi)?;
                 o.push(scene, phi, &k, row);
                 o
             }
             Walk::Second(o) => {
-                let k = solve::<2>(scene, &mut o.tracker, joint)?;
+                let k = solve_along::<2>(scene, &mut o.tracker, last, phi)?;
                 o.push(scene, phi, &k, row);
                 o
             }
             Walk::Third(o) => {
-                let k = solve::<3>(scene, &mut o.tracker, joint)?;
+                let k = solve_along::<3>(scene, &mut o.tracker, last, phi)?;
                 o.push(scene, phi, &k, row);
                 o
             }
         };
+        self.last = Some(phi);
         let (amplification, l) = o.tracker.amplification_loop();
         if is_worse(amplification, self.worst.as_ref()) {
             self.worst = Some((amplification, phi, l));
@@ -217,6 +222,7 @@ impl<'s> Sweeper<'s> {
         // continuing another (its pieces are solved again in order).
         self.program.is_none()
             && other.program.is_none()
+            && self.last.map(f64::to_bits) == other.last.map(f64::to_bits)
             && a.tracker.same_state(&b.tracker)
             && previous(a) == previous(b)
     }
@@ -324,6 +330,31 @@ impl Outputs<'_> {
                 }
             }
         }
+    }
+}
+
+/// Moves `tracker` to drive position `phi` and lifts the pose to `N` derivatives. The
+/// solver moves the driven joint: to φ itself, or for a cam drive to s(θ) along the cam
+/// from the previous position `last` (through every displacement the follower passes
+/// between them, see [`mechdiff_core::cams::CamJoint::move_tracker`]; from the sketch,
+/// straight to s(θ)).
+fn solve_along<'m, const N: usize>(
+    scene: &Scene,
+    tracker: &mut Tracker<'m>,
+    last: Option<f64>,
+    phi: f64,
+) -> Result<Kinematics<'m, N>> {
+    match (&scene.drive.cam, last) {
+        (Some(cam), Some(from)) => {
+            let offset = scene.drive.at_sketch;
+            (cam.joint)
+                .move_tracker(tracker, offset, from, phi)
+                .map_err(|e| cam_error(scene, e))?;
+            tracker
+                .kinematics::<N>()
+                .map_err(|e| solver_error(scene, e))
+        }
+        _ => solve::<N>(scene, tracker, scene.drive.joint_position(phi)),
     }
 }
 

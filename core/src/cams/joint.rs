@@ -41,9 +41,9 @@ use super::law::Side;
 use super::program::CamProgram;
 use crate::dynamics::CompiledModel;
 use crate::dynamics::plan::{Plan, Trace};
-use crate::dynamics::run::{Step, run_states};
+use crate::dynamics::run::{Step, run_moved};
 use crate::error::{Error, Result};
-use crate::geometry::Solver;
+use crate::geometry::{Solver, Tracker};
 use crate::jet::Jet;
 use crate::motion::DriveState;
 
@@ -112,6 +112,130 @@ impl CamJoint {
         Jet::new(x.value, out)
     }
 
+    /// Moves `tracker` (the linkage whose drive variable is the follower's position
+    /// `offset + s`) along the cam from cam angle `from` to `to`: through the follower's
+    /// position at every reversal of s between them ([`CamProgram::reversals`]), then to
+    /// `offset + s(to)`. Each stretch is a move of the linkage's own tracker, so every
+    /// displacement the follower passes is proven assemblable on the tracker's branch (the
+    /// linkage's checked, halved steps), and a limit position, change point, toggle or
+    /// branch flip inside the step is found and refined as for any drive.
+    ///
+    /// # Errors
+    /// The tracker's errors with every drive position a cam angle: [`Error::Blocked`] from
+    /// `from` to `to` with the cam angle where the follower reaches the linkage's limit
+    /// position ([`CamProgram::reaching`] on the stretch, to adjacent floating-point
+    /// numbers), [`Error::ChangePoint`], [`Error::Singular`], [`Error::BranchFlip`],
+    /// [`Error::Unassemblable`] likewise; [`Error::MoveTooLong`] from the reversals' search
+    /// or the tracker.
+    ///
+    /// ```
+    /// use mechdiff_core::cams::{CamJoint, CamProgram, MotionLaw, Segment};
+    /// use mechdiff_core::geometry::{Drive, Mechanism, Solver};
+    /// use mechdiff_core::Error;
+    /// use std::f64::consts::PI;
+    /// // A slider (the follower) at x = 1.6 pulls a rocker of 1 through a rod of 1: the rod
+    /// // reaches no further than x = 2. The cam lifts the follower 0.5 and back (cycloidal
+    /// // rise over a half turn, return over the other).
+    /// let (a, b) = (0.8, 0.6); // rocker pin (0.8, 0.6): the rod from it to (1.6, 0) is 1 long
+    /// let m = Mechanism::builder()
+    ///     .point("O", [0.0, 0.0]).point("A", [a, b]).point("B", [1.6, 0.0])
+    ///     .point("X", [3.0, 0.0])
+    ///     .ground(["O", "X"]).link("rocker", ["O", "A"]).link("rod", ["A", "B"])
+    ///     .link("follower", ["B"])
+    ///     .revolute("O", "ground", "rocker", "O").revolute("A", "rocker", "rod", "A")
+    ///     .revolute("B", "rod", "follower", "B")
+    ///     .prismatic("guide", "ground", ["O", "X"], "follower", "B")
+    ///     .drive(Drive::displacement("guide"))
+    ///     .build().unwrap();
+    /// let program = CamProgram::new(vec![
+    ///     Segment::law(MotionLaw::Cycloidal, 0.5, PI),
+    ///     Segment::law(MotionLaw::Cycloidal, -0.5, PI),
+    /// ], 0.0).unwrap();
+    /// let joint = CamJoint::new(program);
+    /// let offset = 1.6; // the follower's position at s = 0
+    /// let mut tracker = Solver::default().track(&m).unwrap();
+    /// tracker.move_to(offset + joint.svaj(1.9).value).unwrap(); // s = 0.35
+    /// // Between 1.9 and 4.4 (s = 0.35 again) the follower passes s = 0.4 (x = 2, the rod's
+    /// // reach) before its peak (π): the step is refused, with the cam angle where s first
+    /// // reaches 0.4.
+    /// let Err(Error::Blocked { limit, .. }) = joint.move_tracker(&mut tracker, offset, 1.9, 4.4)
+    /// else { panic!("the blocked range is jumped") };
+    /// let u = joint.program().reaching(0.0, PI, 0.4, mechdiff_core::cams::Side::Right);
+    /// assert!((limit - u).abs() < 1e-12);
+    /// ```
+    pub fn move_tracker(
+        &self,
+        tracker: &mut Tracker<'_>,
+        offset: f64,
+        from: f64,
+        to: f64,
+    ) -> Result<()> {
+        let mut stops = self.program.reversals(from, to, self.side)?;
+        stops.push(to);
+        let mut start = from;
+        for stop in stops {
+            if let Err(e) = tracker.move_to(offset + self.svaj(stop).value) {
+                // The stretch from `start` to `stop` is monotone: each follower position
+                // the tracker names is reached at one cam angle of it.
+                let theta = |x: f64| (self.program).reaching(start, stop, x - offset, self.side);
+                return Err(match e {
+                    Error::Blocked { limit, joints, .. } => Error::Blocked {
+                        from,
+                        to,
+                        limit: theta(limit),
+                        joints,
+                    },
+                    Error::ChangePoint { phi, joints } => Error::ChangePoint {
+                        phi: theta(phi),
+                        joints,
+                    },
+                    Error::Singular {
+                        phi,
+                        condition,
+                        joints,
+                    } => Error::Singular {
+                        phi: theta(phi),
+                        condition,
+                        joints,
+                    },
+                    Error::Unassemblable {
+                        phi,
+                        last_assembled,
+                        joints,
+                        residual,
+                    } => Error::Unassemblable {
+                        phi: theta(phi),
+                        last_assembled: theta(last_assembled),
+                        joints,
+                        residual,
+                    },
+                    Error::BranchFlip {
+                        from: before,
+                        to: after,
+                        joints,
+                    } => Error::BranchFlip {
+                        from: theta(before),
+                        to: theta(after),
+                        joints,
+                    },
+                    Error::NonFinite { phi, quantity } => Error::NonFinite {
+                        phi: theta(phi),
+                        quantity,
+                    },
+                    Error::MoveTooLong { steps, longest, .. } => Error::MoveTooLong {
+                        from,
+                        to,
+                        steps,
+                        longest,
+                    },
+                    other => other,
+                });
+            }
+            start = stop;
+        }
+        Ok(())
+    }
+
     /// The torque on the cam shaft, T = F_s s′(θ), for the generalised force `drive_force`
     /// the geometry drive needs (N for a translating follower, N·m for an oscillating one).
     pub fn torque(&self, theta: f64, drive_force: f64) -> f64 {
@@ -153,10 +277,15 @@ pub struct CamRun {
 /// Runs `plan` for the linkage `model` driven by the cam joint `joint` at the cam angles
 /// `thetas` (in order), the cam moving as `cam(θ)`.
 ///
+/// The linkage moves from one cam angle to the next through every displacement the
+/// follower passes ([`CamJoint::move_tracker`]; from the sketch to the first, straight).
+///
 /// # Errors
 /// [`Error::MissingData`] if the model has a motor (the motor belongs on the cam shaft, which
-/// the geometry model does not contain), and the errors of the geometry solver and of the
-/// kinetostatics at the follower's drive position.
+/// the geometry model does not contain); the errors of the geometry solver, at cam angles
+/// between two positions (see [`CamJoint::move_tracker`]), at the follower's drive position
+/// on the way to the first; and those of the kinetostatics at the follower's drive
+/// position.
 pub fn run(
     joint: &CamJoint,
     plan: &Plan,
@@ -176,7 +305,11 @@ pub fn run(
     let states: Vec<(f64, DriveState)> = (thetas.iter().zip(&cams))
         .map(|(&t, c)| joint.drive_at(t, c))
         .collect();
-    let run = run_states(plan, model, solver, &states)?;
+    // From the sketch straight to the first position, then along the cam.
+    let run = run_moved(plan, model, solver, &states, |tracker, k| match k {
+        0 => tracker.move_to(states[0].0).map(drop),
+        _ => joint.move_tracker(tracker, 0.0, thetas[k - 1], thetas[k]),
+    })?;
     let steps = (run.steps.into_iter().zip(thetas).zip(cams))
         .map(|((step, &theta), cam)| {
             let torque = (step.solution.as_ref()).map(|s| joint.torque(theta, s.drive_torque));

@@ -7,7 +7,9 @@
 //! - [`peaks`]: the peak coefficients of a law (C_v, C_a, C_j);
 //! - [`follower`] and [`profile`]: pitch curve, profile, pressure angle, curvature,
 //!   undercutting; [`sizing`]: the smallest base circle;
-//! - [`joint`]: a cam program as the drive of a linkage ([`CamJoint`]).
+//! - [`joint`]: a cam program as the drive of a linkage ([`CamJoint`]); [`travel`]: where
+//!   the follower turns back between two cam angles, so that the linkage's proof of motion
+//!   covers every displacement the cam passes.
 //!
 //! Angles are in radians, the cam turns counter-clockwise; the displacement is in the unit of
 //! the lifts (a length for a translating follower, an angle in radians for an oscillating
@@ -22,6 +24,7 @@ pub mod peaks;
 pub mod profile;
 pub mod program;
 pub mod sizing;
+pub mod travel;
 
 pub use continuity::{Boundary, BoundaryKind, ContinuityReport};
 pub use follower::{Dimensions, Follower};

@@ -302,6 +302,14 @@ impl CamProgram {
         self.placed.iter().map(|p| &p.segment)
     }
 
+    /// Segment `index` (from 0).
+    ///
+    /// # Panics
+    /// If `index` is not below [`CamProgram::len`].
+    pub fn segment(&self, index: usize) -> &Segment {
+        &self.placed[index].segment
+    }
+
     /// Number of segments.
     pub fn len(&self) -> usize {
         self.placed.len()

@@ -6,7 +6,7 @@ use super::kinetostatics::{self, Solution};
 use super::model::CompiledModel;
 use super::plan::{Plan, Trace};
 use super::shaking::{ShakingForce, shaking_force};
-use crate::geometry::Solver;
+use crate::geometry::{Solver, Tracker};
 use crate::{DriveState, Error, Jet};
 
 /// The results at one drive position; what the plan did not ask for is `None`.
@@ -72,6 +72,22 @@ pub fn run_states(
     solver: &Solver,
     states: &[(f64, DriveState)],
 ) -> Result<Run, Error> {
+    run_moved(plan, model, solver, states, |tracker, k| {
+        tracker.move_to(states[k].0).map(drop)
+    })
+}
+
+/// [`run_states`] with the tracker brought to state `k`'s drive position by
+/// `move_to(tracker, k)` (in order, from the sketch pose): a drive that reaches its next
+/// position along a path of its own, e.g. a cam's follower through every displacement it
+/// passes ([`crate::cams::CamJoint::move_tracker`]).
+pub fn run_moved(
+    plan: &Plan,
+    model: &CompiledModel<'_>,
+    solver: &Solver,
+    states: &[(f64, DriveState)],
+    mut move_to: impl FnMut(&mut Tracker<'_>, usize) -> Result<(), Error>,
+) -> Result<Run, Error> {
     if plan.shaking && model.masses.is_empty() {
         return Err(Error::MissingData {
             what: "the shaking force".to_owned(),
@@ -81,8 +97,8 @@ pub fn run_states(
     let mut tracker = solver.track(model.mechanism)?;
     let mut trace = Trace::default();
     let mut steps = Vec::with_capacity(states.len());
-    for &(phi, d) in states {
-        tracker.move_to(phi)?;
+    for (k, &(phi, d)) in states.iter().enumerate() {
+        move_to(&mut tracker, k)?;
         trace.positions += 1;
         let mut step = Step {
             phi,

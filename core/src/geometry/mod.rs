@@ -19,7 +19,7 @@ mod mobility;
 mod model;
 mod output;
 pub mod parametric;
-mod solver;
+pub(crate) mod solver;
 pub mod trace;
 mod validate;
 

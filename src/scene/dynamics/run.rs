@@ -1,6 +1,6 @@
 //! Running the `[[dynamics]]` outputs: the planned sweep and its columns.
 
-use mechdiff_core::dynamics::run::{Run, run_states};
+use mechdiff_core::dynamics::run::{Run, run_moved};
 use mechdiff_core::dynamics::{
     Energy, JointReaction, Plan, PowerBalance, ShakingForce, ShakingSummary,
 };
@@ -79,7 +79,27 @@ pub(crate) fn run(
             None => (phi, drive),
         })
         .collect();
-    let result = run_states(&plan, &model, &Solver::default(), &states).map_err(|e| match e {
+    // From the sketch straight to the first position, then (for a cam drive) along the cam
+    // through every displacement the follower passes; `along` says whether an error comes
+    // from a move along the cam (its drive positions are cam angles).
+    let along = std::cell::Cell::new(false);
+    let moved = run_moved(
+        &plan,
+        &model,
+        &Solver::default(),
+        &states,
+        |tracker, k| match (&scene.drive.cam, k) {
+            (Some(c), 1..) => {
+                let offset = scene.drive.at_sketch;
+                (c.joint
+                    .move_tracker(tracker, offset, positions[k - 1], positions[k]))
+                .inspect_err(|_| along.set(true))
+            }
+            _ => tracker.move_to(states[k].0).map(drop),
+        },
+    );
+    let result = moved.map_err(|e| match e {
+        e if along.get() => crate::scene::run::cam_error(scene, e),
         mechdiff_core::Error::SelfLocking {
             phi,
             joints,

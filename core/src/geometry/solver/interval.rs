@@ -14,7 +14,10 @@
 //! above its error bound: `f − H = f⁗(ξ)/24 · t²(1 − t)² h⁴` (t = (φ − a)/h), at most
 //! `h⁴ max|f⁗| / 384`, and `H″ − f″` at either end is `h² f⁗ / 12` (to leading order), so
 //! `e = max |H″ − f″|` at the ends estimates `h⁴ |f⁗|/12` and `|f − H| ≤ e / 32` — the test
-//! uses `e / 4`, eight times that, and requires `min H − e/4 > 0`. A margin can dip to
+//! uses `e / 4`, eight times that, and requires `min H − e/4 > TOUCH`: a margin whose
+//! minimum over the step is within [`TOUCH`] of zero is not shown positive (a double root
+//! between the two positions — a change point — makes `min H` exactly 0 up to rounding,
+//! which may come out positive), so the step is halved and the end of the branch decides. A margin can dip to
 //! zero between two positions only by a feature its value, slope and curvature at both
 //! ends do not show, i.e. through derivatives of order five and higher; steps are
 //! therefore also capped ([`LONGEST_TURN`] rad, or that fraction of the sketch for a
@@ -99,7 +102,8 @@ pub(crate) fn passes(a: Dual2_64, b: Dual2_64, h: f64) -> bool {
         }
     }
     let bound = low - curvature_gap / 4.0;
-    bound > 0.0
+    // Above the band where a touching margin (a change point) leaves only rounding.
+    bound > TOUCH
 }
 
 impl Tracker<'_> {
