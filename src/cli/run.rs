@@ -6,6 +6,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use mechdiff::evaluator::Evaluator;
+use mechdiff::scene::any::AnyScene;
 use mechdiff::scene::{self, table};
 use mechdiff::{Error, files, pictures, sensitivity, stream};
 
@@ -86,7 +87,8 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
             });
         }
     }
-    let kind = super::scene_kind(&args.scene);
+    let text = files::read_scene(&args.scene)?;
+    let kind = scene::kind(&text);
     let given = [
         ("--set", !args.set.is_empty()),
         ("--sweep", args.sweep.is_some()),
@@ -99,14 +101,14 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         ("--evaluator", args.evaluator != Evaluator::Auto),
     ];
     super::refuse_options(kind, &given, &args.scene)?;
-    match kind {
-        scene::Kind::Cam => return super::cam::run(args),
-        scene::Kind::Rotor => return super::rotor::run(args),
-        scene::Kind::Formula => return super::formula::run(args),
-        scene::Kind::Linkage => {}
-    }
-    let text = files::read_scene(&args.scene)?;
     let file = args.scene.display().to_string();
+    // The reader `check` uses: the same verdict on everything up to solving.
+    let read = match scene::any::read(&file, &text, &args.set)? {
+        AnyScene::Cam(cam) => return super::cam::run(args, &cam),
+        AnyScene::Rotor(rotor) => return super::rotor::run(args, &rotor),
+        AnyScene::Formula(formulas, _) => return super::formula::run(args, &formulas),
+        AnyScene::Linkage(scene) => scene,
+    };
     let study_asked = sensitivity::requested(&text) || args.monte_carlo.is_some();
     let mut study = None;
     let (scene, report) = match &args.sweep {
@@ -139,7 +141,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
             (scene, report)
         }
         None => {
-            let mut scene = scene::parse_with(&file, &text, &args.set)?;
+            let mut scene = *read;
             scene.evaluator = args.evaluator;
             let in_memory = scene.dynamics.is_some()
                 || scene.balancing.is_some()

@@ -61,6 +61,33 @@ pub(crate) fn columns(scene: &Scene, b: &SceneBalancing) -> Vec<Column> {
     ]
 }
 
+/// What `[rotor]` and `[balancing]` check before anything is solved (`mechdiff check` runs
+/// it too): the rotor's answers are finite, and counterweights have a shaking force to size
+/// them from (a drive `speed`, or an acceleration, that is not zero).
+pub(crate) fn before_solving(scene: &Scene, b: &SceneBalancing) -> Result<()> {
+    if let Some(r) = &b.rotor {
+        r.answers()?;
+    }
+    if let Some((_, location)) = &b.counterweights {
+        let message = match scene.drive.speed {
+            None => {
+                "`[balancing]` sizes counterweights from the shaking force: give the \
+                     drive's `speed`"
+            }
+            Some(omega) if omega == 0.0 && scene.drive.acceleration == 0.0 => {
+                "`[balancing]` sizes counterweights from the shaking force, which is zero at a \
+                 drive `speed` of 0 (and no acceleration): give a non-zero `speed`"
+            }
+            Some(_) => return Ok(()),
+        };
+        return Err(Error::Invalid {
+            location: location.clone(),
+            message: message.to_owned(),
+        });
+    }
+    Ok(())
+}
+
 /// Runs the balancing sections of `scene` at the drive positions `positions`.
 pub(crate) fn run(
     scene: &Scene,
@@ -68,6 +95,7 @@ pub(crate) fn run(
     mechanism: &Mechanism,
     positions: &[f64],
 ) -> Result<BalancingReport> {
+    before_solving(scene, b)?;
     let mut report = BalancingReport {
         columns: Vec::new(),
         rows: Vec::new(),
@@ -109,14 +137,7 @@ pub(crate) fn run(
         ));
     }
     if let Some((counterweights, location)) = &b.counterweights {
-        let Some(omega) = scene.drive.speed else {
-            return Err(Error::Invalid {
-                location: location.clone(),
-                message: "`[balancing]` sizes counterweights from the shaking force: give the \
-                          drive's `speed`"
-                    .to_owned(),
-            });
-        };
+        let omega = scene.drive.speed.unwrap_or(0.0);
         let data = scene
             .dynamics
             .as_ref()
