@@ -439,3 +439,27 @@ pub enum Error {
 
 /// Result with the facade's [`enum@Error`].
 pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+impl Error {
+    /// Whether the error is one that only solving drive positions finds: the mechanism's
+    /// motion (it cannot assemble, is blocked, reaches a change point or toggle, flips its
+    /// branch, misses a value of `[sweep] of`) or an overflow at a position. `mechdiff check`
+    /// solves no position, so these are the only errors `run` may give for a scene `check`
+    /// accepts; every other error is given by both ([`crate::scene::any::read`]).
+    pub fn is_found_by_solving(&self) -> bool {
+        match self {
+            Error::NotFinite { .. }
+            | Error::Unassemblable { .. }
+            | Error::Blocked { .. }
+            | Error::ChangePoint { .. }
+            | Error::Singular { .. }
+            | Error::NotReached { .. }
+            | Error::BranchFlip { .. }
+            | Error::FormulaAt { .. } => true,
+            Error::AtParameter { source, .. } | Error::Perturbed { source, .. } => {
+                source.is_found_by_solving()
+            }
+            _ => false,
+        }
+    }
+}

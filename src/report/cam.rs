@@ -511,8 +511,10 @@ pub fn write_json(scene: &CamScene, out: &mut impl Write) -> io::Result<()> {
     use serde_json::{Value, json};
     let cam = &scene.mechanism;
     let u = &scene.units;
-    let angle = |rad: f64| u.from_si(rad, Dimension::Angle);
-    let length = |m: f64| u.from_si(m, Dimension::Length);
+    // Rounded to 15 significant digits, as printed: 120, not 119.99999999999999.
+    let tidy = |v: f64| Units::tidy(v).parse::<f64>().unwrap_or(v);
+    let angle = |rad: f64| tidy(u.from_si(rad, Dimension::Angle));
+    let length = |m: f64| tidy(u.from_si(m, Dimension::Length));
     let report = ContinuityReport::new(&cam.program);
     let analysis = cam.analyse();
     let extreme = |e: mechdiff_core::cams::Extreme, value: &dyn Fn(f64) -> f64| json!({ "value": value(e.value), "cam_angle": angle(e.angle) });

@@ -192,15 +192,16 @@ impl CamScene {
         if let Some((limit, at)) = &self.pressure_angle_limit
             && p.value > *limit
         {
-            let angle = |v: f64| Units::tidy(self.units.from_si(v, Dimension::Angle));
+            // As the report prints the maximum pressure angle (4 decimals) and its cam angle.
+            let angle = |v: f64| format!("{:.4}", self.units.from_si(v, Dimension::Angle));
             let unit = self.units.symbol(Dimension::Angle);
             let base = self
                 .sizing
                 .as_ref()
                 .map(|(base, _)| {
                     format!(
-                        "; a base circle radius of at least {} {} keeps it",
-                        Units::tidy(self.units.from_si(*base, Dimension::Length)),
+                        "; a base circle radius of at least {:.4} {} keeps it",
+                        self.units.from_si(*base, Dimension::Length),
                         self.units.symbol(Dimension::Length)
                     )
                 })
@@ -417,7 +418,13 @@ fn engine_message(
             let value = match what.as_str() {
                 // Not a number: the follower type is what is wrong.
                 "follower" => return problem.clone(),
-                "pressure angle limit" => cam_angle(*value),
+                "pressure angle limit" => {
+                    return format!(
+                        "{what} = {}: must be between 0 and {} (90°)",
+                        cam_angle(*value),
+                        cam_angle(90.0)
+                    );
+                }
                 "smallest displacement" => shown(*value, lift_dimension),
                 _ => shown(*value, Dimension::Length),
             };
