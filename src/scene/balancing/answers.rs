@@ -33,7 +33,18 @@ impl SceneRotor {
             message: e.to_string(),
         };
         let two_plane = match self.planes {
-            Some([left, right]) => Some(rotor.two_plane_balance(left, right).map_err(located)?),
+            Some([left, right]) => Some(rotor.two_plane_balance(left, right).map_err(|e| {
+                match (e, &self.planes_at) {
+                    (mechdiff_core::Error::CoincidentPlanes { .. }, Some(at)) => Error::Invalid {
+                        location: at.clone(),
+                        message: "the two correction planes coincide to rounding (closer than \
+                                  1e-12 of the rotor's axial extent): two-plane balancing \
+                                  needs two distinct planes; move one of them along the shaft"
+                            .to_owned(),
+                    },
+                    (e, _) => located(e),
+                }
+            })?),
             None => None,
         };
         let couple_plane = match self.couple_mass_radius {

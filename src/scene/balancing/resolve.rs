@@ -25,6 +25,8 @@ pub struct SceneRotor {
     pub couple_mass_radius: Option<f64>,
     /// Where `[rotor]` is.
     pub location: Location,
+    /// Where `planes` is written, if it is.
+    pub planes_at: Option<Location>,
 }
 
 /// The checked balancing sections of a scene.
@@ -221,5 +223,6 @@ pub(super) fn resolve_rotor(cx: &Context, r: &Spanned<RotorDef>) -> Result<Scene
         correction_radius,
         couple_mass_radius,
         location: cx.at(r),
+        planes_at: def.planes.as_ref().map(|p| cx.at(p)),
     })
 }
