@@ -536,6 +536,26 @@ mod messages_and_answers {
         );
     }
 
+    /// A step too small for a table is refused before anything is computed (1e-300 aborted
+    /// with "capacity overflow"; 1e-4° allocated gigabytes), naming the smallest step.
+    #[test]
+    fn a_cam_step_is_bounded() {
+        for step in ["1e-300", "1e-4", "0.0035"] {
+            let e = error_for(
+                "base_radius = 40",
+                &format!("base_radius = 40\nstep = {step}"),
+            );
+            assert!(e.contains("100000 rows") && e.contains("0.0036 deg"), "{e}");
+        }
+        assert!(
+            cam_scene::parse(
+                "ok.toml",
+                &GOOD.replace("base_radius = 40", "base_radius = 40\nstep = 0.0036")
+            )
+            .is_ok()
+        );
+    }
+
     /// Quoted formulas wherever a number is: the same cam as with the numbers written out
     /// (bit for bit: the formulas evaluate to the same f64).
     #[test]

@@ -19,6 +19,10 @@ use super::source::Source;
 use super::units::{Dimension, Units};
 use crate::error::{Error, Result};
 
+/// The most rows of the SVAJ table over one turn (a `step` of 0.0036° at the least): the
+/// table, its CSV and the accuracy run are bounded before anything is computed.
+pub const MAX_TABLE_ROWS: usize = 100_000;
+
 /// A cam scene file as written.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -320,6 +324,24 @@ fn resolve(file: CamFile, source: &Source) -> Result<CamScene> {
                 return Err(invalid(
                     v.span(),
                     "step must be a positive angle of at most one turn".to_owned(),
+                ));
+            }
+            // Bounded before any row is computed: at most MAX_TABLE_ROWS rows a turn (the
+            // smallest step, as printed, is accepted whatever its rounding to radians).
+            if std::f64::consts::TAU / step > MAX_TABLE_ROWS as f64 * (1.0 + 1e-9) {
+                let smallest = units.from_si(
+                    std::f64::consts::TAU / MAX_TABLE_ROWS as f64,
+                    Dimension::Angle,
+                );
+                return Err(invalid(
+                    v.span(),
+                    format!(
+                        "step = {} {unit} gives more than {MAX_TABLE_ROWS} rows a turn; the \
+                         smallest step is {} {unit}",
+                        Units::tidy(*v.get_ref()),
+                        Units::tidy(smallest),
+                        unit = units.symbol(Dimension::Angle),
+                    ),
                 ));
             }
             step
