@@ -22,7 +22,7 @@ pub fn before_solving(scene: &Scene, mechanism: &Mechanism) -> Result<()> {
         super::dynamics::before_solving(scene, d, mechanism, scene.drive.speed)?;
     }
     if let Some(b) = &scene.balancing {
-        super::balancing::before_solving(scene, b)?;
+        super::balancing::before_solving(scene, b, mechanism)?;
     }
     let in_memory = scene.dynamics.is_some() || scene.balancing.is_some();
     if in_memory && scene.positions.len() > MAX_IN_MEMORY {

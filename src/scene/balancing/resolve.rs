@@ -81,6 +81,22 @@ pub(crate) fn resolve(
                 let line = cx.line(&c.line, link, geometry, "a counterweight's `line`")?;
                 let radius =
                     cx.positive(&c.radius, "the counterweight's radius", Dimension::Length)?;
+                // Its mass is the m·r found divided by this radius: a radius below the
+                // smallest a scene may draw would overflow it.
+                if radius < limits::SMALLEST_RADIUS {
+                    let unit = cx.units.symbol(Dimension::Length);
+                    return Err(Error::OutOfRange {
+                        location: cx.at(&c.radius),
+                        what: "the counterweight's radius".to_owned(),
+                        value: format!("{} {unit}", Units::tidy(*c.radius.get_ref())),
+                        expected: format!(
+                            "at least {} {unit}",
+                            Units::tidy(
+                                cx.units.from_si(limits::SMALLEST_RADIUS, Dimension::Length)
+                            )
+                        ),
+                    });
+                }
                 out.push((
                     Counterweight {
                         link: link.to_owned(),

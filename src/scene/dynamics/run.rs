@@ -66,13 +66,11 @@ pub(crate) fn run(
             phi,
             joints,
             reason,
-        } => Error::Invalid {
+        } => Error::SelfLocking {
             location: scene.drive.location.clone(),
-            message: format!(
-                "self-locking at drive position {}: joints {} ({reason})",
-                scene.joint_text(phi),
-                joints.join(", ")
-            ),
+            position: scene.joint_text(phi),
+            joints: joints.join(", "),
+            reason,
         },
         other => crate::scene::run::solver_error(scene, other),
     })?;
