@@ -157,7 +157,8 @@ fn run_sweep_prints_one_long_table_with_the_parameter_first() {
 }
 
 /// Issue 22, item 8: `check` gives every error `run` gives before solving — a drive speed of
-/// 0 for a power balance or for counterweights — and refuses a sweep past the limit
+/// 0 for a power balance or for counterweights, counterweights on a link without mass data
+/// or of a radius whose mass would overflow — and refuses a sweep past the limit
 /// position of the motion range it prints itself, as `run` does when it reaches it.
 #[test]
 fn check_refuses_what_run_refuses_before_solving() {
@@ -179,6 +180,19 @@ fn check_refuses_what_run_refuses_before_solving() {
             "to = 100",
             "to = 200",
             "116.037128629205 deg",
+        ),
+        // Found by the fuzz test: run refused these before solving, check accepted them.
+        (
+            "whitworth_balancing.toml",
+            "crank = { mass = 15, center = \"S1\" }\n",
+            "",
+            "link(s) crank have none",
+        ),
+        (
+            "whitworth_balancing.toml",
+            "radius = 0.1 }",
+            "radius = 5e-324 }",
+            "expected at least 1e-9 m",
         ),
     ];
     for (name, from, to, expected) in cases {
