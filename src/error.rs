@@ -249,6 +249,20 @@ pub enum Error {
         /// What is wrong and what is expected.
         message: String,
     },
+    /// No friction forces consistent with the motion exist at a drive position: the
+    /// mechanism is self-locking there (located at the drive, which would have to push
+    /// through it).
+    #[error("{location}: self-locking at drive position {position}: joints {joints} ({reason})")]
+    SelfLocking {
+        /// Where the drive is written.
+        location: Location,
+        /// The drive position, with its unit.
+        position: String,
+        /// The joints with friction, comma-separated.
+        joints: String,
+        /// Why no consistent friction forces were found.
+        reason: String,
+    },
     /// The mechanism as a whole is rejected by the geometry model (mobility, redundancy).
     #[error("{file}: {source}")]
     Model {
@@ -467,3 +481,29 @@ pub enum Error {
 
 /// Result with the facade's [`enum@Error`].
 pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+impl Error {
+    /// Whether the error is one that only solving drive positions finds: the mechanism's
+    /// motion (it cannot assemble, is blocked, reaches a change point or toggle, flips its
+    /// branch, misses a value of `[sweep] of`, locks itself by friction) or an overflow at a
+    /// position. `mechdiff check`
+    /// solves no position, so these are the only errors `run` may give for a scene `check`
+    /// accepts; every other error is given by both ([`crate::scene::any::read`]).
+    pub fn is_found_by_solving(&self) -> bool {
+        match self {
+            Error::NotFinite { .. }
+            | Error::Unassemblable { .. }
+            | Error::Blocked { .. }
+            | Error::ChangePoint { .. }
+            | Error::Singular { .. }
+            | Error::NotReached { .. }
+            | Error::SelfLocking { .. }
+            | Error::BranchFlip { .. }
+            | Error::FormulaAt { .. } => true,
+            Error::AtParameter { source, .. } | Error::Perturbed { source, .. } => {
+                source.is_found_by_solving()
+            }
+            _ => false,
+        }
+    }
+}

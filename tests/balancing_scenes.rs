@@ -465,7 +465,7 @@ fn rotor_csv_static_example_of_reference_002() {
 }
 
 /// Options a rotor or cam scene cannot honour are refused by name, never silently ignored:
-/// `--json` (a rotor has no drive positions), `--set` and `--sweep` (only linkages have
+/// `--jsonl` (a rotor has no drive positions), `--set` and `--sweep` (only linkages have
 /// `[parameters]`).
 #[test]
 fn options_a_scene_kind_cannot_honour_are_refused() {
@@ -478,10 +478,10 @@ fn options_a_scene_kind_cannot_honour_are_refused() {
             vec![
                 "run",
                 rotor.to_str().unwrap(),
-                "--json",
+                "--jsonl",
                 json.to_str().unwrap(),
             ],
-            "--json",
+            "--jsonl",
         ),
         (
             vec!["run", rotor.to_str().unwrap(), "--set", "m=1"],
@@ -500,5 +500,122 @@ fn options_a_scene_kind_cannot_honour_are_refused() {
             "{stderr}"
         );
         assert!(!json.exists(), "a refused run wrote {}", json.display());
+    }
+}
+
+/// Issue 22: rotor inputs are range-checked like every other number (finite, positive where
+/// physical, bounded so every answer stays finite), with located errors; quoted formulas are
+/// accepted; `--json` holds the CSV's answers.
+mod rotor_inputs {
+    use super::*;
+
+    const ROTOR: &str = "title = \"r\"\n[units]\nlength = \"mm\"\nangle = \"deg\"\n[rotor]\n\
+        masses = [\n  { mass = 0.5, radius = 150, angle = 0, plane = 300 },\n  \
+        { mass = 0.5, radius = 150, angle = 120, plane = 0 },\n]\nplanes = [-400, 400]\n\
+        correction_radius = 100\ncouple_mass_radius = 0.075\n";
+
+    fn refused(from: &str, to: &str) -> String {
+        let text = ROTOR.replacen(from, to, 1);
+        assert_ne!(text, ROTOR);
+        // As `check` and `run` read it: the answers computed too.
+        match rotor_scene::parse("r.toml", &text).and_then(|r| r.rotor.answers()) {
+            Ok(_) => panic!("accepted: {to}"),
+            Err(e) => e.to_string(),
+        }
+    }
+
+    /// The line and column of `needle` in `ROTOR` (1-based), as errors print them.
+    fn at(needle: &str) -> String {
+        let line = ROTOR.lines().position(|l| l.contains(needle)).unwrap();
+        let column = ROTOR.lines().nth(line).unwrap().find(needle).unwrap();
+        format!("r.toml:{}:{}:", line + 1, column + 1)
+    }
+
+    #[test]
+    fn out_of_range_rotor_numbers_are_refused_where_written() {
+        // The issue's example: `mass = 1e308` printed "plane at inf mm", exit 0.
+        let e = refused(
+            "mass = 0.5, radius = 150, angle = 0",
+            "mass = 1e308, radius = 150, angle = 0",
+        );
+        assert!(e.starts_with(&at("0.5, radius = 150, angle = 0")), "{e}");
+        assert!(e.contains("≤ 1e9 kg"), "{e}");
+        for bad in ["0", "-1", "nan", "inf", "\"1/0\""] {
+            let e = refused(
+                "mass = 0.5, radius = 150, angle = 0",
+                &format!("mass = {bad}, radius = 150, angle = 0"),
+            );
+            assert!(
+                e.starts_with(&at("0.5, radius = 150, angle = 0")),
+                "{bad}: {e}"
+            );
+        }
+        let e = refused("radius = 150, angle = 0", "radius = 1e300, angle = 0");
+        assert!(e.contains("at most 1000000000000 mm"), "{e}");
+        let e = refused("planes = [-400, 400]", "planes = [-400, 1e300]");
+        assert!(e.starts_with(&at("[-400, 400]")), "{e}");
+        let e = refused("couple_mass_radius = 0.075", "couple_mass_radius = 1e300");
+        assert!(e.contains("1e18 kg m"), "{e}");
+        // Each input in range, the answers not: planes a hair apart overflow the correction.
+        let e = refused("planes = [-400, 400]", "planes = [0, 1e-320]");
+        assert!(
+            e.starts_with(&at("[-400, 400]")) && e.contains("coincide"),
+            "{e}"
+        );
+        assert!(e.len() < 300, "no number with 300 digits: {e}");
+        let e = refused("correction_radius = 100", "correction_radius = 1e-320");
+        assert!(e.contains("overflow"), "{e}");
+    }
+
+    /// Quoted formulas give the same rotor as the numbers (bit for bit).
+    #[test]
+    fn formulas_are_accepted_in_rotor() {
+        let text = ROTOR
+            .replace(
+                "mass = 0.5, radius = 150",
+                "mass = \"1/2\", radius = \"100 + 50\"",
+            )
+            .replace("planes = [-400, 400]", "planes = [\"-2*200\", \"2*200\"]")
+            .replace(
+                "couple_mass_radius = 0.075",
+                "couple_mass_radius = \"0.15/2\"",
+            );
+        let a = rotor_scene::parse("r.toml", ROTOR).unwrap();
+        let b = rotor_scene::parse("r.toml", &text).unwrap();
+        assert_eq!(a.rotor, b.rotor);
+    }
+
+    /// `mechdiff run rotor.toml --json FILE`: one object per CSV row, keyed by the CSV's
+    /// headers, the same numbers (the same shortest f64 text, read back).
+    #[test]
+    fn run_writes_the_rotor_answers_as_json() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/rotor_balancing.toml");
+        let (header, rows) = rotor_csv(&path);
+        let json = std::env::temp_dir().join(format!("mechdiff-rotor-{}.json", std::process::id()));
+        let out = mechdiff(&[
+            "run",
+            path.to_str().unwrap(),
+            "--json",
+            json.to_str().unwrap(),
+        ]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let value: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+        std::fs::remove_file(&json).ok();
+        let objects = value["rows"].as_array().unwrap();
+        assert_eq!(objects.len(), rows.len());
+        for (object, row) in objects.iter().zip(&rows) {
+            for (key, cell) in header.iter().zip(row) {
+                match cell.parse::<f64>() {
+                    Ok(x) => assert_eq!(object[key].as_f64(), Some(x), "{key}"),
+                    Err(_) if cell.is_empty() => assert!(object[key].is_null(), "{key}"),
+                    Err(_) => assert_eq!(object[key].as_str(), Some(cell.as_str()), "{key}"),
+                }
+            }
+        }
     }
 }

@@ -189,7 +189,8 @@ fn bad_cam_input_is_refused_with_file_line_and_cam_angle() {
     );
     let line = line_of("law = \"dwell\"") - 1;
     assert!(e.starts_with(&format!("bad.toml:{line}:")), "{e}");
-    assert!(e.contains("cam angle 120°"), "{e}");
+    // In the file's angle unit (issue 22: every number of an error in the scene's units).
+    assert!(e.contains("cam angle 120 deg"), "{e}");
     assert!(
         e.contains("ends at 20 mm") && e.contains("starts at 5 mm"),
         "{e}"
@@ -384,4 +385,296 @@ extent = 90
     assert!(close(at(pi).value * mm, 80.0));
     assert!(close(at(pi / 2.0).value * mm, 40.0));
     assert!(close(at(pi / 2.0).d1() * mm, 160.0 / pi));
+}
+
+/// Issue 22, cam messages and answers: each class of defect, reproduced on `GOOD` and its
+/// variants, with the new behaviour.
+mod messages_and_answers {
+    use super::*;
+
+    /// `GOOD` as a flat-faced follower (no offset or radius) with `base_radius`.
+    fn flat(base_radius: &str) -> String {
+        GOOD.replace("type = \"roller\"", "type = \"flat_faced\"")
+            .replace("offset = 10\n", "")
+            .replace("radius = 8\n", "")
+            .replace("base_radius = 40", &format!("base_radius = {base_radius}"))
+    }
+
+    fn parse(text: &str) -> CamScene {
+        cam_scene::parse("cam.toml", text).unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    fn csv(scene: &CamScene) -> (Vec<String>, Vec<Vec<String>>) {
+        let mut out = Vec::new();
+        cam::write_svaj_csv(scene, &mut out).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        let mut lines = text.lines();
+        let header = lines
+            .next()
+            .unwrap()
+            .split(',')
+            .map(str::to_owned)
+            .collect();
+        let rows = lines
+            .map(|l| l.split(',').map(str::to_owned).collect())
+            .collect();
+        (header, rows)
+    }
+
+    fn column(header: &[String], rows: &[Vec<String>], name: &str) -> Vec<f64> {
+        let k = header.iter().position(|h| h.starts_with(name)).unwrap();
+        rows.iter().map(|r| r[k].parse().unwrap()).collect()
+    }
+
+    /// A flat face with a 5 mm base circle has cusps: the CSV's ρ is signed, each row equals
+    /// the closed form R_b + s + s″ of the same row (1e-9 mm: rounding of a sum of terms of
+    /// at most ~100 mm), its negative values are in the summary's undercut ranges, and the
+    /// summary's minimum (refined by golden section) is at most the CSV's smallest value
+    /// and within 0.5 mm of it (rows every 10°; ρ changes by less than that between them
+    /// near its minimum).
+    #[test]
+    fn flat_face_radius_of_curvature_is_signed_in_table_csv_and_summary() {
+        let scene = parse(&flat("5"));
+        let (header, rows) = csv(&scene);
+        let s = column(&header, &rows, "s [");
+        let s2 = column(&header, &rows, "s″");
+        let rho = column(&header, &rows, "ρ profile");
+        for ((s, s2), rho) in s.iter().zip(&s2).zip(&rho) {
+            assert!(
+                (rho - (5.0 + s + s2)).abs() <= 1e-9,
+                "{rho} vs {}",
+                5.0 + s + s2
+            );
+        }
+        let least = rho.iter().copied().fold(f64::INFINITY, f64::min);
+        assert!(least < 0.0, "the cusps are in the CSV: {rho:?}");
+        let analysis = scene.mechanism.analyse();
+        let summary = analysis.min_profile_radius.value * 1e3;
+        assert!(
+            summary <= least + 1e-9 && least - summary < 0.5,
+            "{summary} vs {least}"
+        );
+        let text = report(&scene);
+        assert!(text.contains(&format!("{:.4} mm", summary)), "{text}");
+        // The table prints the same signed numbers (its last column, about 8 digits).
+        let table = &text[text.find("SVAJ (").unwrap()..text.find("boundaries:").unwrap()];
+        let printed: Vec<f64> = (table.lines().skip(2))
+            .filter_map(|l| l.split_whitespace().last()?.parse().ok())
+            .collect();
+        assert_eq!(printed.len(), rho.len());
+        for (p, r) in printed.iter().zip(&rho) {
+            assert!((p - r).abs() <= 1e-6, "table {p} vs CSV {r}");
+        }
+        // A flat face is never told to use a smaller roller.
+        assert!(!text.contains("roller"), "{text}");
+        assert!(text.contains("enlarge the base circle"), "{text}");
+    }
+
+    /// Every number of an error in the file's units: lengths in mm (no SI 0.048), an angle
+    /// in the file's angle unit (never in mm), no `NaN`.
+    #[test]
+    fn errors_give_numbers_in_the_files_units() {
+        let e = error_for("offset = 10", "offset = 60");
+        assert!(e.contains("prime circle radius 48 mm"), "{e}");
+        assert!(!e.contains("0.048"), "{e}");
+        let e = error_for(
+            "base_radius = 40",
+            "base_radius = 40\npressure_angle_limit = 95",
+        );
+        assert!(e.contains("95 deg") && e.contains("90 deg"), "{e}");
+        assert!(!e.contains("mm") && !e.contains("5156620"), "{e}");
+        let rad = GOOD.replace("angle = \"deg\"", "angle = \"rad\"").replace(
+            "base_radius = 40",
+            "base_radius = 40\npressure_angle_limit = 2",
+        );
+        let rad = rad
+            .replace("extent = 120", "extent = \"2*pi/3\"")
+            .replace("extent = 60", "extent = \"pi/3\"");
+        let e = cam_scene::parse("rad.toml", &rad).unwrap_err().to_string();
+        assert!(
+            e.contains("2 rad") && e.contains("1.5707963267949 rad"),
+            "{e}"
+        );
+        let e = cam_scene::parse("flat.toml", &flat("40\npressure_angle_limit = 30"))
+            .unwrap_err()
+            .to_string();
+        assert!(!e.contains("NaN"), "{e}");
+        assert!(e.contains("min_radius_of_curvature"), "{e}");
+        assert!(
+            e.starts_with(&format!("flat.toml:{}:", line_of("base_radius") + 1)),
+            "{e}"
+        );
+    }
+
+    /// A key the follower type has no use for is refused where it is written.
+    #[test]
+    fn keys_that_do_not_apply_to_the_follower_are_refused() {
+        let with_offset =
+            flat("40").replace("type = \"flat_faced\"", "type = \"flat_faced\"\noffset = 5");
+        let e = cam_scene::parse("f.toml", &with_offset)
+            .unwrap_err()
+            .to_string();
+        let line = with_offset.lines().position(|l| l == "offset = 5").unwrap() + 1;
+        assert!(e.starts_with(&format!("f.toml:{line}:10:")), "{e}");
+        assert!(
+            e.contains("`offset` does not apply to a `flat_faced` follower"),
+            "{e}"
+        );
+        let e = error_for("type = \"roller\"", "type = \"knife_edge\"");
+        assert!(
+            e.starts_with(&format!("bad.toml:{}:10:", line_of("radius = 8"))),
+            "{e}"
+        );
+        assert!(
+            e.contains("`radius` does not apply to a `knife_edge` follower"),
+            "{e}"
+        );
+        let e = error_for("radius = 8", "radius = 8\narm_length = 50");
+        assert!(
+            e.contains("`arm_length` does not apply to a `roller`"),
+            "{e}"
+        );
+    }
+
+    /// A step too small for a table is refused before anything is computed (1e-300 aborted
+    /// with "capacity overflow"; 1e-4° allocated gigabytes), naming the smallest step.
+    #[test]
+    fn a_cam_step_is_bounded() {
+        for step in ["1e-300", "1e-4", "0.0035"] {
+            let e = error_for(
+                "base_radius = 40",
+                &format!("base_radius = 40\nstep = {step}"),
+            );
+            assert!(e.contains("100000 rows") && e.contains("0.0036 deg"), "{e}");
+        }
+        assert!(
+            cam_scene::parse(
+                "ok.toml",
+                &GOOD.replace("base_radius = 40", "base_radius = 40\nstep = 0.0036")
+            )
+            .is_ok()
+        );
+    }
+
+    /// Quoted formulas wherever a number is: the same cam as with the numbers written out
+    /// (bit for bit: the formulas evaluate to the same f64).
+    #[test]
+    fn formulas_are_accepted_in_cam() {
+        let formulas = GOOD
+            .replace("base_radius = 40", "base_radius = \"30 + 10\"")
+            .replace("radius = 8", "radius = \"2*4\"")
+            .replace("rise = 20", "rise = \"40/2\"")
+            .replace("extent = 120", "extent = \"360/3\"");
+        let (a, b) = (parse(GOOD), parse(&formulas));
+        assert_eq!(a.mechanism.dimensions, b.mechanism.dimensions);
+        assert_eq!(report(&a), report(&b));
+    }
+
+    /// A pressure angle over the stated limit is warned with the angle and the cam angle
+    /// where it is largest (the report's maximum, in degrees); under the limit, no warning.
+    #[test]
+    fn a_pressure_angle_over_the_limit_is_warned() {
+        let over = parse(&GOOD.replace(
+            "base_radius = 40",
+            "base_radius = 40\npressure_angle_limit = 20",
+        ));
+        let analysis = over.mechanism.analyse();
+        let warnings = over.warnings(&analysis);
+        assert_eq!(warnings.len(), 1, "{warnings:?}");
+        let p = analysis.max_pressure_angle;
+        assert!(p.value.to_degrees() > 20.0);
+        let w = &warnings[0];
+        assert!(
+            w.contains(&format!("{:.4} deg", p.value.to_degrees())),
+            "{w}"
+        );
+        assert!(
+            w.contains(&format!("θ = {:.4} deg", p.angle.to_degrees())),
+            "{w}"
+        );
+        assert!(
+            w.contains("limit of 20.0000 deg") && w.contains("cam.toml:"),
+            "{w}"
+        );
+        assert!(report(&over).contains(&format!("WARNING: {w}")));
+        let under = parse(&GOOD.replace(
+            "base_radius = 40",
+            "base_radius = 40\npressure_angle_limit = 40",
+        ));
+        assert!(under.warnings(&under.mechanism.analyse()).is_empty());
+    }
+
+    /// Boundary rows at the exact boundary angle: every θ of the CSV is a whole multiple of
+    /// the 10° step, written exactly (120, 180, 300, not 299.99999999999994).
+    #[test]
+    fn table_rows_are_at_exact_multiples_of_the_step() {
+        let scene = parse(&GOOD.replace("base_radius = 40", "base_radius = 40\nstep = 10"));
+        let (header, rows) = csv(&scene);
+        let theta = column(&header, &rows, "θ");
+        for t in &theta {
+            assert_eq!(*t, (t / 10.0).round() * 10.0, "{t}");
+        }
+        for boundary in [120.0, 180.0, 300.0, 360.0] {
+            assert_eq!(
+                theta.iter().filter(|t| **t == boundary).count(),
+                2,
+                "{boundary}"
+            );
+        }
+    }
+
+    /// `--json`: the summary's values, in the file's units, equal the analysis (to 15
+    /// significant digits, as they are rounded).
+    #[test]
+    fn json_holds_the_summary_in_the_files_units() {
+        let scene = parse(&flat("5"));
+        let mut out = Vec::new();
+        cam::write_json(&scene, &mut out).unwrap();
+        let json: Value = serde_json::from_slice(&out).unwrap();
+        let a = scene.mechanism.analyse();
+        let close = |v: &Value, x: f64| (v.as_f64().unwrap() - x).abs() <= 1e-12 * x.abs().max(1.0);
+        assert!(close(
+            &json["min_profile_radius"]["value"],
+            a.min_profile_radius.value * 1e3
+        ));
+        assert!(close(
+            &json["min_profile_radius"]["cam_angle"],
+            a.min_profile_radius.angle.to_degrees()
+        ));
+        let (low, high) = a.face_extent.unwrap();
+        assert!(close(&json["face"]["min_width"], (high - low) * 1e3));
+        assert_eq!(json["undercut"].as_array().unwrap().len(), a.undercut.len());
+        assert!(close(
+            &json["undercut"][0]["from"],
+            a.undercut[0].0.to_degrees()
+        ));
+        assert_eq!(json["units"]["length"], "mm");
+        let sized = parse(&GOOD.replace(
+            "base_radius = 40",
+            "base_radius = 40\npressure_angle_limit = 30",
+        ));
+        let mut out = Vec::new();
+        cam::write_json(&sized, &mut out).unwrap();
+        let json: Value = serde_json::from_slice(&out).unwrap();
+        assert!(close(
+            &json["sizing"]["min_base_radius"],
+            sized.sizing.as_ref().unwrap().0 * 1e3
+        ));
+        // `mechdiff run cam.toml --json FILE` writes it.
+        let path = std::env::temp_dir().join(format!("mechdiff-cam-{}.json", std::process::id()));
+        let output = Command::new(env!("CARGO_BIN_EXE_mechdiff"))
+            .args(["run", "scenes/cams/rise_dwell_return_dwell.toml", "--json"])
+            .arg(&path)
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .output()
+            .unwrap();
+        assert!(
+            output.status.success(),
+            "{}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+        let json: Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        assert!(json["max_pressure_angle"]["value"].as_f64().unwrap() > 0.0);
+        std::fs::remove_file(path).ok();
+    }
 }

@@ -227,3 +227,88 @@ fn a_newline_in_the_scene_path_cannot_add_a_line_of_rust() {
     }
     assert!(module.contains("pub fn pose("));
 }
+
+/// Issue 22, item 8: `check` gives every error `run` gives before solving — a drive speed of
+/// 0 for a power balance or for counterweights, counterweights on a link without mass data
+/// or of a radius whose mass would overflow — and refuses a sweep past the limit
+/// position of the motion range it prints itself, as `run` does when it reaches it.
+#[test]
+fn check_refuses_what_run_refuses_before_solving() {
+    let cases = [
+        (
+            "rack_slotted_link_dynamics.toml",
+            "speed = ",
+            "speed = 0 #",
+            "non-zero drive `speed`",
+        ),
+        (
+            "whitworth_balancing.toml",
+            "speed = ",
+            "speed = 0 #",
+            "non-zero `speed`",
+        ),
+        (
+            "norton_four_bar.toml",
+            "to = 100",
+            "to = 200",
+            "116.037128629205 deg",
+        ),
+        // Found by the fuzz test: run refused these before solving, check accepted them.
+        (
+            "whitworth_balancing.toml",
+            "crank = { mass = 15, center = \"S1\" }\n",
+            "",
+            "link(s) crank have none",
+        ),
+        (
+            "whitworth_balancing.toml",
+            "radius = 0.1 }",
+            "radius = 5e-324 }",
+            "expected at least 1e-9 m",
+        ),
+    ];
+    for (name, from, to, expected) in cases {
+        let text = std::fs::read_to_string(common::scene_path(name)).unwrap();
+        assert!(text.contains(from), "{name}");
+        let scene = temp_file(name);
+        std::fs::write(&scene, text.replacen(from, to, 1)).unwrap();
+        let path = scene.to_str().unwrap();
+        let checked = mechdiff(&["check", path]);
+        let ran = mechdiff(&["run", path]);
+        std::fs::remove_file(&scene).unwrap();
+        for output in [&checked, &ran] {
+            assert!(!output.status.success(), "{name}: {}", stdout(output));
+            assert!(
+                stderr(output).contains(expected),
+                "{name}: {}",
+                stderr(output)
+            );
+        }
+        // `check` refuses before it prints anything.
+        assert!(stdout(&checked).is_empty(), "{name}: {}", stdout(&checked));
+    }
+}
+
+/// Every shipped formula scene passes `check` (they were all refused with "unknown field
+/// `outputs`" while `run` accepted them), and `check` prints what it found.
+#[test]
+fn check_accepts_the_formula_scenes() {
+    for folder in ["scenes/hard", "scenes/formulas"] {
+        for entry in std::fs::read_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join(folder)).unwrap()
+        {
+            let path = entry.unwrap().path();
+            let output = mechdiff(&["check", path.to_str().unwrap()]);
+            assert!(
+                output.status.success(),
+                "{}: {}",
+                path.display(),
+                stderr(&output)
+            );
+            assert!(
+                stdout(&output).contains("ok: formula scene of"),
+                "{}",
+                stdout(&output)
+            );
+        }
+    }
+}

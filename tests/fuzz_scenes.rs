@@ -1,14 +1,19 @@
-//! A bounded fuzz test: every scene in `scenes/`, mutated (numbers set to extremes, lines
-//! deleted or duplicated, names swapped, the text truncated), goes through `check` and `run`
-//! in-process. Whatever the mutation, the library must not panic or hang, and either refuse
-//! the scene with an error or give only finite numbers.
+//! A bounded fuzz test: every shipped scene (`scenes/` recursively — linkages, cams, rotors,
+//! formula scenes, the cam-driven linkage — and `tests/data`), mutated (numbers set to
+//! extremes, lines deleted or duplicated, names swapped, the text truncated), goes through
+//! `check` and `run` in-process. Whatever the mutation, the library must not panic or hang;
+//! `check` and `run` must agree (a run may refuse what `check` accepted only with an error
+//! found by solving, [`mechdiff::Error::is_found_by_solving`]); and a run that succeeds
+//! gives only finite numbers.
 
 use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
-use mechdiff::scene;
+use mechdiff::accuracy::formula;
+use mechdiff::scene::any::{self, AnyScene};
+use mechdiff::{Error, report, scene};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, FileFailurePersistence, TestRunner};
 
@@ -223,53 +228,127 @@ fn apply(text: &str, m: &Mutation) -> String {
     }
 }
 
-/// How far the cases got: parsed, checked, run to the end.
-static PARSED: AtomicUsize = AtomicUsize::new(0);
+/// How far the cases got: read, passed `check`, run to the end; and how many the check and
+/// the run refused alike, and how many `check` accepted and the run refused while solving.
 static CHECKED: AtomicUsize = AtomicUsize::new(0);
 static RAN: AtomicUsize = AtomicUsize::new(0);
+static REFUSED_BY_BOTH: AtomicUsize = AtomicUsize::new(0);
+static REFUSED_WHILE_SOLVING: AtomicUsize = AtomicUsize::new(0);
 
-/// Parses, checks and runs a mutated scene; `Err` describes a broken promise (a non-finite
-/// number in the output). Errors of the scene are the expected answer.
-fn check_and_run(text: &str) -> Result<(), String> {
-    let Ok(scene) = scene::parse("fuzz.toml", text) else {
-        return Ok(());
-    };
-    PARSED.fetch_add(1, Ordering::Relaxed);
-    if scene::check(&scene).is_err() || scene.positions.len() > LONGEST_SWEEP {
-        return Ok(());
+/// `mechdiff check`, in-process: the reader `run` uses ([`any::read`]), then for a linkage
+/// its mobility and its motion range held against the sweep.
+fn check(file: &str, text: &str) -> Result<(), Error> {
+    match any::read(file, text, &[])? {
+        AnyScene::Linkage(scene) => scene::check(&scene).map(drop),
+        AnyScene::Cam(_) | AnyScene::Rotor(_) | AnyScene::Formula(..) => Ok(()),
     }
-    CHECKED.fetch_add(1, Ordering::Relaxed);
-    let Ok(report) = scene::run(&scene) else {
-        return Ok(());
-    };
-    RAN.fetch_add(1, Ordering::Relaxed);
-    for row in &report.rows {
-        for (v, c) in row.iter().zip(&report.columns) {
-            if !(v.is_finite() && (v / c.factor).is_finite()) {
-                return Err(format!(
-                    "column {} is {v} at drive position {}",
-                    c.header(),
-                    row[0]
-                ));
+}
+
+/// `mechdiff run`, in-process, with every output it can write (`--csv`, `--json`, the
+/// profile, the report) written to memory: `Ok(None)` for a sweep too long to run here,
+/// `Ok(Some(problems))` (empty when every number is finite), or its error.
+fn run(file: &str, text: &str) -> Result<Option<String>, Error> {
+    let mut out = Vec::new();
+    let mut problems = String::new();
+    let written = |r: std::io::Result<()>| r.expect("writing to memory");
+    match any::read(file, text, &[])? {
+        AnyScene::Linkage(scene) => {
+            if scene.positions.len() > LONGEST_SWEEP {
+                return Ok(None);
+            }
+            let report = scene::run(&scene)?;
+            for row in &report.rows {
+                for (v, c) in row.iter().zip(&report.columns) {
+                    if !(v.is_finite() && (v / c.factor).is_finite()) {
+                        problems += &format!("column {} is {v} at {}; ", c.header(), row[0]);
+                    }
+                }
+            }
+            for dead in &report.dead_positions {
+                for d in &dead.positions {
+                    if !(d.phi.is_finite() && d.value.is_finite()) {
+                        problems += &format!("dead position of {}: {d:?}; ", dead.output);
+                    }
+                }
+            }
+        }
+        AnyScene::Cam(cam) => {
+            written(report::cam::write_report(&cam, &mut out));
+            written(report::cam::write_svaj_csv(&cam, &mut out));
+            written(report::cam::write_profile_csv(&cam, &mut out));
+            written(report::cam::write_json(&cam, &mut out));
+        }
+        AnyScene::Rotor(rotor) => {
+            let answers = rotor.rotor.answers()?;
+            out.extend(rotor.lines()?.join("\n").bytes());
+            written(report::rotor::write_csv(&rotor, &answers, &mut out));
+            written(report::rotor::write_json(&rotor, &answers, &mut out));
+        }
+        AnyScene::Formula(formulas, _) => {
+            let table = formula::table(&formulas, file)?;
+            for (phi, row) in table.positions.iter().zip(&table.rows) {
+                if !(phi.is_finite() && row.iter().flatten().all(|v| v.is_finite())) {
+                    problems += &format!("a value at φ = {phi} is not finite; ");
+                }
             }
         }
     }
-    for dead in &report.dead_positions {
-        for d in &dead.positions {
-            if !(d.phi.is_finite() && d.value.is_finite()) {
-                return Err(format!("dead position of {}: {d:?}", dead.output));
+    let out = String::from_utf8_lossy(&out);
+    if let Some(word) = non_finite_word(&out) {
+        problems += &format!("the run wrote `{word}`:\n{out}");
+    }
+    Ok(Some(problems))
+}
+
+/// A word of the output that is not a finite number: `inf`, `NaN` (as Rust prints them).
+fn non_finite_word(text: &str) -> Option<&str> {
+    text.split(|c: char| !(c.is_ascii_alphanumeric() || c == '-'))
+        .find(|w| matches!(w.trim_start_matches('-'), "inf" | "NaN" | "nan"))
+}
+
+/// Checks and runs a mutated scene; `Err` describes a broken promise: `check` and `run`
+/// disagree (run accepts what check refused, or refuses before solving what check accepted),
+/// or a run that succeeded gave a number that is not finite. Errors of the scene are the
+/// expected answer.
+fn check_and_run(file: &str, text: &str) -> Result<(), String> {
+    let checked = check(file, text);
+    let ran = run(file, text);
+    if checked.is_ok() {
+        CHECKED.fetch_add(1, Ordering::Relaxed);
+    }
+    match (&checked, &ran) {
+        (Err(c), Ok(Some(_))) => Err(format!("`run` accepts what `check` refused: {c}")),
+        (Ok(()), Err(r)) if !r.is_found_by_solving() => Err(format!(
+            "`check` accepts what `run` refuses before solving: {r}"
+        )),
+        (Ok(()), Err(_)) => {
+            REFUSED_WHILE_SOLVING.fetch_add(1, Ordering::Relaxed);
+            Ok(())
+        }
+        (Err(_), Err(_)) => {
+            REFUSED_BY_BOTH.fetch_add(1, Ordering::Relaxed);
+            Ok(())
+        }
+        (_, Ok(None)) => Ok(()),
+        (Ok(()), Ok(Some(problems))) => {
+            RAN.fetch_add(1, Ordering::Relaxed);
+            if problems.is_empty() {
+                Ok(())
+            } else {
+                Err(format!(
+                    "the run succeeded with numbers that are not finite: {problems}"
+                ))
             }
         }
     }
-    Ok(())
 }
 
 /// Runs `check_and_run` on its own thread so a hang is reported (after [`HANG`]) instead of
 /// stopping the test run; a panic there is reported as a failure with its message.
-fn guarded(text: String) -> Result<(), String> {
+fn guarded(file: String, text: String) -> Result<(), String> {
     let (send, receive) = mpsc::channel();
     let worker = std::thread::spawn(move || {
-        let _ = send.send(check_and_run(&text));
+        let _ = send.send(check_and_run(&file, &text));
     });
     match receive.recv_timeout(HANG) {
         Ok(result) => {
@@ -283,26 +362,65 @@ fn guarded(text: String) -> Result<(), String> {
     }
 }
 
-#[test]
-fn mutated_scenes_give_an_error_or_finite_numbers_never_a_panic_or_a_hang() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
-    let mut scenes: Vec<(String, String)> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+/// Every scene file shipped (`scenes/` and its folders, recursively: linkages, cams, rotors,
+/// formula scenes, the cam-driven linkage) and the test data scenes (`tests/data`).
+fn shipped_scenes() -> Vec<(String, String)> {
+    fn walk(dir: &Path, found: &mut Vec<std::path::PathBuf>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                walk(&path, found);
+            } else if path.extension().is_some_and(|x| x == "toml") {
+                found.push(path);
+            }
+        }
+    }
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut paths = Vec::new();
+    walk(&root.join("scenes"), &mut paths);
+    walk(&root.join("tests/data"), &mut paths);
+    paths.sort();
+    paths
+        .into_iter()
         .map(|p| {
             (
                 p.display().to_string(),
                 std::fs::read_to_string(&p).unwrap(),
             )
         })
-        .collect();
-    scenes.sort();
-    assert!(
-        scenes.len() >= 8,
-        "the scenes/ folder has {} scenes",
-        scenes.len()
-    );
+        .collect()
+}
+
+/// The shipped scenes themselves, every folder: each of `scenes/` passes `check` (the 17 formula scenes
+/// were refused with "unknown field `outputs`" before), and `run` gives the same verdict (it
+/// may only add an error found by solving: two hard formula scenes overflow at a position).
+#[test]
+fn every_shipped_scene_gets_the_same_verdict_from_check_and_run() {
+    let scenes = shipped_scenes();
+    for folder in [
+        "scenes/cams/",
+        "scenes/hard/",
+        "scenes/formulas/",
+        "tests/data/",
+    ] {
+        assert!(
+            scenes.iter().any(|(p, _)| p.contains(folder)),
+            "no scene from {folder}"
+        );
+    }
+    for (path, text) in &scenes {
+        // The scenes of `tests/data` include fragments and bad scenes on purpose.
+        if !path.contains("tests/data") {
+            check(path, text).unwrap_or_else(|e| panic!("check refuses {path}: {e}"));
+        }
+        check_and_run(path, text).unwrap_or_else(|e| panic!("{path}: {e}"));
+    }
+}
+
+#[test]
+fn mutated_scenes_give_an_error_or_finite_numbers_never_a_panic_or_a_hang() {
+    let scenes = shipped_scenes();
+    assert!(scenes.len() >= 40, "{} scenes shipped", scenes.len());
     let config = Config {
         cases: CASES,
         // Failures are saved here (committed) and tried first next time.
@@ -320,7 +438,7 @@ fn mutated_scenes_give_an_error_or_finite_numbers_never_a_panic_or_a_hang() {
             for m in &mutations {
                 text = apply(&text, m);
             }
-            guarded(text.clone()).map_err(|e| {
+            guarded(scenes[k].0.clone(), text.clone()).map_err(|e| {
                 TestCaseError::fail(format!(
                     "{} mutated by {mutations:?}: {e}\n{text}",
                     scenes[k].0
@@ -329,11 +447,14 @@ fn mutated_scenes_give_an_error_or_finite_numbers_never_a_panic_or_a_hang() {
         })
         .unwrap();
     eprintln!(
-        "fuzz: {CASES} mutated scenes in {:.1} s: {} parsed, {} passed check, {} ran to the end",
+        "fuzz: {CASES} mutated cases of {} shipped scenes in {:.1} s: {} passed check, {} ran \
+         to the end, {} refused while solving after check, {} refused by check and run alike",
+        scenes.len(),
         start.elapsed().as_secs_f64(),
-        PARSED.load(Ordering::Relaxed),
         CHECKED.load(Ordering::Relaxed),
         RAN.load(Ordering::Relaxed),
+        REFUSED_WHILE_SOLVING.load(Ordering::Relaxed),
+        REFUSED_BY_BOTH.load(Ordering::Relaxed),
     );
 }
 

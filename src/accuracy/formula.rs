@@ -262,6 +262,15 @@ fn limit_note<T>(phi: f64, limits: &Limits<T>) -> String {
 }
 
 /// The formulas of `scene` ready to evaluate, and its drive positions (rad, sorted).
+/// Checks what [`table`] needs before it evaluates anything: every formula compiles with
+/// the scene's parameters and the drive positions are finite (`mechdiff check`).
+///
+/// # Errors
+/// As [`table`] gives them before evaluating.
+pub fn check(scene: &FormulaScene, file: &str) -> Result<usize, Error> {
+    prepare(scene, file).map(|(_, positions)| positions.len())
+}
+
 fn prepare(scene: &FormulaScene, file: &str) -> Result<(Evaluator, Vec<f64>), Error> {
     let mut graph = Graph::new();
     let names: Vec<&str> = scene.parameters.keys().map(String::as_str).collect();

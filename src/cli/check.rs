@@ -4,6 +4,8 @@ use std::path::PathBuf;
 
 use clap::Args;
 use mechdiff::scene;
+use mechdiff::scene::any::AnyScene;
+use mechdiff::scene::cam::CamScene;
 use mechdiff::scene::units::{Dimension, Units};
 use std::fmt::Write as _;
 
@@ -24,17 +26,24 @@ pub struct CheckArgs {
 /// summary, every link's lengths (which the solver holds) and the plan a run would carry
 /// out.
 pub fn check(args: &CheckArgs) -> Result<(), Error> {
-    let kind = super::scene_kind(&args.scene);
-    super::refuse_options(kind, &[("--set", !args.set.is_empty())], &args.scene)?;
-    match kind {
-        scene::Kind::Cam => return check_cam(args),
-        scene::Kind::Rotor => return super::rotor::check(args),
-        // A formula scene is read by the linkage reader, which names what it lacks.
-        scene::Kind::Linkage | scene::Kind::Formula => {}
-    }
     let text = files::read_scene(&args.scene)?;
+    let kind = scene::kind(&text);
+    super::refuse_options(kind, &[("--set", !args.set.is_empty())], &args.scene)?;
     let file = args.scene.display().to_string();
-    let scene = scene::parse_with(&file, &text, &args.set)?;
+    // The reader `run` uses: the same verdict on everything up to solving.
+    let scene = match scene::any::read(&file, &text, &args.set)? {
+        AnyScene::Linkage(scene) => scene,
+        AnyScene::Cam(cam) => return check_cam(&cam),
+        AnyScene::Rotor(rotor) => return super::rotor::check(&rotor),
+        AnyScene::Formula(formulas, positions) => {
+            println!(
+                "{file}: ok: formula scene of {} output(s) at {positions} drive position(s); \
+                 `mechdiff run` prints their values and derivatives",
+                formulas.outputs.len()
+            );
+            return Ok(());
+        }
+    };
     let checked = scene::check(&scene)?;
     // The study is checked against the columns a run would have, with the errors `run`
     // gives, before anything is printed.
@@ -91,9 +100,9 @@ pub fn check(args: &CheckArgs) -> Result<(), Error> {
     Ok(())
 }
 
-/// Checks a cam scene and prints its summary.
-fn check_cam(args: &CheckArgs) -> Result<(), Error> {
-    let cam = scene::cam::load(&args.scene)?;
+/// Prints a checked cam scene's summary (the scene was read whole: every error a run gives
+/// before its report was given by the reader).
+fn check_cam(cam: &CamScene) -> Result<(), Error> {
     let m = &cam.mechanism;
     let line = format!(
         "{}: ok: cam program of {} segment(s) over 360°, {} follower",

@@ -3,22 +3,19 @@
 
 use std::io::Write;
 
-use mechdiff::accuracy::formula::{self, Table};
+use mechdiff::accuracy::formula::{self, FormulaScene, Table};
 use mechdiff::{Error, files};
 
 use super::run::RunArgs;
 
-/// Prints the table of the formula scene `args.scene` (and writes `--csv`); the options it
-/// cannot honour were refused by [`super::refuse_options`].
+/// Prints the table of the formula scene `args.scene`, read by `scene::any::read` (and
+/// writes `--csv`); the options it cannot honour were refused by [`super::refuse_options`].
 ///
 /// # Errors
-/// [`Error::Read`] if the file cannot be read; the errors of
-/// [`formula::parse`] and [`formula::table`]; [`Error::Write`] if the output fails.
-pub fn run(args: &RunArgs) -> Result<(), Error> {
-    let text = files::read_scene(&args.scene)?;
+/// The errors of [`formula::table`]; [`Error::Write`] if the output fails.
+pub fn run(args: &RunArgs, scene: &FormulaScene) -> Result<(), Error> {
     let file = args.scene.display().to_string();
-    let scene = formula::parse(&text, &file)?;
-    let table = formula::table(&scene, &file)?;
+    let table = formula::table(scene, &file)?;
     if let Some(path) = &args.csv {
         files::write_atomically(path, |out| write_csv(&table, out))?;
     }

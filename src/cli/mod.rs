@@ -10,18 +10,12 @@ pub mod run;
 
 use std::path::Path;
 
-use mechdiff::{Error, files, scene};
-
-/// Which kind of scene the file given to `run` or `check` is (an unreadable file is left to
-/// the linkage path, which reports it).
-pub fn scene_kind(path: &Path) -> scene::Kind {
-    files::read_scene(path).map_or(scene::Kind::Linkage, |text| scene::kind(&text))
-}
+use mechdiff::{Error, scene};
 
 /// Refuses the options a scene of this kind cannot honour, instead of ignoring them:
 /// `given` pairs each option with whether it was given. Cam and rotor scenes have no
-/// `[parameters]` (`--set`, `--sweep`) nor a drive-position table (`--json`, `--jsonl`,
-/// `--report`); only cam scenes have a profile (`--profile-csv`).
+/// `[parameters]` (`--set`, `--sweep`) nor a drive-position table (`--jsonl`, `--report`;
+/// their `--json` is their summary); only cam scenes have a profile (`--profile-csv`).
 ///
 /// # Errors
 /// [`Error::OptionNotApplicable`] naming the first such option and the scene.
@@ -40,14 +34,14 @@ pub fn refuse_options(
             &[
                 "--set",
                 "--sweep",
-                "--json",
                 "--jsonl",
                 "--report",
                 "--monte-carlo",
                 "--evaluator",
             ],
             "a cam scene has no `[parameters]` and no linkage to evaluate, and writes its SVAJ \
-             table with --csv, its profile with --profile-csv and its pictures with --plot",
+             table with --csv, its profile with --profile-csv, its summary with --json and its \
+             pictures with --plot",
         ),
         scene::Kind::Formula => (
             &[
@@ -68,7 +62,6 @@ pub fn refuse_options(
             &[
                 "--set",
                 "--sweep",
-                "--json",
                 "--jsonl",
                 "--report",
                 "--profile-csv",
@@ -76,7 +69,7 @@ pub fn refuse_options(
                 "--evaluator",
             ],
             "a rotor scene has no `[parameters]` and no drive positions to tabulate; use --csv \
-             for its answers and --plot for its polygons",
+             or --json for its answers and --plot for its polygons",
         ),
     };
     match given

@@ -3,21 +3,25 @@
 use std::io::{BufWriter, Write};
 use std::path::PathBuf;
 
-use mechdiff::scene::balancing::rotor_scene;
+use mechdiff::scene::balancing::RotorScene;
 use mechdiff::{Error, files};
 
-use super::check::CheckArgs;
 use super::run::RunArgs;
 
-/// Runs a rotor scene: its answers on stdout, as CSV with `--csv`, its polygons with `--plot`
-/// (the options it cannot honour are refused by [`super::refuse_options`] before).
-pub fn run(args: &RunArgs) -> Result<(), Error> {
-    let scene = rotor_scene::load(&args.scene)?;
+/// Runs a rotor scene (read by `scene::any::read`): its answers on stdout, as CSV with
+/// `--csv` and JSON with `--json`, its polygons with `--plot` (the options it cannot honour
+/// are refused by [`super::refuse_options`] before).
+pub fn run(args: &RunArgs, scene: &RotorScene) -> Result<(), Error> {
     let lines = scene.lines()?;
+    let answers = scene.rotor.answers()?;
     if let Some(path) = &args.csv {
-        let answers = scene.rotor.answers()?;
         files::write_atomically(path, |mut out| {
-            mechdiff::report::rotor::write_csv(&scene, &answers, &mut out)
+            mechdiff::report::rotor::write_csv(scene, &answers, &mut out)
+        })?;
+    }
+    if let Some(path) = &args.json {
+        files::write_atomically(path, |mut out| {
+            mechdiff::report::rotor::write_json(scene, &answers, &mut out)
         })?;
     }
     if let Some(dir) = &args.plot {
@@ -38,11 +42,10 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
     }
 }
 
-/// Checks a rotor scene (its values and the answers it asks for) and prints a summary.
-pub fn check(args: &CheckArgs) -> Result<(), Error> {
-    let scene = rotor_scene::load(&args.scene)?;
+/// Prints the summary of a rotor scene read by `scene::any::read` (which checked its values
+/// and the answers it asks for).
+pub fn check(scene: &RotorScene) -> Result<(), Error> {
     let r = &scene.rotor;
-    r.answers()?;
     let mut asked = vec!["static balance"];
     if r.planes.is_some() {
         asked.push("two-plane balance");

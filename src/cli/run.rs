@@ -6,6 +6,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use mechdiff::evaluator::Evaluator;
+use mechdiff::scene::any::AnyScene;
 use mechdiff::scene::{self, table};
 use mechdiff::{Error, escape, files, pictures, sensitivity, stream};
 
@@ -72,8 +73,9 @@ pub struct RunArgs {
 /// Reads, checks and runs the scene; prints the plan, the table and the dead positions.
 pub fn run(args: &RunArgs) -> Result<(), Error> {
     // Reading the scene makes it one of the run's inputs, which no output may be.
-    let kind = super::scene_kind(&args.scene);
+    let text = files::read_scene(&args.scene)?;
     files::refuse_inputs(outputs(args))?;
+    let kind = scene::kind(&text);
     let given = [
         ("--set", !args.set.is_empty()),
         ("--sweep", args.sweep.is_some()),
@@ -86,14 +88,16 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         ("--evaluator", args.evaluator != Evaluator::Auto),
     ];
     super::refuse_options(kind, &given, &args.scene)?;
-    match kind {
-        scene::Kind::Cam => return super::cam::run(args),
-        scene::Kind::Rotor => return super::rotor::run(args),
-        scene::Kind::Formula => return super::formula::run(args),
-        scene::Kind::Linkage => {}
-    }
-    let text = files::read_scene(&args.scene)?;
     let file = args.scene.display().to_string();
+    // The reader `check` uses: the same verdict on everything up to solving.
+    let read = match scene::any::read(&file, &text, &args.set)? {
+        AnyScene::Cam(cam) => return super::cam::run(args, &cam),
+        AnyScene::Rotor(rotor) => return super::rotor::run(args, &rotor),
+        AnyScene::Formula(formulas, _) => return super::formula::run(args, &formulas),
+        AnyScene::Linkage(scene) => scene,
+    };
+    // The scene's cam files are inputs now too: refused before the run.
+    files::refuse_inputs(outputs(args))?;
     let study_asked = sensitivity::requested(&text) || args.monte_carlo.is_some();
     let mut study = None;
     let (scene, report) = match &args.sweep {
@@ -126,9 +130,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
             (scene, report)
         }
         None => {
-            let mut scene = scene::parse_with(&file, &text, &args.set)?;
-            // The scene's cam files are inputs now too: refused before the run.
-            files::refuse_inputs(outputs(args))?;
+            let mut scene = *read;
             scene.evaluator = args.evaluator;
             let in_memory = scene.dynamics.is_some()
                 || scene.balancing.is_some()

@@ -18,6 +18,8 @@ pub const PROFILE_POINTS: usize = 720;
 pub struct SvajRow {
     /// Cam angle (rad).
     pub theta: f64,
+    /// Cam angle as printed, in the file's angle unit (a whole multiple of the step).
+    pub shown_theta: f64,
     /// The side of a boundary the row is on (`None` away from boundaries with a jump).
     pub side: Option<Side>,
     /// s, s′, s″, s‴ (SI, per rad).
@@ -34,10 +36,8 @@ pub struct SvajRow {
 /// a boundary where a derivative jumps.
 pub fn svaj_rows(scene: &CamScene, report: &ContinuityReport) -> Vec<SvajRow> {
     let cam = &scene.mechanism;
-    let count = (TAU / scene.step + 1e-9).floor() as usize;
     let mut rows = Vec::new();
-    for k in 0..=count {
-        let theta = (k as f64 * scene.step).min(TAU);
+    for (theta, shown_theta) in scene.table_angles() {
         let jumps = report.boundaries.iter().any(|b| {
             let d = (theta - b.angle).rem_euclid(TAU);
             b.first_jump().is_some() && d.min(TAU - d) <= 1e-9
@@ -60,12 +60,15 @@ pub fn svaj_rows(scene: &CamScene, report: &ContinuityReport) -> Vec<SvajRow> {
                 [m.velocity, m.acceleration, m.jerk.unwrap_or(0.0)]
             });
             let r = cam.dimensions.follower.roller_radius();
+            // Signed for every follower, as in the summary: negative at a flat face's cusp
+            // (R_b + s + s″ < 0) and where a roller's profile is concave or undercut.
             let profile_radius = match cam.dimensions.follower {
-                Follower::FlatFaced => 1.0 / cam.profile_curvature(theta, at),
+                Follower::FlatFaced => cam.flat_face_radius(theta, at),
                 _ => 1.0 / cam.pitch_curvature(theta, at) - r,
             };
             rows.push(SvajRow {
                 theta,
+                shown_theta,
                 side,
                 svaj,
                 motion,
@@ -156,10 +159,7 @@ fn table_cells(scene: &CamScene, rows: &[SvajRow]) -> (Vec<String>, Vec<(String,
                 Some(Side::Right) => "+",
                 None => "",
             };
-            let theta = format!(
-                "{}{mark}",
-                Units::tidy(u.from_si(r.theta, Dimension::Angle))
-            );
+            let theta = format!("{}{mark}", Units::tidy(r.shown_theta));
             let mut cells = vec![
                 u.from_si(r.svaj[0], dimension),
                 r.svaj[1] * k,
@@ -385,6 +385,9 @@ fn write_geometry(
             deg(pitch.angle)
         )?;
     }
+    for warning in scene.warnings(analysis) {
+        writeln!(out, "WARNING: {warning}")?;
+    }
     let profile = analysis.min_profile_radius;
     writeln!(
         out,
@@ -406,10 +409,17 @@ fn write_geometry(
                 )
             })
             .collect();
-        let what = if scene.mechanism.dimensions.follower == Follower::FlatFaced {
-            "the profile has a cusp (radius of curvature ≤ 0)"
+        let (what, remedy) = if scene.mechanism.dimensions.follower == Follower::FlatFaced {
+            (
+                "the profile has a cusp (radius of curvature ≤ 0)",
+                "enlarge the base circle (`min_radius_of_curvature` sizes it) or soften the \
+                 program's s″ there",
+            )
         } else {
-            "the roller is larger than the pitch curve's radius of curvature"
+            (
+                "the roller is larger than the pitch curve's radius of curvature",
+                "enlarge the base circle or use a smaller roller",
+            )
         };
         let place = scene
             .roller_at
@@ -419,7 +429,7 @@ fn write_geometry(
         writeln!(
             out,
             "WARNING: undercutting at cam angles {}: {what}{place}; the follower would not \
-             follow the program there: enlarge the base circle or use a smaller roller",
+             follow the program there: {remedy}",
             ranges.join(", ")
         )?;
     }
@@ -456,7 +466,7 @@ pub fn write_svaj_csv(scene: &CamScene, out: &mut impl Write) -> io::Result<()> 
             Some(Side::Right) => "right",
             None => "",
         };
-        let theta = scene.units.from_si(row.theta, Dimension::Angle);
+        let theta = row.shown_theta;
         let numbers: Vec<String> = cells.iter().map(|v| format!("{v:e}")).collect();
         writeln!(out, "{theta:e},{side},{}", numbers.join(","))?;
     }
@@ -490,4 +500,66 @@ pub fn write_profile_csv(scene: &CamScene, out: &mut impl Write) -> io::Result<(
         )?;
     }
     Ok(())
+}
+
+/// Writes the cam's summary as JSON (`--json`), every number in the file's units (named in
+/// `units`): the follower and base circle, the maximum pressure angle, the smallest radii of
+/// curvature (signed: negative at a cusp or undercut), the undercut ranges, a flat face's
+/// contact extent and width, the base-circle sizing asked for, the boundaries' continuity
+/// and the warnings.
+pub fn write_json(scene: &CamScene, out: &mut impl Write) -> io::Result<()> {
+    use serde_json::{Value, json};
+    let cam = &scene.mechanism;
+    let u = &scene.units;
+    // Rounded to 15 significant digits, as printed: 120, not 119.99999999999999.
+    let tidy = |v: f64| Units::tidy(v).parse::<f64>().unwrap_or(v);
+    let angle = |rad: f64| tidy(u.from_si(rad, Dimension::Angle));
+    let length = |m: f64| tidy(u.from_si(m, Dimension::Length));
+    let report = ContinuityReport::new(&cam.program);
+    let analysis = cam.analyse();
+    let extreme = |e: mechdiff_core::cams::Extreme, value: &dyn Fn(f64) -> f64| json!({ "value": value(e.value), "cam_angle": angle(e.angle) });
+    let boundaries: Vec<Value> = report
+        .boundaries
+        .iter()
+        .map(|b| {
+            json!({
+                "cam_angle": angle(b.angle),
+                "first_jump": b.first_jump().map(|order| ["s", "s'", "s''", "s'''"][order]),
+            })
+        })
+        .collect();
+    let json = json!({
+        "file": scene.file,
+        "title": scene.title,
+        "units": {
+            "length": u.symbol(Dimension::Length),
+            "angle": u.symbol(Dimension::Angle),
+            "displacement": u.symbol(scene.displacement_dimension()),
+        },
+        "follower": cam.dimensions.follower.describe(),
+        "base_radius": length(cam.dimensions.base_radius),
+        "segments": cam.program.len(),
+        "max_pressure_angle": extreme(analysis.max_pressure_angle, &angle),
+        "min_pitch_radius": analysis.min_pitch_radius.map(|e| extreme(e, &length)),
+        "min_profile_radius": extreme(analysis.min_profile_radius, &length),
+        "undercut": analysis
+            .undercut
+            .iter()
+            .map(|(a, b)| json!({ "from": angle(*a), "to": angle(*b) }))
+            .collect::<Vec<_>>(),
+        "face": analysis.face_extent.map(|(low, high)| json!({
+            "contact_from": length(low),
+            "contact_to": length(high),
+            "min_width": length(high - low),
+        })),
+        "sizing": scene.sizing.as_ref().map(|(base, what)| json!({
+            "min_base_radius": length(*base),
+            "for": what,
+        })),
+        "boundaries": boundaries,
+        "fundamental_law_met": report.satisfies_fundamental_law(),
+        "warnings": scene.warnings(&analysis),
+    });
+    serde_json::to_writer_pretty(&mut *out, &json)?;
+    writeln!(out)
 }

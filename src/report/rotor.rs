@@ -67,14 +67,66 @@ pub fn write_csv(
     answers: &RotorAnswers,
     out: &mut impl Write,
 ) -> io::Result<()> {
+    let (header, rows) = table(scene, answers);
+    writeln!(out, "{}", header.join(","))?;
+    for row in rows {
+        writeln!(out, "{}", row.join(","))?;
+    }
+    Ok(())
+}
+
+/// Writes the rotor's answers as JSON (`--json`): `{"file", "title", "rows"}`, `rows` one
+/// object per CSV row keyed by the CSV's headers, numbers as numbers, empty cells `null`.
+pub fn write_json(
+    scene: &RotorScene,
+    answers: &RotorAnswers,
+    out: &mut impl Write,
+) -> io::Result<()> {
+    let (header, rows) = table(scene, answers);
+    let rows: Vec<serde_json::Map<String, serde_json::Value>> = rows
+        .into_iter()
+        .map(|row| {
+            header
+                .iter()
+                .zip(row)
+                .map(|(key, cell)| {
+                    let value = if cell.is_empty() {
+                        serde_json::Value::Null
+                    } else if let Some(n) = cell
+                        .parse::<f64>()
+                        .ok()
+                        .and_then(serde_json::Number::from_f64)
+                    {
+                        serde_json::Value::Number(n)
+                    } else {
+                        serde_json::Value::String(cell)
+                    };
+                    (key.clone(), value)
+                })
+                .collect()
+        })
+        .collect();
+    let json = serde_json::json!({
+        "file": scene.file,
+        "title": scene.title,
+        "rows": rows,
+    });
+    serde_json::to_writer_pretty(&mut *out, &json)?;
+    writeln!(out)
+}
+
+/// The header and the cells of the CSV (layout in the module documentation).
+fn table(scene: &RotorScene, answers: &RotorAnswers) -> (Vec<String>, Vec<Vec<String>>) {
     let u = &scene.units;
     let (length, angle) = (u.symbol(Dimension::Length), u.symbol(Dimension::Angle));
-    writeln!(
-        out,
+    let header = format!(
         "row,index,plane [{length}],mass [kg],radius [{length}],m r x [kg m],m r y [kg m],\
          m r [kg m],m r angle [{angle}],m r d x [kg m^2],m r d y [kg m^2],m r d [kg m^2],\
          m r d angle [{angle}]"
-    )?;
+    )
+    .split(',')
+    .map(str::to_owned)
+    .collect();
     let r = &scene.rotor;
     let couple = |c: &Correction| {
         [
@@ -133,6 +185,7 @@ pub fn write_csv(
             scale: [answers.scale[0].max(mr), answers.scale[1]],
         });
     }
+    let mut lines = Vec::new();
     for row in rows {
         let mut line = vec![
             row.name.to_owned(),
@@ -152,7 +205,7 @@ pub fn write_csv(
             Some(v) => line.extend(cells(u, v, row.scale[1])),
             None => line.extend(std::iter::repeat_n(String::new(), 4)),
         }
-        writeln!(out, "{}", line.join(","))?;
+        lines.push(line);
     }
-    Ok(())
+    (header, lines)
 }

@@ -19,6 +19,10 @@ use super::source::Source;
 use super::units::{Dimension, Units};
 use crate::error::{Error, Result};
 
+/// The most rows of the SVAJ table over one turn (a `step` of 0.0036° at the least): the
+/// table, its CSV and the accuracy run are bounded before anything is computed.
+pub const MAX_TABLE_ROWS: usize = 100_000;
+
 /// A cam scene file as written.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -37,19 +41,26 @@ pub struct CamFile {
 #[serde(deny_unknown_fields)]
 pub struct CamSection {
     /// Base circle radius (length unit).
+    #[serde(deserialize_with = "crate::scene::values::number")]
     pub base_radius: Spanned<f64>,
     /// Cam speed (angular velocity unit; default 0: only s, s′, s″, s‴ are printed).
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub speed: Option<Spanned<f64>>,
     /// Cam acceleration (angular acceleration unit; default 0).
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub acceleration: Option<Spanned<f64>>,
     /// Table step (angle unit; default 10°).
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub step: Option<Spanned<f64>>,
     /// Follower displacement at cam angle 0 (default 0).
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub start: Option<Spanned<f64>>,
     /// Size the base circle for this largest pressure angle (angle unit; roller and
     /// knife-edge followers).
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub pressure_angle_limit: Option<Spanned<f64>>,
     /// Size the base circle for this smallest radius of curvature (length unit; flat face).
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub min_radius_of_curvature: Option<Spanned<f64>>,
     /// The follower.
     pub follower: Spanned<FollowerDef>,
@@ -92,12 +103,16 @@ pub struct FollowerDef {
     #[serde(rename = "type")]
     pub kind: Spanned<FollowerKind>,
     /// Offset of a translating follower's axis (length unit; default 0).
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub offset: Option<Spanned<f64>>,
     /// Roller radius (length unit).
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub radius: Option<Spanned<f64>>,
     /// Oscillating: cam centre to pivot (length unit).
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub pivot_distance: Option<Spanned<f64>>,
     /// Oscillating: pivot to roller centre (length unit).
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub arm_length: Option<Spanned<f64>>,
 }
 
@@ -110,11 +125,14 @@ pub struct SegmentDef {
     /// A displacement formula of `x` (cam angle, rad) or `u` (0 to 1 over the segment).
     pub formula: Option<Spanned<String>>,
     /// Rise over the segment (length unit; angle unit for an oscillating follower).
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub rise: Option<Spanned<f64>>,
     /// Return (fall) over the segment, positive.
     #[serde(rename = "return")]
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub fall: Option<Spanned<f64>>,
     /// The cam angle the segment spans (angle unit).
+    #[serde(deserialize_with = "crate::scene::values::number")]
     pub extent: Spanned<f64>,
 }
 
@@ -137,9 +155,72 @@ pub struct CamScene {
     pub sizing: Option<(f64, String)>,
     /// Where the follower's roller radius is written (for the undercut warning).
     pub roller_at: Option<crate::error::Location>,
+    /// Table step in the file's angle unit, as written (the printed cam angles are its
+    /// whole multiples).
+    pub table_step: f64,
+    /// The stated largest pressure angle (rad) and where it is written.
+    pub pressure_angle_limit: Option<(f64, crate::error::Location)>,
 }
 
 impl CamScene {
+    /// The cam angles of the SVAJ table, from 0 to one turn every `step`, each as (angle in
+    /// rad, angle as printed in the file's unit). The printed angle is k·step in the file's
+    /// unit, so a whole-numbered step prints whole numbers (300, never 299.99999999999994);
+    /// a row within 1e-9 rad of a segment boundary is evaluated exactly at the boundary.
+    pub fn table_angles(&self) -> Vec<(f64, f64)> {
+        let program = &self.mechanism.program;
+        let boundaries: Vec<f64> = (0..program.len())
+            .map(|i| program.start(i))
+            .chain([std::f64::consts::TAU])
+            .collect();
+        let turn = self.units.from_si(std::f64::consts::TAU, Dimension::Angle);
+        let count = (std::f64::consts::TAU / self.step + 1e-9).floor() as usize;
+        (0..=count)
+            .map(|k| {
+                let shown = (k as f64 * self.table_step).min(turn);
+                let theta = self.units.to_si(shown, Dimension::Angle);
+                match boundaries.iter().find(|b| (theta - **b).abs() <= 1e-9) {
+                    Some(&b) => (b, shown),
+                    None => (theta.min(std::f64::consts::TAU), shown),
+                }
+            })
+            .collect()
+    }
+
+    /// The warnings of the analysis that the file asked to be kept: a pressure angle above
+    /// `pressure_angle_limit`, with the angle and the cam angle where it is largest (in the
+    /// file's angle unit).
+    pub fn warnings(&self, analysis: &mechdiff_core::cams::CamAnalysis) -> Vec<String> {
+        let mut warnings = Vec::new();
+        let p = analysis.max_pressure_angle;
+        if let Some((limit, at)) = &self.pressure_angle_limit
+            && p.value > *limit
+        {
+            // As the report prints the maximum pressure angle (4 decimals) and its cam angle.
+            let angle = |v: f64| format!("{:.4}", self.units.from_si(v, Dimension::Angle));
+            let unit = self.units.symbol(Dimension::Angle);
+            let base = self
+                .sizing
+                .as_ref()
+                .map(|(base, _)| {
+                    format!(
+                        "; a base circle radius of at least {:.4} {} keeps it",
+                        self.units.from_si(*base, Dimension::Length),
+                        self.units.symbol(Dimension::Length)
+                    )
+                })
+                .unwrap_or_default();
+            warnings.push(format!(
+                "the pressure angle reaches {} {unit} at cam angle θ = {} {unit}, above the \
+                 stated limit of {} {unit} (`pressure_angle_limit` at {at}){base}",
+                angle(p.value),
+                angle(p.angle),
+                angle(*limit)
+            ));
+        }
+        warnings
+    }
+
     /// The dimension of the follower's displacement: a length, or an angle (oscillating).
     pub fn displacement_dimension(&self) -> Dimension {
         match self.mechanism.dimensions.follower {
@@ -229,7 +310,7 @@ fn resolve(file: CamFile, source: &Source) -> Result<CamScene> {
             mechdiff_core::Error::CamJoin { after, .. } => cam.segments.get_ref()[after - 1].span(),
             _ => cam.segments.span(),
         };
-        invalid(span, engine_message(&e, &units, lift_dimension))
+        invalid(span, engine_message(&e, &units, lift_dimension, None))
     })?;
     let follower = follower(follower_def, &units, source)?;
     let base_radius = value(&cam.base_radius, Dimension::Length, "base_radius")?;
@@ -247,7 +328,7 @@ fn resolve(file: CamFile, source: &Source) -> Result<CamScene> {
         };
         invalid(
             span.unwrap_or_else(|| cam.follower.span()),
-            engine_message(&e, &units, lift_dimension),
+            engine_message(&e, &units, lift_dimension, Some((base_radius, follower))),
         )
     })?;
     let speed = match &cam.speed {
@@ -258,6 +339,10 @@ fn resolve(file: CamFile, source: &Source) -> Result<CamScene> {
         Some(v) => value(v, Dimension::AngularAcceleration, "acceleration")?,
         None => 0.0,
     };
+    let table_step = match &cam.step {
+        Some(v) => *v.get_ref(),
+        None => units.from_si(10f64.to_radians(), Dimension::Angle),
+    };
     let step = match &cam.step {
         Some(v) => {
             let step = value(v, Dimension::Angle, "step")?;
@@ -265,6 +350,24 @@ fn resolve(file: CamFile, source: &Source) -> Result<CamScene> {
                 return Err(invalid(
                     v.span(),
                     "step must be a positive angle of at most one turn".to_owned(),
+                ));
+            }
+            // Bounded before any row is computed: at most MAX_TABLE_ROWS rows a turn (the
+            // smallest step, as printed, is accepted whatever its rounding to radians).
+            if std::f64::consts::TAU / step > MAX_TABLE_ROWS as f64 * (1.0 + 1e-9) {
+                let smallest = units.from_si(
+                    std::f64::consts::TAU / MAX_TABLE_ROWS as f64,
+                    Dimension::Angle,
+                );
+                return Err(invalid(
+                    v.span(),
+                    format!(
+                        "step = {} {unit} gives more than {MAX_TABLE_ROWS} rows a turn; the \
+                         smallest step is {} {unit}",
+                        Units::tidy(*v.get_ref()),
+                        Units::tidy(smallest),
+                        unit = units.symbol(Dimension::Angle),
+                    ),
                 ));
             }
             step
@@ -283,6 +386,11 @@ fn resolve(file: CamFile, source: &Source) -> Result<CamScene> {
         step,
         sizing,
         roller_at: follower_def.radius.as_ref().map(|r| at(r.span())),
+        table_step,
+        pressure_angle_limit: cam
+            .pressure_angle_limit
+            .as_ref()
+            .map(|l| (units.to_si(*l.get_ref(), Dimension::Angle), at(l.span()))),
     })
 }
 
@@ -331,38 +439,92 @@ fn check_finite_results(
     Ok(())
 }
 
-/// The engine's message with lengths in the file's unit where it names one.
+/// The engine's message with every number in the file's units: lengths in its length unit,
+/// angles (cam angles, the pressure angle limit) in its angle unit, the displacement in the
+/// follower's unit (length, or angle for an oscillating arm); with the dimensions the rule
+/// compares, when the follower is known (`dimensions`: base radius and follower, SI).
 fn engine_message(
     error: &mechdiff_core::Error,
     units: &Units,
     lift_dimension: Dimension,
+    dimensions: Option<(f64, Follower)>,
 ) -> String {
+    let shown = |v: f64, dimension: Dimension| {
+        format!(
+            "{} {}",
+            Units::tidy(units.from_si(v, dimension)),
+            units.symbol(dimension)
+        )
+    };
+    let cam_angle = |deg: f64| shown(deg.to_radians(), Dimension::Angle);
     match error {
         mechdiff_core::Error::CamDimension {
             what,
             value,
             problem,
-        } => format!(
-            "{what} = {} {}: {problem}",
-            Units::tidy(units.from_si(*value, Dimension::Length)),
-            units.symbol(Dimension::Length)
-        ),
+        } => {
+            let value = match what.as_str() {
+                // Not a number: the follower type is what is wrong.
+                "follower" => return problem.clone(),
+                "pressure angle limit" => {
+                    return format!(
+                        "{what} = {}: must be between 0 and {} (90°)",
+                        cam_angle(*value),
+                        cam_angle(90.0)
+                    );
+                }
+                "smallest displacement" => shown(*value, lift_dimension),
+                _ => shown(*value, Dimension::Length),
+            };
+            let compared = dimensions.and_then(|(base, follower)| {
+                let prime = base + follower.roller_radius();
+                let length = |v: f64| shown(v, Dimension::Length);
+                match (what.as_str(), follower) {
+                    ("offset", _) => Some(format!(
+                        "prime circle radius {} = base {} + roller {}",
+                        length(prime),
+                        length(base),
+                        length(follower.roller_radius())
+                    )),
+                    ("arm length", Follower::OscillatingRoller { pivot_distance, .. }) => Some(
+                        format!("R_p = {}, a = {}", length(prime), length(pivot_distance)),
+                    ),
+                    (
+                        "smallest displacement",
+                        Follower::KnifeEdge { offset } | Follower::Roller { offset, .. },
+                    ) => Some(format!(
+                        "the follower's height at s = 0 is {}",
+                        length((prime * prime - offset * offset).sqrt())
+                    )),
+                    _ => None,
+                }
+            });
+            match compared {
+                Some(c) => format!("{what} = {value}: {problem} ({c})"),
+                None => format!("{what} = {value}: {problem}"),
+            }
+        }
         mechdiff_core::Error::CamJoin {
             angle_deg,
             before,
             after,
             left,
             right,
-        } => {
-            let unit = units.symbol(lift_dimension);
-            let shown = |v: f64| Units::tidy(units.from_si(v, lift_dimension));
-            format!(
-                "the follower displacement does not join at cam angle {angle_deg}° between \
-                 segment {before} (ends at {} {unit}) and segment {after} (starts at {} {unit})",
-                shown(*left),
-                shown(*right)
-            )
-        }
+        } => format!(
+            "the follower displacement does not join at cam angle {} between segment {before} \
+             (ends at {}) and segment {after} (starts at {})",
+            cam_angle(*angle_deg),
+            shown(*left, lift_dimension),
+            shown(*right, lift_dimension)
+        ),
+        mechdiff_core::Error::CamSegment {
+            segment,
+            start_deg,
+            problem,
+        } => format!(
+            "cam segment {segment} (starting at cam angle {}): {problem}",
+            cam_angle(*start_deg)
+        ),
         other => other.to_string(),
     }
 }
@@ -430,6 +592,14 @@ fn segment(
                     &format!("a `{parsed}` segment needs `rise = …` or `return = …`"),
                 ));
             }
+            if parsed == MotionLaw::Dwell
+                && let Some(given) = d.rise.as_ref().or(d.fall.as_ref())
+            {
+                return Err(invalid(
+                    given.span(),
+                    "a dwell has no lift; remove `rise`/`return`, or use a rise or return law",
+                ));
+            }
             Ok(Segment::law(parsed, lift, extent))
         }
         (None, Some(text)) => {
@@ -474,6 +644,50 @@ fn follower(def: &FollowerDef, units: &Units, source: &Source) -> Result<Followe
             }),
         }
     };
+    // A key the follower type has no use for is refused, not ignored.
+    let keys = [
+        ("offset", &def.offset),
+        ("radius", &def.radius),
+        ("pivot_distance", &def.pivot_distance),
+        ("arm_length", &def.arm_length),
+    ];
+    let applies: &[&str] = match kind {
+        FollowerKind::KnifeEdge => &["offset"],
+        FollowerKind::Roller => &["offset", "radius"],
+        FollowerKind::FlatFaced => &[],
+        FollowerKind::OscillatingRoller => &["radius", "pivot_distance", "arm_length"],
+    };
+    if let Some((key, Some(v))) = keys
+        .iter()
+        .find(|(key, v)| v.is_some() && !applies.contains(key))
+    {
+        let why = match (kind, *key) {
+            (FollowerKind::FlatFaced, "offset") => {
+                "a flat face's contact slides along the face, so an offset of its axis \
+                 changes nothing"
+            }
+            (_, "radius") => "only a roller follower has a radius",
+            (_, "offset") => "an oscillating arm is placed by `pivot_distance`",
+            _ => "only an oscillating follower has a pivot and an arm",
+        };
+        let expected = if applies.is_empty() {
+            "no dimension".to_owned()
+        } else {
+            applies
+                .iter()
+                .map(|k| format!("`{k}`"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        return Err(Error::Invalid {
+            location: source.location(v.span()),
+            message: format!(
+                "`{key}` does not apply to a `{}` follower ({why}); it takes {expected}: \
+                 remove `{key}` or change the follower's `type`",
+                kind.name()
+            ),
+        });
+    }
     let offset = match &def.offset {
         Some(v) => finite(v)?,
         None => 0.0,
@@ -502,11 +716,34 @@ fn sizing_request(
 ) -> Result<Option<(f64, String)>> {
     let program = &mechanism.program;
     let follower = mechanism.dimensions.follower;
+    let dimensions = Some((mechanism.dimensions.base_radius, follower));
     let fail = |span: std::ops::Range<usize>, e: mechdiff_core::Error| Error::Invalid {
         location: source.location(span),
-        message: engine_message(&e, units, Dimension::Length),
+        message: engine_message(&e, units, Dimension::Length, dimensions),
     };
     if let Some(limit) = &cam.pressure_angle_limit {
+        if !matches!(
+            follower,
+            Follower::Roller { .. } | Follower::KnifeEdge { .. }
+        ) {
+            let instead = match follower {
+                Follower::FlatFaced => {
+                    "a flat face's pressure angle is 0 everywhere; size its base circle with \
+                     `min_radius_of_curvature`"
+                }
+                _ => {
+                    "give the base circle directly and read the maximum pressure angle in the report"
+                }
+            };
+            return Err(Error::Invalid {
+                location: source.location(limit.span()),
+                message: format!(
+                    "`pressure_angle_limit` sizes the base circle of a translating roller or \
+                     knife-edge follower, not of a {} follower: {instead}",
+                    follower.describe()
+                ),
+            });
+        }
         let radians = units.to_si(*limit.get_ref(), Dimension::Angle);
         let base = sizing::base_radius_for_pressure_angle(program, follower, radians)
             .map_err(|e| fail(limit.span(), e))?;

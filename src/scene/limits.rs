@@ -39,7 +39,8 @@ pub const FRICTION_COEFFICIENT: f64 = 100.0;
 /// Smallest and largest magnitude of a transmission ratio (gear pair, motor gearbox): its
 /// reciprocal is used as well.
 pub const RATIO: RangeInclusive<f64> = 1e-6..=1e6;
-/// Smallest pitch radius of a pinion (m): the pinion turns by the rack's travel over it.
+/// Smallest pitch radius of a pinion (m): the pinion turns by the rack's travel over it; and
+/// smallest radius of a counterweight (its mass is the m·r found over this radius).
 pub const SMALLEST_RADIUS: f64 = 1e-9;
 
 /// The largest magnitude of a quantity of `dimension` (SI).

@@ -33,6 +33,7 @@
 //! assert_eq!(scene.order(), 0);
 //! ```
 
+pub mod any;
 pub mod balancing;
 pub mod build;
 pub mod cam;
@@ -50,6 +51,7 @@ mod placement;
 pub mod plan;
 pub mod plot;
 pub mod positions;
+pub mod preflight;
 pub mod resolve;
 pub mod run;
 pub mod source;

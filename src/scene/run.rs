@@ -92,10 +92,12 @@ pub struct Checked {
     pub columns: Vec<Column>,
 }
 
-/// Checks a scene without running its sweep: builds the model and checks its mobility and
-/// the sketch's assembly.
+/// Checks a scene without running its sweep: builds the model, makes every check a run
+/// makes before solving ([`super::preflight`]), checks its mobility and the sketch's
+/// assembly, walks the drive's motion range and holds the sweep against it.
 pub fn check(scene: &Scene) -> Result<Checked> {
     let mechanism = mechanism(scene)?;
+    super::preflight::before_solving(scene, &mechanism)?;
     let (mobility, loops, closed_form, motion_range) = {
         let tracker = Solver::default()
             .track(&mechanism)
@@ -113,6 +115,9 @@ pub fn check(scene: &Scene) -> Result<Checked> {
             },
         )
     };
+    if let Ok(range) = &motion_range {
+        super::preflight::sweep_within_motion_range(scene, range)?;
+    }
     Ok(Checked {
         mobility,
         loops,
@@ -146,6 +151,7 @@ pub fn columns(scene: &Scene, mechanism: &Mechanism) -> Vec<Column> {
 /// branch), evaluates the outputs, and searches the dead positions asked for.
 pub fn run(scene: &Scene) -> Result<Report> {
     let mechanism = mechanism(scene)?;
+    super::preflight::before_solving(scene, &mechanism)?;
     let mut plan = Plan::of(scene);
     let mut all = kinematic_columns(scene);
     let positions = drive_positions(scene, &mechanism)?;

@@ -130,6 +130,53 @@ impl LinkageBalance {
     }
 }
 
+/// The checks of [`balance_linkage`] that need no solved position, in its order: every
+/// moving link has mass data, no link carries two counterweights, and each counterweight's
+/// link is pivoted to the ground at its line's first point with a positive radius. A caller
+/// that validates before running (`mechdiff check`) gets the same errors.
+///
+/// # Errors
+/// As [`balance_linkage`] gives them before solving.
+pub fn check_balance_request(
+    mechanism: &Mechanism,
+    counterweights: &[Counterweight],
+) -> Result<(), Error> {
+    check_request(mechanism, counterweights).map(drop)
+}
+
+fn check_request(
+    mechanism: &Mechanism,
+    counterweights: &[Counterweight],
+) -> Result<Vec<Site>, Error> {
+    let massless: Vec<&str> = (mechanism.links.iter().skip(1))
+        .filter(|l| l.inertia.is_none())
+        .map(|l| l.name.as_str())
+        .collect();
+    if !massless.is_empty() {
+        return Err(Error::MissingData {
+            what: "balancing a linkage".to_owned(),
+            missing: format!(
+                "mass data for every moving link; link(s) {} have none (give `mass = 0` for a \
+                 massless link)",
+                massless.join(", ")
+            ),
+        });
+    }
+    counterweights
+        .iter()
+        .enumerate()
+        .map(|(i, c)| {
+            if counterweights[..i].iter().any(|d| d.link == c.link) {
+                return Err(Error::DuplicateName {
+                    what: "counterweight link",
+                    name: c.link.clone(),
+                });
+            }
+            site(mechanism, c)
+        })
+        .collect::<Result<Vec<_>, _>>()
+}
+
 /// Sizes `counterweights` for `mechanism` (with the effect data `dynamics`) so that the
 /// shaking force over the drive positions `phis` at drive state `drive` is cancelled, or
 /// smallest in the least-squares sense.
@@ -148,39 +195,13 @@ pub fn balance_linkage(
     drive: DriveState,
     solver: &Solver,
 ) -> Result<LinkageBalance, Error> {
-    let massless: Vec<&str> = (mechanism.links.iter().skip(1))
-        .filter(|l| l.inertia.is_none())
-        .map(|l| l.name.as_str())
-        .collect();
-    if !massless.is_empty() {
-        return Err(Error::MissingData {
-            what: "balancing a linkage".to_owned(),
-            missing: format!(
-                "mass data for every moving link; link(s) {} have none (give `mass = 0` for a \
-                 massless link)",
-                massless.join(", ")
-            ),
-        });
-    }
+    let sites = check_request(mechanism, counterweights)?;
     if phis.is_empty() {
         return Err(Error::MissingData {
             what: "balancing a linkage".to_owned(),
             missing: "at least one drive position (sweep one whole cycle)".to_owned(),
         });
     }
-    let sites = counterweights
-        .iter()
-        .enumerate()
-        .map(|(i, c)| {
-            if counterweights[..i].iter().any(|d| d.link == c.link) {
-                return Err(Error::DuplicateName {
-                    what: "counterweight link",
-                    name: c.link.clone(),
-                });
-            }
-            site(mechanism, c)
-        })
-        .collect::<Result<Vec<_>, _>>()?;
     let before = sweep(mechanism, dynamics, phis, drive, solver)?;
     // The least-squares matrix: two rows per drive position, two columns per counterweight.
     let (n, k) = (phis.len(), sites.len());

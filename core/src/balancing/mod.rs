@@ -8,6 +8,7 @@ pub mod slider_crank;
 
 pub use linkage::{
     Counterweight, LinkageBalance, LinkageSweep, PlacedCounterweight, balance_linkage,
+    check_balance_request,
 };
 pub use rotor::{Correction, CouplePlane, Polygons, Rotor, RotorMass, TwoPlaneBalance};
 pub use slider_crank::{PartialBalance, SliderCrankUnbalance};

@@ -113,10 +113,8 @@ impl Dimensions {
                     return Err(bad(
                         "offset",
                         offset,
-                        &format!(
-                            "must be smaller in size than the prime circle radius (base + \
-                             roller = {prime}); enlarge the base circle or reduce the offset"
-                        ),
+                        "must be smaller in size than the prime circle radius (base + \
+                         roller); enlarge the base circle or reduce the offset",
                     ));
                 }
                 let y0 = (prime * prime - offset * offset).sqrt();
@@ -124,7 +122,8 @@ impl Dimensions {
                     return Err(bad(
                         "smallest displacement",
                         s_min,
-                        &format!("would pull the follower through the cam centre (y₀ = {y0})"),
+                        "would pull the follower through the cam centre; enlarge the base \
+                         circle or raise the program's smallest displacement",
                     ));
                 }
                 y0
@@ -134,7 +133,8 @@ impl Dimensions {
                     return Err(bad(
                         "smallest displacement",
                         s_min,
-                        "would pull the face through the cam centre",
+                        "would pull the face through the cam centre; enlarge the base circle \
+                         or raise the program's smallest displacement",
                     ));
                 }
                 base_radius
@@ -154,10 +154,8 @@ impl Dimensions {
                     return Err(bad(
                         "arm length",
                         l,
-                        &format!(
-                            "the roller cannot touch the prime circle (radius {prime}) from \
-                             a pivot at distance {a}: need |a − l| < R_p < a + l"
-                        ),
+                        "the roller cannot touch the prime circle (radius R_p = base + \
+                         roller) from the pivot at distance a: need |a − l| < R_p < a + l",
                     ));
                 }
                 cos.acos()

@@ -158,9 +158,10 @@ impl CamMechanism {
         curvature(c.profile)
     }
 
-    /// The profile's radius of curvature for a flat face: the rate at which the contact
-    /// moves along the face, d(profile)/dθ · (face direction) (R_b + s + s″).
-    fn flat_face_radius(&self, theta: f64, side: Side) -> f64 {
+    /// The profile's signed radius of curvature for a flat face: the rate at which the
+    /// contact moves along the face, d(profile)/dθ · (face direction) (R_b + s + s″);
+    /// negative where the profile has a cusp (the face cannot follow the program there).
+    pub fn flat_face_radius(&self, theta: f64, side: Side) -> f64 {
         let c = self.contact(Dual2_64::from(theta).derivative(), side);
         let (sin, cos) = theta.sin_cos();
         c.profile[0].v1 * cos - c.profile[1].v1 * sin

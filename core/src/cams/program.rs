@@ -236,10 +236,16 @@ impl CamProgram {
                     match f.evaluate(x, u) {
                         Ok(v) if v.is_finite() => {}
                         Ok(v) => {
+                            // Where, without a unit: the segment's start angle is in
+                            // the error, in the caller's unit.
+                            let end = if u == 0.0 {
+                                "start (u = 0)"
+                            } else {
+                                "end (u = 1)"
+                            };
                             return Err(problem(format!(
-                                "the formula `{}` is {v} at cam angle {}°",
+                                "the formula `{}` is {v} at the segment's {end}",
                                 f.text(),
-                                degrees(x)
                             )));
                         }
                         Err(e) => {

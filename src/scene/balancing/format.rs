@@ -10,12 +10,16 @@ use crate::scene::format::Name;
 #[serde(deny_unknown_fields)]
 pub struct RotorMassDef {
     /// Mass (kg, > 0).
+    #[serde(deserialize_with = "crate::scene::values::number")]
     pub mass: Spanned<f64>,
     /// Radius from the shaft axis (length unit, ≥ 0).
+    #[serde(deserialize_with = "crate::scene::values::number")]
     pub radius: Spanned<f64>,
     /// Angle in the rotor's frame (angle unit).
+    #[serde(deserialize_with = "crate::scene::values::number")]
     pub angle: Spanned<f64>,
     /// Axial position of its plane (length unit).
+    #[serde(deserialize_with = "crate::scene::values::number")]
     pub plane: Spanned<f64>,
 }
 
@@ -26,12 +30,16 @@ pub struct RotorDef {
     /// The masses.
     pub masses: Spanned<Vec<Spanned<RotorMassDef>>>,
     /// Two correction planes (length unit).
+    #[serde(default, deserialize_with = "crate::scene::values::option_number_pair")]
     pub planes: Option<Spanned<[f64; 2]>>,
     /// The plane the couple polygon is taken about (length unit; default 0).
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub reference: Option<Spanned<f64>>,
     /// Radius of the correcting masses (length unit, > 0).
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub correction_radius: Option<Spanned<f64>>,
     /// The mass-radius (kg·m) of one correcting mass placed to cancel the couple.
+    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
     pub couple_mass_radius: Option<Spanned<f64>>,
 }
 
@@ -44,6 +52,7 @@ pub struct CounterweightDef {
     /// The pivot and a second point of the link; angles are measured from this line.
     pub line: Spanned<[Name; 2]>,
     /// Distance of the counterweight's centre from the pivot (length unit, > 0).
+    #[serde(deserialize_with = "crate::scene::values::number")]
     pub radius: Spanned<f64>,
 }
 

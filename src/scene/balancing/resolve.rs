@@ -3,9 +3,10 @@
 use mechdiff_core::balancing::{Counterweight, Rotor, RotorMass};
 use toml::Spanned;
 
-use crate::error::{Location, Result};
+use crate::error::{Error, Location, Result};
+use crate::scene::limits;
 use crate::scene::resolve::{Context, Geometry};
-use crate::scene::units::Dimension;
+use crate::scene::units::{Dimension, Units};
 
 use super::format::{BalancingDef, RotorDef};
 
@@ -24,6 +25,8 @@ pub struct SceneRotor {
     pub couple_mass_radius: Option<f64>,
     /// Where `[rotor]` is.
     pub location: Location,
+    /// Where `planes` is written, if it is.
+    pub planes_at: Option<Location>,
 }
 
 /// The checked balancing sections of a scene.
@@ -78,6 +81,22 @@ pub(crate) fn resolve(
                 let line = cx.line(&c.line, link, geometry, "a counterweight's `line`")?;
                 let radius =
                     cx.positive(&c.radius, "the counterweight's radius", Dimension::Length)?;
+                // Its mass is the m·r found divided by this radius: a radius below the
+                // smallest a scene may draw would overflow it.
+                if radius < limits::SMALLEST_RADIUS {
+                    let unit = cx.units.symbol(Dimension::Length);
+                    return Err(Error::OutOfRange {
+                        location: cx.at(&c.radius),
+                        what: "the counterweight's radius".to_owned(),
+                        value: format!("{} {unit}", Units::tidy(*c.radius.get_ref())),
+                        expected: format!(
+                            "at least {} {unit}",
+                            Units::tidy(
+                                cx.units.from_si(limits::SMALLEST_RADIUS, Dimension::Length)
+                            )
+                        ),
+                    });
+                }
                 out.push((
                     Counterweight {
                         link: link.to_owned(),
@@ -129,19 +148,31 @@ pub(crate) fn resolve(
     }))
 }
 
+/// The largest `couple_mass_radius` (kg·m): the largest mass times the largest length.
+pub const LARGEST_MASS_RADIUS: f64 = limits::MASS * limits::LENGTH;
+
+/// A rotor mass (kg, no unit conversion, as documented): finite, > 0 and at most
+/// [`limits::MASS`], so that every m·r·d stays finite.
+fn rotor_mass(cx: &Context, value: &Spanned<f64>, n: usize) -> Result<f64> {
+    let mass = *value.get_ref();
+    if mass.is_finite() && mass > 0.0 && mass <= limits::MASS {
+        return Ok(mass);
+    }
+    Err(Error::OutOfRange {
+        location: cx.at(value),
+        what: format!("rotor mass {n}: `mass`"),
+        value: format!("{} kg", Units::tidy(mass)),
+        expected: format!("a number > 0 kg and ≤ {:e} kg", limits::MASS),
+    })
+}
+
 pub(super) fn resolve_rotor(cx: &Context, r: &Spanned<RotorDef>) -> Result<SceneRotor> {
     let def = r.get_ref();
     let mut masses = Vec::new();
     for (i, m) in def.masses.get_ref().iter().enumerate() {
         let n = i + 1;
         let d = m.get_ref();
-        let mass = *d.mass.get_ref();
-        if !(mass.is_finite() && mass > 0.0) {
-            return Err(cx.invalid(
-                &d.mass,
-                format!("rotor mass {n}: `mass` must be a finite number > 0 (kg), found {mass}"),
-            ));
-        }
+        let mass = rotor_mass(cx, &d.mass, n)?;
         let radius = cx.number(&d.radius, "the radius", Dimension::Length)?;
         if radius < 0.0 {
             return Err(cx.invalid(&d.radius, format!("rotor mass {n}: `radius` must be ≥ 0")));
@@ -160,11 +191,10 @@ pub(super) fn resolve_rotor(cx: &Context, r: &Spanned<RotorDef>) -> Result<Scene
     let planes = match &def.planes {
         Some(p) => {
             let [a, b] = *p.get_ref();
-            let (a, b) = (
-                cx.units.to_si(a, Dimension::Length),
-                cx.units.to_si(b, Dimension::Length),
-            );
-            if !(a.is_finite() && b.is_finite()) || a == b {
+            let number =
+                |v: f64| cx.number(&Spanned::new(p.span(), v), "a plane", Dimension::Length);
+            let (a, b) = (number(a)?, number(b)?);
+            if a == b {
                 return Err(cx.invalid(
                     p,
                     "`planes` must be two different finite axial positions: two-plane balancing \
@@ -187,11 +217,16 @@ pub(super) fn resolve_rotor(cx: &Context, r: &Spanned<RotorDef>) -> Result<Scene
     let couple_mass_radius = match &def.couple_mass_radius {
         Some(v) => {
             let x = *v.get_ref();
-            if !(x.is_finite() && x > 0.0) {
-                return Err(cx.invalid(
-                    v,
-                    format!("`couple_mass_radius` must be a finite number > 0 (kg m), found {x}"),
-                ));
+            if !(x.is_finite() && x > 0.0 && x <= LARGEST_MASS_RADIUS) {
+                return Err(Error::OutOfRange {
+                    location: cx.at(v),
+                    what: "`couple_mass_radius`".to_owned(),
+                    value: format!("{} kg m", Units::tidy(x)),
+                    expected: format!(
+                        "a number > 0 kg m and ≤ {LARGEST_MASS_RADIUS:e} kg m (the largest \
+                         mass times the largest length)"
+                    ),
+                });
             }
             Some(x)
         }
@@ -204,5 +239,6 @@ pub(super) fn resolve_rotor(cx: &Context, r: &Spanned<RotorDef>) -> Result<Scene
         correction_radius,
         couple_mass_radius,
         location: cx.at(r),
+        planes_at: def.planes.as_ref().map(|p| cx.at(p)),
     })
 }

@@ -2,7 +2,10 @@
 //! and what they change.
 
 use mechdiff_core::DriveState;
-use mechdiff_core::balancing::{LinkageBalance, Rotor, SliderCrankUnbalance, balance_linkage};
+use mechdiff_core::balancing::{
+    Counterweight, LinkageBalance, Rotor, SliderCrankUnbalance, balance_linkage,
+    check_balance_request,
+};
 use mechdiff_core::dynamics::Dynamics;
 use mechdiff_core::geometry::{Mechanism, Solver};
 
@@ -61,6 +64,66 @@ pub(crate) fn columns(scene: &Scene, b: &SceneBalancing) -> Vec<Column> {
     ]
 }
 
+/// A core error of the counterweights' sizing, in the scene's terms: the solver's errors
+/// with drive positions in the scene's units; one naming a counterweight's link located at
+/// that counterweight; any other at `[balancing]` (`location`).
+fn balance_error(
+    scene: &Scene,
+    counterweights: &[(Counterweight, Location)],
+    location: &Location,
+    e: mechdiff_core::Error,
+) -> Error {
+    let at = |link: &str| {
+        counterweights
+            .iter()
+            .rfind(|(c, _)| c.link == link)
+            .map_or(location, |(_, at)| at)
+    };
+    match e {
+        mechdiff_core::Error::Unassemblable { .. }
+        | mechdiff_core::Error::Singular { .. }
+        | mechdiff_core::Error::BranchFlip { .. } => crate::scene::run::solver_error(scene, e),
+        mechdiff_core::Error::NotPivoted { ref link, .. } => core_error(at(link), e),
+        mechdiff_core::Error::DuplicateName { ref name, .. } => core_error(at(name), e),
+        other => core_error(location, other),
+    }
+}
+
+/// What `[rotor]` and `[balancing]` check before anything is solved (`mechdiff check` runs
+/// it too): the rotor's answers are finite; counterweights sit on pivoted links of a linkage
+/// with mass data, one each ([`check_balance_request`]), and have a shaking force to size
+/// them from (a drive `speed`, or an acceleration, that is not zero).
+pub(crate) fn before_solving(
+    scene: &Scene,
+    b: &SceneBalancing,
+    mechanism: &Mechanism,
+) -> Result<()> {
+    if let Some(r) = &b.rotor {
+        r.answers()?;
+    }
+    if let Some((counterweights, location)) = &b.counterweights {
+        let requests: Vec<_> = counterweights.iter().map(|(c, _)| c.clone()).collect();
+        check_balance_request(mechanism, &requests)
+            .map_err(|e| balance_error(scene, counterweights, location, e))?;
+        let message = match scene.drive.speed {
+            None => {
+                "`[balancing]` sizes counterweights from the shaking force: give the \
+                     drive's `speed`"
+            }
+            Some(omega) if omega == 0.0 && scene.drive.acceleration == 0.0 => {
+                "`[balancing]` sizes counterweights from the shaking force, which is zero at a \
+                 drive `speed` of 0 (and no acceleration): give a non-zero `speed`"
+            }
+            Some(_) => return Ok(()),
+        };
+        return Err(Error::Invalid {
+            location: location.clone(),
+            message: message.to_owned(),
+        });
+    }
+    Ok(())
+}
+
 /// Runs the balancing sections of `scene` at the drive positions `positions`.
 pub(crate) fn run(
     scene: &Scene,
@@ -68,6 +131,7 @@ pub(crate) fn run(
     mechanism: &Mechanism,
     positions: &[f64],
 ) -> Result<BalancingReport> {
+    before_solving(scene, b, mechanism)?;
     let mut report = BalancingReport {
         columns: Vec::new(),
         rows: Vec::new(),
@@ -109,27 +173,13 @@ pub(crate) fn run(
         ));
     }
     if let Some((counterweights, location)) = &b.counterweights {
-        let Some(omega) = scene.drive.speed else {
-            return Err(Error::Invalid {
-                location: location.clone(),
-                message: "`[balancing]` sizes counterweights from the shaking force: give the \
-                          drive's `speed`"
-                    .to_owned(),
-            });
-        };
+        let omega = scene.drive.speed.unwrap_or(0.0);
         let data = scene
             .dynamics
             .as_ref()
             .map_or_else(Dynamics::new, |d| d.data.clone());
         let drive = DriveState::accelerating(omega, scene.drive.acceleration);
         let requests: Vec<_> = counterweights.iter().map(|(c, _)| c.clone()).collect();
-        // A core error naming a counterweight's link is located at that counterweight.
-        let at = |link: &str| {
-            counterweights
-                .iter()
-                .rfind(|(c, _)| c.link == link)
-                .map_or(location, |(_, at)| at)
-        };
         let result = balance_linkage(
             mechanism,
             &data,
@@ -138,14 +188,7 @@ pub(crate) fn run(
             drive,
             &Solver::default(),
         )
-        .map_err(|e| match e {
-            mechdiff_core::Error::Unassemblable { .. }
-            | mechdiff_core::Error::Singular { .. }
-            | mechdiff_core::Error::BranchFlip { .. } => crate::scene::run::solver_error(scene, e),
-            mechdiff_core::Error::NotPivoted { ref link, .. } => core_error(at(link), e),
-            mechdiff_core::Error::DuplicateName { ref name, .. } => core_error(at(name), e),
-            other => core_error(location, other),
-        })?;
+        .map_err(|e| balance_error(scene, counterweights, location, e))?;
         report.columns = columns(scene, b);
         let torque = &report.columns[3].unit;
         let a = &result.after;

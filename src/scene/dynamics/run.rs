@@ -49,25 +49,7 @@ pub(crate) fn run(
     if d.outputs.is_empty() {
         return Ok(None);
     }
-    let model = d.data.compile(mechanism).map_err(|source| Error::Model {
-        file: scene.file.clone(),
-        source,
-    })?;
-    let plan = d.plan(mechanism);
-    let drive = drive_state(scene, &plan, speed)?;
-    if drive.omega == 0.0
-        && let Some(o) = d
-            .outputs
-            .iter()
-            .find(|o| o.quantity == DynamicQuantity::PowerBalance)
-    {
-        return Err(Error::Invalid {
-            location: o.location.clone(),
-            message: "the power balance gives the drive torque as power / speed; it needs a \
-                      non-zero drive `speed`"
-                .to_owned(),
-        });
-    }
+    let (model, plan, drive) = before_solving(scene, d, mechanism, speed)?;
     // The driven joint's position and motion at each drive position (through the cam's
     // follower for a cam drive).
     let states: Vec<(f64, DriveState)> = (positions.iter())
@@ -104,13 +86,11 @@ pub(crate) fn run(
             phi,
             joints,
             reason,
-        } => Error::Invalid {
+        } => Error::SelfLocking {
             location: scene.drive.location.clone(),
-            message: format!(
-                "self-locking at drive position {}: joints {} ({reason})",
-                scene.joint_text(phi),
-                joints.join(", ")
-            ),
+            position: scene.joint_text(phi),
+            joints: joints.join(", "),
+            reason,
         },
         other => crate::scene::run::solver_error(scene, other),
     })?;
@@ -181,6 +161,37 @@ pub(crate) fn run(
         summary,
         run: result,
     }))
+}
+
+/// What `[[dynamics]]` checks before anything is solved (`mechdiff check` runs it too): the
+/// model compiles with the masses, the plan's drive state has the speed it needs, and a power
+/// balance has a non-zero speed to divide by. Returns the model, the plan and the drive.
+pub(crate) fn before_solving<'m>(
+    scene: &Scene,
+    d: &SceneDynamics,
+    mechanism: &'m Mechanism,
+    speed: Option<f64>,
+) -> Result<(mechdiff_core::dynamics::CompiledModel<'m>, Plan, DriveState)> {
+    let model = d.data.compile(mechanism).map_err(|source| Error::Model {
+        file: scene.file.clone(),
+        source,
+    })?;
+    let plan = d.plan(mechanism);
+    let drive = drive_state(scene, &plan, speed)?;
+    if drive.omega == 0.0
+        && let Some(o) = d
+            .outputs
+            .iter()
+            .find(|o| o.quantity == DynamicQuantity::PowerBalance)
+    {
+        return Err(Error::Invalid {
+            location: o.location.clone(),
+            message: "the power balance gives the drive torque as power / speed; it needs a \
+                      non-zero drive `speed`"
+                .to_owned(),
+        });
+    }
+    Ok((model, plan, drive))
 }
 
 /// The drive's speed (`speed`, when the scene gives one) and acceleration for `plan`: an

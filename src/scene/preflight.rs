@@ -1,0 +1,77 @@
+//! What a run checks before it solves any position, written once: `mechdiff check` and every
+//! `mechdiff run` call [`before_solving`], so the two give the same verdict on every error a
+//! run can give before solving. `check` also holds the sweep against the drive's motion range
+//! it walked ([`sweep_within_motion_range`]), which a run finds when it reaches the limit.
+
+use mechdiff_core::geometry::{DriveLimit, LimitKind, Mechanism, MotionRange};
+
+use crate::error::{Error, Result};
+
+use super::model::Scene;
+use super::positions::MAX_IN_MEMORY;
+
+/// Every check of a scene's dynamics and balancing that needs no solved position: the
+/// dynamic model compiles, the drive has the speed the outputs need (a power balance or
+/// counterweights need a non-zero one), the rotor's answers are finite, and a sweep held in
+/// memory (dynamics, balancing) is not longer than [`MAX_IN_MEMORY`] positions.
+///
+/// # Errors
+/// The located error a run would give for the first of these that fails.
+pub fn before_solving(scene: &Scene, mechanism: &Mechanism) -> Result<()> {
+    if let Some(d) = scene.dynamics.as_ref().filter(|d| !d.outputs.is_empty()) {
+        super::dynamics::before_solving(scene, d, mechanism, scene.drive.speed)?;
+    }
+    if let Some(b) = &scene.balancing {
+        super::balancing::before_solving(scene, b, mechanism)?;
+    }
+    let in_memory = scene.dynamics.is_some() || scene.balancing.is_some();
+    if in_memory && scene.positions.len() > MAX_IN_MEMORY {
+        // The error names `step` and what to do instead; nothing is allocated.
+        scene.positions.to_vec()?;
+    }
+    Ok(())
+}
+
+/// How far (relative) a sweep's position may lie past a limit position, found by bisection
+/// to about this precision, before `check` refuses it: a sweep written to end at the printed
+/// limit is not refused for its last digit.
+const LIMIT_SLACK: f64 = 1e-9;
+
+/// Refuses a sweep that reaches past a limit position of the drive's motion range (walked
+/// from the sketch by `check`): the run would stop there with [`Error::Blocked`], so `check`
+/// gives the same error, naming the first position past the limit. Change points and
+/// toggles are left to the run, which may pass them; a sweep given as values of an output
+/// (`[sweep] of`) is solved for its drive positions by the run.
+///
+/// # Errors
+/// [`Error::Blocked`] with the last position of the sweep inside the range (or the sketch's),
+/// the first one past it, and the limit.
+pub fn sweep_within_motion_range(scene: &Scene, range: &MotionRange) -> Result<()> {
+    if scene.sweep_of.is_some() {
+        return Ok(());
+    }
+    fn limit(end: Option<&DriveLimit>) -> Option<&DriveLimit> {
+        end.filter(|l| l.kind == LimitKind::Limit)
+    }
+    let (lower, upper) = (limit(range.lower.as_ref()), limit(range.upper.as_ref()));
+    if lower.is_none() && upper.is_none() {
+        return Ok(());
+    }
+    let mut inside = scene.drive.at_sketch;
+    for phi in scene.positions.iter() {
+        let past = lower
+            .filter(|l| phi < l.phi - LIMIT_SLACK * (1.0 + l.phi.abs()))
+            .or_else(|| upper.filter(|u| phi > u.phi + LIMIT_SLACK * (1.0 + u.phi.abs())));
+        if let Some(l) = past {
+            return Err(Error::Blocked {
+                file: scene.file.clone(),
+                from: scene.joint_text(inside).into(),
+                to: scene.joint_text(phi).into(),
+                limit: scene.joint_text(l.phi).into(),
+                loop_joints: l.joints.join(", ").into(),
+            });
+        }
+        inside = phi;
+    }
+    Ok(())
+}
