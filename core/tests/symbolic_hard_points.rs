@@ -248,7 +248,9 @@ fn every_primitive_derivative_matches_a_high_precision_reference_far_out() {
         ("cosh(u)", &[700.0, -700.0, small]),
         (
             "tanh(u)",
-            &[1e3, -1e3, 800.0, -800.0, 300.0, 20.0, -20.0, 1.0, 0.5, -0.5, small],
+            &[
+                1e3, -1e3, 800.0, -800.0, 300.0, 20.0, -20.0, 1.0, 0.5, -0.5, small,
+            ],
         ),
         ("abs(u)", &[1e3, -1e3]),
         ("u^3", &[1e3, -1e3, small]),
@@ -302,7 +304,10 @@ fn tanh_at_800_has_finite_derivatives() {
     // and where sech² is still a normal f64 (u = 300: 4e^-600 = 1.1e-260), it is
     // computed, not flushed: tanh′ > 0, tanh″ = −2 sech² tanh < 0
     let far = engine_jet("tanh(u)", 300.0);
-    assert!(far[1] > 1e-261 && far[2] < -1e-261 && far[3] > 1e-261, "{far:?}");
+    assert!(
+        far[1] > 1e-261 && far[2] < -1e-261 && far[3] > 1e-261,
+        "{far:?}"
+    );
 }
 
 /// Removable singularities are taken in Taylor series (`limit_jets`): tanh there was

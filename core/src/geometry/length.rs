@@ -110,7 +110,11 @@ fn loop_points(m: &Mechanism, eq: &Equations, l: &Loop) -> Vec<[f64; 2]> {
     let mut points: Vec<[f64; 2]> = links.map(|k| m.reference_sketch(k)).collect();
     for &r in &l.rows {
         let j = eq.row_joint[r];
-        let joint = if j == m.joints.len() { m.drive_joint } else { j };
+        let joint = if j == m.joints.len() {
+            m.drive_joint
+        } else {
+            j
+        };
         joint_points(m, joint, &mut points);
     }
     points

@@ -372,4 +372,3 @@ fn check_sketch(m: &Mechanism) -> Result<(), Error> {
     }
     Ok(())
 }
-

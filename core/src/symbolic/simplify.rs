@@ -491,9 +491,7 @@ impl Graph {
             Binary::Mul => self.mul(a, b),
             Binary::Div => self.div(a, b),
             Binary::Powf => self.powf(a, b),
-            Binary::Atan2 => {
-                self.rewrite(Node::Binary(op, a, b), |g| g.atan2_simplified(a, b))
-            }
+            Binary::Atan2 => self.rewrite(Node::Binary(op, a, b), |g| g.atan2_simplified(a, b)),
             Binary::Hypot => self.intern(Node::Binary(op, a, b)),
         }
     }

@@ -137,9 +137,15 @@ impl Tracker<'_> {
     fn converged(&self) -> bool {
         let tolerance = self.solver.tolerance;
         let rows = self.trial_residual.iter().zip(&self.eq.angular);
-        rows.zip(&self.lengths.rows).all(|((&r, &angular), &length)| {
-            r.abs() <= if angular { tolerance } else { tolerance * length }
-        })
+        rows.zip(&self.lengths.rows)
+            .all(|((&r, &angular), &length)| {
+                r.abs()
+                    <= if angular {
+                        tolerance
+                    } else {
+                        tolerance * length
+                    }
+            })
     }
 
     /// Φ(trial, φ) into `trial_residual`.
