@@ -471,9 +471,12 @@ mod scale_free_verdicts {
         ))
     }
 
+    /// A shipped scene, its check's verdicts and its run.
+    type Base = (Scene, Result<String, String>, Report);
+
     /// The shipped scenes' check verdicts and runs, computed once.
-    fn bases() -> &'static Vec<(Scene, Result<String, String>, Report)> {
-        static BASES: OnceLock<Vec<(Scene, Result<String, String>, Report)>> = OnceLock::new();
+    fn bases() -> &'static Vec<Base> {
+        static BASES: OnceLock<Vec<Base>> = OnceLock::new();
         BASES.get_or_init(|| {
             SCENES
                 .iter()

@@ -82,7 +82,7 @@ pub fn atan2<D: Scalar>(y: D, x: D) -> D {
 /// ```
 pub fn tanh<D: Scalar>(u: D) -> D {
     let x = u.re();
-    if D::NDERIV == 0 || !(x.abs() >= 1.0) {
+    if D::NDERIV == 0 || x.abs() < 1.0 || x.is_nan() {
         return u.tanh();
     }
     let sign = x.signum();

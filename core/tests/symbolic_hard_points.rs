@@ -276,8 +276,7 @@ fn every_primitive_derivative_matches_a_high_precision_reference_far_out() {
             // a derivative that is 0 (|u|″) comes out of the differences as rounding,
             // ~1e-125 |f|: below 1e-100 |f| a reference counts as 0
             let zero = UNDERFLOW.max(1e-100 * reference[0].abs());
-            for k in 0..4 {
-                let (g, r) = (got[k], reference[k]);
+            for (k, (&g, &r)) in got.iter().zip(&reference).enumerate() {
                 let ok = if r.abs() >= zero {
                     (g - r).abs() <= 1e-13 * r.abs()
                 } else {
@@ -323,10 +322,10 @@ fn tanh_far_out_in_series_at_a_removable_singularity() {
             .unwrap();
         let limits = graph.limit_jets::<f64>(&[f], "u", &[("u", 0.0)]).unwrap();
         let expected = [1.0, 0.0, -1.0 / 3.0, 0.0].map(|v: f64| v * sign);
-        for k in 0..4 {
+        for (got, want) in limits.jets[0].iter().zip(expected) {
             // 1e-15: the series of sin(u)/u to order 3 is exact up to a rounding of 1/3
             assert!(
-                (limits.jets[0][k] - expected[k]).abs() <= 1e-15,
+                (got - want).abs() <= 1e-15,
                 "shift {shift}: {:?}",
                 limits.jets[0]
             );
