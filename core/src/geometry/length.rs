@@ -52,18 +52,13 @@ pub(crate) fn sketch_size(m: &Mechanism) -> f64 {
     if all > 0.0 { all } else { 1.0 }
 }
 
-/// The points joint `j`'s equations involve (those of the joints a rolling or gear
-/// contact couples).
-fn joint_points(m: &Mechanism, j: usize, out: &mut Vec<[f64; 2]>) {
-    let at = |p: usize| m.points[p].sketch;
+/// The points (indices) joint `j`'s equations involve: its own, those of the joints a
+/// rolling or gear contact couples, the reference points of the moving links a weld joins.
+fn joint_points(m: &Mechanism, j: usize, out: &mut Vec<usize>) {
     match m.joints[j].kind {
-        JointKind::Revolute { point, .. } => out.push(at(point)),
-        JointKind::Prismatic { line, point, .. } => {
-            out.extend([at(line[0]), at(line[1]), at(point)]);
-        }
-        JointKind::PinInSlot { line, pin, .. } => {
-            out.extend([at(line[0]), at(line[1]), at(pin)]);
-        }
+        JointKind::Revolute { point, .. } => out.push(point),
+        JointKind::Prismatic { line, point, .. } => out.extend([line[0], line[1], point]),
+        JointKind::PinInSlot { line, pin, .. } => out.extend([line[0], line[1], pin]),
         JointKind::RackPinion { pinion, rack, .. } => {
             joint_points(m, pinion, out);
             joint_points(m, rack, out);
@@ -75,7 +70,8 @@ fn joint_points(m: &Mechanism, j: usize, out: &mut Vec<[f64; 2]>) {
             joint_points(m, joint_b, out);
         }
         JointKind::Rigid { link_a, link_b } => {
-            out.extend([m.reference_sketch(link_a), m.reference_sketch(link_b)]);
+            let references = [link_a, link_b].into_iter().filter(|&k| k != 0);
+            out.extend(references.filter_map(|k| m.links[k].points.first().copied()));
         }
     }
 }
@@ -84,8 +80,9 @@ fn joint_points(m: &Mechanism, j: usize, out: &mut Vec<[f64; 2]>) {
 /// points of the moving links it joins (what its residual's rounding is proportional to);
 /// the mechanism's [`sketch_size`] where those coincide.
 pub(crate) fn joint_length(m: &Mechanism, j: usize) -> f64 {
-    let mut points = Vec::new();
-    joint_points(m, j, &mut points);
+    let mut indices = Vec::new();
+    joint_points(m, j, &mut indices);
+    let mut points: Vec<[f64; 2]> = indices.iter().map(|&p| m.points[p].sketch).collect();
     let links = match m.joints[j].kind {
         JointKind::Revolute { link_a, link_b, .. } | JointKind::Rigid { link_a, link_b } => {
             vec![link_a, link_b]
@@ -108,6 +105,7 @@ pub(crate) fn joint_length(m: &Mechanism, j: usize) -> f64 {
 fn loop_points(m: &Mechanism, eq: &Equations, l: &Loop) -> Vec<[f64; 2]> {
     let links = l.columns.iter().map(|&c| c / 3 + 1);
     let mut points: Vec<[f64; 2]> = links.map(|k| m.reference_sketch(k)).collect();
+    let mut indices = Vec::new();
     for &r in &l.rows {
         let j = eq.row_joint[r];
         let joint = if j == m.joints.len() {
@@ -115,9 +113,30 @@ fn loop_points(m: &Mechanism, eq: &Equations, l: &Loop) -> Vec<[f64; 2]> {
         } else {
             j
         };
-        joint_points(m, joint, &mut points);
+        joint_points(m, joint, &mut indices);
     }
+    points.extend(indices.iter().map(|&p| m.points[p].sketch));
     points
+}
+
+/// The linkage's length scale (m): the [`extent`] of the points carried by moving links
+/// that a joint involves or that are a moving link's reference point — [`sketch_size`]'s
+/// points without those that take part in no joint (a coupler point, however far); the
+/// mechanism's [`sketch_size`] where those coincide.
+fn linkage_length(m: &Mechanism) -> f64 {
+    let mut involved = vec![false; m.points.len()];
+    let mut indices = Vec::new();
+    for j in 0..m.joints.len() {
+        joint_points(m, j, &mut indices);
+    }
+    let moving = || m.links.iter().filter(|l| l.name != GROUND);
+    indices.extend(moving().filter_map(|l| l.points.first().copied()));
+    for p in indices {
+        involved[p] = true;
+    }
+    let points = moving().flat_map(|l| l.points.iter().filter(|&&p| involved[p]));
+    let own = extent(points.map(|&p| m.points[p].sketch));
+    if own > 0.0 { own } else { sketch_size(m) }
 }
 
 /// The length scale of loop `l` (m): the [`extent`] of its [`loop_points`]; where those
@@ -148,9 +167,9 @@ pub(crate) struct LoopLengths {
     pub rows: Vec<f64>,
     /// Per coordinate of q, the length scale of its loop.
     pub columns: Vec<f64>,
-    /// The linkage's length scale (m): the extent of every loop's points together (a point
-    /// in no loop's equations does not count), for what concerns the whole mechanism — a
-    /// displacement drive's longest step and the range searched for its limits.
+    /// The linkage's length scale (m; see [`linkage_length`]), for what concerns the whole
+    /// mechanism: a displacement drive's longest step and the range searched for its
+    /// limits, Newton's tolerance in generated code.
     pub linkage: f64,
 }
 
@@ -168,12 +187,11 @@ impl LoopLengths {
                 columns[c] = length;
             }
         }
-        let all = extent(loops.iter().flat_map(|l| loop_points(m, eq, l)));
         LoopLengths {
             loops: lengths,
             rows,
             columns,
-            linkage: if all > 0.0 { all } else { sketch_size(m) },
+            linkage: linkage_length(m),
         }
     }
 
@@ -185,7 +203,7 @@ impl LoopLengths {
             loops: vec![size],
             rows: vec![size; eq.rows()],
             columns: vec![size; eq.coordinates()],
-            linkage: size,
+            linkage: linkage_length(m),
         }
     }
 
