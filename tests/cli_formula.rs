@@ -123,3 +123,75 @@ fn run_of_a_formula_scene_refuses_linkage_only_options() {
         );
     }
 }
+
+/// Runs `mechdiff` with `args` in a thread, failing if it takes more than a minute (a
+/// debug build runs these in well under a second; `10*atan2(1,1)` once never returned).
+fn mechdiff_within_a_minute(args: &[&str]) -> std::process::Output {
+    let args: Vec<String> = args.iter().map(|a| a.to_string()).collect();
+    let (done, wait) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let _ = done.send(mechdiff(&args));
+    });
+    wait.recv_timeout(std::time::Duration::from_secs(60))
+        .expect("mechdiff did not return within a minute")
+}
+
+/// Issue 22: tanh(φ) at ±800 has finite derivatives (sech² = 4e^-1600/(1 + e^-1600)²
+/// underflows gracefully to 0; 1/cosh² gave NaN for ψ″, ψ‴), and a constant
+/// `10*atan2(1,1)` runs promptly with its value 10π/4 (to 1 ulp of its f64 evaluation).
+#[test]
+fn run_of_tanh_far_out_and_a_constant_atan2_is_finite_and_prompt() {
+    let scene = temp_file("tanh_far_out.toml");
+    std::fs::write(
+        &scene,
+        "title = \"tanh far out\"\n[outputs]\ny = \"tanh(phi)\"\nz = \"10*atan2(1,1) + phi\"\n\
+         [sweep]\nfrom = -800\nto = 800\nstep = 400\nunit = \"rad\"\n",
+    )
+    .unwrap();
+    let csv = temp_file("tanh_far_out.csv");
+    let output = mechdiff_within_a_minute(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--csv",
+        csv.to_str().unwrap(),
+    ]);
+    std::fs::remove_file(&scene).unwrap();
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = std::fs::read_to_string(&csv).unwrap();
+    std::fs::remove_file(&csv).unwrap();
+    let rows: Vec<Vec<f64>> = (text.lines().skip(1))
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    let quarter_turns = 10.0 * std::f64::consts::FRAC_PI_4;
+    for row in &rows {
+        let phi = row[0];
+        let y = if phi == 0.0 {
+            [0.0, 1.0, 0.0, -2.0]
+        } else {
+            [phi.signum(), 0.0, 0.0, 0.0]
+        };
+        assert_eq!(&row[1..5], &y, "tanh at φ = {phi}: {row:?}");
+        let z = quarter_turns + phi;
+        assert!((row[5] - z).abs() <= f64::EPSILON * z.abs(), "{row:?}");
+        assert_eq!(&row[6..9], &[1.0, 0.0, 0.0], "{row:?}");
+    }
+    assert_eq!(rows.len(), 5);
+}
+
+/// A linkage scene whose drive speed is the formula `10*atan2(1,1)` is checked and run
+/// promptly (both once hung), the speed its value 10π/4 rad/s.
+#[test]
+fn check_and_run_of_a_constant_atan2_in_a_linkage_are_prompt() {
+    let text = std::fs::read_to_string("scenes/four_bar.toml")
+        .unwrap()
+        .replace("speed = 10 ", "speed = \"10*atan2(1,1)\" ");
+    assert!(text.contains("10*atan2"));
+    let scene = temp_file("four_bar_atan2.toml");
+    std::fs::write(&scene, text).unwrap();
+    let check = mechdiff_within_a_minute(&["check", scene.to_str().unwrap()]);
+    let run = mechdiff_within_a_minute(&["run", scene.to_str().unwrap()]);
+    std::fs::remove_file(&scene).unwrap();
+    assert!(check.status.success(), "{}", stderr(&check));
+    assert!(run.status.success(), "{}", stderr(&run));
+}

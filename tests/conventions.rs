@@ -257,3 +257,300 @@ fn dynamics_columns_are_printed_in_the_files_force_and_torque_units() {
         "{csv}"
     );
 }
+
+/// Issue 22 item 6: verdicts are scale-free. The shipped linkage scenes scaled by 10^k
+/// (k = −6…6: every length of the model — points, pitch radii, a displacement drive's
+/// positions, speed and acceleration), or with a point 1 m to 1e8 m away added to a moving
+/// link of a loop (it takes part in no loop's closure): the check's mobility and motion
+/// range, the run's rows, dead positions, limits and warnings are those of the scene as
+/// shipped — the same verdicts, and the same numbers scaled by the factor's power of their
+/// dimension.
+mod scale_free_verdicts {
+    use super::common;
+    use mechdiff::scene::model::{DriveKind, JointKind, Link, Point};
+    use mechdiff::scene::units::Dimension;
+    use mechdiff::scene::{self, Positions, Report, Scene};
+    use proptest::prelude::*;
+    use proptest::test_runner::{Config, FileFailurePersistence};
+    use std::sync::OnceLock;
+
+    /// The scenes, each with a moving link of a loop that can carry a far point.
+    const SCENES: [(&str, &str); 6] = [
+        ("four_bar", "coupler"),
+        ("slider_crank", "rod"),
+        ("whitworth", "rocker"),
+        ("shaper", "lever"),
+        ("rack_slotted_link", "rod"),
+        ("norton_four_bar", "coupler"),
+    ];
+
+    /// Agreement asked of every number, relative to its column's largest magnitude (scaled):
+    /// the scaled mechanism is the same computation on numbers that differ by a power of
+    /// ten, so each result differs by its rounding (a few ulp times the position's
+    /// condition, ≤ 1e4 where the run would warn): 1e-12 leaves a factor ~10 above
+    /// 1e4 × 2e-16 × a few. A changed verdict — a missing row, a toggle, another branch —
+    /// errs at O(1).
+    const AGREEMENT: f64 = 1e-12;
+
+    fn load(name: &str) -> Scene {
+        scene::load(common::scene_path(&format!("{name}.toml")))
+            .unwrap_or_else(|e| panic!("{name}: {e}"))
+    }
+
+    /// `scene` with every length multiplied by `factor`, and a point `far` m away (in x and
+    /// y) carried by `link` if `far` is given.
+    fn transformed(scene: &Scene, factor: f64, far: Option<(&str, f64)>) -> Scene {
+        let mut s = scene.clone();
+        for p in &mut s.points {
+            p.sketch = p.sketch.map(|x| x * factor);
+        }
+        for j in &mut s.joints {
+            if let JointKind::RackPinion { radius, .. } = &mut j.kind {
+                *radius *= factor;
+            }
+        }
+        let displacement = s.drive.kind == DriveKind::Displacement;
+        if displacement {
+            s.drive.at_sketch *= factor;
+            s.drive.speed = s.drive.speed.map(|v| v * factor);
+            s.drive.acceleration *= factor;
+        }
+        let lengths = match s.sweep_of {
+            Some(k) => s.outputs[k].kind.dimension() == Dimension::Length,
+            None => displacement,
+        };
+        if lengths {
+            s.positions = match &s.positions {
+                Positions::List(list) => Positions::List(list.iter().map(|x| x * factor).collect()),
+                Positions::Steps {
+                    from,
+                    step,
+                    count,
+                    factor: unit,
+                    location,
+                } => Positions::Steps {
+                    from: *from,
+                    step: *step,
+                    count: *count,
+                    factor: unit * factor,
+                    location: location.clone(),
+                },
+            };
+        }
+        if let Some((link, distance)) = far {
+            let location = s.points[0].location.clone();
+            s.points.push(Point {
+                name: "far".into(),
+                sketch: [distance, 0.6 * distance],
+                location,
+            });
+            let carrier: &mut Link = s.links.iter_mut().find(|l| l.name == link).unwrap();
+            carrier.points.push("far".into());
+        }
+        s
+    }
+
+    /// The power of `factor` that a value of `dimension` scales with.
+    fn power(dimension: Dimension) -> i32 {
+        match dimension {
+            Dimension::Length => 1,
+            _ => 0,
+        }
+    }
+
+    /// `got` is `base` × `scale` to [`AGREEMENT`] of `magnitude × scale`.
+    fn agrees(got: f64, base: f64, scale: f64, magnitude: f64) -> bool {
+        (got - base * scale).abs() <= AGREEMENT * magnitude * scale
+    }
+
+    /// What differs between the shipped scene's `base` results and those of the scene
+    /// transformed by `factor`, or `Ok`.
+    fn compare(base: &Report, got: &Report, factor: f64, drive: f64) -> Result<(), String> {
+        let names = |r: &Report| r.columns.iter().map(|c| c.name.clone()).collect::<Vec<_>>();
+        if names(base) != names(got) || base.rows.len() != got.rows.len() {
+            return Err(format!(
+                "table {:?} × {} rows, was {:?} × {}",
+                names(got),
+                got.rows.len(),
+                names(base),
+                base.rows.len()
+            ));
+        }
+        for (c, column) in base.columns.iter().enumerate() {
+            let magnitude = base.rows.iter().map(|r| r[c].abs()).fold(0.0, f64::max);
+            // the power of the factor: that of the largest value (an integer power of 10^k
+            // is unmistakable), then every value must follow it
+            let at = base
+                .rows
+                .iter()
+                .position(|r| r[c].abs() == magnitude)
+                .unwrap();
+            let e = if factor == 1.0 || magnitude == 0.0 {
+                0
+            } else {
+                ((got.rows[at][c] / base.rows[at][c]).abs().log10() / factor.log10()).round() as i32
+            };
+            let scale = factor.powi(e);
+            for (g, b) in got.rows.iter().zip(&base.rows) {
+                if !agrees(g[c], b[c], scale, magnitude) {
+                    return Err(format!(
+                        "{} at φ = {}: {:e}, was {:e} × {scale:e}",
+                        column.name, b[0], g[c], b[c]
+                    ));
+                }
+            }
+        }
+        let dead = |r: &Report| {
+            (r.dead_positions.iter())
+                .map(|d| (d.output.clone(), d.positions.len()))
+                .collect::<Vec<_>>()
+        };
+        if dead(base) != dead(got) {
+            return Err(format!(
+                "dead positions {:?}, were {:?}",
+                dead(got),
+                dead(base)
+            ));
+        }
+        for (d, b) in got.dead_positions.iter().zip(&base.dead_positions) {
+            let scale = factor.powi(power(d.dimension));
+            for (x, y) in d.positions.iter().zip(&b.positions) {
+                // roots of x′ refined to full precision: the drive position to 1e-12 of a
+                // turn (or of the stroke), the value to 1e-12 of itself
+                let turn = if drive == 1.0 {
+                    2.0 * std::f64::consts::PI
+                } else {
+                    y.phi.abs()
+                };
+                if !agrees(x.phi, y.phi, drive, turn)
+                    || !agrees(x.value, y.value, scale, y.value.abs())
+                {
+                    return Err(format!("dead position of {}: {x:?}, was {y:?}", d.output));
+                }
+            }
+        }
+        let limits = |r: &Report| {
+            (r.limits.iter())
+                .map(|l| (l.limit.kind, l.limit.joints.clone()))
+                .collect::<Vec<_>>()
+        };
+        if limits(base) != limits(got) {
+            return Err(format!("limits {:?}, were {:?}", limits(got), limits(base)));
+        }
+        for (l, b) in got.limits.iter().zip(&base.limits) {
+            if !agrees(l.limit.phi, b.limit.phi, drive, b.limit.phi.abs().max(1.0)) {
+                return Err(format!("limit at {}, was {}", l.limit.phi, b.limit.phi));
+            }
+        }
+        if base.warnings.len() != got.warnings.len() {
+            return Err(format!(
+                "warnings {:?}, were {:?}",
+                got.warnings, base.warnings
+            ));
+        }
+        Ok(())
+    }
+
+    /// The verdicts of `check`: mobility, and the motion range's ends (kind, loop, position
+    /// scaled by `drive`).
+    fn check_verdicts(scene: &Scene, drive: f64) -> Result<String, String> {
+        let checked = scene::check(scene).map_err(|e| format!("check: {e}"))?;
+        let range = checked
+            .motion_range
+            .map_err(|e| format!("motion range: {e}"))?;
+        let end = |l: &Option<mechdiff_core::geometry::DriveLimit>| {
+            l.as_ref()
+                .map(|l| format!("{:?} {:?} {:.9e}", l.kind, l.joints, l.phi / drive))
+        };
+        Ok(format!(
+            "{:?} {:?} {:?} {:?}",
+            checked.mobility,
+            checked.loops,
+            end(&range.lower),
+            end(&range.upper)
+        ))
+    }
+
+    /// A shipped scene, its check's verdicts and its run.
+    type Base = (Scene, Result<String, String>, Report);
+
+    /// The shipped scenes' check verdicts and runs, computed once.
+    fn bases() -> &'static Vec<Base> {
+        static BASES: OnceLock<Vec<Base>> = OnceLock::new();
+        BASES.get_or_init(|| {
+            SCENES
+                .iter()
+                .map(|(name, _)| {
+                    let scene = load(name);
+                    let check = check_verdicts(&scene, 1.0);
+                    let report = scene::run(&scene).unwrap_or_else(|e| panic!("{name}: {e}"));
+                    (scene, check, report)
+                })
+                .collect()
+        })
+    }
+
+    fn verdicts_hold(index: usize, exponent: i32, far: Option<f64>) -> Result<(), String> {
+        let (scene, base_check, base) = &bases()[index];
+        let factor = 10f64.powi(exponent);
+        let drive = if scene.drive.kind == DriveKind::Displacement {
+            factor
+        } else {
+            1.0
+        };
+        let changed = transformed(scene, factor, far.map(|d| (SCENES[index].1, d)));
+        let check = check_verdicts(&changed, drive);
+        // the check's positions to 10 digits: equal verdicts print equally
+        if &check != base_check {
+            return Err(format!("check: {check:?}, was {base_check:?}"));
+        }
+        let report = scene::run(&changed).map_err(|e| format!("run: {e}"))?;
+        compare(base, &report, factor, drive)
+    }
+
+    /// The examples of issue 22: the four-bar scaled by 1e-6 and 1e6, and its coupler
+    /// carrying a point 3e4 m and 1e6 m away, gave a false toggle at the sketch.
+    #[test]
+    fn the_four_bar_scaled_or_with_a_far_coupler_point_keeps_its_verdicts() {
+        for (exponent, far) in [
+            (-6, None),
+            (6, None),
+            (-4, None),
+            (5, None),
+            (0, Some(3e4)),
+            (0, Some(1e6)),
+        ] {
+            verdicts_hold(0, exponent, far)
+                .unwrap_or_else(|e| panic!("four-bar ×1e{exponent}, far {far:?}: {e}"));
+        }
+    }
+
+    proptest! {
+        #![proptest_config(Config {
+            cases: 48,
+            failure_persistence: Some(Box::new(FileFailurePersistence::Direct(
+                "proptest-regressions/scale_free_verdicts.txt",
+            ))),
+            ..Config::default()
+        })]
+
+        #[test]
+        fn scaling_and_far_points_change_no_verdict(
+            index in 0..SCENES.len(),
+            exponent in -6i32..=6,
+            far in prop::option::of(0.0f64..8.0),
+            both in any::<bool>(),
+        ) {
+            // a far point alone (factor 1), or with the scaling
+            let exponent = if far.is_some() && !both { 0 } else { exponent };
+            let far = far.map(|log| 10f64.powf(log));
+            let verdict = verdicts_hold(index, exponent, far);
+            prop_assert!(
+                verdict.is_ok(),
+                "{} ×1e{exponent}, far {far:?}: {}",
+                SCENES[index].0,
+                verdict.unwrap_err()
+            );
+        }
+    }
+}

@@ -31,4 +31,4 @@ pub use motion::{DriveState, Motion};
 pub use num_dual;
 pub use point::Point;
 pub use position::PositionFunction;
-pub use scalar::{Scalar, atan2, hypot};
+pub use scalar::{Scalar, atan2, hypot, tanh};

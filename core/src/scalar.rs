@@ -66,6 +66,30 @@ pub fn atan2<D: Scalar>(y: D, x: D) -> D {
     }
 }
 
+/// `tanh(u)` with derivatives that stay finite for every finite `u`.
+///
+/// num-dual's `tanh` of a dual number is `sinh / cosh`, ∞/∞ = NaN in every part once
+/// |u| > 710. For |u| ≥ 1 this is `s (1 − w)/(1 + w)` with w = e^(−2s·u), s the sign of u:
+/// w ≤ e^-2, so nothing overflows, 1 − w does not cancel, and far out the derivative parts
+/// (sech² and its derivatives, ~w) underflow gracefully to 0. For |u| < 1, and for a plain
+/// `f64` (bit for bit what emitted code computes), the library's `tanh`.
+///
+/// ```
+/// use mechdiff_core::tanh;
+/// use num_dual::Dual2_64;
+/// let t = tanh(Dual2_64::new(800.0, 1.0, 0.0));
+/// assert_eq!((t.re, t.v1, t.v2), (1.0, 0.0, 0.0));
+/// ```
+pub fn tanh<D: Scalar>(u: D) -> D {
+    let x = u.re();
+    if D::NDERIV == 0 || x.abs() < 1.0 || x.is_nan() {
+        return u.tanh();
+    }
+    let sign = x.signum();
+    let w = (u * (-2.0 * sign)).exp();
+    (D::one() - w) / (D::one() + w) * sign
+}
+
 /// A traced `atan2` is recorded as one node, valid in every quadrant (the branches below
 /// would record only the traced point's quadrant); `None` for every other scalar (the test
 /// is on the type, resolved at compile time).

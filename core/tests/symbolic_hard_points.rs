@@ -139,3 +139,196 @@ fn tanh_derivatives_stay_finite_where_cosh_overflows() {
     let got = symbolic("tanh(x)", 400.0, &[]);
     assert_eq!(got, [1.0, 0.0, 0.0, 0.0]);
 }
+
+/// Value and derivatives 1 to 3 of `formula` in `u` at `u`, as the engine's derivative
+/// formulas give them in f64.
+fn engine_jet(formula: &str, u: f64) -> [f64; 4] {
+    let mut graph = Graph::new();
+    let f = graph.parse_infix(formula).unwrap();
+    let jet = graph.derivatives(f, "u", 3);
+    let values = graph.evaluate_f64(&jet, &[("u", u)]).unwrap();
+    [values[0], values[1], values[2], values[3]]
+}
+
+/// Bits of the reference: central differences of step h = 1e-60 of the formula itself
+/// (never its derivative formulas), so truncation errs by ~h² = 1e-120 relative to the
+/// ratio of neighbouring derivatives and rounding by ~2^-1024 / h³ = 1e-128 relative to
+/// |f / f‴|: both far below f64's 1e-16 for every case here but tanh far out.
+const REFERENCE_BITS: usize = 1024;
+
+/// Bits for tanh: at u = 1000 its derivatives are ~e^-2000 = 1e-869 of its value 1, so the
+/// differences of values must resolve 1e-869 · h · 1e-16 ≈ 1e-945 of it: 3140 bits; 4096
+/// bits (1e-1233) leave a margin of 1e-288.
+const TANH_REFERENCE_BITS: usize = 4096;
+
+/// f, f′, f″, f‴ of `formula` (in `u`, a letter no primitive's name holds) at `u` from
+/// central differences in [`REFERENCE_BITS`] bits: (f₁ − f₋₁)/2h, (f₁ − 2f₀ + f₋₁)/h²,
+/// (f₂ − 2f₁ + 2f₋₁ − f₋₂)/2h³ with f_k = f(u + k h).
+fn reference_jet(formula: &str, u: f64) -> [f64; 4] {
+    let bits = if formula.contains("tanh") {
+        TANH_REFERENCE_BITS
+    } else {
+        REFERENCE_BITS
+    };
+    let mut graph = Graph::new();
+    let f: Vec<_> = [-2, -1, 0, 1, 2]
+        .into_iter()
+        .map(|k| {
+            let shifted = formula.replace('u', &format!("(u + {k}*h)"));
+            graph.parse_infix(&shifted).unwrap()
+        })
+        .collect();
+    let (h, two) = (graph.symbol("h"), graph.number(2.0));
+    let first = {
+        let d = graph.sub(f[3], f[1]);
+        let twice_h = graph.mul(two, h);
+        graph.div(d, twice_h)
+    };
+    let second = {
+        let outer = graph.add(f[3], f[1]);
+        let middle = graph.mul(two, f[2]);
+        let d = graph.sub(outer, middle);
+        let h2 = graph.powi(h, 2);
+        graph.div(d, h2)
+    };
+    let third = {
+        let outer = graph.sub(f[4], f[0]);
+        let inner = graph.sub(f[3], f[1]);
+        let inner = graph.mul(two, inner);
+        let d = graph.sub(outer, inner);
+        let h3 = graph.powi(h, 3);
+        let twice = graph.mul(two, h3);
+        graph.div(d, twice)
+    };
+    // every argument here is a short binary fraction, so its shortest decimal is exact
+    let u_text = format!("{u:e}");
+    let values = graph
+        .evaluate_big(
+            &[f[2], first, second, third],
+            &[("u", u_text.as_str()), ("h", "1e-60")],
+            bits,
+        )
+        .unwrap();
+    [0, 1, 2, 3].map(|k| values[k].to_f64())
+}
+
+/// Below this a derivative has left f64's normal range: the engine must give a finite
+/// number as small (it underflows gracefully), not a relative accuracy.
+const UNDERFLOW: f64 = 1e-290;
+
+/// Every primitive's derivative formulas, orders 0 to 3, at large arguments (|u| = 1e3 where
+/// the value is in f64's range; 700 for exp, sinh, cosh, whose values leave it at 710),
+/// small ones (2⁻¹⁰) and near the ends of their domains (asin, acos at ±(1 − 2⁻¹⁰)), against
+/// the high-precision reference: relative error at most 1e-13 wherever the reference is a
+/// normal f64, and finite and below 1e-290 where it underflows (below 1e-100 |f| where the
+/// derivative is 0 and the reference holds only its rounding).
+///
+/// Why 1e-13: each formula is a few (< 20) f64 operations on exact arguments, each
+/// correctly rounded or within a few ulp (libm), and none of these values cancels (no
+/// difference of nearly equal terms at these points), so the error is a few tens of ulp,
+/// ~1e-14; 1e-13 leaves a factor ~10, while a formula that overflows, cancels or is wrong
+/// errs at O(1) or gives NaN (1/cosh²'s derivatives at |u| = 800 gave NaN).
+#[test]
+fn every_primitive_derivative_matches_a_high_precision_reference_far_out() {
+    let small = 2f64.powi(-10);
+    let edge = 1.0 - small;
+    let cases: &[(&str, &[f64])] = &[
+        ("-u", &[1e3, -1e3]),
+        ("sqrt(u)", &[1e3, small]),
+        ("cbrt(u)", &[1e3, -1e3, small]),
+        ("exp(u)", &[700.0, -700.0, -1e3, small]),
+        ("ln(u)", &[1e3, small]),
+        ("sin(u)", &[1e3, -1e3, small]),
+        ("cos(u)", &[1e3, -1e3, small]),
+        ("tan(u)", &[1e3, -1e3, small]),
+        ("asin(u)", &[edge, -edge, small]),
+        ("acos(u)", &[edge, -edge, small]),
+        ("atan(u)", &[1e3, -1e3, small]),
+        ("sinh(u)", &[700.0, -700.0, small]),
+        ("cosh(u)", &[700.0, -700.0, small]),
+        (
+            "tanh(u)",
+            &[
+                1e3, -1e3, 800.0, -800.0, 300.0, 20.0, -20.0, 1.0, 0.5, -0.5, small,
+            ],
+        ),
+        ("abs(u)", &[1e3, -1e3]),
+        ("u^3", &[1e3, -1e3, small]),
+        ("u^-2", &[1e3, small]),
+        ("1/u", &[1e3, -1e3, small]),
+        ("powf(u, 2.5)", &[1e3, small]),
+        ("powf(2, u)", &[1e3, -1e3]),
+        ("powf(u, u)", &[100.0, small]),
+        ("atan2(u, 1)", &[1e3, -1e3, small]),
+        // (not at u = +1e3: `signs` rewrites atan2(1, u) as π/2 − atan(u), whose value
+        // (not its derivatives) cancels there, 1.2e-13 relative: a simplification's
+        // accuracy, outside the derivative rules checked here)
+        ("atan2(1, u)", &[-1e3, small]),
+        ("atan2(u, -3)", &[1e3, -1e3]),
+        ("hypot(u, 1)", &[1e3, -1e3, small]),
+        ("hypot(2, u)", &[1e3, small]),
+    ];
+    let mut checked = 0;
+    for &(formula, points) in cases {
+        for &u in points {
+            let got = engine_jet(formula, u);
+            let reference = reference_jet(formula, u);
+            // a derivative that is 0 (|u|″) comes out of the differences as rounding,
+            // ~1e-125 |f|: below 1e-100 |f| a reference counts as 0
+            let zero = UNDERFLOW.max(1e-100 * reference[0].abs());
+            for (k, (&g, &r)) in got.iter().zip(&reference).enumerate() {
+                let ok = if r.abs() >= zero {
+                    (g - r).abs() <= 1e-13 * r.abs()
+                } else {
+                    g.is_finite() && g.abs() < zero
+                };
+                assert!(
+                    ok,
+                    "{formula} at u = {u}: order {k}: engine {g:e}, reference {r:e}"
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert_eq!(checked, 4 * 76);
+}
+
+/// tanh at ±800 (the scene of issue 22): the engine's derivatives are finite, tanh = ±1
+/// and sech² = 4e^-1600/(1 + e^-1600)² underflows to 0 with its derivatives: [±1, 0, 0, 0]
+/// (the old 1/cosh² form gave [1, 0, NaN, NaN]).
+#[test]
+fn tanh_at_800_has_finite_derivatives() {
+    assert_eq!(engine_jet("tanh(u)", 800.0), [1.0, 0.0, 0.0, 0.0]);
+    assert_eq!(engine_jet("tanh(u)", -800.0), [-1.0, 0.0, 0.0, 0.0]);
+    // and where sech² is still a normal f64 (u = 300: 4e^-600 = 1.1e-260), it is
+    // computed, not flushed: tanh′ > 0, tanh″ = −2 sech² tanh < 0
+    let far = engine_jet("tanh(u)", 300.0);
+    assert!(
+        far[1] > 1e-261 && far[2] < -1e-261 && far[3] > 1e-261,
+        "{far:?}"
+    );
+}
+
+/// Removable singularities are taken in Taylor series (`limit_jets`): tanh there was
+/// sinh/cosh, ∞/∞ = NaN past |u| = 710. tanh(u + 800)·sin(u)/u at u = 0 is
+/// [1, 0, −1/3, 0] (sech²(800) underflows: the terms with tanh's derivatives vanish), and
+/// at −800 its negative.
+#[test]
+fn tanh_far_out_in_series_at_a_removable_singularity() {
+    for (shift, sign) in [(800.0, 1.0), (-800.0, -1.0)] {
+        let mut graph = Graph::new();
+        let f = graph
+            .parse_infix(&format!("tanh(u + {shift:?})*sin(u)/u"))
+            .unwrap();
+        let limits = graph.limit_jets::<f64>(&[f], "u", &[("u", 0.0)]).unwrap();
+        let expected = [1.0, 0.0, -1.0 / 3.0, 0.0].map(|v: f64| v * sign);
+        for (got, want) in limits.jets[0].iter().zip(expected) {
+            // 1e-15: the series of sin(u)/u to order 3 is exact up to a rounding of 1/3
+            assert!(
+                (got - want).abs() <= 1e-15,
+                "shift {shift}: {:?}",
+                limits.jets[0]
+            );
+        }
+    }
+}

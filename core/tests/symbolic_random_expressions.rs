@@ -187,3 +187,100 @@ proptest! {
         }
     }
 }
+
+/// Any formula, domain or not: every primitive on any arguments, with constants that make
+/// equal, zero and negative operands likely (`atan2(2, 2)`, `powf(0, 0)`, `ln(-1)`).
+fn any_tree() -> impl Strategy<Value = Tree> {
+    let leaf = prop_oneof![
+        Just(Tree::X),
+        Just(Tree::A),
+        prop::sample::select(vec![0.0, 1.0, 2.0, 0.5, -1.0, 3.0, 1e300, 1e-300])
+            .prop_map(Tree::Constant),
+    ];
+    let unary: Vec<&'static str> = mechdiff_core::symbolic::Unary::ALL
+        .iter()
+        .map(|op| op.name())
+        .collect();
+    let binary: Vec<&'static str> = mechdiff_core::symbolic::Binary::ALL
+        .iter()
+        .map(|op| op.name())
+        .collect();
+    leaf.prop_recursive(5, 32, 2, move |inner| {
+        prop_oneof![
+            (prop::sample::select(unary.clone()), inner.clone())
+                .prop_map(|(op, a)| Tree::Unary(op, Box::new(a))),
+            (prop::sample::select(binary.clone()), inner.clone(), inner)
+                .prop_map(|(op, a, b)| Tree::Binary(op, Box::new(a), Box::new(b))),
+        ]
+    })
+}
+
+/// The plain s-expression of a tree (no domain-safe forms).
+fn plain_sexpr(tree: &Tree) -> String {
+    match tree {
+        Tree::X => "x".into(),
+        Tree::A => "a".into(),
+        Tree::Constant(c) => format!("{c:?}"),
+        Tree::Unary(op, a) => format!("({op} {})", plain_sexpr(a)),
+        Tree::Binary(op, a, b) => format!("({op} {} {})", plain_sexpr(a), plain_sexpr(b)),
+    }
+}
+
+/// What a random formula may take at most, in wall-clock time, to be parsed, simplified,
+/// differentiated three times and evaluated: each takes milliseconds (a debug build, a
+/// loaded machine: well under 100 ms); 5 s is a hang, not a slow case (`atan2(c, c)` with
+/// c > 0 once never returned).
+const WALL_CLOCK: std::time::Duration = std::time::Duration::from_secs(5);
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// Every formula is built, simplified, differentiated to order 3 and evaluated in bounded
+    /// time, whatever its constants and domains (its values may be NaN: only termination is
+    /// asserted here).
+    #[test]
+    fn any_formula_is_simplified_and_differentiated_in_bounded_time(
+        t in any_tree(), x in -2.0f64..2.0, a in -2.0f64..2.0
+    ) {
+        let expression = plain_sexpr(&t);
+        let (done, wait) = std::sync::mpsc::channel();
+        let text = expression.clone();
+        std::thread::spawn(move || {
+            let mut graph = Graph::new();
+            let f = graph.parse_sexpr(&text).unwrap();
+            let jet = graph.derivatives(f, "x", 3);
+            let _ = graph.evaluate_f64(&jet, &[("x", x), ("a", a)]);
+            let _ = done.send(());
+        });
+        prop_assert!(
+            wait.recv_timeout(WALL_CLOCK).is_ok(),
+            "{expression} took more than {WALL_CLOCK:?} (or panicked)"
+        );
+    }
+}
+
+/// The formulas of issue 22, in the infix syntax of scenes: constant `atan2`s fold or
+/// evaluate, promptly, to their value (π/4 × 10 to 1 ulp of the f64 evaluation).
+#[test]
+fn constant_atan2_is_built_promptly_with_its_value() {
+    for (formula, value) in [
+        ("10*atan2(1,1)", 10.0 * std::f64::consts::FRAC_PI_4),
+        ("atan2(2, 2)", std::f64::consts::FRAC_PI_4),
+        ("atan2(0.5*3, 1.5)", std::f64::consts::FRAC_PI_4),
+        ("atan2(-3, -3)", -3.0 * std::f64::consts::FRAC_PI_4),
+        ("atan2(1e300, 1e300) + x", std::f64::consts::FRAC_PI_4),
+    ] {
+        let (done, wait) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let mut graph = Graph::new();
+            let f = graph.parse_infix(formula).unwrap();
+            let jet = graph.derivatives(f, "x", 3);
+            let _ = done.send(graph.evaluate_f64(&jet, &[("x", 0.0)]).unwrap());
+        });
+        let values = wait.recv_timeout(WALL_CLOCK).expect(formula);
+        assert!(
+            (values[0] - value).abs() <= f64::EPSILON * value.abs(),
+            "{formula}: {values:?}"
+        );
+    }
+}

@@ -61,8 +61,11 @@ rules! {
     d_atan2_denominator: "(d x (atan2 y x))" => "(neg (/ y (+ (powi y 2) (powi x 2))))";
     d_sinh: "(d x (sinh x))" => "(cosh x)";
     d_cosh: "(d x (cosh x))" => "(sinh x)";
-    // sech², not 1 - tanh² (which cancels to 0 for |x| > 19)
-    d_tanh: "(d x (tanh x))" => "(/ 1 (powi (cosh x) 2))";
+    // sech², not 1 - tanh² (which cancels to 0 for |x| > 19): 1/cosh² near 0, and
+    // 4e^(−2|x|)/(1 + e^(−2|x|))² beyond |x| = 1 (cosh² overflows past 355, and the
+    // derivatives of 1/cosh² are ∞/∞ past 710)
+    d_tanh: "(d x (tanh x))" => "(if (< (abs x) 1) (/ 1 (powi (cosh x) 2)) \
+        (/ (* 4 (exp (neg (* 2 (abs x))))) (powi (+ 1 (exp (neg (* 2 (abs x))))) 2)))";
     d_hypot: "(d x (hypot x y))" => "(/ x (hypot x y))";
     d_abs: "(d x (abs x))" => "(if (< x 0) -1 1)";
     d_select_takes_the_branch: "(d x (if (< x 1) (sin x) (* 2 x)))" => "(if (< x 1) (cos x) 2)";
@@ -170,4 +173,15 @@ rules! {
     constant_factor_hoisted: "(* x (* 2 y))" => "(* 2 (* x y))";
     tan_of_atan2_is_the_quotient: "(tan (atan2 y x))" => "(/ y x)";
     sum_without_cancellation_keeps_its_operands: "(+ (- a b) c)" => "(+ (- a b) c)";
+}
+
+rules! {
+    // the derivative of a direction cosine a/hypot(a, b): (b/h)(a′(b/h) − (a/h)b′)/h, no
+    // 1 − (a/h)² (which cancels where a ≫ b)
+    d_direction_cosine: "(d x (/ x (hypot x y)))" =>
+        "(* (/ y (hypot x y)) (/ (/ y (hypot x y)) (hypot x y)))";
+    // constants of atan2 fold in bounded time: the common factor 2 leaves atan2(1, 1),
+    // which is atan(1) (x = 1 > 0), not atan2(1, 1) again (it once looped forever)
+    atan2_of_equal_constants: "(atan2 2 2)" => "(atan 1)";
+    atan2_of_ones: "(atan2 1 1)" => "(atan 1)";
 }

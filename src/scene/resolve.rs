@@ -21,7 +21,8 @@ use super::units::{Dimension, Units};
 /// The name of the frame link, which every scene has.
 pub const GROUND: &str = "ground";
 
-/// Relative tolerance (of the sketch's size) for "this point lies on that line".
+/// Relative tolerance (of the joint's own size: its line's points and the point) for "this
+/// point lies on that line".
 const ON_LINE_TOLERANCE: f64 = 1e-9;
 
 /// Whether two sketch points are the same to the rounding of their own coordinates (not
@@ -130,23 +131,11 @@ pub(crate) fn units(section: &format::UnitsSection) -> Units {
     }
 }
 
-/// The size of the sketch (largest coordinate distance), for relative tolerances.
-fn sketch_scale(points: &[Point]) -> f64 {
-    let mut scale: f64 = 0.0;
-    for p in points {
-        for q in points {
-            scale = scale.max((p.sketch[0] - q.sketch[0]).hypot(p.sketch[1] - q.sketch[1]));
-        }
-    }
-    if scale > 0.0 { scale } else { 1.0 }
-}
-
 /// The resolved points and links, for the checks of joints, drive and outputs.
 pub(crate) struct Geometry<'a> {
     pub(crate) points: &'a [Point],
     pub(crate) names: &'a HashMap<&'a str, usize>,
     pub(crate) links: &'a [Link],
-    pub(crate) scale: f64,
 }
 
 impl<'a> Geometry<'a> {
@@ -160,7 +149,6 @@ impl<'a> Geometry<'a> {
             points,
             names,
             links,
-            scale: sketch_scale(points),
         }
     }
 
@@ -511,7 +499,11 @@ impl<'a> Context<'a> {
         context: &str,
     ) -> Result<()> {
         let off = geometry.off_line(p, [&line[0], &line[1]]);
-        if off > ON_LINE_TOLERANCE * geometry.scale {
+        // relative to the joint's own size (its line and point), so that a point elsewhere
+        // in the sketch, or the sketch's overall scale, changes no verdict
+        let size =
+            mechdiff_core::geometry::extent([p, &line[0], &line[1]].map(|n| geometry.sketch(n)));
+        if off > ON_LINE_TOLERANCE * size {
             return Err(self.invalid(
                 at,
                 format!(

@@ -254,7 +254,7 @@ fn drive_positions(scene: &Scene, mechanism: &Mechanism) -> Result<Vec<f64>> {
         .map_err(|e| solver_error(scene, e))?;
     let max_step = match scene.drive.kind {
         DriveKind::Angle => std::f64::consts::FRAC_PI_4,
-        DriveKind::Displacement => 0.25 * sketch_size(scene),
+        DriveKind::Displacement => 0.25 * tracker.length_scale(),
     };
     let dimension = output.kind.dimension();
     let text = |v: f64| {
@@ -322,17 +322,6 @@ fn drive_positions(scene: &Scene, mechanism: &Mechanism) -> Result<Vec<f64>> {
         drive.push(tracker.phi());
     }
     Ok(drive)
-}
-
-/// The sketch's size: the largest distance between two of its points (m).
-fn sketch_size(scene: &Scene) -> f64 {
-    let mut size: f64 = 0.0;
-    for p in &scene.points {
-        for q in &scene.points {
-            size = size.max((p.sketch[0] - q.sketch[0]).hypot(p.sketch[1] - q.sketch[1]));
-        }
-    }
-    size
 }
 
 /// The dead positions asked for, searched in the range of the sweep's drive positions.

@@ -219,13 +219,6 @@ pub(crate) fn balance<T: Scalar>(
 
 /// The diagonal of the sketch's bounding box (m), at least 1e-3: a length scale.
 pub(crate) fn size(m: &Mechanism) -> f64 {
-    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    for p in &m.points {
-        for i in 0..2 {
-            lo[i] = lo[i].min(p.sketch[i]);
-            hi[i] = hi[i].max(p.sketch[i]);
-        }
-    }
-    let d = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
+    let d = crate::geometry::length::extent(m.points.iter().map(|p| p.sketch));
     if d.is_finite() { d.max(1e-3) } else { 1.0 }
 }

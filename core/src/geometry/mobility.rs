@@ -14,6 +14,7 @@
 //!   **singular** pose (a toggle): [`Error::Singular`] at the sketch's drive value.
 
 use super::constraints::Equations;
+use super::length::LoopLengths;
 use super::model::{JointKind, Mechanism};
 use crate::Error;
 use nalgebra::DMatrix;
@@ -39,24 +40,37 @@ pub struct Mobility {
     pub rank: usize,
 }
 
-/// Φ_q at `q` with angular rows and angular columns multiplied by `length`, so that every
-/// entry is a length (or dimensionless) and singular values are comparable.
-pub(crate) fn scaled_jacobian(eq: &Equations, q: &[f64], length: f64) -> DMatrix<f64> {
+/// Φ_q at `q` with angular rows and angular columns multiplied by their loop's length (see
+/// [`LoopLengths`]), so that every entry of a row is a length or every one dimensionless.
+pub(crate) fn scaled_jacobian(eq: &Equations, q: &[f64], lengths: &LoopLengths) -> DMatrix<f64> {
     let mut jac = DMatrix::zeros(eq.rows(), eq.coordinates());
     eq.jacobian(q, &mut jac);
-    scale(eq, &mut jac, length);
+    scale(eq, &mut jac, lengths);
     jac
 }
 
 /// Applies the scaling of [`scaled_jacobian`] in place.
-pub(crate) fn scale(eq: &Equations, jac: &mut DMatrix<f64>, length: f64) {
+pub(crate) fn scale(eq: &Equations, jac: &mut DMatrix<f64>, lengths: &LoopLengths) {
     for (r, &angular) in eq.angular.iter().enumerate() {
         if angular {
-            jac.row_mut(r).scale_mut(length);
+            jac.row_mut(r).scale_mut(lengths.rows[r]);
         }
     }
     for k in 0..eq.coordinates() / 3 {
-        jac.column_mut(3 * k + 2).scale_mut(length);
+        jac.column_mut(3 * k + 2)
+            .scale_mut(lengths.columns[3 * k + 2]);
+    }
+}
+
+/// Scales every non-zero column of `jac` to unit length: what is left is independent of
+/// the units of the coordinates (a translation in m, a rotation in rad), so singular values
+/// compare the equations, not the scales.
+pub(crate) fn unit_columns(jac: &mut DMatrix<f64>) {
+    for mut c in jac.column_iter_mut() {
+        let norm = c.norm();
+        if norm > 0.0 {
+            c /= norm;
+        }
     }
 }
 
@@ -77,8 +91,11 @@ pub fn check_mobility(m: &Mechanism) -> Result<Mobility, Error> {
     let eq = Equations::new(m);
     let (rows, cols) = (eq.rows(), eq.coordinates());
     let joint_equations = rows - 1;
-    let length = super::validate::sketch_size(m);
-    let jac = scaled_jacobian(&eq, &m.sketch_coordinates(), length);
+    // each loop's rows and columns in its own length scale, the columns then of unit length:
+    // the rank and the condition are those of the mechanism's shape, whatever its size
+    let lengths = LoopLengths::of(m, &eq);
+    let mut jac = scaled_jacobian(&eq, &m.sketch_coordinates(), &lengths);
+    unit_columns(&mut jac);
     // Pad to a square matrix so that the SVD gives both complete null spaces.
     let size = rows.max(cols);
     let mut square = DMatrix::zeros(size, size);

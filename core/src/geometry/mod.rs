@@ -15,6 +15,7 @@ mod datum;
 mod frames;
 pub mod implicit;
 mod kinematics;
+pub(crate) mod length;
 mod mobility;
 mod model;
 mod output;
@@ -25,6 +26,7 @@ mod validate;
 
 pub use constraints::Equations;
 pub use kinematics::Kinematics;
+pub use length::extent;
 pub use mobility::{Mobility, check_mobility};
 pub use model::{
     Drive, DriveKind, GROUND, Inertia, Joint, JointKind, Link, Mechanism, MechanismBuilder, Point,

@@ -51,6 +51,7 @@
 use super::constraints::{self, Body, Equations, Frames, with_frames};
 use super::datum::{Data, joint_number};
 use super::kinematics::{self, Kinematics};
+use super::length::LoopLengths;
 use super::mobility;
 use super::model::{Inertia, JointKind, Mechanism};
 use super::output::Scalar;
@@ -226,8 +227,9 @@ pub struct Parametric<'m> {
     equations: Equations<Dual64>,
     /// Φ compiled in `f64`, for Φ_q (the solver's own equations).
     plain: Equations,
-    /// The sketch size, scaling angular rows and columns for the condition estimate (m).
-    size: f64,
+    /// The loops' length scales, scaling angular rows and columns for the condition
+    /// estimate (see `length`).
+    lengths: LoopLengths,
 }
 
 /// The `k`-th φ-derivative part of `x` (0 = the value).
@@ -253,8 +255,8 @@ impl<'m> Parametric<'m> {
             tangent: tangent.clone(),
             equations: constraints::compile(&data),
             data,
+            lengths: LoopLengths::of(m, &Equations::new(m)),
             plain: Equations::new(m),
-            size: super::validate::sketch_size(m),
         })
     }
 
@@ -343,7 +345,8 @@ impl<'m> Parametric<'m> {
         let mut jac = DMatrix::zeros(n, n);
         self.plain.jacobian(q, &mut jac);
         let mut scaled = jac.clone();
-        mobility::scale(&self.plain, &mut scaled, self.size);
+        mobility::scale(&self.plain, &mut scaled, &self.lengths);
+        mobility::unit_columns(&mut scaled);
         let sigma = scaled
             .iter()
             .all(|x| x.is_finite())

@@ -7,8 +7,9 @@
 //!    the links' sines and cosines are computed there once and then turned along the Newton
 //!    steps (see `frames`), so a drive position costs one `sin_cos` per link.
 //! 2. **Correct** with Newton on Φ(q, φ) = 0 (analytic Φ_q, factorised loop by loop, see
-//!    `block_lu`) until the residual is below `tolerance × size` (size: the sketch's
-//!    diagonal).
+//!    `block_lu`) until every loop's residual is below `tolerance × length` for its
+//!    positions (m) and `tolerance` for its angles (rad), `length` the loop's own length
+//!    scale (see `length`).
 //! 3. **Check** at the new pose: the scaled Jacobian's condition (a toggle is reported as
 //!    [`Error::Singular`]) and every loop's branch certificate (see [`super::branch`]).
 //! 4. If Newton fails or a certificate flips, **halve** the step and retry from the last good
@@ -50,6 +51,7 @@ use super::closed_form::ClosedForm;
 use super::constraints::Equations;
 use super::implicit::{Factorised, SecondOrder};
 use super::kinematics::Kinematics;
+use super::length::LoopLengths;
 use super::mobility::{self, Mobility};
 use super::model::Mechanism;
 use crate::Error;
@@ -65,7 +67,8 @@ use num_dual::Dual2_64;
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Solver {
-    /// Newton stops when max |Φ| ≤ tolerance × (sketch size); dimensionless.
+    /// Newton stops when every loop's |Φ| ≤ tolerance × (the loop's length scale) for its
+    /// positions, ≤ tolerance for its angles; dimensionless.
     pub tolerance: f64,
     /// Newton iterations allowed per attempt.
     pub max_iterations: usize,
@@ -98,7 +101,7 @@ impl Default for Solver {
 }
 
 impl Solver {
-    /// Sets the residual tolerance (relative to the sketch size).
+    /// Sets the residual tolerance (relative to each loop's length scale).
     pub fn with_tolerance(mut self, tolerance: f64) -> Self {
         self.tolerance = tolerance;
         self
@@ -160,20 +163,21 @@ impl Solver {
             joints: m.joints.iter().map(|j| j.name.clone()).collect(),
         })?;
         let n = eq.coordinates();
-        let size = super::validate::sketch_size(m);
+        let lengths = LoopLengths::new(m, &eq, &loops);
         let row_columns = branch::structure(&eq);
         let mut unit_drive = DVector::zeros(n);
         unit_drive[n - 1] = 1.0;
         // The Hadamard screen's constants per loop (see `Tracker::check_trial`).
         let screens = loops
             .iter()
-            .map(|l| {
+            .zip(&lengths.loops)
+            .map(|(l, &length)| {
                 let k = l.rows.len() as f64;
                 let angular = l.rows.iter().filter(|&&r| eq.angular[r]).count();
-                let weight = |r: usize| if eq.angular[r] { size } else { 1.0 };
+                let weight = |r: usize| if eq.angular[r] { length } else { 1.0 };
                 Screen {
                     bound: k.powf(0.5 * k),
-                    row_scale: size.powi(angular as i32),
+                    row_scale: length.powi(angular as i32),
                     entries: l
                         .columns
                         .iter()
@@ -188,7 +192,7 @@ impl Solver {
             &loops,
             q.as_slice(),
             m.drive_at_sketch,
-            size,
+            &lengths.loops,
             self.singular_threshold(),
         );
         let frames: Vec<(f64, f64)> = (0..n / 3).map(|k| q[3 * k + 2].sin_cos()).collect();
@@ -223,7 +227,7 @@ impl Solver {
             margins: vec![Dual2_64::from(1.0); loops.len()],
             closed_margins: vec![Dual2_64::from(1.0); loops.len()],
             loops,
-            size,
+            lengths,
             eq,
         };
         t.trial.copy_from(&t.q);
@@ -283,7 +287,8 @@ pub struct Tracker<'m> {
     mobility: Mobility,
     eq: Equations,
     loops: Vec<Loop>,
-    size: f64,
+    /// Each loop's own length scale: what every threshold is measured in (see `length`).
+    lengths: LoopLengths,
     /// Φ_q at the current pose and its factorisation (reused for q′, q″, q‴).
     jac: DMatrix<f64>,
     lu: BlockLu,
@@ -330,7 +335,8 @@ struct Screen {
     entries: Vec<(usize, f64)>,
     /// k^(k/2) for a k×k block: the condition bound is this over the normalised determinant.
     bound: f64,
-    /// size^(angular rows of the loop): the row scaling's factor in the determinant.
+    /// length^(angular rows of the loop), its loop's length: the row scaling's factor in the
+    /// determinant.
     row_scale: f64,
 }
 
@@ -338,6 +344,13 @@ impl<'m> Tracker<'m> {
     /// The mechanism tracked.
     pub fn mechanism(&self) -> &'m Mechanism {
         self.mechanism
+    }
+
+    /// The linkage's length scale (m): the extent of the points its loops' equations involve
+    /// (a point that takes part in no loop's closure does not count). What the solver
+    /// measures a displacement drive's steps in.
+    pub fn length_scale(&self) -> f64 {
+        self.lengths.linkage
     }
 
     /// The mobility found when tracking started.
@@ -448,10 +461,10 @@ impl<'m> Tracker<'m> {
         &self.closed
     }
 
-    /// The equations, the loops' rows and columns, and the sketch size (the solver's scales,
-    /// for a trace of a Newton loop).
-    pub(crate) fn structure(&self) -> (&Equations, &[Loop], f64) {
-        (&self.eq, &self.loops, self.size)
+    /// The equations, the loops' rows and columns, and their length scales (the solver's
+    /// scales, for a trace of a Newton loop).
+    pub(crate) fn structure(&self) -> (&Equations, &[Loop], &LoopLengths) {
+        (&self.eq, &self.loops, &self.lengths)
     }
 
     /// The solver's configuration.

@@ -352,12 +352,13 @@ fn resolve_joint(
 /// Every joint must hold at the sketch pose (it is the assembly the designer drew).
 fn check_sketch(m: &Mechanism) -> Result<(), Error> {
     let q = m.sketch_coordinates();
-    let scale = sketch_size(m).max(f64::MIN_POSITIVE);
     let phi = m.drive_at_sketch;
     let mut row = 0;
     let residual = constraints::residual(m, &q, phi);
-    for j in &m.joints {
+    for (index, j) in m.joints.iter().enumerate() {
         let n = j.kind.equation_count();
+        // in the joint's own length scale: a point elsewhere changes no verdict
+        let scale = super::length::joint_length(m, index).max(f64::MIN_POSITIVE);
         let r = residual[row..row + n]
             .iter()
             .fold(0.0f64, |a, &x| a.max(x.abs()));
@@ -370,36 +371,4 @@ fn check_sketch(m: &Mechanism) -> Result<(), Error> {
         row += n;
     }
     Ok(())
-}
-
-/// The mechanism's own length scale (m): the diagonal of the box around the points carried
-/// by moving links (a point only on the ground — a guide's far direction point, a mark —
-/// does not count, so an unrelated ground point changes no tolerance or verdict); that of
-/// all points if the moving links' points coincide, 1 m if all points do.
-pub(super) fn sketch_size(m: &Mechanism) -> f64 {
-    let moving = (m.links.iter())
-        .filter(|l| l.name != super::model::GROUND)
-        .flat_map(|l| l.points.iter().map(|&p| m.points[p].sketch));
-    let own = extent(moving);
-    if own > 0.0 {
-        return own;
-    }
-    let all = extent(m.points.iter().map(|p| p.sketch));
-    if all > 0.0 { all } else { 1.0 }
-}
-
-/// The diagonal of the box around `points` (0 for none).
-fn extent(points: impl Iterator<Item = [f64; 2]>) -> f64 {
-    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    for p in points {
-        for i in 0..2 {
-            lo[i] = lo[i].min(p[i]);
-            hi[i] = hi[i].max(p[i]);
-        }
-    }
-    if lo[0] > hi[0] {
-        0.0
-    } else {
-        (hi[0] - lo[0]).hypot(hi[1] - lo[1])
-    }
 }

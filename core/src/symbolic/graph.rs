@@ -109,6 +109,8 @@ pub struct Graph {
     /// The range of each node (see [`super::range`]), computed as it is stored.
     ranges: Vec<Range>,
     pub(super) derivative_cache: HashMap<(Id, Box<str>), Id>,
+    /// The work of the simplification under way (see [`super::simplify`]'s budget).
+    pub(super) rewriting: super::simplify::Rewriting,
 }
 
 impl Graph {

@@ -62,13 +62,7 @@ fn unary_differential(g: &mut Graph, op: Unary, u: Id, du: Id, f: Id) -> Id {
         }
         Unary::Sinh => g.cosh(u),
         Unary::Cosh => g.sinh(u),
-        // sech²(u) = 1 / cosh²(u), not 1 - tanh²(u): that difference cancels to 0 (all
-        // digits lost) for |u| > 19, where sech² is still 1e-16 and more
-        Unary::Tanh => {
-            let cosh = g.cosh(u);
-            let square = g.powi(cosh, 2);
-            return g.div(du, square);
-        }
+        Unary::Tanh => sech_squared(g, u),
         Unary::Abs => {
             let zero = g.number(0.0);
             let minus_one = g.number(-1.0);
@@ -76,6 +70,31 @@ fn unary_differential(g: &mut Graph, op: Unary, u: Id, du: Id, f: Id) -> Id {
         }
     };
     g.mul(derivative, du)
+}
+
+/// sech²(u) = tanh′(u), in a form that neither cancels nor overflows, nor do its own
+/// derivatives (the rules applied to it give tanh″, tanh‴, …):
+/// - `1 / cosh²(u)` for |u| < 1 (not `1 − tanh²(u)`, which cancels to 0 for |u| > 19, where
+///   sech² is still 1e-16 and more);
+/// - `4t / (1 + t)²` with t = e^(−2|u|) ≤ e^(−2) elsewhere (where `1 / cosh²` and its
+///   derivatives `−2 sinh / cosh³`, … are ∞/∞ = NaN once cosh overflows, |u| > 710): every
+///   factor lies in [0, 4], no difference cancels (1 − t ≥ 0.86), and far out the value
+///   underflows gracefully to 0.
+fn sech_squared(g: &mut Graph, u: Id) -> Id {
+    let one = g.number(1.0);
+    let magnitude = g.abs(u);
+    let cosh = g.cosh(u);
+    let cosh_squared = g.powi(cosh, 2);
+    let near = g.div(one, cosh_squared);
+    let minus_two = g.number(-2.0);
+    let exponent = g.mul(minus_two, magnitude);
+    let t = g.exp(exponent);
+    let four = g.number(4.0);
+    let numerator = g.mul(four, t);
+    let one_plus_t = g.add(one, t);
+    let denominator = g.powi(one_plus_t, 2);
+    let far = g.div(numerator, denominator);
+    g.select(Comparison::Less, magnitude, one, near, far)
 }
 
 /// `d op(a, b)` given the arguments, their derivatives and the node `f = op(a, b)`.
@@ -142,6 +161,15 @@ fn binary_differential(g: &mut Graph, op: Binary, [a, b, da, db]: [Id; 4], f: Id
     }
 }
 
+/// The other leg `b` when `h` is `hypot(a, b)` or `hypot(b, a)`.
+fn direction_cosine(g: &Graph, a: Id, h: Id) -> Option<Id> {
+    match *g.node(h) {
+        Node::Binary(Binary::Hypot, p, q) if p == a => Some(q),
+        Node::Binary(Binary::Hypot, p, q) if q == a => Some(p),
+        _ => None,
+    }
+}
+
 /// `d f` for any node `f`, given the derivatives of its children.
 fn differential(g: &mut Graph, f: Id, known: &[Option<Id>]) -> Id {
     let derivative_of = |c: Id| known[c.index()].expect("children are differentiated first");
@@ -154,6 +182,21 @@ fn differential(g: &mut Graph, f: Id, known: &[Option<Id>]) -> Id {
             };
             let quotient_rule = [a, b, derivative_of(a), derivative_of(b)];
             binary_differential(g, Binary::Atan2, quotient_rule, f)
+        }
+        // a direction cosine a / hypot(a, b) (what hypot's own rule is made of):
+        // d(a/h) = (b/h) (a′ (b/h) − (a/h) b′) / h, not the quotient rule's
+        // (a′ − (a/h) h′)/h, whose a′ (1 − (a/h)²) cancels where |a| ≫ |b| (7 digits lost
+        // at a = 1000 b) while the true value (b/h)² a′ / h does not
+        Node::Binary(Binary::Div, a, h) if direction_cosine(g, a, h).is_some() => {
+            let b = direction_cosine(g, a, h).expect("matched above");
+            let (da, db) = (derivative_of(a), derivative_of(b));
+            let cos = f;
+            let sin = g.div(b, h);
+            let left = g.mul(da, sin);
+            let right = g.mul(cos, db);
+            let turn = g.sub(left, right);
+            let rate = g.div(turn, h);
+            g.mul(sin, rate)
         }
         Node::Unary(op, u) => unary_differential(g, op, u, derivative_of(u), f),
         Node::Binary(op, a, b) => {

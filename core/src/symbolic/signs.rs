@@ -97,10 +97,14 @@ impl Graph {
         let common = self
             .product_nodes(y)
             .into_iter()
-            .filter(|f| in_x.contains(f) && self.range(*f).is_positive())
+            .filter(|f| {
+                !self.is_number(*f, 1.0) && in_x.contains(f) && self.range(*f).is_positive()
+            })
             .max()?;
-        let y = self.without(y, common)?;
-        let x = self.without(x, common)?;
-        Some((y, x))
+        let without_y = self.without(y, common)?;
+        let without_x = self.without(x, common)?;
+        // a factor 1 (the constants `atan2(c, c)` become `atan2(1, 1)`) is no factor: taking
+        // it out again would rewrite the node into itself forever
+        ((without_y, without_x) != (y, x)).then_some((without_y, without_x))
     }
 }

@@ -24,6 +24,12 @@
 //!   `a * b` and `b * a` are one node.
 //!
 //! `sin` and `cos` of one argument are computed once by the emitter (`sin_cos`).
+//!
+//! **Bounded.** One construction (a constructor called from outside, with every constructor
+//! its rules call in turn) enters at most [`MAX_REWRITES`] constructors, nested at most
+//! [`MAX_REWRITE_DEPTH`] deep; past that budget a node is stored as it is, correct but not
+//! simplified. So a set of rules that rewrite a node into itself (as `atan2(c, c)` once did,
+//! through the factor 1 of `atan2(1, 1)`) cannot loop forever or overflow the stack.
 
 use super::graph::{Graph, Id, Node};
 use super::ops::{Binary, Comparison, Unary};
@@ -81,6 +87,45 @@ fn exact_unary(op: Unary, c: f64) -> Option<f64> {
     }
 }
 
+/// How many simplifying constructors one construction may enter in all (its own and every
+/// nested one): far above what a real expression needs (at most 49 in the test suite, the
+/// scenes' generated code included), small enough that a cycle of rewrites that never ends
+/// (a rule undoing another) costs a millisecond, not forever.
+pub const MAX_REWRITES: usize = 10_000;
+
+/// How deeply simplifying constructors may nest: far above what a real expression needs (at
+/// most 7 in the test suite), low enough that the nesting stays well within a thread's
+/// stack.
+pub const MAX_REWRITE_DEPTH: usize = 64;
+
+/// The work of the simplification under way: how deeply constructors are nested and how many
+/// were entered since the outermost one.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Rewriting {
+    depth: usize,
+    spent: usize,
+}
+
+impl Graph {
+    /// `rules(self)`, the simplification of the node `raw`, within the budget of the
+    /// simplification under way ([`MAX_REWRITES`], [`MAX_REWRITE_DEPTH`]); past it, `raw`
+    /// is stored as it is (a correct node, only not simplified), so every construction ends.
+    fn rewrite(&mut self, raw: Node, rules: impl FnOnce(&mut Self) -> Id) -> Id {
+        let budget = self.rewriting;
+        if budget.depth >= MAX_REWRITE_DEPTH || budget.spent >= MAX_REWRITES {
+            return self.intern(raw);
+        }
+        self.rewriting.depth += 1;
+        self.rewriting.spent += 1;
+        let id = rules(self);
+        self.rewriting.depth -= 1;
+        if self.rewriting.depth == 0 {
+            self.rewriting.spent = 0;
+        }
+        id
+    }
+}
+
 macro_rules! unary_constructors {
     ($($fname:ident => $op:ident,)*) => {
         impl Graph {
@@ -119,16 +164,20 @@ impl Graph {
 
     /// `a + b`, simplified (a linear combination: see [`super::sums`]).
     pub fn add(&mut self, a: Id, b: Id) -> Id {
-        self.sum(a, 1.0, b)
+        self.rewrite(Node::Binary(Binary::Add, a, b), |g| g.sum(a, 1.0, b))
     }
 
     /// `a - b`, simplified (a linear combination: see [`super::sums`]).
     pub fn sub(&mut self, a: Id, b: Id) -> Id {
-        self.sum(a, -1.0, b)
+        self.rewrite(Node::Binary(Binary::Sub, a, b), |g| g.sum(a, -1.0, b))
     }
 
     /// `a * b`, simplified.
     pub fn mul(&mut self, a: Id, b: Id) -> Id {
+        self.rewrite(Node::Binary(Binary::Mul, a, b), |g| g.mul_rules(a, b))
+    }
+
+    fn mul_rules(&mut self, a: Id, b: Id) -> Id {
         if let Some(c) = self.constant_pair(a, b).and_then(|(x, y)| exact_mul(x, y)) {
             return self.number(c);
         }
@@ -209,6 +258,10 @@ impl Graph {
 
     /// `a / b`, simplified.
     pub fn div(&mut self, a: Id, b: Id) -> Id {
+        self.rewrite(Node::Binary(Binary::Div, a, b), |g| g.div_rules(a, b))
+    }
+
+    fn div_rules(&mut self, a: Id, b: Id) -> Id {
         if let Some(c) = self.constant_pair(a, b).and_then(|(x, y)| exact_div(x, y)) {
             return self.number(c);
         }
@@ -291,6 +344,10 @@ impl Graph {
 
     /// `-u`, simplified.
     pub fn neg(&mut self, u: Id) -> Id {
+        self.rewrite(Node::Unary(Unary::Neg, u), |g| g.neg_rules(u))
+    }
+
+    fn neg_rules(&mut self, u: Id) -> Id {
         if let Some(c) = self.as_number(u) {
             return self.number(-c);
         }
@@ -303,6 +360,10 @@ impl Graph {
 
     /// `u.powi(n)`, simplified.
     pub fn powi(&mut self, u: Id, n: i32) -> Id {
+        self.rewrite(Node::Powi(u, n), |g| g.powi_rules(u, n))
+    }
+
+    fn powi_rules(&mut self, u: Id, n: i32) -> Id {
         if n == 0 {
             return self.number(1.0);
         }
@@ -331,6 +392,10 @@ impl Graph {
 
     /// `a.powf(b)`, simplified (an integer constant exponent gives `powi`).
     pub fn powf(&mut self, a: Id, b: Id) -> Id {
+        self.rewrite(Node::Binary(Binary::Powf, a, b), |g| g.powf_rules(a, b))
+    }
+
+    fn powf_rules(&mut self, a: Id, b: Id) -> Id {
         if let Some(n) = self.as_number(b)
             && n.fract() == 0.0
             && n.abs() <= f64::from(i32::MAX)
@@ -342,6 +407,10 @@ impl Graph {
 
     /// `op(u)`, simplified.
     pub fn unary(&mut self, op: Unary, u: Id) -> Id {
+        self.rewrite(Node::Unary(op, u), |g| g.unary_rules(op, u))
+    }
+
+    fn unary_rules(&mut self, op: Unary, u: Id) -> Id {
         if op == Unary::Neg {
             return self.neg(u);
         }
@@ -422,7 +491,7 @@ impl Graph {
             Binary::Mul => self.mul(a, b),
             Binary::Div => self.div(a, b),
             Binary::Powf => self.powf(a, b),
-            Binary::Atan2 => self.atan2_simplified(a, b),
+            Binary::Atan2 => self.rewrite(Node::Binary(op, a, b), |g| g.atan2_simplified(a, b)),
             Binary::Hypot => self.intern(Node::Binary(op, a, b)),
         }
     }
@@ -440,6 +509,11 @@ impl Graph {
     /// `if a <cmp> b { then } else { otherwise }`, simplified (equal branches, constant
     /// conditions).
     pub fn select(&mut self, cmp: Comparison, a: Id, b: Id, then: Id, otherwise: Id) -> Id {
+        let raw = Node::Select(cmp, [a, b, then, otherwise]);
+        self.rewrite(raw, |g| g.select_rules(cmp, a, b, then, otherwise))
+    }
+
+    fn select_rules(&mut self, cmp: Comparison, a: Id, b: Id, then: Id, otherwise: Id) -> Id {
         if then == otherwise {
             return then;
         }

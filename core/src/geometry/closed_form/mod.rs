@@ -264,14 +264,14 @@ fn cross_d<D: Scalar>(a: [D; 2], b: [D; 2]) -> D {
 
 impl ClosedForm {
     /// Matches every loop of `eq` and chooses each branch so that the formula reproduces
-    /// the sketch pose `sketch` at drive position `phi0` (loops it does not reproduce are
-    /// left to Newton).
+    /// the sketch pose `sketch` at drive position `phi0` to 1e-9 of the loop's length
+    /// (`lengths`, per loop; loops it does not reproduce are left to Newton).
     pub fn new(
         eq: &Equations,
         loops: &[Loop],
         sketch: &[f64],
         phi0: f64,
-        size: f64,
+        lengths: &[f64],
         limit: f64,
     ) -> Self {
         let mut cf = ClosedForm {
@@ -280,8 +280,8 @@ impl ClosedForm {
             kinds: Vec::with_capacity(loops.len()),
         };
         let frames: Vec<(f64, f64)> = sketch.chunks_exact(3).map(|p| p[2].sin_cos()).collect();
-        let tolerance = 1e-9 * size.max(f64::MIN_POSITIVE);
-        for l in loops {
+        for (l, length) in loops.iter().zip(lengths) {
+            let tolerance = 1e-9 * length.max(f64::MIN_POSITIVE);
             let found = pattern(eq, l).and_then(|(body, pattern)| {
                 [1.0, -1.0].into_iter().find_map(|branch| {
                     let mut step = Step {

@@ -109,7 +109,9 @@ impl Tracker<'_> {
     pub(crate) fn longest_step(&self) -> f64 {
         match self.mechanism.drive_kind() {
             crate::geometry::DriveKind::Angle => interval::LONGEST_TURN,
-            crate::geometry::DriveKind::Displacement => interval::LONGEST_TURN * self.size,
+            crate::geometry::DriveKind::Displacement => {
+                interval::LONGEST_TURN * self.lengths.linkage
+            }
         }
     }
 

@@ -10,7 +10,7 @@ use crate::geometry::implicit::Factorised;
 use crate::geometry::{branch, frames, mobility};
 use nalgebra::DVector;
 
-/// A polishing Newton step larger than this (relative to the sketch size) is followed by a
+/// A polishing Newton step larger than this (relative to its loop's length) is followed by a
 /// fresh factorisation of Φ_q at the polished pose before q′, q″ are solved for (see
 /// `Tracker::accept`): 4 ε, the size of rounding in the coordinates.
 const REFACTOR_ABOVE: f64 = 4.0 * f64::EPSILON;
@@ -108,11 +108,10 @@ impl Tracker<'_> {
     /// Newton on `trial` at drive position `phi`: the iterations, or the final residual and
     /// the loop with the largest residual. Leaves Φ(trial) in `trial_residual`.
     fn newton(&mut self, phi: f64) -> Result<usize, (f64, usize)> {
-        let limit = self.solver.tolerance * self.size;
         for iteration in 0..=self.solver.max_iterations {
             self.evaluate_trial(phi);
             let norm = amax(self.trial_residual.as_slice());
-            if norm <= limit {
+            if self.converged() {
                 return Ok(iteration);
             }
             if !norm.is_finite() || iteration == self.solver.max_iterations {
@@ -131,6 +130,22 @@ impl Tracker<'_> {
             step_pose(&mut self.trial, &mut self.trial_frames, &self.step);
         }
         Err((amax(self.trial_residual.as_slice()), self.worst_loop()))
+    }
+
+    /// Whether `trial_residual` is within the tolerance: every position row within
+    /// `tolerance × length` of its loop, every angle row within `tolerance` (NaN is not).
+    fn converged(&self) -> bool {
+        let tolerance = self.solver.tolerance;
+        let rows = self.trial_residual.iter().zip(&self.eq.angular);
+        rows.zip(&self.lengths.rows)
+            .all(|((&r, &angular), &length)| {
+                r.abs()
+                    <= if angular {
+                        tolerance
+                    } else {
+                        tolerance * length
+                    }
+            })
     }
 
     /// Φ(trial, φ) into `trial_residual`.
@@ -182,7 +197,7 @@ impl Tracker<'_> {
             let bound = screen.bound / normalized.abs();
             if bound.is_nan() || bound > limit {
                 let mut scaled = self.work.clone();
-                mobility::scale(&self.eq, &mut scaled, self.size);
+                mobility::scale(&self.eq, &mut scaled, &self.lengths);
                 let condition = branch::condition(&scaled, l, limit);
                 if condition.is_nan() || condition > limit {
                     return Err(Error::Singular {
@@ -218,7 +233,7 @@ impl Tracker<'_> {
             // relative size (up to the tolerance, 1e-13) instead of rounding. Newton often
             // stops one iteration short of rounding (short steps: a close predictor), so
             // factorise again at the polished pose.
-            if amax(self.step.as_slice()) > REFACTOR_ABOVE * self.size {
+            if self.moved_beyond_rounding() {
                 let f = Frames {
                     q: self.q.as_slice(),
                     frames: &self.frames,
@@ -252,6 +267,16 @@ impl Tracker<'_> {
         // The certificates of the factorisation just made current (`check_trial`'s).
         self.certificates.copy_from_slice(&self.trial_certificates);
         Ok(())
+    }
+
+    /// Whether the polishing step (in `step`) moved a coordinate by more than rounding:
+    /// [`REFACTOR_ABOVE`] times its loop's length for a position, times 1 for an angle.
+    fn moved_beyond_rounding(&self) -> bool {
+        let steps = self.step.iter().enumerate().zip(&self.lengths.columns);
+        steps.into_iter().any(|((c, &step), &length)| {
+            let scale = if c % 3 == 2 { 1.0 } else { length };
+            step.abs() > REFACTOR_ABOVE * scale
+        })
     }
 
     /// The loop whose equations are furthest from being satisfied by the trial residual.

@@ -72,7 +72,7 @@ impl Tracker<'_> {
     /// assert!((range.lower.unwrap().phi - limit).abs() < 1e-12);
     /// ```
     pub fn motion_range(&self) -> Result<MotionRange, Error> {
-        let size = self.size;
+        let size = self.lengths.linkage;
         let (step, searched) = match self.mechanism.drive_kind() {
             DriveKind::Angle => (LONGEST_TURN, TAU),
             DriveKind::Displacement => (LONGEST_TURN * size, 20.0 * size),

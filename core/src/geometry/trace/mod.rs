@@ -177,7 +177,8 @@ pub struct PositionGraph {
     /// closed form).
     pub newton: Vec<NewtonBlock>,
     /// Newton's convergence limit on max |Φ| (m or rad): the solver's tolerance times the
-    /// sketch size (see [`super::Solver::tolerance`]).
+    /// linkage's length scale (the extent of its loops' points; see
+    /// [`super::Solver::tolerance`]).
     pub newton_tolerance: f64,
     /// The solver's Newton iterations per attempt.
     pub max_iterations: usize,
@@ -219,7 +220,7 @@ pub fn trace(
     let closed = tracker.closed_form_table();
     // The loops the solver solves in closed form (all that match, unless turned off).
     let in_use = tracker.closed_form_loops();
-    let (eq, loops, size) = tracker.structure();
+    let (eq, loops, lengths) = tracker.structure();
     let sketch = tracker.coordinates();
     let phi0 = tracker.phi();
     let (graph, traced) = record(Graph::new(), || {
@@ -299,7 +300,7 @@ pub fn trace(
         newton: Vec::new(),
         limit: tracker.solver_singular_threshold(),
         sketch_drive: phi0,
-        newton_tolerance: tracker.solver().tolerance * size,
+        newton_tolerance: tracker.solver().tolerance * lengths.linkage,
         max_iterations: tracker.solver().max_iterations,
         max_subdivisions: tracker.solver().max_subdivisions,
         longest_step: tracker.longest_step(),
@@ -307,15 +308,16 @@ pub fn trace(
     };
     for (l, residual) in blocks {
         let columns = loops[l].columns.clone();
+        let length = lengths.loops[l];
         let mut block = NewtonBlock {
             loop_index: l,
             joints: tracker.joints_of_loop(l),
             sketch: columns.iter().map(|&c| sketch[c]).collect(),
             row_scales: (loops[l].rows.iter())
-                .map(|&r| if eq.angular[r] { size } else { 1.0 })
+                .map(|&r| if eq.angular[r] { length } else { 1.0 })
                 .collect(),
             column_scales: (columns.iter())
-                .map(|&c| if c % 3 == 2 { size } else { 1.0 })
+                .map(|&c| if c % 3 == 2 { length } else { 1.0 })
                 .collect(),
             columns,
             residual,

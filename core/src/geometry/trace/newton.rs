@@ -33,10 +33,10 @@ pub struct NewtonBlock {
     pub residual: Vec<Id>,
     /// Φ_q, row by row (`rows × columns`).
     pub jacobian: Vec<Id>,
-    /// Each row's factor in the solver's singularity check: the sketch size for an angular
-    /// row, 1 for a length (see `mobility::scale`).
+    /// Each row's factor in the solver's singularity check: the loop's length scale for an
+    /// angular row, 1 for a length (see `mobility::scale`).
     pub row_scales: Vec<f64>,
-    /// Each column's factor there: the sketch size for an angle, 1 for a length.
+    /// Each column's factor there: the loop's length scale for an angle, 1 for a length.
     pub column_scales: Vec<f64>,
     /// `R_k` for k = 1, 2, … (set by [`super::PositionGraph::jets`]): `Φ_q q⁽ᵏ⁾ = −R_k`.
     pub derivatives: Vec<Vec<Id>>,

@@ -287,6 +287,18 @@ impl<T: Scalar> Arithmetic for TaylorArithmetic<T> {
             }
             Unary::Sinh => Taylor::sin_cos(u, true).0,
             Unary::Cosh => Taylor::sin_cos(u, true).1,
+            // |u| ≥ 1: tanh u = s (1 − w)/(1 + w) with w = e^(−2s·u), s the sign of u(x₀):
+            // w ≤ e^-2, so nothing overflows (sinh/cosh is ∞/∞ past |u| = 710) and 1 − w
+            // does not cancel
+            Unary::Tanh if u.c[0].re().abs() >= 1.0 => {
+                let sign = T::from(u.c[0].re().signum());
+                let w = Taylor::exp(&u.scale(sign * T::from(-2.0)));
+                let numerator = Taylor::map2(&one, &w, |a, b| a - b);
+                let denominator = Taylor::map2(&one, &w, |a, b| a + b);
+                let mut t = self.divide(&numerator, &denominator).scale(sign);
+                t.c[0] = u.c[0].tanh();
+                t
+            }
             Unary::Tanh => {
                 let (s, c) = Taylor::sin_cos(u, true);
                 let mut t = self.divide(&s, &c);
