@@ -72,7 +72,10 @@ fn a_20_degree_sweep_reports_the_blocked_range_not_a_full_turn() {
 
 #[test]
 fn check_reports_the_motion_range_between_the_limit_positions() {
-    let s = scene::parse("blocked.toml", BLOCKED).unwrap();
+    // The sweep stops at 240°, inside the motion range: `check` accepts it and prints the
+    // range (the full 0–360° sweep is refused by `check` as by `run`: the next test).
+    let within = BLOCKED.replace("to = 360", "to = 240");
+    let s = scene::parse("blocked.toml", &within).unwrap();
     let range = scene::check(&s).unwrap().motion_range.unwrap();
     let (lower, upper) = (range.lower.clone().unwrap(), range.upper.clone().unwrap());
     // SI radians, to 1e-12: the limit positions r sin φ − e = −l.
@@ -87,6 +90,20 @@ fn check_reports_the_motion_range_between_the_limit_positions() {
 }
 
 #[test]
+fn check_refuses_a_sweep_past_the_limit_position_as_run_does() {
+    let s = scene::parse("blocked.toml", BLOCKED).unwrap();
+    let (Error::Blocked { limit: checked, .. }, Error::Blocked { limit, .. }) =
+        (scene::check(&s).unwrap_err(), scene::run(&s).unwrap_err())
+    else {
+        panic!("check and run must both report the blocked range")
+    };
+    // The same limit position; 15 significant digits of 180° + asin 0.99 (1e-11 deg).
+    let exact = 180.0 + 0.99f64.asin().to_degrees();
+    assert!((degrees(&checked) - exact).abs() < 1e-11, "{checked}");
+    assert!((degrees(&limit) - exact).abs() < 1e-11, "{limit}");
+}
+
+#[test]
 fn an_unrelated_point_far_away_changes_no_verdict() {
     // A ground point 3e4 m or 1e9 m away: the same check and the same blocked range (it
     // used to make φ = 0 a "toggle", and at 1e9 the guide "not positive").
@@ -98,10 +115,15 @@ fn an_unrelated_point_far_away_changes_no_verdict() {
                 r#"ground = ["O", "G0", "G1", "FAR"]"#,
             );
         let s = scene::parse("far.toml", &text).unwrap();
-        scene::check(&s).unwrap();
+        // `check` refuses the sweep past the limit position with the error `run` gives.
+        let checked = scene::check(&s).unwrap_err();
         let Error::Blocked { limit, .. } = scene::run(&s).unwrap_err() else {
             panic!("{far}")
         };
+        let Error::Blocked { limit: checked, .. } = checked else {
+            panic!("{far}: check gave {checked}")
+        };
+        assert_eq!(checked, limit, "{far}");
         let exact = 180.0 + 0.99f64.asin().to_degrees();
         assert!((degrees(&limit) - exact).abs() < 1e-11, "{far}: {limit}");
     }
