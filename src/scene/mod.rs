@@ -37,6 +37,7 @@ pub mod balancing;
 pub mod build;
 pub mod cam;
 pub mod construct;
+mod diameter;
 mod drive;
 pub mod dynamics;
 pub(crate) mod evaluate;

@@ -3,7 +3,7 @@
 //!
 //! Every error names `file:line:column` and what was expected there.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::{BTreeMap, HashMap, HashSet};
 
 use toml::Spanned;
 
@@ -132,12 +132,7 @@ pub(crate) fn units(section: &format::UnitsSection) -> Units {
 
 /// The size of the sketch (largest coordinate distance), for relative tolerances.
 fn sketch_scale(points: &[Point]) -> f64 {
-    let mut scale: f64 = 0.0;
-    for p in points {
-        for q in points {
-            scale = scale.max((p.sketch[0] - q.sketch[0]).hypot(p.sketch[1] - q.sketch[1]));
-        }
-    }
+    let scale = super::diameter::diameter(points.iter().map(|p| p.sketch));
     if scale > 0.0 { scale } else { 1.0 }
 }
 
@@ -147,6 +142,13 @@ pub(crate) struct Geometry<'a> {
     pub(crate) names: &'a HashMap<&'a str, usize>,
     pub(crate) links: &'a [Link],
     pub(crate) scale: f64,
+    /// Each link's index by name.
+    link_index: HashMap<&'a str, usize>,
+    /// Every (link, point) that a link carries, so that membership is found in constant
+    /// time (a scene may hold 10⁵ points).
+    carried: HashSet<(&'a str, &'a str)>,
+    /// Every point carried by some link.
+    moving_or_ground: HashSet<&'a str>,
 }
 
 impl<'a> Geometry<'a> {
@@ -156,11 +158,22 @@ impl<'a> Geometry<'a> {
         names: &'a HashMap<&'a str, usize>,
         links: &'a [Link],
     ) -> Self {
+        let carried: HashSet<(&str, &str)> = links
+            .iter()
+            .flat_map(|l| l.points.iter().map(|p| (l.name.as_str(), p.as_str())))
+            .collect();
         Geometry {
             points,
             names,
             links,
             scale: sketch_scale(points),
+            link_index: links
+                .iter()
+                .enumerate()
+                .map(|(k, l)| (l.name.as_str(), k))
+                .collect(),
+            moving_or_ground: carried.iter().map(|&(_, p)| p).collect(),
+            carried,
         }
     }
 
@@ -170,7 +183,17 @@ impl<'a> Geometry<'a> {
     }
 
     pub(crate) fn link(&self, name: &str) -> Option<&Link> {
-        self.links.iter().find(|l| l.name == name)
+        self.link_index.get(name).map(|&k| &self.links[k])
+    }
+
+    /// Whether `link` carries `point`.
+    pub(crate) fn carries(&self, link: &str, point: &str) -> bool {
+        self.carried.contains(&(link, point))
+    }
+
+    /// Whether some link (the ground included) carries `point`.
+    pub(crate) fn on_a_link(&self, point: &str) -> bool {
+        self.moving_or_ground.contains(point)
     }
 
     /// Distance of `p` from the line through `a`, `b` in the sketch.
@@ -355,10 +378,7 @@ impl<'a> Context<'a> {
         context: &str,
     ) -> Result<&'n str> {
         let point = self.point(name, geometry.names, context)?;
-        let carried = geometry
-            .link(link)
-            .is_some_and(|l| l.points.iter().any(|p| p == point));
-        if !carried {
+        if !geometry.carries(link, point) {
             return Err(self.invalid(
                 name,
                 format!(
@@ -397,13 +417,13 @@ impl<'a> Context<'a> {
     pub(crate) fn link<'n>(
         &self,
         name: &'n Name,
-        links: &[Link],
+        geometry: &Geometry,
         context: &str,
     ) -> Result<&'n str> {
-        if links.iter().any(|l| &l.name == name.get_ref()) {
+        if geometry.link(name.get_ref()).is_some() {
             return Ok(name.get_ref());
         }
-        let known: Vec<&str> = links.iter().map(|l| l.name.as_str()).collect();
+        let known: Vec<&str> = geometry.links.iter().map(|l| l.name.as_str()).collect();
         Err(Error::UnknownName {
             location: self.at(name),
             what: "link",
@@ -441,9 +461,10 @@ impl<'a> Context<'a> {
                 ));
             }
             let mut points: Vec<String> = Vec::new();
+            let mut seen = HashSet::new();
             for point in list.get_ref() {
                 let point = self.point(point, names, &context)?;
-                if points.iter().any(|p| p == point) {
+                if !seen.insert(point) {
                     let spanned = list
                         .get_ref()
                         .iter()

@@ -320,13 +320,7 @@ fn drive_positions(scene: &Scene, mechanism: &Mechanism) -> Result<Vec<f64>> {
 
 /// The sketch's size: the largest distance between two of its points (m).
 fn sketch_size(scene: &Scene) -> f64 {
-    let mut size: f64 = 0.0;
-    for p in &scene.points {
-        for q in &scene.points {
-            size = size.max((p.sketch[0] - q.sketch[0]).hypot(p.sketch[1] - q.sketch[1]));
-        }
-    }
-    size
+    super::diameter::diameter(scene.points.iter().map(|p| p.sketch))
 }
 
 /// The dead positions asked for, searched in the range of the sweep's drive positions.
