@@ -241,6 +241,22 @@ fn resolve(file: CamFile, source: &Source) -> Result<CamScene> {
                     "step must be a positive angle of at most one turn".to_owned(),
                 ));
             }
+            // The table holds every row: at most MAX_IN_MEMORY cam positions in a turn.
+            let positions = std::f64::consts::TAU / step;
+            if positions > crate::scene::positions::MAX_IN_MEMORY as f64 {
+                let smallest =
+                    std::f64::consts::TAU / crate::scene::positions::MAX_IN_MEMORY as f64;
+                return Err(invalid(
+                    v.span(),
+                    format!(
+                        "step gives {positions:.3e} cam positions in a turn, over the limit of \
+                         {}; the smallest step is {} {}",
+                        crate::scene::positions::MAX_IN_MEMORY,
+                        Units::tidy(units.from_si(smallest, Dimension::Angle)),
+                        units.symbol(Dimension::Angle),
+                    ),
+                ));
+            }
             step
         }
         None => 10f64.to_radians(),

@@ -212,6 +212,17 @@ pub fn run(
     settings: &[Setting],
     options: &Options,
 ) -> Result<(Scene, Report, Option<Study>)> {
+    if let Some(samples) = options.monte_carlo
+        && samples > tolerance::MAX_SAMPLES
+    {
+        return Err(Error::OverLimit {
+            option: "--monte-carlo",
+            value: samples as u128,
+            limit: tolerance::MAX_SAMPLES as u64,
+            what: "samples",
+            advice: "a few thousand samples show the spread; run several seeds (`--seed`) for more",
+        });
+    }
     let scene = crate::scene::parse_with(file, text, settings)?;
     let mut report = crate::scene::run(&scene)?;
     let spec = check(file, text, settings, &report.columns)?;

@@ -68,6 +68,10 @@ pub struct Sinks<'a> {
     pub jsonl: Option<Sink<'a>>,
 }
 
+/// The most worker threads a run starts (`--threads`): far more than any machine's cores
+/// (each thread costs a stack and the work is split among them).
+pub const MAX_THREADS: usize = 1024;
+
 /// How a streamed run is carried out.
 #[derive(Debug, Clone)]
 pub struct Options {
@@ -147,6 +151,15 @@ pub fn run(scene: &Scene, sinks: &mut Sinks<'_>, options: &Options) -> Result<St
     }
 
     let bar = progress_bar(options.progress, positions.len());
+    if options.threads > MAX_THREADS {
+        return Err(Error::OverLimit {
+            option: "--threads",
+            value: options.threads as u128,
+            limit: MAX_THREADS as u64,
+            what: "worker threads",
+            advice: "give at most one or two per core, or 0 for one per core",
+        });
+    }
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(options.threads)
         .build()
