@@ -285,6 +285,12 @@ impl<'a> Context<'a> {
         if !v.is_finite() {
             return Err(self.invalid(value, format!("{what} must be a finite number, found {v}")));
         }
+        if let Some(e) =
+            self.source
+                .wrong_dimension(value.span(), what, dimension, self.units.symbol(dimension))
+        {
+            return Err(e);
+        }
         let si = self.units.to_si(v, dimension);
         let largest = limits::largest(dimension);
         if si.abs() > largest {
