@@ -325,6 +325,16 @@ pub fn run(
             .collect();
         let (worst, rss) = tolerance::stack_up(&per_parameter, &tolerances);
         let column = nominal.columns[k].clone();
+        if !worst.iter().all(|w| w.is_finite()) {
+            return Err(Error::Study {
+                file: file.to_owned(),
+                message: format!(
+                    "the worst case of `{}` overflows (is not a finite number) with the \
+                     tolerances of `[tolerances]`; give smaller tolerances",
+                    column.name
+                ),
+            });
+        }
         columns.push(ColumnStudy {
             column: column.clone(),
             worst_case: largest(&worst),

@@ -17,6 +17,7 @@
 //! whose width is bounded for any `f64` (`-d.dddddddde-308`).
 
 pub mod format;
+pub mod record;
 pub mod speculate;
 
 use std::io::{self, Write};
@@ -135,8 +136,8 @@ pub fn run(scene: &Scene, sinks: &mut Sinks<'_>, options: &Options) -> Result<St
     let mut kept_rows: Vec<Vec<f64>> = Vec::new();
 
     if let Some(sink) = &mut sinks.csv {
-        let header: Vec<String> = columns.iter().map(|c| c.header()).collect();
-        sink.write(format!("{}\n", header.join(",")).as_bytes())?;
+        let header = record::csv_record(columns.iter().map(|c| c.header()));
+        sink.write(header.as_bytes())?;
     }
     if streamed_table && sinks.table.is_some() {
         let mut head = String::new();
