@@ -14,7 +14,10 @@ use mechdiff::scene;
 mod many_names;
 
 fn main() -> Result<(), mechdiff::Error> {
-    println!("{:>8} {:>12} {:>8} {:>12} {:>8}", "n", "read (s)", "ratio", "check (s)", "ratio");
+    println!(
+        "{:>8} {:>12} {:>8} {:>12} {:>8}",
+        "n", "read (s)", "ratio", "check (s)", "ratio"
+    );
     let mut previous: Option<(f64, f64)> = None;
     for n in [1_000, 10_000, 100_000] {
         let text = many_names::many_names(n, n / 10);

@@ -164,7 +164,12 @@ fn run_sweep_prints_one_long_table_with_the_parameter_first() {
 fn counts_over_their_limits_are_refused_before_any_work() {
     let cases: [(&[&str], &str, &str); 5] = [
         (
-            &["run", "scenes/four_bar.toml", "--monte-carlo", "18446744073709551615"],
+            &[
+                "run",
+                "scenes/four_bar.toml",
+                "--monte-carlo",
+                "18446744073709551615",
+            ],
             "'18446744073709551615' for '--monte-carlo <N>'",
             "0..=1000000",
         ),
@@ -174,7 +179,12 @@ fn counts_over_their_limits_are_refused_before_any_work() {
             "0..=1000000",
         ),
         (
-            &["run", "scenes/four_bar.toml", "--threads", "18446744073709551615"],
+            &[
+                "run",
+                "scenes/four_bar.toml",
+                "--threads",
+                "18446744073709551615",
+            ],
             "'18446744073709551615' for '--threads <N>'",
             "0..=1024",
         ),
@@ -184,7 +194,7 @@ fn counts_over_their_limits_are_refused_before_any_work() {
             "0..=1000",
         ),
         (
-            &["run", "scenes/four_bar.toml", "--threads", "-1"],
+            &["run", "scenes/four_bar.toml", "--threads=-1"],
             "'-1' for '--threads <N>'",
             "",
         ),
@@ -193,7 +203,10 @@ fn counts_over_their_limits_are_refused_before_any_work() {
         let output = mechdiff(args);
         let err = stderr(&output);
         assert!(!output.status.success(), "{args:?} was accepted");
-        assert!(err.contains(value) && err.contains(limit), "{args:?}: {err}");
+        assert!(
+            err.contains(value) && err.contains(limit),
+            "{args:?}: {err}"
+        );
         assert!(!err.contains("panicked"), "{err}");
     }
 }
@@ -224,7 +237,12 @@ fn a_name_with_a_comma_or_a_quote_stays_one_csv_field() {
     std::fs::remove_file(&scene_file).unwrap();
     let read_back = |bytes: &[u8]| {
         let mut reader = csv::Reader::from_reader(bytes);
-        let header: Vec<String> = reader.headers().unwrap().iter().map(str::to_owned).collect();
+        let header: Vec<String> = reader
+            .headers()
+            .unwrap()
+            .iter()
+            .map(str::to_owned)
+            .collect();
         let rows: Vec<csv::StringRecord> = reader.records().map(Result::unwrap).collect();
         (header, rows)
     };

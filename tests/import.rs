@@ -300,7 +300,10 @@ fn an_800_link_chain_is_checked_and_a_larger_one_refused_at_the_limit() {
     let chain = checked(400).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(chain.mechanism.links().len(), 802);
     let m = chain.mobility;
-    assert_eq!((m.coordinates, m.rank, m.degrees_of_freedom), (2403, 2403, 1));
+    assert_eq!(
+        (m.coordinates, m.rank, m.degrees_of_freedom),
+        (2403, 2403, 1)
+    );
     let e = checked(500).map(|_| ()).unwrap_err().to_string();
     assert!(
         e.contains("3003 pose coordinates (3 per moving link), over the limit of 3000"),

@@ -420,19 +420,38 @@ fn a_list_of_two_million_entries_is_refused_before_parsing() {
 /// Issue 22: a parameter with a unit of the wrong dimension was converted silently
 /// (`{ value = 0.86, unit = "lb" }` used as a length became 0.390 m, `"kg"` 0.86 m). Used
 /// alone or in a sum where a length is written, it is refused there, naming the unit, its
-/// dimension and the dimension expected; a length unit is converted as before (15.748 in =
-/// 0.4 m to rounding: the factor 0.0254 is exact, one multiplication).
+/// dimension and the dimension expected; a length unit is converted as before (10 in =
+/// 0.254 m to 1e-15 m: the factor 0.0254 m/in, one multiplication).
 #[test]
 fn a_parameter_with_a_unit_of_another_dimension_is_refused_where_it_is_used() {
     let with = |parameter: &str, x: &str| {
         scene_text("four_bar.toml")
-            .replacen("[points]", &format!("[parameters]\n{parameter}\n\n[points]"), 1)
+            .replacen(
+                "[points]",
+                &format!("[parameters]\n{parameter}\n\n[points]"),
+                1,
+            )
             .replacen("O4 = [0.4, 0.0]", &format!("O4 = [{x}, 0.0]"), 1)
     };
     for (parameter, x, unit, dimension) in [
-        ("L = { value = 0.86, unit = \"lb\" }", "\"L\"", "lb", "a mass"),
-        ("L = { value = 0.86, unit = \"kg\" }", "\"L - 0.46\"", "kg", "a mass"),
-        ("L = { value = 3, unit = \"deg\" }", "\"(L)\"", "deg", "an angle"),
+        (
+            "L = { value = 0.86, unit = \"lb\" }",
+            "\"L\"",
+            "lb",
+            "a mass",
+        ),
+        (
+            "L = { value = 0.86, unit = \"kg\" }",
+            "\"L - 0.46\"",
+            "kg",
+            "a mass",
+        ),
+        (
+            "L = { value = 3, unit = \"deg\" }",
+            "\"(L)\"",
+            "deg",
+            "an angle",
+        ),
     ] {
         let text = with(parameter, x);
         let e = scene::parse("bad.toml", &text).map(|_| ()).unwrap_err();
@@ -446,10 +465,13 @@ fn a_parameter_with_a_unit_of_another_dimension_is_refused_where_it_is_used() {
             ],
         );
     }
-    let scene = scene::parse("ok.toml", &with("L = { value = 15.748, unit = \"in\" }", "\"L\""))
-        .unwrap_or_else(|e| panic!("{e}"));
+    let scene = scene::parse(
+        "ok.toml",
+        &with("L = { value = 10, unit = \"in\" }", "\"L\""),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
     let o4 = scene.points.iter().find(|p| p.name == "O4").unwrap();
-    assert!((o4.sketch[0] - 0.4).abs() <= 1e-15, "{}", o4.sketch[0]);
+    assert!((o4.sketch[0] - 0.254).abs() <= 1e-15, "{}", o4.sketch[0]);
 }
 
 /// Issue 22: a cam `step` of 1e-4° or 1e-300 allocated without bound. A step that gives
@@ -464,7 +486,10 @@ fn a_cam_step_of_more_than_a_million_positions_is_refused() {
         assert_message(
             &e,
             common::line_of(&bad, "step = "),
-            &["over the limit of 1000000", "the smallest step is 0.00036 deg"],
+            &[
+                "over the limit of 1000000",
+                "the smallest step is 0.00036 deg",
+            ],
         );
     }
     // A step just above the smallest (900 000 positions) is read.

@@ -239,7 +239,7 @@ pub fn read(
                 return Err(invalid(
                     tolerance.span(),
                     format!(
-                        "{what} is {t}, over the limit of {MAX_TOLERANCE:e}; a tolerance is \
+                        "{what} is {t:e}, over the limit of {MAX_TOLERANCE:e}; a tolerance is \
                          the half-width of ± in the parameter's unit, far smaller than the \
                          largest number of a scene (1e9 m, 1e12 N)"
                     ),

@@ -14,7 +14,9 @@ pub fn many_names(points: usize, outputs: usize) -> String {
     for i in 0..points {
         let _ = writeln!(text, "P{i} = [{}, {}]", 0.3 + 1e-7 * i as f64, 0.45);
     }
-    text.push_str("\n[links]\nground = [\"O2\", \"O4\"]\ncrank = [\"O2\", \"A\"]\ncoupler = [\"A\", \"B\"");
+    text.push_str(
+        "\n[links]\nground = [\"O2\", \"O4\"]\ncrank = [\"O2\", \"A\"]\ncoupler = [\"A\", \"B\"",
+    );
     for i in 0..points {
         let _ = write!(text, ", \"P{i}\"");
     }
@@ -29,7 +31,10 @@ pub fn many_names(points: usize, outputs: usize) -> String {
          [[output]]\nname = \"psi\"\nangle = [\"O4\", \"B\"]\nquantities = [\"position\"]\n",
     );
     for i in 0..outputs.min(points) {
-        let _ = write!(text, "\n[[output]]\npoint = \"P{i}\"\nquantities = [\"position\"]\n");
+        let _ = write!(
+            text,
+            "\n[[output]]\npoint = \"P{i}\"\nquantities = [\"position\"]\n"
+        );
     }
     text
 }
