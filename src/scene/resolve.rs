@@ -130,6 +130,22 @@ pub(crate) fn units(section: &format::UnitsSection) -> Units {
     }
 }
 
+/// The most names an error lists (`the points are: …`): a scene may have 10⁵.
+const LISTED_NAMES: usize = 40;
+
+/// `names` joined for an error message: all of them up to [`LISTED_NAMES`], else the first
+/// ones and how many there are in all.
+pub(crate) fn listed(names: &[&str]) -> String {
+    if names.len() <= LISTED_NAMES {
+        return names.join(", ");
+    }
+    format!(
+        "{}, … ({} in all)",
+        names[..LISTED_NAMES].join(", "),
+        names.len()
+    )
+}
+
 /// The size of the sketch (largest coordinate distance), for relative tolerances.
 fn sketch_scale(points: &[Point]) -> f64 {
     let scale = super::diameter::diameter(points.iter().map(|p| p.sketch));
@@ -371,7 +387,7 @@ impl<'a> Context<'a> {
             location: self.at(name),
             name: name.get_ref().clone(),
             context: context.to_owned(),
-            known: known.join(", "),
+            known: listed(&known),
         })
     }
 
@@ -435,7 +451,7 @@ impl<'a> Context<'a> {
             what: "link",
             name: name.get_ref().clone(),
             context: context.to_owned(),
-            known: known.join(", "),
+            known: listed(&known),
         })
     }
 
