@@ -432,7 +432,7 @@ pub enum Error {
         /// The option, as written on the command line (`--threads`).
         option: &'static str,
         /// The value given.
-        value: u128,
+        value: u64,
         /// The largest value accepted.
         limit: u64,
         /// What is counted (`worker threads`).

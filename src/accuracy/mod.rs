@@ -341,7 +341,7 @@ impl Case<'_> {
         if timing.repeats > MAX_REPEATS {
             return Err(Error::OverLimit {
                 option: "--repeats",
-                value: timing.repeats as u128,
+                value: timing.repeats as u64,
                 limit: MAX_REPEATS as u64,
                 what: "timed repeats",
                 advice: "15 (the default) give a steady median",

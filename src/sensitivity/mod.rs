@@ -217,7 +217,7 @@ pub fn run(
     {
         return Err(Error::OverLimit {
             option: "--monte-carlo",
-            value: samples as u128,
+            value: samples as u64,
             limit: tolerance::MAX_SAMPLES as u64,
             what: "samples",
             advice: "a few thousand samples show the spread; run several seeds (`--seed`) for more",

@@ -155,7 +155,7 @@ pub fn run(scene: &Scene, sinks: &mut Sinks<'_>, options: &Options) -> Result<St
     if options.threads > MAX_THREADS {
         return Err(Error::OverLimit {
             option: "--threads",
-            value: options.threads as u128,
+            value: options.threads as u64,
             limit: MAX_THREADS as u64,
             what: "worker threads",
             advice: "give at most one or two per core, or 0 for one per core",
