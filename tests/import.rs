@@ -264,11 +264,18 @@ fn import_writes_with_out_and_never_replaces_a_file_without_force() {
 /// A PMKS chain of `k` four-bars in a row (2k + 1 moving links): rocker `Ri` pinned to the
 /// ground at (i, 0), its top at (i, 1 + 0.1 sin i) pinned to couplers `C(i-1)` and `Ci`;
 /// the first rocker drives. Each four-bar adds 6 coordinates and 6 equations: one degree of
-/// freedom in all, with loops of 6 coordinates.
-fn chain_of_four_bars(k: usize) -> String {
+/// freedom in all, with loops of 6 coordinates. With `toggle = Some(m)`, the tops of rockers
+/// m − 1 and m are drawn at (m, 2) and (m, 1): coupler m − 1 in line with rocker m, a toggle
+/// of the m-th four-bar.
+fn chain_of_four_bars(k: usize, toggle: Option<usize>) -> String {
     let mut text = String::from("mech=\n");
     for i in 0..=k {
         let (x, y) = (i as f64, 1.0 + 0.1 * (i as f64).sin());
+        let top = match toggle {
+            Some(m) if i + 1 == m => (m as f64, 2.0),
+            Some(m) if i == m => (m as f64, 1.0),
+            _ => (x, y),
+        };
         let drive = if i == 0 { 't' } else { 'f' };
         text.push_str(&format!("ground,R{i},R,{x},0,tff{drive}\n"));
         let mut links = vec![format!("R{i}")];
@@ -278,7 +285,12 @@ fn chain_of_four_bars(k: usize) -> String {
         if i < k {
             links.push(format!("C{i}"));
         }
-        text.push_str(&format!("{},R,{x},{y:.6},tfff\n", links.join(",")));
+        text.push_str(&format!(
+            "{},R,{},{:.6},tfff\n",
+            links.join(","),
+            top.0,
+            top.1
+        ));
     }
     text
 }
@@ -289,24 +301,32 @@ fn chain_of_four_bars(k: usize) -> String {
 /// documented limit of 3000 coordinates is refused with the limit named, before any work.
 #[test]
 fn an_800_link_chain_is_checked_and_a_larger_one_refused_at_the_limit() {
-    let checked = |k: usize| {
-        let source = Source::new("chain.pmks", chain_of_four_bars(k));
+    let checked = |k: usize, toggle: Option<usize>| {
+        let source = Source::new("chain.pmks", chain_of_four_bars(k, toggle));
         let text = import::read(&source)
             .and_then(|l| l.to_scene(&source))
             .unwrap_or_else(|e| panic!("{e}"));
         let scene = scene::parse("chain.toml", &text).unwrap_or_else(|e| panic!("{e}"));
         scene::check(&scene)
     };
-    let chain = checked(400).unwrap_or_else(|e| panic!("{e}"));
+    let chain = checked(400, None).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(chain.mechanism.links().len(), 802);
     let m = chain.mobility;
     assert_eq!(
         (m.coordinates, m.rank, m.degrees_of_freedom),
         (2403, 2403, 1)
     );
-    let e = checked(500).map(|_| ()).unwrap_err().to_string();
+    let e = checked(500, None).map(|_| ()).unwrap_err().to_string();
     assert!(
         e.contains("3003 pose coordinates (3 per moving link), over the limit of 3000"),
+        "{e}"
+    );
+    // Judged loop by loop, a chain drawn at a toggle of its 30th four-bar (coupler C29 in
+    // line with rocker R30) is still a singular sketch, naming that loop's joints (the
+    // joints at the pivot and top of R30 are J61 and J62).
+    let e = checked(100, Some(30)).map(|_| ()).unwrap_err().to_string();
+    assert!(
+        e.contains("singular") && e.contains("J61") && e.contains("J62"),
         "{e}"
     );
 }
