@@ -467,6 +467,21 @@ pub enum Error {
         /// The engine's reason.
         source: mechdiff_core::Error,
     },
+    /// A count given on the command line (threads, Monte-Carlo samples, timed repeats) over
+    /// its documented limit: refused before any work starts.
+    #[error("{option} {value} is over the limit of {limit} {what}; {advice}")]
+    OverLimit {
+        /// The option, as written on the command line (`--threads`).
+        option: &'static str,
+        /// The value given.
+        value: u64,
+        /// The largest value accepted.
+        limit: u64,
+        /// What is counted (`worker threads`).
+        what: &'static str,
+        /// What to do instead.
+        advice: &'static str,
+    },
     /// A command-line option that does not apply to this kind of scene.
     #[error("{option} does not apply to {scene}: {why}")]
     OptionNotApplicable {

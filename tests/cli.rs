@@ -312,3 +312,107 @@ fn check_accepts_the_formula_scenes() {
         }
     }
 }
+
+/// Issue 22: counts a user writes on the command line are bounded before any work starts
+/// (`--monte-carlo 18446744073709551615` panicked, 4e9 aborted, `--repeats 1e9` aborted,
+/// `--threads 2^64-1` ran for 30 s): each is refused at once, the message naming the
+/// option, the value given and the limit.
+#[test]
+fn counts_over_their_limits_are_refused_before_any_work() {
+    let cases: [(&[&str], &str, &str); 5] = [
+        (
+            &[
+                "run",
+                "scenes/four_bar.toml",
+                "--monte-carlo",
+                "18446744073709551615",
+            ],
+            "'18446744073709551615' for '--monte-carlo <N>'",
+            "0..=1000000",
+        ),
+        (
+            &["run", "scenes/four_bar.toml", "--monte-carlo", "4000000000"],
+            "'4000000000' for '--monte-carlo <N>'",
+            "0..=1000000",
+        ),
+        (
+            &[
+                "run",
+                "scenes/four_bar.toml",
+                "--threads",
+                "18446744073709551615",
+            ],
+            "'18446744073709551615' for '--threads <N>'",
+            "0..=1024",
+        ),
+        (
+            &["accuracy", "whitworth", "--repeats", "1000000000"],
+            "'1000000000' for '--repeats <REPEATS>'",
+            "0..=1000",
+        ),
+        (
+            &["run", "scenes/four_bar.toml", "--threads=-1"],
+            "'-1' for '--threads <N>'",
+            "",
+        ),
+    ];
+    for (args, value, limit) in cases {
+        let output = mechdiff(args);
+        let err = stderr(&output);
+        assert!(!output.status.success(), "{args:?} was accepted");
+        assert!(
+            err.contains(value) && err.contains(limit),
+            "{args:?}: {err}"
+        );
+        assert!(!err.contains("panicked"), "{err}");
+    }
+}
+
+/// Issue 22: a point named `P,Q` used as an output made a CSV of 18 header fields over
+/// 12-field rows. The header is now written by the `csv` crate: the names with a comma are
+/// quoted (and their quotes doubled), and the `csv` crate reads the file back with 12 fields in every record and the
+/// names as written; the table a library user writes (`table::write_csv`) is the same.
+#[test]
+fn a_name_with_a_comma_or_a_quote_stays_one_csv_field() {
+    let text = std::fs::read_to_string("scenes/four_bar.toml")
+        .unwrap()
+        .replace("\nP = [", "\n'P,\"Q\"' = [")
+        .replace("\"B\", \"P\"]", "\"B\", 'P,\"Q\"']")
+        .replace("point = \"P\"", "point = 'P,\"Q\"'");
+    let scene_file = temp_file("comma_names.toml");
+    std::fs::write(&scene_file, &text).unwrap();
+    let csv_file = temp_file("comma_names.csv");
+    let output = mechdiff(&[
+        "run",
+        scene_file.to_str().unwrap(),
+        "--csv",
+        csv_file.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let written = std::fs::read(&csv_file).unwrap();
+    std::fs::remove_file(&csv_file).unwrap();
+    std::fs::remove_file(&scene_file).unwrap();
+    let read_back = |bytes: &[u8]| {
+        let mut reader = csv::Reader::from_reader(bytes);
+        let header: Vec<String> = reader
+            .headers()
+            .unwrap()
+            .iter()
+            .map(str::to_owned)
+            .collect();
+        let rows: Vec<csv::StringRecord> = reader.records().map(Result::unwrap).collect();
+        (header, rows)
+    };
+    let (header, rows) = read_back(&written);
+    assert_eq!(header.len(), 12);
+    assert_eq!(header[1], "psi [deg]");
+    assert_eq!(header[6], "x_P,\"Q\" [m]");
+    assert_eq!(header[11], "ay_P,\"Q\" [m/s^2]");
+    assert_eq!(rows.len(), 73);
+    assert!(rows.iter().all(|r| r.len() == 12));
+    // The library's writer gives the same bytes.
+    let report = scene::run(&scene::parse("comma_names.toml", &text).unwrap()).unwrap();
+    let mut library = Vec::new();
+    scene::table::write_csv(&report, &mut library).unwrap();
+    assert_eq!(library, written);
+}

@@ -260,3 +260,73 @@ fn import_writes_with_out_and_never_replaces_a_file_without_force() {
     assert!(String::from_utf8_lossy(&onto_input.stderr).contains("refusing to write"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A PMKS chain of `k` four-bars in a row (2k + 1 moving links): rocker `Ri` pinned to the
+/// ground at (i, 0), its top at (i, 1 + 0.1 sin i) pinned to couplers `C(i-1)` and `Ci`;
+/// the first rocker drives. Each four-bar adds 6 coordinates and 6 equations: one degree of
+/// freedom in all, with loops of 6 coordinates. With `toggle = Some(m)`, the tops of rockers
+/// m − 1 and m are drawn at (m, 2) and (m, 1): coupler m − 1 in line with rocker m, a toggle
+/// of the m-th four-bar.
+fn chain_of_four_bars(k: usize, toggle: Option<usize>) -> String {
+    let mut text = String::from("mech=\n");
+    for i in 0..=k {
+        let (x, y) = (i as f64, 1.0 + 0.1 * (i as f64).sin());
+        let top = match toggle {
+            Some(m) if i + 1 == m => (m as f64, 2.0),
+            Some(m) if i == m => (m as f64, 1.0),
+            _ => (x, y),
+        };
+        let drive = if i == 0 { 't' } else { 'f' };
+        text.push_str(&format!("ground,R{i},R,{x},0,tff{drive}\n"));
+        let mut links = vec![format!("R{i}")];
+        if i > 0 {
+            links.push(format!("C{}", i - 1));
+        }
+        if i < k {
+            links.push(format!("C{i}"));
+        }
+        text.push_str(&format!(
+            "{},R,{},{:.6},tfff\n",
+            links.join(","),
+            top.0,
+            top.1
+        ));
+    }
+    text
+}
+
+/// Issue 22: `check` of an 800-link chain from `import` ran past a minute (one SVD of the
+/// whole 2403×2403 Jacobian); the loops are now judged one by one, so it is checked with
+/// the same counts (rank = coordinates = 3 × 801 moving links), and a chain past the
+/// documented limit of 3000 coordinates is refused with the limit named, before any work.
+#[test]
+fn an_800_link_chain_is_checked_and_a_larger_one_refused_at_the_limit() {
+    let checked = |k: usize, toggle: Option<usize>| {
+        let source = Source::new("chain.pmks", chain_of_four_bars(k, toggle));
+        let text = import::read(&source)
+            .and_then(|l| l.to_scene(&source))
+            .unwrap_or_else(|e| panic!("{e}"));
+        let scene = scene::parse("chain.toml", &text).unwrap_or_else(|e| panic!("{e}"));
+        scene::check(&scene)
+    };
+    let chain = checked(400, None).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(chain.mechanism.links().len(), 802);
+    let m = chain.mobility;
+    assert_eq!(
+        (m.coordinates, m.rank, m.degrees_of_freedom),
+        (2403, 2403, 1)
+    );
+    let e = checked(500, None).map(|_| ()).unwrap_err().to_string();
+    assert!(
+        e.contains("3003 pose coordinates (3 per moving link), over the limit of 3000"),
+        "{e}"
+    );
+    // Judged loop by loop, a chain drawn at a toggle of its 30th four-bar (coupler C29 in
+    // line with rocker R30) is still a singular sketch, naming that loop's joints (the
+    // joints at the pivot and top of R30 are J61 and J62).
+    let e = checked(100, Some(30)).map(|_| ()).unwrap_err().to_string();
+    assert!(
+        e.contains("singular") && e.contains("J61") && e.contains("J62"),
+        "{e}"
+    );
+}

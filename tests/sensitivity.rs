@@ -405,7 +405,13 @@ fn error_of(sections: &str, marker: &str, options: &Options) -> (Error, usize) {
 
 /// Studies appended to Norton's scene that must be refused: the sections, a marker of the
 /// line the error is at, and what the message says.
-const BAD_STUDIES: [(&str, &str, &str); 6] = [
+const BAD_STUDIES: [(&str, &str, &str); 7] = [
+    // A tolerance of 1e300 printed "±inf" with exit 0: over the limit of 1e12.
+    (
+        "[tolerances]\ncolumns = [\"psi\"]\nparameters = { a = 1e300 }\n",
+        "1e300",
+        "is 1e300, over the limit of 1e12",
+    ),
     (
         "[sensitivity]\ncolumns = [\"d(psi)/d(zz)\"]\n",
         "d(psi)/d(zz)",
@@ -463,6 +469,29 @@ fn bad_studies_are_refused_at_their_place_with_what_to_write() {
     assert!(
         e.to_string()
             .contains("`--monte-carlo` checks a tolerance study"),
+        "{e}"
+    );
+    // More Monte-Carlo samples than the limit are refused before any run.
+    let options = Options {
+        monte_carlo: Some(sensitivity::tolerance::MAX_SAMPLES + 1),
+        seed: 1,
+    };
+    let e = sensitivity::run(
+        "t.toml",
+        &norton_with("[tolerances]\ncolumns = [\"psi\"]\nparameters = { a = 0.001 }\n"),
+        &[],
+        &options,
+    )
+    .unwrap_err();
+    assert!(
+        matches!(
+            e,
+            Error::OverLimit {
+                option: "--monte-carlo",
+                limit: 1_000_000,
+                ..
+            }
+        ),
         "{e}"
     );
     // A misspelt key lists the keys expected.

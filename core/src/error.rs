@@ -104,6 +104,20 @@ pub enum Error {
         /// Number of pose coordinates.
         coordinates: usize,
     },
+    /// The mechanism is larger than the mobility check holds in memory (its Jacobian is
+    /// dense): refused before any work.
+    #[error(
+        "the mechanism has {count} {what}, over the limit of {limit}; split it into \
+         smaller mechanisms"
+    )]
+    TooLarge {
+        /// What is counted (`pose coordinates (3 per moving link)`).
+        what: &'static str,
+        /// How many the mechanism has.
+        count: usize,
+        /// The largest number accepted.
+        limit: usize,
+    },
     /// The drive does not fix the pose: some links can still move.
     #[error(
         "under-constrained: {free} degree(s) of freedom left with the drive fixed; \

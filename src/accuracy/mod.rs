@@ -160,6 +160,10 @@ pub fn thin(n: usize, count: usize) -> Vec<usize> {
     (0..n).filter(|&i| i % k == 0 || i + 1 == n).collect()
 }
 
+/// The most timed repeats per method (`--repeats`): the median and spread settle after a few
+/// tens, and every repeat lasts at least [`Timing::minimum_seconds`].
+pub const MAX_REPEATS: usize = 1000;
+
 /// How long to time each method.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Timing {
@@ -334,6 +338,15 @@ impl Case<'_> {
     /// # Errors
     /// Only if the reference's own `f64` evaluation fails during the step scan.
     pub fn measure(mut self, timing: &Timing) -> Result<Report, Error> {
+        if timing.repeats > MAX_REPEATS {
+            return Err(Error::OverLimit {
+                option: "--repeats",
+                value: timing.repeats as u64,
+                limit: MAX_REPEATS as u64,
+                what: "timed repeats",
+                advice: "15 (the default) give a steady median",
+            });
+        }
         let scales = self.scales();
         let mut measurements = Vec::new();
         let methods = std::mem::take(&mut self.methods);

@@ -7,6 +7,7 @@ use super::differences::StepScan;
 use super::{EPSILON, Failure, Kind, MAX_ORDER, Method, Values};
 use crate::Error;
 use crate::report::Table;
+use crate::stream::record::csv_quoted;
 
 /// One method's errors and time.
 #[derive(Clone, Debug, PartialEq)]
@@ -347,8 +348,8 @@ impl Report {
             };
             let _ = writeln!(
                 out,
-                "\"{}\",{kind},{step},{},{},{},{},{},{},{},{}",
-                m.name,
+                "{},{kind},{step},{},{},{},{},{},{},{},{}",
+                csv_quoted(&m.name),
                 m.order,
                 number(m.time[0]),
                 number(m.time[1]),
@@ -363,8 +364,8 @@ impl Report {
             for (h, e) in scan.steps.iter().zip(&scan.errors) {
                 let _ = writeln!(
                     out,
-                    "\"{} h={h:.2e}\",scan,{h:e},3,,,,,,{},,,,,",
-                    scan.scheme.name(),
+                    "{},scan,{h:e},3,,,,,,{},,,,,",
+                    csv_quoted(&format!("{} h={h:.2e}", scan.scheme.name())),
                     e.map(number).join(","),
                 );
             }

@@ -27,6 +27,7 @@ use super::double_double::DoubleDouble;
 use crate::Error;
 use crate::report::Table;
 use crate::scene::balancing::RotorScene;
+use crate::stream::record::csv_quoted;
 
 /// One balancing answer in `f64` and in double-double.
 #[derive(Clone, Debug, PartialEq)]
@@ -207,8 +208,8 @@ impl RotorReport {
         for a in &self.answers {
             let _ = writeln!(
                 out,
-                "\"{}\",{},{:e},{:e},{:e},{},{}",
-                a.name,
+                "{},{},{:e},{:e},{:e},{},{}",
+                csv_quoted(&a.name),
                 a.unit,
                 a.value,
                 a.reference.hi,

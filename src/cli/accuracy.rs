@@ -27,9 +27,10 @@ pub struct AccuracyArgs {
     /// the error against the drive angle per method to the same name ending `-angle.svg`.
     #[arg(long, value_name = "FILE")]
     pub svg: Option<PathBuf>,
-    /// Timed repeats per method (the median and spread are over these).
-    #[arg(long, default_value_t = 15)]
-    pub repeats: usize,
+    /// Timed repeats per method (the median and spread are over these; at most 1000).
+    #[arg(long, default_value_t = 15,
+          value_parser = clap::value_parser!(u64).range(0..=accuracy::MAX_REPEATS as u64))]
+    pub repeats: u64,
     /// Measure at most this many drive positions of the sweep, evenly spread (every k-th,
     /// the last kept): a quick check of a long sweep.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
@@ -39,7 +40,7 @@ pub struct AccuracyArgs {
 /// Measures and prints (or writes) the report.
 pub fn accuracy(args: &AccuracyArgs) -> Result<(), Error> {
     let timing = Timing {
-        repeats: args.repeats,
+        repeats: args.repeats as usize,
         ..Timing::default()
     };
     let positions = args.positions.map(|n| n as usize);

@@ -66,7 +66,7 @@ fn write_table(title: &str, table: &Table, out: &mut dyn Write) -> std::io::Resu
 
 /// The table as CSV, every number to its shortest exact `f64` form.
 fn write_csv(table: &Table, out: &mut dyn Write) -> std::io::Result<()> {
-    writeln!(out, "{}", headers(table).join(","))?;
+    out.write_all(mechdiff::stream::record::csv_record(headers(table)).as_bytes())?;
     for (phi, row) in table.positions.iter().zip(&table.rows) {
         let cells: Vec<String> = std::iter::once(*phi)
             .chain(row.iter().flatten().copied())

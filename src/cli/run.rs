@@ -36,9 +36,10 @@ pub struct RunArgs {
     #[arg(long, value_name = "FILE")]
     pub jsonl: Option<PathBuf>,
     /// Worker threads solving and formatting the rows (0: `RAYON_NUM_THREADS`, else one per
-    /// core). The output is the same, byte for byte, for any number.
-    #[arg(long, value_name = "N", default_value_t = 0)]
-    pub threads: usize,
+    /// core). The output is the same, byte for byte, for any number; at most 1024.
+    #[arg(long, value_name = "N", default_value_t = 0,
+          value_parser = clap::value_parser!(u64).range(0..=stream::MAX_THREADS as u64))]
+    pub threads: u64,
     /// Also write the columns, rows and dead positions to this JSON file (held in memory:
     /// at most a million drive positions).
     #[arg(long, value_name = "FILE")]
@@ -50,9 +51,12 @@ pub struct RunArgs {
     #[arg(long, value_name = "FILE")]
     pub report: Option<PathBuf>,
     /// Check the scene's `[tolerances]` study by N runs at parameters drawn uniformly from
-    /// their ± tolerances; prints the largest deviation sampled beside the worst case.
-    #[arg(long = "monte-carlo", value_name = "N")]
-    pub monte_carlo: Option<usize>,
+    /// their ± tolerances; prints the largest deviation sampled beside the worst case (at
+    /// most a million samples).
+    #[arg(long = "monte-carlo", value_name = "N",
+          value_parser = clap::value_parser!(u64)
+              .range(0..=sensitivity::tolerance::MAX_SAMPLES as u64))]
+    pub monte_carlo: Option<u64>,
     /// The seed of `--monte-carlo`'s generator (the same seed gives the same samples).
     #[arg(long, value_name = "S", default_value_t = 1)]
     pub seed: u64,
@@ -122,7 +126,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         }
         None if study_asked => {
             let options = sensitivity::Options {
-                monte_carlo: args.monte_carlo,
+                monte_carlo: args.monte_carlo.map(|n| n as usize),
                 seed: args.seed,
             };
             let (scene, report, found) = sensitivity::run(&file, &text, &args.set, &options)?;
@@ -227,7 +231,7 @@ fn stream(scene: &scene::Scene, args: &RunArgs) -> Result<(), Error> {
         jsonl: jsonl.as_mut().map(sink),
     };
     let options = stream::Options {
-        threads: args.threads,
+        threads: args.threads as usize,
         progress: std::io::stderr().is_terminal()
             && scene.positions.len() > stream::TABLE_FROM_VALUES,
         ..stream::Options::default()

@@ -459,7 +459,7 @@ pub fn write_svaj_csv(scene: &CamScene, out: &mut impl Write) -> io::Result<()> 
     let (header, values) = table_cells(scene, &rows);
     let mut header = header;
     header.insert(1, "side".to_owned());
-    writeln!(out, "{}", header.join(","))?;
+    out.write_all(crate::stream::record::csv_record(header).as_bytes())?;
     for ((_, cells), row) in values.iter().zip(&rows) {
         let side = match row.side {
             Some(Side::Left) => "left",

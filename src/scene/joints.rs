@@ -104,7 +104,7 @@ pub(crate) fn resolve(
         }
         let mut names: Vec<String> = Vec::with_capacity(list.len());
         for link in list {
-            let link = cx.link(link, geometry.links, &context)?;
+            let link = cx.link(link, geometry, &context)?;
             if names.iter().any(|n| n == link) {
                 return Err(cx.invalid(
                     links,

@@ -305,20 +305,27 @@ impl Quantity {
 }
 
 impl Scene {
-    /// Every link's lengths at the sketch, which the solver holds rigid: the distance
-    /// between each pair of its points (SI), as `(link, point, point, length)`.
+    /// Every link's lengths at the sketch, which the solver holds rigid, as `(link, point,
+    /// point, length)` (SI): the distance between each pair of its points when the link has
+    /// at most [`Scene::ALL_PAIRS_UP_TO`] points; for a larger link, the distance of each
+    /// point to the first two listed (which fix it rigidly), so that the list grows with
+    /// the number of points, not with its square.
     pub fn link_lengths(&self) -> Vec<(&str, &str, &str, f64)> {
-        let at = |name: &str| {
-            self.points
-                .iter()
-                .find(|p| p.name == name)
-                .map(|p| p.sketch)
-        };
+        let sketch: std::collections::HashMap<&str, [f64; 2]> = self
+            .points
+            .iter()
+            .map(|p| (p.name.as_str(), p.sketch))
+            .collect();
         let mut lengths = Vec::new();
         for link in &self.links {
-            for (i, a) in link.points.iter().enumerate() {
+            let firsts = if link.points.len() <= Self::ALL_PAIRS_UP_TO {
+                link.points.len()
+            } else {
+                2
+            };
+            for (i, a) in link.points.iter().enumerate().take(firsts) {
                 for b in &link.points[i + 1..] {
-                    if let (Some(p), Some(q)) = (at(a), at(b)) {
+                    if let (Some(p), Some(q)) = (sketch.get(a.as_str()), sketch.get(b.as_str())) {
                         let length = (q[0] - p[0]).hypot(q[1] - p[1]);
                         lengths.push((link.name.as_str(), a.as_str(), b.as_str(), length));
                     }
@@ -327,6 +334,9 @@ impl Scene {
         }
         lengths
     }
+
+    /// The most points of a link whose every pair [`Scene::link_lengths`] lists.
+    pub const ALL_PAIRS_UP_TO: usize = 8;
 
     /// The highest derivative order any output needs (0: positions only).
     pub fn order(&self) -> usize {

@@ -24,9 +24,10 @@ pub(crate) fn resolve(
     drive: &Drive,
 ) -> Result<Vec<Output>> {
     let mut outputs: Vec<Output> = Vec::with_capacity(defs.len());
+    let mut names = std::collections::HashSet::with_capacity(defs.len());
     for def in defs {
         let output = resolve_one(cx, def, geometry, joints, drive)?;
-        if outputs.iter().any(|o| o.name == output.name) {
+        if !names.insert(output.name.clone()) {
             let at = def
                 .get_ref()
                 .name
@@ -58,11 +59,7 @@ fn resolve_one(
     let (kind, default_name) = match (&d.point, &d.angle, &d.slider) {
         (Some(point), None, None) => {
             let name = cx.point(point, geometry.names, "`[[output]] point`")?;
-            if !geometry
-                .links
-                .iter()
-                .any(|l| l.points.iter().any(|p| p == name))
-            {
+            if !geometry.on_a_link(name) {
                 return Err(cx.invalid(
                     point,
                     format!(
@@ -233,11 +230,7 @@ fn line(
         });
     }
     for p in [a, b] {
-        if !geometry
-            .links
-            .iter()
-            .any(|l| l.points.iter().any(|q| q == p))
-        {
+        if !geometry.on_a_link(p) {
             return Err(cx.invalid(
                 line,
                 format!("point `{p}` in {context} is on no link; add it to a link in `[links]`"),

@@ -263,6 +263,7 @@ fn read_in<D: Carried>(
         .map(Spanned::into_inner)
         .unwrap_or_default();
     let mut pending: Vec<Pending> = Vec::with_capacity(table.len());
+    let mut own_units = HashMap::new();
     for (name, value) in &table {
         let plain = formula_names(name.get_ref()).is_ok_and(|n| n == [name.get_ref().clone()]);
         if !plain || matches!(name.get_ref().as_str(), "pi" | "tau") {
@@ -290,6 +291,7 @@ fn read_in<D: Carried>(
                         ),
                     });
                 };
+                own_units.insert(name.get_ref().clone(), (unit.get_ref().clone(), dimension));
                 (value.text(), factor / file_units.factor(dimension))
             }
         };
@@ -300,6 +302,7 @@ fn read_in<D: Carried>(
             scale,
         });
     }
+    source.set_parameter_units(own_units);
     // In the file's order, so that the evaluation order follows it where the dependencies
     // allow (`mechdiff check` lists the parameters in that order).
     pending.sort_by_key(|p| p.span.as_ref().map_or(0, |s| s.start));

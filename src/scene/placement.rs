@@ -119,7 +119,7 @@ impl Context<'_> {
             location: self.at(used),
             name: used.get_ref().clone(),
             context: context.to_owned(),
-            known: known.join(", "),
+            known: super::resolve::listed(&known),
         })
     }
 

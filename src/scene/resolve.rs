@@ -3,7 +3,7 @@
 //!
 //! Every error names `file:line:column` and what was expected there.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::{BTreeMap, HashMap, HashSet};
 
 use toml::Spanned;
 
@@ -131,11 +131,34 @@ pub(crate) fn units(section: &format::UnitsSection) -> Units {
     }
 }
 
+/// The most names an error lists (`the points are: …`): a scene may have 10⁵.
+const LISTED_NAMES: usize = 40;
+
+/// `names` joined for an error message: all of them up to [`LISTED_NAMES`], else the first
+/// ones and how many there are in all.
+pub(crate) fn listed(names: &[&str]) -> String {
+    if names.len() <= LISTED_NAMES {
+        return names.join(", ");
+    }
+    format!(
+        "{}, … ({} in all)",
+        names[..LISTED_NAMES].join(", "),
+        names.len()
+    )
+}
+
 /// The resolved points and links, for the checks of joints, drive and outputs.
 pub(crate) struct Geometry<'a> {
     pub(crate) points: &'a [Point],
     pub(crate) names: &'a HashMap<&'a str, usize>,
     pub(crate) links: &'a [Link],
+    /// Each link's index by name.
+    link_index: HashMap<&'a str, usize>,
+    /// Every (link, point) that a link carries, so that membership is found in constant
+    /// time (a scene may hold 10⁵ points).
+    carried: HashSet<(&'a str, &'a str)>,
+    /// Every point carried by some link.
+    moving_or_ground: HashSet<&'a str>,
 }
 
 impl<'a> Geometry<'a> {
@@ -145,10 +168,21 @@ impl<'a> Geometry<'a> {
         names: &'a HashMap<&'a str, usize>,
         links: &'a [Link],
     ) -> Self {
+        let carried: HashSet<(&str, &str)> = links
+            .iter()
+            .flat_map(|l| l.points.iter().map(|p| (l.name.as_str(), p.as_str())))
+            .collect();
         Geometry {
             points,
             names,
             links,
+            link_index: links
+                .iter()
+                .enumerate()
+                .map(|(k, l)| (l.name.as_str(), k))
+                .collect(),
+            moving_or_ground: carried.iter().map(|&(_, p)| p).collect(),
+            carried,
         }
     }
 
@@ -158,7 +192,17 @@ impl<'a> Geometry<'a> {
     }
 
     pub(crate) fn link(&self, name: &str) -> Option<&Link> {
-        self.links.iter().find(|l| l.name == name)
+        self.link_index.get(name).map(|&k| &self.links[k])
+    }
+
+    /// Whether `link` carries `point`.
+    pub(crate) fn carries(&self, link: &str, point: &str) -> bool {
+        self.carried.contains(&(link, point))
+    }
+
+    /// Whether some link (the ground included) carries `point`.
+    pub(crate) fn on_a_link(&self, point: &str) -> bool {
+        self.moving_or_ground.contains(point)
     }
 
     /// Distance of `p` from the line through `a`, `b` in the sketch.
@@ -250,6 +294,12 @@ impl<'a> Context<'a> {
         if !v.is_finite() {
             return Err(self.invalid(value, format!("{what} must be a finite number, found {v}")));
         }
+        if let Some(e) =
+            self.source
+                .wrong_dimension(value.span(), what, dimension, self.units.symbol(dimension))
+        {
+            return Err(e);
+        }
         let si = self.units.to_si(v, dimension);
         let largest = limits::largest(dimension);
         if si.abs() > largest {
@@ -330,7 +380,7 @@ impl<'a> Context<'a> {
             location: self.at(name),
             name: name.get_ref().clone(),
             context: context.to_owned(),
-            known: known.join(", "),
+            known: listed(&known),
         })
     }
 
@@ -343,10 +393,7 @@ impl<'a> Context<'a> {
         context: &str,
     ) -> Result<&'n str> {
         let point = self.point(name, geometry.names, context)?;
-        let carried = geometry
-            .link(link)
-            .is_some_and(|l| l.points.iter().any(|p| p == point));
-        if !carried {
+        if !geometry.carries(link, point) {
             return Err(self.invalid(
                 name,
                 format!(
@@ -385,19 +432,19 @@ impl<'a> Context<'a> {
     pub(crate) fn link<'n>(
         &self,
         name: &'n Name,
-        links: &[Link],
+        geometry: &Geometry,
         context: &str,
     ) -> Result<&'n str> {
-        if links.iter().any(|l| &l.name == name.get_ref()) {
+        if geometry.link(name.get_ref()).is_some() {
             return Ok(name.get_ref());
         }
-        let known: Vec<&str> = links.iter().map(|l| l.name.as_str()).collect();
+        let known: Vec<&str> = geometry.links.iter().map(|l| l.name.as_str()).collect();
         Err(Error::UnknownName {
             location: self.at(name),
             what: "link",
             name: name.get_ref().clone(),
             context: context.to_owned(),
-            known: known.join(", "),
+            known: listed(&known),
         })
     }
 
@@ -429,9 +476,10 @@ impl<'a> Context<'a> {
                 ));
             }
             let mut points: Vec<String> = Vec::new();
+            let mut seen = HashSet::new();
             for point in list.get_ref() {
                 let point = self.point(point, names, &context)?;
-                if points.iter().any(|p| p == point) {
+                if !seen.insert(point) {
                     let spanned = list
                         .get_ref()
                         .iter()

@@ -1,36 +1,123 @@
 //! The text of a scene file, for turning byte spans into `file:line:column`.
 
+use std::collections::HashMap;
 use std::ops::Range;
+use std::sync::{Arc, OnceLock};
+
+use super::units::Dimension;
 
 use crate::error::{Error, Location};
 
-/// A scene file's name and text.
+/// A scene file's name and text, with an index of its lines so that a place is found in
+/// time logarithmic in the file's length (a scene of 10⁵ names is located 10⁵ times).
 #[derive(Debug, Clone)]
 pub struct Source {
     /// The name printed in messages (the path as given, or `<string>`).
     pub file: String,
     /// The whole text.
     pub text: String,
+    /// The name as messages share it.
+    shared_file: Arc<str>,
+    /// Each line's first byte, and whether the line is ASCII (its columns are bytes).
+    lines: Vec<(usize, bool)>,
+    /// The parameters written with a unit of their own: name → (unit, its dimension).
+    parameter_units: OnceLock<HashMap<String, (String, Dimension)>>,
 }
 
 impl Source {
     /// Wraps a file's name and text.
     pub fn new(file: impl Into<String>, text: impl Into<String>) -> Self {
-        Source {
-            file: file.into(),
-            text: text.into(),
+        let (file, text) = (file.into(), text.into());
+        let mut lines = Vec::new();
+        let mut start = 0;
+        for line in text.split_inclusive('\n') {
+            lines.push((start, line.is_ascii()));
+            start += line.len();
         }
+        if lines.is_empty() || text.ends_with('\n') {
+            lines.push((text.len(), true));
+        }
+        Source {
+            shared_file: file.as_str().into(),
+            file,
+            text,
+            lines,
+            parameter_units: OnceLock::new(),
+        }
+    }
+
+    /// Records the parameters written with a unit of their own (by the reader of
+    /// `[parameters]`; the first record stands).
+    pub(crate) fn set_parameter_units(&self, units: HashMap<String, (String, Dimension)>) {
+        let _ = self.parameter_units.set(units);
+    }
+
+    /// The error for a number at `span` of `dimension` that is a sum of terms (`"L"`,
+    /// `"L + 0.1"`, `"a - b"`) one of which is a parameter with a unit of another dimension.
+    /// Products, quotients and functions of such parameters are not checked (their
+    /// dimension is not the parameters').
+    pub(crate) fn wrong_dimension(
+        &self,
+        span: Range<usize>,
+        what: &str,
+        dimension: Dimension,
+        file_unit: &str,
+    ) -> Option<Error> {
+        let units = self.parameter_units.get().filter(|u| !u.is_empty())?;
+        let written = self.text.get(span.clone())?;
+        let formula = written.strip_prefix('"')?.strip_suffix('"')?;
+        let additive = formula
+            .chars()
+            .all(|c| c.is_alphanumeric() || matches!(c, '_' | '.' | '+' | '-' | '(' | ')' | ' '));
+        if !additive {
+            return None;
+        }
+        let is_name_start = |c: char| c.is_alphabetic() || c == '_';
+        let mut rest = formula;
+        while let Some(start) = rest.find(|c: char| c.is_alphanumeric() || c == '_') {
+            rest = &rest[start..];
+            let end = rest
+                .find(|c: char| !(c.is_alphanumeric() || c == '_' || c == '.'))
+                .unwrap_or(rest.len());
+            let token = &rest[..end];
+            // A number's exponent (`1e-3`) is not a name: skip the sign after it.
+            let token = if token.starts_with(is_name_start) {
+                token
+            } else {
+                ""
+            };
+            if let Some((unit, own)) = units.get(token)
+                && *own != dimension
+            {
+                return Some(Error::Invalid {
+                    location: self.location(span),
+                    message: format!(
+                        "unit `{unit}` of parameter `{token}` is {}; `{token}` is used here as \
+                         {} ({what}): write {} unit ({file_unit}, …) for `{token}`, or use \
+                         another parameter",
+                        own.words(),
+                        dimension.words(),
+                        dimension.words(),
+                    ),
+                });
+            }
+            rest = &rest[end..];
+        }
+        None
     }
 
     /// The line and column (1-based, columns in characters) where byte `span.start` is.
     pub fn location(&self, span: Range<usize>) -> Location {
         let start = floor_char_boundary(&self.text, span.start.min(self.text.len()));
-        let before = &self.text[..start];
-        let line = before.matches('\n').count() + 1;
-        let line_start = before.rfind('\n').map_or(0, |i| i + 1);
-        let column = before[line_start..].chars().count() + 1;
+        let line = self.lines.partition_point(|&(first, _)| first <= start);
+        let (line_start, ascii) = self.lines[line - 1];
+        let column = if ascii {
+            start - line_start
+        } else {
+            self.text[line_start..start].chars().count()
+        } + 1;
         Location {
-            file: self.file.as_str().into(),
+            file: Arc::clone(&self.shared_file),
             line,
             column,
         }
@@ -223,6 +310,23 @@ mod tests {
         let location = source.location(at..at + 4);
         assert_eq!((location.line, location.column), (3, 12));
         assert_eq!(location.to_string(), "a.toml:3:12");
+    }
+
+    #[test]
+    fn the_line_index_agrees_with_counting_newlines_at_every_byte() {
+        let text = "a = 1\n\n# ψ″ = 2\r\nb = \"ψ\"\nlast";
+        let source = Source::new("a.toml", text);
+        for at in (0..=text.len()).filter(|&i| text.is_char_boundary(i)) {
+            let before = &text[..at];
+            let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+            let location = source.location(at..at);
+            assert_eq!(location.line, before.matches('\n').count() + 1, "byte {at}");
+            assert_eq!(
+                location.column,
+                before[line_start..].chars().count() + 1,
+                "byte {at}"
+            );
+        }
     }
 
     #[test]

@@ -159,8 +159,8 @@ pub fn write_dead_positions(
 /// scene's units with all the digits of an `f64` (shortest representation that reads back
 /// to the same number).
 pub fn write_csv(report: &Report, out: &mut impl Write) -> io::Result<()> {
-    let header: Vec<String> = report.columns.iter().map(|c| c.header()).collect();
-    writeln!(out, "{}", header.join(","))?;
+    let header = crate::stream::record::csv_record(report.columns.iter().map(|c| c.header()));
+    out.write_all(header.as_bytes())?;
     let format = RowFormat::new(&report.columns);
     let wanted = Wanted {
         table: false,

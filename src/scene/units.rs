@@ -189,6 +189,27 @@ pub enum Dimension {
     AngularJerk,
 }
 
+impl Dimension {
+    /// The dimension in words, with its article, for messages (`"a length"`).
+    pub fn words(self) -> &'static str {
+        match self {
+            Dimension::Length => "a length",
+            Dimension::Angle => "an angle",
+            Dimension::Velocity => "a velocity",
+            Dimension::Acceleration => "an acceleration",
+            Dimension::AngularVelocity => "an angular velocity",
+            Dimension::AngularAcceleration => "an angular acceleration",
+            Dimension::Mass => "a mass",
+            Dimension::Density => "a mass per length",
+            Dimension::Force => "a force",
+            Dimension::Torque => "a torque",
+            Dimension::MomentOfInertia => "a moment of inertia",
+            Dimension::Jerk => "a jerk",
+            Dimension::AngularJerk => "an angular jerk",
+        }
+    }
+}
+
 /// The dimension of a unit symbol as `[units]` writes it (`"in"`, `"deg"`, `"lbf"`,
 /// `"kg*mm^2"`) and its value in SI.
 ///

@@ -103,9 +103,15 @@ pub fn formula_in<D: Scalar>(text: &str, bindings: &HashMap<String, D>) -> Resul
         ("tau", D::constant(std::f64::consts::TAU)),
     ];
     let symbols = graph.symbols(&[id]);
-    let mut parameters: Vec<&str> = bindings.keys().map(String::as_str).collect();
-    parameters.sort_unstable();
-    unknown_name(text, &symbols, &parameters)?;
+    // The sorted list of parameters only for the message: a scene may have many formulas
+    // and many parameters.
+    let known =
+        |s: &str| is_named_constant(s) || matches!(s, "pi" | "tau") || bindings.contains_key(s);
+    if !symbols.iter().all(|s| known(s)) {
+        let mut parameters: Vec<&str> = bindings.keys().map(String::as_str).collect();
+        parameters.sort_unstable();
+        unknown_name(text, &symbols, &parameters)?;
+    }
     // Only the names the formula uses are bound (a scene may have many parameters).
     let mut all: Vec<(&str, D)> = constants.to_vec();
     all.extend(

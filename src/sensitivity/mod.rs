@@ -212,6 +212,17 @@ pub fn run(
     settings: &[Setting],
     options: &Options,
 ) -> Result<(Scene, Report, Option<Study>)> {
+    if let Some(samples) = options.monte_carlo
+        && samples > tolerance::MAX_SAMPLES
+    {
+        return Err(Error::OverLimit {
+            option: "--monte-carlo",
+            value: samples as u64,
+            limit: tolerance::MAX_SAMPLES as u64,
+            what: "samples",
+            advice: "a few thousand samples show the spread; run several seeds (`--seed`) for more",
+        });
+    }
     let scene = crate::scene::parse_with(file, text, settings)?;
     let mut report = crate::scene::run(&scene)?;
     let spec = check(file, text, settings, &report.columns)?;
@@ -314,6 +325,16 @@ pub fn run(
             .collect();
         let (worst, rss) = tolerance::stack_up(&per_parameter, &tolerances);
         let column = nominal.columns[k].clone();
+        if !worst.iter().all(|w| w.is_finite()) {
+            return Err(Error::Study {
+                file: file.to_owned(),
+                message: format!(
+                    "the worst case of `{}` overflows (is not a finite number) with the \
+                     tolerances of `[tolerances]`; give smaller tolerances",
+                    column.name
+                ),
+            });
+        }
         columns.push(ColumnStudy {
             column: column.clone(),
             worst_case: largest(&worst),

@@ -26,6 +26,11 @@ struct SensitivityDef {
     columns: Spanned<Vec<Spanned<String>>>,
 }
 
+/// The largest tolerance (± half-width, in the parameter's unit): the largest bound of the
+/// scene's numbers ([`crate::scene::limits`]), so that a worst case (sum of |∂y/∂p|·t) stays
+/// finite; a worst case that still overflows is refused when it is computed.
+pub const MAX_TOLERANCE: f64 = 1e12;
+
 /// `[tolerances]`: the columns to study and `parameters = { a = 0.0005, … }`.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -230,6 +235,16 @@ pub fn read(
                 ));
             };
             let t = tolerance.get_ref().0;
+            if t.is_finite() && t > MAX_TOLERANCE {
+                return Err(invalid(
+                    tolerance.span(),
+                    format!(
+                        "{what} is {t:e}, over the limit of {MAX_TOLERANCE:e}; a tolerance is \
+                         the half-width of ± in the parameter's unit, far smaller than the \
+                         largest number of a scene (1e9 m, 1e12 N)"
+                    ),
+                ));
+            }
             if !(t.is_finite() && t > 0.0) {
                 let fix = if t.is_finite() && t < 0.0 {
                     format!(" (write {})", -t)

@@ -44,6 +44,10 @@ pub fn stack_up(derivatives: &[Vec<f64>], tolerances: &[f64]) -> (Vec<f64>, Vec<
     (worst, squares.into_iter().map(f64::sqrt).collect())
 }
 
+/// The most samples of a Monte-Carlo check (`--monte-carlo N`): each sample is a whole run
+/// of the scene (a million runs take hours), and the drawn parameters are held in memory.
+pub const MAX_SAMPLES: usize = 1_000_000;
+
 /// What a Monte-Carlo run found.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MonteCarlo {

@@ -17,6 +17,7 @@
 //! whose width is bounded for any `f64` (`-d.dddddddde-308`).
 
 pub mod format;
+pub mod record;
 pub mod speculate;
 
 use std::io::{self, Write};
@@ -67,6 +68,10 @@ pub struct Sinks<'a> {
     /// JSON Lines: one object per drive position, keyed by the CSV's headers.
     pub jsonl: Option<Sink<'a>>,
 }
+
+/// The most worker threads a run starts (`--threads`): far more than any machine's cores
+/// (each thread costs a stack and the work is split among them).
+pub const MAX_THREADS: usize = 1024;
 
 /// How a streamed run is carried out.
 #[derive(Debug, Clone)]
@@ -131,8 +136,8 @@ pub fn run(scene: &Scene, sinks: &mut Sinks<'_>, options: &Options) -> Result<St
     let mut kept_rows: Vec<Vec<f64>> = Vec::new();
 
     if let Some(sink) = &mut sinks.csv {
-        let header: Vec<String> = columns.iter().map(|c| c.header()).collect();
-        sink.write(format!("{}\n", header.join(",")).as_bytes())?;
+        let header = record::csv_record(columns.iter().map(|c| c.header()));
+        sink.write(header.as_bytes())?;
     }
     if streamed_table && sinks.table.is_some() {
         let mut head = String::new();
@@ -147,6 +152,15 @@ pub fn run(scene: &Scene, sinks: &mut Sinks<'_>, options: &Options) -> Result<St
     }
 
     let bar = progress_bar(options.progress, positions.len());
+    if options.threads > MAX_THREADS {
+        return Err(Error::OverLimit {
+            option: "--threads",
+            value: options.threads as u64,
+            limit: MAX_THREADS as u64,
+            what: "worker threads",
+            advice: "give at most one or two per core, or 0 for one per core",
+        });
+    }
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(options.threads)
         .build()

@@ -77,7 +77,7 @@ pub(crate) fn resolve(
             let mut out = Vec::new();
             for entry in list.get_ref() {
                 let c = entry.get_ref();
-                let link = cx.link(&c.link, geometry.links, "`[balancing]`")?;
+                let link = cx.link(&c.link, geometry, "`[balancing]`")?;
                 let line = cx.line(&c.line, link, geometry, "a counterweight's `line`")?;
                 let radius =
                     cx.positive(&c.radius, "the counterweight's radius", Dimension::Length)?;
@@ -118,9 +118,9 @@ pub(crate) fn resolve(
             let d = sc.get_ref();
             let context = "`[balancing] slider_crank`";
             let links = [
-                cx.link(&d.crank, geometry.links, context)?.to_owned(),
-                cx.link(&d.rod, geometry.links, context)?.to_owned(),
-                cx.link(&d.slider, geometry.links, context)?.to_owned(),
+                cx.link(&d.crank, geometry, context)?.to_owned(),
+                cx.link(&d.rod, geometry, context)?.to_owned(),
+                cx.link(&d.slider, geometry, context)?.to_owned(),
             ];
             let fraction = match &d.fraction {
                 Some(f) => {

@@ -245,7 +245,7 @@ pub(crate) fn resolve(
             }
             (DynamicQuantity::InertialForces, None, Some(ls)) => {
                 for l in ls {
-                    let l = cx.link(l, geometry.links, "`[[dynamics]] links`")?;
+                    let l = cx.link(l, geometry, "`[[dynamics]] links`")?;
                     if !masses.iter().any(|(m, _)| m == l) {
                         return Err(
                             cx.invalid(def, format!("link `{l}` has no mass in `[masses]`"))
@@ -315,7 +315,7 @@ pub(crate) fn numbers_in<D: Carried>(
 ) -> Result<NumbersIn<D>> {
     let mut masses = Vec::new();
     for (name, def) in s.masses.map(|m| m.get_ref().iter()).into_iter().flatten() {
-        let link = cx.link(name, geometry.links, "`[masses]`")?;
+        let link = cx.link(name, geometry, "`[masses]`")?;
         masses.push((
             link.to_owned(),
             mass_properties(cx, link, def, geometry, at)?,
@@ -377,7 +377,7 @@ fn load<D: Carried>(
     drive: DriveKind,
 ) -> Result<(Load, LoadKind<D>)> {
     let d = def.get_ref();
-    let link = cx.link(&d.link, geometry.links, "`[[load]]`")?;
+    let link = cx.link(&d.link, geometry, "`[[load]]`")?;
     let (mut load, kind) = match (&d.force, &d.torque) {
         (Some(f), None) => {
             let point = d.point.as_ref().ok_or_else(|| {
