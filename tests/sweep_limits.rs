@@ -308,3 +308,31 @@ fn a_change_point_between_two_positions_is_reported() {
         }
     }
 }
+
+/// `check` holds a range sweep against the motion range by bisection, not by walking it: a
+/// sweep of 3.6·10¹¹ positions (step 1e-9°) past the limit is refused at once, naming the
+/// first position past the limit and the one before it (a walk of every position hung the
+/// fuzz test).
+#[test]
+fn check_of_a_sweep_of_a_third_of_a_trillion_positions_is_prompt() {
+    let text = BLOCKED.replace("step = 20", "step = 1e-9");
+    let s = scene::parse("blocked.toml", &text).unwrap();
+    let Error::Blocked {
+        from, to, limit, ..
+    } = scene::check(&s).unwrap_err()
+    else {
+        panic!("check must report the blocked range")
+    };
+    let exact = 180.0 + 0.99f64.asin().to_degrees();
+    assert!((degrees(&limit) - exact).abs() < 1e-11, "{limit}");
+    // Two neighbouring positions 1e-9° apart (printed to 1e-9°), the second past the limit
+    // by the check's slack, 1e-9·(1 + φ) rad (≈ 3.19e-7° here), give or take a step and
+    // the printing's 1e-9°.
+    let (from, to) = (degrees(&from), degrees(&to));
+    assert!((to - from - 1e-9).abs() < 1.5e-9, "{from} {to}");
+    let slack = (1e-9 * (1.0 + exact.to_radians())).to_degrees();
+    assert!(
+        (to - exact - slack).abs() < 3e-9,
+        "{to} vs {exact} + {slack}"
+    );
+}

@@ -8,7 +8,7 @@ use mechdiff_core::geometry::{DriveLimit, LimitKind, Mechanism, MotionRange};
 use crate::error::{Error, Result};
 
 use super::model::Scene;
-use super::positions::MAX_IN_MEMORY;
+use super::positions::{MAX_IN_MEMORY, Positions};
 
 /// Every check of a scene's dynamics and balancing that needs no solved position: the
 /// dynamic model compiles, the drive has the speed the outputs need (a power balance or
@@ -57,21 +57,52 @@ pub fn sweep_within_motion_range(scene: &Scene, range: &MotionRange) -> Result<(
     if lower.is_none() && upper.is_none() {
         return Ok(());
     }
-    let mut inside = scene.drive.at_sketch;
-    for phi in scene.positions.iter() {
-        let past = lower
+    let past = |phi: f64| {
+        lower
             .filter(|l| phi < l.phi - LIMIT_SLACK * (1.0 + l.phi.abs()))
-            .or_else(|| upper.filter(|u| phi > u.phi + LIMIT_SLACK * (1.0 + u.phi.abs())));
-        if let Some(l) = past {
-            return Err(Error::Blocked {
-                file: scene.file.clone(),
-                from: scene.joint_text(inside).into(),
-                to: scene.joint_text(phi).into(),
-                limit: scene.joint_text(l.phi).into(),
-                loop_joints: l.joints.join(", ").into(),
-            });
+            .or_else(|| upper.filter(|u| phi > u.phi + LIMIT_SLACK * (1.0 + u.phi.abs())))
+    };
+    let positions = &scene.positions;
+    let Some(first_past) = first_past(positions, |phi| past(phi).is_some()) else {
+        return Ok(());
+    };
+    let phi = positions.get(first_past);
+    let inside = match first_past {
+        0 => scene.drive.at_sketch,
+        k => positions.get(k - 1),
+    };
+    let l = past(phi).expect("past the limit");
+    Err(Error::Blocked {
+        file: scene.file.clone(),
+        from: scene.joint_text(inside).into(),
+        to: scene.joint_text(phi).into(),
+        limit: scene.joint_text(l.phi).into(),
+        loop_joints: l.joints.join(", ").into(),
+    })
+}
+
+/// The index of the first position for which `past` holds. A list (bounded by the file's
+/// size) is walked; a range `from + i·step` is monotone, so once its first position is
+/// inside the motion range, the positions past a limit are a suffix, found by bisection in
+/// O(log count) — a sweep of 10¹⁰ positions is checked at once.
+fn first_past(positions: &Positions, past: impl Fn(f64) -> bool) -> Option<usize> {
+    match positions {
+        Positions::List(list) => list.iter().position(|&phi| past(phi)),
+        Positions::Steps { count, .. } => {
+            if past(positions.get(0)) {
+                return Some(0);
+            }
+            // Invariant: positions below `inside_up_to` are inside, `count` is past or the end.
+            let (mut inside_up_to, mut end) = (1, *count);
+            while inside_up_to < end {
+                let middle = inside_up_to + (end - inside_up_to) / 2;
+                if past(positions.get(middle)) {
+                    end = middle;
+                } else {
+                    inside_up_to = middle + 1;
+                }
+            }
+            (end < *count).then_some(end)
         }
-        inside = phi;
     }
-    Ok(())
 }
