@@ -619,4 +619,35 @@ mod dimensions {
         assert!((x - 0.4).abs() <= 4.0 * f64::EPSILON * 0.4, "{x}");
         refused_at_x(&text, &["takes the sin of an angle", "radians"]);
     }
+
+    /// A force times a length is a torque in the file's force unit times its length unit
+    /// (N·m here): accepted where the file's torque unit is N·m, refused where it is N·mm
+    /// (the number would be read 1000 times too small), with the factor that converts it.
+    #[test]
+    fn a_force_times_a_length_is_a_torque_only_in_the_files_torque_unit() {
+        let text = scene_text("rack_slotted_link_dynamics.toml")
+            .replacen(
+                "[points]",
+                "[parameters]\nF = { value = 10, unit = \"lbf\" }\nr = { value = 2, unit = \
+                 \"in\" }\n\n[points]",
+                1,
+            )
+            .replacen(
+                "[[load]]",
+                "[[load]]\nlink = \"slider\"\ntorque = \"F*r\"\n\n[[load]]",
+                1,
+            );
+        scene::parse("ok.toml", &text).unwrap_or_else(|e| panic!("{e}"));
+        let text = text.replacen("length = \"m\"", "length = \"m\"\ntorque = \"N*mm\"", 1);
+        let e = scene::parse("bad.toml", &text).map(|_| ()).unwrap_err();
+        assert_message(
+            &e,
+            common::line_of(&text, "torque = \"F*r\""),
+            &[
+                "`F*r` is a torque",
+                "`N*mm`",
+                "multiply the formula by 1000",
+            ],
+        );
+    }
 }

@@ -207,7 +207,7 @@ pub(crate) fn infer(
     let mut found: Vec<Option<Quantity>> = vec![None; root.index() + 1];
     let fail = |what: String, fix: &str| {
         let why = parameters.why(graph, root);
-        Err(format!("the formula \"{text}\" {what} ({why}); {fix}"))
+        Err(format!("the formula \"{text}\" {what}, since {why}; {fix}"))
     };
     for (i, node) in graph.nodes().iter().enumerate().take(root.index() + 1) {
         if !reachable[i] {
@@ -242,12 +242,12 @@ pub(crate) fn infer(
                             format!(
                                 "takes the {op} of an angle in the file's angle unit ({} rad), \
                                  and {op} takes radians",
-                                q.scale
+                                Units::tidy(q.scale)
                             ),
                             &format!(
                                 "multiply the angle by {} inside {op}, or set `[units] angle \
                                  = \"rad\"`",
-                                q.scale
+                                Units::tidy(q.scale)
                             ),
                         );
                     }
@@ -424,21 +424,23 @@ pub(crate) fn check(
             ));
         }
         return invalid(format!(
-            "`{text}` is {} ({}); it is used here as {words} ({what}): write a formula that is \
-             {words} (with parameters in units such as {file_unit}), or use other parameters",
+            "`{text}` is {}, since {}; it is used here as {words} ({what}): write a formula \
+             that is {words} (with parameters in units such as {file_unit}), or use other \
+             parameters",
             found.words(),
             parameters.why(&graph, root),
         ));
     }
     if !same(found.scale, expected.scale) {
         return invalid(format!(
-            "`{text}` is {words}, but in a unit of {} SI ({}: the file's units of its \
-             parameters multiplied together), and the file's unit of {words} is `{file_unit}` \
-             ({} SI); multiply the formula by {}, or give the parameter a unit of {words}",
-            found.scale,
+            "`{text}` is {words}, but its number is in a unit of {} SI (the file's units of \
+             its parameters multiplied together, since {}), and the file's unit of {words} \
+             `{file_unit}` is {} SI; multiply the formula by {}, or write it as a parameter \
+             with a unit of {words}",
+            Units::tidy(found.scale),
             parameters.why(&graph, root),
-            expected.scale,
-            found.scale / expected.scale
+            Units::tidy(expected.scale),
+            Units::tidy(found.scale / expected.scale)
         ));
     }
     None
