@@ -650,4 +650,21 @@ mod dimensions {
             ],
         );
     }
+
+    /// The unit table has no area unit, so the area is a parameter defined as `L*L`: its
+    /// square root is a length again, 20 mm = 0.02 m (the factor 1e-3, a square and a
+    /// square root: a few roundings, 4 ulp); the square root of a length is refused.
+    #[test]
+    fn the_square_root_of_an_area_is_a_length() {
+        let parameters = "L = { value = 20, unit = \"mm\" }\nA = \"L*L\"";
+        let x = x_of_o4(&with(parameters, "\"sqrt(A)\""));
+        assert!((x - 0.02).abs() <= 4.0 * f64::EPSILON * 0.02, "{x}");
+        refused_at_x(
+            &with(parameters, "\"sqrt(L)\""),
+            &[
+                "takes the square root of a length",
+                "unit `mm` of parameter `L`",
+            ],
+        );
+    }
 }
