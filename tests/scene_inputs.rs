@@ -485,3 +485,186 @@ fn a_scene_of_a_hundred_thousand_names_is_read() {
     assert_eq!(scene.outputs.len(), 10_001);
     assert_eq!(scene.links[2].points.len(), 100_002);
 }
+
+/// Issue 22 item 5: the dimension of a formula is inferred over its parse tree, so a
+/// parameter with a unit of another dimension is refused in products, quotients and sums
+/// of them too, at the number (line and column), naming the parameter, the dimension found
+/// and the one expected.
+mod dimensions {
+    use super::*;
+
+    /// `four_bar.toml` with `[parameters]` and `O4`'s x coordinate replaced.
+    fn with(parameters: &str, x: &str) -> String {
+        scene_text("four_bar.toml")
+            .replacen(
+                "[points]",
+                &format!("[parameters]\n{parameters}\n\n[points]"),
+                1,
+            )
+            .replacen("O4 = [0.4, 0.0]", &format!("O4 = [{x}, 0.0]"), 1)
+    }
+
+    /// The error for `text`, asserted at the column of `O4`'s x coordinate, with `parts`.
+    fn refused_at_x(text: &str, parts: &[&str]) {
+        let e = scene::parse("bad.toml", text).map(|_| ()).unwrap_err();
+        let line = common::line_of(text, "O4 = [");
+        // The x coordinate starts after `O4 = [` (column 7).
+        assert!(
+            e.to_string().starts_with(&format!("bad.toml:{line}:7:")),
+            "{e}"
+        );
+        assert_message(&e, line, parts);
+    }
+
+    /// `O4`'s x coordinate (m) in the scene read from `text`.
+    fn x_of_o4(text: &str) -> f64 {
+        let scene = scene::parse("ok.toml", text).unwrap_or_else(|e| panic!("{e}"));
+        scene.points.iter().find(|p| p.name == "O4").unwrap().sketch[0]
+    }
+
+    #[test]
+    fn products_quotients_and_sums_of_a_mass_are_refused_as_a_length() {
+        let parameters = "L = { value = 0.86, unit = \"lb\" }\nk = 2";
+        for x in ["\"2*L\"", "\"L*k\"", "\"L/2 + 0.1\""] {
+            refused_at_x(
+                &with(parameters, x),
+                &[
+                    "unit `lb` of parameter `L` is a mass",
+                    "used here as a length (the x coordinate of point `O4`)",
+                ],
+            );
+        }
+    }
+
+    #[test]
+    fn a_length_times_a_length_is_an_area_not_a_length() {
+        refused_at_x(
+            &with("L = { value = 20, unit = \"mm\" }", "\"L*L\""),
+            &[
+                "`L*L` is an area",
+                "unit `mm` of parameter `L` is a length",
+                "used here as a length (the x coordinate of point `O4`)",
+            ],
+        );
+    }
+
+    #[test]
+    fn a_sum_of_a_length_and_a_mass_is_refused_at_the_parameter() {
+        let text = with(
+            "L = { value = 0.2, unit = \"m\" }\nM = { value = 1, unit = \"kg\" }\nS = \"L + M\"",
+            "\"S\"",
+        );
+        let e = scene::parse("bad.toml", &text).map(|_| ()).unwrap_err();
+        assert_message(
+            &e,
+            common::line_of(&text, "S = "),
+            &["parameter `S`", "adds a length and a mass"],
+        );
+    }
+
+    /// 2 × 10 in = 0.508 m: the factor 0.0254 m/in, a product by 2 (exact) and the
+    /// conversion: 1e-15 relative covers two roundings.
+    #[test]
+    fn twice_a_length_in_inches_is_a_length_in_metres() {
+        let x = x_of_o4(&with("L = { value = 10, unit = \"in\" }", "\"2*L\""));
+        let expected = 2.0 * 0.0254 * 10.0;
+        assert!((x - expected).abs() <= 1e-15 * expected, "{x}");
+    }
+
+    #[test]
+    fn a_parameter_defined_by_a_formula_of_unit_parameters_keeps_their_dimension() {
+        let parameters = "L = { value = 0.86, unit = \"lb\" }\nD = \"2*L + 1\"";
+        refused_at_x(
+            &with(parameters, "\"D\""),
+            &[
+                "parameter `D` = \"2*L + 1\" is a mass",
+                "used here as a length (the x coordinate of point `O4`)",
+            ],
+        );
+        // A length from inches: D = 2·L in m (two roundings, as above).
+        let parameters = "L = { value = 10, unit = \"in\" }\nD = \"2*L\"";
+        let x = x_of_o4(&with(parameters, "\"D\""));
+        assert!((x - 0.508).abs() <= 1e-15 * 0.508, "{x}");
+    }
+
+    #[test]
+    fn an_angle_times_two_is_an_angle_not_a_length() {
+        let angle = "a = { value = 2.5, unit = \"deg\" }";
+        // As the sweep's step (an angle, deg): accepted, and the same positions as 5 deg.
+        let text = with(angle, "0.4").replacen("step = 5", "step = \"a*2\"", 1);
+        let stepped = scene::parse("ok.toml", &text).unwrap_or_else(|e| panic!("{e}"));
+        let plain = scene::parse("ok.toml", &with(angle, "0.4")).unwrap();
+        assert_eq!(
+            format!("{:?}", stepped.positions),
+            format!("{:?}", plain.positions)
+        );
+        refused_at_x(
+            &with(angle, "\"a*2\""),
+            &[
+                "unit `deg` of parameter `a` is an angle",
+                "used here as a length (the x coordinate of point `O4`)",
+            ],
+        );
+    }
+
+    /// sin takes radians: with the file's angles in radians, `L*sin(a)` (a = 30 deg) is a
+    /// length, 0.8·sin(π/6) m = 0.4 m to a few roundings (4 ulp); with the file's angles in
+    /// degrees, the angle's number is in degrees and the formula is refused.
+    #[test]
+    fn the_sine_of_an_angle_times_a_length_is_a_length() {
+        let parameters = "L = { value = 0.8, unit = \"m\" }\na = { value = 30, unit = \"deg\" }";
+        let text = with(parameters, "\"L*sin(a)\"");
+        let in_radians = text.replacen("angle = \"deg\"", "angle = \"rad\"", 1);
+        let x = x_of_o4(&in_radians);
+        assert!((x - 0.4).abs() <= 4.0 * f64::EPSILON * 0.4, "{x}");
+        refused_at_x(&text, &["takes the sin of an angle", "radians"]);
+    }
+
+    /// A force times a length is a torque in the file's force unit times its length unit
+    /// (N·m here): accepted where the file's torque unit is N·m, refused where it is N·mm
+    /// (the number would be read 1000 times too small), with the factor that converts it.
+    #[test]
+    fn a_force_times_a_length_is_a_torque_only_in_the_files_torque_unit() {
+        let text = scene_text("rack_slotted_link_dynamics.toml")
+            .replacen(
+                "[points]",
+                "[parameters]\nF = { value = 10, unit = \"lbf\" }\nr = { value = 2, unit = \
+                 \"in\" }\n\n[points]",
+                1,
+            )
+            .replacen(
+                "[[load]]",
+                "[[load]]\nlink = \"slider\"\ntorque = \"F*r\"\n\n[[load]]",
+                1,
+            );
+        scene::parse("ok.toml", &text).unwrap_or_else(|e| panic!("{e}"));
+        let text = text.replacen("length = \"m\"", "length = \"m\"\ntorque = \"N*mm\"", 1);
+        let e = scene::parse("bad.toml", &text).map(|_| ()).unwrap_err();
+        assert_message(
+            &e,
+            common::line_of(&text, "torque = \"F*r\""),
+            &[
+                "`F*r` is a torque",
+                "`N*mm`",
+                "multiply the formula by 1000",
+            ],
+        );
+    }
+
+    /// The unit table has no area unit, so the area is a parameter defined as `L*L`: its
+    /// square root is a length again, 20 mm = 0.02 m (the factor 1e-3, a square and a
+    /// square root: a few roundings, 4 ulp); the square root of a length is refused.
+    #[test]
+    fn the_square_root_of_an_area_is_a_length() {
+        let parameters = "L = { value = 20, unit = \"mm\" }\nA = \"L*L\"";
+        let x = x_of_o4(&with(parameters, "\"sqrt(A)\""));
+        assert!((x - 0.02).abs() <= 4.0 * f64::EPSILON * 0.02, "{x}");
+        refused_at_x(
+            &with(parameters, "\"sqrt(L)\""),
+            &[
+                "takes the square root of a length",
+                "unit `mm` of parameter `L`",
+            ],
+        );
+    }
+}

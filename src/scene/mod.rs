@@ -38,6 +38,7 @@ pub mod balancing;
 pub mod build;
 pub mod cam;
 pub mod construct;
+mod dimension;
 mod drive;
 pub mod dynamics;
 pub(crate) mod evaluate;

@@ -18,11 +18,12 @@ use toml::Spanned;
 
 use crate::error::{Error, Result};
 
+use super::dimension::{ParameterDimensions, Quantity, infer};
 use super::format::Name;
 use super::source::Source;
 use super::tangent::Carried;
-use super::units::unit_factor;
-use super::values::{formula_in, formula_names, parameters_used};
+use super::units::{Dimension, Units, unit_factor};
+use super::values::{formula_in, formula_names, parameters_used, parse_formula};
 use mechdiff_core::num_dual::Dual64;
 
 thread_local! {
@@ -197,6 +198,8 @@ struct Pending<'a> {
     span: Option<std::ops::Range<usize>>,
     /// The file's units per unit of the value (1 without a unit of its own).
     scale: f64,
+    /// Its unit, when it has one of its own, and that unit's dimension.
+    unit: Option<(String, Dimension)>,
 }
 
 /// Reads and evaluates the `[parameters]` of `text`, with `settings` replacing the values
@@ -263,7 +266,6 @@ fn read_in<D: Carried>(
         .map(Spanned::into_inner)
         .unwrap_or_default();
     let mut pending: Vec<Pending> = Vec::with_capacity(table.len());
-    let mut own_units = HashMap::new();
     for (name, value) in &table {
         let plain = formula_names(name.get_ref()).is_ok_and(|n| n == [name.get_ref().clone()]);
         if !plain || matches!(name.get_ref().as_str(), "pi" | "tau") {
@@ -276,8 +278,8 @@ fn read_in<D: Carried>(
                 ),
             });
         }
-        let (text, scale) = match value.get_ref() {
-            ParameterValue::Plain(value) => (value.text(), 1.0),
+        let (text, scale, unit) = match value.get_ref() {
+            ParameterValue::Plain(value) => (value.text(), 1.0, None),
             ParameterValue::WithUnit { value, unit } => {
                 let Some((dimension, factor)) = unit_factor(unit.get_ref()) else {
                     return Err(Error::Invalid {
@@ -291,8 +293,11 @@ fn read_in<D: Carried>(
                         ),
                     });
                 };
-                own_units.insert(name.get_ref().clone(), (unit.get_ref().clone(), dimension));
-                (value.text(), factor / file_units.factor(dimension))
+                (
+                    value.text(),
+                    factor / file_units.factor(dimension),
+                    Some((unit.get_ref().clone(), dimension)),
+                )
             }
         };
         pending.push(Pending {
@@ -300,9 +305,9 @@ fn read_in<D: Carried>(
             text,
             span: Some(value.span()),
             scale,
+            unit,
         });
     }
-    source.set_parameter_units(own_units);
     // In the file's order, so that the evaluation order follows it where the dependencies
     // allow (`mechdiff check` lists the parameters in that order).
     pending.sort_by_key(|p| p.span.as_ref().map_or(0, |s| s.start));
@@ -326,7 +331,70 @@ fn read_in<D: Carried>(
         p.text.clone_from(&setting.value);
         p.span = None;
     }
-    evaluate(&pending, source, seed)
+    let values = evaluate(&pending, source, seed)?;
+    if pending.iter().any(|p| p.unit.is_some()) {
+        let order: Vec<&str> = values.iter().map(|(name, ..)| name.as_str()).collect();
+        source.set_parameter_dimensions(dimensions(&pending, &order, source, &file_units)?);
+    }
+    Ok(values)
+}
+
+/// The error for the parameter `p`: at its value in the file, or for its `--set`.
+fn failure(p: &Pending, source: &Source, message: String) -> Error {
+    match &p.span {
+        Some(span) => Error::Invalid {
+            location: source.location(source.inside_formula(span.clone(), &message)),
+            message: format!("parameter `{}`: {message}", p.name),
+        },
+        None => Error::Setting {
+            option: "--set",
+            setting: format!("{}={}", p.name, p.text),
+            message,
+        },
+    }
+}
+
+/// The dimensions of the parameters (see [`super::dimension`]), inferred in the `order` of
+/// evaluation: a parameter with a unit of its own has that unit's, one defined by a formula
+/// the formula's.
+///
+/// # Errors
+/// A formula that adds, or takes a function of, numbers of the wrong dimensions; a
+/// parameter with a unit of its own whose formula is not free (its parameters would be
+/// converted twice).
+fn dimensions(
+    pending: &[Pending],
+    order: &[&str],
+    source: &Source,
+    file_units: &Units,
+) -> Result<ParameterDimensions> {
+    let by_name: HashMap<&str, &Pending> = pending.iter().map(|p| (p.name, p)).collect();
+    let mut dimensions = ParameterDimensions::default();
+    for name in order {
+        let p = by_name[name];
+        let (graph, root) = parse_formula(&p.text).map_err(|e| failure(p, source, e))?;
+        let found = infer(&p.text, &graph, root, &dimensions).map_err(|e| failure(p, source, e))?;
+        match (&p.unit, found) {
+            (Some((unit, dimension)), found) => {
+                if let Some(q) = found {
+                    return Err(failure(
+                        p,
+                        source,
+                        format!(
+                            "the formula \"{}\" is {}, and a parameter with a unit of its own \
+                             (`{unit}`) takes a number in that unit or a formula of parameters \
+                             without units; write the formula as a parameter without a unit",
+                            p.text,
+                            q.words()
+                        ),
+                    ));
+                }
+                dimensions.with_unit(p.name, unit, Quantity::of(*dimension, file_units));
+            }
+            (None, found) => dimensions.with_formula(p.name, &p.text, found),
+        }
+    }
+    Ok(dimensions)
 }
 
 /// Evaluates the parameters in the order of their dependencies (Kahn's algorithm), in the
@@ -337,17 +405,7 @@ fn evaluate<D: Carried>(
     source: &Source,
     seed: Option<&str>,
 ) -> Result<Vec<(String, D, f64)>> {
-    let fail = |p: &Pending, message: String| match &p.span {
-        Some(span) => Error::Invalid {
-            location: source.location(source.inside_formula(span.clone(), &message)),
-            message: format!("parameter `{}`: {message}", p.name),
-        },
-        None => Error::Setting {
-            option: "--set",
-            setting: format!("{}={}", p.name, p.text),
-            message,
-        },
-    };
+    let fail = |p: &Pending, message: String| failure(p, source, message);
     let index: HashMap<&str, usize> = pending
         .iter()
         .enumerate()

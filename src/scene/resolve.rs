@@ -295,8 +295,7 @@ impl<'a> Context<'a> {
             return Err(self.invalid(value, format!("{what} must be a finite number, found {v}")));
         }
         if let Some(e) =
-            self.source
-                .wrong_dimension(value.span(), what, dimension, self.units.symbol(dimension))
+            super::dimension::check(self.source, value.span(), what, dimension, &self.units)
         {
             return Err(e);
         }

@@ -1,10 +1,9 @@
 //! The text of a scene file, for turning byte spans into `file:line:column`.
 
-use std::collections::HashMap;
 use std::ops::Range;
 use std::sync::{Arc, OnceLock};
 
-use super::units::Dimension;
+use super::dimension::ParameterDimensions;
 
 use crate::error::{Error, Location};
 
@@ -20,8 +19,9 @@ pub struct Source {
     shared_file: Arc<str>,
     /// Each line's first byte, and whether the line is ASCII (its columns are bytes).
     lines: Vec<(usize, bool)>,
-    /// The parameters written with a unit of their own: name → (unit, its dimension).
-    parameter_units: OnceLock<HashMap<String, (String, Dimension)>>,
+    /// The dimensions of the parameters written with a unit of their own and of those
+    /// defined by formulas of them.
+    parameter_dimensions: OnceLock<ParameterDimensions>,
 }
 
 impl Source {
@@ -42,68 +42,19 @@ impl Source {
             file,
             text,
             lines,
-            parameter_units: OnceLock::new(),
+            parameter_dimensions: OnceLock::new(),
         }
     }
 
-    /// Records the parameters written with a unit of their own (by the reader of
-    /// `[parameters]`; the first record stands).
-    pub(crate) fn set_parameter_units(&self, units: HashMap<String, (String, Dimension)>) {
-        let _ = self.parameter_units.set(units);
+    /// Records the dimensions of the parameters (by the reader of `[parameters]`; the first
+    /// record stands).
+    pub(crate) fn set_parameter_dimensions(&self, dimensions: ParameterDimensions) {
+        let _ = self.parameter_dimensions.set(dimensions);
     }
 
-    /// The error for a number at `span` of `dimension` that is a sum of terms (`"L"`,
-    /// `"L + 0.1"`, `"a - b"`) one of which is a parameter with a unit of another dimension.
-    /// Products, quotients and functions of such parameters are not checked (their
-    /// dimension is not the parameters').
-    pub(crate) fn wrong_dimension(
-        &self,
-        span: Range<usize>,
-        what: &str,
-        dimension: Dimension,
-        file_unit: &str,
-    ) -> Option<Error> {
-        let units = self.parameter_units.get().filter(|u| !u.is_empty())?;
-        let written = self.text.get(span.clone())?;
-        let formula = written.strip_prefix('"')?.strip_suffix('"')?;
-        let additive = formula
-            .chars()
-            .all(|c| c.is_alphanumeric() || matches!(c, '_' | '.' | '+' | '-' | '(' | ')' | ' '));
-        if !additive {
-            return None;
-        }
-        let is_name_start = |c: char| c.is_alphabetic() || c == '_';
-        let mut rest = formula;
-        while let Some(start) = rest.find(|c: char| c.is_alphanumeric() || c == '_') {
-            rest = &rest[start..];
-            let end = rest
-                .find(|c: char| !(c.is_alphanumeric() || c == '_' || c == '.'))
-                .unwrap_or(rest.len());
-            let token = &rest[..end];
-            // A number's exponent (`1e-3`) is not a name: skip the sign after it.
-            let token = if token.starts_with(is_name_start) {
-                token
-            } else {
-                ""
-            };
-            if let Some((unit, own)) = units.get(token)
-                && *own != dimension
-            {
-                return Some(Error::Invalid {
-                    location: self.location(span),
-                    message: format!(
-                        "unit `{unit}` of parameter `{token}` is {}; `{token}` is used here as \
-                         {} ({what}): write {} unit ({file_unit}, …) for `{token}`, or use \
-                         another parameter",
-                        own.words(),
-                        dimension.words(),
-                        dimension.words(),
-                    ),
-                });
-            }
-            rest = &rest[end..];
-        }
-        None
+    /// The dimensions of the parameters, once `[parameters]` is read.
+    pub(crate) fn parameter_dimensions(&self) -> Option<&ParameterDimensions> {
+        self.parameter_dimensions.get()
     }
 
     /// The line and column (1-based, columns in characters) where byte `span.start` is.

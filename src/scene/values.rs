@@ -204,7 +204,7 @@ fn name_column(text: &str, name: &str) -> usize {
 }
 
 /// A formula checked for size and parsed by the symbolic engine.
-fn parse_formula(text: &str) -> Result<(Graph, mechdiff_core::symbolic::Id), String> {
+pub(crate) fn parse_formula(text: &str) -> Result<(Graph, mechdiff_core::symbolic::Id), String> {
     let quoted = format!("the formula \"{text}\"");
     if text.chars().count() > MAX_FORMULA_LENGTH {
         return Err(format!(
