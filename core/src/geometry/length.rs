@@ -83,18 +83,7 @@ pub(crate) fn joint_length(m: &Mechanism, j: usize) -> f64 {
     let mut indices = Vec::new();
     joint_points(m, j, &mut indices);
     let mut points: Vec<[f64; 2]> = indices.iter().map(|&p| m.points[p].sketch).collect();
-    let links = match m.joints[j].kind {
-        JointKind::Revolute { link_a, link_b, .. } | JointKind::Rigid { link_a, link_b } => {
-            vec![link_a, link_b]
-        }
-        JointKind::Prismatic { guide, slider, .. } => vec![guide, slider],
-        JointKind::PinInSlot {
-            slot_link,
-            pin_link,
-            ..
-        } => vec![slot_link, pin_link],
-        JointKind::RackPinion { .. } | JointKind::Gear { .. } => Vec::new(),
-    };
+    let links = m.joints[j].kind.joined_links().unwrap_or_default();
     points.extend((links.into_iter().filter(|&k| k != 0)).map(|k| m.reference_sketch(k)));
     let own = extent(points);
     if own > 0.0 { own } else { sketch_size(m) }

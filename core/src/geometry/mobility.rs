@@ -168,15 +168,7 @@ pub fn check_mobility(m: &Mechanism) -> Result<Mobility, Error> {
             // singular only because of where the sketch is drawn (a toggle, or a dead centre
             // of a driven slider).
             let sigma_min = svd.singular_values.min();
-            return Err(Error::Singular {
-                phi: m.drive_at_sketch,
-                condition: if sigma_min > 0.0 {
-                    sigma_max / sigma_min
-                } else {
-                    f64::INFINITY
-                },
-                joints,
-            });
+            return Err(singular_sketch(m, sigma_max, sigma_min, joints));
         }
         return Err(Error::Overconstrained {
             redundant: joints,
@@ -271,15 +263,7 @@ fn by_loops(
                 joints.push(name);
             }
         }
-        return Err(Error::Singular {
-            phi: m.drive_at_sketch,
-            condition: if sigma_min > 0.0 {
-                sigma_max / sigma_min
-            } else {
-                f64::INFINITY
-            },
-            joints,
-        });
+        return Err(singular_sketch(m, sigma_max, sigma_min, joints));
     }
     let size = eq.coordinates();
     Ok(Mobility {
@@ -290,29 +274,39 @@ fn by_loops(
     })
 }
 
+/// The sketch is a singular position: the condition of the scaled Jacobian (infinite for a
+/// zero singular value), naming the joints of its null space.
+fn singular_sketch(m: &Mechanism, sigma_max: f64, sigma_min: f64, joints: Vec<String>) -> Error {
+    Error::Singular {
+        phi: m.drive_at_sketch,
+        condition: if sigma_min > 0.0 {
+            sigma_max / sigma_min
+        } else {
+            f64::INFINITY
+        },
+        joints,
+    }
+}
+
 /// The links a joint connects (for rack/gear joints, those of the joints they couple).
 fn links_of(kind: &JointKind, m: &Mechanism) -> Vec<usize> {
+    if let Some(links) = kind.joined_links() {
+        return links.to_vec();
+    }
     match *kind {
-        JointKind::Revolute { link_a, link_b, .. } | JointKind::Rigid { link_a, link_b } => {
-            vec![link_a, link_b]
+        JointKind::RackPinion {
+            pinion: a, rack: b, ..
         }
-        JointKind::Prismatic { guide, slider, .. } => vec![guide, slider],
-        JointKind::PinInSlot {
-            slot_link,
-            pin_link,
+        | JointKind::Gear {
+            joint_a: a,
+            joint_b: b,
             ..
-        } => vec![slot_link, pin_link],
-        JointKind::RackPinion { pinion, rack, .. } => {
-            let mut v = links_of(&m.joints[pinion].kind, m);
-            v.extend(links_of(&m.joints[rack].kind, m));
-            v
-        }
-        JointKind::Gear {
-            joint_a, joint_b, ..
         } => {
-            let mut v = links_of(&m.joints[joint_a].kind, m);
-            v.extend(links_of(&m.joints[joint_b].kind, m));
+            let mut v = links_of(&m.joints[a].kind, m);
+            v.extend(links_of(&m.joints[b].kind, m));
             v
         }
+        // every other joint joins two links (above)
+        _ => Vec::new(),
     }
 }

@@ -176,6 +176,23 @@ pub enum JointKind {
 }
 
 impl JointKind {
+    /// The two links this joint connects directly, or `None` for a rack-and-pinion or gear
+    /// coupling (which couples two other joints).
+    pub fn joined_links(&self) -> Option<[usize; 2]> {
+        match *self {
+            JointKind::Revolute { link_a, link_b, .. } | JointKind::Rigid { link_a, link_b } => {
+                Some([link_a, link_b])
+            }
+            JointKind::Prismatic { guide, slider, .. } => Some([guide, slider]),
+            JointKind::PinInSlot {
+                slot_link,
+                pin_link,
+                ..
+            } => Some([slot_link, pin_link]),
+            JointKind::RackPinion { .. } | JointKind::Gear { .. } => None,
+        }
+    }
+
     /// Number of scalar constraint equations of this joint.
     pub fn equation_count(&self) -> usize {
         match self {
