@@ -597,38 +597,12 @@ rise = 20.01
 extent = 187.5
 "#;
     std::fs::write(dir.join("cam.toml"), cam).unwrap();
-    let scene_text = r#"
-[units]
-length = "mm"
-angle = "deg"
-[points]
-A0 = [0, 0]
-B0 = [300, 0]
-A = [93.96926207859084, 34.20201433256687]
-B = [393.96926207859084, 34.20201433256687]
-[links]
-ground = ["A0", "B0"]
-crank = ["A0", "A"]
-coupler = ["A", "B"]
-rocker = ["B0", "B"]
-[joints]
-A0 = { type = "revolute", at = "A0", links = ["ground", "crank"] }
-A = { type = "revolute", at = "A", links = ["crank", "coupler"] }
-B = { type = "revolute", at = "B", links = ["coupler", "rocker"] }
-B0 = { type = "revolute", at = "B0", links = ["ground", "rocker"] }
-[drive]
-joint = "A0"
-line = ["A0", "A"]
-cam = "cam.toml"
-[sweep]
-from = 0
-to = 360
-step = 15
-[[output]]
-name = "psi"
-angle = ["B0", "B"]
-quantities = ["position"]
-"#;
+    // The parallelogram of `common` driven by the cam (its crank angle is the follower's
+    // displacement), over a turn of the cam at 15°.
+    let drive = "line = [\"A0\", \"A\"]\n";
+    assert!(common::PARALLELOGRAM.contains(drive));
+    let scene_text = common::PARALLELOGRAM.replace(drive, &format!("{drive}cam = \"cam.toml\"\n"))
+        + "[sweep]\nfrom = 0\nto = 360\nstep = 15\n";
     let path = dir.join("scene.toml");
     std::fs::write(&path, scene_text).unwrap();
     let result = scene::load(&path).and_then(|s| scene::run(&s));

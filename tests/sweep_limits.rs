@@ -258,37 +258,6 @@ fn a_sweep_more_than_a_step_from_the_limits_marks_none() {
     assert!(!String::from_utf8(out).unwrap().contains("motion range"));
 }
 
-/// A parallelogram four-bar (crank 100 mm, ground and coupler 300 mm) sketched at φ = 20°:
-/// its coupler and rocker fold onto the ground line at φ = 0, a change point (the margin of
-/// the dyad A–B–B0 touches zero there: a double root).
-const PARALLELOGRAM: &str = r#"
-[units]
-length = "mm"
-angle = "deg"
-[points]
-A0 = [0, 0]
-B0 = [300, 0]
-A = [93.96926207859084, 34.20201433256687]
-B = [393.96926207859084, 34.20201433256687]
-[links]
-ground = ["A0", "B0"]
-crank = ["A0", "A"]
-coupler = ["A", "B"]
-rocker = ["B0", "B"]
-[joints]
-A0 = { type = "revolute", at = "A0", links = ["ground", "crank"] }
-A = { type = "revolute", at = "A", links = ["crank", "coupler"] }
-B = { type = "revolute", at = "B", links = ["coupler", "rocker"] }
-B0 = { type = "revolute", at = "B0", links = ["ground", "rocker"] }
-[drive]
-joint = "A0"
-line = ["A0", "A"]
-[[output]]
-name = "psi"
-angle = ["B0", "B"]
-quantities = ["position"]
-"#;
-
 /// The parallelogram's change point lies between two positions of the sweep: reported at
 /// φ = 0 (to 1e-9 rad: Newton on the margin's slope converges to rounding), never jumped
 /// onto the antiparallelogram branch (which it was when the Hermite minimum of the step's
@@ -296,7 +265,10 @@ quantities = ["position"]
 #[test]
 fn a_change_point_between_two_positions_is_reported() {
     for positions in ["[5, -5]", "[0.2178, -0.01]", "[3, -7]", "[10, 1, -0.5]"] {
-        let text = format!("{PARALLELOGRAM}[sweep]\npositions = {positions}\n");
+        let text = format!(
+            "{}[sweep]\npositions = {positions}\n",
+            common::PARALLELOGRAM
+        );
         let s = scene::parse("parallelogram.toml", &text).unwrap();
         match scene::run(&s) {
             Err(Error::ChangePoint { position, .. }) => {

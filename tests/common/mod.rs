@@ -107,3 +107,34 @@ pub fn slotted_lever(rest: &str) -> String {
         include_str!("../data/slotted_lever_near_hinge.toml")
     )
 }
+
+/// A parallelogram four-bar (crank 100 mm, ground and coupler 300 mm) sketched at φ = 20°:
+/// its coupler and rocker fold onto the ground line at φ = 0, a change point (the margin of
+/// the dyad A–B–B0 touches zero there: a double root).
+pub const PARALLELOGRAM: &str = r#"
+[units]
+length = "mm"
+angle = "deg"
+[points]
+A0 = [0, 0]
+B0 = [300, 0]
+A = [93.96926207859084, 34.20201433256687]
+B = [393.96926207859084, 34.20201433256687]
+[links]
+ground = ["A0", "B0"]
+crank = ["A0", "A"]
+coupler = ["A", "B"]
+rocker = ["B0", "B"]
+[joints]
+A0 = { type = "revolute", at = "A0", links = ["ground", "crank"] }
+A = { type = "revolute", at = "A", links = ["crank", "coupler"] }
+B = { type = "revolute", at = "B", links = ["coupler", "rocker"] }
+B0 = { type = "revolute", at = "B0", links = ["ground", "rocker"] }
+[drive]
+joint = "A0"
+line = ["A0", "A"]
+[[output]]
+name = "psi"
+angle = ["B0", "B"]
+quantities = ["position"]
+"#;
