@@ -2,6 +2,8 @@
 //! reference table through the scene's units; bad input is refused with `file:line:col` and
 //! the cam angle; `--csv` and `--profile-csv` write what the report shows.
 
+mod common;
+
 use std::path::PathBuf;
 use std::process::Command;
 
@@ -662,12 +664,12 @@ mod messages_and_answers {
         ));
         // `mechdiff run cam.toml --json FILE` writes it.
         let path = std::env::temp_dir().join(format!("mechdiff-cam-{}.json", std::process::id()));
-        let output = Command::new(env!("CARGO_BIN_EXE_mechdiff"))
-            .args(["run", "scenes/cams/rise_dwell_return_dwell.toml", "--json"])
-            .arg(&path)
-            .current_dir(env!("CARGO_MANIFEST_DIR"))
-            .output()
-            .unwrap();
+        let output = crate::common::mechdiff(&[
+            "run",
+            "scenes/cams/rise_dwell_return_dwell.toml",
+            "--json",
+            path.to_str().unwrap(),
+        ]);
         assert!(
             output.status.success(),
             "{}",
