@@ -15,6 +15,14 @@ use nalgebra::DVector;
 /// `Tracker::accept`): 4 ε, the size of rounding in the coordinates.
 const REFACTOR_ABOVE: f64 = 4.0 * f64::EPSILON;
 
+/// A Newton iterate whose residual is more than this many times the previous one has left
+/// the basin of the solution: the attempt fails and the step is halved. Within the basin the
+/// residual falls quadratically, or by about half per iteration next to a toggle.
+const DIVERGING: f64 = 4.0;
+
+/// Newton iterations in a row without a smaller residual after which an attempt fails.
+const STAGNATING: usize = 3;
+
 impl Tracker<'_> {
     /// Moves to `phi` by predictor, Newton and the checks, halving the step on failure.
     pub(super) fn move_newton(&mut self, phi: f64) -> Result<SolveReport, Error> {
@@ -107,16 +115,31 @@ impl Tracker<'_> {
 
     /// Newton on `trial` at drive position `phi`: the iterations, or the final residual and
     /// the loop with the largest residual. Leaves Φ(trial) in `trial_residual`.
+    ///
+    /// An attempt is given up early, so that the caller halves the step instead of
+    /// following Newton elsewhere: when the residual grows past [`DIVERGING`] times the
+    /// previous one (Newton has left the solution's basin and may wander, winding the
+    /// angles by many turns, to another assembly), or when it has not decreased for
+    /// [`STAGNATING`] iterations in a row (it sits at its rounding floor above the
+    /// tolerance and more iterations cannot help).
     fn newton(&mut self, phi: f64) -> Result<usize, (f64, usize)> {
+        let mut previous = f64::INFINITY;
+        let mut stalled = 0;
         for iteration in 0..=self.solver.max_iterations {
             self.evaluate_trial(phi);
             let norm = amax(self.trial_residual.as_slice());
             if self.converged() {
                 return Ok(iteration);
             }
-            if !norm.is_finite() || iteration == self.solver.max_iterations {
+            stalled = if norm >= previous { stalled + 1 } else { 0 };
+            if !norm.is_finite()
+                || iteration == self.solver.max_iterations
+                || norm > DIVERGING * previous
+                || stalled >= STAGNATING
+            {
                 break;
             }
+            previous = norm;
             self.jacobian_trial();
             let solved = self.work_lu.factor(&self.work)
                 && self.work_lu.solve(
