@@ -41,26 +41,44 @@ pub struct CamFile {
 #[serde(deny_unknown_fields)]
 pub struct CamSection {
     /// Base circle radius (length unit).
-    #[serde(deserialize_with = "crate::scene::values::number")]
+    #[serde(deserialize_with = "crate::scene::values::constant_number")]
     pub base_radius: Spanned<f64>,
     /// Cam speed (angular velocity unit; default 0: only s, s′, s″, s‴ are printed).
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
+    #[serde(
+        default,
+        deserialize_with = "crate::scene::values::option_constant_number"
+    )]
     pub speed: Option<Spanned<f64>>,
     /// Cam acceleration (angular acceleration unit; default 0).
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
+    #[serde(
+        default,
+        deserialize_with = "crate::scene::values::option_constant_number"
+    )]
     pub acceleration: Option<Spanned<f64>>,
     /// Table step (angle unit; default 10°).
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
+    #[serde(
+        default,
+        deserialize_with = "crate::scene::values::option_constant_number"
+    )]
     pub step: Option<Spanned<f64>>,
     /// Follower displacement at cam angle 0 (default 0).
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
+    #[serde(
+        default,
+        deserialize_with = "crate::scene::values::option_constant_number"
+    )]
     pub start: Option<Spanned<f64>>,
     /// Size the base circle for this largest pressure angle (angle unit; roller and
     /// knife-edge followers).
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
+    #[serde(
+        default,
+        deserialize_with = "crate::scene::values::option_constant_number"
+    )]
     pub pressure_angle_limit: Option<Spanned<f64>>,
     /// Size the base circle for this smallest radius of curvature (length unit; flat face).
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
+    #[serde(
+        default,
+        deserialize_with = "crate::scene::values::option_constant_number"
+    )]
     pub min_radius_of_curvature: Option<Spanned<f64>>,
     /// The follower.
     pub follower: Spanned<FollowerDef>,
@@ -103,16 +121,28 @@ pub struct FollowerDef {
     #[serde(rename = "type")]
     pub kind: Spanned<FollowerKind>,
     /// Offset of a translating follower's axis (length unit; default 0).
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
+    #[serde(
+        default,
+        deserialize_with = "crate::scene::values::option_constant_number"
+    )]
     pub offset: Option<Spanned<f64>>,
     /// Roller radius (length unit).
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
+    #[serde(
+        default,
+        deserialize_with = "crate::scene::values::option_constant_number"
+    )]
     pub radius: Option<Spanned<f64>>,
     /// Oscillating: cam centre to pivot (length unit).
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
+    #[serde(
+        default,
+        deserialize_with = "crate::scene::values::option_constant_number"
+    )]
     pub pivot_distance: Option<Spanned<f64>>,
     /// Oscillating: pivot to roller centre (length unit).
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
+    #[serde(
+        default,
+        deserialize_with = "crate::scene::values::option_constant_number"
+    )]
     pub arm_length: Option<Spanned<f64>>,
 }
 
@@ -125,14 +155,20 @@ pub struct SegmentDef {
     /// A displacement formula of `x` (cam angle, rad) or `u` (0 to 1 over the segment).
     pub formula: Option<Spanned<String>>,
     /// Rise over the segment (length unit; angle unit for an oscillating follower).
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
+    #[serde(
+        default,
+        deserialize_with = "crate::scene::values::option_constant_number"
+    )]
     pub rise: Option<Spanned<f64>>,
     /// Return (fall) over the segment, positive.
     #[serde(rename = "return")]
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
+    #[serde(
+        default,
+        deserialize_with = "crate::scene::values::option_constant_number"
+    )]
     pub fall: Option<Spanned<f64>>,
     /// The cam angle the segment spans (angle unit).
-    #[serde(deserialize_with = "crate::scene::values::number")]
+    #[serde(deserialize_with = "crate::scene::values::constant_number")]
     pub extent: Spanned<f64>,
 }
 

@@ -6,7 +6,7 @@
 //! [`super::tangent`]), whose real parts are the `f64` results bit for bit. The scene ([`super::placement`]) names the points,
 //! converts units and turns a [`NoSolution`] into a message at the place in the file.
 
-use super::tangent::Carried;
+use super::scalar::Carried;
 
 /// Which of the two intersections of two circles: on the left or right of the directed line
 /// from the first centre to the second.

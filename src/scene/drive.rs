@@ -12,7 +12,7 @@ use mechdiff_core::cams::{CamJoint, Follower};
 use super::model::{Drive, DriveCam, DriveKind, Joint, JointKind, Output, OutputKind};
 use super::positions::Positions;
 use super::resolve::{Context, GROUND, Geometry};
-use super::tangent::Carried;
+use super::scalar::Carried;
 use super::units::Dimension;
 
 /// The most drive positions a `positions = [...]` list may have (the file is parsed whole).
@@ -319,8 +319,8 @@ impl Context<'_> {
                 }
                 // Count in the file's units so that 0..360 by 0.5 has exactly 721 positions.
                 // Downwards when `to` is below `from`, whatever the step's sign (its size).
-                let (f, t) = (*from.get_ref(), *to.get_ref());
-                let h = step.get_ref().abs().copysign(t - f);
+                let (f, t): (f64, f64) = (self.value(from)?, self.value(to)?);
+                let h = self.value::<f64>(step)?.abs().copysign(t - f);
                 let intervals = if t == f {
                     0.0
                 } else {

@@ -97,16 +97,16 @@ pub struct UnitsSection {
 #[derive(Debug, Clone, PartialEq)]
 pub enum PointDef {
     /// `[x, y]`: global coordinates, each with its span.
-    Xy([Spanned<f64>; 2]),
+    Xy([Spanned<Number>; 2]),
     /// `{ from = "B", length = 1.065, angle = 63 }`: polar from another point
     /// (angle counter-clockwise from +x).
     Polar {
         /// The point measured from.
         from: Name,
         /// Distance from `from` (must be positive).
-        length: Spanned<f64>,
+        length: Spanned<Number>,
         /// Direction, counter-clockwise from +x.
-        angle: Spanned<f64>,
+        angle: Spanned<Number>,
     },
     /// `{ circles = ["A", "D"], radii = [b, c], side = "left" }`: the intersection of the
     /// circles about two points (the RRR dyad), on the given side of the directed line from
@@ -115,7 +115,7 @@ pub enum PointDef {
         /// The two centres.
         circles: Spanned<[Name; 2]>,
         /// The two radii (positive).
-        radii: [Spanned<f64>; 2],
+        radii: [Spanned<Number>; 2],
         /// Which intersection.
         side: Spanned<Side>,
     },
@@ -125,17 +125,12 @@ pub enum PointDef {
         /// The centre.
         circle: Name,
         /// The radius (positive).
-        radius: Spanned<f64>,
+        radius: Spanned<Number>,
         /// The line, through two points.
         line: Spanned<[Name; 2]>,
         /// Which intersection.
         along: Spanned<Along>,
     },
-}
-
-/// A number with its span, as the format's fields keep it.
-fn number(n: Spanned<Number>) -> Spanned<f64> {
-    Spanned::new(n.span(), n.into_inner().0)
 }
 
 const POINT_KEYS: &[&str] = &[
@@ -171,7 +166,7 @@ impl<'de> Visitor<'de> for PointVisitor {
         if seq.next_element::<de::IgnoredAny>()?.is_some() {
             return Err(de::Error::invalid_length(3, &self));
         }
-        Ok(PointDef::Xy([number(x), number(y)]))
+        Ok(PointDef::Xy([x, y]))
     }
 
     fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<PointDef, A::Error> {
@@ -179,13 +174,13 @@ impl<'de> Visitor<'de> for PointVisitor {
         while let Some(key) = map.next_key::<String>()? {
             match key.as_str() {
                 "from" => keys.from = Some(map.next_value()?),
-                "length" => keys.length = Some(number(map.next_value()?)),
-                "angle" => keys.angle = Some(number(map.next_value()?)),
+                "length" => keys.length = Some(map.next_value()?),
+                "angle" => keys.angle = Some(map.next_value()?),
                 "circles" => keys.circles = Some(map.next_value::<NamePair>()?.0),
                 "radii" => keys.radii = Some(map.next_value::<NumberPair>()?.0),
                 "side" => keys.side = Some(map.next_value()?),
                 "circle" => keys.circle = Some(map.next_value()?),
-                "radius" => keys.radius = Some(number(map.next_value()?)),
+                "radius" => keys.radius = Some(map.next_value()?),
                 "line" => keys.line = Some(map.next_value::<NamePair>()?.0),
                 "along" => keys.along = Some(map.next_value()?),
                 other => return Err(de::Error::unknown_field(other, POINT_KEYS)),
@@ -199,13 +194,13 @@ impl<'de> Visitor<'de> for PointVisitor {
 #[derive(Default)]
 struct PointKeys {
     from: Option<Name>,
-    length: Option<Spanned<f64>>,
-    angle: Option<Spanned<f64>>,
+    length: Option<Spanned<Number>>,
+    angle: Option<Spanned<Number>>,
     circles: Option<Spanned<[Name; 2]>>,
-    radii: Option<[Spanned<f64>; 2]>,
+    radii: Option<[Spanned<Number>; 2]>,
     side: Option<Spanned<Side>>,
     circle: Option<Name>,
-    radius: Option<Spanned<f64>>,
+    radius: Option<Spanned<Number>>,
     line: Option<Spanned<[Name; 2]>>,
     along: Option<Spanned<Along>>,
 }
@@ -254,7 +249,7 @@ impl<'de> Deserialize<'de> for NamePair {
 }
 
 /// Exactly two numbers, each with its span.
-struct NumberPair([Spanned<f64>; 2]);
+struct NumberPair([Spanned<Number>; 2]);
 
 impl<'de> Deserialize<'de> for NumberPair {
     fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
@@ -265,7 +260,7 @@ impl<'de> Deserialize<'de> for NumberPair {
                 "expected exactly two numbers, found {n}; a pair is written `[first, second]`"
             ))
         })?;
-        Ok(NumberPair(pair.map(number)))
+        Ok(NumberPair(pair))
     }
 }
 
@@ -319,14 +314,14 @@ pub struct JointDef {
     /// Rack and pinion: the rack's prismatic joint.
     pub rack: Option<Name>,
     /// Rack and pinion: the pinion's pitch radius (length unit, positive).
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
-    pub radius: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub radius: Option<Spanned<Number>>,
     /// Gear: the two revolute joints in mesh, `[driving, driven]`.
     #[serde(default, deserialize_with = "crate::scene::values::option_name_pair")]
     pub gears: Option<Spanned<[Name; 2]>>,
     /// Gear: Δθ_driven = ratio · Δθ_driving (negative for an external mesh).
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
-    pub ratio: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub ratio: Option<Spanned<Number>>,
 }
 
 /// `[drive]`.
@@ -343,12 +338,12 @@ pub struct DriveSection {
     #[serde(default, deserialize_with = "crate::scene::values::option_name_pair")]
     pub reference: Option<Spanned<[Name; 2]>>,
     /// The drive speed ω (angular velocity unit) or the slide velocity (length unit per s).
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
-    pub speed: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub speed: Option<Spanned<Number>>,
     /// The drive acceleration α (angular acceleration unit) or slide acceleration
     /// (length unit per s²). Default 0.
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
-    pub acceleration: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub acceleration: Option<Spanned<Number>>,
     /// A cam scene file (path relative to this file) whose follower moves the joint: the
     /// sweep, `speed` and `acceleration` are then the cam's (see [`super::model::DriveCam`]).
     pub cam: Option<Name>,
@@ -359,14 +354,14 @@ pub struct DriveSection {
 #[serde(deny_unknown_fields)]
 pub struct SweepSection {
     /// First drive position (angle or length unit).
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
-    pub from: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub from: Option<Spanned<Number>>,
     /// Last drive position (included when the step divides the range).
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
-    pub to: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub to: Option<Spanned<Number>>,
     /// Step between positions: its size; `to` below `from` walks down (a negative step too).
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
-    pub step: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub step: Option<Spanned<Number>>,
     /// An explicit list of drive positions.
     #[serde(default, deserialize_with = "crate::scene::values::option_positions")]
     pub positions: Option<super::values::PositionList>,

@@ -9,6 +9,7 @@ use super::limits;
 use super::model::{Joint, JointKind};
 use super::resolve::{Context, GROUND, Geometry};
 use super::units::Dimension;
+use super::values::Number;
 
 /// The fields each joint type takes, besides `type` (in the order they are documented).
 fn fields(kind: Kind) -> &'static [&'static str] {
@@ -209,7 +210,7 @@ pub(crate) fn resolve(
             let what = format!("`radius` of {context}");
             let radius = cx.positive(radius_def, &what, Dimension::Length)?;
             if radius < limits::SMALLEST_RADIUS {
-                let si = Spanned::new(radius_def.span(), radius);
+                let si = Spanned::new(radius_def.span(), Number::Literal(radius));
                 cx.in_range(&si, &what, limits::SMALLEST_RADIUS..=limits::LENGTH, "m")?;
             }
             let sign = rolling_sense(geometry, pinion, rack);
@@ -224,9 +225,9 @@ pub(crate) fn resolve(
             let a = joint_of(cx, a, earlier, "revolute", &context)?;
             let b = joint_of(cx, b, earlier, "revolute", &context)?;
             let ratio = d.ratio.as_ref().ok_or_else(|| missing("ratio"))?;
-            let value = *ratio.get_ref();
+            let value: f64 = cx.value(ratio)?;
             cx.in_range(
-                &Spanned::new(ratio.span(), value.abs()),
+                &Spanned::new(ratio.span(), Number::Literal(value.abs())),
                 &format!("the magnitude of `ratio` of {context}"),
                 limits::RATIO,
                 "",

@@ -55,6 +55,7 @@ pub mod positions;
 pub mod preflight;
 pub mod resolve;
 pub mod run;
+pub mod scalar;
 pub mod source;
 pub mod study;
 pub mod sweep;
@@ -125,12 +126,9 @@ pub fn parse_with(file: &str, text: &str, settings: &[parameters::Setting]) -> R
             ),
         });
     }
-    let bindings = parameters::read(text, &source, settings)?;
-    let raw: format::SceneFile = parameters::with_scope(bindings.clone(), || toml::from_str(text))
-        .map_err(|e| source.syntax_error(&e))?;
-    let mut scene = resolve::resolve(raw, &source)?;
-    scene.parameters = bindings;
-    Ok(scene)
+    let bindings = parameters::bindings(text, &source, settings, None)?;
+    let raw: format::SceneFile = toml::from_str(text).map_err(|e| source.syntax_error(&e))?;
+    resolve::resolve(&raw, &source, &bindings)
 }
 
 /// Reads, parses and checks a scene file (at most [`crate::files::MAX_SCENE_BYTES`], UTF-8).

@@ -2,13 +2,12 @@
 //! `--set name=value` on the command line to override them.
 //!
 //! Parameters are read first (a pass over the file that looks at `[parameters]` only) and
-//! evaluated in the order of their dependencies; while the rest of the file is read, every
-//! quoted formula may use them (see [`super::values::constant_formula`]). A parameter is a
+//! evaluated in the order of their dependencies into [`Bindings`], the explicit context in
+//! which the resolver evaluates every quoted formula of the file. A parameter is a
 //! plain number in the unit of the field that uses it, like any number of the file, unless
 //! it is given with a unit of its own (`{ value = 6, unit = "in" }`): then it is converted
 //! to the file's unit of that dimension. A `--set` value is in the parameter's unit.
 
-use std::cell::RefCell;
 use std::cmp::Reverse;
 use std::collections::{BTreeMap, BinaryHeap, HashMap};
 use std::str::FromStr;
@@ -20,34 +19,87 @@ use crate::error::{Error, Result};
 
 use super::dimension::{ParameterDimensions, Quantity, infer};
 use super::format::Name;
+use super::scalar::Carried;
 use super::source::Source;
-use super::tangent::Carried;
 use super::units::{Dimension, Units, unit_factor};
 use super::values::{formula_in, formula_names, parameters_used, parse_formula};
 use mechdiff_core::num_dual::Dual64;
 
-thread_local! {
-    /// The parameters of the scene being read on this thread.
-    static IN_SCOPE: RefCell<HashMap<String, f64>> = RefCell::new(HashMap::new());
+/// The scene's parameters, evaluated: the explicit context a scene's formulas are resolved
+/// in ([`super::values::Number::value_in`]); nothing is evaluated while the file is
+/// deserialised. With a seeded parameter, each value also carries its derivative with
+/// respect to that parameter ([`Bindings::duals`]), so that the resolver run in
+/// [`Dual64`] gives the scene's tangent.
+#[derive(Debug, Clone, Default)]
+pub struct Bindings {
+    /// `(name, value in the file's unit)`, in the order of evaluation.
+    ordered: Vec<(String, f64)>,
+    /// The same values by name.
+    values: HashMap<String, f64>,
+    /// The values as dual numbers: with the derivative with respect to the seeded
+    /// parameter, or 0 without one.
+    duals: HashMap<String, Dual64>,
+    /// The parameter whose derivative the dual values carry.
+    seed: Option<String>,
 }
 
-/// Calls `f` with the parameters in scope while a scene is read (empty otherwise).
-pub(crate) fn with_in_scope<R>(f: impl FnOnce(&HashMap<String, f64>) -> R) -> R {
-    IN_SCOPE.with(|s| f(&s.borrow()))
-}
-
-/// Runs `read` with `bindings` in scope for the formulas it reads, then restores the
-/// previous scope.
-pub(crate) fn with_scope<R>(bindings: Vec<(String, f64)>, read: impl FnOnce() -> R) -> R {
-    struct Restore(HashMap<String, f64>);
-    impl Drop for Restore {
-        fn drop(&mut self) {
-            let previous = std::mem::take(&mut self.0);
-            IN_SCOPE.with(|s| *s.borrow_mut() = previous);
+impl Bindings {
+    /// Parameters with the given values (in the file's units), none seeded.
+    pub fn new(ordered: Vec<(String, f64)>) -> Self {
+        let values = ordered.iter().cloned().collect();
+        let duals = (ordered.iter())
+            .map(|(n, v)| (n.clone(), Dual64::from(*v)))
+            .collect();
+        Bindings {
+            ordered,
+            values,
+            duals,
+            seed: None,
         }
     }
-    let _restore = Restore(IN_SCOPE.with(|s| s.replace(bindings.into_iter().collect())));
-    read()
+
+    /// The values in the order of evaluation (every parameter after those it uses).
+    pub fn ordered(&self) -> &[(String, f64)] {
+        &self.ordered
+    }
+
+    /// The values by name.
+    pub fn values(&self) -> &HashMap<String, f64> {
+        &self.values
+    }
+
+    /// The values as dual numbers, with their derivative with respect to
+    /// [`Bindings::seed`] (0 without a seed).
+    pub fn duals(&self) -> &HashMap<String, Dual64> {
+        &self.duals
+    }
+
+    /// The parameter whose derivative the dual values carry, if any.
+    pub fn seed(&self) -> Option<&str> {
+        self.seed.as_deref()
+    }
+}
+
+/// Reads and evaluates the `[parameters]` of `text` (as [`read`]) into the context a scene's
+/// formulas are resolved in; with `seed`, the dual values carry the derivative with respect
+/// to that parameter (per unit of it in its own unit, as `--set` moves it: `seed` itself is
+/// then independent, its own formula set aside as `--set` sets it aside).
+///
+/// # Errors
+/// As [`read`].
+pub fn bindings(
+    text: &str,
+    source: &Source,
+    settings: &[Setting],
+    seed: Option<&str>,
+) -> Result<Bindings> {
+    let mut bindings = Bindings::new(read(text, source, settings)?);
+    if let Some(seed) = seed {
+        let duals = read_in::<Dual64>(text, source, settings, Some(seed))?;
+        bindings.duals = duals.into_iter().map(|(n, v, _)| (n, v)).collect();
+        bindings.seed = Some(seed.to_owned());
+    }
+    Ok(bindings)
 }
 
 /// A parameter's value as written: a number or a quoted formula, in the unit of the
@@ -230,25 +282,6 @@ pub fn read_with_own_units(
     settings: &[Setting],
 ) -> Result<Vec<(String, f64, f64)>> {
     read_in::<f64>(text, source, settings, None)
-}
-
-/// As [`read`], each value with its derivative with respect to the parameter `by` (per
-/// unit of `by` in its own unit, as `--set` moves it): the dual part of each value. `by`
-/// itself is then independent: its own formula, if it has one, is set aside, as `--set`
-/// sets it aside.
-///
-/// # Errors
-/// As [`read`].
-pub(crate) fn read_tangent(
-    text: &str,
-    source: &Source,
-    settings: &[Setting],
-    by: &str,
-) -> Result<Vec<(String, Dual64)>> {
-    Ok(read_in::<Dual64>(text, source, settings, Some(by))?
-        .into_iter()
-        .map(|(name, value, _)| (name, value))
-        .collect())
 }
 
 /// As [`read_with_own_units`], in the scalar `D`, with the parameter `seed` (if any) the

@@ -12,8 +12,9 @@ use super::construct::{self, NoSolution};
 use super::format::{Name, PointDef};
 use super::model::Point;
 use super::resolve::Context;
-use super::tangent::Carried;
+use super::scalar::Carried;
 use super::units::{Dimension, Units};
+use super::values::Number;
 
 /// The definitions of the points by name, for placing them in order.
 type Defs<'a> = HashMap<&'a str, &'a Spanned<PointDef>>;
@@ -131,12 +132,12 @@ impl Context<'_> {
         placed: &HashMap<&str, [D; 2]>,
     ) -> Result<[D; 2]> {
         let at = |p: &Name| placed[p.get_ref().as_str()];
-        let length = |v: &Spanned<f64>, what: &str| {
+        let length = |v: &Spanned<Number>, what: &str| {
             self.positive_in::<D>(v, &format!("{what} of point `{name}`"), Dimension::Length)
         };
         Ok(match def.get_ref() {
             PointDef::Xy([x, y]) => {
-                let coordinate = |v: &Spanned<f64>, axis: &str| {
+                let coordinate = |v: &Spanned<Number>, axis: &str| {
                     let what = format!("the {axis} coordinate of point `{name}`");
                     self.number_in::<D>(v, &what, Dimension::Length)
                 };

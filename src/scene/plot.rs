@@ -13,6 +13,7 @@ use crate::error::{Location, Result};
 use super::format::Name;
 use super::model::DriveKind;
 use super::resolve::{Context, Geometry};
+use super::values::Number;
 
 /// `[plot]` as written.
 #[derive(Debug, Deserialize)]
@@ -74,7 +75,9 @@ pub(crate) fn resolve(
     if let Some(list) = &d.positions {
         nonempty("positions", list.get_ref().is_empty(), cx.at(list))?;
         for value in list.get_ref() {
-            let si = cx.number(value, "a `[plot]` position", drive.dimension())?;
+            // `[plot]` positions are numbers only (no formulas).
+            let written = Spanned::new(value.span(), Number::Literal(*value.get_ref()));
+            let si = cx.number(&written, "a `[plot]` position", drive.dimension())?;
             positions.push((si, cx.at(value)));
         }
     }

@@ -3,7 +3,11 @@
 //!
 //! Every error names `file:line:column` and what was expected there.
 
+use std::cell::RefCell;
 use std::collections::{BTreeMap, HashMap, HashSet};
+use std::ops::Range;
+
+use mechdiff_core::num_dual::Dual64;
 
 use toml::Spanned;
 
@@ -14,9 +18,11 @@ use super::format::{self, JointDef, Name, SceneFile};
 use super::limits;
 use super::model::{DriveKind, Joint, JointKind, Link, Point, Scene};
 use super::outputs;
+use super::parameters::Bindings;
+use super::scalar::Carried;
 use super::source::Source;
-use super::tangent::{Carried, Tangents};
 use super::units::{Dimension, Units};
+use super::values::Number;
 
 /// The name of the frame link, which every scene has.
 pub const GROUND: &str = "ground";
@@ -34,9 +40,17 @@ pub(crate) fn coincident(pa: [f64; 2], pb: [f64; 2]) -> bool {
     !(apart(0) || apart(1))
 }
 
-/// Checks a parsed file and resolves it into a [`Scene`].
-pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
-    let cx = Context::new(source, units(&file.units));
+/// Checks a parsed file and resolves it into a [`Scene`], its formulas evaluated with the
+/// scene's `parameters` ([`super::parameters::bindings`]).
+///
+/// # Errors
+/// The first thing wrong in the file, at `file:line:column`.
+pub fn resolve(file: &SceneFile, source: &Source, parameters: &Bindings) -> Result<Scene> {
+    scene(file, &Context::new(source, units(&file.units), parameters))
+}
+
+/// [`resolve`] in the context `cx`.
+pub(crate) fn scene(file: &SceneFile, cx: &Context<'_>) -> Result<Scene> {
     let points = cx.points(&file.points)?;
     let names: HashMap<&str, usize> = points
         .iter()
@@ -47,12 +61,12 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
     let geometry = Geometry::new(&points, &names, &links);
     let joints = cx.joints(&file.joints, &geometry)?;
     let mut drive = cx.drive(&file.drive, &geometry, &joints)?;
-    let outputs = outputs::resolve(&cx, &file.outputs, &geometry, &joints, &drive)?;
+    let outputs = outputs::resolve(cx, &file.outputs, &geometry, &joints, &drive)?;
     let sections = super::dynamics::DynamicsSections::of(&file);
-    let dynamics = super::dynamics::resolve(&cx, &sections, &geometry, &joints, drive.kind)?;
+    let dynamics = super::dynamics::resolve(cx, &sections, &geometry, &joints, drive.kind)?;
     let balancing =
-        super::balancing::resolve(&cx, file.rotor.as_ref(), file.balancing.as_ref(), &geometry)?;
-    let plot = super::plot::resolve(&cx, file.plot.as_ref(), &geometry, drive.kind)?;
+        super::balancing::resolve(cx, file.rotor.as_ref(), file.balancing.as_ref(), &geometry)?;
+    let plot = super::plot::resolve(cx, file.plot.as_ref(), &geometry, drive.kind)?;
     let sweep_of = cx.sweep_of(&file.sweep, &outputs)?;
     let dimension = match sweep_of {
         Some(k) => outputs[k].kind.dimension(),
@@ -96,8 +110,8 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
         }
     }
     Ok(Scene {
-        file: source.file.clone(),
-        title: file.title,
+        file: cx.source.file.clone(),
+        title: file.title.clone(),
         units: cx.units,
         points,
         links,
@@ -109,7 +123,7 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
         dynamics,
         balancing,
         plot,
-        parameters: Vec::new(),
+        parameters: cx.parameters.ordered().to_vec(),
         evaluator: Default::default(),
     })
 }
@@ -213,63 +227,144 @@ impl<'a> Geometry<'a> {
     }
 }
 
-/// The source and units, for turning spans into locations and numbers into SI; when a
-/// scene's tangent is taken, the derivatives of its numbers ([`super::tangent`]).
+/// The source, units and parameters, for turning spans into locations and numbers as
+/// written into values in SI: the explicit context of resolution. With a seeded parameter
+/// ([`Bindings::seed`]), the numbers read in [`Dual64`] carry their derivative with respect
+/// to it, and the context keeps which formulas move with it and which of those were read
+/// with their derivative ([`Context::not_carried`]).
 pub(crate) struct Context<'a> {
     pub(crate) source: &'a Source,
     pub(crate) units: Units,
-    tangents: Option<&'a Tangents>,
+    parameters: &'a Bindings,
+    /// In a context with a seeded parameter: the formulas that move with it.
+    moving: Option<RefCell<Moving>>,
+}
+
+/// The formulas of a scene that move with the seeded parameter, by place.
+#[derive(Debug, Default)]
+struct Moving {
+    /// Every formula read whose derivative is not zero.
+    moving: HashSet<Range<usize>>,
+    /// Those read in a scalar that carries the derivative.
+    carried: HashSet<Range<usize>>,
 }
 
 impl<'a> Context<'a> {
-    pub(crate) fn new(source: &'a Source, units: Units) -> Self {
+    pub(crate) fn new(source: &'a Source, units: Units, parameters: &'a Bindings) -> Self {
         Context {
             source,
             units,
-            tangents: None,
+            parameters,
+            moving: parameters.seed().map(|_| RefCell::default()),
         }
     }
 
-    /// A context whose numbers carry the derivatives `tangents`.
-    pub(crate) fn with_tangents(source: &'a Source, units: Units, tangents: &'a Tangents) -> Self {
-        Context {
-            source,
-            units,
-            tangents: Some(tangents),
+    /// The value of the number `value` as written (in the file's unit), in the scalar `D`:
+    /// a literal, or its formula evaluated with the scene's parameters.
+    ///
+    /// # Errors
+    /// A formula that cannot be read or evaluated, at its place (the column inside the
+    /// formula where the message names one).
+    pub(crate) fn value<D: Carried>(&self, value: &Spanned<Number>) -> Result<D> {
+        let v: D = (value.get_ref().value_in(self.parameters))
+            .map_err(|message| self.source.formula_error(value.span(), &message))?;
+        if let (Some(moving), Number::Formula(_)) = (&self.moving, value.get_ref()) {
+            let moves = if D::CARRIES {
+                v.tangent() != 0.0
+            } else {
+                (value.get_ref().value_in::<Dual64>(self.parameters)).is_ok_and(|d| d.eps != 0.0)
+            };
+            if moves {
+                let mut moving = moving.borrow_mut();
+                moving.moving.insert(value.span());
+                if D::CARRIES {
+                    moving.carried.insert(value.span());
+                }
+            }
         }
+        Ok(v)
     }
 
-    /// The derivative (SI, per unit of the parameter) of the number `value` of the file, of
-    /// `dimension`; 0 without tangents or for a number that does not move.
-    pub(crate) fn tangent(&self, value: &Spanned<f64>, dimension: Dimension) -> f64 {
-        self.units.to_si(self.tangent_plain(value), dimension)
+    /// The formulas read so far that move with the seeded parameter and were not read with
+    /// their derivative, in the file's order (none without a seeded parameter).
+    pub(crate) fn not_carried(&self) -> Vec<Range<usize>> {
+        let Some(moving) = &self.moving else {
+            return Vec::new();
+        };
+        let moving = moving.borrow();
+        let mut left: Vec<Range<usize>> = (moving.moving.iter())
+            .filter(|span| !moving.carried.contains(*span))
+            .cloned()
+            .collect();
+        left.sort_by_key(|span| span.start);
+        left
+    }
+
+    /// The derivative (SI, per unit of the seeded parameter) of the number `value` of the
+    /// file, of `dimension`; 0 without a seeded parameter or for a number that does not move.
+    ///
+    /// # Errors
+    /// As [`Context::value`].
+    pub(crate) fn tangent(&self, value: &Spanned<Number>, dimension: Dimension) -> Result<f64> {
+        Ok(self.units.to_si(self.tangent_plain(value)?, dimension))
     }
 
     /// As [`Context::tangent`], for a number the file writes in SI (a ratio).
-    pub(crate) fn tangent_plain(&self, value: &Spanned<f64>) -> f64 {
-        self.tangents.map_or(0.0, |t| t.at(value.span()))
+    ///
+    /// # Errors
+    /// As [`Context::value`].
+    pub(crate) fn tangent_plain(&self, value: &Spanned<Number>) -> Result<f64> {
+        Ok(self.value::<Dual64>(value)?.eps)
     }
 
     /// As [`Context::number`], in the scalar `D`: with its derivative.
     pub(crate) fn number_in<D: Carried>(
         &self,
-        value: &Spanned<f64>,
+        value: &Spanned<Number>,
         what: &str,
         dimension: Dimension,
     ) -> Result<D> {
         let si = self.number(value, what, dimension)?;
-        Ok(D::with_tangent(si, self.tangent(value, dimension)))
+        self.carry(si, value, dimension)
     }
 
     /// As [`Context::positive`], in the scalar `D`: with its derivative.
     pub(crate) fn positive_in<D: Carried>(
         &self,
-        value: &Spanned<f64>,
+        value: &Spanned<Number>,
         what: &str,
         dimension: Dimension,
     ) -> Result<D> {
         let si = self.positive(value, what, dimension)?;
-        Ok(D::with_tangent(si, self.tangent(value, dimension)))
+        self.carry(si, value, dimension)
+    }
+
+    /// The checked value `si` of `value` in `D`: with the derivative of `value` read in `D`
+    /// (its real part is `si` itself, the `f64` resolution's, bit for bit).
+    fn carry<D: Carried>(
+        &self,
+        si: f64,
+        value: &Spanned<Number>,
+        dimension: Dimension,
+    ) -> Result<D> {
+        let plain: D = self.carry_plain(si, value)?;
+        Ok(D::with_tangent(
+            si,
+            self.units.to_si(plain.tangent(), dimension),
+        ))
+    }
+
+    /// As [`Context::carry`], for a number the file writes in SI (a ratio): the checked
+    /// value `x` of `value`, with the derivative of `value` read in `D`.
+    ///
+    /// # Errors
+    /// As [`Context::value`].
+    pub(crate) fn carry_plain<D: Carried>(&self, x: f64, value: &Spanned<Number>) -> Result<D> {
+        if !D::CARRIES {
+            return Ok(D::constant(x));
+        }
+        let carried: D = self.value(value)?;
+        Ok(D::with_tangent(x, carried.tangent()))
     }
 
     pub(crate) fn at<T>(&self, spanned: &Spanned<T>) -> Location {
@@ -286,11 +381,11 @@ impl<'a> Context<'a> {
     /// A finite number in the file, converted to SI.
     pub(crate) fn number(
         &self,
-        value: &Spanned<f64>,
+        value: &Spanned<Number>,
         what: &str,
         dimension: Dimension,
     ) -> Result<f64> {
-        let v = *value.get_ref();
+        let v: f64 = self.value(value)?;
         if !v.is_finite() {
             return Err(self.invalid(value, format!("{what} must be a finite number, found {v}")));
         }
@@ -319,12 +414,12 @@ impl<'a> Context<'a> {
     /// A number of a quantity the file writes in SI (kg, N, a ratio), within `range`.
     pub(crate) fn in_range(
         &self,
-        value: &Spanned<f64>,
+        value: &Spanned<Number>,
         what: &str,
         range: std::ops::RangeInclusive<f64>,
         unit: &str,
     ) -> Result<f64> {
-        let v = *value.get_ref();
+        let v: f64 = self.value(value)?;
         if range.contains(&v) {
             return Ok(v);
         }
@@ -348,7 +443,7 @@ impl<'a> Context<'a> {
     /// A positive length in the file, converted to SI.
     pub(crate) fn positive(
         &self,
-        value: &Spanned<f64>,
+        value: &Spanned<Number>,
         what: &str,
         dimension: Dimension,
     ) -> Result<f64> {
@@ -357,7 +452,7 @@ impl<'a> Context<'a> {
             return Err(Error::NonPositiveLength {
                 location: self.at(value),
                 what: what.to_owned(),
-                value: *value.get_ref(),
+                value: self.value(value)?,
             });
         }
         Ok(v)

@@ -103,6 +103,16 @@ impl Source {
         }
     }
 
+    /// The error of the formula at `span` that cannot be read or evaluated (`message` says
+    /// why): at the column inside the formula the message names, else at the formula, as a
+    /// [`Error::Syntax`] like a value the format does not take.
+    pub(crate) fn formula_error(&self, span: Range<usize>, message: &str) -> Error {
+        Error::Syntax {
+            location: self.location(self.inside_formula(span, message)),
+            message: tidy_toml_message(message),
+        }
+    }
+
     /// Turns a TOML parse or deserialisation error into [`Error::Syntax`] at its place.
     pub fn syntax_error(&self, error: &toml::de::Error) -> Error {
         let location = match error.span() {

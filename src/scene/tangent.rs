@@ -3,28 +3,25 @@
 //! numbers (a rack's radius, a gear's ratio), the drive's value at the sketch, its speed and
 //! acceleration, the links' inertias — and of the dynamics' effects (gravity, loads, motor).
 //!
-//! The scene is read once more in dual numbers ([`Dual64`]): the parameters are evaluated
-//! with the one differentiated as the independent variable ([`super::parameters`]), and
-//! every quoted formula of the file is evaluated with them ([`super::values::formula_in`]),
-//! its derivative kept under its place in the file ([`Tangents`]). The resolver's steps that
-//! build the mechanism's numbers ([`super::placement`]: coordinates, polar points, the
-//! constructions of [`super::construct`]; the drive's measure; the joints' numbers) then
-//! read each number with its derivative ([`super::resolve::Context::number_in`]) and are the
-//! same code in `f64` and in [`Dual64`], so a point built from lengths carries their
-//! derivatives through its construction exactly. The dynamic sections' numbers the exact
-//! dynamics take (`[masses]`, `[gravity]`, the loads, `[motor]`) are read the same way
+//! It is the scene's one resolver run in [`Dual64`]: the parameters are evaluated with the one
+//! differentiated seeded as the independent variable ([`super::parameters::bindings`]), and
+//! the resolver's steps that build the mechanism's numbers ([`super::placement`]:
+//! coordinates, polar points, the constructions of [`super::construct`]; the drive's measure;
+//! the joints' numbers) read each number as written with its derivative
+//! ([`super::resolve::Context::number_in`]); they are the same code in `f64` and in
+//! [`Dual64`], so a point built from lengths carries their derivatives through its
+//! construction exactly. The dynamic sections' numbers the exact dynamics take (`[masses]`,
+//! `[gravity]`, the loads, `[motor]`) are read the same way
 //! ([`super::dynamics::numbers_in`]), a uniform bar's with its moving ends.
 //!
-//! Every formula whose derivative is not zero and that no step read is listed
+//! Every formula whose derivative is not zero and that was read only in `f64` is listed
 //! ([`SceneTangent::not_carried`]): a number the tangent does not carry (a friction
-//! coefficient, a mesh's efficiency, a load's `active` range, a cam file's data), so that
-//! a derivative that would need it is not taken as exact.
+//! coefficient, a mesh's efficiency, a load's `active` range, `[sweep]`, balancing data), so
+//! that a derivative that would need it is not taken as exact.
 
-use std::cell::RefCell;
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 use std::ops::Range;
 
-use mechdiff_core::Scalar;
 use mechdiff_core::dynamics::tangent::EffectsTangent;
 use mechdiff_core::dynamics::{LoadKind, Motor};
 use mechdiff_core::geometry::{DataTangent, Inertia, Mechanism};
@@ -38,156 +35,9 @@ use super::dynamics::{DynamicsSections, numbers_in};
 use super::format::{JointDef, SceneFile};
 use super::model::JointKind;
 use super::parameters::{self, Setting};
-use super::resolve::Context;
+use super::resolve::{self, Context};
 use super::source::Source;
 use super::units::Dimension;
-use super::values::formula_in;
-
-/// A scalar a scene's numbers are read in: `f64` (no derivative) or [`Dual64`] (the
-/// derivative with respect to one parameter).
-///
-/// The operations whose `f64` form rounds differently from the generic one (`hypot`,
-/// `atan2`) are the trait's, so that the real part of a dual result is the `f64` result bit
-/// for bit.
-pub trait Carried: Scalar {
-    /// The number `value` with derivative `tangent` (dropped by `f64`).
-    fn with_tangent(value: f64, tangent: f64) -> Self;
-    /// The derivative carried (0 for `f64`).
-    fn tangent(&self) -> f64;
-    /// `√(self² + y²)`, its real part [`f64::hypot`].
-    fn hypot(self, y: Self) -> Self {
-        let h = self.re().hypot(y.re());
-        Self::with_tangent(h, (self.re() * self.tangent() + y.re() * y.tangent()) / h)
-    }
-    /// The angle of the vector (x, y) = (`x`, `self`), its real part [`f64::atan2`].
-    fn atan2(self, x: Self) -> Self {
-        let (y, x_re) = (self.re(), x.re());
-        let squared = x_re * x_re + y * y;
-        Self::with_tangent(
-            y.atan2(x_re),
-            (x_re * self.tangent() - y * x.tangent()) / squared,
-        )
-    }
-    /// `max(self, 0)`: 0 where the real part is negative (a tangency rounded below 0).
-    fn non_negative(self) -> Self {
-        if self.re() < 0.0 {
-            Self::constant(0.0)
-        } else {
-            self
-        }
-    }
-}
-
-impl Carried for f64 {
-    fn with_tangent(value: f64, _: f64) -> Self {
-        value
-    }
-
-    fn tangent(&self) -> f64 {
-        0.0
-    }
-
-    fn hypot(self, y: f64) -> f64 {
-        f64::hypot(self, y)
-    }
-
-    fn atan2(self, x: f64) -> f64 {
-        f64::atan2(self, x)
-    }
-}
-
-impl Carried for Dual64 {
-    fn with_tangent(value: f64, tangent: f64) -> Self {
-        Dual64::new(value, tangent)
-    }
-
-    fn tangent(&self) -> f64 {
-        self.eps
-    }
-}
-
-/// The derivatives of a scene file's formulas with respect to one parameter, by the place
-/// of each formula in the file: those that are not zero, each with the key path it is at.
-#[derive(Debug, Default)]
-pub(crate) struct Tangents {
-    numbers: HashMap<Range<usize>, (f64, String)>,
-    read: RefCell<HashSet<Range<usize>>>,
-}
-
-impl Tangents {
-    /// Evaluates every quoted string of `text` that is a formula of the `parameters` (values
-    /// in the file's units with their derivatives) and keeps the derivatives that are not
-    /// zero. `[parameters]` itself is skipped (its values are the bindings).
-    ///
-    /// # Errors
-    /// The TOML error of a text that does not parse (never an empty table: every formula
-    /// would be taken as not moving).
-    fn of_file(
-        text: &str,
-        parameters: &HashMap<String, Dual64>,
-    ) -> std::result::Result<Self, toml::de::Error> {
-        let mut tangents = Tangents::default();
-        let table = DeTable::parse(text)?;
-        for (key, value) in table.get_ref() {
-            if key.get_ref() != "parameters" {
-                tangents.walk(value, key.get_ref(), parameters);
-            }
-        }
-        Ok(tangents)
-    }
-
-    fn walk(
-        &mut self,
-        value: &Spanned<DeValue<'_>>,
-        path: &str,
-        parameters: &HashMap<String, Dual64>,
-    ) {
-        match value.get_ref() {
-            DeValue::String(text) => {
-                // A string that is not a formula of the parameters (a name) has no entry.
-                if let Ok(v) = formula_in(text, parameters)
-                    && v.eps != 0.0
-                {
-                    self.numbers.insert(value.span(), (v.eps, path.to_owned()));
-                }
-            }
-            DeValue::Array(items) => {
-                for (i, item) in items.iter().enumerate() {
-                    self.walk(item, &format!("{path}[{i}]"), parameters);
-                }
-            }
-            DeValue::Table(table) => {
-                for (key, item) in table {
-                    self.walk(item, &format!("{path}.{}", key.get_ref()), parameters);
-                }
-            }
-            _ => {}
-        }
-    }
-
-    /// The derivative of the number at `span` (in the file's unit of its field; 0 for a
-    /// number that does not move), now counted as carried.
-    pub(crate) fn at(&self, span: Range<usize>) -> f64 {
-        match self.numbers.get(&span) {
-            Some((t, _)) => {
-                self.read.borrow_mut().insert(span);
-                *t
-            }
-            None => 0.0,
-        }
-    }
-
-    /// The formulas that move and were not read, as `(place, key path)`, in the file's order.
-    fn not_read(&self) -> Vec<(Range<usize>, String)> {
-        let read = self.read.borrow();
-        let mut left: Vec<(Range<usize>, String)> = (self.numbers.iter())
-            .filter(|(span, _)| !read.contains(*span))
-            .map(|(span, (_, path))| (span.clone(), path.clone()))
-            .collect();
-        left.sort_by_key(|(span, _)| span.start);
-        left
-    }
-}
 
 /// A number that moves with the parameter and that the tangent does not carry.
 #[derive(Debug, Clone, PartialEq)]
@@ -294,22 +144,20 @@ pub fn scene_tangent(
     parameter: &str,
 ) -> Result<SceneTangent> {
     let source = Source::new(file, text);
-    let duals = parameters::read_tangent(text, &source, settings, parameter)?;
-    let bindings: Vec<(String, f64)> = duals.iter().map(|(n, v)| (n.clone(), v.re)).collect();
-    let raw: SceneFile = parameters::with_scope(bindings, || toml::from_str(text))
-        .map_err(|e| source.syntax_error(&e))?;
-    let tangents = Tangents::of_file(text, &duals.into_iter().collect())
-        .map_err(|e| source.syntax_error(&e))?;
-    let cx = Context::with_tangents(&source, super::resolve::units(&raw.units), &tangents);
+    let bindings = parameters::bindings(text, &source, settings, Some(parameter))?;
+    let raw: SceneFile = toml::from_str(text).map_err(|e| source.syntax_error(&e))?;
+    let cx = Context::new(&source, resolve::units(&raw.units), &bindings);
+    // The scene resolved as a run resolves it (every number read and checked, the formulas
+    // that move noted), then the mechanism's numbers in Dual64 by the same steps.
+    let scene = resolve::scene(&raw, &cx)?;
     let (points, placed) = cx.points_in::<Dual64>(&raw.points)?;
     let names: HashMap<&str, usize> = (placed.iter().enumerate())
         .map(|(i, p)| (p.name.as_str(), i))
         .collect();
-    let links = cx.links(&raw.links, &names)?;
-    let geometry = super::resolve::Geometry::new(&placed, &names, &links);
-    let joints = cx.joints(&raw.joints, &geometry)?;
+    let geometry = resolve::Geometry::new(&placed, &names, &scene.links);
+    let joints = &scene.joints;
     let mut joint_tangents = vec![0.0; joints.len()];
-    for (t, joint) in joint_tangents.iter_mut().zip(&joints) {
+    for (t, joint) in joint_tangents.iter_mut().zip(joints) {
         let Some(def) = raw
             .joints
             .get_ref()
@@ -318,20 +166,21 @@ pub fn scene_tangent(
         else {
             continue;
         };
-        *t = joint_number_tangent(&cx, def.1.get_ref(), &joint.kind);
+        *t = joint_number_tangent(&cx, def.1.get_ref(), &joint.kind)?;
     }
     let drive = raw.drive.get_ref();
-    let (_, measure) = cx.drive_measure(&raw.drive, &geometry, &joints)?;
+    let (_, measure) = cx.drive_measure(&raw.drive, &geometry, joints)?;
     let at = |name: &str| points[names[name]];
     let drive_at_sketch = measure.at(at).eps;
     let speed_dimension = measure.kind().speed_dimension();
-    let speed = drive
-        .speed
-        .as_ref()
-        .map_or(0.0, |v| cx.tangent(v, speed_dimension));
-    let acceleration = drive.acceleration.as_ref().map_or(0.0, |v| {
-        cx.tangent(v, measure.kind().acceleration_dimension())
-    });
+    let speed = match &drive.speed {
+        Some(v) => cx.tangent(v, speed_dimension)?,
+        None => 0.0,
+    };
+    let acceleration = match &drive.acceleration {
+        Some(v) => cx.tangent(v, measure.kind().acceleration_dimension())?,
+        None => 0.0,
+    };
     // The dynamic sections' numbers, read by the run's own code in dual numbers.
     let dynamics = numbers_in::<Dual64>(
         &cx,
@@ -340,10 +189,10 @@ pub fn scene_tangent(
         measure.kind(),
         &|name: &str| points[names[name]],
     )?;
-    let mut not_carried: Vec<NotCarried> = tangents
-        .not_read()
-        .into_iter()
-        .map(|(span, path)| NotCarried {
+    let not_read = cx.not_carried();
+    let mut not_carried: Vec<NotCarried> = (key_paths(text, &not_read).into_iter())
+        .zip(not_read)
+        .map(|(path, span)| NotCarried {
             location: source.location(span).to_string(),
             path,
         })
@@ -391,18 +240,50 @@ pub fn scene_tangent(
     })
 }
 
+/// The key path (`friction.O2.coefficient`, `load[0].force[1]`) of the value at each of
+/// `spans` in the TOML `text` (the value's place, for messages; `?` where none is found).
+fn key_paths(text: &str, spans: &[Range<usize>]) -> Vec<String> {
+    fn walk(value: &Spanned<DeValue<'_>>, path: &str, found: &mut HashMap<Range<usize>, String>) {
+        match value.get_ref() {
+            DeValue::Array(items) => {
+                for (i, item) in items.iter().enumerate() {
+                    walk(item, &format!("{path}[{i}]"), found);
+                }
+            }
+            DeValue::Table(table) => {
+                for (key, item) in table {
+                    walk(item, &format!("{path}.{}", key.get_ref()), found);
+                }
+            }
+            _ => {}
+        }
+        found.insert(value.span(), path.to_owned());
+    }
+    if spans.is_empty() {
+        return Vec::new();
+    }
+    let mut found = HashMap::new();
+    if let Ok(table) = DeTable::parse(text) {
+        for (key, value) in table.get_ref() {
+            walk(value, key.get_ref(), &mut found);
+        }
+    }
+    (spans.iter())
+        .map(|span| found.get(span).cloned().unwrap_or_else(|| "?".to_owned()))
+        .collect()
+}
+
 /// d/dp of a joint's number (SI): a rack's signed radius, a gear's ratio.
-fn joint_number_tangent(cx: &Context<'_>, def: &JointDef, kind: &JointKind) -> f64 {
-    match kind {
+fn joint_number_tangent(cx: &Context<'_>, def: &JointDef, kind: &JointKind) -> Result<f64> {
+    Ok(match (kind, &def.radius, &def.ratio) {
         // The radius is signed by the side of the rack the pinion is on, which a derivative
         // does not change.
-        JointKind::RackPinion { radius, .. } => def
-            .radius
-            .as_ref()
-            .map_or(0.0, |r| radius.signum() * cx.tangent(r, Dimension::Length)),
-        JointKind::Gear { .. } => def.ratio.as_ref().map_or(0.0, |r| cx.tangent_plain(r)),
+        (JointKind::RackPinion { radius, .. }, Some(r), _) => {
+            radius.signum() * cx.tangent(r, Dimension::Length)?
+        }
+        (JointKind::Gear { .. }, _, Some(r)) => cx.tangent_plain(r)?,
         _ => 0.0,
-    }
+    })
 }
 
 /// The points of `[points]` in the file's order (the order of [`Context::points_in`]).

@@ -16,6 +16,8 @@ use toml::Spanned;
 
 use super::drive::MAX_POSITIONS;
 use super::format::Name;
+use super::parameters::Bindings;
+use super::scalar::Carried;
 
 /// The longest formula a scene may quote (characters).
 pub const MAX_FORMULA_LENGTH: usize = 200;
@@ -23,10 +25,31 @@ pub const MAX_FORMULA_LENGTH: usize = 200;
 /// The deepest nesting of parentheses in a quoted formula.
 pub const MAX_FORMULA_DEPTH: usize = 16;
 
-/// A number as written in a scene: a TOML integer or float, or a quoted constant formula
-/// such as `"23.4791*0.86"` or `"180/7"` (see [`constant_formula`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Number(pub f64);
+/// A number as written in a scene: a TOML integer or float, or a quoted formula such as
+/// `"23.4791*0.86"`, `"180/7"` or `"2*l1"` kept as its text. Serde only reads it; the
+/// resolver evaluates it ([`Number::value_in`]) with the scene's parameters, in the scalar it
+/// resolves in. Its span (a `Spanned<Number>`) places its errors at `file:line:column`.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Number {
+    /// A number written as a number.
+    Literal(f64),
+    /// A quoted formula, as written (see [`formula_in`]).
+    Formula(String),
+}
+
+impl Number {
+    /// Its value in the scalar `D` with the scene's `parameters` (for a dual number, with
+    /// the derivative with respect to the seeded parameter; a literal has none).
+    ///
+    /// # Errors
+    /// As [`constant_formula`], for a formula.
+    pub fn value_in<D: Carried>(&self, parameters: &Bindings) -> Result<D, String> {
+        match self {
+            Number::Literal(v) => Ok(D::constant(*v)),
+            Number::Formula(text) => formula_in(text, D::parameters(parameters)),
+        }
+    }
+}
 
 impl<'de> Deserialize<'de> for Number {
     fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
@@ -44,26 +67,26 @@ impl Visitor<'_> for NumberVisitor {
     }
 
     fn visit_f64<E: de::Error>(self, v: f64) -> Result<Number, E> {
-        Ok(Number(v))
+        Ok(Number::Literal(v))
     }
 
     fn visit_i64<E: de::Error>(self, v: i64) -> Result<Number, E> {
-        Ok(Number(v as f64))
+        Ok(Number::Literal(v as f64))
     }
 
     fn visit_u64<E: de::Error>(self, v: u64) -> Result<Number, E> {
-        Ok(Number(v as f64))
+        Ok(Number::Literal(v as f64))
     }
 
     fn visit_str<E: de::Error>(self, v: &str) -> Result<Number, E> {
-        constant_formula(v).map(Number).map_err(E::custom)
+        Ok(Number::Formula(v.to_owned()))
     }
 }
 
-/// The value of a formula written in a scene: numbers, `+ - * / ^`, parentheses, the
-/// functions of the symbolic engine (`sqrt`, `sin`, `atan2`, …, angles in radians), the
-/// constants `pi` and `tau`, and the scene's `[parameters]` while the scene is read (see
-/// [`super::parameters`]). It is parsed by the symbolic engine's infix parser.
+/// The value of a constant formula (no parameters): numbers, `+ - * / ^`, parentheses, the
+/// functions of the symbolic engine (`sqrt`, `sin`, `atan2`, …, angles in radians) and the
+/// constants `pi` and `tau`. It is parsed by the symbolic engine's infix parser. A scene's
+/// formulas may also use its `[parameters]` ([`Number::value_in`]).
 ///
 /// ```
 /// use mechdiff::scene::values::constant_formula;
@@ -77,7 +100,7 @@ impl Visitor<'_> for NumberVisitor {
 /// A message saying what is wrong with the formula (syntax, an unknown name and its column,
 /// a result that is not a finite number) and what a formula may contain.
 pub fn constant_formula(text: &str) -> Result<f64, String> {
-    super::parameters::with_in_scope(|bindings| formula(text, bindings))
+    formula(text, &HashMap::new())
 }
 
 /// The value of a formula whose names are `pi`, `tau` and the given `bindings` (see
@@ -89,9 +112,9 @@ pub fn formula(text: &str, bindings: &HashMap<String, f64>) -> Result<f64, Strin
     formula_in(text, bindings)
 }
 
-/// The value of a formula in any scalar `D` (see [`constant_formula`]): with dual numbers
-/// for the `bindings`, the formula's derivative with respect to what they carry (the
-/// tangent of a scene, [`super::tangent`]). Its real part is the `f64` value, bit for bit.
+/// The value of a formula in any scalar `D` (see [`constant_formula`]), its names `pi`,
+/// `tau` and the given `bindings`: with dual numbers for the `bindings`, the formula's
+/// derivative with respect to what they carry (the tangent of a scene, [`super::tangent`]).
 ///
 /// # Errors
 /// As [`constant_formula`].
@@ -277,18 +300,28 @@ fn literals(text: &str) -> impl Iterator<Item = &str> {
     })
 }
 
-/// A number field: `Spanned<f64>` read through [`Number`].
-pub fn number<'de, D: Deserializer<'de>>(deserializer: D) -> Result<Spanned<f64>, D::Error> {
+/// A number of a file without parameters (a cam scene), evaluated as it is read: a
+/// number or a constant formula ([`constant_formula`]).
+pub fn constant_number<'de, D: Deserializer<'de>>(
+    deserializer: D,
+) -> Result<Spanned<f64>, D::Error> {
     let n = Spanned::<Number>::deserialize(deserializer)?;
-    Ok(Spanned::new(n.span(), n.into_inner().0))
+    let span = n.span();
+    match n.into_inner() {
+        Number::Literal(v) => Ok(Spanned::new(span, v)),
+        Number::Formula(text) => constant_formula(&text)
+            .map(|v| Spanned::new(span, v))
+            .map_err(de::Error::custom),
+    }
 }
 
-/// An optional number field (use with `#[serde(default)]`).
-pub fn option_number<'de, D: Deserializer<'de>>(
+/// An optional [`constant_number`] (use with `#[serde(default)]`).
+pub fn option_constant_number<'de, D: Deserializer<'de>>(
     deserializer: D,
 ) -> Result<Option<Spanned<f64>>, D::Error> {
-    let n = Option::<Spanned<Number>>::deserialize(deserializer)?;
-    Ok(n.map(|n| Spanned::new(n.span(), n.into_inner().0)))
+    #[derive(Deserialize)]
+    struct Constant(#[serde(deserialize_with = "constant_number")] Spanned<f64>);
+    Ok(Option::<Constant>::deserialize(deserializer)?.map(|c| c.0))
 }
 
 fn exactly_two<T, E: de::Error>(list: Spanned<Vec<T>>, what: &str) -> Result<Spanned<[T; 2]>, E> {
@@ -320,36 +353,17 @@ pub fn name_pair<'de, D: Deserializer<'de>>(
     exactly_two(Spanned::<Vec<Name>>::deserialize(deserializer)?, "names")
 }
 
-/// An optional pair of numbers (a force's components, a drive range): exactly two entries
-/// (use with `#[serde(default)]`).
+/// Two numbers as written, each with its span, and the pair's span.
+pub type SpannedPair = Spanned<[Spanned<Number>; 2]>;
+
+/// An optional pair of numbers with each entry's span (a force's components, a drive
+/// range): exactly two (use with `#[serde(default)]`).
 pub fn option_number_pair<'de, D: Deserializer<'de>>(
     deserializer: D,
-) -> Result<Option<Spanned<[f64; 2]>>, D::Error> {
-    let Some(list) = Option::<Spanned<Vec<Number>>>::deserialize(deserializer)? else {
-        return Ok(None);
-    };
-    let span = list.span();
-    let values = list.into_inner().into_iter().map(|n| n.0).collect();
-    exactly_two(Spanned::new(span, values), "numbers").map(Some)
-}
-
-/// Two numbers, each with its span, and the pair's span.
-pub type SpannedPair = Spanned<[Spanned<f64>; 2]>;
-
-/// An optional pair of numbers with each entry's span (a force's components, whose
-/// derivatives a scene's tangent keeps by place): exactly two (use with
-/// `#[serde(default)]`).
-pub fn option_spanned_number_pair<'de, D: Deserializer<'de>>(
-    deserializer: D,
 ) -> Result<Option<SpannedPair>, D::Error> {
-    let Some(list) = Option::<Spanned<Vec<Spanned<Number>>>>::deserialize(deserializer)? else {
-        return Ok(None);
-    };
-    let span = list.span();
-    let values = (list.into_inner().into_iter())
-        .map(|n| Spanned::new(n.span(), n.into_inner().0))
-        .collect();
-    exactly_two(Spanned::new(span, values), "numbers").map(Some)
+    Option::<Spanned<Vec<Spanned<Number>>>>::deserialize(deserializer)?
+        .map(|list| exactly_two(list, "numbers"))
+        .transpose()
 }
 
 /// `[sweep] positions`: at most [`MAX_POSITIONS`] numbers, counted as they are read, each
@@ -362,10 +376,10 @@ pub fn option_positions<'de, D: Deserializer<'de>>(
 }
 
 /// `[sweep] positions` as read: the list and each entry with its span.
-pub type PositionList = Spanned<Vec<Spanned<f64>>>;
+pub type PositionList = Spanned<Vec<Spanned<Number>>>;
 
 /// A list of drive positions of bounded length.
-struct Positions(Vec<Spanned<f64>>);
+struct Positions(Vec<Spanned<Number>>);
 
 impl<'de> Deserialize<'de> for Positions {
     fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
@@ -391,7 +405,7 @@ impl<'de> Visitor<'de> for PositionsVisitor {
                      several scenes, or use `from`, `to` and `step`"
                 )));
             }
-            values.push(Spanned::new(v.span(), v.into_inner().0));
+            values.push(v);
         }
         Ok(Positions(values))
     }

@@ -10,6 +10,7 @@ use toml::Spanned;
 use crate::error::{Error, Result};
 use crate::scene::Source;
 use crate::scene::outputs::Column;
+use crate::scene::parameters::Bindings;
 use crate::scene::values::Number;
 
 /// The two sections; the rest of the file is skipped.
@@ -119,9 +120,8 @@ pub fn read(
     parameters: &[(String, f64, f64)],
     columns: &[Column],
 ) -> Result<Option<Spec>> {
-    let bindings: Vec<(String, f64)> = parameters.iter().map(|(n, v, _)| (n.clone(), *v)).collect();
-    let only: StudyOnly = crate::scene::parameters::with_scope(bindings, || toml::from_str(text))
-        .map_err(|e| source.syntax_error(&e))?;
+    let bindings = Bindings::new(parameters.iter().map(|(n, v, _)| (n.clone(), *v)).collect());
+    let only: StudyOnly = toml::from_str(text).map_err(|e| source.syntax_error(&e))?;
     if only.sensitivity.is_none() && only.tolerances.is_none() {
         return Ok(None);
     }
@@ -234,7 +234,8 @@ pub fn read(
                     ),
                 ));
             };
-            let t = tolerance.get_ref().0;
+            let t: f64 = (tolerance.get_ref().value_in(&bindings))
+                .map_err(|message| source.formula_error(tolerance.span(), &message))?;
             if t.is_finite() && t > MAX_TOLERANCE {
                 return Err(invalid(
                     tolerance.span(),

@@ -4,23 +4,20 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use crate::scene::format::Name;
+use crate::scene::values::Number;
 
 /// One mass of `[rotor] masses`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RotorMassDef {
     /// Mass (kg, > 0).
-    #[serde(deserialize_with = "crate::scene::values::number")]
-    pub mass: Spanned<f64>,
+    pub mass: Spanned<Number>,
     /// Radius from the shaft axis (length unit, ≥ 0).
-    #[serde(deserialize_with = "crate::scene::values::number")]
-    pub radius: Spanned<f64>,
+    pub radius: Spanned<Number>,
     /// Angle in the rotor's frame (angle unit).
-    #[serde(deserialize_with = "crate::scene::values::number")]
-    pub angle: Spanned<f64>,
+    pub angle: Spanned<Number>,
     /// Axial position of its plane (length unit).
-    #[serde(deserialize_with = "crate::scene::values::number")]
-    pub plane: Spanned<f64>,
+    pub plane: Spanned<Number>,
 }
 
 /// `[rotor]`.
@@ -31,16 +28,16 @@ pub struct RotorDef {
     pub masses: Spanned<Vec<Spanned<RotorMassDef>>>,
     /// Two correction planes (length unit).
     #[serde(default, deserialize_with = "crate::scene::values::option_number_pair")]
-    pub planes: Option<Spanned<[f64; 2]>>,
+    pub planes: Option<crate::scene::values::SpannedPair>,
     /// The plane the couple polygon is taken about (length unit; default 0).
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
-    pub reference: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub reference: Option<Spanned<Number>>,
     /// Radius of the correcting masses (length unit, > 0).
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
-    pub correction_radius: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub correction_radius: Option<Spanned<Number>>,
     /// The mass-radius (kg·m) of one correcting mass placed to cancel the couple.
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
-    pub couple_mass_radius: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub couple_mass_radius: Option<Spanned<Number>>,
 }
 
 /// One counterweight of `[balancing]`.
@@ -52,8 +49,7 @@ pub struct CounterweightDef {
     /// The pivot and a second point of the link; angles are measured from this line.
     pub line: Spanned<[Name; 2]>,
     /// Distance of the counterweight's centre from the pivot (length unit, > 0).
-    #[serde(deserialize_with = "crate::scene::values::number")]
-    pub radius: Spanned<f64>,
+    pub radius: Spanned<Number>,
 }
 
 /// `[balancing] slider_crank`: the primary and secondary unbalance of an in-line

@@ -7,6 +7,7 @@ use crate::error::{Error, Location, Result};
 use crate::scene::limits;
 use crate::scene::resolve::{Context, Geometry};
 use crate::scene::units::{Dimension, Units};
+use crate::scene::values::Number;
 
 use super::format::{BalancingDef, RotorDef};
 
@@ -88,7 +89,7 @@ pub(crate) fn resolve(
                     return Err(Error::OutOfRange {
                         location: cx.at(&c.radius),
                         what: "the counterweight's radius".to_owned(),
-                        value: format!("{} {unit}", Units::tidy(*c.radius.get_ref())),
+                        value: format!("{} {unit}", Units::tidy(cx.value(&c.radius)?)),
                         expected: format!(
                             "at least {} {unit}",
                             Units::tidy(
@@ -153,8 +154,8 @@ pub const LARGEST_MASS_RADIUS: f64 = limits::MASS * limits::LENGTH;
 
 /// A rotor mass (kg, no unit conversion, as documented): finite, > 0 and at most
 /// [`limits::MASS`], so that every m·r·d stays finite.
-fn rotor_mass(cx: &Context, value: &Spanned<f64>, n: usize) -> Result<f64> {
-    let mass = *value.get_ref();
+fn rotor_mass(cx: &Context, value: &Spanned<Number>, n: usize) -> Result<f64> {
+    let mass: f64 = cx.value(value)?;
     if mass.is_finite() && mass > 0.0 && mass <= limits::MASS {
         return Ok(mass);
     }
@@ -190,9 +191,12 @@ pub(super) fn resolve_rotor(cx: &Context, r: &Spanned<RotorDef>) -> Result<Scene
     let rotor = Rotor::new(masses).map_err(|e| cx.invalid(&def.masses, e.to_string()))?;
     let planes = match &def.planes {
         Some(p) => {
-            let [a, b] = *p.get_ref();
-            let number =
-                |v: f64| cx.number(&Spanned::new(p.span(), v), "a plane", Dimension::Length);
+            let [a, b] = p.get_ref();
+            // Each is checked at the pair (as `planes`), its formula evaluated at its own place.
+            let number = |v: &Spanned<Number>| {
+                let written = Spanned::new(p.span(), Number::Literal(cx.value(v)?));
+                cx.number(&written, "a plane", Dimension::Length)
+            };
             let (a, b) = (number(a)?, number(b)?);
             if a == b {
                 return Err(cx.invalid(
@@ -216,7 +220,7 @@ pub(super) fn resolve_rotor(cx: &Context, r: &Spanned<RotorDef>) -> Result<Scene
         .transpose()?;
     let couple_mass_radius = match &def.couple_mass_radius {
         Some(v) => {
-            let x = *v.get_ref();
+            let x: f64 = cx.value(v)?;
             if !(x.is_finite() && x > 0.0 && x <= LARGEST_MASS_RADIUS) {
                 return Err(Error::OutOfRange {
                     location: cx.at(v),

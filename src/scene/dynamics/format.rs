@@ -6,6 +6,7 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use crate::scene::format::Name;
+use crate::scene::values::Number;
 
 /// `[masses.<link>]`: a `mass` with its `center` (and `inertia`), or a `density` per length
 /// for a uniform bar.
@@ -13,12 +14,12 @@ use crate::scene::format::Name;
 #[serde(deny_unknown_fields)]
 pub struct MassDef {
     /// Mass (kg).
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
-    pub mass: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub mass: Option<Spanned<Number>>,
     /// Mass per length of a uniform slender bar (kg/m): mass ρ·L at the bar's midpoint and
     /// moment of inertia m·L²/12 about it, unless `center` or `inertia` are given.
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
-    pub density: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub density: Option<Spanned<Number>>,
     /// With `density`: the bar's ends, two points of the link (default: the link's two
     /// points, when it has two).
     #[serde(default, deserialize_with = "crate::scene::values::option_name_pair")]
@@ -28,8 +29,8 @@ pub struct MassDef {
     pub center: Option<Spanned<CenterDef>>,
     /// Moment of inertia about the centre (kg·m²); default 0 with `mass`, m·L²/12 with
     /// `density`.
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
-    pub inertia: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub inertia: Option<Spanned<Number>>,
 }
 
 /// A centre of gravity: a named point or sketch coordinates.
@@ -39,7 +40,7 @@ pub enum CenterDef {
     Point(String),
     /// Sketch coordinates, each with its span (a scene's tangent keeps their derivatives by
     /// place).
-    Xy([Spanned<f64>; 2]),
+    Xy([Spanned<Number>; 2]),
 }
 
 impl<'de> Deserialize<'de> for CenterDef {
@@ -64,10 +65,10 @@ impl<'de> serde::de::Visitor<'de> for CenterVisitor {
     fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut seq: A) -> Result<CenterDef, A::Error> {
         let mut xy = Vec::with_capacity(2);
         while let Some(n) = seq.next_element::<Spanned<crate::scene::values::Number>>()? {
-            xy.push(Spanned::new(n.span(), n.into_inner().0));
+            xy.push(n);
         }
         let n = xy.len();
-        let xy: [Spanned<f64>; 2] = xy.try_into().map_err(|_| {
+        let xy: [Spanned<Number>; 2] = xy.try_into().map_err(|_| {
             serde::de::Error::custom(format!(
                 "expected exactly two coordinates, found {n}; a centre is written `[x, y]`"
             ))
@@ -81,8 +82,7 @@ impl<'de> serde::de::Visitor<'de> for CenterVisitor {
 #[serde(deny_unknown_fields)]
 pub struct GravityDef {
     /// Acceleration of gravity (m/s²), along −y.
-    #[serde(deserialize_with = "crate::scene::values::number")]
-    pub g: Spanned<f64>,
+    pub g: Spanned<Number>,
 }
 
 /// One `[[load]]`.
@@ -94,17 +94,14 @@ pub struct LoadDef {
     /// Point of application of a force (a point of the link).
     pub point: Option<Name>,
     /// Force (N), global components, each with its span.
-    #[serde(
-        default,
-        deserialize_with = "crate::scene::values::option_spanned_number_pair"
-    )]
+    #[serde(default, deserialize_with = "crate::scene::values::option_number_pair")]
     pub force: Option<crate::scene::values::SpannedPair>,
     /// Torque (N·m), counter-clockwise positive.
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
-    pub torque: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub torque: Option<Spanned<Number>>,
     /// Drive range where the load acts, in the drive's unit.
     #[serde(default, deserialize_with = "crate::scene::values::option_number_pair")]
-    pub active: Option<Spanned<[f64; 2]>>,
+    pub active: Option<crate::scene::values::SpannedPair>,
 }
 
 /// `[friction.<joint>]`.
@@ -112,15 +109,14 @@ pub struct LoadDef {
 #[serde(deny_unknown_fields)]
 pub struct FrictionDef {
     /// Coulomb coefficient (≥ 0).
-    #[serde(deserialize_with = "crate::scene::values::number")]
-    pub coefficient: Spanned<f64>,
+    pub coefficient: Spanned<Number>,
     /// Revolute joints: pin radius (length unit).
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
-    pub pin_radius: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub pin_radius: Option<Spanned<Number>>,
     /// Sliding joints: where the friction force acts, along the guide's normal from the
     /// joint's point (length unit).
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
-    pub contact_offset: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub contact_offset: Option<Spanned<Number>>,
 }
 
 /// The nominally driving side of a mesh.
@@ -138,8 +134,7 @@ pub enum DrivingSide {
 #[serde(deny_unknown_fields)]
 pub struct EfficiencyDef {
     /// Efficiency for direct power flow, in (0, 1].
-    #[serde(deserialize_with = "crate::scene::values::number")]
-    pub efficiency: Spanned<f64>,
+    pub efficiency: Spanned<Number>,
     /// The nominally driving side (default `first`).
     pub driving: Option<Spanned<DrivingSide>>,
 }
@@ -149,14 +144,12 @@ pub struct EfficiencyDef {
 #[serde(deny_unknown_fields)]
 pub struct MotorDef {
     /// Rotor moment of inertia (kg·m², ≥ 0).
-    #[serde(deserialize_with = "crate::scene::values::number")]
-    pub rotor_inertia: Spanned<f64>,
+    pub rotor_inertia: Spanned<Number>,
     /// Drive-joint speed over motor speed (non-zero).
-    #[serde(deserialize_with = "crate::scene::values::number")]
-    pub ratio: Spanned<f64>,
+    pub ratio: Spanned<Number>,
     /// Gearbox efficiency in (0, 1]; default 1.
-    #[serde(default, deserialize_with = "crate::scene::values::option_number")]
-    pub efficiency: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub efficiency: Option<Spanned<Number>>,
 }
 
 /// What a `[[dynamics]]` output reports.

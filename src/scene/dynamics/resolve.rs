@@ -11,8 +11,9 @@ use crate::scene::format::Name;
 use crate::scene::limits;
 use crate::scene::model::{DriveKind, Joint, JointKind};
 use crate::scene::resolve::{Context, Geometry};
-use crate::scene::tangent::Carried;
+use crate::scene::scalar::Carried;
 use crate::scene::units::Dimension;
+use crate::scene::values::Number;
 
 use super::format::{CenterDef, DrivingSide, DynamicQuantity, DynamicsSections, LoadDef, MassDef};
 
@@ -64,16 +65,21 @@ impl SceneDynamics {
 
 /// A non-negative number the file writes in SI (m/s², a ratio), at most `largest`, in the
 /// scalar `D` (with its derivative).
-fn non_negative<D: Carried>(cx: &Context, v: &Spanned<f64>, what: &str, largest: f64) -> Result<D> {
+fn non_negative<D: Carried>(
+    cx: &Context,
+    v: &Spanned<Number>,
+    what: &str,
+    largest: f64,
+) -> Result<D> {
     let x = cx.in_range(v, what, 0.0..=largest, "")?;
-    Ok(D::with_tangent(x, cx.tangent_plain(v)))
+    cx.carry_plain(x, v)
 }
 
 /// A non-negative quantity in the file's unit of `dimension`, converted to SI, in the scalar
 /// `D` (with its derivative).
 fn non_negative_in<D: Carried>(
     cx: &Context,
-    v: &Spanned<f64>,
+    v: &Spanned<Number>,
     what: &str,
     dimension: Dimension,
 ) -> Result<D> {
@@ -83,12 +89,12 @@ fn non_negative_in<D: Carried>(
 }
 
 /// An efficiency in (0, 1], in the scalar `D` (with its derivative).
-fn efficiency<D: Carried>(cx: &Context, v: &Spanned<f64>, what: &str) -> Result<D> {
-    let x = *v.get_ref();
+fn efficiency<D: Carried>(cx: &Context, v: &Spanned<Number>, what: &str) -> Result<D> {
+    let x: f64 = cx.value(v)?;
     if !(x.is_finite() && x > 0.0 && x <= 1.0) {
         return Err(cx.invalid(v, format!("{what} must be in (0, 1], found {x}")));
     }
-    Ok(D::with_tangent(x, cx.tangent_plain(v)))
+    cx.carry_plain(x, v)
 }
 
 fn joint<'j>(cx: &Context, name: &Name, joints: &'j [Joint], context: &str) -> Result<&'j Joint> {
@@ -161,7 +167,10 @@ pub(crate) fn resolve(
                 let what = format!("`pin_radius` of joint `{}`", j.name);
                 let radius = cx.number(r, &what, Dimension::Length)?;
                 if radius < 0.0 {
-                    return Err(cx.invalid(r, format!("{what} must be ≥ 0, found {}", r.get_ref())));
+                    return Err(cx.invalid(
+                        r,
+                        format!("{what} must be ≥ 0, found {}", cx.value::<f64>(r)?),
+                    ));
                 }
                 Friction::revolute(&j.name, f, radius)
             }
@@ -336,9 +345,9 @@ pub(crate) fn numbers_in<D: Carried>(
     let motor = match s.motor {
         Some(m) => {
             let d = m.get_ref();
-            let ratio = *d.ratio.get_ref();
+            let ratio: f64 = cx.value(&d.ratio)?;
             cx.in_range(
-                &Spanned::new(d.ratio.span(), ratio.abs()),
+                &Spanned::new(d.ratio.span(), Number::Literal(ratio.abs())),
                 "the magnitude of the motor's `ratio`",
                 limits::RATIO,
                 "",
@@ -350,7 +359,7 @@ pub(crate) fn numbers_in<D: Carried>(
                     "the motor's `rotor_inertia`",
                     Dimension::MomentOfInertia,
                 )?,
-                ratio: D::with_tangent(ratio, cx.tangent_plain(&d.ratio)),
+                ratio: cx.carry_plain(ratio, &d.ratio)?,
                 efficiency: match &d.efficiency {
                     Some(e) => efficiency::<D>(cx, e, "the motor's gearbox `efficiency`")?,
                     None => D::constant(1.0),
@@ -404,9 +413,13 @@ fn load<D: Carried>(
         }
     };
     if let Some(a) = &d.active {
-        let [from, to] = *a.get_ref();
+        let [from, to] = a.get_ref();
         let dim = drive.dimension();
-        let end = |v: f64, what: &str| cx.number(&Spanned::new(a.span(), v), what, dim);
+        // Each end is checked at the pair (as `active`), its formula evaluated at its place.
+        let end = |v: &Spanned<Number>, what: &str| {
+            let written = Spanned::new(a.span(), Number::Literal(cx.value(v)?));
+            cx.number(&written, what, dim)
+        };
         load = load.active_between(
             end(from, "the start of `active`")?,
             end(to, "the end of `active`")?,
@@ -468,7 +481,7 @@ fn mass_properties<D: Carried>(
                 at(cx.point_on(&spanned, link, geometry, &format!("`masses.{link}.center`"))?)
             }
             CenterDef::Xy([x, y]) => {
-                let coordinate = |v: &Spanned<f64>, axis: &str| {
+                let coordinate = |v: &Spanned<Number>, axis: &str| {
                     let what = format!("the {axis} coordinate of the centre of link `{link}`");
                     cx.number_in::<D>(v, &what, Dimension::Length)
                 };
