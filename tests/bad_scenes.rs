@@ -432,3 +432,56 @@ fn a_key_missing_for_the_joint_type_says_which_keys_it_takes() {
         ],
     );
 }
+
+/// A formula is read as written and evaluated by the resolver: its error is placed by the
+/// formula's own span — at the unknown name inside the quotes when the message names its
+/// column, else at the opening quote — in any section, with the scene's parameters known.
+#[test]
+fn a_formula_error_points_at_the_formula_line_and_column() {
+    let with_parameters = FOUR_BAR.replacen("[points]", "[parameters]\nl = 0.1\n\n[points]", 1);
+    let cases = [
+        // (written in place of `B = [0.4, 0.3]`, what is located, its message)
+        (
+            "B = [0.4, \"3*l + q\"]",
+            "q\"]",
+            "uses `q` (column 7 of the formula)",
+        ),
+        (
+            "B = [\"4*l\", \"0.3/(l - l)\"]",
+            "\"0.3/(l - l)\"",
+            "division by zero",
+        ),
+        ("B = [\"4*l\", \"sqrt(l\"]", "\"sqrt(l\"", "cannot be read"),
+    ];
+    for (to, at, part) in cases {
+        let text = with_parameters.replacen("B = [0.4, 0.3]", to, 1);
+        let e = scene::parse("bad.toml", &text).unwrap_err();
+        assert!(matches!(e, Error::Syntax { .. }), "{e:?}");
+        // The place, counted here from the text: the line holding `at` and its column
+        // (1-based, ASCII).
+        let offset = text.find(at).unwrap();
+        let line = text[..offset].matches('\n').count() + 1;
+        let column = offset - text[..offset].rfind('\n').map_or(0, |i| i + 1) + 1;
+        let message = e.to_string();
+        assert!(
+            message.starts_with(&format!("bad.toml:{line}:{column}: ")),
+            "expected bad.toml:{line}:{column}: {message}"
+        );
+        assert!(message.contains(part), "`{part}` missing from: {message}");
+    }
+    // The same formula in the dynamics sections (read by their own resolver step).
+    let text = with_parameters.replacen(
+        "[drive]",
+        "[masses]\ncrank = { mass = \"2*m\", center = \"A\" }\n\n[drive]",
+        1,
+    );
+    let e = scene::parse("bad.toml", &text).unwrap_err();
+    let offset = text.find("m\", center").unwrap();
+    let line = text[..offset].matches('\n').count() + 1;
+    let column = offset - text[..offset].rfind('\n').map_or(0, |i| i + 1) + 1;
+    assert!(
+        e.to_string()
+            .starts_with(&format!("bad.toml:{line}:{column}: ")),
+        "expected bad.toml:{line}:{column}: {e}"
+    );
+}

@@ -228,3 +228,42 @@ fn a_point_on_a_line_moves_as_its_distance_equation_differentiated_by_hand() {
         );
     }
 }
+
+/// A point written `["2*l", "l^2"]` moves by d/dl = (2, 2l): the formulas are resolved in
+/// dual numbers with `l` seeded, and the derivative rules of 2·l and l² give 2 and 2·l¹,
+/// each exact in f64 (a doubling), so the comparison is exact. The scene read in f64 places
+/// the point at (2l, l²): 2l is exact, l² is one correctly rounded operation either way
+/// (1 ulp).
+#[test]
+fn a_point_of_formulas_moves_by_their_closed_form_derivatives_exactly() {
+    let l = 0.3f64;
+    let text = format!(
+        r#"[parameters]
+l = {l}
+[points]
+O = [0.0, 0.0]
+A = ["2*l", "l^2"]
+[links]
+ground = ["O"]
+crank = ["O", "A"]
+[joints]
+O = {{ type = "revolute", at = "O", links = ["ground", "crank"] }}
+[drive]
+joint = "O"
+line = ["O", "A"]
+[sweep]
+positions = [0.0]
+[[output]]
+point = "A"
+quantities = ["position"]
+"#
+    );
+    let scene = mechdiff::scene::parse("t.toml", &text).unwrap();
+    let a = point(&scene, "A");
+    assert_eq!(a[0], 2.0 * l);
+    assert!((a[1] - l * l).abs() <= f64::EPSILON * l * l, "{a:?}");
+    let t = tangent(&text, "l");
+    assert_eq!(t.points[index(&scene, "A")], [2.0, 2.0 * l]);
+    assert_eq!(t.points[index(&scene, "O")], [0.0, 0.0]);
+    assert!(t.not_carried.is_empty(), "{:?}", t.not_carried);
+}
