@@ -61,21 +61,8 @@ pub fn mechanism(scene: &Scene) -> Result<Mechanism> {
         .map_err(|source| model_error(scene, source))
 }
 
-/// A core error about the model as a whole, located in the file where it names a joint.
+/// A core error about the model as a whole, located in the file where it names a joint
+/// (see [`super::error_context::ErrorContext::model_error`]).
 pub(crate) fn model_error(scene: &Scene, source: mechdiff_core::Error) -> Error {
-    use mechdiff_core::Error as Core;
-    let joint = match &source {
-        Core::InvalidJoint { joint, .. } | Core::SketchNotAssembled { joint, .. } => Some(joint),
-        _ => None,
-    };
-    match joint.and_then(|j| scene.joints.iter().find(|k| &k.name == j)) {
-        Some(joint) => Error::Invalid {
-            location: joint.location.clone(),
-            message: source.to_string(),
-        },
-        None => Error::Model {
-            file: scene.file.clone(),
-            source,
-        },
-    }
+    scene.error_context().model_error(source)
 }

@@ -41,6 +41,7 @@ pub mod construct;
 mod dimension;
 mod drive;
 pub mod dynamics;
+pub mod error_context;
 pub(crate) mod evaluate;
 pub mod format;
 mod joints;

@@ -348,47 +348,21 @@ impl Scene {
         asked.chain(dead).max().unwrap_or(0)
     }
 
-    /// A drive value (SI) printed with the scene's unit, e.g. `"67.5 deg"`.
+    /// A drive value (SI) printed with the scene's unit, e.g. `"67.5 deg"` (see
+    /// [`super::error_context::ErrorContext::drive_text`]).
     pub fn drive_text(&self, value: f64) -> String {
-        let dimension = self.drive.kind.dimension();
-        format!(
-            "{} {}",
-            Units::tidy(self.units.from_si(value, dimension)),
-            self.units.symbol(dimension)
-        )
+        self.error_context().drive_text(value)
     }
 
-    /// A cam angle (SI) of a cam drive with the follower's position there: `"21.5 deg (the
-    /// cam's follower at 425 mm, joint `guide`)"`; the drive text without a cam.
+    /// A cam angle (SI) of a cam drive with the follower's position there (see
+    /// [`super::error_context::ErrorContext::cam_angle_text`]).
     pub fn cam_angle_text(&self, theta: f64) -> String {
-        let Some(cam) = &self.drive.cam else {
-            return self.drive_text(theta);
-        };
-        let dimension = cam.joint_kind.dimension();
-        format!(
-            "{} (the cam's follower at {} {}, joint `{}`)",
-            self.drive_text(theta),
-            Units::tidy(
-                self.units
-                    .from_si(self.drive.joint_position(theta), dimension)
-            ),
-            self.units.symbol(dimension),
-            self.drive.joint
-        )
+        self.error_context().cam_angle_text(theta)
     }
 
-    /// A position of the driven joint (SI) as the geometry solver sees it: the drive text,
-    /// or for a cam drive the follower's position in its own unit.
+    /// A position (SI) of the driven joint (see
+    /// [`super::error_context::ErrorContext::joint_text`]).
     pub fn joint_text(&self, value: f64) -> String {
-        let Some(cam) = &self.drive.cam else {
-            return self.drive_text(value);
-        };
-        let dimension = cam.joint_kind.dimension();
-        format!(
-            "the cam's follower at {} {} (joint `{}`)",
-            Units::tidy(self.units.from_si(value, dimension)),
-            self.units.symbol(dimension),
-            self.drive.joint
-        )
+        self.error_context().joint_text(value)
     }
 }

@@ -8,7 +8,7 @@ use mechdiff_core::{DeadPosition, DeadPositionSearch};
 
 use crate::error::{Error, Result};
 
-use super::build::{mechanism, model_error};
+use super::build::mechanism;
 use super::evaluate::{Resolved, evaluate};
 use super::model::{DriveKind, Output, Scene};
 use super::outputs::Column;
@@ -409,89 +409,16 @@ pub fn describe_motion_range(scene: &Scene, range: &MotionRange) -> String {
     )
 }
 
-/// A core solver error, with drive positions in the scene's units.
+/// A core solver error, with drive positions in the scene's units (see
+/// [`super::error_context::ErrorContext::solver_error`]).
 pub(crate) fn solver_error(scene: &Scene, source: mechdiff_core::Error) -> Error {
-    located_error(scene, source, &|x| scene.joint_text(x), &|x| {
-        scene.joint_text(x)
-    })
+    scene.error_context().solver_error(source)
 }
 
-/// The error of a move along a cam ([`mechdiff_core::cams::CamJoint::move_tracker`]), whose
-/// drive positions are cam angles: in the scene's angle unit, a limit or singular position
-/// with the follower's position there.
+/// The error of a move along a cam, its drive positions cam angles (see
+/// [`super::error_context::ErrorContext::cam_error`]).
 pub(crate) fn cam_error(scene: &Scene, source: mechdiff_core::Error) -> Error {
-    located_error(
-        scene,
-        source,
-        &|theta| scene.cam_angle_text(theta),
-        &|theta| scene.drive_text(theta),
-    )
-}
-
-/// The scene's error for the solver's `source`, each drive position written by `at` (a
-/// position where something happens) or `between` (the ends of a move).
-fn located_error(
-    scene: &Scene,
-    source: mechdiff_core::Error,
-    at: &dyn Fn(f64) -> String,
-    between: &dyn Fn(f64) -> String,
-) -> Error {
-    use mechdiff_core::Error as Core;
-    let joined = |joints: &[String]| joints.join(", ");
-    match source {
-        Core::Unassemblable {
-            phi,
-            last_assembled,
-            joints,
-            residual,
-        } => Error::Unassemblable {
-            file: scene.file.clone(),
-            position: at(phi),
-            last: between(last_assembled),
-            loop_joints: joined(&joints),
-            residual,
-        },
-        Core::Singular {
-            phi,
-            condition,
-            joints,
-        } => Error::Singular {
-            file: scene.file.clone(),
-            position: at(phi),
-            loop_joints: joined(&joints),
-            condition,
-        },
-        Core::NonFinite { phi, quantity } => Error::NotFinite {
-            file: scene.file.clone(),
-            quantity: quantity.to_owned(),
-            value: "not finite".to_owned(),
-            position: at(phi),
-        },
-        Core::Blocked {
-            from,
-            to,
-            limit,
-            joints,
-        } => Error::Blocked {
-            file: scene.file.clone(),
-            from: between(from).into(),
-            to: between(to).into(),
-            limit: at(limit).into(),
-            loop_joints: joined(&joints).into(),
-        },
-        Core::ChangePoint { phi, joints } => Error::ChangePoint {
-            file: scene.file.clone(),
-            position: at(phi),
-            loop_joints: joined(&joints),
-        },
-        Core::BranchFlip { from, to, joints } => Error::BranchFlip {
-            file: scene.file.clone(),
-            from: between(from),
-            to: between(to),
-            loop_joints: joined(&joints),
-        },
-        other => model_error(scene, other),
-    }
+    scene.error_context().cam_error(source)
 }
 
 #[cfg(test)]
