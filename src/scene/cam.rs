@@ -15,8 +15,10 @@ use mechdiff_core::cams::{
 };
 
 use super::format::UnitsSection;
+use super::parameters::Bindings;
 use super::source::Source;
 use super::units::{Dimension, Units};
+use super::values::Number;
 use crate::error::{Error, Result};
 
 /// The most rows of the SVAJ table over one turn (a `step` of 0.0036° at the least): the
@@ -41,45 +43,26 @@ pub struct CamFile {
 #[serde(deny_unknown_fields)]
 pub struct CamSection {
     /// Base circle radius (length unit).
-    #[serde(deserialize_with = "crate::scene::values::constant_number")]
-    pub base_radius: Spanned<f64>,
+    pub base_radius: Spanned<Number>,
     /// Cam speed (angular velocity unit; default 0: only s, s′, s″, s‴ are printed).
-    #[serde(
-        default,
-        deserialize_with = "crate::scene::values::option_constant_number"
-    )]
-    pub speed: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub speed: Option<Spanned<Number>>,
     /// Cam acceleration (angular acceleration unit; default 0).
-    #[serde(
-        default,
-        deserialize_with = "crate::scene::values::option_constant_number"
-    )]
-    pub acceleration: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub acceleration: Option<Spanned<Number>>,
     /// Table step (angle unit; default 10°).
-    #[serde(
-        default,
-        deserialize_with = "crate::scene::values::option_constant_number"
-    )]
-    pub step: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub step: Option<Spanned<Number>>,
     /// Follower displacement at cam angle 0 (default 0).
-    #[serde(
-        default,
-        deserialize_with = "crate::scene::values::option_constant_number"
-    )]
-    pub start: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub start: Option<Spanned<Number>>,
     /// Size the base circle for this largest pressure angle (angle unit; roller and
     /// knife-edge followers).
-    #[serde(
-        default,
-        deserialize_with = "crate::scene::values::option_constant_number"
-    )]
-    pub pressure_angle_limit: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub pressure_angle_limit: Option<Spanned<Number>>,
     /// Size the base circle for this smallest radius of curvature (length unit; flat face).
-    #[serde(
-        default,
-        deserialize_with = "crate::scene::values::option_constant_number"
-    )]
-    pub min_radius_of_curvature: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub min_radius_of_curvature: Option<Spanned<Number>>,
     /// The follower.
     pub follower: Spanned<FollowerDef>,
     /// The segments, in order from cam angle 0.
@@ -121,29 +104,17 @@ pub struct FollowerDef {
     #[serde(rename = "type")]
     pub kind: Spanned<FollowerKind>,
     /// Offset of a translating follower's axis (length unit; default 0).
-    #[serde(
-        default,
-        deserialize_with = "crate::scene::values::option_constant_number"
-    )]
-    pub offset: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub offset: Option<Spanned<Number>>,
     /// Roller radius (length unit).
-    #[serde(
-        default,
-        deserialize_with = "crate::scene::values::option_constant_number"
-    )]
-    pub radius: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub radius: Option<Spanned<Number>>,
     /// Oscillating: cam centre to pivot (length unit).
-    #[serde(
-        default,
-        deserialize_with = "crate::scene::values::option_constant_number"
-    )]
-    pub pivot_distance: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub pivot_distance: Option<Spanned<Number>>,
     /// Oscillating: pivot to roller centre (length unit).
-    #[serde(
-        default,
-        deserialize_with = "crate::scene::values::option_constant_number"
-    )]
-    pub arm_length: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub arm_length: Option<Spanned<Number>>,
 }
 
 /// One `[[cam.segment]]`.
@@ -155,21 +126,14 @@ pub struct SegmentDef {
     /// A displacement formula of `x` (cam angle, rad) or `u` (0 to 1 over the segment).
     pub formula: Option<Spanned<String>>,
     /// Rise over the segment (length unit; angle unit for an oscillating follower).
-    #[serde(
-        default,
-        deserialize_with = "crate::scene::values::option_constant_number"
-    )]
-    pub rise: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub rise: Option<Spanned<Number>>,
     /// Return (fall) over the segment, positive.
     #[serde(rename = "return")]
-    #[serde(
-        default,
-        deserialize_with = "crate::scene::values::option_constant_number"
-    )]
-    pub fall: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub fall: Option<Spanned<Number>>,
     /// The cam angle the segment spans (angle unit).
-    #[serde(deserialize_with = "crate::scene::values::constant_number")]
-    pub extent: Spanned<f64>,
+    pub extent: Spanned<Number>,
 }
 
 /// A checked cam scene.
@@ -305,6 +269,13 @@ pub fn load(path: &std::path::Path) -> Result<CamScene> {
     parse(&path.display().to_string(), &text)
 }
 
+/// The value of a number of a cam scene as written: a literal, or a constant formula (a cam
+/// scene has no `[parameters]`), its error at its place.
+fn constant(v: &Spanned<Number>, source: &Source) -> Result<f64> {
+    (v.get_ref().value_in(&Bindings::default()))
+        .map_err(|message| source.formula_error(v.span(), &message))
+}
+
 fn resolve(file: CamFile, source: &Source) -> Result<CamScene> {
     let units = super::resolve::units(&file.units);
     let cam = file.cam.get_ref();
@@ -313,8 +284,8 @@ fn resolve(file: CamFile, source: &Source) -> Result<CamScene> {
         location: at(span),
         message,
     };
-    let value = |v: &Spanned<f64>, dimension: Dimension, what: &str| -> Result<f64> {
-        let si = units.to_si(*v.get_ref(), dimension);
+    let value = |v: &Spanned<Number>, dimension: Dimension, what: &str| -> Result<f64> {
+        let si = units.to_si(constant(v, source)?, dimension);
         if si.is_finite() {
             Ok(si)
         } else {
@@ -376,7 +347,7 @@ fn resolve(file: CamFile, source: &Source) -> Result<CamScene> {
         None => 0.0,
     };
     let table_step = match &cam.step {
-        Some(v) => *v.get_ref(),
+        Some(v) => constant(v, source)?,
         None => units.from_si(10f64.to_radians(), Dimension::Angle),
     };
     let step = match &cam.step {
@@ -400,7 +371,7 @@ fn resolve(file: CamFile, source: &Source) -> Result<CamScene> {
                     format!(
                         "step = {} {unit} gives more than {MAX_TABLE_ROWS} rows a turn; the \
                          smallest step is {} {unit}",
-                        Units::tidy(*v.get_ref()),
+                        Units::tidy(constant(v, source)?),
                         Units::tidy(smallest),
                         unit = units.symbol(Dimension::Angle),
                     ),
@@ -423,10 +394,13 @@ fn resolve(file: CamFile, source: &Source) -> Result<CamScene> {
         sizing,
         roller_at: follower_def.radius.as_ref().map(|r| at(r.span())),
         table_step,
-        pressure_angle_limit: cam
-            .pressure_angle_limit
-            .as_ref()
-            .map(|l| (units.to_si(*l.get_ref(), Dimension::Angle), at(l.span()))),
+        pressure_angle_limit: match &cam.pressure_angle_limit {
+            Some(l) => Some((
+                units.to_si(constant(l, source)?, Dimension::Angle),
+                at(l.span()),
+            )),
+            None => None,
+        },
     })
 }
 
@@ -576,15 +550,13 @@ fn segment(
         location: source.location(span),
         message: message.to_owned(),
     };
-    let finite = |v: &Spanned<f64>, dimension: Dimension| -> Result<f64> {
-        let si = units.to_si(*v.get_ref(), dimension);
+    let finite = |v: &Spanned<Number>, dimension: Dimension| -> Result<f64> {
+        let x = constant(v, source)?;
+        let si = units.to_si(x, dimension);
         if si.is_finite() {
             Ok(si)
         } else {
-            Err(invalid(
-                v.span(),
-                &format!("{} is not a finite number", v.get_ref()),
-            ))
+            Err(invalid(v.span(), &format!("{x} is not a finite number")))
         }
     };
     let extent = finite(&d.extent, Dimension::Angle)?;
@@ -593,7 +565,7 @@ fn segment(
             d.extent.span(),
             &format!(
                 "extent must be a positive angle, found {} {}",
-                d.extent.get_ref(),
+                constant(&d.extent, source)?,
                 units.symbol(Dimension::Angle)
             ),
         ));
@@ -660,18 +632,19 @@ fn segment(
 
 fn follower(def: &FollowerDef, units: &Units, source: &Source) -> Result<Follower> {
     let kind = *def.kind.get_ref();
-    let finite = |v: &Spanned<f64>| -> Result<f64> {
-        let si = units.to_si(*v.get_ref(), Dimension::Length);
+    let finite = |v: &Spanned<Number>| -> Result<f64> {
+        let x = constant(v, source)?;
+        let si = units.to_si(x, Dimension::Length);
         if si.is_finite() {
             Ok(si)
         } else {
             Err(Error::Invalid {
                 location: source.location(v.span()),
-                message: format!("{} is not a finite number", v.get_ref()),
+                message: format!("{x} is not a finite number"),
             })
         }
     };
-    let length = |v: &Option<Spanned<f64>>, name: &str| -> Result<f64> {
+    let length = |v: &Option<Spanned<Number>>, name: &str| -> Result<f64> {
         match v {
             Some(v) => finite(v),
             None => Err(Error::Invalid {
@@ -780,12 +753,13 @@ fn sizing_request(
                 ),
             });
         }
-        let radians = units.to_si(*limit.get_ref(), Dimension::Angle);
+        let limit_value = constant(limit, source)?;
+        let radians = units.to_si(limit_value, Dimension::Angle);
         let base = sizing::base_radius_for_pressure_angle(program, follower, radians)
             .map_err(|e| fail(limit.span(), e))?;
         let what = format!(
             "largest pressure angle {} {}",
-            Units::tidy(*limit.get_ref()),
+            Units::tidy(limit_value),
             units.symbol(Dimension::Angle)
         );
         return Ok(Some((base, what)));
@@ -799,12 +773,13 @@ fn sizing_request(
                     .to_owned(),
             });
         }
-        let si = units.to_si(*radius.get_ref(), Dimension::Length);
+        let radius_value = constant(radius, source)?;
+        let si = units.to_si(radius_value, Dimension::Length);
         let base =
             sizing::base_radius_for_flat_face(program, si).map_err(|e| fail(radius.span(), e))?;
         let what = format!(
             "smallest radius of curvature {} {}",
-            Units::tidy(*radius.get_ref()),
+            Units::tidy(radius_value),
             units.symbol(Dimension::Length)
         );
         return Ok(Some((base, what)));

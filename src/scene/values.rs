@@ -300,30 +300,6 @@ fn literals(text: &str) -> impl Iterator<Item = &str> {
     })
 }
 
-/// A number of a file without parameters (a cam scene), evaluated as it is read: a
-/// number or a constant formula ([`constant_formula`]).
-pub fn constant_number<'de, D: Deserializer<'de>>(
-    deserializer: D,
-) -> Result<Spanned<f64>, D::Error> {
-    let n = Spanned::<Number>::deserialize(deserializer)?;
-    let span = n.span();
-    match n.into_inner() {
-        Number::Literal(v) => Ok(Spanned::new(span, v)),
-        Number::Formula(text) => constant_formula(&text)
-            .map(|v| Spanned::new(span, v))
-            .map_err(de::Error::custom),
-    }
-}
-
-/// An optional [`constant_number`] (use with `#[serde(default)]`).
-pub fn option_constant_number<'de, D: Deserializer<'de>>(
-    deserializer: D,
-) -> Result<Option<Spanned<f64>>, D::Error> {
-    #[derive(Deserialize)]
-    struct Constant(#[serde(deserialize_with = "constant_number")] Spanned<f64>);
-    Ok(Option::<Constant>::deserialize(deserializer)?.map(|c| c.0))
-}
-
 fn exactly_two<T, E: de::Error>(list: Spanned<Vec<T>>, what: &str) -> Result<Spanned<[T; 2]>, E> {
     let span = list.span();
     let list = list.into_inner();
