@@ -65,9 +65,11 @@ pub struct SceneFile {
     pub balancing: Option<Spanned<super::balancing::BalancingDef>>,
     /// What the pictures show (see [`super::plot`]).
     pub plot: Option<Spanned<super::plot::PlotDef>>,
-    /// Derivative columns with respect to parameters; read by [`crate::sensitivity`].
+    /// Derivative columns with respect to parameters; read by the sensitivity study
+    /// (`mechdiff::sensitivity`), not by the scene reader.
     pub sensitivity: Option<de::IgnoredAny>,
-    /// ± tolerances of parameters for a tolerance study; read by [`crate::sensitivity`].
+    /// ± tolerances of parameters for a tolerance study; read by the sensitivity study
+    /// (`mechdiff::sensitivity`), not by the scene reader.
     pub tolerances: Option<de::IgnoredAny>,
 }
 

@@ -62,7 +62,7 @@ pub(crate) fn scene(file: &SceneFile, cx: &Context<'_>) -> Result<Scene> {
     let joints = cx.joints(&file.joints, &geometry)?;
     let mut drive = cx.drive(&file.drive, &geometry, &joints)?;
     let outputs = outputs::resolve(cx, &file.outputs, &geometry, &joints, &drive)?;
-    let sections = super::dynamics::DynamicsSections::of(&file);
+    let sections = super::dynamics::DynamicsSections::of(file);
     let dynamics = super::dynamics::resolve(cx, &sections, &geometry, &joints, drive.kind)?;
     let balancing =
         super::balancing::resolve(cx, file.rotor.as_ref(), file.balancing.as_ref(), &geometry)?;
