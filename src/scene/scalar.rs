@@ -1,8 +1,8 @@
 //! The scalar a scene's numbers are resolved in: `f64` (the values) or [`Dual64`] (the values
 //! with their derivative with respect to one seeded parameter).
 //!
-//! The resolver's steps ([`super::resolve::Context::value`], the placement of points, the
-//! constructions, the drive's measure, the dynamics' numbers) are generic over [`Carried`],
+//! The resolver's steps (a number's value, the placement of points, the constructions, the
+//! drive's measure, the dynamics' numbers) are generic over [`Carried`],
 //! so the exact tangent of a scene ([`super::tangent`]) is the same resolver run in
 //! [`Dual64`].
 

@@ -5,14 +5,13 @@
 //!
 //! It is the scene's one resolver run in [`Dual64`]: the parameters are evaluated with the one
 //! differentiated seeded as the independent variable ([`super::parameters::bindings`]), and
-//! the resolver's steps that build the mechanism's numbers ([`super::placement`]:
-//! coordinates, polar points, the constructions of [`super::construct`]; the drive's measure;
-//! the joints' numbers) read each number as written with its derivative
-//! ([`super::resolve::Context::number_in`]); they are the same code in `f64` and in
-//! [`Dual64`], so a point built from lengths carries their derivatives through its
-//! construction exactly. The dynamic sections' numbers the exact dynamics take (`[masses]`,
-//! `[gravity]`, the loads, `[motor]`) are read the same way
-//! ([`super::dynamics::numbers_in`]), a uniform bar's with its moving ends.
+//! the resolver's steps that build the mechanism's numbers (the placement of points:
+//! coordinates, polar points, the constructions of [`super::construct`]; the drive's
+//! measure; the joints' numbers) read each number as written with its derivative; they are
+//! the same code in `f64` and in [`Dual64`], so a point built from lengths carries their
+//! derivatives through its construction exactly. The dynamic sections' numbers the exact
+//! dynamics take (`[masses]`, `[gravity]`, the loads, `[motor]`) are read the same way, a
+//! uniform bar's with its moving ends.
 //!
 //! Every formula whose derivative is not zero and that was read only in `f64` is listed
 //! ([`SceneTangent::not_carried`]): a number the tangent does not carry (a friction
