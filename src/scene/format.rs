@@ -25,8 +25,9 @@ pub type Name = Spanned<String>;
 pub struct SceneFile {
     /// A one-line title printed above the table.
     pub title: Option<String>,
-    /// Named values for formulas; read before the rest (see [`super::parameters`]).
-    pub parameters: Option<de::IgnoredAny>,
+    /// Named values for formulas, as written; evaluated before the rest is resolved (see
+    /// [`super::parameters`]).
+    pub parameters: Option<super::parameters::ParameterTable>,
     /// Units of every number in the file (and of the printed results).
     #[serde(default)]
     pub units: UnitsSection,

@@ -127,8 +127,9 @@ pub fn parse_with(file: &str, text: &str, settings: &[parameters::Setting]) -> R
             ),
         });
     }
-    let bindings = parameters::bindings(text, &source, settings, None)?;
     let raw: format::SceneFile = toml::from_str(text).map_err(|e| source.syntax_error(&e))?;
+    let bindings =
+        parameters::bindings_of(raw.parameters.as_ref(), &raw.units, &source, settings, None)?;
     resolve::resolve(&raw, &source, &bindings)
 }
 

@@ -93,13 +93,14 @@ pub fn bindings(
     settings: &[Setting],
     seed: Option<&str>,
 ) -> Result<Bindings> {
-    let mut bindings = Bindings::new(read(text, source, settings)?);
-    if let Some(seed) = seed {
-        let duals = read_in::<Dual64>(text, source, settings, Some(seed))?;
-        bindings.duals = duals.into_iter().map(|(n, v, _)| (n, v)).collect();
-        bindings.seed = Some(seed.to_owned());
-    }
-    Ok(bindings)
+    let first: ParametersOnly = toml::from_str(text).map_err(|e| source.syntax_error(&e))?;
+    bindings_of(
+        first.parameters.as_ref(),
+        &first.units,
+        source,
+        settings,
+        seed,
+    )
 }
 
 /// A parameter's value as written: a number or a quoted formula, in the unit of the
@@ -293,13 +294,50 @@ fn read_in<D: Carried>(
     seed: Option<&str>,
 ) -> Result<Vec<(String, D, f64)>> {
     let first: ParametersOnly = toml::from_str(text).map_err(|e| source.syntax_error(&e))?;
-    let file_units = super::resolve::units(&first.units);
-    let table = first
-        .parameters
-        .map(Spanned::into_inner)
-        .unwrap_or_default();
+    evaluate_in(
+        first.parameters.as_ref(),
+        &first.units,
+        source,
+        settings,
+        seed,
+    )
+}
+
+/// The context of a scene's formulas from its `[parameters]` and `[units]` as read (the
+/// scene's one reading: see [`bindings`] for the same from the text).
+///
+/// # Errors
+/// As [`read`].
+pub fn bindings_of(
+    parameters: Option<&ParameterTable>,
+    units: &super::format::UnitsSection,
+    source: &Source,
+    settings: &[Setting],
+    seed: Option<&str>,
+) -> Result<Bindings> {
+    let values = evaluate_in::<f64>(parameters, units, source, settings, None)?;
+    let mut bindings = Bindings::new(values.into_iter().map(|(n, v, _)| (n, v)).collect());
+    if let Some(seed) = seed {
+        let duals = evaluate_in::<Dual64>(parameters, units, source, settings, Some(seed))?;
+        bindings.duals = duals.into_iter().map(|(n, v, _)| (n, v)).collect();
+        bindings.seed = Some(seed.to_owned());
+    }
+    Ok(bindings)
+}
+
+/// As [`read_in`], of `[parameters]` (`parameters`) and `[units]` (`units`) as read.
+fn evaluate_in<D: Carried>(
+    parameters: Option<&ParameterTable>,
+    units: &super::format::UnitsSection,
+    source: &Source,
+    settings: &[Setting],
+    seed: Option<&str>,
+) -> Result<Vec<(String, D, f64)>> {
+    let file_units = super::resolve::units(units);
+    let empty = BTreeMap::new();
+    let table = parameters.map_or(&empty, Spanned::get_ref);
     let mut pending: Vec<Pending> = Vec::with_capacity(table.len());
-    for (name, value) in &table {
+    for (name, value) in table {
         let plain = formula_names(name.get_ref()).is_ok_and(|n| n == [name.get_ref().clone()]);
         if !plain || matches!(name.get_ref().as_str(), "pi" | "tau") {
             return Err(Error::Invalid {

@@ -143,8 +143,10 @@ pub fn scene_tangent(
     parameter: &str,
 ) -> Result<SceneTangent> {
     let source = Source::new(file, text);
-    let bindings = parameters::bindings(text, &source, settings, Some(parameter))?;
     let raw: SceneFile = toml::from_str(text).map_err(|e| source.syntax_error(&e))?;
+    let parameters = raw.parameters.as_ref();
+    let bindings =
+        parameters::bindings_of(parameters, &raw.units, &source, settings, Some(parameter))?;
     let cx = Context::new(&source, resolve::units(&raw.units), &bindings);
     // The scene resolved as a run resolves it (every number read and checked, the formulas
     // that move noted), then the mechanism's numbers in Dual64 by the same steps.
