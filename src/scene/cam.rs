@@ -14,8 +14,8 @@ use mechdiff_core::cams::{
     CamMechanism, CamProgram, Follower, Formula, MotionLaw, Segment, sizing,
 };
 
+use super::bindings::Bindings;
 use super::format::UnitsSection;
-use super::parameters::Bindings;
 use super::source::Source;
 use super::units::{Dimension, Units};
 use super::values::Number;

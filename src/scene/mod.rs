@@ -35,6 +35,7 @@
 
 pub mod any;
 pub mod balancing;
+pub mod bindings;
 pub mod build;
 pub mod cam;
 pub mod construct;

@@ -25,60 +25,7 @@ use super::units::{Dimension, Units, unit_factor};
 use super::values::{formula_in, formula_names, parameters_used, parse_formula};
 use mechdiff_core::num_dual::Dual64;
 
-/// The scene's parameters, evaluated: the explicit context a scene's formulas are resolved
-/// in ([`super::values::Number::value_in`]); nothing is evaluated while the file is
-/// deserialised. With a seeded parameter, each value also carries its derivative with
-/// respect to that parameter ([`Bindings::duals`]), so that the resolver run in
-/// [`Dual64`] gives the scene's tangent.
-#[derive(Debug, Clone, Default)]
-pub struct Bindings {
-    /// `(name, value in the file's unit)`, in the order of evaluation.
-    ordered: Vec<(String, f64)>,
-    /// The same values by name.
-    values: HashMap<String, f64>,
-    /// The values as dual numbers: with the derivative with respect to the seeded
-    /// parameter, or 0 without one.
-    duals: HashMap<String, Dual64>,
-    /// The parameter whose derivative the dual values carry.
-    seed: Option<String>,
-}
-
-impl Bindings {
-    /// Parameters with the given values (in the file's units), none seeded.
-    pub fn new(ordered: Vec<(String, f64)>) -> Self {
-        let values = ordered.iter().cloned().collect();
-        let duals = (ordered.iter())
-            .map(|(n, v)| (n.clone(), Dual64::from(*v)))
-            .collect();
-        Bindings {
-            ordered,
-            values,
-            duals,
-            seed: None,
-        }
-    }
-
-    /// The values in the order of evaluation (every parameter after those it uses).
-    pub fn ordered(&self) -> &[(String, f64)] {
-        &self.ordered
-    }
-
-    /// The values by name.
-    pub fn values(&self) -> &HashMap<String, f64> {
-        &self.values
-    }
-
-    /// The values as dual numbers, with their derivative with respect to
-    /// [`Bindings::seed`] (0 without a seed).
-    pub fn duals(&self) -> &HashMap<String, Dual64> {
-        &self.duals
-    }
-
-    /// The parameter whose derivative the dual values carry, if any.
-    pub fn seed(&self) -> Option<&str> {
-        self.seed.as_deref()
-    }
-}
+pub use super::bindings::Bindings;
 
 /// Reads and evaluates the `[parameters]` of `text` (as [`read`]) into the context a scene's
 /// formulas are resolved in; with `seed`, the dual values carry the derivative with respect
@@ -316,13 +263,15 @@ pub fn bindings_of(
     seed: Option<&str>,
 ) -> Result<Bindings> {
     let values = evaluate_in::<f64>(parameters, units, source, settings, None)?;
-    let mut bindings = Bindings::new(values.into_iter().map(|(n, v, _)| (n, v)).collect());
-    if let Some(seed) = seed {
-        let duals = evaluate_in::<Dual64>(parameters, units, source, settings, Some(seed))?;
-        bindings.duals = duals.into_iter().map(|(n, v, _)| (n, v)).collect();
-        bindings.seed = Some(seed.to_owned());
-    }
-    Ok(bindings)
+    let values = values.into_iter().map(|(n, v, _)| (n, v)).collect();
+    Ok(match seed {
+        Some(seed) => {
+            let duals = evaluate_in::<Dual64>(parameters, units, source, settings, Some(seed))?;
+            let duals = duals.into_iter().map(|(n, v, _)| (n, v)).collect();
+            Bindings::seeded(values, duals, seed)
+        }
+        None => Bindings::new(values),
+    })
 }
 
 /// As [`read_in`], of `[parameters]` (`parameters`) and `[units]` (`units`) as read.

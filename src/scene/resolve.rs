@@ -13,12 +13,12 @@ use toml::Spanned;
 
 use crate::error::{Error, Location, Result};
 
+use super::bindings::Bindings;
 use super::drive::nearest_turn;
 use super::format::{self, JointDef, Name, SceneFile};
 use super::limits;
 use super::model::{DriveKind, Joint, JointKind, Link, Point, Scene};
 use super::outputs;
-use super::parameters::Bindings;
 use super::scalar::Carried;
 use super::source::Source;
 use super::units::{Dimension, Units};

@@ -11,7 +11,7 @@ use std::collections::HashMap;
 use mechdiff_core::Scalar;
 use mechdiff_core::num_dual::Dual64;
 
-use super::parameters::Bindings;
+use super::bindings::Bindings;
 
 /// A scalar a scene's numbers are read in: `f64` (no derivative) or [`Dual64`] (the
 /// derivative with respect to one parameter).

@@ -9,8 +9,8 @@ use toml::Spanned;
 
 use crate::error::{Error, Result};
 use crate::scene::Source;
+use crate::scene::bindings::Bindings;
 use crate::scene::outputs::Column;
-use crate::scene::parameters::Bindings;
 use crate::scene::values::Number;
 
 /// The two sections; the rest of the file is skipped.

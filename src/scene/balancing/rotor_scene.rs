@@ -60,7 +60,7 @@ pub fn parse(file: &str, text: &str) -> Result<RotorScene> {
     let raw: RotorFile = toml::from_str(text).map_err(|e| source.syntax_error(&e))?;
     let units = crate::scene::resolve::units(&raw.units);
     // A rotor scene has no `[parameters]`: its formulas are constant.
-    let parameters = crate::scene::parameters::Bindings::default();
+    let parameters = crate::scene::bindings::Bindings::default();
     let cx = Context::new(&source, units, &parameters);
     Ok(RotorScene {
         file: file.to_owned(),
