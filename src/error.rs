@@ -393,6 +393,28 @@ pub enum Error {
         /// The joints of the loop, comma-separated.
         loop_joints: String,
     },
+    /// The solver could not prove the mechanism's motion between two drive positions within
+    /// its bound on checked sub-steps: the positions are far apart (many turns), or the
+    /// sub-steps shrank to nothing because a loop's closure cannot be certified at the
+    /// mechanism's scale (sizes many orders of magnitude apart).
+    #[error(
+        "{file}: the move from drive position {from} to {to} needs more than {steps} checked \
+         steps of at most {longest}; ask for drive positions closer together, or, if they \
+         are close already, check the mechanism's sizes (a loop whose lengths differ by many \
+         orders of magnitude cannot be followed to full precision)"
+    )]
+    MoveTooLong {
+        /// The scene file.
+        file: String,
+        /// The drive position the move started from, with its unit.
+        from: String,
+        /// The drive position asked for, with its unit.
+        to: String,
+        /// The sub-steps allowed per move.
+        steps: usize,
+        /// The longest sub-step, with its unit.
+        longest: String,
+    },
     /// A derivative method returned NaN or an infinite value in the accuracy report, where
     /// it claims a derivative: a silent failure of the method at that drive position.
     #[error(
@@ -514,6 +536,7 @@ impl Error {
             | Error::NotReached { .. }
             | Error::SelfLocking { .. }
             | Error::BranchFlip { .. }
+            | Error::MoveTooLong { .. }
             | Error::FormulaAt { .. } => true,
             Error::AtParameter { source, .. } | Error::Perturbed { source, .. } => {
                 source.is_found_by_solving()

@@ -308,3 +308,28 @@ fn check_of_a_sweep_of_a_third_of_a_trillion_positions_is_prompt() {
         "{to} vs {exact} + {slack}"
     );
 }
+
+/// A move the solver cannot certify within its bound on checked sub-steps is refused while
+/// solving, in the scene's units — not passed by `check` and then refused by `run` as if the
+/// scene were malformed (found by tests/fuzz_scenes.rs: the Whitworth ψ scene with its crank
+/// pivot moved to x = 1e9 m, a 1e9 m crank against a 0.8 m rocker, whose closure cannot be
+/// proven at rounding scale, so the checked steps shrink to nothing).
+#[test]
+fn a_move_the_solver_cannot_certify_is_refused_while_solving_in_the_scene_units() {
+    use mechdiff::scene::{self, any};
+    let path = format!("{}/tests/data/whitworth_psi.toml", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path)
+        .unwrap()
+        .replace("A0 = [0.0, 0.400]", "A0 = [1e9, 0.400]");
+    let any::AnyScene::Linkage(s) = any::read(&path, &text, &[]).unwrap() else {
+        panic!("a linkage scene");
+    };
+    scene::check(&s).unwrap();
+    let e = scene::run(&s).unwrap_err();
+    assert!(
+        matches!(e, mechdiff::Error::MoveTooLong { .. }) && e.is_found_by_solving(),
+        "{e}"
+    );
+    let message = e.to_string();
+    assert!(message.contains(" deg to 0 deg") && message.contains("sizes"), "{message}");
+}

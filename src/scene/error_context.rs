@@ -181,6 +181,18 @@ impl ErrorContext<'_> {
                 to: between(to),
                 loop_joints: joined(&joints),
             },
+            Core::MoveTooLong {
+                from,
+                to,
+                steps,
+                longest,
+            } => Error::MoveTooLong {
+                file,
+                from: between(from),
+                to: between(to),
+                steps,
+                longest: between(longest),
+            },
             other => self.model_error(other),
         }
     }
