@@ -23,6 +23,7 @@ pub mod point;
 pub mod position;
 pub mod scalar;
 pub mod symbolic;
+pub mod trace;
 
 pub use dead_position::{DeadPosition, DeadPositionSearch};
 pub use error::{Error, Result};

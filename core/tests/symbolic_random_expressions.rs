@@ -10,8 +10,8 @@
 //! few ulp of the largest term (1e3 × 1e-16 × ~100 terms) are allowed — far below any error
 //! of a wrong rule, which shows up at O(1).
 
-use mechdiff_core::geometry::trace::{JitProgram, Program};
 use mechdiff_core::symbolic::{Graph, Id};
+use mechdiff_core::trace::{JitProgram, Program};
 use num_dual::{Dual3_64, HyperDual64};
 use proptest::prelude::*;
 

@@ -9,8 +9,8 @@
 
 mod block_lu;
 pub mod branch;
-mod closed_form;
-mod constraints;
+pub(crate) mod closed_form;
+pub(crate) mod constraints;
 mod datum;
 mod frames;
 pub mod implicit;
@@ -18,10 +18,9 @@ mod kinematics;
 pub(crate) mod length;
 mod mobility;
 mod model;
-mod output;
+pub(crate) mod output;
 pub mod parametric;
 pub(crate) mod solver;
-pub mod trace;
 mod validate;
 
 pub use constraints::Equations;

@@ -2,7 +2,7 @@
 //! [`Program`] at each drive position, each step between two positions accepted only when
 //! the solver itself would accept it at once.
 //!
-//! The solver's closed-form path ([`super::super::Tracker::move_to`]) accepts a step when
+//! The solver's closed-form path ([`crate::geometry::Tracker::move_to`]) accepts a step when
 //! every loop's guard holds at its end and every loop's margin (the discriminant or slope
 //! of the guard, scaled to 1 in the sketch, with its first two derivatives in φ) is shown
 //! positive over the whole step by the Hermite test of `solver::interval`, steps capped at
@@ -61,7 +61,8 @@ struct Loop {
 /// The run-time evaluator walking a sweep (see the module documentation).
 ///
 /// ```
-/// use mechdiff_core::geometry::{Drive, Mechanism, Solver, trace};
+/// use mechdiff_core::geometry::{Drive, Mechanism, Solver};
+/// use mechdiff_core::trace;
 /// let m = Mechanism::builder()
 ///     .point("O", [0.0, 0.0]).point("A", [2.0, 0.0])
 ///     .ground(["O"]).link("crank", ["O", "A"])
