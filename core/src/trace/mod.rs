@@ -32,6 +32,7 @@
 //! assemble ([`crate::Error::Unassemblable`]): [`GuardKind::verdict`] decides this from the
 //! two values exactly as the solver's closed form does.
 
+#[cfg(feature = "jit")]
 mod jit;
 mod mixed;
 mod newton;
@@ -39,6 +40,8 @@ mod program;
 mod scalar;
 mod tracker;
 
+#[cfg(feature = "jit")]
+#[cfg_attr(docsrs, doc(cfg(feature = "jit")))]
 pub use jit::JitProgram;
 pub use mixed::MixedTracker;
 pub use newton::{NewtonBlock, coordinate_symbol};

@@ -13,7 +13,9 @@
 //! the step, locates the end of the branch, and reports — so every error and every
 //! position the evaluator cannot prove is the solver's own answer.
 
-use super::{DRIVE, GuardKind, JitProgram, PositionGraph, Program};
+#[cfg(feature = "jit")]
+use super::JitProgram;
+use super::{DRIVE, GuardKind, PositionGraph, Program};
 use crate::Error;
 use crate::geometry::Tracker;
 use crate::geometry::closed_form::amplification;
@@ -26,8 +28,10 @@ use num_dual::Dual2_64;
 pub enum Backend {
     /// The interpreter ([`Program`]): ready as soon as compiled to instructions.
     Interpreter,
-    /// Native code ([`JitProgram`]): costs a compilation by cranelift once, then each
-    /// evaluation less (BENCHMARKS.md); the interpreter where the host has no JIT.
+    /// Native code (`JitProgram`, feature `jit`): costs a compilation by cranelift once,
+    /// then each evaluation less (BENCHMARKS.md); the interpreter where the host has no JIT
+    /// or mechdiff-core is built without the feature (see
+    /// [`ProgramTracker::jit_unavailable`]).
     Jit,
 }
 
@@ -38,6 +42,7 @@ enum Code {
         program: Program,
         registers: Vec<f64>,
     },
+    #[cfg(feature = "jit")]
     Compiled(JitProgram),
 }
 
@@ -45,6 +50,7 @@ impl Code {
     fn evaluate(&mut self, phi: f64, out: &mut [f64]) {
         match self {
             Code::Interpreted { program, registers } => program.evaluate(phi, registers, out),
+            #[cfg(feature = "jit")]
             Code::Compiled(jit) => jit.evaluate(phi, out),
         }
     }
@@ -147,6 +153,17 @@ impl ProgramTracker {
                 },
                 None,
             ),
+            #[cfg(not(feature = "jit"))]
+            Backend::Jit => (
+                Code::Interpreted {
+                    registers: program.registers(),
+                    program,
+                },
+                Some(Error::JitUnavailable {
+                    reason: "mechdiff-core is built without its `jit` feature".to_owned(),
+                }),
+            ),
+            #[cfg(feature = "jit")]
             Backend::Jit => match JitProgram::compile(&program) {
                 Ok(jit) => (Code::Compiled(jit), None),
                 Err(e) => (
@@ -205,6 +222,7 @@ impl ProgramTracker {
     pub fn backend(&self) -> Backend {
         match self.code {
             Code::Interpreted { .. } => Backend::Interpreter,
+            #[cfg(feature = "jit")]
             Code::Compiled(_) => Backend::Jit,
         }
     }
