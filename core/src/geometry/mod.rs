@@ -9,6 +9,7 @@
 
 mod block_lu;
 pub mod branch;
+mod builder;
 pub(crate) mod closed_form;
 pub(crate) mod constraints;
 mod datum;
@@ -23,13 +24,13 @@ pub mod parametric;
 pub(crate) mod solver;
 mod validate;
 
+pub use builder::MechanismBuilder;
 pub use constraints::Equations;
 pub use kinematics::Kinematics;
 pub use length::extent;
 pub use mobility::{Mobility, check_mobility};
 pub use model::{
-    Drive, DriveKind, GROUND, Inertia, Joint, JointKind, Link, Mechanism, MechanismBuilder, Point,
-    uniform_bar_of,
+    Drive, DriveKind, GROUND, Inertia, Joint, JointKind, Link, Mechanism, Point, uniform_bar_of,
 };
 pub use output::{PointOutput, ScalarOutput};
 pub use parametric::{DataTangent, Parametric, ParametricPoint, ParametricScalar, PoseTangent};

@@ -78,8 +78,8 @@ impl fmt::Display for OperationCount {
 }
 
 impl Graph {
-    /// The operations of the code [`Graph::emit_body`] writes for `outputs`: each needed
-    /// node once, `sin` and `cos` of one argument as one `sin_cos` call.
+    /// The operations of the code `Graph::emit_body` (feature `emit`) writes for `outputs`:
+    /// each needed node once, `sin` and `cos` of one argument as one `sin_cos` call.
     pub fn operation_count(&self, outputs: &[Id]) -> OperationCount {
         let (reachable, _) = use_counts(self, outputs);
         let pairs = sin_cos_pairs(self, &reachable);
