@@ -59,6 +59,7 @@ type Function = unsafe extern "C" fn(phi: f64, out: *mut f64);
 /// }
 /// ```
 #[derive(Clone)]
+#[cfg_attr(docsrs, doc(cfg(feature = "jit")))]
 pub struct JitProgram {
     code: Arc<Code>,
     outputs: usize,
