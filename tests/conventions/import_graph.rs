@@ -25,7 +25,8 @@
 //! gives exactly; paths inside function bodies and macro invocations are found in the
 //! token stream of each item. Limits (none occur in this workspace, and the loader reports
 //! a missing file): `#[path]` attributes on `mod` are not followed; a name brought in by a
-//! glob of an external crate is taken as external.
+//! glob of an external crate is taken as external. A method call (`x.f()`) names no path:
+//! the edge is the one to the module of `x`'s type, where the code names that type.
 //!
 //! **Circles** are the strongly connected components of the graph with more than one
 //! module (Tarjan's algorithm).
