@@ -33,8 +33,8 @@ use criterion::{
 use mechdiff::codegen::scene::SceneCode;
 use mechdiff::evaluator::Evaluator;
 use mechdiff::scene::{Plan, Scene, Sweeper, build};
-use mechdiff_core::geometry::trace::JitProgram;
 use mechdiff_core::method::{Differentiator, Dual2};
+use mechdiff_core::trace::JitProgram;
 use mechdiff_mechanisms::Whitworth;
 use mechdiff_mechanisms::whitworth::hand;
 use std::hint::black_box;

@@ -104,7 +104,7 @@ fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
     let psi_code = mechdiff::codegen::scene::SceneCode::of(&psi_scene)?;
     let program = psi_code.program(&psi_scene)?;
     let (mut registers, mut out) = (program.registers(), vec![0.0; program.outputs()]);
-    let jit = mechdiff::core::geometry::trace::JitProgram::compile(&program)?;
+    let jit = mechdiff::core::trace::JitProgram::compile(&program)?;
     let mut acc = 0.0;
     for _ in 0..reps {
         acc += match which.as_str() {

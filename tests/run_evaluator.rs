@@ -7,7 +7,7 @@ use std::path::Path;
 use mechdiff::evaluator::{Evaluator, LoopPath};
 use mechdiff::scene::{self, Report, Scene};
 use mechdiff::{Error, Result};
-use mechdiff_core::geometry::trace::Backend;
+use mechdiff_core::trace::Backend;
 
 mod common;
 use common::{mechdiff, stderr, stdout, temp_file};

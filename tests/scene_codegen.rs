@@ -11,7 +11,7 @@ use std::path::Path;
 use mechdiff::codegen::scene::{SceneCode, guard_error, module};
 use mechdiff::error::Error;
 use mechdiff::scene::{self, run::run};
-use mechdiff_core::geometry::trace::GuardFailure;
+use mechdiff_core::trace::GuardFailure;
 
 /// A generated `pose`, rows as vectors, a failure as (loop, "unassemblable"/"singular").
 type Pose = fn(f64) -> Result<Vec<Vec<f64>>, (usize, &'static str)>;
@@ -460,8 +460,7 @@ fn run_time_evaluator_of_mixed_plans_agrees_with_the_generated_code() {
             .unwrap();
         let values: Vec<_> = code.jets.iter().flatten().copied().collect();
         let mut program =
-            mechdiff_core::geometry::trace::MixedTracker::new(&solver, &code.position, &values)
-                .unwrap();
+            mechdiff_core::trace::MixedTracker::new(&solver, &code.position, &values).unwrap();
         let report = run(&scene).unwrap();
         let phis: Vec<f64> = report.rows.iter().map(|row| row[0]).collect();
         for (&phi, generated) in phis.iter().zip(walk(&phis)) {

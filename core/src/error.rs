@@ -487,14 +487,15 @@ pub enum Error {
         reason: String,
     },
     /// The run-time evaluator cannot be compiled to native code here (`JitProgram`): the
-    /// host's instruction set is not one cranelift generates code for, or code generation
-    /// failed. The interpreter (`Program`) computes the same values.
+    /// host's instruction set is not one cranelift generates code for, code generation
+    /// failed, or mechdiff-core is built without its `jit` feature. The interpreter
+    /// (`Program`) computes the same values.
     #[error(
         "the run-time evaluator cannot be compiled to native code: {reason} (interpret it \
          instead)"
     )]
     JitUnavailable {
-        /// What cranelift said.
+        /// What cranelift said (or that the feature is off).
         reason: String,
     },
 }

@@ -8,7 +8,18 @@
 //! [`DeadPositionSearch`] finds where a coefficient changes sign. [`geometry`] derives, solves
 //! and differentiates the equations of a mechanism given only as points, links, joints and a
 //! drive.
+//!
+//! # Features
+//!
+//! The heavy parts are off by default, so that a user of the derivatives, the solver and
+//! dynamics compiles num-dual, nalgebra and thiserror only:
+//! - `jit`: the run-time evaluator compiled to native code (`trace::JitProgram`, cranelift);
+//! - `emit`: expressions emitted as Rust tokens and formatted source (`symbolic::emit`: syn,
+//!   quote, prettyplease), for the proc-macros and code generation;
+//! - `big-float`: evaluation in arbitrary precision (`symbolic::bigfloat`, astro-float), the
+//!   references accuracy is measured against.
 #![warn(missing_docs)]
+#![cfg_attr(docsrs, feature(doc_cfg))]
 
 pub mod balancing;
 pub mod cams;
@@ -23,6 +34,7 @@ pub mod point;
 pub mod position;
 pub mod scalar;
 pub mod symbolic;
+pub mod trace;
 
 pub use dead_position::{DeadPosition, DeadPositionSearch};
 pub use error::{Error, Result};

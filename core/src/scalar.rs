@@ -3,7 +3,7 @@
 //! A position function is written once, generic over `D: Scalar`; it is then evaluated with
 //! `f64` for positions, or with a num-dual number to get exact derivatives.
 
-use crate::geometry::trace::Traced;
+use crate::trace::Traced;
 use num_dual::DualNum;
 use std::any::Any;
 use std::f64::consts::{FRAC_PI_2, PI};

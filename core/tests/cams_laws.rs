@@ -6,8 +6,11 @@
 
 use std::f64::consts::PI;
 
-use mechdiff_core::cams::{MotionLaw, Side};
-use mechdiff_core::symbolic::Graph;
+use mechdiff_core::cams::MotionLaw;
+// The 256-bit reference (feature `big-float`).
+#[cfg(feature = "big-float")]
+use mechdiff_core::{cams::Side, symbolic::Graph};
+#[cfg(feature = "big-float")]
 use num_dual::Dual3_64;
 
 /// The peak coefficients C_v = max|f′|, C_a = max|f″|, C_j = max|f‴| of each law in closed
@@ -105,10 +108,12 @@ fn peak_coefficients_match_closed_forms_and_textbooks() {
     }
 }
 
+#[cfg(feature = "big-float")]
 const PI_DIGITS: &str = "3.14159265358979323846264338327950288419716939937510582097494459";
 
 /// Each law's pieces as infix formulas of u (the module documentation's formulas, written
 /// out again), with the interval of each piece.
+#[cfg(feature = "big-float")]
 fn pieces(law: MotionLaw) -> Vec<(f64, f64, &'static str)> {
     match law {
         MotionLaw::Dwell => vec![(0.0, 1.0, "0*u")],
@@ -157,6 +162,7 @@ fn pieces(law: MotionLaw) -> Vec<(f64, f64, &'static str)> {
 /// both are exact methods, the duals in f64 with its roundings. The largest error found is
 /// printed.
 #[test]
+#[cfg(feature = "big-float")]
 fn derivatives_agree_with_a_256_bit_evaluation() {
     let mut worst = 0.0f64;
     for &law in MotionLaw::ALL {

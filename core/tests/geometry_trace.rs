@@ -1,7 +1,8 @@
-//! Tracing a mechanism's closed forms into the symbolic engine (`geometry::trace`).
+//! Tracing a mechanism's closed forms into the symbolic engine (`trace`).
 
 use mechdiff_core::Error;
-use mechdiff_core::geometry::{Drive, Mechanism, Solver, trace};
+use mechdiff_core::geometry::{Drive, Mechanism, Solver};
+use mechdiff_core::trace;
 
 fn crank() -> Mechanism {
     Mechanism::builder()

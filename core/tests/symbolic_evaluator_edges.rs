@@ -1,6 +1,8 @@
 //! Issue 13, the symbolic evaluator's findings: atan2 on the y axis, hypot of huge arguments,
 //! infinite derivatives at a domain's edge and 0/0 — each either right (checked against the
 //! symbolic derivatives evaluated at 256 bits) or a typed error, never a silent NaN.
+// Its references are evaluated at 256 bits (feature `big-float`).
+#![cfg(feature = "big-float")]
 
 use mechdiff_core::Error;
 use mechdiff_core::num_dual::{Dual3_64, Dual64};

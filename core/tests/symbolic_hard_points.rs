@@ -154,16 +154,19 @@ fn engine_jet(formula: &str, u: f64) -> [f64; 4] {
 /// (never its derivative formulas), so truncation errs by ~h² = 1e-120 relative to the
 /// ratio of neighbouring derivatives and rounding by ~2^-1024 / h³ = 1e-128 relative to
 /// |f / f‴|: both far below f64's 1e-16 for every case here but tanh far out.
+#[cfg(feature = "big-float")]
 const REFERENCE_BITS: usize = 1024;
 
 /// Bits for tanh: at u = 1000 its derivatives are ~e^-2000 = 1e-869 of its value 1, so the
 /// differences of values must resolve 1e-869 · h · 1e-16 ≈ 1e-945 of it: 3140 bits; 4096
 /// bits (1e-1233) leave a margin of 1e-288.
+#[cfg(feature = "big-float")]
 const TANH_REFERENCE_BITS: usize = 4096;
 
 /// f, f′, f″, f‴ of `formula` (in `u`, a letter no primitive's name holds) at `u` from
 /// central differences in [`REFERENCE_BITS`] bits: (f₁ − f₋₁)/2h, (f₁ − 2f₀ + f₋₁)/h²,
 /// (f₂ − 2f₁ + 2f₋₁ − f₋₂)/2h³ with f_k = f(u + k h).
+#[cfg(feature = "big-float")]
 fn reference_jet(formula: &str, u: f64) -> [f64; 4] {
     let bits = if formula.contains("tanh") {
         TANH_REFERENCE_BITS
@@ -214,6 +217,7 @@ fn reference_jet(formula: &str, u: f64) -> [f64; 4] {
 
 /// Below this a derivative has left f64's normal range: the engine must give a finite
 /// number as small (it underflows gracefully), not a relative accuracy.
+#[cfg(feature = "big-float")]
 const UNDERFLOW: f64 = 1e-290;
 
 /// Every primitive's derivative formulas, orders 0 to 3, at large arguments (|u| = 1e3 where
@@ -229,6 +233,7 @@ const UNDERFLOW: f64 = 1e-290;
 /// ~1e-14; 1e-13 leaves a factor ~10, while a formula that overflows, cancels or is wrong
 /// errs at O(1) or gives NaN (1/cosh²'s derivatives at |u| = 800 gave NaN).
 #[test]
+#[cfg(feature = "big-float")]
 fn every_primitive_derivative_matches_a_high_precision_reference_far_out() {
     let small = 2f64.powi(-10);
     let edge = 1.0 - small;

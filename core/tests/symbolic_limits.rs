@@ -2,11 +2,14 @@
 //! derivative order and graph size are bounded with errors, named constants are exact.
 
 use mechdiff_core::Error;
+#[cfg(feature = "big-float")]
+use mechdiff_core::symbolic::BigReal;
+use mechdiff_core::symbolic::Graph;
 use mechdiff_core::symbolic::rules::{MAX_DERIVATIVE_ORDER, MAX_NODES};
-use mechdiff_core::symbolic::{BigReal, Graph};
 
 /// Nodes stored, characters of emitted code and of its longest statement for the sum of
 /// `n` distinct terms `sin(k·x)`, differentiated twice.
+#[cfg(feature = "emit")]
 fn cost_of_sum(n: usize) -> (usize, usize, usize) {
     let formula: Vec<String> = (1..=n).map(|k| format!("sin({k}*x)")).collect();
     let mut graph = Graph::new();
@@ -30,6 +33,7 @@ fn cost_of_sum(n: usize) -> (usize, usize, usize) {
 }
 
 #[test]
+#[cfg(feature = "emit")]
 fn a_sum_of_distinct_terms_costs_linear_memory() {
     // doubling the terms doubles the nodes and the code (before the fix, emission kept
     // every partial sum's tokens: quadratic). 2.1: linear plus the few shared nodes.
@@ -84,6 +88,7 @@ fn derivative_order_and_graph_size_are_bounded() {
 }
 
 #[test]
+#[cfg(feature = "big-float")]
 fn pi_is_pi_in_f64_and_in_256_bit_evaluation() {
     let mut graph = Graph::new();
     let pi = graph.parse_infix("pi").unwrap();

@@ -10,8 +10,9 @@
 //! few ulp of the largest term (1e3 × 1e-16 × ~100 terms) are allowed — far below any error
 //! of a wrong rule, which shows up at O(1).
 
-use mechdiff_core::geometry::trace::{JitProgram, Program};
 use mechdiff_core::symbolic::{Graph, Id};
+#[cfg(feature = "jit")]
+use mechdiff_core::trace::{JitProgram, Program};
 use num_dual::{Dual3_64, HyperDual64};
 use proptest::prelude::*;
 
@@ -152,6 +153,7 @@ proptest! {
     }
 }
 
+#[cfg(feature = "jit")]
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(48))]
 

@@ -9,6 +9,8 @@
 //! 1e-29. Where a reference value is below 1e-25 in magnitude (ψ′ and x_C′ at the dead
 //! positions are ~1e-41, i.e. zero up to the rounding of φ) the comparison is absolute,
 //! |value − reference| ≤ 1e-25.
+// The engine is evaluated at 256 bits (feature `big-float`).
+#![cfg(feature = "big-float")]
 
 use mechdiff_core::symbolic::{BigReal, Graph};
 use serde_json::Value;

@@ -67,6 +67,7 @@ fn limits_at_the_point_match_the_closed_form_series() {
 /// derivative formulas — and no further: this is the known loss of digits beside a
 /// removable singularity, which the limit at the point does not remove.
 #[test]
+#[cfg(feature = "big-float")]
 fn near_the_point_errors_stay_within_the_cancellation_bound() {
     for (text, x0, _) in CASES {
         let m = if text.ends_with("x^2") { 2 } else { 1 };

@@ -1,6 +1,6 @@
 //! The symbolic run-time evaluator as a method of the accuracy report: the scene's closed
 //! forms traced into the symbolic engine, differentiated to the third order, compiled into
-//! the instruction list of [`mechdiff_core::geometry::trace::Program`] (what
+//! the instruction list of [`mechdiff_core::trace::Program`] (what
 //! `mechdiff codegen` builds, [`SceneCode`]) and evaluated per drive position in `f64`.
 //!
 //! The traced angles lie on the sketch's turn; they are compared on the reference's turn

@@ -1,7 +1,7 @@
 //! `mechdiff codegen <scene.toml>`: a scene's position solution as generated code.
 //!
 //! The scene is built and tracked as `mechdiff run` does; its loops' closed forms and its
-//! outputs are traced into one expression graph ([`mechdiff_core::geometry::trace`]),
+//! outputs are traced into one expression graph ([`mechdiff_core::trace`]),
 //! differentiated to the order the scene's plan needs (at least 2: ψ, ψ′, ψ″), and
 //! either emitted as a Rust module ([`module`]: no dependency, drop it into any crate) or
 //! compiled for the run-time evaluator ([`SceneCode::program`]).
@@ -16,9 +16,9 @@
 //! (`Tracker::new()`, `tracker.pose(phi)`): it keeps the Newton loops' state between calls
 //! and solves them as the solver does (see `mixed`).
 
-use mechdiff_core::geometry::trace::{self, GuardKind, PositionGraph, Program};
 use mechdiff_core::geometry::{Mechanism, Solver};
 use mechdiff_core::symbolic::{Id, format_rust};
+use mechdiff_core::trace::{self, GuardKind, PositionGraph, Program};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 use std::path::Path;
@@ -118,7 +118,7 @@ impl SceneCode {
     ///
     /// # Errors
     /// [`Error::Codegen`] if the graph has a symbol other than φ: a mixed plan's coordinate
-    /// symbols (run it with [`mechdiff_core::geometry::trace::MixedTracker`]), else a bug.
+    /// symbols (run it with [`mechdiff_core::trace::MixedTracker`]), else a bug.
     pub fn program(&self, scene: &Scene) -> Result<Program> {
         Program::compile(&self.position.graph, &self.roots(), trace::DRIVE).map_err(|source| {
             Error::Codegen {

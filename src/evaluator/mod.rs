@@ -2,14 +2,14 @@
 //! run-time evaluator of the scene's traced closed forms (`--evaluator`).
 //!
 //! A scene's whole position solution — every output with its derivatives, every loop's
-//! guard — is one expression graph ([`mechdiff_core::geometry::trace`]), the very graph
+//! guard — is one expression graph ([`mechdiff_core::trace`]), the very graph
 //! `mechdiff codegen` emits as Rust; a loop without a closed form is a Newton block of it,
 //! solved by Newton inside the evaluator as the solver solves it
-//! ([`mechdiff_core::geometry::trace::MixedTracker`]; plan line: `Newton in program`).
-//! Compiled into an instruction list ([`mechdiff_core::geometry::trace::Program`]), it is
+//! ([`mechdiff_core::trace::MixedTracker`]; plan line: `Newton in program`).
+//! Compiled into an instruction list ([`mechdiff_core::trace::Program`]), it is
 //! evaluated at each drive position without the solver's dual numbers and implicit
 //! differentiation. Each step between two positions is accepted only as the solver would
-//! accept it at once ([`mechdiff_core::geometry::trace::ProgramTracker`]); a step the
+//! accept it at once ([`mechdiff_core::trace::ProgramTracker`]); a step the
 //! evaluator cannot prove (a toggle, a limit position, a branch's end, a margin too close
 //! to zero to prove) is taken by the solver, which reports it exactly as in a solver run.
 //! The results agree with the solver's to rounding (1e-13 relative, tested on every scene
@@ -17,9 +17,9 @@
 //!
 //! **Interpreter or native code.** The program runs on one of two back ends that compute the
 //! same values bit for bit (tested on every scene of `scenes/`, on random formulas and on
-//! the guards' errors): the interpreter ([`mechdiff_core::geometry::trace::Program`]) or
+//! the guards' errors): the interpreter ([`mechdiff_core::trace::Program`]) or
 //! the same instruction list compiled to machine code by cranelift
-//! ([`mechdiff_core::geometry::trace::JitProgram`]). Measured in one criterion run of
+//! ([`mechdiff_core::trace::JitProgram`]). Measured in one criterion run of
 //! `benches/scene_codegen.rs` (BENCHMARKS.md, "The run-time evaluator compiled to native
 //! code"): Whitworth's ψ, ψ′, ψ″ cost 1.73× the hand-derived formulas compiled and 2.97×
 //! interpreted (callgrind: 1.75× and 3.38× the hand formulas' instructions, the issue's
@@ -43,7 +43,7 @@ pub(crate) use program::{ProgramPath, solver_loops};
 
 use std::fmt;
 
-use mechdiff_core::geometry::trace::Backend;
+use mechdiff_core::trace::Backend;
 
 /// How a run evaluates positions (`mechdiff run --evaluator`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]

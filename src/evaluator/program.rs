@@ -2,7 +2,7 @@
 //! once, then one program evaluation per drive position.
 
 use mechdiff_core::geometry::Tracker;
-use mechdiff_core::geometry::trace::{Backend, MixedTracker, ProgramTracker};
+use mechdiff_core::trace::{Backend, MixedTracker, ProgramTracker};
 
 use super::{Evaluator, JIT_FROM_POSITIONS, LoopPath, LoopPlan};
 use crate::codegen::scene::SceneCode;

@@ -32,7 +32,7 @@ pub struct Plan {
     /// ([`super::Sweeper::loops`]); empty before.
     pub loops: Vec<crate::evaluator::LoopPlan>,
     /// The run-time evaluator's back end, when it evaluates the sweep (set with `loops`).
-    pub backend: Option<mechdiff_core::geometry::trace::Backend>,
+    pub backend: Option<mechdiff_core::trace::Backend>,
 }
 
 impl Plan {

@@ -7,7 +7,7 @@ use mechdiff_core::geometry::{Kinematics, Mechanism, Tracker};
 
 use crate::error::{Error, Result};
 use crate::evaluator::{LoopPlan, ProgramPath, solver_loops};
-use mechdiff_core::geometry::trace::Backend;
+use mechdiff_core::trace::Backend;
 
 use super::evaluate::{Resolved, evaluate, from_code, quantity};
 use super::model::Scene;

@@ -4,10 +4,10 @@
 //! which gives the drive torque a second way.
 
 use super::inertia::Mass;
-use super::kinetostatics::JointReaction;
 use super::model::{CompiledModel, Data};
 use super::motor::MotorState;
 use super::plan::Effects;
+use super::solution::{JointReaction, PowerBalance};
 use super::state::{self, LinkState, dot, of};
 use super::{gravity, loads};
 use crate::geometry::{JointKind, Mechanism};
@@ -96,54 +96,6 @@ fn reduced<T: Scalar>(masses: &[Mass<T>], d: &[LinkState<T>]) -> (T, T) {
         dj += (m.mass * dot(v, a) + m.moment * s.omega * s.alpha) * 2.0;
     }
     (j, dj)
-}
-
-/// The power balance at one drive position (W); the loss terms are ≤ 0.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PowerBalance<T = f64> {
-    /// Power of the drive: the motor's `M_d ω_d` with a motor, else the drive joint's `M φ̇`.
-    pub drive: T,
-    /// Rate of change of the kinetic energy, `Σ (m a_G·v_G + J θ̈ θ̇)` (+ `J_d ω̇_d ω_d`);
-    /// 0 when inertia is not in the plan.
-    pub kinetic_rate: T,
-    /// Power of the weights.
-    pub gravity: T,
-    /// Power of the external loads.
-    pub loads: T,
-    /// Power lost by friction.
-    pub friction: T,
-    /// Power lost in meshes and in the motor's gearbox.
-    pub efficiency: T,
-    /// The drive torque from the balance, `(dT/dt − P_gravity − P_loads − P_friction −
-    /// P_efficiency)/ω` (the motor's torque with a motor); `None` at rest.
-    pub torque: Option<T>,
-    /// The drive torque from the equilibrium equations (the motor's with a motor).
-    pub kinetostatic_torque: T,
-    /// `drive + gravity + loads + friction + efficiency − kinetic_rate` (0 up to rounding).
-    pub residual: T,
-}
-
-impl PowerBalance {
-    /// The largest magnitude among the power terms (the scale of the residual).
-    pub fn scale(&self) -> f64 {
-        [
-            self.drive,
-            self.kinetic_rate,
-            self.gravity,
-            self.loads,
-            self.friction,
-            self.efficiency,
-        ]
-        .iter()
-        .fold(0.0, |a: f64, v| a.max(v.abs()))
-    }
-}
-
-impl<T: Scalar> PowerBalance<T> {
-    /// Difference of the two drive torques, `None` at rest.
-    pub fn torque_difference(&self) -> Option<T> {
-        self.torque.map(|t| self.kinetostatic_torque - t)
-    }
 }
 
 /// The power balance from the data `data` of `m`, in any scalar; `omega` is the drive speed.

@@ -13,76 +13,17 @@
 //! [`Error::SelfLocking`].
 
 use super::efficiency::CompiledEfficiency;
-use super::energy::PowerBalance;
 use super::equilibrium::Assembly;
 use super::friction::CompiledFriction;
 use super::inertia::{self, InertialLoad};
 use super::model::{CompiledModel, Data};
-use super::motor::MotorState;
 use super::plan::{Effects, Trace};
+use super::solution::Solution;
 use super::state::{self, Generalized, LinkState};
 use super::{gravity, loads};
 use crate::geometry::Kinematics;
 use crate::{DriveState, Error, Jet, Scalar};
 use nalgebra::{DMatrix, DVector};
-
-/// The reaction in one joint.
-///
-/// `force` and `couple` are what link a of the joint (the first link of a revolute or rigid
-/// joint, the guide of a prismatic joint, the slot link of a pin in slot, the pinion's link of
-/// a rack-and-pinion) exerts on link b (the second link, the slider, the pin's link, the rack),
-/// friction included; the force acts at the joint's point (revolute), measuring point
-/// (prismatic) or pin (pin in slot).
-///
-/// Tooth forces: the tangential tooth force of a rack-and-pinion or gear mesh (pressure
-/// angle 0) is included in the reactions of the wheels' bearings (and in their friction
-/// circles) when the meshing members turn on a common link, a frame or one carrier (see the
-/// `teeth` module); otherwise the mesh acts on the wheels as couples only.
-#[derive(Debug, Clone, PartialEq)]
-pub struct JointReaction<T = f64> {
-    /// Joint name.
-    pub joint: String,
-    /// Force on link b (N, global components).
-    pub force: [T; 2],
-    /// Couple on link b (N·m): the prismatic joint's reaction couple, a rigid joint's couple,
-    /// a revolute joint's friction torque, the torque on a gear's second link.
-    pub couple: T,
-    /// Normal force on link b along the guide's normal `n` (prismatic, pin in slot), the
-    /// magnitude `|R|` (revolute; its derivative with respect to a parameter is not defined
-    /// where `R = 0`), the tooth force on the rack along its guide (rack-and-pinion)
-    /// or the torque on the second gear's link (gear) (N or N·m).
-    pub normal: T,
-    /// Friction force on link b along the guide direction `u` (sliding joints, N) or friction
-    /// torque on link b (revolute, N·m); 0 without friction.
-    pub friction: T,
-    /// Power lost in the joint by friction or imperfect efficiency (W, ≤ 0).
-    pub power_loss: T,
-}
-
-/// The equilibrium at one drive position.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Solution {
-    /// Drive position.
-    pub phi: f64,
-    /// Drive state used.
-    pub drive: DriveState,
-    /// The multipliers λ, one per constraint row (joints in order, the drive last).
-    pub multipliers: Vec<f64>,
-    /// Torque (N·m) or force (N) the drive joint must apply, positive in the sense of φ.
-    pub drive_torque: f64,
-    /// The reaction in every joint, in the model's joint order.
-    pub reactions: Vec<JointReaction>,
-    /// The motor, if the model has one and the plan includes it.
-    pub motor: Option<MotorState>,
-    /// Inertial loads of the links with mass (empty when inertia is not evaluated).
-    pub inertial: Vec<InertialLoad>,
-    /// The power balance of this solution.
-    pub balance: PowerBalance,
-    /// Solves of the equilibrium system (1 without friction and efficiency).
-    pub iterations: usize,
-    /// What was evaluated.
-    pub trace: Trace,
-}
 
 /// Solves the equilibrium at the pose of `k` for drive state `drive`, with `effects`.
 pub fn solve(

@@ -60,22 +60,23 @@ pub mod motor;
 pub mod plan;
 pub mod run;
 pub mod shaking;
+mod solution;
 pub(crate) mod state;
 pub mod tangent;
 mod teeth;
 
 pub use efficiency::{Driving, Efficiency};
+pub use energy::Energy;
 pub use energy::energy;
-pub use energy::{Energy, PowerBalance};
 pub use friction::Friction;
 pub use gravity::Gravity;
 pub use inertia::InertialLoad;
-pub use kinetostatics::{JointReaction, Solution};
 pub use loads::{Load, LoadKind};
 pub use model::{CompiledModel, Dynamics};
 pub use motor::{Motor, MotorState};
 pub use plan::{Effects, Plan, Request, Trace};
 pub use shaking::{Extreme, ShakingForce, ShakingSummary, shaking_force};
+pub use solution::{JointReaction, PowerBalance, Solution};
 pub use state::LinkState;
 pub use tangent::{
     EffectsTangent, ModelTangent, NotCarried, SolutionTangent, TangentError, carried,

@@ -2,10 +2,11 @@
 //! order asked, and only the dynamic outputs and effects in the plan.
 
 use super::energy::{Energy, energy};
-use super::kinetostatics::{self, Solution};
+use super::kinetostatics;
 use super::model::CompiledModel;
 use super::plan::{Plan, Trace};
 use super::shaking::{ShakingForce, shaking_force};
+use super::solution::Solution;
 use crate::geometry::{Solver, Tracker};
 use crate::{DriveState, Error, Jet};
 

@@ -23,12 +23,13 @@
 use super::energy::{self, Energy};
 use super::equilibrium::ideal_reaction;
 use super::inertia::{InertialLoad, Mass};
-use super::kinetostatics::{self, JointReaction};
+use super::kinetostatics;
 use super::loads::{CompiledLoad, LoadKind};
 use super::model::{CompiledModel, Data, Dynamics};
 use super::motor::{Motor, MotorState};
 use super::plan::{Effects, Trace};
 use super::shaking::{self, ShakingForce};
+use super::solution::JointReaction;
 use super::state::{self, LinkState};
 use super::teeth;
 use super::{PowerBalance, energy::energy_of};

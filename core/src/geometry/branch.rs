@@ -19,6 +19,9 @@
 use super::constraints::Equations;
 use nalgebra::DMatrix;
 
+/// Sweeps allowed to an SVD (a few tens suffice for the small matrices of a mechanism).
+pub(crate) const SVD_ITERATIONS: usize = 10_000;
+
 /// One loop: rows (equations) and the coordinates matched to them.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Loop {
@@ -187,7 +190,7 @@ pub(crate) fn condition(jac: &DMatrix<f64>, l: &Loop, limit: f64) -> f64 {
     if bound <= limit {
         return bound;
     }
-    let Some(svd) = b.try_svd(false, false, f64::EPSILON, super::mobility::SVD_ITERATIONS) else {
+    let Some(svd) = b.try_svd(false, false, f64::EPSILON, SVD_ITERATIONS) else {
         return f64::INFINITY;
     };
     let s = svd.singular_values;

@@ -13,6 +13,7 @@
 //!   equations to coordinates exists) but whose Jacobian is rank deficient is drawn at a
 //!   **singular** pose (a toggle): [`Error::Singular`] at the sketch's drive value.
 
+use super::branch::SVD_ITERATIONS;
 use super::constraints::Equations;
 use super::length::LoopLengths;
 use super::model::{JointKind, Mechanism};
@@ -23,9 +24,6 @@ use nalgebra::DMatrix;
 /// to ~1e-15 relative, so a true dependency gives ~1e-15 and a weak but real constraint
 /// stays well above).
 const RANK_TOLERANCE: f64 = 1e-9;
-
-/// Sweeps allowed to an SVD (a few tens suffice for the small matrices of a mechanism).
-pub(crate) const SVD_ITERATIONS: usize = 10_000;
 
 /// The most pose coordinates (3 per moving link: 1000 moving links) whose Jacobian the
 /// check holds, dense, in memory (72 MB at the limit).

@@ -9,8 +9,9 @@
 
 mod block_lu;
 pub mod branch;
-mod closed_form;
-mod constraints;
+mod builder;
+pub(crate) mod closed_form;
+pub(crate) mod constraints;
 mod datum;
 mod frames;
 pub mod implicit;
@@ -18,19 +19,18 @@ mod kinematics;
 pub(crate) mod length;
 mod mobility;
 mod model;
-mod output;
+pub(crate) mod output;
 pub mod parametric;
 pub(crate) mod solver;
-pub mod trace;
 mod validate;
 
+pub use builder::MechanismBuilder;
 pub use constraints::Equations;
 pub use kinematics::Kinematics;
 pub use length::extent;
 pub use mobility::{Mobility, check_mobility};
 pub use model::{
-    Drive, DriveKind, GROUND, Inertia, Joint, JointKind, Link, Mechanism, MechanismBuilder, Point,
-    uniform_bar_of,
+    Drive, DriveKind, GROUND, Inertia, Joint, JointKind, Link, Mechanism, Point, uniform_bar_of,
 };
 pub use output::{PointOutput, ScalarOutput};
 pub use parametric::{DataTangent, Parametric, ParametricPoint, ParametricScalar, PoseTangent};

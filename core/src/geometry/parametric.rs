@@ -350,7 +350,7 @@ impl<'m> Parametric<'m> {
         let sigma = scaled
             .iter()
             .all(|x| x.is_finite())
-            .then(|| scaled.try_svd(false, false, f64::EPSILON, mobility::SVD_ITERATIONS))
+            .then(|| scaled.try_svd(false, false, f64::EPSILON, super::branch::SVD_ITERATIONS))
             .flatten()
             .map(|svd| svd.singular_values);
         let condition = sigma.map_or(f64::INFINITY, |s| s.max() / s.min());

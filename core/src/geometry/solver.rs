@@ -450,13 +450,13 @@ impl<'m> Tracker<'m> {
             && same(self.residual.as_slice(), other.residual.as_slice(), real)
     }
 
-    /// The loops' closed forms, when every loop has one (see `geometry::trace`).
+    /// The loops' closed forms, when every loop has one (see `trace`).
     pub(crate) fn closed_forms(&self) -> Option<&ClosedForm> {
         self.closed_only.then_some(&self.closed)
     }
 
     /// The loops' closed forms, every loop's (`None` steps are solved by Newton), for a
-    /// trace of a mixed plan (see `geometry::trace`).
+    /// trace of a mixed plan (see `trace`).
     pub(crate) fn closed_form_table(&self) -> &ClosedForm {
         &self.closed
     }

@@ -1,9 +1,8 @@
 //! Validation of a declared model: names, references, lengths, sketch consistency.
 
+use super::builder::{MechanismBuilder, PendingJoint};
 use super::constraints;
-use super::model::{
-    Drive, DriveKind, GROUND, Joint, JointKind, Link, Mechanism, MechanismBuilder, PendingJoint,
-};
+use super::model::{Drive, DriveKind, GROUND, Joint, JointKind, Link, Mechanism};
 use crate::Error;
 use std::collections::HashMap;
 

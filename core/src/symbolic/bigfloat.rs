@@ -208,6 +208,7 @@ impl Arithmetic for BigArithmetic {
     }
 }
 
+#[cfg_attr(docsrs, doc(cfg(feature = "big-float")))]
 impl Graph {
     /// Evaluates `outputs` in `bits` of precision with the symbol values given as decimal
     /// strings (so that `"0.65"` means 0.65, not the nearest `f64`).

@@ -1,9 +1,8 @@
 //! Operation counts of emitted code, with and without common-subexpression elimination.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 use std::fmt;
 
-use super::emit::{sin_cos_pairs, use_counts};
 use super::graph::{Graph, Id, Node};
 use super::ops::{Binary, Unary};
 
@@ -79,8 +78,8 @@ impl fmt::Display for OperationCount {
 }
 
 impl Graph {
-    /// The operations of the code [`Graph::emit_body`] writes for `outputs`: each needed
-    /// node once, `sin` and `cos` of one argument as one `sin_cos` call.
+    /// The operations of the code `Graph::emit_body` (feature `emit`) writes for `outputs`:
+    /// each needed node once, `sin` and `cos` of one argument as one `sin_cos` call.
     pub fn operation_count(&self, outputs: &[Id]) -> OperationCount {
         let (reachable, _) = use_counts(self, outputs);
         let pairs = sin_cos_pairs(self, &reachable);
@@ -124,4 +123,35 @@ impl Graph {
         }
         total
     }
+}
+
+/// How often each reachable node is used by other reachable nodes and by the outputs.
+pub(crate) fn use_counts(graph: &Graph, outputs: &[Id]) -> (Vec<bool>, Vec<usize>) {
+    let reachable = graph.reachable(outputs);
+    let mut uses = vec![0usize; reachable.len()];
+    for (index, node) in graph.nodes().iter().enumerate() {
+        if reachable[index] {
+            for child in node.children() {
+                uses[child.index()] += 1;
+            }
+        }
+    }
+    for output in outputs {
+        uses[output.index()] += 1;
+    }
+    (reachable, uses)
+}
+
+/// For each argument whose `sin` and `cos` are both needed: the ids of the two nodes.
+pub(crate) fn sin_cos_pairs(graph: &Graph, reachable: &[bool]) -> HashMap<Id, (Id, Id)> {
+    let mut pairs = HashMap::new();
+    for (index, node) in graph.nodes().iter().enumerate() {
+        if let (true, Node::Unary(Unary::Sin, u)) = (reachable[index], node)
+            && let Some(cos) = graph.lookup(&Node::Unary(Unary::Cos, *u))
+            && reachable[cos.index()]
+        {
+            pairs.insert(*u, (Id::at(index), cos));
+        }
+    }
+    pairs
 }

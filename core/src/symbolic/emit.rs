@@ -12,6 +12,7 @@ use std::collections::{HashMap, HashSet};
 use proc_macro2::{Ident, Literal, Span, TokenStream, TokenTree};
 use quote::{ToTokens, quote};
 
+use super::count::{sin_cos_pairs, use_counts};
 use super::graph::{Graph, Id, Node};
 use super::ops::{Binary, Unary};
 use crate::error::Error;
@@ -231,37 +232,6 @@ impl Emitter<'_> {
     }
 }
 
-/// How often each reachable node is used by other reachable nodes and by the outputs.
-pub(crate) fn use_counts(graph: &Graph, outputs: &[Id]) -> (Vec<bool>, Vec<usize>) {
-    let reachable = graph.reachable(outputs);
-    let mut uses = vec![0usize; reachable.len()];
-    for (index, node) in graph.nodes().iter().enumerate() {
-        if reachable[index] {
-            for child in node.children() {
-                uses[child.index()] += 1;
-            }
-        }
-    }
-    for output in outputs {
-        uses[output.index()] += 1;
-    }
-    (reachable, uses)
-}
-
-/// For each argument whose `sin` and `cos` are both needed: the ids of the two nodes.
-pub(crate) fn sin_cos_pairs(graph: &Graph, reachable: &[bool]) -> HashMap<Id, (Id, Id)> {
-    let mut pairs = HashMap::new();
-    for (index, node) in graph.nodes().iter().enumerate() {
-        if let (true, Node::Unary(Unary::Sin, u)) = (reachable[index], node)
-            && let Some(cos) = graph.lookup(&Node::Unary(Unary::Cos, *u))
-            && reachable[cos.index()]
-        {
-            pairs.insert(*u, (Id::at(index), cos));
-        }
-    }
-    pairs
-}
-
 /// Straight-line Rust computing some outputs: `let` statements, then one expression per
 /// output (a name, a constant or a symbol).
 #[derive(Clone, Debug)]
@@ -272,6 +242,7 @@ pub struct Emission {
     pub results: Vec<TokenStream>,
 }
 
+#[cfg_attr(docsrs, doc(cfg(feature = "emit")))]
 impl Graph {
     /// The statements and the final array expression computing `outputs`, as the body of a
     /// function: `{ let …; [o0, o1, …] }`. See [`Graph::emit`].

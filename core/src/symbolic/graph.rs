@@ -90,6 +90,14 @@ impl Node {
     }
 }
 
+/// The work of the simplification under way (see [`super::simplify`]): how deeply
+/// constructors are nested and how many were entered since the outermost one.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Rewriting {
+    pub(super) depth: usize,
+    pub(super) spent: usize,
+}
+
 /// A hash-consed arena of expression nodes, children before parents.
 ///
 /// ```
@@ -110,7 +118,7 @@ pub struct Graph {
     ranges: Vec<Range>,
     pub(super) derivative_cache: HashMap<(Id, Box<str>), Id>,
     /// The work of the simplification under way (see [`super::simplify`]'s budget).
-    pub(super) rewriting: super::simplify::Rewriting,
+    pub(super) rewriting: Rewriting,
 }
 
 impl Graph {

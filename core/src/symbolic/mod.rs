@@ -8,10 +8,10 @@
 //!   simplifications a proven sign allows (`atan2`, `abs`);
 //! - [`constants`]: named constants (`std::f64::consts::PI`, `pi`);
 //! - [`rules`]: the one table of derivative rules and the differentiation driver;
-//! - [`eval`] and [`bigfloat`]: evaluation in `f64`, in num-dual types, in arbitrary
-//!   precision;
+//! - [`eval`] and `bigfloat`: evaluation in `f64`, in num-dual types, in arbitrary
+//!   precision (feature `big-float`);
 //! - [`taylor`]: truncated Taylor series, the limits at removable singularities;
-//! - [`emit`] and [`count`]: Rust tokens, formatted source, operation counts.
+//! - `emit` and [`count`]: Rust tokens, formatted source (feature `emit`), operation counts.
 //!
 //! ```
 //! use mechdiff_core::symbolic::Graph;
@@ -26,9 +26,13 @@
 //!
 //! See `docs/symbolic.md` for the rules table and how to add a primitive.
 
+#[cfg(feature = "big-float")]
+#[cfg_attr(docsrs, doc(cfg(feature = "big-float")))]
 pub mod bigfloat;
 pub mod constants;
 pub mod count;
+#[cfg(feature = "emit")]
+#[cfg_attr(docsrs, doc(cfg(feature = "emit")))]
 pub mod emit;
 pub mod eval;
 pub mod graph;
@@ -43,8 +47,10 @@ pub mod simplify;
 pub mod sums;
 pub mod taylor;
 
+#[cfg(feature = "big-float")]
 pub use bigfloat::{BigArithmetic, BigReal};
 pub use count::OperationCount;
+#[cfg(feature = "emit")]
 pub use emit::{Emission, format_rust};
 pub use eval::{Arithmetic, DualArithmetic};
 pub use graph::{Graph, Id, Node, Number};

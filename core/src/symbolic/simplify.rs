@@ -98,14 +98,6 @@ pub const MAX_REWRITES: usize = 10_000;
 /// stack.
 pub const MAX_REWRITE_DEPTH: usize = 64;
 
-/// The work of the simplification under way: how deeply constructors are nested and how many
-/// were entered since the outermost one.
-#[derive(Clone, Copy, Debug, Default)]
-pub(super) struct Rewriting {
-    depth: usize,
-    spent: usize,
-}
-
 impl Graph {
     /// `rules(self)`, the simplification of the node `raw`, within the budget of the
     /// simplification under way ([`MAX_REWRITES`], [`MAX_REWRITE_DEPTH`]); past it, `raw`

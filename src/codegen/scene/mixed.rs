@@ -1,5 +1,5 @@
 //! The generated module of a *mixed plan*: a scene with loops the closed forms do not match
-//! ([`mechdiff_core::geometry::trace::NewtonBlock`]), solved by Newton's method inside the
+//! ([`mechdiff_core::trace::NewtonBlock`]), solved by Newton's method inside the
 //! generated code as the solver solves them.
 //!
 //! The module's `Tracker` keeps, between calls, the drive position reached and each Newton
@@ -14,7 +14,7 @@
 //! factorisation. The closed-form loops' formulas and guards, and the outputs, read the
 //! Newton loops' coordinates and derivatives.
 
-use mechdiff_core::geometry::trace::{GuardKind, NewtonBlock, coordinate_symbol};
+use mechdiff_core::trace::{GuardKind, NewtonBlock, coordinate_symbol};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 

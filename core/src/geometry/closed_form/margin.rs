@@ -14,7 +14,7 @@ pub(crate) struct Margin<D> {
     pub value: D,
     pub size: f64,
     /// `size` as a function of the drive position (what the generated guards measure the
-    /// condition with; see `geometry::trace`).
+    /// condition with; see `trace`).
     pub now: D,
     /// Whether the value is a discriminant (its square root is the loop's lever) rather
     /// than a slope; `None`: the loop always closes.

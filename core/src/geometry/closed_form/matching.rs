@@ -1,6 +1,6 @@
 //! Which closed form fits a loop: matched from the joints (terms) of its rows.
 
-use super::{Angle, End, Hinge, Pattern, Shift, sub};
+use super::pattern::{Angle, End, Hinge, Pattern, Shift, sub};
 use crate::geometry::branch::Loop;
 use crate::geometry::constraints::{Body, Equations, Term, cross};
 

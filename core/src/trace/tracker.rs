@@ -2,7 +2,7 @@
 //! [`Program`] at each drive position, each step between two positions accepted only when
 //! the solver itself would accept it at once.
 //!
-//! The solver's closed-form path ([`super::super::Tracker::move_to`]) accepts a step when
+//! The solver's closed-form path ([`crate::geometry::Tracker::move_to`]) accepts a step when
 //! every loop's guard holds at its end and every loop's margin (the discriminant or slope
 //! of the guard, scaled to 1 in the sketch, with its first two derivatives in φ) is shown
 //! positive over the whole step by the Hermite test of `solver::interval`, steps capped at
@@ -13,7 +13,9 @@
 //! the step, locates the end of the branch, and reports — so every error and every
 //! position the evaluator cannot prove is the solver's own answer.
 
-use super::{DRIVE, GuardKind, JitProgram, PositionGraph, Program};
+#[cfg(feature = "jit")]
+use super::JitProgram;
+use super::{DRIVE, GuardKind, PositionGraph, Program};
 use crate::Error;
 use crate::geometry::Tracker;
 use crate::geometry::closed_form::amplification;
@@ -26,8 +28,10 @@ use num_dual::Dual2_64;
 pub enum Backend {
     /// The interpreter ([`Program`]): ready as soon as compiled to instructions.
     Interpreter,
-    /// Native code ([`JitProgram`]): costs a compilation by cranelift once, then each
-    /// evaluation less (BENCHMARKS.md); the interpreter where the host has no JIT.
+    /// Native code (`JitProgram`, feature `jit`): costs a compilation by cranelift once,
+    /// then each evaluation less (BENCHMARKS.md); the interpreter where the host has no JIT
+    /// or mechdiff-core is built without the feature (see
+    /// [`ProgramTracker::jit_unavailable`]).
     Jit,
 }
 
@@ -38,6 +42,7 @@ enum Code {
         program: Program,
         registers: Vec<f64>,
     },
+    #[cfg(feature = "jit")]
     Compiled(JitProgram),
 }
 
@@ -45,6 +50,7 @@ impl Code {
     fn evaluate(&mut self, phi: f64, out: &mut [f64]) {
         match self {
             Code::Interpreted { program, registers } => program.evaluate(phi, registers, out),
+            #[cfg(feature = "jit")]
             Code::Compiled(jit) => jit.evaluate(phi, out),
         }
     }
@@ -61,7 +67,8 @@ struct Loop {
 /// The run-time evaluator walking a sweep (see the module documentation).
 ///
 /// ```
-/// use mechdiff_core::geometry::{Drive, Mechanism, Solver, trace};
+/// use mechdiff_core::geometry::{Drive, Mechanism, Solver};
+/// use mechdiff_core::trace;
 /// let m = Mechanism::builder()
 ///     .point("O", [0.0, 0.0]).point("A", [2.0, 0.0])
 ///     .ground(["O"]).link("crank", ["O", "A"])
@@ -146,6 +153,17 @@ impl ProgramTracker {
                 },
                 None,
             ),
+            #[cfg(not(feature = "jit"))]
+            Backend::Jit => (
+                Code::Interpreted {
+                    registers: program.registers(),
+                    program,
+                },
+                Some(Error::JitUnavailable {
+                    reason: "mechdiff-core is built without its `jit` feature".to_owned(),
+                }),
+            ),
+            #[cfg(feature = "jit")]
             Backend::Jit => match JitProgram::compile(&program) {
                 Ok(jit) => (Code::Compiled(jit), None),
                 Err(e) => (
@@ -204,6 +222,7 @@ impl ProgramTracker {
     pub fn backend(&self) -> Backend {
         match self.code {
             Code::Interpreted { .. } => Backend::Interpreter,
+            #[cfg(feature = "jit")]
             Code::Compiled(_) => Backend::Jit,
         }
     }

@@ -41,7 +41,7 @@ type Function = unsafe extern "C" fn(phi: f64, out: *mut f64);
 /// interpreter's dispatch. Cloning shares the code; the code is freed with the last clone.
 ///
 /// ```
-/// use mechdiff_core::geometry::trace::{JitProgram, Program};
+/// use mechdiff_core::trace::{JitProgram, Program};
 /// use mechdiff_core::symbolic::Graph;
 /// let mut g = Graph::new();
 /// let f = g.parse_infix("sin(phi) * cos(phi) + exp(phi) / 3").unwrap();
@@ -59,6 +59,7 @@ type Function = unsafe extern "C" fn(phi: f64, out: *mut f64);
 /// }
 /// ```
 #[derive(Clone)]
+#[cfg_attr(docsrs, doc(cfg(feature = "jit")))]
 pub struct JitProgram {
     code: Arc<Code>,
     outputs: usize,

@@ -1,7 +1,7 @@
 //! Code generation for mechanisms defined by geometry: a mechanism's whole position
 //! solution as one symbolic expression graph.
 //!
-//! When every loop of a mechanism has a closed form (see [`super::Solver::track`]), its
+//! When every loop of a mechanism has a closed form (see [`crate::geometry::Solver::track`]), its
 //! position solution is a sequence of formulas in the drive position φ. Evaluating those
 //! formulas — the very code the solver runs, generic over the scalar — with [`Traced`], a
 //! scalar that records into the symbolic arena ([`crate::symbolic::Graph`]), leaves them in
@@ -32,6 +32,7 @@
 //! assemble ([`crate::Error::Unassemblable`]): [`GuardKind::verdict`] decides this from the
 //! two values exactly as the solver's closed form does.
 
+#[cfg(feature = "jit")]
 mod jit;
 mod mixed;
 mod newton;
@@ -39,6 +40,8 @@ mod program;
 mod scalar;
 mod tracker;
 
+#[cfg(feature = "jit")]
+#[cfg_attr(docsrs, doc(cfg(feature = "jit")))]
 pub use jit::JitProgram;
 pub use mixed::MixedTracker;
 pub use newton::{NewtonBlock, coordinate_symbol};
@@ -46,10 +49,10 @@ pub use program::Program;
 pub use scalar::Traced;
 pub use tracker::{Backend, ProgramTracker};
 
-use super::constraints::Frames;
-use super::output::{PointOutput, Scalar as Quantity, ScalarOutput};
-use super::solver::Tracker;
 use crate::Error;
+use crate::geometry::constraints::Frames;
+use crate::geometry::output::{PointOutput, Scalar as Quantity, ScalarOutput};
+use crate::geometry::solver::Tracker;
 use crate::symbolic::{Graph, Id, rules};
 use num_dual::DualNum;
 use num_traits::Signed;
@@ -169,7 +172,7 @@ pub struct PositionGraph {
     pub outputs: Vec<Id>,
     /// One guard per loop, in solving order.
     pub guards: Vec<Guard>,
-    /// The solver's singular threshold (see [`super::Solver::singular_threshold`]).
+    /// The solver's singular threshold (see [`crate::geometry::Solver::singular_threshold`]).
     pub limit: f64,
     /// The drive position of the sketch, where the trace was taken.
     pub sketch_drive: f64,
@@ -178,7 +181,7 @@ pub struct PositionGraph {
     pub newton: Vec<NewtonBlock>,
     /// Newton's convergence limit on max |Φ| (m or rad): the solver's tolerance times the
     /// linkage's length scale (the extent of its loops' points; see
-    /// [`super::Solver::tolerance`]).
+    /// [`crate::geometry::Solver::tolerance`]).
     pub newton_tolerance: f64,
     /// The solver's Newton iterations per attempt.
     pub max_iterations: usize,
@@ -195,7 +198,8 @@ pub struct PositionGraph {
 /// [`NewtonBlock`] (its coordinates as symbols, its residual and Jacobian as nodes).
 ///
 /// ```
-/// use mechdiff_core::geometry::{Drive, Mechanism, Solver, trace};
+/// use mechdiff_core::geometry::{Drive, Mechanism, Solver};
+/// use mechdiff_core::trace;
 /// let m = Mechanism::builder()
 ///     .point("O", [0.0, 0.0]).point("A", [2.0, 0.0])
 ///     .ground(["O"]).link("crank", ["O", "A"])
@@ -304,7 +308,7 @@ pub fn trace(
         max_iterations: tracker.solver().max_iterations,
         max_subdivisions: tracker.solver().max_subdivisions,
         longest_step: tracker.longest_step(),
-        max_substeps: super::solver::interval::MAX_SUBSTEPS,
+        max_substeps: crate::geometry::solver::interval::MAX_SUBSTEPS,
     };
     for (l, residual) in blocks {
         let columns = loops[l].columns.clone();

@@ -91,7 +91,7 @@ impl Instruction {
 /// A graph's outputs as an instruction list in one variable (the drive position).
 ///
 /// ```
-/// use mechdiff_core::geometry::trace::Program;
+/// use mechdiff_core::trace::Program;
 /// use mechdiff_core::symbolic::Graph;
 /// let mut g = Graph::new();
 /// let f = g.parse_infix("sin(phi) * cos(phi) + pi").unwrap();
