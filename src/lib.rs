@@ -6,6 +6,7 @@
 //! command-line tool does: scene files ([`scene`]), reports ([`report`]), code generation
 //! ([`codegen`]) and the care of the user's files ([`files`]).
 #![warn(missing_docs)]
+#![cfg_attr(docsrs, feature(doc_cfg))]
 
 pub mod accuracy;
 pub mod codegen;
@@ -23,7 +24,10 @@ pub mod escape;
 pub mod evaluator;
 pub mod files;
 pub mod import;
+mod parallel;
+#[cfg(feature = "pictures")]
 pub mod pictures;
+mod progress;
 pub mod report;
 pub mod scene;
 pub mod sensitivity;

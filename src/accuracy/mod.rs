@@ -37,6 +37,7 @@ pub mod double_double;
 pub mod evaluator;
 pub mod extended_newton;
 pub mod formula;
+#[cfg(feature = "pictures")]
 pub mod plot;
 pub mod reference;
 mod report;
