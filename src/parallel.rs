@@ -12,7 +12,7 @@ pub(crate) use rayon::{ThreadPoolBuilder, join, prelude};
 pub(crate) use sequential::{ThreadPoolBuilder, join, prelude};
 
 /// rayon's API as used by the crate, run in order on the calling thread.
-#[cfg(not(feature = "parallel"))]
+#[cfg(any(test, not(feature = "parallel")))]
 mod sequential {
     use std::convert::Infallible;
 
@@ -88,5 +88,60 @@ mod sequential {
                 self.chunks(size)
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::sequential;
+
+    /// What the stream's formatting does: chunks of rows, each turned into its own text, then
+    /// joined in order (`stream::format_batch`).
+    fn texts_in_order(rows: &[f64], chunk: usize) -> Vec<String> {
+        use sequential::prelude::*;
+        let mut texts = vec![String::new(); rows.len().div_ceil(chunk)];
+        (texts.par_iter_mut())
+            .zip(rows.par_chunks(chunk))
+            .for_each(|(text, rows)| {
+                for x in rows {
+                    text.push_str(&format!("{x:e}\n"));
+                }
+            });
+        texts
+    }
+
+    /// The sequential stand-ins do what a plain loop does: the texts of the chunks are those
+    /// of the rows in order, `join` gives both results, the pool has one thread and runs
+    /// the work it is given.
+    #[test]
+    fn the_sequential_stand_ins_give_the_results_of_a_plain_loop() {
+        let rows: Vec<f64> = (0..1000).map(|k| f64::from(k).sqrt()).collect();
+        let joined: String = texts_in_order(&rows, 64).concat();
+        let plain: String = rows.iter().map(|x| format!("{x:e}\n")).collect();
+        assert_eq!(joined, plain);
+        assert_eq!(sequential::join(|| 1, || "two"), (1, "two"));
+        let pool = sequential::ThreadPoolBuilder::new()
+            .num_threads(8)
+            .build()
+            .unwrap();
+        assert_eq!(pool.current_num_threads(), 1);
+        assert_eq!(pool.install(|| rows.len()), 1000);
+    }
+
+    /// With the `parallel` feature, rayon's calls give the same texts as the stand-ins.
+    #[cfg(feature = "parallel")]
+    #[test]
+    fn rayon_gives_the_texts_of_the_sequential_stand_ins() {
+        use rayon::prelude::*;
+        let rows: Vec<f64> = (0..1000).map(|k| f64::from(k).ln_1p()).collect();
+        let mut texts = vec![String::new(); rows.len().div_ceil(64)];
+        (texts.par_iter_mut())
+            .zip(rows.par_chunks(64))
+            .for_each(|(text, rows)| {
+                for x in rows {
+                    text.push_str(&format!("{x:e}\n"));
+                }
+            });
+        assert_eq!(texts, texts_in_order(&rows, 64));
     }
 }
