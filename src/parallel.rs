@@ -116,9 +116,12 @@ mod tests {
     #[test]
     fn the_sequential_stand_ins_give_the_results_of_a_plain_loop() {
         let rows: Vec<f64> = (0..1000).map(|k| f64::from(k).sqrt()).collect();
-        let joined: String = texts_in_order(&rows, 64).concat();
+        let texts = texts_in_order(&rows, 64);
         let plain: String = rows.iter().map(|x| format!("{x:e}\n")).collect();
-        assert_eq!(joined, plain);
+        assert_eq!(texts.concat(), plain);
+        use sequential::prelude::*;
+        let lengths: usize = texts.par_iter().map(String::len).sum();
+        assert_eq!(lengths, plain.len());
         assert_eq!(sequential::join(|| 1, || "two"), (1, "two"));
         let pool = sequential::ThreadPoolBuilder::new()
             .num_threads(8)

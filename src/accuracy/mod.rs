@@ -33,7 +33,7 @@
 
 pub mod cam;
 pub mod differences;
-pub mod double_double;
+pub(crate) mod double_double;
 pub mod evaluator;
 pub mod extended_newton;
 pub mod formula;

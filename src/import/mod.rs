@@ -14,8 +14,8 @@
 //! the line and column of the joint. Lengths are taken as millimetres (neither format has
 //! units: the scene says so in a comment, change `[units] length` if they are not mm).
 
-pub mod pmks;
-pub mod pyslvs;
+pub(crate) mod pmks;
+pub(crate) mod pyslvs;
 
 use std::fmt::Write as _;
 use std::ops::Range;

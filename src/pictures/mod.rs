@@ -45,9 +45,9 @@
 
 pub mod balancing;
 pub mod cam;
-pub mod decimate;
+pub(crate) mod decimate;
 pub mod diagram;
-pub mod drawing;
+pub(crate) mod drawing;
 pub mod raster;
 pub mod report;
 pub mod run;

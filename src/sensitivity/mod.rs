@@ -54,8 +54,8 @@
 //! Cost: per parameter, one pass over the sweep in dual numbers for the exact columns, and
 //! six runs of the scene only if a column falls back; one run per Monte-Carlo sample.
 
-pub mod exact;
-pub mod spec;
+pub(crate) mod exact;
+pub(crate) mod spec;
 pub mod tolerance;
 
 use std::io::{self, Write};

@@ -18,7 +18,7 @@
 
 pub mod format;
 pub mod record;
-pub mod speculate;
+pub(crate) mod speculate;
 
 use std::io::{self, Write};
 use std::path::PathBuf;
