@@ -3,9 +3,9 @@
 //! Two formats are read, each into a [`Linkage`] (joints at sketch coordinates, each joining
 //! one or more named links), which [`Linkage::to_scene`] writes as a scene TOML:
 //!
-//! - [`pyslvs`]: Pyslvs's mechanism expression, `M[J[R, color[Green], P[0.0, 0.0],
+//! - `pyslvs`: Pyslvs's mechanism expression, `M[J[R, color[Green], P[0.0, 0.0],
 //!   L[ground, L1]], ...]`;
-//! - [`pmks`]: PMKS's text format, one joint a line: `ground,input,R,0,0,tfft` (links, type,
+//! - `pmks`: PMKS's text format, one joint a line: `ground,input,R,0,0,tfft` (links, type,
 //!   x, y, an optional angle in degrees, optional flags whose fourth says "driving input").
 //!
 //! Both tools name the frame `ground`, as scenes do. Revolute joints may join any number of

@@ -5,7 +5,7 @@
 //! in `docs/scene-format.md`; this module reads it in three stages:
 //!
 //! 1. [`format`](mod@format): the TOML as written (serde, every value with its byte span);
-//! 2. [`resolve`](resolve::resolve): units applied, names resolved, the sketch checked —
+//! 2. `resolve`: units applied, names resolved, the sketch checked —
 //!    a [`Scene`], where every error names `file:line:column` and what was expected;
 //! 3. [`build`](mod@build): the geometry model of mechdiff-core, and [`run`](fn@run): the
 //!    sweep, evaluated.
@@ -78,7 +78,7 @@ pub use sweep::Sweeper;
 pub use sweep_limits::SweepLimit;
 
 /// The most list entries (commas) a scene's text may hold: a `positions` list of
-/// [`drive::MAX_POSITIONS`] and room for the rest. TOML is parsed whole before a list is
+/// `drive::MAX_POSITIONS` ([`Positions::to_vec`]) and room for the rest. TOML is parsed whole before a list is
 /// read, at about 150 bytes an entry, so a longer list is refused before parsing.
 pub const MAX_LIST_ENTRIES: usize = drive::MAX_POSITIONS + 100_000;
 

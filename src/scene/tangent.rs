@@ -6,14 +6,14 @@
 //! The scene is read once more in dual numbers ([`Dual64`]): the parameters are evaluated
 //! with the one differentiated as the independent variable ([`super::parameters`]), and
 //! every quoted formula of the file is evaluated with them ([`super::values::formula_in`]),
-//! its derivative kept under its place in the file ([`Tangents`]). The resolver's steps that
-//! build the mechanism's numbers ([`super::placement`]: coordinates, polar points, the
-//! constructions of [`super::construct`]; the drive's measure; the joints' numbers) then
-//! read each number with its derivative ([`super::resolve::Context::number_in`]) and are the
+//! its derivative kept under its place in the file (`Tangents`). The resolver's steps that
+//! build the mechanism's numbers (`scene::placement`: coordinates, polar points, the
+//! constructions of `scene::construct`; the drive's measure; the joints' numbers) then
+//! read each number with its derivative (`resolve::Context::number_in`) and are the
 //! same code in `f64` and in [`Dual64`], so a point built from lengths carries their
 //! derivatives through its construction exactly. The dynamic sections' numbers the exact
 //! dynamics take (`[masses]`, `[gravity]`, the loads, `[motor]`) are read the same way
-//! ([`super::dynamics::numbers_in`]), a uniform bar's with its moving ends.
+//! (`dynamics::numbers_in`), a uniform bar's with its moving ends.
 //!
 //! Every formula whose derivative is not zero and that no step read is listed
 //! ([`SceneTangent::not_carried`]): a number the tangent does not carry (a friction

@@ -352,7 +352,7 @@ pub fn option_spanned_number_pair<'de, D: Deserializer<'de>>(
     exactly_two(Spanned::new(span, values), "numbers").map(Some)
 }
 
-/// `[sweep] positions`: at most [`MAX_POSITIONS`] numbers, counted as they are read, each
+/// `[sweep] positions`: at most `MAX_POSITIONS` numbers, counted as they are read, each
 /// with its span (use with `#[serde(default)]`).
 pub fn option_positions<'de, D: Deserializer<'de>>(
     deserializer: D,

@@ -3,7 +3,7 @@
 //!
 //! Each position of a sweep starts from the previous pose (the branch tracking) and each
 //! angle output from its previous value (kept continuous). A batch of positions is solved in
-//! parallel by speculative pieces ([`speculate`]), each piece checked against the state
+//! parallel by speculative pieces (`speculate`), each piece checked against the state
 //! the walk in order reaches at its start and solved again where it differs, so the
 //! numbers, the errors and the first error's position are those of a sequential run by
 //! construction. Turning numbers into text is done in parallel too (rayon): while one batch
@@ -83,7 +83,7 @@ pub struct Options {
     pub batch: usize,
     /// Positions formatted by one task.
     pub chunk: usize,
-    /// Positions solved by one task of the parallel solve (see [`speculate`]).
+    /// Positions solved by one task of the parallel solve (see [`Speculation`]).
     pub piece: usize,
     /// When batches are solved in parallel pieces.
     pub speculation: Speculation,

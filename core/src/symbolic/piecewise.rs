@@ -2,7 +2,7 @@
 //!
 //! The condition compares two expressions with `<`, `<=`, `>`, `>=`, `==` or `!=`; the
 //! branches are formulas (which may hold further `if`s). The result is the IR's
-//! [`Node::Select`](super::graph::Node::Select), so it differentiates (branch by branch),
+//! [`Node::Select`], so it differentiates (branch by branch),
 //! evaluates (the branch of the condition's real part) and emits (`if a < b { … } else
 //! { … }`) like every other node.
 //!

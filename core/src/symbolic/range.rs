@@ -10,7 +10,7 @@
 //! Soundness: the enclosure is of the real function (where it is defined; a square root of
 //! a negative number has no value to enclose). Each bound computed in `f64` is rounded
 //! outwards: by one ulp after a correctly rounded operation (`+ − × ÷ √`), by a relative
-//! [`LIBM_SLACK`] after a library function, whose result may be a few ulps off; where
+//! `LIBM_SLACK` after a library function, whose result may be a few ulps off; where
 //! anything is in doubt (a division by a range that holds 0, a `tan`, a NaN bound) the
 //! range is the whole real line, which proves nothing.
 

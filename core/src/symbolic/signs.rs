@@ -13,7 +13,7 @@
 //!   value is frozen: arbitrary-precision evaluation takes π to its own precision).
 //!
 //! Where the proof fails (the range of a factor holds 0), nothing is rewritten; the rewrites
-//! of `atan2` as `atan` also ask the sign to be robust in `f64` (see [`ROBUST`]).
+//! of `atan2` as `atan` also ask the sign to be robust in `f64` (see `ROBUST`).
 
 use super::graph::{Graph, Id, Node};
 use super::ops::Binary;

@@ -34,7 +34,7 @@ thread_local! {
 
 /// A value computed while recording: its `f64` value at the traced point and its node.
 ///
-/// Created only inside [`record`]; outside it, operations compute values only.
+/// Created only inside `record`; outside it, operations compute values only.
 #[derive(Clone, Copy, Debug)]
 pub struct Traced {
     value: f64,

@@ -10,7 +10,7 @@
 //! needed more is seen as unresolved, never as a wrong number).
 //!
 //! Powers through a zero of their base (`x³·⁵`, `∛(x³)`, `√(x⁴)` at 0) follow `uᵖ = tᵐᵖ·ũᵖ`
-//! ([`power`]): a Taylor series where there is one, a one-sided series (flagged with its
+//! (`power`): a Taylor series where there is one, a one-sided series (flagged with its
 //! [`Side`]) where the power is real on one side only, and an error naming the reason
 //! where the derivatives do not exist (`√(x²) = |x|` at 0).
 //!
