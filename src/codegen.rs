@@ -33,33 +33,37 @@ pub mod scene;
 pub const MAX_FORMULA_BYTES: u64 = 16 << 20;
 
 /// Arguments of `mechdiff codegen`.
-#[derive(Debug, Clone, clap::Args)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct Args {
     /// The formula, infix: `+ - * / ^`, parentheses, numbers, names, `pi`, and the functions
     /// sqrt, cbrt, exp, ln, sin, cos, tan, asin, acos, atan, sinh, cosh, tanh, abs, atan2,
     /// hypot, powf, powi; and the piecewise `if(a < b, then, otherwise)` (also <=, >, >=,
     /// ==, !=).
-    #[arg(
+    #[cfg_attr(feature = "cli", arg(
         long = "expr",
         required_unless_present_any = ["file", "scene"],
         conflicts_with_all = ["file", "scene"]
-    )]
+    ))]
     pub expression: Option<String>,
     /// Read the formula from this file instead (`-`: standard input); line breaks are spaces.
-    #[arg(long, conflicts_with = "scene")]
+    #[cfg_attr(feature = "cli", arg(long, conflicts_with = "scene"))]
     pub file: Option<PathBuf>,
     /// A scene file (TOML): print a Rust module computing its outputs and their derivatives
     /// (every loop must have a closed form; see `mechdiff check`).
-    #[arg(conflicts_with = "wrt")]
+    #[cfg_attr(feature = "cli", arg(conflicts_with = "wrt"))]
     pub scene: Option<PathBuf>,
     /// The variable to differentiate with respect to.
-    #[arg(long, required_unless_present = "scene", default_value = "")]
+    #[cfg_attr(
+        feature = "cli",
+        arg(long, required_unless_present = "scene", default_value = "")
+    )]
     pub wrt: String,
     /// The highest derivative order (at most 32).
-    #[arg(long, default_value_t = 1)]
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 1))]
     pub order: usize,
     /// The name of the generated function.
-    #[arg(long, default_value = "derivatives")]
+    #[cfg_attr(feature = "cli", arg(long, default_value = "derivatives"))]
     pub name: String,
 }
 

@@ -452,7 +452,7 @@ pub enum Error {
         /// Why.
         reason: String,
     },
-    /// A picture could not be drawn or rendered (see [`crate::pictures`]).
+    /// A picture could not be drawn or rendered (module and feature `pictures`).
     #[error("cannot draw the picture: {message}")]
     Picture {
         /// What went wrong.

@@ -33,10 +33,11 @@
 
 pub mod cam;
 pub mod differences;
-pub mod double_double;
+pub(crate) mod double_double;
 pub mod evaluator;
 pub mod extended_newton;
 pub mod formula;
+#[cfg(feature = "pictures")]
 pub mod plot;
 pub mod reference;
 mod report;

@@ -114,7 +114,7 @@ impl SceneCode {
         roots
     }
 
-    /// The run-time program: [`SceneCode::evaluate`] reads its outputs.
+    /// The run-time program: [`SceneCode::read`] reads its outputs.
     ///
     /// # Errors
     /// [`Error::Codegen`] if the graph has a symbol other than φ: a mixed plan's coordinate

@@ -46,7 +46,8 @@ use std::fmt;
 use mechdiff_core::trace::Backend;
 
 /// How a run evaluates positions (`mechdiff run --evaluator`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Evaluator {
     /// The default path: the solver today (see the module documentation).
     #[default]
@@ -68,9 +69,13 @@ pub enum Evaluator {
 impl fmt::Display for Evaluator {
     /// The option's value as written on the command line (`program`, `jit`, …).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        use clap::ValueEnum;
-        let value = self.to_possible_value().expect("no variant is skipped");
-        f.write_str(value.get_name())
+        f.write_str(match self {
+            Evaluator::Auto => "auto",
+            Evaluator::Solver => "solver",
+            Evaluator::Program => "program",
+            Evaluator::Interpreter => "interpreter",
+            Evaluator::Jit => "jit",
+        })
     }
 }
 
@@ -147,5 +152,23 @@ pub fn describe(loops: &[LoopPlan], backend: Option<Backend>) -> String {
         )
     } else {
         format!("by the geometry solver (exact): loops {each}")
+    }
+}
+
+#[cfg(all(test, feature = "cli"))]
+mod tests {
+    use super::Evaluator;
+    use clap::ValueEnum;
+
+    /// The names a run prints are the values `--evaluator` accepts (written out for a library
+    /// built without clap).
+    #[test]
+    fn each_evaluator_displays_as_its_command_line_value() {
+        for evaluator in Evaluator::value_variants() {
+            let value = evaluator
+                .to_possible_value()
+                .expect("no variant is skipped");
+            assert_eq!(evaluator.to_string(), value.get_name());
+        }
     }
 }

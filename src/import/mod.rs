@@ -3,9 +3,9 @@
 //! Two formats are read, each into a [`Linkage`] (joints at sketch coordinates, each joining
 //! one or more named links), which [`Linkage::to_scene`] writes as a scene TOML:
 //!
-//! - [`pyslvs`]: Pyslvs's mechanism expression, `M[J[R, color[Green], P[0.0, 0.0],
+//! - `pyslvs`: Pyslvs's mechanism expression, `M[J[R, color[Green], P[0.0, 0.0],
 //!   L[ground, L1]], ...]`;
-//! - [`pmks`]: PMKS's text format, one joint a line: `ground,input,R,0,0,tfft` (links, type,
+//! - `pmks`: PMKS's text format, one joint a line: `ground,input,R,0,0,tfft` (links, type,
 //!   x, y, an optional angle in degrees, optional flags whose fourth says "driving input").
 //!
 //! Both tools name the frame `ground`, as scenes do. Revolute joints may join any number of
@@ -14,8 +14,8 @@
 //! the line and column of the joint. Lengths are taken as millimetres (neither format has
 //! units: the scene says so in a comment, change `[units] length` if they are not mm).
 
-pub mod pmks;
-pub mod pyslvs;
+pub(crate) mod pmks;
+pub(crate) mod pyslvs;
 
 use std::fmt::Write as _;
 use std::ops::Range;

@@ -41,13 +41,13 @@
 //! Scenes are drawn by [`scene`] (the poses and how a mechanism is drawn) and [`run`] (the
 //! diagram of every column, the drawings at the sketch pose and the `[plot]` positions with
 //! the traced paths, all written to a folder); a whole run becomes one self-contained HTML
-//! file in [`report`]. Long sweeps are drawn through [`decimate`] (never the CSV or JSON).
+//! file in [`report`]. Long sweeps are drawn through `decimate` (never the CSV or JSON).
 
 pub mod balancing;
 pub mod cam;
-pub mod decimate;
+pub(crate) mod decimate;
 pub mod diagram;
-pub mod drawing;
+pub(crate) mod drawing;
 pub mod raster;
 pub mod report;
 pub mod run;

@@ -14,7 +14,7 @@ use super::{Kind, Scene, build, parameters, preflight};
 /// A scene file read and checked up to solving.
 #[derive(Debug, Clone)]
 pub enum AnyScene {
-    /// A linkage, its dynamics and balancing checked ([`preflight::before_solving`]).
+    /// A linkage, its dynamics and balancing checked (`preflight::before_solving`).
     Linkage(Box<Scene>),
     /// A cam (the whole analysis is checked finite when it is read).
     Cam(Box<CamScene>),

@@ -4,7 +4,7 @@
 //! units, and every value keeps its byte span so that later stages can say `file:line:col`.
 //! `#[serde(deny_unknown_fields)]` everywhere turns a misspelt key into an error that lists
 //! the keys expected at that place. The meaning (units applied, names resolved, geometry
-//! checked) is given in [`super::resolve`].
+//! checked) is given in `scene::resolve`.
 
 use std::collections::BTreeMap;
 
@@ -288,7 +288,7 @@ pub enum JointKind {
 }
 
 /// One `[joints.<name>]` entry. Which fields are required depends on `type`; the check is in
-/// [`super::resolve`] so that it can say which field is missing for which type.
+/// `scene::resolve` so that it can say which field is missing for which type.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct JointDef {

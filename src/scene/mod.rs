@@ -5,7 +5,7 @@
 //! in `docs/scene-format.md`; this module reads it in three stages:
 //!
 //! 1. [`format`](mod@format): the TOML as written (serde, every value with its byte span);
-//! 2. [`resolve`](resolve::resolve): units applied, names resolved, the sketch checked —
+//! 2. `resolve`: units applied, names resolved, the sketch checked —
 //!    a [`Scene`], where every error names `file:line:column` and what was expected;
 //! 3. [`build`](mod@build): the geometry model of mechdiff-core, and [`run`](fn@run): the
 //!    sweep, evaluated.
@@ -38,7 +38,7 @@ pub mod balancing;
 pub mod bindings;
 pub mod build;
 pub mod cam;
-pub mod construct;
+pub(crate) mod construct;
 mod dimension;
 mod drive;
 pub mod dynamics;
@@ -46,22 +46,22 @@ pub mod error_context;
 pub(crate) mod evaluate;
 pub mod format;
 mod joints;
-pub mod limits;
+pub(crate) mod limits;
 pub mod model;
-pub mod outputs;
+pub(crate) mod outputs;
 pub mod parameters;
 mod placement;
-pub mod plan;
+pub(crate) mod plan;
 pub mod plot;
-pub mod positions;
-pub mod preflight;
-pub mod resolve;
+pub(crate) mod positions;
+pub(crate) mod preflight;
+pub(crate) mod resolve;
 pub mod run;
 pub mod scalar;
-pub mod source;
+pub(crate) mod source;
 pub mod study;
-pub mod sweep;
-pub mod sweep_limits;
+pub(crate) mod sweep;
+pub(crate) mod sweep_limits;
 pub mod table;
 pub mod tangent;
 pub mod units;
@@ -72,14 +72,16 @@ use std::path::Path;
 use crate::error::Result;
 
 pub use model::Scene;
+pub use outputs::Column;
 pub use plan::Plan;
 pub use positions::Positions;
 pub use run::{Checked, Report, check, run};
 pub use source::Source;
 pub use sweep::Sweeper;
+pub use sweep_limits::SweepLimit;
 
 /// The most list entries (commas) a scene's text may hold: a `positions` list of
-/// [`drive::MAX_POSITIONS`] and room for the rest. TOML is parsed whole before a list is
+/// `drive::MAX_POSITIONS` ([`Positions::to_vec`]) and room for the rest. TOML is parsed whole before a list is
 /// read, at about 150 bytes an entry, so a longer list is refused before parsing.
 pub const MAX_LIST_ENTRIES: usize = drive::MAX_POSITIONS + 100_000;
 

@@ -1,4 +1,4 @@
-//! `[plot]`: what the pictures of a run show (drawn by `mechdiff::pictures`).
+//! `[plot]`: what the pictures of a run show (see the `pictures` module).
 //!
 //! This module only translates the section: point names are checked here; the drive
 //! positions and the panels are checked against the run's own sweep and columns when the

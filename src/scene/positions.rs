@@ -59,7 +59,7 @@ impl Positions {
     }
 
     /// The positions in a vector, for the runs that hold every row in memory: at most
-    /// [`MAX_IN_MEMORY`], else an error naming `step` and what to do instead.
+    /// `MAX_IN_MEMORY`, else an error naming `step` and what to do instead.
     pub fn to_vec(&self) -> Result<Vec<f64>> {
         if let Self::Steps {
             count, location, ..

@@ -93,7 +93,7 @@ pub struct Checked {
 }
 
 /// Checks a scene without running its sweep: builds the model, makes every check a run
-/// makes before solving ([`super::preflight`]), checks its mobility and the sketch's
+/// makes before solving (`scene::preflight`), checks its mobility and the sketch's
 /// assembly, walks the drive's motion range and holds the sweep against it.
 pub fn check(scene: &Scene) -> Result<Checked> {
     let mechanism = mechanism(scene)?;

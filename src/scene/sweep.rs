@@ -159,7 +159,7 @@ impl<'s> Sweeper<'s> {
     }
 
     /// Moves to drive position `phi` (SI) and writes its row into `row` (cleared first):
-    /// the drive position, then every output column (SI), in [`kinematic_columns`] order.
+    /// the drive position, then every output column (SI), in `kinematic_columns` order.
     pub fn row(&mut self, phi: f64, row: &mut Vec<f64>) -> Result<()> {
         row.clear();
         row.push(phi);

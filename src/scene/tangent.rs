@@ -4,9 +4,9 @@
 //! acceleration, the links' inertias — and of the dynamics' effects (gravity, loads, motor).
 //!
 //! It is the scene's one resolver run in [`Dual64`]: the parameters are evaluated with the one
-//! differentiated seeded as the independent variable ([`super::parameters::bindings`]), and
+//! differentiated seeded as the independent variable (`scene::parameters::bindings`), and
 //! the resolver's steps that build the mechanism's numbers (the placement of points:
-//! coordinates, polar points, the constructions of [`super::construct`]; the drive's
+//! coordinates, polar points, the constructions of `scene::construct`; the drive's
 //! measure; the joints' numbers) read each number as written with its derivative; they are
 //! the same code in `f64` and in [`Dual64`], so a point built from lengths carries their
 //! derivatives through its construction exactly. The dynamic sections' numbers the exact

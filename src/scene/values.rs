@@ -344,7 +344,7 @@ pub fn option_number_pair<'de, D: Deserializer<'de>>(
         .transpose()
 }
 
-/// `[sweep] positions`: at most [`MAX_POSITIONS`] numbers, counted as they are read, each
+/// `[sweep] positions`: at most `MAX_POSITIONS` numbers, counted as they are read, each
 /// with its span (use with `#[serde(default)]`).
 pub fn option_positions<'de, D: Deserializer<'de>>(
     deserializer: D,

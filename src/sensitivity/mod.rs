@@ -23,14 +23,14 @@
 //! **How the derivatives are computed: exact where the exact route reaches, said per
 //! column.** A kinematic column (a point's coordinates, an angle, a slider's displacement;
 //! their position, coefficients, velocity, acceleration, jerk) is **exact** (dual numbers,
-//! [`exact`]): the scene's tangent ([`crate::scene::tangent`]: the d/dp of every number of
+//! `exact`): the scene's tangent ([`crate::scene::tangent`]: the d/dp of every number of
 //! the built mechanism — the points from their formulas, units and constructions, the joints'
 //! numbers, the drive's value at the sketch, its speed and acceleration) is carried through
 //! the pose's implicit differentiation (`mechdiff_core::geometry::Parametric`) and the
 //! outputs' generic code; its error is rounding (measured against Norton's closed form in
 //! 256-bit arithmetic in `tests/sensitivity.rs`).
 //!
-//! A dynamics column is exact too ([`exact`]'s one place for it, the dynamics' own exact
+//! A dynamics column is exact too (`exact`'s one place for it, the dynamics' own exact
 //! route): the scene's tangent carries `[masses]` (a uniform bar's mass, centre and moment
 //! with its moving ends), `[gravity]`, the loads' forces and torques and `[motor]`, read by
 //! the run's own code in dual numbers, so a column by a mass, a length, g or a load is
@@ -54,8 +54,8 @@
 //! Cost: per parameter, one pass over the sweep in dual numbers for the exact columns, and
 //! six runs of the scene only if a column falls back; one run per Monte-Carlo sample.
 
-pub mod exact;
-pub mod spec;
+pub(crate) mod exact;
+pub(crate) mod spec;
 pub mod tolerance;
 
 use std::io::{self, Write};
@@ -112,7 +112,7 @@ pub struct ColumnStudy {
 #[derive(Debug, Clone, PartialEq)]
 pub enum Method {
     /// Exact (dual numbers): the scene's tangent ([`crate::scene::tangent`]) carried through
-    /// the pose's implicit differentiation ([`exact`]); exact in f64, to rounding.
+    /// the pose's implicit differentiation (`exact`); exact in f64, to rounding.
     Exact,
     /// Richardson-extrapolated central differences of whole runs (steps `h`, `h/2`, `h/4`),
     /// where the exact route does not reach the column.
@@ -184,7 +184,7 @@ pub fn requested(text: &str) -> bool {
 /// located errors. `None` when the scene has neither section.
 ///
 /// # Errors
-/// As [`parameters::read_with_own_units`] and [`spec::read`].
+/// As [`parameters::read_with_own_units`] and `spec::read`.
 pub fn check(
     file: &str,
     text: &str,
@@ -203,7 +203,7 @@ pub fn check(
 ///
 /// # Errors
 /// As [`crate::scene::parse_with`] and [`crate::scene::run()`]; a malformed study
-/// ([`spec::read`]); a run with a parameter moved that fails ([`Error::Perturbed`]) or
+/// (`spec::read`); a run with a parameter moved that fails ([`Error::Perturbed`]) or
 /// whose drive positions differ from the nominal run's ([`Error::Study`]); `--monte-carlo`
 /// without `[tolerances]`.
 pub fn run(

@@ -13,9 +13,9 @@
 
 use rand::rngs::Xoshiro256PlusPlus;
 use rand::{RngExt, SeedableRng};
-use rayon::prelude::*;
 
 use crate::error::Result;
+use crate::parallel::prelude::*;
 use crate::scene::parameters::Setting;
 use crate::scene::run::Report;
 

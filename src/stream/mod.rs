@@ -3,7 +3,7 @@
 //!
 //! Each position of a sweep starts from the previous pose (the branch tracking) and each
 //! angle output from its previous value (kept continuous). A batch of positions is solved in
-//! parallel by speculative pieces ([`speculate`]), each piece checked against the state
+//! parallel by speculative pieces (`speculate`), each piece checked against the state
 //! the walk in order reaches at its start and solved again where it differs, so the
 //! numbers, the errors and the first error's position are those of a sequential run by
 //! construction. Turning numbers into text is done in parallel too (rayon): while one batch
@@ -18,15 +18,13 @@
 
 pub mod format;
 pub mod record;
-pub mod speculate;
+pub(crate) mod speculate;
 
 use std::io::{self, Write};
 use std::path::PathBuf;
 
-use indicatif::{ProgressBar, ProgressStyle};
-use rayon::prelude::*;
-
 use crate::error::{Error, Result};
+use crate::parallel::prelude::*;
 use crate::scene::run::{Report, check_dead_positions, dead_positions, streamed_positions};
 use crate::scene::sweep::{Sweeper, kinematic_columns};
 use crate::scene::{Plan, Scene, build, table};
@@ -85,7 +83,7 @@ pub struct Options {
     pub batch: usize,
     /// Positions formatted by one task.
     pub chunk: usize,
-    /// Positions solved by one task of the parallel solve (see [`speculate`]).
+    /// Positions solved by one task of the parallel solve (see [`Speculation`]).
     pub piece: usize,
     /// When batches are solved in parallel pieces.
     pub speculation: Speculation,
@@ -151,7 +149,7 @@ pub fn run(scene: &Scene, sinks: &mut Sinks<'_>, options: &Options) -> Result<St
         write_table(sinks, head.as_bytes())?;
     }
 
-    let bar = progress_bar(options.progress, positions.len());
+    let bar = crate::progress::bar(options.progress, positions.len());
     if options.threads > MAX_THREADS {
         return Err(Error::OverLimit {
             option: "--threads",
@@ -161,7 +159,7 @@ pub fn run(scene: &Scene, sinks: &mut Sinks<'_>, options: &Options) -> Result<St
             advice: "give at most one or two per core, or 0 for one per core",
         });
     }
-    let pool = rayon::ThreadPoolBuilder::new()
+    let pool = crate::parallel::ThreadPoolBuilder::new()
         .num_threads(options.threads)
         .build()
         .map_err(|e| Error::Threads {
@@ -195,7 +193,7 @@ pub fn run(scene: &Scene, sinks: &mut Sinks<'_>, options: &Options) -> Result<St
                 && next < positions.len()
                 && (sinks.table.is_some() || wanted.csv || wanted.jsonl);
             let range = next..(next + batch).min(positions.len());
-            let (solved, text) = rayon::join(
+            let (solved, text) = crate::parallel::join(
                 || {
                     solve.then(|| match speculate {
                         true => sweep.solve(&mut sweeper, range, options.piece, &mut pieces),
@@ -321,18 +319,4 @@ fn write_table(sinks: &mut Sinks<'_>, bytes: &[u8]) -> Result<()> {
             source,
         }),
     }
-}
-
-/// A progress bar on stderr counting drive positions, or a hidden one.
-fn progress_bar(shown: bool, positions: usize) -> ProgressBar {
-    if !shown {
-        return ProgressBar::hidden();
-    }
-    let bar = ProgressBar::new(positions as u64);
-    if let Ok(style) = ProgressStyle::with_template(
-        "{bar:40} {human_pos}/{human_len} positions, {per_sec}, {eta} left",
-    ) {
-        bar.set_style(style);
-    }
-    bar
 }

@@ -16,9 +16,8 @@
 //! the walk stops at anyway). On Newton the pose carries the route's last bits, so almost
 //! every guess fails: such sweeps are walked in order ([`Speculation::Auto`]).
 
-use rayon::prelude::*;
-
 use crate::error::Error;
+use crate::parallel::prelude::*;
 use crate::scene::Positions;
 use crate::scene::Scene;
 use crate::scene::outputs::Column;
