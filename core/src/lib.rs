@@ -22,6 +22,7 @@ pub mod motion;
 pub mod point;
 pub mod position;
 pub mod scalar;
+pub mod sweep;
 pub mod symbolic;
 
 pub use dead_position::{DeadPosition, DeadPositionSearch};

@@ -25,6 +25,7 @@ use crate::dynamics::run::{Step, check, step_from};
 use crate::dynamics::state::link_states;
 use crate::dynamics::{CompiledModel, Dynamics, Plan, Request, Trace};
 use crate::geometry::{Inertia, JointKind, Mechanism, Solver, Tracker};
+use crate::sweep::{Consumer, Sweep};
 use crate::{DriveState, Error, Jet};
 
 /// A counterweight to size: on `link`, at `radius` from its fixed pivot `line[0]`, its angle
@@ -199,11 +200,9 @@ pub fn balance_linkage(
     if phis.is_empty() {
         return Err(no_position());
     }
-    let mut tracker = solver.track(mechanism)?;
-    for &phi in phis {
-        tracker.move_to(phi)?;
-        balancing.add(&tracker, phi)?;
-    }
+    Sweep::new(mechanism, solver)?
+        .with(&mut balancing)
+        .run(phis.iter().copied(), &mut ())?;
     balancing.finish()
 }
 
@@ -515,6 +514,14 @@ fn combine(inertia: Inertia, mass: f64, center: [f64; 2]) -> Inertia {
         mass: total,
         center: c,
         moment: inertia.moment + inertia.mass * d2(inertia.center) + mass * d2(center),
+    }
+}
+
+/// The counterweights read the pose of every position of a [`Sweep`] (no values in its
+/// rows: their columns are known at the end, [`LinkageBalancing::finish`]).
+impl Consumer for LinkageBalancing<'_> {
+    fn at(&mut self, tracker: &Tracker<'_>, phi: f64, _: &mut Vec<f64>) -> Result<(), Error> {
+        self.add(tracker, phi)
     }
 }
 

@@ -7,6 +7,7 @@ use super::model::CompiledModel;
 use super::plan::{Plan, Trace};
 use super::shaking::{ShakingForce, shaking_force};
 use crate::geometry::{Solver, Tracker};
+use crate::sweep::{Consumer, Sweep};
 use crate::{DriveState, Error, Jet};
 
 /// The results at one drive position; what the plan did not ask for is `None`.
@@ -89,14 +90,40 @@ pub fn run_moved(
     mut move_to: impl FnMut(&mut Tracker<'_>, usize) -> Result<(), Error>,
 ) -> Result<Run, Error> {
     check(plan, model)?;
-    let mut tracker = solver.track(model.mechanism)?;
-    let mut trace = Trace::default();
-    let mut steps = Vec::with_capacity(states.len());
-    for (k, &(phi, d)) in states.iter().enumerate() {
-        move_to(&mut tracker, k)?;
-        steps.push(step_at(plan, model, &tracker, phi, d, &mut trace)?);
+    let mut steps = Steps {
+        plan,
+        model,
+        states,
+        trace: Trace::default(),
+        steps: Vec::with_capacity(states.len()),
+    };
+    Sweep::new(model.mechanism, solver)?
+        .with(&mut steps)
+        .run_moved(states.iter().map(|s| s.0), &mut (), |tracker, k, _| {
+            move_to(tracker, k)
+        })?;
+    Ok(Run {
+        steps: steps.steps,
+        trace: steps.trace,
+    })
+}
+
+/// The steps of a planned run at drive states `states`, one per pose the sweep solves.
+struct Steps<'a, 'm> {
+    plan: &'a Plan,
+    model: &'a CompiledModel<'m>,
+    states: &'a [(f64, DriveState)],
+    trace: Trace,
+    steps: Vec<Step>,
+}
+
+impl Consumer for Steps<'_, '_> {
+    fn at(&mut self, tracker: &Tracker<'_>, phi: f64, _: &mut Vec<f64>) -> Result<(), Error> {
+        let d = self.states[self.steps.len()].1;
+        let step = step_at(self.plan, self.model, tracker, phi, d, &mut self.trace)?;
+        self.steps.push(step);
+        Ok(())
     }
-    Ok(Run { steps, trace })
 }
 
 /// What a planned sweep checks before solving any position: a shaking force needs a link
