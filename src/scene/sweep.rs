@@ -4,6 +4,7 @@
 
 use mechdiff_core::DriveState;
 use mechdiff_core::geometry::{Kinematics, Mechanism, Tracker};
+use mechdiff_core::sweep::Consumer;
 
 use crate::error::{Error, Result};
 use crate::evaluator::{LoopPlan, ProgramPath, solver_loops};
@@ -188,10 +189,10 @@ impl<'s> Sweeper<'s> {
             Walk::First(o) | Walk::Second(o) | Walk::Third(o) => &o.tracker,
         };
         if let Some(d) = &mut self.dynamics {
-            d.push(scene, tracker, phi, row)?;
+            (d.at(tracker, phi, row)).map_err(|e| super::dynamics::error(scene, e))?;
         }
         if let Some(b) = &mut self.balancing {
-            b.add(scene, tracker, phi)?;
+            (b.at(tracker, phi, row)).map_err(|e| b.error(scene, e))?;
         }
         Ok(())
     }

@@ -8,6 +8,7 @@ use mechdiff_core::balancing::{
 };
 use mechdiff_core::dynamics::Dynamics;
 use mechdiff_core::geometry::{Mechanism, Tracker};
+use mechdiff_core::sweep::Consumer;
 
 use crate::error::{Error, Location, Result};
 use crate::scene::model::{DriveKind, Scene};
@@ -162,16 +163,28 @@ impl<'s> BalancingSweep<'s> {
         }))
     }
 
-    /// Reads the pose `tracker` stands at, drive position `phi`.
-    pub(crate) fn add(&mut self, scene: &Scene, tracker: &Tracker<'_>, phi: f64) -> Result<()> {
-        (self.balancing.add(tracker, phi))
-            .map_err(|e| balance_error(scene, self.counterweights, self.location, e))
+    /// The scene's error for an error of the counterweights' sizing (see [`balance_error`]).
+    pub(crate) fn error(&self, scene: &Scene, e: mechdiff_core::Error) -> Error {
+        balance_error(scene, self.counterweights, self.location, e)
     }
 
     /// Sizes the counterweights and evaluates the balanced linkage.
     pub(crate) fn finish(self, scene: &Scene) -> Result<LinkageBalance> {
         (self.balancing.finish())
             .map_err(|e| balance_error(scene, self.counterweights, self.location, e))
+    }
+}
+
+/// The counterweights read the pose of every position the sweep solves (no values in its
+/// rows: their columns are known at the end, [`BalancingSweep::finish`]).
+impl Consumer for BalancingSweep<'_> {
+    fn at(
+        &mut self,
+        tracker: &Tracker<'_>,
+        phi: f64,
+        row: &mut Vec<f64>,
+    ) -> std::result::Result<(), mechdiff_core::Error> {
+        self.balancing.at(tracker, phi, row)
     }
 }
 

@@ -1,14 +1,16 @@
 //! Running the `[[dynamics]]` outputs: the planned sweep and its columns.
 
+use mechdiff_core::cams::CamJoint;
 use mechdiff_core::dynamics::run::{Run, Step, step_at};
 use mechdiff_core::dynamics::{
     Energy, JointReaction, Plan, PowerBalance, ShakingForce, ShakingSummary, Trace,
 };
 use mechdiff_core::geometry::{Mechanism, Tracker};
+use mechdiff_core::sweep::Consumer;
 use mechdiff_core::{DriveState, Scalar};
 
 use crate::error::{Error, Result};
-use crate::scene::model::{DriveKind, JointKind, Scene};
+use crate::scene::model::{DriveKind, Joint, JointKind, Scene};
 use crate::scene::outputs::Column;
 use crate::scene::units::{Dimension, Units};
 
@@ -49,6 +51,10 @@ fn column(name: impl Into<String>, unit: &str) -> Column {
 pub(crate) struct DynamicsSweep<'s> {
     d: &'s SceneDynamics,
     mechanism: &'s Mechanism,
+    joints: &'s [Joint],
+    /// A cam drive's cam, and the driven joint's position at the sketch (the follower's
+    /// displacement is added to it).
+    cam: Option<(&'s CamJoint, f64)>,
     model: mechdiff_core::dynamics::CompiledModel<'s>,
     plan: Plan,
     drive: DriveState,
@@ -65,7 +71,7 @@ impl<'s> DynamicsSweep<'s> {
     /// checks); `None` without outputs. `keep_steps` keeps every position's step for the
     /// report (a run in memory).
     pub(crate) fn new(
-        scene: &Scene,
+        scene: &'s Scene,
         d: &'s SceneDynamics,
         mechanism: &'s Mechanism,
         keep_steps: bool,
@@ -79,6 +85,8 @@ impl<'s> DynamicsSweep<'s> {
         Ok(Some(Self {
             d,
             mechanism,
+            joints: &scene.joints,
+            cam: (scene.drive.cam.as_ref()).map(|c| (&c.joint, scene.drive.at_sketch)),
             model,
             plan,
             drive,
@@ -87,81 +95,6 @@ impl<'s> DynamicsSweep<'s> {
             trace: Trace::default(),
             steps: keep_steps.then(Vec::new),
         }))
-    }
-
-    /// Appends the dynamic columns at drive position `phi` to `row`, from the pose `tracker`
-    /// stands at (moved there by the sweep: for a cam drive, the joint's position s(θ)).
-    pub(crate) fn push(
-        &mut self,
-        scene: &Scene,
-        tracker: &Tracker<'_>,
-        phi: f64,
-        row: &mut Vec<f64>,
-    ) -> Result<()> {
-        // The driven joint's position and motion (through the cam's follower for a cam
-        // drive).
-        let (joint, state) = match &scene.drive.cam {
-            Some(c) => {
-                let (s, follower) = c.joint.drive_at(phi, &self.drive);
-                (scene.drive.at_sketch + s, follower)
-            }
-            None => (phi, self.drive),
-        };
-        let step = step_at(
-            &self.plan,
-            &self.model,
-            tracker,
-            joint,
-            state,
-            &mut self.trace,
-        )
-        .map_err(|e| match e {
-            mechdiff_core::Error::SelfLocking {
-                phi,
-                joints,
-                reason,
-            } => Error::SelfLocking {
-                location: scene.drive.location.clone(),
-                position: scene.joint_text(phi),
-                joints: joints.join(", "),
-                reason,
-            },
-            other => crate::scene::run::solver_error(scene, other),
-        })?;
-        let cam = (scene.drive.cam.as_ref()).map(|c| {
-            let [s1, s2, _] = c.joint.svaj(phi).derivatives;
-            Cam { s1, s2 }
-        });
-        let values = StepValues {
-            solution: step.solution.as_ref().map(|s| SolutionValues {
-                drive_torque: s.drive_torque,
-                reactions: &s.reactions,
-                motor_torque: s.motor.map(|m| m.torque),
-                balance: s.balance,
-            }),
-            energy: step.energy,
-            shaking: step.shaking.as_ref(),
-        };
-        row.extend(self::row(
-            scene,
-            self.d,
-            self.mechanism,
-            &values,
-            self.drive.omega,
-            cam,
-        ));
-        if let Some(f) = &step.shaking {
-            ShakingSummary::add(&mut self.shaking, f);
-        }
-        if let Some(s) = &step.solution {
-            let b = &s.balance;
-            let residual = b.residual.abs() / b.scale().max(f64::MIN_POSITIVE);
-            self.worst_balance = self.worst_balance.max(residual);
-        }
-        if let Some(steps) = &mut self.steps {
-            steps.push(step);
-        }
-        Ok(())
     }
 
     /// Forgets what was summarised so far: a piece of a sweep counts its own.
@@ -234,6 +167,82 @@ impl<'s> DynamicsSweep<'s> {
     }
 }
 
+/// The dynamic columns at drive position `phi`, from the pose the sweep's tracker stands at
+/// (moved there by the sweep: for a cam drive, the joint's position s(θ)).
+impl Consumer for DynamicsSweep<'_> {
+    fn at(
+        &mut self,
+        tracker: &Tracker<'_>,
+        phi: f64,
+        row: &mut Vec<f64>,
+    ) -> std::result::Result<(), mechdiff_core::Error> {
+        // The driven joint's position and motion (through the cam's follower for a cam
+        // drive).
+        let (joint, state) = match self.cam {
+            Some((c, at_sketch)) => {
+                let (s, follower) = c.drive_at(phi, &self.drive);
+                (at_sketch + s, follower)
+            }
+            None => (phi, self.drive),
+        };
+        let step = step_at(
+            &self.plan,
+            &self.model,
+            tracker,
+            joint,
+            state,
+            &mut self.trace,
+        )?;
+        let cam = self.cam.map(|(c, _)| {
+            let [s1, s2, _] = c.svaj(phi).derivatives;
+            Cam { s1, s2 }
+        });
+        let values = StepValues {
+            solution: step.solution.as_ref().map(|s| SolutionValues {
+                drive_torque: s.drive_torque,
+                reactions: &s.reactions,
+                motor_torque: s.motor.map(|m| m.torque),
+                balance: s.balance,
+            }),
+            energy: step.energy,
+            shaking: step.shaking.as_ref(),
+        };
+        let (joints, d, m) = (self.joints, self.d, self.mechanism);
+        row.extend(self::row(joints, d, m, &values, self.drive.omega, cam));
+        if let Some(f) = &step.shaking {
+            ShakingSummary::add(&mut self.shaking, f);
+        }
+        if let Some(s) = &step.solution {
+            let b = &s.balance;
+            let residual = b.residual.abs() / b.scale().max(f64::MIN_POSITIVE);
+            self.worst_balance = self.worst_balance.max(residual);
+        }
+        if let Some(steps) = &mut self.steps {
+            steps.push(step);
+        }
+        Ok(())
+    }
+}
+
+/// The scene's error for an error of the `[[dynamics]]` outputs at a solved pose: a
+/// self-locking drive located at `[drive]`, the others with drive positions in the scene's
+/// units.
+pub(crate) fn error(scene: &Scene, e: mechdiff_core::Error) -> Error {
+    match e {
+        mechdiff_core::Error::SelfLocking {
+            phi,
+            joints,
+            reason,
+        } => Error::SelfLocking {
+            location: scene.drive.location.clone(),
+            position: scene.joint_text(phi),
+            joints: joints.join(", "),
+            reason,
+        },
+        other => crate::scene::run::solver_error(scene, other),
+    }
+}
+
 /// What `[[dynamics]]` checks before anything is solved (`mechdiff check` runs it too): the
 /// model compiles with the masses, the plan's drive state has the speed it needs, and a power
 /// balance has a non-zero speed to divide by. Returns the model, the plan and the drive.
@@ -302,10 +311,10 @@ pub(super) struct Cam<T> {
 }
 
 /// One row of the dynamic columns (in the order of [`columns`]), from one position's results
-/// in any scalar: the `f64` table, and (with `Dual64`) its exact derivatives. `omega` is the
-/// drive speed.
+/// in any scalar: the `f64` table, and (with `Dual64`) its exact derivatives. `joints` are
+/// the scene's (their kinds say which numbers a reaction has); `omega` is the drive speed.
 pub(super) fn row<T: Scalar>(
-    scene: &Scene,
+    joints: &[Joint],
     d: &SceneDynamics,
     m: &Mechanism,
     step: &StepValues<'_, T>,
@@ -313,13 +322,13 @@ pub(super) fn row<T: Scalar>(
     cam: Option<Cam<T>>,
 ) -> Vec<T> {
     (d.outputs.iter())
-        .flat_map(|o| output_row(scene, d, m, o, step, omega, cam))
+        .flat_map(|o| output_row(joints, d, m, o, step, omega, cam))
         .collect()
 }
 
 /// The values of output `o`'s columns in one row (see [`row`]).
 pub(super) fn output_row<T: Scalar>(
-    scene: &Scene,
+    joints: &[Joint],
     d: &SceneDynamics,
     m: &Mechanism,
     o: &DynamicsOutput,
@@ -356,7 +365,7 @@ pub(super) fn output_row<T: Scalar>(
                     .iter()
                     .find(|r| r.joint == j)
                     .expect("every joint");
-                row.extend(reaction_values(scene, r));
+                row.extend(reaction_values(joints, r));
             }
         }
         DynamicQuantity::DriveTorque => {
@@ -535,9 +544,8 @@ fn selected<'a>(names: &'a [String], all: &[&'a str]) -> Vec<&'a str> {
     }
 }
 
-fn joint_kind<'s>(scene: &'s Scene, name: &str) -> &'s JointKind {
-    &scene
-        .joints
+fn joint_kind<'s>(joints: &'s [Joint], name: &str) -> &'s JointKind {
+    &joints
         .iter()
         .find(|j| j.name == name)
         .expect("a joint of the scene")
@@ -545,7 +553,7 @@ fn joint_kind<'s>(scene: &'s Scene, name: &str) -> &'s JointKind {
 }
 
 fn reaction_columns(scene: &Scene, j: &str) -> Vec<Column> {
-    match joint_kind(scene, j) {
+    match joint_kind(&scene.joints, j) {
         JointKind::Revolute { .. } => vec![
             column(format!("Fx_{j}"), "N"),
             column(format!("Fy_{j}"), "N"),
@@ -571,8 +579,8 @@ fn reaction_columns(scene: &Scene, j: &str) -> Vec<Column> {
     }
 }
 
-fn reaction_values<T: Scalar>(scene: &Scene, r: &JointReaction<T>) -> Vec<T> {
-    match joint_kind(scene, &r.joint) {
+fn reaction_values<T: Scalar>(joints: &[Joint], r: &JointReaction<T>) -> Vec<T> {
+    match joint_kind(joints, &r.joint) {
         JointKind::Revolute { .. } => vec![r.force[0], r.force[1], r.friction],
         JointKind::Prismatic { .. } => vec![r.normal, r.friction, r.couple],
         JointKind::PinInSlot { .. } => vec![r.normal, r.friction],
