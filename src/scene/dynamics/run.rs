@@ -155,13 +155,13 @@ impl<'s> DynamicsSweep<'s> {
             ));
         }
         Ok(DynamicsReport {
-            plan: self.plan.clone(),
+            plan: self.plan,
             columns: columns(scene, self.d, self.mechanism, &self.plan),
             rows,
             summary,
             run: Run {
                 steps: self.steps.clone().unwrap_or_default(),
-                trace: self.trace.clone(),
+                trace: self.trace,
             },
         })
     }
