@@ -199,7 +199,7 @@ pub fn run(scene: &Scene) -> Result<Report> {
     } else {
         all.truncate(width);
     }
-    stats.limit_walks = 1;
+    stats.limit_walks = usize::from(super::sweep_limits::walks(scene, positions.len()));
     let report = Report {
         plan,
         columns: all,

@@ -259,7 +259,7 @@ pub fn run(scene: &Scene, sinks: &mut Sinks<'_>, options: &Options) -> Result<St
         .transpose()?;
     if sinks.table.is_some() {
         let mut text = Vec::new();
-        stats.limit_walks = 1;
+        stats.limit_walks = usize::from(crate::scene::sweep_limits::walks(scene, positions.len()));
         let report = Report {
             plan,
             columns,
