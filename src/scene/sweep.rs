@@ -1,6 +1,8 @@
 //! The sweep, one drive position at a time: the tracker walks the drive positions in order
-//! (keeping the sketch's assembly branch) and each position gives one row of SI values.
-//! [`super::run`] collects the rows; [`crate::stream`] formats and writes them as they come.
+//! (keeping the sketch's assembly branch), solving each once, and each position gives one
+//! row of SI values: the outputs', then those of `[[dynamics]]`, which read the same pose
+//! (as do the counterweights of `[balancing]`), through [`mechdiff_core::sweep::Consumer`].
+//! [`super::run()`] collects the rows; [`crate::stream`] formats and writes them as they come.
 
 use mechdiff_core::DriveState;
 use mechdiff_core::geometry::{Kinematics, Mechanism, Tracker};
