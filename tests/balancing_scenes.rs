@@ -619,3 +619,36 @@ mod rotor_inputs {
         }
     }
 }
+
+/// Run once: a scene with a kinematic output (its dead positions searched), `[[dynamics]]`
+/// and counterweights solves each of its 72 drive positions once — the sweep's tracker moves
+/// 72 times and `[[dynamics]]` and the counterweights read those poses (the dynamics' trace
+/// counts 72 evaluated positions, the balancing 72 before and 72 after, none of them with a
+/// tracker of its own) — while the dead-position search's own solves are counted apart.
+/// Counts are exact (integers).
+#[test]
+fn a_scene_with_outputs_dynamics_and_balancing_solves_each_position_once() {
+    let path = common::scene_path("whitworth_balancing.toml");
+    let text = std::fs::read_to_string(path).unwrap();
+    let text = format!(
+        "{text}\n[[output]]\nname = \"x_C\"\nslider = \"ram_guide\"\n\
+         quantities = [\"position\", \"acceleration\"]\ndead_positions = true\n"
+    );
+    let r = common::run_text("whitworth_balancing.toml", &text);
+    let n = 72;
+    assert_eq!(r.rows.len(), n);
+    let s = r.stats;
+    assert_eq!(
+        (s.sweep.rows, s.sweep.solves, s.sweep.program_steps),
+        (n, n, 0)
+    );
+    let trace = &r.dynamics.as_ref().unwrap().run.trace;
+    assert_eq!((trace.positions, trace.derivatives), (n, n));
+    let linkage = r.balancing.as_ref().unwrap().linkage.as_ref().unwrap();
+    assert_eq!((linkage.before.phi.len(), linkage.after.phi.len()), (n, n));
+    // The dead positions of x_C (the ram's ends) were searched by solves of their own,
+    // counted; no `[sweep] of`.
+    assert_eq!(r.dead_positions[0].positions.len(), 2);
+    assert!(s.dead_positions > 0, "{s:?}");
+    assert_eq!((s.sweep_of, s.limit_walks), (0, 1));
+}

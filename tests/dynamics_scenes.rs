@@ -375,3 +375,40 @@ fn power_balance_at_rest_is_an_error() {
         "{e}"
     );
 }
+
+/// The dynamic columns read the sweep's one pose per position and give the numbers of the
+/// core's own planned run (`mechdiff_core::dynamics::run::run`, a tracker of its own walking
+/// the same positions from the sketch) bit for bit: the same pose, the same effect code.
+/// The Whitworth's shaking force and inertial forces over a revolution in 5° steps.
+#[test]
+fn dynamic_columns_are_the_core_runs_numbers_bit_for_bit() {
+    use mechdiff_core::DriveState;
+    let path = common::scene_path("whitworth_forces.toml");
+    let text = std::fs::read_to_string(path).unwrap();
+    let sweep = "positions = [0, 67.9756871629578374, 180, 292.024312837042163]";
+    assert!(text.contains(sweep));
+    let text = text.replace(sweep, "from = 0\nto = 355\nstep = 5");
+    let scene = mechdiff::scene::parse("whitworth_forces.toml", &text).unwrap();
+    let r = mechdiff::scene::run(&scene).unwrap();
+    let mechanism = mechdiff::scene::build::mechanism(&scene).unwrap();
+    let d = scene.dynamics.as_ref().unwrap();
+    let model = d.data.compile(&mechanism).unwrap();
+    let plan = d.plan(&mechanism);
+    let drive = DriveState::accelerating(scene.drive.speed.unwrap(), scene.drive.acceleration);
+    let phi = column(&r, "phi");
+    let solver = mechdiff_core::geometry::Solver::default();
+    let core = mechdiff_core::dynamics::run::run(&plan, &model, &solver, &phi, |_| drive).unwrap();
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    let shaking = |k: usize| -> Vec<f64> {
+        (core.steps.iter())
+            .map(|s| s.shaking.as_ref().unwrap().force[k])
+            .collect()
+    };
+    assert_eq!(bits(&column(&r, "SumF_x")), bits(&shaking(0)));
+    assert_eq!(bits(&column(&r, "SumF_y")), bits(&shaking(1)));
+    let moment: Vec<f64> = (core.steps.iter())
+        .map(|s| s.shaking.as_ref().unwrap().moment)
+        .collect();
+    assert_eq!(bits(&column(&r, "M_shaking")), bits(&moment));
+    assert_eq!(r.dynamics.as_ref().unwrap().run.steps, core.steps);
+}

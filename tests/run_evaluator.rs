@@ -414,3 +414,27 @@ fn a_cam_scene_refuses_the_option() {
         stderr(&output)
     );
 }
+
+/// With the run-time evaluator giving the kinematic rows, `[[dynamics]]` still reads the
+/// sweep's tracker, which follows the evaluator position by position: the dynamic columns
+/// are the solver run's bit for bit (the same tracker walk), each position is moved to once
+/// and evaluated once by the program, and the counts say so (exact integers).
+#[test]
+fn dynamics_under_the_run_time_evaluator_read_the_tracker_that_follows_it() {
+    let scene = scene::load("scenes/whitworth_forces.toml").unwrap();
+    let n = scene.positions.len();
+    let solver = scene::run(&scene).unwrap();
+    let program = scene::run(&with(scene, Evaluator::Interpreter)).unwrap();
+    assert!(program.plan.backend.is_some());
+    let s = program.stats.sweep;
+    assert_eq!((s.rows, s.program_steps, s.solves), (n, n, n));
+    let first = solver
+        .columns
+        .iter()
+        .position(|c| c.name == "Fx_crank")
+        .unwrap();
+    for (a, b) in solver.rows.iter().zip(&program.rows) {
+        let bits = |r: &[f64]| r[first..].iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(a), bits(b), "φ = {}", a[0]);
+    }
+}

@@ -450,3 +450,49 @@ quantities = ["position", "velocity_coefficient"]
     assert_same(&one, &auto, "auto");
     assert_eq!(auto.result.unwrap().pieces, stream::Pieces::default());
 }
+
+/// A scene of this repository with its `[sweep]` replaced by `sweep`.
+fn swept(name: &str, old: &str, sweep: &str) -> Scene {
+    let path = format!("{}/scenes/{name}", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(path).unwrap();
+    assert!(text.contains(old), "{name}");
+    scene::parse(name, &text.replace(old, sweep)).unwrap()
+}
+
+/// The outputs of a run in memory, written by its writers.
+fn in_memory(scene: &Scene) -> (Vec<u8>, Vec<u8>, Vec<u8>) {
+    let report = scene::run(scene).unwrap();
+    let (mut t, mut c, mut j) = (Vec::new(), Vec::new(), Vec::new());
+    table::write_table(scene, &report, &mut t).unwrap();
+    table::write_csv(&report, &mut c).unwrap();
+    table::write_jsonl(&report, &mut j).unwrap();
+    (t, c, j)
+}
+
+/// `[[dynamics]]` streams from the sweep's one walk: the Whitworth's forces (a kinematic
+/// output, inertial forces, shaking force with its summary line) over 1000 positions,
+/// streamed on two threads in speculative pieces of 16 and batches of 96, give the bytes of
+/// the run in memory in the table (with the summary after it), the CSV and the JSON Lines;
+/// each position solved once. A dynamics-and-balancing scene (the counterweights need every
+/// position before their columns) streams the bytes of the run in memory too.
+#[test]
+fn streamed_dynamics_and_balancing_give_the_bytes_of_a_run_in_memory() {
+    let forces = swept(
+        "whitworth_forces.toml",
+        "positions = [0, 67.9756871629578374, 180, 292.024312837042163]",
+        "from = 0\nto = 359.64\nstep = 0.36",
+    );
+    assert_eq!(forces.positions.len(), 1000);
+    let balancing = swept("whitworth_balancing.toml", "step = 5\n", "step = 2.5\n");
+    for scene in [&forces, &balancing] {
+        let (table, csv, jsonl) = in_memory(scene);
+        let out = streamed(scene, &pieces(2, 96, 16, Speculation::Always));
+        let stats = out.result.as_ref().unwrap().stats;
+        assert!(text(&out.table).contains("shaking force over the sweep"));
+        assert!(out.table == table, "{}", text(&out.table));
+        assert!(out.csv == csv, "{}", scene.file);
+        assert!(out.jsonl == jsonl, "{}", scene.file);
+        let n = scene.positions.len();
+        assert_eq!((stats.sweep.rows, stats.sweep.solves), (n, n));
+    }
+}

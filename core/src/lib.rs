@@ -33,6 +33,7 @@ pub mod motion;
 pub mod point;
 pub mod position;
 pub mod scalar;
+pub mod sweep;
 pub mod symbolic;
 pub mod trace;
 

@@ -5,9 +5,14 @@ use mechdiff_core::DriveState;
 mod common;
 
 use common::slider_crank_parts;
-use mechdiff_core::dynamics::run::run;
-use mechdiff_core::dynamics::{Dynamics, Effects, Friction, Gravity, Load, Plan, Request};
-use mechdiff_core::geometry::{Drive, Inertia, Mechanism, Solver};
+use mechdiff_core::Error;
+use mechdiff_core::balancing::{Counterweight, LinkageBalancing, balance_linkage};
+use mechdiff_core::dynamics::run::{run, step_at};
+use mechdiff_core::dynamics::{
+    CompiledModel, Dynamics, Effects, Friction, Gravity, Load, Plan, Request, Trace,
+};
+use mechdiff_core::geometry::{Drive, Inertia, Mechanism, Solver, Tracker};
+use mechdiff_core::sweep::{Collect, Consumer, Stream, Sweep};
 
 /// A slider-crank with masses, gravity, a load and friction data: every effect available.
 fn slider_crank() -> (Mechanism, Dynamics) {
@@ -189,4 +194,88 @@ fn reduced_inertia_derivative_matches_a_central_difference() {
     let scale = pairs.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
     let err = pairs.iter().map(|p| (p.0 - p.1).abs()).fold(0.0, f64::max) / scale;
     assert!(err <= 1e-8, "{err:e}");
+}
+
+/// The drive torque of a planned step at the pose a [`Sweep`] solved.
+struct DriveTorque<'a, 'm> {
+    plan: &'a Plan,
+    model: &'a CompiledModel<'m>,
+    drive: DriveState,
+    trace: Trace,
+}
+
+impl Consumer for DriveTorque<'_, '_> {
+    fn at(&mut self, t: &Tracker<'_>, phi: f64, row: &mut Vec<f64>) -> Result<(), Error> {
+        let step = step_at(self.plan, self.model, t, phi, self.drive, &mut self.trace)?;
+        row.push(step.solution.expect("planned").drive_torque);
+        Ok(())
+    }
+}
+
+/// One sweep feeds the planned dynamics and a counterweight being sized: 36 positions, 36
+/// moves of the tracker (counted, exact), 36 steps evaluated; the numbers are bit for bit
+/// those of the planned run and of `balance_linkage` walking the positions on their own
+/// (each with a tracker of its own): lifting a solved pose again gives the same jets.
+#[test]
+fn one_sweep_feeds_the_dynamics_and_the_counterweights_each_position_once() {
+    let (m, d) = slider_crank();
+    let plan = Plan::for_requests(&[Request::DriveTorque], d.available(&m));
+    let model = d.compile(&m).unwrap();
+    let drive = DriveState::constant_speed(10.0);
+    let counterweights = [Counterweight {
+        link: "crank".to_owned(),
+        line: ["O".to_owned(), "A".to_owned()],
+        radius: 0.05,
+    }];
+    let mut torque = DriveTorque {
+        plan: &plan,
+        model: &model,
+        drive,
+        trace: Trace::default(),
+    };
+    let mut balancing = LinkageBalancing::new(&m, &d, &counterweights, drive).unwrap();
+    let mut rows = Collect::default();
+    let report = Sweep::new(&m, &Solver::default())
+        .unwrap()
+        .with(&mut torque)
+        .with(&mut balancing)
+        .run(phis(), &mut rows)
+        .unwrap();
+    assert_eq!((report.rows, report.solves), (36, 36));
+    assert_eq!((torque.trace.positions, torque.trace.derivatives), (36, 36));
+    let alone = run(&plan, &model, &Solver::default(), &phis(), |_| drive).unwrap();
+    for (row, step) in rows.rows.iter().zip(&alone.steps) {
+        assert_eq!(row.len(), 2, "the drive position, the torque");
+        let want = step.solution.as_ref().unwrap().drive_torque;
+        assert_eq!(row[1].to_bits(), want.to_bits(), "φ = {}", row[0]);
+    }
+    let sized = balancing.finish().unwrap();
+    let solver = Solver::default();
+    let own = balance_linkage(&m, &d, &counterweights, &phis(), drive, &solver).unwrap();
+    assert_eq!(sized, own);
+    assert!(sized.after.max_force() < sized.before.max_force());
+}
+
+/// Rows stream through a [`Stream`] sink as they come; a sink's error stops the sweep at
+/// its row, after the rows before it.
+#[test]
+fn a_streaming_sink_sees_each_row_and_its_error_stops_the_sweep() {
+    let (m, _) = slider_crank();
+    let mut seen = Vec::new();
+    let mut sink = Stream(|row: &[f64]| {
+        seen.push(row[0]);
+        if seen.len() == 3 {
+            return Err(Error::MissingData {
+                what: "the test's sink".to_owned(),
+                missing: "room".to_owned(),
+            });
+        }
+        Ok(())
+    });
+    let e = Sweep::new(&m, &Solver::default())
+        .unwrap()
+        .run(phis(), &mut sink)
+        .unwrap_err();
+    assert!(matches!(e, Error::MissingData { .. }), "{e:?}");
+    assert_eq!(seen, phis()[..3]);
 }

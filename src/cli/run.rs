@@ -136,8 +136,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         None => {
             let mut scene = *read;
             scene.evaluator = args.evaluator;
-            let in_memory = scene.dynamics.is_some()
-                || scene.balancing.is_some()
+            let in_memory = scene.balancing.is_some()
                 || args.json.is_some()
                 || args.plot.is_some()
                 || args.report.is_some();

@@ -13,7 +13,7 @@ use super::positions::{MAX_IN_MEMORY, Positions};
 /// Every check of a scene's dynamics and balancing that needs no solved position: the
 /// dynamic model compiles, the drive has the speed the outputs need (a power balance or
 /// counterweights need a non-zero one), the rotor's answers are finite, and a sweep held in
-/// memory (dynamics, balancing) is not longer than [`MAX_IN_MEMORY`] positions.
+/// memory (counterweights) is not longer than [`MAX_IN_MEMORY`] positions.
 ///
 /// # Errors
 /// The located error a run would give for the first of these that fails.
@@ -24,7 +24,8 @@ pub fn before_solving(scene: &Scene, mechanism: &Mechanism) -> Result<()> {
     if let Some(b) = &scene.balancing {
         super::balancing::before_solving(scene, b, mechanism)?;
     }
-    let in_memory = scene.dynamics.is_some() || scene.balancing.is_some();
+    // Counterweights are sized from every position before a row is known: held in memory.
+    let in_memory = (scene.balancing.as_ref()).is_some_and(|b| b.counterweights.is_some());
     if in_memory && scene.positions.len() > MAX_IN_MEMORY {
         // The error names `step` and what to do instead; nothing is allocated.
         scene.positions.to_vec()?;

@@ -14,7 +14,7 @@ use super::model::{DriveKind, Output, Scene};
 use super::outputs::Column;
 use super::plan::Plan;
 use super::positions::Positions;
-use super::sweep::{Sweeper, check_row, kinematic_columns, not_finite, solve};
+use super::sweep::{Counts, Sweeper, check_row, kinematic_columns, not_finite, solve};
 use super::units::{Dimension, Units};
 
 /// The dead positions of one output found in the sweep's range.
@@ -61,6 +61,8 @@ pub struct Report {
     pub balancing: Option<super::balancing::BalancingReport>,
     /// The limit positions, change points and toggles the sweep reaches.
     pub limits: Vec<super::sweep_limits::SweepLimit>,
+    /// What the run evaluated.
+    pub stats: Stats,
 }
 
 impl Report {
@@ -147,47 +149,57 @@ pub fn columns(scene: &Scene, mechanism: &Mechanism) -> Vec<Column> {
     all
 }
 
-/// Runs a scene: solves every drive position of the sweep (keeping the sketch's assembly
-/// branch), evaluates the outputs, and searches the dead positions asked for.
+/// Runs a scene: solves every drive position of the sweep once (keeping the sketch's
+/// assembly branch) and feeds that pose to the outputs, `[[dynamics]]` and `[balancing]`;
+/// then searches the dead positions asked for.
 pub fn run(scene: &Scene) -> Result<Report> {
     let mechanism = mechanism(scene)?;
     super::preflight::before_solving(scene, &mechanism)?;
     let mut plan = Plan::of(scene);
-    let mut all = kinematic_columns(scene);
-    let positions = drive_positions(scene, &mechanism)?;
-    let mut sweeper = Sweeper::new(scene, &mechanism, &plan)?;
+    let mut all = columns(scene, &mechanism);
+    let mut stats = Stats::default();
+    let positions = drive_positions(scene, &mechanism, &mut stats)?;
+    let mut sweeper = sweeper(scene, &mechanism, &plan, true)?;
     plan.evaluated_by(&sweeper);
+    let width = all.len()
+        - (scene.balancing.as_ref()).map_or(0, |b| super::balancing::columns(scene, b).len());
     let mut rows = Vec::with_capacity(positions.len());
     for &phi in &positions {
         let mut row = Vec::with_capacity(all.len());
         sweeper.row(phi, &mut row)?;
         // The first error in drive order, as a streamed run reports it.
-        check_row(scene, &all, &row)?;
+        check_row(scene, &all[..width], &row)?;
         rows.push(row);
     }
     let warnings = sweeper.warnings();
+    stats.sweep = sweeper.counts();
+    let dead_positions = dead_positions(scene, &mechanism, positions.iter().copied(), &mut stats)?;
+    // The dynamic columns follow the drive's and the outputs'.
+    let first = kinematic_columns(scene).len();
+    let dynamics = (sweeper.dynamics())
+        .map(|d| {
+            d.report(
+                scene,
+                rows.iter().map(|r| r[first..width].to_vec()).collect(),
+            )
+        })
+        .transpose()?;
+    let linkage = (sweeper.take_balancing())
+        .map(|b| b.finish(scene))
+        .transpose()?;
     drop(sweeper);
-    let dead_positions = dead_positions(scene, &mechanism, positions.iter().copied())?;
-    let dynamics = match &scene.dynamics {
-        Some(d) => super::dynamics::run(scene, d, &mechanism, &positions, scene.drive.speed)?,
-        None => None,
-    };
-    if let Some(d) = &dynamics {
-        all.extend(d.columns.iter().cloned());
-        for (row, extra) in rows.iter_mut().zip(&d.rows) {
-            row.extend_from_slice(extra);
-        }
-    }
     let balancing = match &scene.balancing {
-        Some(b) => Some(super::balancing::run(scene, b, &mechanism, &positions)?),
+        Some(b) => Some(super::balancing::run(scene, b, &mechanism, linkage)?),
         None => None,
     };
     if let Some(b) = balancing.as_ref().filter(|b| !b.columns.is_empty()) {
-        all.extend(b.columns.iter().cloned());
         for (row, extra) in rows.iter_mut().zip(&b.rows) {
             row.extend_from_slice(extra);
         }
+    } else {
+        all.truncate(width);
     }
+    stats.limit_walks = usize::from(super::sweep_limits::walks(scene, positions.len()));
     let report = Report {
         plan,
         columns: all,
@@ -197,9 +209,45 @@ pub fn run(scene: &Scene) -> Result<Report> {
         warnings,
         balancing,
         limits: super::sweep_limits::in_sweep(scene, &mechanism, positions.iter().copied()),
+        stats,
     };
     all_finite(scene, &report)?;
     Ok(report)
+}
+
+/// The sweep of `scene` with its `[[dynamics]]` and `[balancing]` fed from the one walk;
+/// `keep_steps` keeps every dynamics step for the report (a run in memory).
+pub(crate) fn sweeper<'s>(
+    scene: &'s Scene,
+    mechanism: &'s Mechanism,
+    plan: &Plan,
+    keep_steps: bool,
+) -> Result<Sweeper<'s>> {
+    let dynamics = match &scene.dynamics {
+        Some(d) => super::dynamics::DynamicsSweep::new(scene, d, mechanism, keep_steps)?,
+        None => None,
+    };
+    let balancing = match &scene.balancing {
+        Some(b) => super::balancing::BalancingSweep::new(scene, b, mechanism)?,
+        None => None,
+    };
+    Ok(Sweeper::new(scene, mechanism, plan)?.with_effects(dynamics, balancing))
+}
+
+/// What a run evaluated: the sweep's own solves (each drive position once) and the
+/// searches beside it, each counted on its own.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Stats {
+    /// The sweep: rows, the tracker's moves, the run-time evaluator's steps.
+    pub sweep: Counts,
+    /// Positions solved by the search for the drive positions of `[sweep] of` (Newton on
+    /// the output, with its halved steps).
+    pub sweep_of: usize,
+    /// Positions solved by the dead-position searches.
+    pub dead_positions: usize,
+    /// Walks of the drive's motion range (from the sketch both ways) to find the limits the
+    /// sweep reaches.
+    pub limit_walks: usize,
 }
 
 /// Checks that every number of a report is finite before it is printed or written: an
@@ -232,10 +280,14 @@ pub(crate) fn check_dead_positions(scene: &Scene, dead_positions: &[DeadPosition
 
 /// The drive positions of a streamed sweep: as given (counted on demand), or solved for
 /// `[sweep] of` (a list from the file, held in memory).
-pub(crate) fn streamed_positions(scene: &Scene, mechanism: &Mechanism) -> Result<Positions> {
+pub(crate) fn streamed_positions(
+    scene: &Scene,
+    mechanism: &Mechanism,
+    stats: &mut Stats,
+) -> Result<Positions> {
     match scene.sweep_of {
         None => Ok(scene.positions.clone()),
-        Some(_) => drive_positions(scene, mechanism).map(Positions::List),
+        Some(_) => drive_positions(scene, mechanism, stats).map(Positions::List),
     }
 }
 
@@ -243,7 +295,7 @@ pub(crate) fn streamed_positions(scene: &Scene, mechanism: &Mechanism) -> Result
 /// that the output takes each given value (Newton on the output's exact velocity
 /// coefficient, from the sketch or the previous position; steps limited to a quarter turn or
 /// a quarter of the sketch's size).
-fn drive_positions(scene: &Scene, mechanism: &Mechanism) -> Result<Vec<f64>> {
+fn drive_positions(scene: &Scene, mechanism: &Mechanism, stats: &mut Stats) -> Result<Vec<f64>> {
     let Some(k) = scene.sweep_of else {
         return scene.positions.to_vec();
     };
@@ -274,6 +326,7 @@ fn drive_positions(scene: &Scene, mechanism: &Mechanism) -> Result<Vec<f64>> {
         // last position that assembled.
         let mut beyond: Option<Error> = None;
         for _ in 0..60 {
+            stats.sweep_of += 1;
             let k = match solve::<1>(scene, &mut tracker, phi) {
                 Ok(k) => k,
                 Err(e) => {
@@ -329,13 +382,16 @@ pub(crate) fn dead_positions(
     scene: &Scene,
     mechanism: &Mechanism,
     positions: impl Iterator<Item = f64> + Clone,
+    stats: &mut Stats,
 ) -> Result<Vec<DeadPositions>> {
     let mut dead_positions = Vec::new();
     for output in scene.outputs.iter().filter(|o| o.dead_positions) {
+        let (found, solved) = search_dead_positions(scene, mechanism, output, positions.clone())?;
+        stats.dead_positions += solved;
         dead_positions.push(DeadPositions {
             output: output.name.clone(),
             dimension: output.kind.dimension(),
-            positions: search_dead_positions(scene, mechanism, output, positions.clone())?,
+            positions: found,
         });
     }
     Ok(dead_positions)
@@ -344,13 +400,14 @@ pub(crate) fn dead_positions(
 /// The most intervals of the grid on which dead positions are searched.
 const DEAD_POSITION_INTERVALS: f64 = 65_536.0;
 
-/// Every dead position of an angle or slider output in the sweep's range.
+/// Every dead position of an angle or slider output in the sweep's range, and the number of
+/// positions the search solved.
 fn search_dead_positions(
     scene: &Scene,
     mechanism: &Mechanism,
     output: &Output,
     positions: impl Iterator<Item = f64> + Clone,
-) -> Result<Vec<DeadPosition>> {
+) -> Result<(Vec<DeadPosition>, usize)> {
     let (lo, hi) = (positions.clone()).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
         (lo.min(p), hi.max(p))
     });
@@ -372,14 +429,17 @@ fn search_dead_positions(
     );
     let resolved = Resolved::new(scene, mechanism, output)?;
     let previous = RefCell::new(None);
-    DeadPositionSearch::new(lo..=hi)
+    let solved = std::cell::Cell::new(0);
+    let found = DeadPositionSearch::new(lo..=hi)
         .with_step(step)
         .find_roots(|phi| {
+            solved.set(solved.get() + 1);
             let mut t = tracker.borrow_mut();
             let k = t.move_to(phi).and_then(|_| t.kinematics::<3>())?;
             Ok(evaluate(scene, &k, &resolved, &mut previous.borrow_mut())[0])
         })
-        .map_err(|e| solver_error(scene, e))
+        .map_err(|e| solver_error(scene, e))?;
+    Ok((found, solved.get()))
 }
 
 /// The drive's motion range in words, in the scene's units: `"from … (…) to … (…)"`, or

@@ -1,14 +1,19 @@
 //! The sweep, one drive position at a time: the tracker walks the drive positions in order
-//! (keeping the sketch's assembly branch) and each position gives one row of SI values.
-//! [`super::run`] collects the rows; [`crate::stream`] formats and writes them as they come.
+//! (keeping the sketch's assembly branch), solving each once, and each position gives one
+//! row of SI values: the outputs', then those of `[[dynamics]]`, which read the same pose
+//! (as do the counterweights of `[balancing]`), through [`mechdiff_core::sweep::Consumer`].
+//! [`super::run()`] collects the rows; [`crate::stream`] formats and writes them as they come.
 
 use mechdiff_core::DriveState;
 use mechdiff_core::geometry::{Kinematics, Mechanism, Tracker};
+use mechdiff_core::sweep::Consumer;
 
 use crate::error::{Error, Result};
 use crate::evaluator::{LoopPlan, ProgramPath, solver_loops};
 use mechdiff_core::trace::Backend;
 
+use super::balancing::BalancingSweep;
+use super::dynamics::DynamicsSweep;
 use super::evaluate::{Resolved, evaluate, from_code, quantity};
 use super::model::Scene;
 use super::outputs::{Column, columns};
@@ -65,6 +70,37 @@ pub struct Sweeper<'s> {
     /// The drive position of the last row (for a cam drive, the next move goes along the
     /// cam from there); `None` at the sketch.
     last: Option<f64>,
+    /// The `[[dynamics]]` outputs, fed the pose of every position the sweep solves.
+    dynamics: Option<DynamicsSweep<'s>>,
+    /// The counterweights of `[balancing]`, fed the pose of every position.
+    balancing: Option<BalancingSweep<'s>>,
+    /// What the sweep evaluated so far.
+    counts: Counts,
+}
+
+/// What a sweep evaluated: each drive position is solved once by the tracker (or proven by
+/// the run-time evaluator), and every consumer — the kinematic outputs, `[[dynamics]]`,
+/// `[balancing]` — reads that one pose.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Counts {
+    /// Rows computed.
+    pub rows: usize,
+    /// Moves of the sweep's tracker to a drive position (one per row the solver gives; with
+    /// the run-time evaluator, one per row whose pose `[[dynamics]]` or `[balancing]` reads,
+    /// and one where the solver takes over from the evaluator).
+    pub solves: usize,
+    /// Rows the run-time evaluator gave.
+    pub program_steps: usize,
+}
+
+impl Counts {
+    fn and(self, later: Counts) -> Counts {
+        Counts {
+            rows: self.rows + later.rows,
+            solves: self.solves + later.solves,
+            program_steps: self.program_steps + later.program_steps,
+        }
+    }
 }
 
 /// The walk at the derivative order the plan needs.
@@ -114,7 +150,57 @@ impl<'s> Sweeper<'s> {
             program,
             jit_warning,
             last: None,
+            dynamics: None,
+            balancing: None,
+            counts: Counts::default(),
         })
+    }
+
+    /// The sweep feeding `dynamics` and `balancing` the pose of every position it solves,
+    /// after the kinematic outputs' columns: the dynamic columns are appended to each row.
+    pub(crate) fn with_effects(
+        mut self,
+        dynamics: Option<DynamicsSweep<'s>>,
+        balancing: Option<BalancingSweep<'s>>,
+    ) -> Self {
+        self.dynamics = dynamics;
+        self.balancing = balancing;
+        self
+    }
+
+    /// What the sweep evaluated so far (of a sweep solved in pieces: the pieces kept).
+    pub fn counts(&self) -> Counts {
+        self.counts
+    }
+
+    /// The `[[dynamics]]` outputs' part of the sweep so far.
+    pub(crate) fn dynamics(&self) -> Option<&DynamicsSweep<'s>> {
+        self.dynamics.as_ref()
+    }
+
+    /// Takes the counterweights' part of the sweep, to size them.
+    pub(crate) fn take_balancing(&mut self) -> Option<BalancingSweep<'s>> {
+        self.balancing.take()
+    }
+
+    /// Feeds the pose the tracker stands at, drive position `phi`, to `[[dynamics]]` (its
+    /// columns appended to `row`) and `[balancing]`.
+    fn effects(&mut self, phi: f64, row: &mut Vec<f64>) -> Result<()> {
+        let scene = self.scene;
+        let tracker = match &self.walk {
+            Walk::First(o) | Walk::Second(o) | Walk::Third(o) => &o.tracker,
+        };
+        if let Some(d) = &mut self.dynamics {
+            (d.at(tracker, phi, row)).map_err(|e| super::dynamics::error(scene, e))?;
+        }
+        if let Some(b) = &mut self.balancing {
+            (b.at(tracker, phi, row)).map_err(|e| b.error(scene, e))?;
+        }
+        Ok(())
+    }
+
+    fn has_effects(&self) -> bool {
+        self.dynamics.is_some() || self.balancing.is_some()
     }
 
     /// The run-time evaluator's back end, `None` on the solver (for the plan line).
@@ -163,20 +249,30 @@ impl<'s> Sweeper<'s> {
     pub fn row(&mut self, phi: f64, row: &mut Vec<f64>) -> Result<()> {
         row.clear();
         row.push(phi);
-        if self.program_row(phi, row) {
-            self.last = Some(phi);
-            return Ok(());
-        }
+        self.counts.rows += 1;
         let scene = self.scene;
+        if self.program_row(phi, row) {
+            self.counts.program_steps += 1;
+            if self.has_effects() {
+                // The effects read the tracker's pose: it follows the program.
+                let last = self.last;
+                move_along(scene, &mut self.outputs_mut().tracker, last, phi)?;
+                self.counts.solves += 1;
+            }
+            self.last = Some(phi);
+            return self.effects(phi, row);
+        }
         if let Some(at) = self.program.as_ref().map(ProgramPath::phi) {
             // The solver takes this step from where the program stands (it has not moved
             // since the last step it took; the steps between were proven).
             let tracker = &mut self.outputs_mut().tracker;
             if tracker.phi() != at {
                 tracker.move_to(at).map_err(|e| solver_error(scene, e))?;
+                self.counts.solves += 1;
             }
         }
         let last = self.last;
+        self.counts.solves += 1;
         let o = match &mut self.walk {
             Walk::First(o) => {
                 let k = solve_along::<1>(scene, &mut o.tracker, last, phi)?;
@@ -206,7 +302,7 @@ impl<'s> Sweeper<'s> {
             // the solver goes on alone.
             self.program = None;
         }
-        Ok(())
+        self.effects(phi, row)
     }
 
     /// Whether `other` (a sweep of the same scene) continues exactly as this one: the same
@@ -234,7 +330,9 @@ impl<'s> Sweeper<'s> {
     /// with the route (its start and its steps), so a sweep with a loop on Newton is best
     /// walked in order; so is one on the run-time evaluator (its state is not compared).
     pub fn is_route_independent(&self) -> bool {
+        // Counterweights are sized from every pose in order: walked in order.
         self.program.is_none()
+            && self.balancing.is_none()
             && self
                 .outputs()
                 .tracker
@@ -243,10 +341,14 @@ impl<'s> Sweeper<'s> {
                 .all(|&c| c)
     }
 
-    /// Forgets the most ill-conditioned position seen so far: a piece of a sweep counts its
-    /// own (see [`Sweeper::follow`]).
+    /// Forgets the most ill-conditioned position seen so far, what was evaluated and the
+    /// dynamics' summary: a piece of a sweep counts its own (see [`Sweeper::follow`]).
     pub fn restart_worst(&mut self) {
         self.worst = None;
+        self.counts = Counts::default();
+        if let Some(d) = &mut self.dynamics {
+            d.restart();
+        }
     }
 
     /// Becomes `later`, a piece of the sweep solved from this one's state (a clone, its
@@ -259,6 +361,12 @@ impl<'s> Sweeper<'s> {
         };
         if earlier_stays {
             later.worst = self.worst;
+        }
+        later.counts = self.counts.and(later.counts);
+        if let (Some(earlier), Some(d)) = (&self.dynamics, &mut later.dynamics) {
+            let mut joined = earlier.clone();
+            joined.then(d);
+            *d = joined;
         }
         *self = later;
     }
@@ -344,17 +452,24 @@ fn solve_along<'m, const N: usize>(
     last: Option<f64>,
     phi: f64,
 ) -> Result<Kinematics<'m, N>> {
+    move_along(scene, tracker, last, phi)?;
+    tracker
+        .kinematics::<N>()
+        .map_err(|e| solver_error(scene, e))
+}
+
+/// Moves `tracker` to drive position `phi` as [`solve_along`] does, lifting nothing.
+fn move_along(scene: &Scene, tracker: &mut Tracker<'_>, last: Option<f64>, phi: f64) -> Result<()> {
     match (&scene.drive.cam, last) {
         (Some(cam), Some(from)) => {
             let offset = scene.drive.at_sketch;
             (cam.joint)
                 .move_tracker(tracker, offset, from, phi)
-                .map_err(|e| cam_error(scene, e))?;
-            tracker
-                .kinematics::<N>()
-                .map_err(|e| solver_error(scene, e))
+                .map_err(|e| cam_error(scene, e))
         }
-        _ => solve::<N>(scene, tracker, scene.drive.joint_position(phi)),
+        _ => (tracker.move_to(scene.drive.joint_position(phi)))
+            .map(drop)
+            .map_err(|e| solver_error(scene, e)),
     }
 }
 

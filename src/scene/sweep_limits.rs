@@ -15,6 +15,12 @@ pub struct SweepLimit {
     pub tag: String,
 }
 
+/// Whether [`in_sweep`] walks the drive's motion range for a sweep of `positions` drive
+/// positions: not for a cam drive or fewer than two positions.
+pub fn walks(scene: &Scene, positions: usize) -> bool {
+    scene.drive.cam.is_none() && positions >= 2
+}
+
 /// The ends of the motion range walked from the sketch (`Tracker::motion_range`) that lie in
 /// the sweep's range of drive positions or within one of its steps beyond either end (a step
 /// further would meet them). Angle drives also try the limit a turn either way. A cam drive,
@@ -25,7 +31,7 @@ pub fn in_sweep(
     mechanism: &Mechanism,
     positions: impl ExactSizeIterator<Item = f64> + Clone,
 ) -> Vec<SweepLimit> {
-    if scene.drive.cam.is_some() || positions.len() < 2 {
+    if !walks(scene, positions.len()) {
         return Vec::new();
     }
     let Some(range) = Solver::default()

@@ -94,6 +94,12 @@ pub fn write_table(scene: &Scene, report: &Report, out: &mut impl Write) -> io::
         );
     }
     write!(out, "{}", table.render())?;
+    write_after_rows(scene, report, out)
+}
+
+/// Writes what follows the table's rows: the dead positions ([`write_dead_positions`]),
+/// the dynamics' summary lines and the balancing answers.
+pub fn write_after_rows(scene: &Scene, report: &Report, out: &mut impl Write) -> io::Result<()> {
     write_dead_positions(scene, report, out)?;
     for line in report.dynamics.iter().flat_map(|d| &d.summary) {
         writeln!(out, "{line}")?;

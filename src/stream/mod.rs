@@ -1,5 +1,5 @@
-//! Sweeps that stream: the rows of a kinematic scene are formatted and written as they are
-//! computed, so that memory stays flat in the number of drive positions.
+//! Sweeps that stream: the rows of a scene (its outputs and `[[dynamics]]`) are formatted and
+//! written as they are computed, so that memory stays flat in the number of drive positions.
 //!
 //! Each position of a sweep starts from the previous pose (the branch tracking) and each
 //! angle output from its previous value (kept continuous). A batch of positions is solved in
@@ -25,8 +25,9 @@ use std::path::PathBuf;
 
 use crate::error::{Error, Result};
 use crate::parallel::prelude::*;
-use crate::scene::run::{Report, check_dead_positions, dead_positions, streamed_positions};
-use crate::scene::sweep::{Sweeper, kinematic_columns};
+use crate::scene::run::{
+    self, Report, Stats, check_dead_positions, dead_positions, streamed_positions,
+};
 use crate::scene::{Plan, Scene, build, table};
 
 use format::{RowFormat, Texts, Wanted};
@@ -114,20 +115,34 @@ pub struct Streamed {
     pub warnings: Vec<String>,
     /// How the parallel solve's pieces went.
     pub pieces: Pieces,
+    /// What the run evaluated (of a sweep solved in pieces: the pieces kept).
+    pub stats: Stats,
 }
 
-/// Runs a kinematic scene (no dynamics, no balancing) and streams its rows to `sinks`.
+/// Runs a scene and streams its rows to `sinks`: the kinematic outputs and `[[dynamics]]`
+/// from the one walk of the sweep, in constant memory. Counterweights (`[balancing]`) are
+/// sized from every position before their columns are known: such a run is carried out in
+/// memory ([`crate::scene::run()`]) and written by the same writers.
 ///
 /// # Errors
 /// The first error in drive order (a solver error, a non-finite value), after the rows
 /// before it were written to every output; then an error of the dead-position search; or
 /// [`Error::Write`] naming the output that failed. The caller discards partial files.
 pub fn run(scene: &Scene, sinks: &mut Sinks<'_>, options: &Options) -> Result<Streamed> {
+    if scene
+        .balancing
+        .as_ref()
+        .is_some_and(|b| b.counterweights.is_some())
+    {
+        return in_memory(scene, sinks);
+    }
     let mechanism = build::mechanism(scene)?;
+    crate::scene::preflight::before_solving(scene, &mechanism)?;
     let mut plan = Plan::of(scene);
-    let columns = kinematic_columns(scene);
-    let positions = streamed_positions(scene, &mechanism)?;
-    let mut sweeper = Sweeper::new(scene, &mechanism, &plan)?;
+    let columns = run::columns(scene, &mechanism);
+    let mut stats = Stats::default();
+    let positions = streamed_positions(scene, &mechanism, &mut stats)?;
+    let mut sweeper = run::sweeper(scene, &mechanism, &plan, false)?;
     plan.evaluated_by(&sweeper);
     let format = RowFormat::new(&columns);
     let streamed_table = positions.len() > options.table_from_values;
@@ -230,23 +245,32 @@ pub fn run(scene: &Scene, sinks: &mut Sinks<'_>, options: &Options) -> Result<St
     if let Some(error) = stopped {
         return Err(error);
     }
-    let dead = dead_positions(scene, &mechanism, positions.iter())?;
+    let dead = dead_positions(scene, &mechanism, positions.iter(), &mut stats)?;
     check_dead_positions(scene, &dead)?;
     let warnings = sweeper.warnings();
+    stats.sweep = sweeper.counts();
+    let dynamics = (sweeper.dynamics())
+        .map(|d| d.report(scene, Vec::new()))
+        .transpose()?;
+    let balancing = (scene.balancing.as_ref())
+        .map(|b| crate::scene::balancing::run(scene, b, &mechanism, None))
+        .transpose()?;
     if sinks.table.is_some() {
         let mut text = Vec::new();
+        stats.limit_walks = usize::from(crate::scene::sweep_limits::walks(scene, positions.len()));
         let report = Report {
             plan,
             columns,
             rows: kept_rows,
             dead_positions: dead,
-            dynamics: None,
+            dynamics,
             warnings: warnings.clone(),
-            balancing: None,
+            balancing,
             limits: crate::scene::sweep_limits::in_sweep(scene, &mechanism, positions.iter()),
+            stats,
         };
         let result = if streamed_table {
-            table::write_dead_positions(scene, &report, &mut text)
+            table::write_after_rows(scene, &report, &mut text)
         } else {
             table::write_table(scene, &report, &mut text)
         };
@@ -260,6 +284,41 @@ pub fn run(scene: &Scene, sinks: &mut Sinks<'_>, options: &Options) -> Result<St
         rows: written,
         warnings,
         pieces,
+        stats,
+    })
+}
+
+/// [`run`] for a scene whose rows are known only at the end (counterweights): run in
+/// memory, then written by the writers of a run in memory.
+fn in_memory(scene: &Scene, sinks: &mut Sinks<'_>) -> Result<Streamed> {
+    let report = crate::scene::run(scene)?;
+    let write = |sink: &mut Sink<'_>, f: &dyn Fn(&mut Vec<u8>) -> io::Result<()>| {
+        let mut bytes = Vec::new();
+        f(&mut bytes).map_err(|source| Error::Write {
+            path: sink.path.clone(),
+            source,
+        })?;
+        sink.write(&bytes)
+    };
+    if let Some(sink) = &mut sinks.csv {
+        write(sink, &|out| table::write_csv(&report, out))?;
+    }
+    if let Some(sink) = &mut sinks.jsonl {
+        write(sink, &|out| table::write_jsonl(&report, out))?;
+    }
+    if sinks.table.is_some() {
+        let mut text = Vec::new();
+        (table::write_table(scene, &report, &mut text)).map_err(|source| Error::Write {
+            path: PathBuf::from("<stdout>"),
+            source,
+        })?;
+        write_table(sinks, &text)?;
+    }
+    Ok(Streamed {
+        rows: report.rows.len(),
+        warnings: report.warnings,
+        pieces: Pieces::default(),
+        stats: report.stats,
     })
 }
 

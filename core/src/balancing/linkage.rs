@@ -21,11 +21,12 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use crate::dynamics::run::run;
+use crate::dynamics::run::{Step, check, step_from};
 use crate::dynamics::state::link_states;
-use crate::dynamics::{Dynamics, Plan, Request};
-use crate::geometry::{Inertia, JointKind, Mechanism, Solver};
-use crate::{DriveState, Error};
+use crate::dynamics::{CompiledModel, Dynamics, Plan, Request, Trace};
+use crate::geometry::{Inertia, JointKind, Mechanism, Solver, Tracker};
+use crate::sweep::{Consumer, Sweep};
+use crate::{DriveState, Error, Jet};
 
 /// A counterweight to size: on `link`, at `radius` from its fixed pivot `line[0]`, its angle
 /// measured from the link's line `line[0] → line[1]`.
@@ -195,98 +196,218 @@ pub fn balance_linkage(
     drive: DriveState,
     solver: &Solver,
 ) -> Result<LinkageBalance, Error> {
-    let sites = check_request(mechanism, counterweights)?;
+    let mut balancing = LinkageBalancing::new(mechanism, dynamics, counterweights, drive)?;
     if phis.is_empty() {
-        return Err(Error::MissingData {
-            what: "balancing a linkage".to_owned(),
-            missing: "at least one drive position (sweep one whole cycle)".to_owned(),
-        });
+        return Err(no_position());
     }
-    let before = sweep(mechanism, dynamics, phis, drive, solver)?;
-    // The least-squares matrix: two rows per drive position, two columns per counterweight.
-    let (n, k) = (phis.len(), sites.len());
-    let mut a = DMatrix::<f64>::zeros(2 * n, 2 * k);
-    let mut rhs = DVector::<f64>::zeros(2 * n);
-    let mut tracker = solver.track(mechanism)?;
-    for (j, &phi) in phis.iter().enumerate() {
-        tracker.move_to(phi)?;
+    Sweep::new(mechanism, solver)?
+        .with(&mut balancing)
+        .run(phis.iter().copied(), &mut ())?;
+    balancing.finish()
+}
+
+fn no_position() -> Error {
+    Error::MissingData {
+        what: "balancing a linkage".to_owned(),
+        missing: "at least one drive position (sweep one whole cycle)".to_owned(),
+    }
+}
+
+/// Counterweights sized from a sweep solved by the caller, one position at a time: at each
+/// position [`LinkageBalancing::add`] reads the pose the caller's tracker stands at (nothing
+/// is solved here), then [`LinkageBalancing::finish`] sizes them and evaluates the balanced
+/// linkage at the same poses — the counterweights change the masses, not the motion. The
+/// poses are kept until then (the coordinates with two derivatives per position): a sweep
+/// that streams its rows holds these, and nothing else, until the counterweights are known.
+/// [`balance_linkage`] is this fed by a tracker of its own.
+#[derive(Debug, Clone)]
+pub struct LinkageBalancing<'m> {
+    mechanism: &'m Mechanism,
+    dynamics: Dynamics,
+    counterweights: Vec<Counterweight>,
+    sites: Vec<Site>,
+    drive: DriveState,
+    plan: Plan,
+    model: CompiledModel<'m>,
+    before: LinkageSweep,
+    /// Per position, the least-squares matrix's two rows (`2 k` values each).
+    rows: Vec<f64>,
+    /// Per position, the pose's coordinates (`coordinates` values each).
+    poses: Vec<Jet<2>>,
+    coordinates: usize,
+    trace: Trace,
+}
+
+impl<'m> LinkageBalancing<'m> {
+    /// Starts sizing `counterweights` for `mechanism` with the effect data `dynamics` at
+    /// drive state `drive`.
+    ///
+    /// # Errors
+    /// The request's errors ([`check_balance_request`]) and the model's.
+    pub fn new(
+        mechanism: &'m Mechanism,
+        dynamics: &Dynamics,
+        counterweights: &[Counterweight],
+        drive: DriveState,
+    ) -> Result<Self, Error> {
+        let sites = check_request(mechanism, counterweights)?;
+        let (model, plan) = model(mechanism, dynamics)?;
+        Ok(Self {
+            mechanism,
+            dynamics: dynamics.clone(),
+            counterweights: counterweights.to_vec(),
+            sites,
+            drive,
+            plan,
+            model,
+            before: LinkageSweep {
+                phi: Vec::new(),
+                force: Vec::new(),
+                moment: Vec::new(),
+                drive_torque: Vec::new(),
+            },
+            rows: Vec::new(),
+            poses: Vec::new(),
+            coordinates: 0,
+            trace: Trace::default(),
+        })
+    }
+
+    /// Reads the pose `tracker` stands at, drive position `phi` (the caller moved it there).
+    ///
+    /// # Errors
+    /// The lift's or the equilibrium's error at `phi`, or a value that overflowed.
+    pub fn add(&mut self, tracker: &Tracker<'_>, phi: f64) -> Result<(), Error> {
         let kin = tracker.kinematics::<2>()?;
-        let states = link_states(&kin.coordinates, &drive);
-        for (i, s) in sites.iter().enumerate() {
+        let step = step_from(
+            &self.plan,
+            &self.model,
+            phi,
+            self.drive,
+            &kin.coordinates,
+            &mut self.trace,
+        )?;
+        push(&mut self.before, &step);
+        let states = link_states(&kin.coordinates, &self.drive);
+        let k = self.sites.len();
+        let at = self.rows.len();
+        self.rows.resize(at + 4 * k, 0.0);
+        let (x, y) = self.rows[at..].split_at_mut(2 * k);
+        for (i, s) in self.sites.iter().enumerate() {
             let st = states[s.link - 1];
             let (sn, cs) = st.theta.sin_cos();
             let (w2, al) = (st.omega * st.omega, st.alpha);
-            a[(2 * j, 2 * i)] = w2 * cs + al * sn;
-            a[(2 * j, 2 * i + 1)] = -w2 * sn + al * cs;
-            a[(2 * j + 1, 2 * i)] = w2 * sn - al * cs;
-            a[(2 * j + 1, 2 * i + 1)] = w2 * cs + al * sn;
+            x[2 * i] = w2 * cs + al * sn;
+            x[2 * i + 1] = -w2 * sn + al * cs;
+            y[2 * i] = w2 * sn - al * cs;
+            y[2 * i + 1] = w2 * cs + al * sn;
         }
-        rhs[2 * j] = -before.force[j][0];
-        rhs[2 * j + 1] = -before.force[j][1];
+        self.coordinates = kin.coordinates.len();
+        self.poses.extend_from_slice(&kin.coordinates);
+        Ok(())
     }
-    let x = if k == 0 {
-        DVector::zeros(0)
-    } else {
-        let svd = a.clone().svd(true, true);
-        let largest = svd.singular_values.max();
-        let smallest = svd.singular_values.min();
-        if !(largest > 0.0 && smallest > 1e-10 * largest) {
-            return Err(Error::MissingData {
-                what: "sizing counterweights".to_owned(),
-                missing: "a sweep in which every counterweight's link turns at a non-zero speed \
-                          (the shaking force does not determine them: sweep a whole revolution \
-                          with a drive speed)"
-                    .to_owned(),
-            });
+
+    /// Sizes the counterweights over the positions added and evaluates the balanced linkage
+    /// at them.
+    ///
+    /// # Errors
+    /// No position added, or a sweep that does not determine the counterweights (see
+    /// [`balance_linkage`]); an overflow.
+    pub fn finish(self) -> Result<LinkageBalance, Error> {
+        let phis = &self.before.phi;
+        if phis.is_empty() {
+            return Err(no_position());
         }
-        svd.solve(&rhs, 0.0).map_err(|_| Error::NonFinite {
-            phi: phis[0],
-            quantity: "counterweight least squares",
-        })?
-    };
-    let mut balanced = mechanism.clone();
-    let mut placed = Vec::with_capacity(k);
-    for (i, (s, c)) in sites.iter().zip(counterweights).enumerate() {
-        let vector = [x[2 * i], x[2 * i + 1]];
-        let mass_radius = vector[0].hypot(vector[1]);
-        if !mass_radius.is_finite() {
-            return Err(Error::NonFinite {
-                phi: phis[0],
-                quantity: "counterweight mass-radius",
-            });
+        // The least-squares matrix: two rows per drive position, two columns per counterweight.
+        let (n, k) = (phis.len(), self.sites.len());
+        let a = DMatrix::<f64>::from_row_slice(2 * n, 2 * k, &self.rows);
+        let mut rhs = DVector::<f64>::zeros(2 * n);
+        for (j, f) in self.before.force.iter().enumerate() {
+            rhs[2 * j] = -f[0];
+            rhs[2 * j + 1] = -f[1];
         }
-        let mass = mass_radius / c.radius;
-        let (center, angle) = if mass_radius > 0.0 {
-            let u = [vector[0] / mass_radius, vector[1] / mass_radius];
-            let angle = wrap(vector[1].atan2(vector[0]) - s.line_angle);
-            (
-                [s.pivot[0] + c.radius * u[0], s.pivot[1] + c.radius * u[1]],
-                angle,
-            )
+        let x = if k == 0 {
+            DVector::zeros(0)
         } else {
-            (s.pivot, 0.0)
+            let svd = a.svd(true, true);
+            let largest = svd.singular_values.max();
+            let smallest = svd.singular_values.min();
+            if !(largest > 0.0 && smallest > 1e-10 * largest) {
+                return Err(Error::MissingData {
+                    what: "sizing counterweights".to_owned(),
+                    missing: "a sweep in which every counterweight's link turns at a non-zero \
+                              speed (the shaking force does not determine them: sweep a whole \
+                              revolution with a drive speed)"
+                        .to_owned(),
+                });
+            }
+            svd.solve(&rhs, 0.0).map_err(|_| Error::NonFinite {
+                phi: phis[0],
+                quantity: "counterweight least squares",
+            })?
         };
-        let link = &mut balanced.links[s.link];
-        link.inertia = Some(combine(link.inertia.expect("checked above"), mass, center));
-        placed.push(PlacedCounterweight {
-            request: c.clone(),
-            vector,
-            mass_radius,
-            angle,
-            mass,
-            center,
-        });
+        let mut balanced = self.mechanism.clone();
+        let mut placed = Vec::with_capacity(k);
+        for (i, (s, c)) in self.sites.iter().zip(&self.counterweights).enumerate() {
+            let vector = [x[2 * i], x[2 * i + 1]];
+            let mass_radius = vector[0].hypot(vector[1]);
+            if !mass_radius.is_finite() {
+                return Err(Error::NonFinite {
+                    phi: phis[0],
+                    quantity: "counterweight mass-radius",
+                });
+            }
+            let mass = mass_radius / c.radius;
+            let (center, angle) = if mass_radius > 0.0 {
+                let u = [vector[0] / mass_radius, vector[1] / mass_radius];
+                let angle = wrap(vector[1].atan2(vector[0]) - s.line_angle);
+                (
+                    [s.pivot[0] + c.radius * u[0], s.pivot[1] + c.radius * u[1]],
+                    angle,
+                )
+            } else {
+                (s.pivot, 0.0)
+            };
+            let link = &mut balanced.links[s.link];
+            link.inertia = Some(combine(link.inertia.expect("checked above"), mass, center));
+            placed.push(PlacedCounterweight {
+                request: c.clone(),
+                vector,
+                mass_radius,
+                angle,
+                mass,
+                center,
+            });
+        }
+        let after = {
+            let (model, plan) = model(&balanced, &self.dynamics)?;
+            let mut after = LinkageSweep {
+                phi: Vec::with_capacity(n),
+                force: Vec::with_capacity(n),
+                moment: Vec::with_capacity(n),
+                drive_torque: Vec::with_capacity(n),
+            };
+            let mut trace = Trace::default();
+            let poses = self.poses.chunks(self.coordinates.max(1));
+            for (&phi, pose) in phis.iter().zip(poses) {
+                push(
+                    &mut after,
+                    &step_from(&plan, &model, phi, self.drive, pose, &mut trace)?,
+                );
+            }
+            after
+        };
+        Ok(LinkageBalance {
+            counterweights: placed,
+            before: self.before,
+            after,
+            balanced,
+        })
     }
-    let after = sweep(&balanced, dynamics, phis, drive, solver)?;
-    Ok(LinkageBalance {
-        counterweights: placed,
-        before,
-        after,
-        balanced,
-    })
 }
 
 /// A counterweight's link, pivot and line direction, checked.
+#[derive(Debug, Clone)]
 struct Site {
     link: usize,
     pivot: [f64; 2],
@@ -396,33 +517,31 @@ fn combine(inertia: Inertia, mass: f64, center: [f64; 2]) -> Inertia {
     }
 }
 
-/// The shaking force, moment and drive torque of `m` over the sweep (the dynamics' code).
-fn sweep(
-    m: &Mechanism,
-    dynamics: &Dynamics,
-    phis: &[f64],
-    drive: DriveState,
-    solver: &Solver,
-) -> Result<LinkageSweep, Error> {
+/// The counterweights read the pose of every position of a [`Sweep`] (no values in its
+/// rows: their columns are known at the end, [`LinkageBalancing::finish`]).
+impl Consumer for LinkageBalancing<'_> {
+    fn at(&mut self, tracker: &Tracker<'_>, phi: f64, _: &mut Vec<f64>) -> Result<(), Error> {
+        self.add(tracker, phi)
+    }
+}
+
+/// The compiled model of `m` and the plan of the shaking force and the drive torque.
+fn model<'m>(m: &'m Mechanism, dynamics: &Dynamics) -> Result<(CompiledModel<'m>, Plan), Error> {
     let model = dynamics.compile(m)?;
     let plan = Plan::for_requests(
         &[Request::ShakingForce, Request::DriveTorque],
         dynamics.available(m),
     );
-    let r = run(&plan, &model, solver, phis, |_| drive)?;
-    let mut out = LinkageSweep {
-        phi: Vec::with_capacity(phis.len()),
-        force: Vec::with_capacity(phis.len()),
-        moment: Vec::with_capacity(phis.len()),
-        drive_torque: Vec::with_capacity(phis.len()),
-    };
-    for s in &r.steps {
-        let shaking = s.shaking.as_ref().expect("planned");
-        let solution = s.solution.as_ref().expect("planned");
-        out.phi.push(s.phi);
-        out.force.push(shaking.force);
-        out.moment.push(shaking.moment);
-        out.drive_torque.push(solution.drive_torque);
-    }
-    Ok(out)
+    check(&plan, &model)?;
+    Ok((model, plan))
+}
+
+/// Appends one position's shaking force, moment and drive torque to `sweep`.
+fn push(sweep: &mut LinkageSweep, step: &Step) {
+    let shaking = step.shaking.as_ref().expect("planned");
+    let solution = step.solution.as_ref().expect("planned");
+    sweep.phi.push(step.phi);
+    sweep.force.push(shaking.force);
+    sweep.moment.push(shaking.moment);
+    sweep.drive_torque.push(solution.drive_torque);
 }

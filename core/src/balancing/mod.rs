@@ -7,8 +7,8 @@ pub mod rotor;
 pub mod slider_crank;
 
 pub use linkage::{
-    Counterweight, LinkageBalance, LinkageSweep, PlacedCounterweight, balance_linkage,
-    check_balance_request,
+    Counterweight, LinkageBalance, LinkageBalancing, LinkageSweep, PlacedCounterweight,
+    balance_linkage, check_balance_request,
 };
 pub use rotor::{Correction, CouplePlane, Polygons, Rotor, RotorMass, TwoPlaneBalance};
 pub use slider_crank::{PartialBalance, SliderCrankUnbalance};

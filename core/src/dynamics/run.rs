@@ -8,6 +8,7 @@ use super::plan::{Plan, Trace};
 use super::shaking::{ShakingForce, shaking_force};
 use super::solution::Solution;
 use crate::geometry::{Solver, Tracker};
+use crate::sweep::{Consumer, Sweep};
 use crate::{DriveState, Error, Jet};
 
 /// The results at one drive position; what the plan did not ask for is `None`.
@@ -89,80 +90,164 @@ pub fn run_moved(
     states: &[(f64, DriveState)],
     mut move_to: impl FnMut(&mut Tracker<'_>, usize) -> Result<(), Error>,
 ) -> Result<Run, Error> {
+    check(plan, model)?;
+    let mut steps = Steps {
+        plan,
+        model,
+        states,
+        trace: Trace::default(),
+        steps: Vec::with_capacity(states.len()),
+    };
+    Sweep::new(model.mechanism, solver)?
+        .with(&mut steps)
+        .run_moved(states.iter().map(|s| s.0), &mut (), |tracker, k, _| {
+            move_to(tracker, k)
+        })?;
+    Ok(Run {
+        steps: steps.steps,
+        trace: steps.trace,
+    })
+}
+
+/// The steps of a planned run at drive states `states`, one per pose the sweep solves.
+struct Steps<'a, 'm> {
+    plan: &'a Plan,
+    model: &'a CompiledModel<'m>,
+    states: &'a [(f64, DriveState)],
+    trace: Trace,
+    steps: Vec<Step>,
+}
+
+impl Consumer for Steps<'_, '_> {
+    fn at(&mut self, tracker: &Tracker<'_>, phi: f64, _: &mut Vec<f64>) -> Result<(), Error> {
+        let d = self.states[self.steps.len()].1;
+        let step = step_at(self.plan, self.model, tracker, phi, d, &mut self.trace)?;
+        self.steps.push(step);
+        Ok(())
+    }
+}
+
+/// What a planned sweep checks before solving any position: a shaking force needs a link
+/// with mass.
+///
+/// # Errors
+/// [`Error::MissingData`] when the plan asks for the shaking force of a model without mass.
+pub fn check(plan: &Plan, model: &CompiledModel<'_>) -> Result<(), Error> {
     if plan.shaking && model.masses.is_empty() {
         return Err(Error::MissingData {
             what: "the shaking force".to_owned(),
             missing: "mass properties of at least one link".to_owned(),
         });
     }
-    let mut tracker = solver.track(model.mechanism)?;
-    let mut trace = Trace::default();
-    let mut steps = Vec::with_capacity(states.len());
-    for (k, &(phi, d)) in states.iter().enumerate() {
-        move_to(&mut tracker, k)?;
-        trace.positions += 1;
-        let mut step = Step {
-            phi,
-            drive: d,
-            solution: None,
-            energy: None,
-            shaking: None,
-        };
-        match plan.order {
-            0 => {}
-            1 => {
-                let k = tracker.kinematics::<1>()?;
-                trace.derivatives += 1;
-                if plan.energy {
-                    step.energy = Some(energy(model, &k.coordinates, &d));
-                    trace.energy += 1;
-                }
-                if plan.kinetostatics {
-                    // Forces at order 1 are planned only without inertia: the accelerations
-                    // (q″ padded with 0) are then never read.
-                    debug_assert!(!plan.effects.inertia);
-                    let padded: Vec<Jet<2>> = k
-                        .coordinates
-                        .iter()
-                        .map(|j| Jet::new(j.value, [j.derivatives[0], 0.0]))
-                        .collect();
-                    let s = kinetostatics::solve_at(model, &plan.effects, phi, &padded, &d)?;
-                    trace.add(&s.trace);
-                    step.solution = Some(s);
-                }
+    Ok(())
+}
+
+/// The results of `plan` at the pose `tracker` stands at (moved to drive position `phi`
+/// by the caller, nothing solved here), with drive state `d`: the pose lifted to the
+/// derivative order the plan needs and every effect the plan asks for, each counted in
+/// `trace`. [`run_moved`] calls it at every position of its sweep; a sweep that solves each
+/// position once for several consumers calls it with its own tracker.
+///
+/// # Errors
+/// The lift's or the equilibrium's error at `phi`, or [`Error::NonFinite`] naming the
+/// quantity that overflowed.
+pub fn step_at(
+    plan: &Plan,
+    model: &CompiledModel<'_>,
+    tracker: &Tracker<'_>,
+    phi: f64,
+    d: DriveState,
+    trace: &mut Trace,
+) -> Result<Step, Error> {
+    trace.positions += 1;
+    let mut step = Step {
+        phi,
+        drive: d,
+        solution: None,
+        energy: None,
+        shaking: None,
+    };
+    match plan.order {
+        0 => {}
+        1 => {
+            let k = tracker.kinematics::<1>()?;
+            trace.derivatives += 1;
+            if plan.energy {
+                step.energy = Some(energy(model, &k.coordinates, &d));
+                trace.energy += 1;
             }
-            order => {
-                let coordinates: Vec<Jet<2>> = if order == 2 {
-                    tracker.kinematics::<2>()?.coordinates
-                } else {
-                    tracker
-                        .kinematics::<3>()?
-                        .coordinates
-                        .iter()
-                        .map(|j| j.truncate::<2>())
-                        .collect()
-                };
-                trace.derivatives += 1;
-                if plan.energy {
-                    step.energy = Some(energy(model, &coordinates, &d));
-                    trace.energy += 1;
-                }
-                if plan.shaking {
-                    step.shaking = Some(shaking_force(model, phi, &coordinates, &d));
-                    trace.shaking += 1;
-                    trace.inertia += 1;
-                }
-                if plan.kinetostatics {
-                    let s = kinetostatics::solve_at(model, &plan.effects, phi, &coordinates, &d)?;
-                    trace.add(&s.trace);
-                    step.solution = Some(s);
-                }
+            if plan.kinetostatics {
+                // Forces at order 1 are planned only without inertia: the accelerations
+                // (q″ padded with 0) are then never read.
+                debug_assert!(!plan.effects.inertia);
+                let padded: Vec<Jet<2>> = k
+                    .coordinates
+                    .iter()
+                    .map(|j| Jet::new(j.value, [j.derivatives[0], 0.0]))
+                    .collect();
+                let s = kinetostatics::solve_at(model, &plan.effects, phi, &padded, &d)?;
+                trace.add(&s.trace);
+                step.solution = Some(s);
             }
         }
-        all_finite(&step)?;
-        steps.push(step);
+        order => {
+            let coordinates: Vec<Jet<2>> = if order == 2 {
+                tracker.kinematics::<2>()?.coordinates
+            } else {
+                tracker
+                    .kinematics::<3>()?
+                    .coordinates
+                    .iter()
+                    .map(|j| j.truncate::<2>())
+                    .collect()
+            };
+            return step_from(plan, model, phi, d, &coordinates, trace);
+        }
     }
-    Ok(Run { steps, trace })
+    all_finite(&step)?;
+    Ok(step)
+}
+
+/// The results of a plan of order 2 or more (see [`step_at`]) from the pose's coordinates
+/// with their first two derivatives: the same numbers at a pose solved before (the
+/// counterweights' balanced linkage moves as the linkage does, see
+/// [`crate::balancing::LinkageBalancing`]).
+///
+/// # Errors
+/// As [`step_at`].
+pub fn step_from(
+    plan: &Plan,
+    model: &CompiledModel<'_>,
+    phi: f64,
+    d: DriveState,
+    coordinates: &[Jet<2>],
+    trace: &mut Trace,
+) -> Result<Step, Error> {
+    debug_assert!(plan.order >= 2, "a plan of order {} lifts less", plan.order);
+    let mut step = Step {
+        phi,
+        drive: d,
+        solution: None,
+        energy: None,
+        shaking: None,
+    };
+    trace.derivatives += 1;
+    if plan.energy {
+        step.energy = Some(energy(model, coordinates, &d));
+        trace.energy += 1;
+    }
+    if plan.shaking {
+        step.shaking = Some(shaking_force(model, phi, coordinates, &d));
+        trace.shaking += 1;
+        trace.inertia += 1;
+    }
+    if plan.kinetostatics {
+        let s = kinetostatics::solve_at(model, &plan.effects, phi, coordinates, &d)?;
+        trace.add(&s.trace);
+        step.solution = Some(s);
+    }
+    all_finite(&step)?;
+    Ok(step)
 }
 
 /// Checks every number of a step: an overflow (or 0/0) for some combination of inputs is

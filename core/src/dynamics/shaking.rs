@@ -77,37 +77,46 @@ pub struct ShakingSummary {
 impl ShakingSummary {
     /// The extremes over `sweep`; `None` if it is empty.
     pub fn of(sweep: &[ShakingForce]) -> Option<Self> {
-        let first = sweep.first()?;
-        let at = |v: f64| Extreme {
-            value: v,
-            phi: first.phi,
-        };
-        let mut s = ShakingSummary {
-            force_x: [at(first.force[0]); 2],
-            force_y: [at(first.force[1]); 2],
-            magnitude: at(first.force[0].hypot(first.force[1])),
-            moment: [at(first.moment); 2],
-        };
-        let update = |e: &mut [Extreme; 2], v: f64, phi: f64| {
-            if v < e[0].value {
-                e[0] = Extreme { value: v, phi };
-            }
-            if v > e[1].value {
-                e[1] = Extreme { value: v, phi };
-            }
-        };
+        let mut summary: Option<Self> = None;
         for f in sweep {
-            update(&mut s.force_x, f.force[0], f.phi);
-            update(&mut s.force_y, f.force[1], f.phi);
-            update(&mut s.moment, f.moment, f.phi);
-            let mag = f.force[0].hypot(f.force[1]);
-            if mag > s.magnitude.value {
-                s.magnitude = Extreme {
-                    value: mag,
-                    phi: f.phi,
-                };
-            }
+            Self::add(&mut summary, f);
         }
-        Some(s)
+        summary
+    }
+
+    /// The extremes of one position alone.
+    pub fn at(f: &ShakingForce) -> Self {
+        let at = |value: f64| Extreme { value, phi: f.phi };
+        ShakingSummary {
+            force_x: [at(f.force[0]); 2],
+            force_y: [at(f.force[1]); 2],
+            magnitude: at(f.force[0].hypot(f.force[1])),
+            moment: [at(f.moment); 2],
+        }
+    }
+
+    /// Takes position `f` into the extremes so far (`None` before the first position): a
+    /// sweep summarised one position at a time, as it is solved.
+    pub fn add(summary: &mut Option<Self>, f: &ShakingForce) {
+        let one = Self::at(f);
+        *summary = Some(match summary.take() {
+            Some(s) => s.then(&one),
+            None => one,
+        });
+    }
+
+    /// The extremes of this part of a sweep followed by `later`: the first of equal extremes
+    /// is kept (only a strictly smaller or larger value replaces one), so summarising pieces
+    /// and joining them in order gives the summary of the whole sweep.
+    pub fn then(&self, later: &Self) -> Self {
+        let low = |a: Extreme, b: Extreme| if b.value < a.value { b } else { a };
+        let high = |a: Extreme, b: Extreme| if b.value > a.value { b } else { a };
+        let pair = |a: [Extreme; 2], b: [Extreme; 2]| [low(a[0], b[0]), high(a[1], b[1])];
+        ShakingSummary {
+            force_x: pair(self.force_x, later.force_x),
+            force_y: pair(self.force_y, later.force_y),
+            magnitude: high(self.magnitude, later.magnitude),
+            moment: pair(self.moment, later.moment),
+        }
     }
 }

@@ -3,11 +3,12 @@
 
 use mechdiff_core::DriveState;
 use mechdiff_core::balancing::{
-    Counterweight, LinkageBalance, Rotor, SliderCrankUnbalance, balance_linkage,
+    Counterweight, LinkageBalance, LinkageBalancing, Rotor, SliderCrankUnbalance,
     check_balance_request,
 };
 use mechdiff_core::dynamics::Dynamics;
-use mechdiff_core::geometry::{Mechanism, Solver};
+use mechdiff_core::geometry::{Mechanism, Tracker};
+use mechdiff_core::sweep::Consumer;
 
 use crate::error::{Error, Location, Result};
 use crate::scene::model::{DriveKind, Scene};
@@ -124,12 +125,76 @@ pub(crate) fn before_solving(
     Ok(())
 }
 
-/// Runs the balancing sections of `scene` at the drive positions `positions`.
+/// The counterweights of `[balancing]` sized from a sweep, one drive position at a time: at
+/// each position the sweep's tracker has solved (nothing is solved here) the pose is read
+/// and kept ([`LinkageBalancing`]); [`BalancingSweep::finish`] sizes them and evaluates
+/// the balanced linkage at the same poses.
+#[derive(Debug, Clone)]
+pub(crate) struct BalancingSweep<'s> {
+    balancing: LinkageBalancing<'s>,
+    counterweights: &'s [(Counterweight, Location)],
+    location: &'s Location,
+}
+
+impl<'s> BalancingSweep<'s> {
+    /// The counterweights of `b` ready for a sweep of `scene` (after [`before_solving`]'s
+    /// checks); `None` without counterweights.
+    pub(crate) fn new(
+        scene: &Scene,
+        b: &'s SceneBalancing,
+        mechanism: &'s Mechanism,
+    ) -> Result<Option<Self>> {
+        let Some((counterweights, location)) = &b.counterweights else {
+            return Ok(None);
+        };
+        let omega = scene.drive.speed.unwrap_or(0.0);
+        let data = scene
+            .dynamics
+            .as_ref()
+            .map_or_else(Dynamics::new, |d| d.data.clone());
+        let drive = DriveState::accelerating(omega, scene.drive.acceleration);
+        let requests: Vec<_> = counterweights.iter().map(|(c, _)| c.clone()).collect();
+        let balancing = LinkageBalancing::new(mechanism, &data, &requests, drive)
+            .map_err(|e| balance_error(scene, counterweights, location, e))?;
+        Ok(Some(Self {
+            balancing,
+            counterweights,
+            location,
+        }))
+    }
+
+    /// The scene's error for an error of the counterweights' sizing (see [`balance_error`]).
+    pub(crate) fn error(&self, scene: &Scene, e: mechdiff_core::Error) -> Error {
+        balance_error(scene, self.counterweights, self.location, e)
+    }
+
+    /// Sizes the counterweights and evaluates the balanced linkage.
+    pub(crate) fn finish(self, scene: &Scene) -> Result<LinkageBalance> {
+        (self.balancing.finish())
+            .map_err(|e| balance_error(scene, self.counterweights, self.location, e))
+    }
+}
+
+/// The counterweights read the pose of every position the sweep solves (no values in its
+/// rows: their columns are known at the end, [`BalancingSweep::finish`]).
+impl Consumer for BalancingSweep<'_> {
+    fn at(
+        &mut self,
+        tracker: &Tracker<'_>,
+        phi: f64,
+        row: &mut Vec<f64>,
+    ) -> std::result::Result<(), mechdiff_core::Error> {
+        self.balancing.at(tracker, phi, row)
+    }
+}
+
+/// The balancing answers of `scene`: the rotor's and the slider-crank's lines, and the
+/// counterweights `linkage` sized over the sweep ([`BalancingSweep`]) with their columns.
 pub(crate) fn run(
     scene: &Scene,
     b: &SceneBalancing,
     mechanism: &Mechanism,
-    positions: &[f64],
+    linkage: Option<LinkageBalance>,
 ) -> Result<BalancingReport> {
     before_solving(scene, b, mechanism)?;
     let mut report = BalancingReport {
@@ -172,23 +237,7 @@ pub(crate) fn run(
             p.fraction, p.counterweight_mass_radius, p.primary_along, p.primary_across
         ));
     }
-    if let Some((counterweights, location)) = &b.counterweights {
-        let omega = scene.drive.speed.unwrap_or(0.0);
-        let data = scene
-            .dynamics
-            .as_ref()
-            .map_or_else(Dynamics::new, |d| d.data.clone());
-        let drive = DriveState::accelerating(omega, scene.drive.acceleration);
-        let requests: Vec<_> = counterweights.iter().map(|(c, _)| c.clone()).collect();
-        let result = balance_linkage(
-            mechanism,
-            &data,
-            &requests,
-            positions,
-            drive,
-            &Solver::default(),
-        )
-        .map_err(|e| balance_error(scene, counterweights, location, e))?;
+    if let Some(result) = linkage {
         report.columns = columns(scene, b);
         let torque = &report.columns[3].unit;
         let a = &result.after;

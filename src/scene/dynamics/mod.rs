@@ -40,5 +40,5 @@ pub use format::{
 pub use resolve::{DynamicsOutput, SceneDynamics};
 pub(crate) use resolve::{numbers_in, resolve};
 pub use run::DynamicsReport;
-pub(crate) use run::{before_solving, columns, run};
+pub(crate) use run::{DynamicsSweep, before_solving, columns, error};
 pub use tangent::{DynamicsTangent, column_derivatives};

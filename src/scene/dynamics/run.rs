@@ -1,14 +1,16 @@
 //! Running the `[[dynamics]]` outputs: the planned sweep and its columns.
 
-use mechdiff_core::dynamics::run::{Run, run_moved};
+use mechdiff_core::cams::CamJoint;
+use mechdiff_core::dynamics::run::{Run, Step, step_at};
 use mechdiff_core::dynamics::{
-    Energy, JointReaction, Plan, PowerBalance, ShakingForce, ShakingSummary,
+    Energy, JointReaction, Plan, PowerBalance, ShakingForce, ShakingSummary, Trace,
 };
-use mechdiff_core::geometry::{Mechanism, Solver};
+use mechdiff_core::geometry::{Mechanism, Tracker};
+use mechdiff_core::sweep::Consumer;
 use mechdiff_core::{DriveState, Scalar};
 
 use crate::error::{Error, Result};
-use crate::scene::model::{DriveKind, JointKind, Scene};
+use crate::scene::model::{DriveKind, Joint, JointKind, Scene};
 use crate::scene::outputs::Column;
 use crate::scene::units::{Dimension, Units};
 
@@ -22,11 +24,12 @@ pub struct DynamicsReport {
     pub plan: Plan,
     /// Columns: SI, or the file's force, torque, mass and inertia units (their factor).
     pub columns: Vec<Column>,
-    /// One row per drive position.
+    /// One row per drive position (empty for a streamed run: its rows were written).
     pub rows: Vec<Vec<f64>>,
     /// Lines printed after the table (shaking-force extremes, power-balance check).
     pub summary: Vec<String>,
-    /// The core run (every result, and the trace of what was evaluated).
+    /// The core run: the trace of what was evaluated, and every step for a run in memory
+    /// (none for a streamed run).
     pub run: Run,
 }
 
@@ -38,92 +41,98 @@ fn column(name: impl Into<String>, unit: &str) -> Column {
     }
 }
 
-/// Runs the dynamic outputs of `scene` at the drive positions `positions`.
-pub(crate) fn run(
-    scene: &Scene,
-    d: &SceneDynamics,
-    mechanism: &Mechanism,
-    positions: &[f64],
-    speed: Option<f64>,
-) -> Result<Option<DynamicsReport>> {
-    if d.outputs.is_empty() {
-        return Ok(None);
+/// The `[[dynamics]]` outputs of a sweep, one drive position at a time: at each position the
+/// sweep's tracker has solved (nothing is solved here), the planned step lifted to the
+/// plan's order, its columns, and what the summary lines need (the shaking force's
+/// extremes, the power balance's largest residual) — so that a sweep of any length streams
+/// them in constant memory. A clone continues independently; [`DynamicsSweep::then`] joins a
+/// piece solved from a clone, in drive order.
+#[derive(Debug, Clone)]
+pub(crate) struct DynamicsSweep<'s> {
+    d: &'s SceneDynamics,
+    mechanism: &'s Mechanism,
+    joints: &'s [Joint],
+    /// A cam drive's cam, and the driven joint's position at the sketch (the follower's
+    /// displacement is added to it).
+    cam: Option<(&'s CamJoint, f64)>,
+    model: mechdiff_core::dynamics::CompiledModel<'s>,
+    plan: Plan,
+    drive: DriveState,
+    shaking: Option<ShakingSummary>,
+    /// The largest power-balance residual relative to its largest term, so far.
+    worst_balance: f64,
+    trace: Trace,
+    /// Every step, when the run keeps them (a run in memory, [`DynamicsReport::run`]).
+    steps: Option<Vec<Step>>,
+}
+
+impl<'s> DynamicsSweep<'s> {
+    /// The dynamic outputs `d` of `scene` ready for a sweep (after [`before_solving`]'s
+    /// checks); `None` without outputs. `keep_steps` keeps every position's step for the
+    /// report (a run in memory).
+    pub(crate) fn new(
+        scene: &'s Scene,
+        d: &'s SceneDynamics,
+        mechanism: &'s Mechanism,
+        keep_steps: bool,
+    ) -> Result<Option<Self>> {
+        if d.outputs.is_empty() {
+            return Ok(None);
+        }
+        let (model, plan, drive) = before_solving(scene, d, mechanism, scene.drive.speed)?;
+        mechdiff_core::dynamics::run::check(&plan, &model)
+            .map_err(|e| crate::scene::run::solver_error(scene, e))?;
+        Ok(Some(Self {
+            d,
+            mechanism,
+            joints: &scene.joints,
+            cam: (scene.drive.cam.as_ref()).map(|c| (&c.joint, scene.drive.at_sketch)),
+            model,
+            plan,
+            drive,
+            shaking: None,
+            worst_balance: 0.0,
+            trace: Trace::default(),
+            steps: keep_steps.then(Vec::new),
+        }))
     }
-    let (model, plan, drive) = before_solving(scene, d, mechanism, speed)?;
-    // The driven joint's position and motion at each drive position (through the cam's
-    // follower for a cam drive).
-    let states: Vec<(f64, DriveState)> = (positions.iter())
-        .map(|&phi| match &scene.drive.cam {
-            Some(c) => {
-                let (s, follower) = c.joint.drive_at(phi, &drive);
-                (scene.drive.at_sketch + s, follower)
-            }
-            None => (phi, drive),
-        })
-        .collect();
-    // From the sketch straight to the first position, then (for a cam drive) along the cam
-    // through every displacement the follower passes; `along` says whether an error comes
-    // from a move along the cam (its drive positions are cam angles).
-    let along = std::cell::Cell::new(false);
-    let moved = run_moved(
-        &plan,
-        &model,
-        &Solver::default(),
-        &states,
-        |tracker, k| match (&scene.drive.cam, k) {
-            (Some(c), 1..) => {
-                let offset = scene.drive.at_sketch;
-                (c.joint
-                    .move_tracker(tracker, offset, positions[k - 1], positions[k]))
-                .inspect_err(|_| along.set(true))
-            }
-            _ => tracker.move_to(states[k].0).map(drop),
-        },
-    );
-    let result = moved.map_err(|e| match e {
-        e if along.get() => crate::scene::run::cam_error(scene, e),
-        mechdiff_core::Error::SelfLocking {
-            phi,
-            joints,
-            reason,
-        } => Error::SelfLocking {
-            location: scene.drive.location.clone(),
-            position: scene.joint_text(phi),
-            joints: joints.join(", "),
-            reason,
-        },
-        other => crate::scene::run::solver_error(scene, other),
-    })?;
-    let columns = columns(scene, d, mechanism, &plan);
-    let mut rows = Vec::with_capacity(result.steps.len());
-    for (step, &phi) in result.steps.iter().zip(positions) {
-        let cam = (scene.drive.cam.as_ref()).map(|c| {
-            let [s1, s2, _] = c.joint.svaj(phi).derivatives;
-            Cam { s1, s2 }
-        });
-        let values = StepValues {
-            solution: step.solution.as_ref().map(|s| SolutionValues {
-                drive_torque: s.drive_torque,
-                reactions: &s.reactions,
-                motor_torque: s.motor.map(|m| m.torque),
-                balance: s.balance,
-            }),
-            energy: step.energy,
-            shaking: step.shaking.as_ref(),
+
+    /// Forgets what was summarised so far: a piece of a sweep counts its own.
+    pub(crate) fn restart(&mut self) {
+        self.shaking = None;
+        self.worst_balance = 0.0;
+        self.trace = Trace::default();
+        if let Some(steps) = &mut self.steps {
+            steps.clear();
+        }
+    }
+
+    /// Joins `later`, a piece solved from this one's state after [`DynamicsSweep::restart`]:
+    /// the summary of both pieces, in drive order.
+    pub(crate) fn then(&mut self, later: &Self) {
+        self.shaking = match (&self.shaking, &later.shaking) {
+            (Some(a), Some(b)) => Some(a.then(b)),
+            (a, b) => a.or(*b),
         };
-        rows.push(row(scene, d, mechanism, &values, drive.omega, cam));
+        self.worst_balance = self.worst_balance.max(later.worst_balance);
+        self.trace.add(&later.trace);
+        if let (Some(steps), Some(more)) = (&mut self.steps, &later.steps) {
+            steps.extend_from_slice(more);
+        }
     }
-    let mut summary = Vec::new();
-    if d.outputs
-        .iter()
-        .any(|o| o.quantity == DynamicQuantity::ShakingForce)
-    {
-        let forces: Vec<_> = result
-            .steps
-            .iter()
-            .filter_map(|s| s.shaking.clone())
-            .collect();
-        if let Some(s) = ShakingSummary::of(&forces) {
+
+    /// The report of the sweep so far: the columns (`scene`'s units), the summary lines and
+    /// the trace (with the steps, when kept); `rows` are the dynamic columns of the rows kept,
+    /// if any.
+    ///
+    /// # Errors
+    /// [`Error::NotFinite`] for a shaking force whose magnitude overflowed.
+    pub(crate) fn report(&self, scene: &Scene, rows: Vec<Vec<f64>>) -> Result<DynamicsReport> {
+        let mut summary = Vec::new();
+        let asked = |q| self.d.outputs.iter().any(|o| o.quantity == q);
+        if asked(DynamicQuantity::ShakingForce)
+            && let Some(s) = &self.shaking
+        {
             if !s.magnitude.value.is_finite() {
                 return Err(crate::error::Error::NotFinite {
                     file: scene.file.clone(),
@@ -139,28 +148,99 @@ pub(crate) fn run(
                 s.magnitude.value, scene.drive_text(s.magnitude.phi),
             ));
         }
+        if asked(DynamicQuantity::PowerBalance) {
+            let worst = self.worst_balance;
+            summary.push(format!(
+                "power balance: largest residual {worst:.1e} of the largest power term"
+            ));
+        }
+        Ok(DynamicsReport {
+            plan: self.plan,
+            columns: columns(scene, self.d, self.mechanism, &self.plan),
+            rows,
+            summary,
+            run: Run {
+                steps: self.steps.clone().unwrap_or_default(),
+                trace: self.trace,
+            },
+        })
     }
-    if d.outputs
-        .iter()
-        .any(|o| o.quantity == DynamicQuantity::PowerBalance)
-    {
-        let worst = result
-            .steps
-            .iter()
-            .filter_map(|s| s.solution.as_ref())
-            .map(|s| s.balance.residual.abs() / s.balance.scale().max(f64::MIN_POSITIVE))
-            .fold(0.0, f64::max);
-        summary.push(format!(
-            "power balance: largest residual {worst:.1e} of the largest power term"
-        ));
+}
+
+/// The dynamic columns at drive position `phi`, from the pose the sweep's tracker stands at
+/// (moved there by the sweep: for a cam drive, the joint's position s(θ)).
+impl Consumer for DynamicsSweep<'_> {
+    fn at(
+        &mut self,
+        tracker: &Tracker<'_>,
+        phi: f64,
+        row: &mut Vec<f64>,
+    ) -> std::result::Result<(), mechdiff_core::Error> {
+        // The driven joint's position and motion (through the cam's follower for a cam
+        // drive).
+        let (joint, state) = match self.cam {
+            Some((c, at_sketch)) => {
+                let (s, follower) = c.drive_at(phi, &self.drive);
+                (at_sketch + s, follower)
+            }
+            None => (phi, self.drive),
+        };
+        let step = step_at(
+            &self.plan,
+            &self.model,
+            tracker,
+            joint,
+            state,
+            &mut self.trace,
+        )?;
+        let cam = self.cam.map(|(c, _)| {
+            let [s1, s2, _] = c.svaj(phi).derivatives;
+            Cam { s1, s2 }
+        });
+        let values = StepValues {
+            solution: step.solution.as_ref().map(|s| SolutionValues {
+                drive_torque: s.drive_torque,
+                reactions: &s.reactions,
+                motor_torque: s.motor.map(|m| m.torque),
+                balance: s.balance,
+            }),
+            energy: step.energy,
+            shaking: step.shaking.as_ref(),
+        };
+        let (joints, d, m) = (self.joints, self.d, self.mechanism);
+        row.extend(self::row(joints, d, m, &values, self.drive.omega, cam));
+        if let Some(f) = &step.shaking {
+            ShakingSummary::add(&mut self.shaking, f);
+        }
+        if let Some(s) = &step.solution {
+            let b = &s.balance;
+            let residual = b.residual.abs() / b.scale().max(f64::MIN_POSITIVE);
+            self.worst_balance = self.worst_balance.max(residual);
+        }
+        if let Some(steps) = &mut self.steps {
+            steps.push(step);
+        }
+        Ok(())
     }
-    Ok(Some(DynamicsReport {
-        plan,
-        columns,
-        rows,
-        summary,
-        run: result,
-    }))
+}
+
+/// The scene's error for an error of the `[[dynamics]]` outputs at a solved pose: a
+/// self-locking drive located at `[drive]`, the others with drive positions in the scene's
+/// units.
+pub(crate) fn error(scene: &Scene, e: mechdiff_core::Error) -> Error {
+    match e {
+        mechdiff_core::Error::SelfLocking {
+            phi,
+            joints,
+            reason,
+        } => Error::SelfLocking {
+            location: scene.drive.location.clone(),
+            position: scene.joint_text(phi),
+            joints: joints.join(", "),
+            reason,
+        },
+        other => crate::scene::run::solver_error(scene, other),
+    }
 }
 
 /// What `[[dynamics]]` checks before anything is solved (`mechdiff check` runs it too): the
@@ -231,10 +311,10 @@ pub(super) struct Cam<T> {
 }
 
 /// One row of the dynamic columns (in the order of [`columns`]), from one position's results
-/// in any scalar: the `f64` table, and (with `Dual64`) its exact derivatives. `omega` is the
-/// drive speed.
+/// in any scalar: the `f64` table, and (with `Dual64`) its exact derivatives. `joints` are
+/// the scene's (their kinds say which numbers a reaction has); `omega` is the drive speed.
 pub(super) fn row<T: Scalar>(
-    scene: &Scene,
+    joints: &[Joint],
     d: &SceneDynamics,
     m: &Mechanism,
     step: &StepValues<'_, T>,
@@ -242,13 +322,13 @@ pub(super) fn row<T: Scalar>(
     cam: Option<Cam<T>>,
 ) -> Vec<T> {
     (d.outputs.iter())
-        .flat_map(|o| output_row(scene, d, m, o, step, omega, cam))
+        .flat_map(|o| output_row(joints, d, m, o, step, omega, cam))
         .collect()
 }
 
 /// The values of output `o`'s columns in one row (see [`row`]).
 pub(super) fn output_row<T: Scalar>(
-    scene: &Scene,
+    joints: &[Joint],
     d: &SceneDynamics,
     m: &Mechanism,
     o: &DynamicsOutput,
@@ -285,7 +365,7 @@ pub(super) fn output_row<T: Scalar>(
                     .iter()
                     .find(|r| r.joint == j)
                     .expect("every joint");
-                row.extend(reaction_values(scene, r));
+                row.extend(reaction_values(joints, r));
             }
         }
         DynamicQuantity::DriveTorque => {
@@ -464,9 +544,8 @@ fn selected<'a>(names: &'a [String], all: &[&'a str]) -> Vec<&'a str> {
     }
 }
 
-fn joint_kind<'s>(scene: &'s Scene, name: &str) -> &'s JointKind {
-    &scene
-        .joints
+fn joint_kind<'s>(joints: &'s [Joint], name: &str) -> &'s JointKind {
+    &joints
         .iter()
         .find(|j| j.name == name)
         .expect("a joint of the scene")
@@ -474,7 +553,7 @@ fn joint_kind<'s>(scene: &'s Scene, name: &str) -> &'s JointKind {
 }
 
 fn reaction_columns(scene: &Scene, j: &str) -> Vec<Column> {
-    match joint_kind(scene, j) {
+    match joint_kind(&scene.joints, j) {
         JointKind::Revolute { .. } => vec![
             column(format!("Fx_{j}"), "N"),
             column(format!("Fy_{j}"), "N"),
@@ -500,8 +579,8 @@ fn reaction_columns(scene: &Scene, j: &str) -> Vec<Column> {
     }
 }
 
-fn reaction_values<T: Scalar>(scene: &Scene, r: &JointReaction<T>) -> Vec<T> {
-    match joint_kind(scene, &r.joint) {
+fn reaction_values<T: Scalar>(joints: &[Joint], r: &JointReaction<T>) -> Vec<T> {
+    match joint_kind(joints, &r.joint) {
         JointKind::Revolute { .. } => vec![r.force[0], r.force[1], r.friction],
         JointKind::Prismatic { .. } => vec![r.normal, r.friction, r.couple],
         JointKind::PinInSlot { .. } => vec![r.normal, r.friction],

@@ -150,7 +150,7 @@ pub fn column_derivatives(
         let mut row = Vec::with_capacity(not_carried.len());
         for (o, &w) in d.outputs.iter().zip(&widths) {
             if carried_output(o.quantity) {
-                let values = output_row(scene, d, mechanism, o, &step, omega, None);
+                let values = output_row(&scene.joints, d, mechanism, o, &step, omega, None);
                 row.extend(values.iter().map(|v| Some(v.eps)));
             } else {
                 row.extend(std::iter::repeat_n(None, w));
