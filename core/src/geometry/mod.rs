@@ -13,6 +13,7 @@ mod closed_form;
 mod constraints;
 mod datum;
 mod frames;
+pub mod halving;
 pub mod implicit;
 mod kinematics;
 pub(crate) mod length;
