@@ -90,10 +90,8 @@ fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
     let travel: Vec<f64> = (0..720)
         .map(|i| 0.32 + 0.2 * f64::from(i) / 720.0)
         .collect();
-    let four_bar_scene = mechdiff::scene::load(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/scenes/four_bar.toml"
-    ))?;
+    let four_bar_scene =
+        mechdiff::scene::load(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/four_bar.toml"))?;
     let four_bar = mechdiff::scene::check(&four_bar_scene)?.mechanism;
     let four_bar_rocker = four_bar.rotation_output("rocker")?;
     let solver = Solver::default();
