@@ -65,6 +65,8 @@ pub struct SceneFile {
     pub balancing: Option<Spanned<super::balancing::BalancingDef>>,
     /// What the pictures show (see [`super::plot`]).
     pub plot: Option<Spanned<super::plot::PlotDef>>,
+    /// The position solver's settings (see [`super::solver`]).
+    pub solver: Option<Spanned<super::solver::SolverDef>>,
     /// Derivative columns with respect to parameters; read by [`crate::sensitivity`].
     pub sensitivity: Option<de::IgnoredAny>,
     /// ± tolerances of parameters for a tolerance study; read by [`crate::sensitivity`].

@@ -55,6 +55,7 @@ pub mod positions;
 pub mod preflight;
 pub mod resolve;
 pub mod run;
+pub mod solver;
 pub mod source;
 pub mod study;
 pub mod sweep;

@@ -53,6 +53,7 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
     let balancing =
         super::balancing::resolve(&cx, file.rotor.as_ref(), file.balancing.as_ref(), &geometry)?;
     let plot = super::plot::resolve(&cx, file.plot.as_ref(), &geometry, drive.kind)?;
+    let solver = super::solver::resolve(&cx, file.solver.as_ref())?;
     let sweep_of = cx.sweep_of(&file.sweep, &outputs)?;
     let dimension = match sweep_of {
         Some(k) => outputs[k].kind.dimension(),
@@ -109,6 +110,7 @@ pub fn resolve(file: SceneFile, source: &Source) -> Result<Scene> {
         dynamics,
         balancing,
         plot,
+        solver,
         parameters: Vec::new(),
         evaluator: Default::default(),
     })

@@ -1,7 +1,7 @@
 //! The ends of the drive's motion range (limit positions, change points, toggles) that a
 //! run's sweep reaches: marked on the diagrams and listed after the dead positions.
 
-use mechdiff_core::geometry::{DriveLimit, LimitKind, Mechanism, Solver};
+use mechdiff_core::geometry::{DriveLimit, LimitKind, Mechanism};
 use std::f64::consts::TAU;
 
 use super::model::{DriveKind, Scene};
@@ -28,7 +28,8 @@ pub fn in_sweep(
     if scene.drive.cam.is_some() || positions.len() < 2 {
         return Vec::new();
     }
-    let Some(range) = Solver::default()
+    let Some(range) = scene
+        .solver
         .track(mechanism)
         .and_then(|t| t.motion_range())
         .ok()

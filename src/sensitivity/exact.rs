@@ -15,7 +15,7 @@
 use std::collections::HashMap;
 
 use mechdiff_core::DriveState;
-use mechdiff_core::geometry::{Parametric, Solver};
+use mechdiff_core::geometry::Parametric;
 use mechdiff_core::num_dual::Dual64;
 
 use crate::error::Result;
@@ -95,7 +95,8 @@ fn walk<const N: usize>(
         alpha: Dual64::new(state.alpha, tangent.acceleration),
         jerk: Dual64::from(state.jerk),
     };
-    let mut tracker = Solver::default()
+    let mut tracker = scene
+        .solver
         .track(mechanism)
         .map_err(|e| solver_error(scene, e))?;
     let mut rows = Vec::with_capacity(positions.len());

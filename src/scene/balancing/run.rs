@@ -7,7 +7,7 @@ use mechdiff_core::balancing::{
     check_balance_request,
 };
 use mechdiff_core::dynamics::Dynamics;
-use mechdiff_core::geometry::{Mechanism, Solver};
+use mechdiff_core::geometry::Mechanism;
 
 use crate::error::{Error, Location, Result};
 use crate::scene::model::{DriveKind, Scene};
@@ -180,15 +180,8 @@ pub(crate) fn run(
             .map_or_else(Dynamics::new, |d| d.data.clone());
         let drive = DriveState::accelerating(omega, scene.drive.acceleration);
         let requests: Vec<_> = counterweights.iter().map(|(c, _)| c.clone()).collect();
-        let result = balance_linkage(
-            mechanism,
-            &data,
-            &requests,
-            positions,
-            drive,
-            &Solver::default(),
-        )
-        .map_err(|e| balance_error(scene, counterweights, location, e))?;
+        let result = balance_linkage(mechanism, &data, &requests, positions, drive, &scene.solver)
+            .map_err(|e| balance_error(scene, counterweights, location, e))?;
         report.columns = columns(scene, b);
         let torque = &report.columns[3].unit;
         let a = &result.after;

@@ -4,7 +4,7 @@ use mechdiff_core::dynamics::run::{Run, run_moved};
 use mechdiff_core::dynamics::{
     Energy, JointReaction, Plan, PowerBalance, ShakingForce, ShakingSummary,
 };
-use mechdiff_core::geometry::{Mechanism, Solver};
+use mechdiff_core::geometry::Mechanism;
 use mechdiff_core::{DriveState, Scalar};
 
 use crate::error::{Error, Result};
@@ -65,12 +65,8 @@ pub(crate) fn run(
     // through every displacement the follower passes; `along` says whether an error comes
     // from a move along the cam (its drive positions are cam angles).
     let along = std::cell::Cell::new(false);
-    let moved = run_moved(
-        &plan,
-        &model,
-        &Solver::default(),
-        &states,
-        |tracker, k| match (&scene.drive.cam, k) {
+    let moved = run_moved(&plan, &model, &scene.solver, &states, |tracker, k| {
+        match (&scene.drive.cam, k) {
             (Some(c), 1..) => {
                 let offset = scene.drive.at_sketch;
                 (c.joint
@@ -78,8 +74,8 @@ pub(crate) fn run(
                 .inspect_err(|_| along.set(true))
             }
             _ => tracker.move_to(states[k].0).map(drop),
-        },
-    );
+        }
+    });
     let result = moved.map_err(|e| match e {
         e if along.get() => crate::scene::run::cam_error(scene, e),
         mechdiff_core::Error::SelfLocking {
