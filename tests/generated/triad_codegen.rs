@@ -126,6 +126,7 @@ mod step_halving {
         /// # Errors
         /// [`Stop::TooLong`] before an attempt beyond `max_substeps`; [`Stop::Failed`] with
         /// the error of `attempt` or `exhausted`. `state` is left where the last step took it.
+        #[inline(always)]
         pub fn walk<S, F, E>(
             &self,
             state: &mut S,

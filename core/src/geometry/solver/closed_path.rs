@@ -119,6 +119,9 @@ impl Tracker<'_> {
     }
 
     /// Makes the closed forms' pose (in `closed_q`, `closed_frames`) current at `phi`.
+    // Inlined into the step that accepts, as before the walk was shared: called from two
+    // places (a step accepted, or taken after all at the end of its halvings), it was not.
+    #[inline(always)]
     pub(super) fn accept_closed(&mut self, phi: f64) {
         let poses = self.q.as_mut_slice().iter_mut();
         let derivatives = self
