@@ -14,7 +14,8 @@
 //! Loops (the first argument): `geometry` (Whitworth by geometry only: `move_to` + read ψ,
 //! ψ′, ψ″), `newton` (the same with `Solver::with_closed_form(false)`), `psi` (the Whitworth
 //! module's closed-form ψ in `Dual2`), `pose` (its whole pose in `Dual2`), `rack` (mechanism
-//! 001 from `scenes/rack_slotted_link.toml`: `move_to` + read θ3, θ3′, θ3″), `hand` (the
+//! 001 from `scenes/rack_slotted_link.toml`: `move_to` + read θ3, θ3′, θ3″), `four_bar`
+//! (`scenes/four_bar.toml`: `move_to` + read the rocker's angle ψ, ψ′, ψ″), `hand` (the
 //! hand-derived ψ, ψ′, ψ″), `generated` (ψ, ψ′, ψ″ generated from the scene, with guards),
 //! `hand_pose` (the hand-derived whole pose: ψ, A, C, S1, S2, S3 with ′ and ″),
 //! `generated_pose` (the same generated from `tests/data/whitworth_pose.toml`, with guards),
@@ -68,7 +69,7 @@ fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
     let (Some(which), Some(reps)) = (args.get(1), args.get(2)) else {
         eprintln!(
             "usage: instructions_per_position \
-             geometry|newton|psi|pose|rack|hand|generated|hand_pose|generated_pose|program|jit \
+             geometry|newton|psi|pose|rack|four_bar|hand|generated|hand_pose|generated_pose|program|jit \
              REPETITIONS"
         );
         return Ok(ExitCode::FAILURE);
@@ -89,12 +90,17 @@ fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
     let travel: Vec<f64> = (0..720)
         .map(|i| 0.32 + 0.2 * f64::from(i) / 720.0)
         .collect();
+    let four_bar_scene =
+        mechdiff::scene::load(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/four_bar.toml"))?;
+    let four_bar = mechdiff::scene::check(&four_bar_scene)?.mechanism;
+    let four_bar_rocker = four_bar.rotation_output("rocker")?;
     let solver = Solver::default();
     let (geometry, newton) = (
         solver.track(&linkage)?,
         solver.with_closed_form(false).track(&linkage)?,
     );
     let rack_start = solver.track(&rack)?;
+    let four_bar_start = solver.track(&four_bar)?;
     let rocker_angle = shaper.rocker();
     let lambda = shaper.lambda();
     let psi_scene = mechdiff::scene::load(concat!(
@@ -111,6 +117,7 @@ fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
             "geometry" => walk(&geometry, &phis, &rocker),
             "newton" => walk(&newton, &phis, &rocker),
             "rack" => walk(&rack_start, &travel, &theta3),
+            "four_bar" => walk(&four_bar_start, &phis, &four_bar_rocker),
             "psi" => phis
                 .iter()
                 .map(|&phi| {
@@ -172,8 +179,8 @@ fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
                 .sum(),
             other => {
                 eprintln!(
-                    "unknown loop `{other}`: geometry, newton, psi, pose, rack, hand, generated, \
-                     hand_pose, generated_pose, program or jit"
+                    "unknown loop `{other}`: geometry, newton, psi, pose, rack, four_bar, hand, \
+                     generated, hand_pose, generated_pose, program or jit"
                 );
                 return Ok(ExitCode::FAILURE);
             }

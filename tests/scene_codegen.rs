@@ -473,3 +473,47 @@ fn run_time_evaluator_of_mixed_plans_agrees_with_the_generated_code() {
         }
     }
 }
+
+/// The value of `pub const NAME: TYPE = VALUE;` in a generated module's text.
+fn constant(text: &str, name: &str) -> f64 {
+    let line = (text.lines())
+        .find(|l| l.starts_with(&format!("pub const {name}:")))
+        .unwrap_or_else(|| panic!("no constant {name}"));
+    let value = line.rsplit("= ").next().unwrap().trim_end_matches(';');
+    value.parse().unwrap()
+}
+
+/// `[solver]` reaches the generated code: the singular threshold of the Whitworth module is
+/// 0.1/√tolerance (316 227.77 by default, 3 162.28 for a tolerance of 1e-9, to 1e-12
+/// relative: one square root and a division) or the `singular_condition` written; the
+/// triad's Newton loop gets the scene's iterations and halvings, and its residual tolerance
+/// (the tolerance times the sketch's size) grows with the tolerance, 1000× for 1e-10.
+#[test]
+fn generated_code_takes_the_scenes_solver_settings() {
+    let generated = |path: &str, solver: &str| {
+        let text = std::fs::read_to_string(path).unwrap();
+        let text = format!("{text}\n[solver]\n{solver}\n");
+        module(&scene::parse(path, &text).unwrap(), path).unwrap()
+    };
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b;
+    let whitworth = "scenes/whitworth.toml";
+    let default = constant(&generated(whitworth, ""), "SINGULAR_THRESHOLD");
+    let loose = constant(
+        &generated(whitworth, "tolerance = 1e-9"),
+        "SINGULAR_THRESHOLD",
+    );
+    assert!(close(default, 316227.76601683794), "{default}");
+    assert!(close(loose, 3162.2776601683795), "{loose}");
+    let set = generated(whitworth, "singular_condition = 5e4");
+    assert_eq!(constant(&set, "SINGULAR_THRESHOLD"), 5e4);
+    let triad = "tests/data/triad_codegen.toml";
+    let default = generated(triad, "");
+    let set = generated(
+        triad,
+        "tolerance = 1e-10\nmax_iterations = 7\nmax_subdivisions = 9",
+    );
+    assert_eq!(constant(&set, "MAX_ITERATIONS"), 7.0);
+    assert_eq!(constant(&set, "MAX_SUBDIVISIONS"), 9.0);
+    let ratio = constant(&set, "RESIDUAL_TOLERANCE") / constant(&default, "RESIDUAL_TOLERANCE");
+    assert!(close(ratio, 1000.0), "{ratio}");
+}

@@ -668,3 +668,104 @@ mod dimensions {
         );
     }
 }
+
+// --- [solver] ------------------------------------------------------------------------
+
+/// `scenes/whitworth.toml` with a `[solver]` table of `body` appended, parsed as `bad.toml`:
+/// the error and the 1-based line of `body`'s first line.
+fn refused_solver(body: &str) -> (Error, usize) {
+    let text = format!("{}\n[solver]\n{body}\n", scene_text("whitworth.toml"));
+    let line = text[..text.find(body).unwrap()].matches('\n').count() + 1;
+    match scene::parse("bad.toml", &text) {
+        Ok(_) => panic!("`{body}` was accepted"),
+        Err(e) => (e, line),
+    }
+}
+
+/// Every `[solver]` setting is bounded before anything is solved: a value outside its range
+/// (NaN included) is refused at its line, with the range, why, and the default.
+#[test]
+fn solver_settings_outside_their_ranges_are_refused_where_they_are_written() {
+    let cases: [(&str, &[&str]); 9] = [
+        (
+            "tolerance = 1e-20",
+            &[
+                "`[solver] tolerance` = 1e-20",
+                "[1e-15, 1e-6]",
+                "rounding",
+                "(1e-13)",
+            ],
+        ),
+        (
+            "tolerance = 0.001",
+            &["`[solver] tolerance` = 1e-3", "[1e-15, 1e-6]"],
+        ),
+        (
+            "tolerance = nan",
+            &["`[solver] tolerance` = NaN", "[1e-15, 1e-6]"],
+        ),
+        (
+            "max_iterations = 0",
+            &["`[solver] max_iterations` = 0", "[1, 1000]", "(50)"],
+        ),
+        (
+            "max_iterations = 5000",
+            &["`[solver] max_iterations` = 5000", "[1, 1000]"],
+        ),
+        (
+            "max_subdivisions = -1",
+            &["`[solver] max_subdivisions` = -1", "[0, 64]", "(24)"],
+        ),
+        (
+            "max_subdivisions = 65",
+            &["`[solver] max_subdivisions` = 65", "[0, 64]"],
+        ),
+        (
+            "singular_condition = 1",
+            &[
+                "`[solver] singular_condition` = 1e0",
+                "[10, 1e15]",
+                "0.1/√tolerance",
+            ],
+        ),
+        (
+            "singular_condition = 1e20",
+            &["`[solver] singular_condition` = 1e20", "[10, 1e15]"],
+        ),
+    ];
+    for (body, parts) in cases {
+        let (e, line) = refused_solver(body);
+        assert!(matches!(e, Error::Invalid { .. }), "{body}: {e:?}");
+        assert_message(&e, line, parts);
+    }
+}
+
+/// A `[solver]` value of the wrong type, or a misspelt key, is refused at its line and column
+/// with what was written and what was expected (the keys, for a misspelt one).
+#[test]
+fn mistyped_solver_settings_are_refused_where_they_are_written() {
+    let cases: [(&str, &[&str]); 4] = [
+        (
+            "tolerance = \"tight\"",
+            &["\"tight\"", "expected a number, such as 1e-13"],
+        ),
+        (
+            "max_iterations = 2.5",
+            &["2.5", "expected a whole number, such as 50"],
+        ),
+        ("closed_form = \"no\"", &["\"no\"", "expected a boolean"]),
+        (
+            "tolerence = 1e-12",
+            &[
+                "`tolerence`",
+                "`tolerance`",
+                "`max_iterations`",
+                "`closed_form`",
+            ],
+        ),
+    ];
+    for (body, parts) in cases {
+        let (e, line) = refused_solver(body);
+        assert_message(&e, line, parts);
+    }
+}

@@ -338,3 +338,44 @@ fn the_sketch_chooses_the_assembly_branch() {
     assert_eq!(flipped.len(), 1, "{primary:?} vs {other:?}");
     assert!(flipped[0].contains(&"incline".to_owned()), "{flipped:?}");
 }
+
+/// `[solver]` reaches the run. `closed_form = false` puts every loop of the Whitworth scene
+/// on the Newton path (`mechdiff check` prints each loop's path from the same tracker) and
+/// gives the closed forms' table: both paths are exact up to rounding (core holds them to
+/// 1e-13 of each coordinate), so every column agrees to 1e-12 of its largest magnitude (a
+/// few more roundings in the outputs). With one Newton iteration per attempt and no halving,
+/// the 0.5° steps of the sweep still converge from the predictor, but the dead positions'
+/// search walks in steps of 1/8 rad, which do not: the run is refused, not answered.
+#[test]
+fn solver_settings_of_the_scene_reach_the_run() {
+    let text = std::fs::read_to_string(scene_path("whitworth.toml")).unwrap();
+    let with = |solver: &str| {
+        let text = format!("{text}\n[solver]\n{solver}\n");
+        scene::parse("whitworth.toml", &text).unwrap_or_else(|e| panic!("{e}"))
+    };
+    let closed = scene::parse("whitworth.toml", &text).unwrap();
+    let newton = with("closed_form = false");
+    assert!(
+        scene::check(&closed)
+            .unwrap()
+            .closed_form
+            .iter()
+            .all(|&c| c)
+    );
+    assert!(
+        !scene::check(&newton)
+            .unwrap()
+            .closed_form
+            .iter()
+            .any(|&c| c)
+    );
+    let (a, b) = (scene::run(&newton).unwrap(), scene::run(&closed).unwrap());
+    assert_eq!(a.columns.len(), b.columns.len());
+    for c in &b.columns {
+        let e = scaled_error(&column(&a, &c.name), &column(&b, &c.name));
+        assert!(e <= 1e-12, "{}: scaled difference {e:e}", c.name);
+    }
+    let starved = with("closed_form = false\nmax_iterations = 1\nmax_subdivisions = 0");
+    let e = scene::run(&starved).expect_err("one iteration and no halving cannot converge");
+    assert!(e.to_string().contains("cannot assemble"), "{e}");
+}

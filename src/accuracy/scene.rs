@@ -316,7 +316,8 @@ pub fn case_at<'a>(
                 .into(),
         ));
     }
-    let mut tracker = Solver::default()
+    let mut tracker = scene
+        .solver
         .track(mechanism)
         .map_err(|e| crate::scene::run::solver_error(scene, e))?;
     let loops = tracker.closed_form_loops();
@@ -399,6 +400,7 @@ pub fn case_at<'a>(
     let positions_rc = Rc::new(positions.clone());
     let shared = Shared {
         mechanism,
+        solver: scene.solver,
         drive,
         outputs: outputs.clone(),
         targets: targets.clone(),
@@ -528,6 +530,8 @@ pub(super) fn nearest(positions: &[f64], phi: f64) -> usize {
 /// angles (to compare angles on the reference's turn).
 struct Shared<'a> {
     mechanism: &'a Mechanism,
+    /// The scene's solver (`[solver]`); each method sets its path.
+    solver: Solver,
     drive: Drive<'a>,
     outputs: Rc<Outputs<'a>>,
     targets: Rc<Vec<Vec<f64>>>,
@@ -539,7 +543,7 @@ struct Shared<'a> {
 /// position).
 fn geometry<'a>(name: &str, closed_form: bool, shared: &Shared<'a>) -> Method<'a> {
     let name_owned = name.to_owned();
-    let solver = Solver::default().with_closed_form(closed_form);
+    let solver = shared.solver.with_closed_form(closed_form);
     let (outputs, targets, positions) = (
         shared.outputs.clone(),
         shared.targets.clone(),

@@ -16,7 +16,7 @@
 //! (`Tracker::new()`, `tracker.pose(phi)`): it keeps the Newton loops' state between calls
 //! and solves them as the solver does (see `mixed`).
 
-use mechdiff_core::geometry::{Mechanism, Solver};
+use mechdiff_core::geometry::Mechanism;
 use mechdiff_core::symbolic::{Id, format_rust};
 use mechdiff_core::trace::{self, GuardKind, PositionGraph, Program};
 use proc_macro2::{Literal, TokenStream};
@@ -45,11 +45,6 @@ pub struct SceneCode {
     pub jets: Vec<Vec<Id>>,
 }
 
-/// The tracker of `m` the scene's runs use.
-fn solver() -> Solver {
-    Solver::default()
-}
-
 impl SceneCode {
     /// Traces `scene`.
     ///
@@ -69,7 +64,7 @@ impl SceneCode {
             });
         }
         let m = mechanism(scene)?;
-        let tracker = solver().track(&m).map_err(|e| solver_error(scene, e))?;
+        let tracker = scene.solver.track(&m).map_err(|e| solver_error(scene, e))?;
         let resolved = scene
             .outputs
             .iter()
@@ -150,7 +145,7 @@ impl SceneCode {
 /// The scene's model errors.
 pub fn guard_error(scene: &Scene, phi: f64) -> Result<Option<Error>> {
     let m: Mechanism = mechanism(scene)?;
-    let tracker = solver().track(&m).map_err(|e| solver_error(scene, e))?;
+    let tracker = scene.solver.track(&m).map_err(|e| solver_error(scene, e))?;
     Ok(trace::closed_form_error(&tracker, phi).map(|e| solver_error(scene, e)))
 }
 

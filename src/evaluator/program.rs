@@ -200,9 +200,7 @@ mod tests {
                     .unwrap();
             assert_eq!(scene.positions.len(), positions);
             let mechanism = crate::scene::build::mechanism(&scene).unwrap();
-            let tracker = mechdiff_core::geometry::Solver::default()
-                .track(&mechanism)
-                .unwrap();
+            let tracker = scene.solver.track(&mechanism).unwrap();
             let long = positions >= JIT_FROM_POSITIONS;
             for (evaluator, want) in [
                 (Evaluator::Interpreter, Backend::Interpreter),

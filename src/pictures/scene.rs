@@ -2,7 +2,7 @@
 //! ([`Poses`]), and how the links, joints, ground, guides, sliders and gears are drawn from
 //! them ([`Rig`]).
 
-use mechdiff_core::geometry::{Mechanism, PointOutput, Solver};
+use mechdiff_core::geometry::{Mechanism, PointOutput};
 
 use super::drawing::{Drawing, Style};
 use crate::error::{Error, Result};
@@ -53,7 +53,8 @@ pub fn poses(scene: &Scene, mechanism: &Mechanism, phi: &[f64]) -> Result<Poses>
             }
         })
         .collect::<Result<Vec<_>>>()?;
-    let mut tracker = Solver::default()
+    let mut tracker = scene
+        .solver
         .track(mechanism)
         .map_err(|e| solver_error(scene, e))?;
     let mut xy = Vec::with_capacity(phi.len());

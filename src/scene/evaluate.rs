@@ -15,26 +15,22 @@ use super::run::solver_error;
 /// beyond the jet's order reads as zero; the plan asks for the order the outputs need).
 pub(crate) fn quantity<const N: usize>(jet: &Jet<N>, q: Quantity, drive: &DriveState) -> f64 {
     let d = |k: usize| jet.derivative(k).unwrap_or(0.0);
-    quantity_in(
-        [jet.value, d(1), d(2), d(3)],
-        q,
-        [drive.omega, drive.alpha, drive.jerk],
-    )
+    quantity_in([jet.value, d(1), d(2), d(3)], q, drive)
 }
 
 /// One quantity from a value and its drive derivatives `[x, x′, x″, x‴]` (zero beyond the
-/// order computed) and the drive's `[ω, α, φ⃛]`, in any scalar: `f64`, or dual numbers
-/// carrying the derivative with respect to a parameter (which ω and α may depend on too).
-pub(crate) fn quantity_in<S: Scalar>(d: [S; 4], q: Quantity, [omega, alpha, jerk]: [S; 3]) -> S {
+/// order computed) and the drive's state, in any scalar: `f64`, or dual numbers carrying the
+/// derivative with respect to a parameter (which ω and α may depend on too). The time
+/// derivatives are the chain rule of [`DriveState`] (φ⃛ zero in a scene).
+pub(crate) fn quantity_in<S: Scalar>(d: [S; 4], q: Quantity, drive: &DriveState<S>) -> S {
     match q {
         Quantity::Position => d[0],
         Quantity::VelocityCoefficient => d[1],
         Quantity::AccelerationCoefficient => d[2],
-        Quantity::Velocity => omega * d[1],
-        Quantity::Acceleration => alpha * d[1] + omega * omega * d[2],
+        Quantity::Velocity => drive.velocity(d[1]),
+        Quantity::Acceleration => drive.acceleration(d[1], d[2]),
         Quantity::JerkCoefficient => d[3],
-        // The chain rule of `mechdiff_core::motion` (φ⃛ = drive.jerk, zero in a scene).
-        Quantity::Jerk => jerk * d[1] + omega * 3.0 * alpha * d[2] + omega.powi(3) * d[3],
+        Quantity::Jerk => drive.jerk(d[1], d[2], d[3]),
     }
 }
 

@@ -66,6 +66,8 @@ pub struct SceneFile {
     pub balancing: Option<Spanned<super::balancing::BalancingDef>>,
     /// What the pictures show (see [`super::plot`]).
     pub plot: Option<Spanned<super::plot::PlotDef>>,
+    /// The position solver's settings (see [`super::solver`]).
+    pub solver: Option<Spanned<super::solver::SolverDef>>,
     /// Derivative columns with respect to parameters; read by the sensitivity study
     /// (`mechdiff::sensitivity`), not by the scene reader.
     pub sensitivity: Option<de::IgnoredAny>,

@@ -58,6 +58,7 @@ pub(crate) mod preflight;
 pub(crate) mod resolve;
 pub mod run;
 pub mod scalar;
+pub mod solver;
 pub(crate) mod source;
 pub mod study;
 pub(crate) mod sweep;

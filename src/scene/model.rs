@@ -35,6 +35,9 @@ pub struct Scene {
     pub balancing: Option<super::balancing::SceneBalancing>,
     /// What the pictures show (`[plot]`; empty when the file has none).
     pub plot: super::plot::Plot,
+    /// The position solver every solve of the scene uses (`[solver]`; the default solver
+    /// when the file has none).
+    pub solver: mechdiff_core::geometry::Solver,
     /// The values of `[parameters]` (after `--set`), in the order they were evaluated, in
     /// the units of the fields that use them.
     pub parameters: Vec<(String, f64)>,

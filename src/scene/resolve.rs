@@ -67,6 +67,7 @@ pub(crate) fn scene(file: &SceneFile, cx: &Context<'_>) -> Result<Scene> {
     let balancing =
         super::balancing::resolve(cx, file.rotor.as_ref(), file.balancing.as_ref(), &geometry)?;
     let plot = super::plot::resolve(cx, file.plot.as_ref(), &geometry, drive.kind)?;
+    let solver = super::solver::resolve(cx, file.solver.as_ref())?;
     let sweep_of = cx.sweep_of(&file.sweep, &outputs)?;
     let dimension = match sweep_of {
         Some(k) => outputs[k].kind.dimension(),
@@ -123,6 +124,7 @@ pub(crate) fn scene(file: &SceneFile, cx: &Context<'_>) -> Result<Scene> {
         dynamics,
         balancing,
         plot,
+        solver,
         parameters: cx.parameters.ordered().to_vec(),
         evaluator: Default::default(),
     })

@@ -3,7 +3,7 @@
 
 use std::cell::RefCell;
 
-use mechdiff_core::geometry::{Mechanism, Mobility, MotionRange, Solver};
+use mechdiff_core::geometry::{Mechanism, Mobility, MotionRange};
 use mechdiff_core::{DeadPosition, DeadPositionSearch};
 
 use crate::error::{Error, Result};
@@ -101,7 +101,8 @@ pub fn check(scene: &Scene) -> Result<Checked> {
     let mechanism = mechanism(scene)?;
     super::preflight::before_solving(scene, &mechanism)?;
     let (mobility, loops, closed_form, motion_range) = {
-        let tracker = Solver::default()
+        let tracker = scene
+            .solver
             .track(&mechanism)
             .map_err(|e| solver_error(scene, e))?;
         (
@@ -301,7 +302,8 @@ fn drive_positions(scene: &Scene, mechanism: &Mechanism, stats: &mut Stats) -> R
     };
     let resolved = Resolved::new(scene, mechanism, &scene.outputs[k])?;
     let output = resolved.output;
-    let mut tracker = Solver::default()
+    let mut tracker = scene
+        .solver
         .track(mechanism)
         .map_err(|e| solver_error(scene, e))?;
     let max_step = match scene.drive.kind {
@@ -423,7 +425,8 @@ fn search_dead_positions(
         .min((hi - lo) / 360.0)
         .max((hi - lo) / DEAD_POSITION_INTERVALS);
     let tracker = RefCell::new(
-        Solver::default()
+        scene
+            .solver
             .track(mechanism)
             .map_err(|e| solver_error(scene, e))?,
     );

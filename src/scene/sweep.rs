@@ -124,7 +124,8 @@ struct Outputs<'s> {
 impl<'s> Sweeper<'s> {
     /// Starts a sweep at the sketch pose.
     pub fn new(scene: &'s Scene, mechanism: &'s Mechanism, plan: &Plan) -> Result<Self> {
-        let tracker = mechdiff_core::geometry::Solver::default()
+        let tracker = scene
+            .solver
             .track(mechanism)
             .map_err(|e| solver_error(scene, e))?;
         let outputs = (scene.outputs.iter())

@@ -1,7 +1,7 @@
 //! The ends of the drive's motion range (limit positions, change points, toggles) that a
 //! run's sweep reaches: marked on the diagrams and listed after the dead positions.
 
-use mechdiff_core::geometry::{DriveLimit, LimitKind, Mechanism, Solver};
+use mechdiff_core::geometry::{DriveLimit, LimitKind, Mechanism};
 use std::f64::consts::TAU;
 
 use super::model::{DriveKind, Scene};
@@ -34,7 +34,8 @@ pub fn in_sweep(
     if !walks(scene, positions.len()) {
         return Vec::new();
     }
-    let Some(range) = Solver::default()
+    let Some(range) = scene
+        .solver
         .track(mechanism)
         .and_then(|t| t.motion_range())
         .ok()

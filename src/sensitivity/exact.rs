@@ -15,7 +15,7 @@
 use std::collections::HashMap;
 
 use mechdiff_core::DriveState;
-use mechdiff_core::geometry::{Parametric, Solver};
+use mechdiff_core::geometry::Parametric;
 use mechdiff_core::num_dual::Dual64;
 
 use crate::error::Result;
@@ -90,12 +90,13 @@ fn walk<const N: usize>(
     let state = Plan::of(scene)
         .drive
         .unwrap_or(DriveState::constant_speed(0.0));
-    let drive = [
-        Dual64::new(state.omega, tangent.speed),
-        Dual64::new(state.alpha, tangent.acceleration),
-        Dual64::from(state.jerk),
-    ];
-    let mut tracker = Solver::default()
+    let drive = DriveState {
+        omega: Dual64::new(state.omega, tangent.speed),
+        alpha: Dual64::new(state.alpha, tangent.acceleration),
+        jerk: Dual64::from(state.jerk),
+    };
+    let mut tracker = scene
+        .solver
         .track(mechanism)
         .map_err(|e| solver_error(scene, e))?;
     let mut rows = Vec::with_capacity(positions.len());
@@ -108,7 +109,7 @@ fn walk<const N: usize>(
             let values = values(output, |i| points[i].position(&pose));
             for q in &output.quantities {
                 for v in &values {
-                    row.push(quantity_in([v.re, v.v1, v.v2, v.v3], *q, drive).eps);
+                    row.push(quantity_in([v.re, v.v1, v.v2, v.v3], *q, &drive).eps);
                 }
             }
         }

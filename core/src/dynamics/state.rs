@@ -106,13 +106,17 @@ pub(crate) fn states_of<C, T: Scalar>(
     omega: T,
     alpha: T,
 ) -> Vec<LinkState<T>> {
-    let w2 = omega * omega;
+    let drive = DriveState {
+        omega,
+        alpha,
+        jerk: T::zero(),
+    };
     coordinates
         .chunks_exact(3)
         .map(|c| {
             let [x, y, t] = [jet(&c[0]), jet(&c[1]), jet(&c[2])];
-            let vel = |j: [T; 3]| omega * j[1];
-            let acc = |j: [T; 3]| alpha * j[1] + w2 * j[2];
+            let vel = |j: [T; 3]| drive.velocity(j[1]);
+            let acc = |j: [T; 3]| drive.acceleration(j[1], j[2]);
             LinkState {
                 r: [x[0], y[0]],
                 v: [vel(x), vel(y)],

@@ -14,6 +14,7 @@ pub(crate) mod closed_form;
 pub(crate) mod constraints;
 mod datum;
 mod frames;
+pub mod halving;
 pub mod implicit;
 mod kinematics;
 pub(crate) mod length;

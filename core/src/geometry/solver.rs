@@ -14,7 +14,8 @@
 //!    [`Error::Singular`]) and every loop's branch certificate (see [`super::branch`]).
 //! 4. If Newton fails or a certificate flips, **halve** the step and retry from the last good
 //!    pose; after `max_subdivisions` halvings report [`Error::Unassemblable`] or
-//!    [`Error::BranchFlip`], naming the drive position and the loop's joints.
+//!    [`Error::BranchFlip`], naming the drive position and the loop's joints (the walk of
+//!    [`super::halving`], shared with the traced trackers and the generated code).
 //! 5. **Accept**: one more Newton step with the factorisation at the new pose (the residual
 //!    drops from the tolerance to rounding), then q′ = Φ_q⁻¹ e_drive and q″ (see
 //!    [`super::implicit`]) with the same factorisation; they feed the next predictor and

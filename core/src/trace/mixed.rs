@@ -23,6 +23,7 @@ use super::{GuardKind, PositionGraph, Program, coordinate_symbol};
 use crate::Error;
 use crate::geometry::Tracker;
 use crate::geometry::branch::{self, Loop};
+use crate::geometry::halving::{Attempt, StepHalving};
 use crate::symbolic::Id;
 
 /// How a step ended.
@@ -214,60 +215,41 @@ impl MixedTracker {
         self.blocks.iter().map(|b| b.loop_index).collect()
     }
 
-    /// Walks to `phi` as the solver's Newton path does: steps of at most the solver's
-    /// longest, a failing step halved (at most the solver's number of times; a toggle is
-    /// not retried). On failure restores the state of the start.
+    /// Walks to `phi` as the solver's Newton path does, with its walk
+    /// ([`StepHalving::walk`]): steps of at most the solver's longest, a failing step halved
+    /// (at most the solver's number of times; a toggle is not retried). On failure restores
+    /// the state of the start.
     fn walk(&mut self, phi: f64) -> bool {
         if !phi.is_finite() {
             return false;
         }
         self.saved_inputs.copy_from_slice(&self.inputs);
         self.saved_branches.copy_from_slice(&self.branches);
-        let (mut halvings, mut substeps) = (0usize, 0usize);
-        let mut failed = false;
-        while self.phi() != phi || substeps == 0 {
-            if substeps >= self.max_substeps {
-                failed = true;
-                break;
-            }
-            substeps += 1;
-            let remaining = phi - self.phi();
-            let full = if remaining.abs() > self.longest {
-                self.longest.copysign(remaining)
-            } else {
-                remaining
-            };
-            let halved = |k: usize| full / f64::powi(2.0, k.min(1074) as i32);
-            let target = if halvings == 0 && full == remaining {
-                phi
-            } else {
-                self.phi() + halved(halvings)
-            };
-            match self.step(target) {
+        let halving = StepHalving {
+            longest: self.longest,
+            max_subdivisions: self.max_subdivisions,
+            max_substeps: self.max_substeps,
+        };
+        let from = self.phi();
+        let walked = halving.walk(
+            self,
+            from,
+            phi,
+            |walk, target, _| match walk.step(target) {
                 Step::Accepted => {
-                    self.accept();
-                    halvings = halvings.saturating_sub(1);
+                    walk.accept();
+                    Ok(Attempt::Accepted)
                 }
-                Step::Singular => {
-                    failed = true;
-                    break;
-                }
-                Step::Failed => {
-                    halvings += 1;
-                    if halvings > self.max_subdivisions
-                        || self.phi() + halved(halvings) == self.phi()
-                    {
-                        failed = true;
-                        break;
-                    }
-                }
-            }
-        }
-        if failed {
+                Step::Failed => Ok(Attempt::Failed(())),
+                Step::Singular => Err(()),
+            },
+            |_, _, ()| Err(()),
+        );
+        if walked.is_err() {
             self.inputs.copy_from_slice(&self.saved_inputs);
             self.branches.copy_from_slice(&self.saved_branches);
         }
-        !failed
+        walked.is_ok()
     }
 
     fn accept(&mut self) {

@@ -4,7 +4,8 @@
 //!
 //! The module's `Tracker` keeps, between calls, the drive position reached and each Newton
 //! loop's coordinates with their derivatives and its branch (the sign of det Φ_q). Its
-//! `pose(phi)` walks there as the solver's Newton path does (`geometry::solver`):
+//! `pose(phi)` walks there as the solver's Newton path does (`geometry::solver`), with the
+//! solver's own step-halving walk (`geometry::halving`, its source emitted into the module):
 //! sub-steps of at most `LONGEST_STEP`; at each, the Taylor predictor `q + h q′ + h²/2 q″`,
 //! Newton until max |Φ| ≤ `RESIDUAL_TOLERANCE` (at most `MAX_ITERATIONS` iterations), the
 //! condition of the loop's scaled Φ_q (above `SINGULAR_THRESHOLD`: `Singular`, at once), the
@@ -14,6 +15,7 @@
 //! factorisation. The closed-form loops' formulas and guards, and the outputs, read the
 //! Newton loops' coordinates and derivatives.
 
+use mechdiff_core::geometry::halving;
 use mechdiff_core::trace::{GuardKind, NewtonBlock, coordinate_symbol};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
@@ -251,6 +253,8 @@ pub(super) fn tracker(code: &SceneCode) -> TokenStream {
         u(position.max_subdivisions),
         u(position.max_substeps),
     );
+    let walk: TokenStream =
+        (halving::SOURCE.parse()).expect("the walk's source parses: mechdiff-core compiles it");
     quote! {
         /// The solver's singular threshold: a loop whose condition estimate exceeds it is
         /// at (or too near) a toggle.
@@ -269,6 +273,21 @@ pub(super) fn tracker(code: &SceneCode) -> TokenStream {
         /// The drive position of the sketch, where a `Tracker` starts (SI).
         #[allow(clippy::approx_constant)]
         pub const SKETCH_DRIVE: f64 = #sketch;
+
+        /// The solver's step-halving walk (`mechdiff_core::geometry::halving`), as its
+        /// source: the generated code depends on nothing.
+        #[allow(dead_code, clippy::all)]
+        mod step_halving {
+            #walk
+        }
+        use step_halving::{Attempt, StepHalving, Stop};
+
+        /// The walk's limits (the solver's).
+        const HALVING: StepHalving = StepHalving {
+            longest: LONGEST_STEP,
+            max_subdivisions: MAX_SUBDIVISIONS,
+            max_substeps: MAX_SUBSTEPS,
+        };
 
         /// A Newton loop's state: its coordinates, their derivatives 1 to `ORDER`, and its
         /// branch (the sign of det Φ_q; 0 before the first pose).
@@ -309,34 +328,23 @@ pub(super) fn tracker(code: &SceneCode) -> TokenStream {
                 if !phi.is_finite() {
                     return Err(LoopFailure::NonFinite { phi });
                 }
-                let (start, mut halvings, mut substeps) = (self.phi, 0usize, 0usize);
-                while self.phi != phi {
-                    if substeps >= MAX_SUBSTEPS {
-                        return Err(LoopFailure::MoveTooLong { from: start, to: phi });
-                    }
-                    substeps += 1;
-                    let remaining = phi - self.phi;
-                    let full = if remaining.abs() > LONGEST_STEP {
-                        LONGEST_STEP.copysign(remaining)
-                    } else {
-                        remaining
-                    };
-                    let target = if halvings == 0 && full == remaining {
-                        phi
-                    } else {
-                        self.phi + full / f64::powi(2.0, halvings.min(1074) as i32)
-                    };
-                    match self.step(target, phi) {
-                        Ok(()) => halvings = halvings.saturating_sub(1),
-                        Err(failure @ LoopFailure::Singular { .. }) => return Err(failure),
-                        Err(failure) => {
-                            halvings += 1;
-                            let next = self.phi + full / f64::powi(2.0, halvings.min(1074) as i32);
-                            if halvings > MAX_SUBDIVISIONS || next == self.phi {
-                                return Err(failure);
-                            }
-                        }
-                    }
+                let start = self.phi;
+                if start != phi {
+                    let walked = HALVING.walk(
+                        self,
+                        start,
+                        phi,
+                        |tracker, target, _| match tracker.step(target, phi) {
+                            Ok(()) => Ok(Attempt::Accepted),
+                            Err(failure @ LoopFailure::Singular { .. }) => Err(failure),
+                            Err(failure) => Ok(Attempt::Failed(failure)),
+                        },
+                        |_, _, failure| Err(failure),
+                    );
+                    walked.map_err(|stop| match stop {
+                        Stop::TooLong => LoopFailure::MoveTooLong { from: start, to: phi },
+                        Stop::Failed(failure) => failure,
+                    })?;
                 }
                 Ok(self.outputs())
             }

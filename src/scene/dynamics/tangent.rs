@@ -5,7 +5,7 @@
 use mechdiff_core::dynamics::tangent::{
     EffectsTangent, ModelTangent, NotCarried, SolutionTangent, TangentError, carried,
 };
-use mechdiff_core::geometry::{Parametric, Solver};
+use mechdiff_core::geometry::Parametric;
 use mechdiff_core::num_dual::Dual64;
 
 use crate::error::{Error, Result};
@@ -113,7 +113,7 @@ pub fn column_derivatives(
     let omega = Dual64::new(drive.omega, effects.omega);
     let mut rows = Vec::with_capacity(positions.len());
     let solver_error = |e| crate::scene::run::solver_error(scene, e);
-    let mut tracker = Solver::default().track(mechanism).map_err(solver_error)?;
+    let mut tracker = scene.solver.track(mechanism).map_err(solver_error)?;
     for &phi in positions {
         tracker.move_to(phi).map_err(solver_error)?;
         let k = tracker.kinematics::<2>().map_err(solver_error)?;

@@ -6,6 +6,7 @@ use super::interval;
 use super::{SolveReport, Tracker};
 use crate::Error;
 use crate::geometry::closed_form::Failure;
+use crate::geometry::halving::{Attempt, StepHalving, Stop};
 use num_dual::Dual2_64;
 
 impl Tracker<'_> {
@@ -16,74 +17,76 @@ impl Tracker<'_> {
     /// ([`Error::Blocked`], [`Error::ChangePoint`], [`Error::Singular`]); the tracker is
     /// left at the last position accepted.
     pub(super) fn move_closed(&mut self, phi: f64) -> Result<SolveReport, Error> {
-        let mut report = SolveReport::starting(phi);
         let start = self.phi;
-        let longest = self.longest_step();
-        let mut halvings: usize = 0;
-        // The condition at `phi` itself, if its formula found it a toggle.
-        let mut toggle_at_phi = None;
-        while self.phi != phi || report.steps == 0 {
-            self.bounded(start, phi, report.steps + report.newton_failures)?;
-            let remaining = phi - self.phi;
-            let full = if remaining.abs() > longest {
-                longest.copysign(remaining)
-            } else {
-                remaining
-            };
-            let target = if halvings == 0 && full == remaining {
-                phi
-            } else {
-                self.phi + full / f64::powi(2.0, halvings.min(1074) as i32)
-            };
-            let failed = match self.evaluate_closed(target) {
-                Ok(()) => match self.unproven(target) {
-                    None => {
-                        self.accept_closed(target);
-                        report.steps += 1;
-                        halvings = halvings.saturating_sub(1);
-                        continue;
+        // The tracker and the condition at `phi` itself, if its formula found it a toggle.
+        let mut state = (self, None);
+        let walked = state.0.halving().walk(
+            &mut state,
+            start,
+            phi,
+            |(t, toggle_at_phi), target, _| {
+                Ok(Attempt::Failed(match t.evaluate_closed(target) {
+                    Ok(()) => match t.unproven(target) {
+                        None => {
+                            t.accept_closed(target);
+                            return Ok(Attempt::Accepted);
+                        }
+                        Some(l) => (l, None),
+                    },
+                    Err((l, failure)) => {
+                        if let (true, Failure::Singular { condition }) = (target == phi, failure) {
+                            *toggle_at_phi = Some(condition);
+                        }
+                        (l, Some(failure))
                     }
-                    Some(l) => (l, None),
-                },
-                Err((l, failure)) => {
-                    if let (true, Failure::Singular { condition }) = (target == phi, failure) {
-                        toggle_at_phi = Some(condition);
-                    }
-                    (l, Some(failure))
-                }
-            };
-            report.newton_failures += 1;
-            halvings += 1;
-            let next = self.phi + full / f64::powi(2.0, halvings.min(1074) as i32);
-            if halvings > self.solver.max_subdivisions || next == self.phi {
-                match self.end_of_branch(start, phi, target, failed, toggle_at_phi) {
+                }))
+            },
+            |(t, toggle_at_phi), target, failed| {
+                match t.end_of_branch(start, phi, target, failed, *toggle_at_phi) {
                     // The margin stayed clear of zero: rounding, not the branch's end.
                     None => {
-                        self.evaluate_closed(target)
-                            .map_err(|(l, f)| self.closed_failure(target, l, f))?;
-                        self.accept_closed(target);
-                        report.steps += 1;
-                        halvings = 0;
+                        t.evaluate_closed(target)
+                            .map_err(|(l, f)| t.closed_failure(target, l, f))?;
+                        t.accept_closed(target);
+                        Ok(())
                     }
-                    Some(e) => return Err(e),
+                    Some(e) => Err(e),
                 }
-            }
-        }
-        Ok(report)
+            },
+        );
+        let walked = walked.map_err(|stop| state.0.stopped(start, phi, stop))?;
+        Ok(SolveReport {
+            steps: walked.steps,
+            newton_failures: walked.failures,
+            ..SolveReport::starting(phi)
+        })
     }
 
-    /// [`Error::MoveTooLong`] once a move from `start` to `phi` has taken `substeps`
-    /// beyond [`interval::MAX_SUBSTEPS`].
-    pub(super) fn bounded(&self, start: f64, phi: f64, substeps: usize) -> Result<(), Error> {
-        if substeps < interval::MAX_SUBSTEPS {
-            return Ok(());
-        }
-        Err(Error::MoveTooLong {
-            from: start,
-            to: phi,
-            steps: interval::MAX_SUBSTEPS,
+    /// The limits of a move's walk: steps of at most [`Tracker::longest_step`], halved at
+    /// most [`Solver::max_subdivisions`] times, at most [`interval::MAX_SUBSTEPS`] in all.
+    ///
+    /// [`Solver::max_subdivisions`]: crate::geometry::Solver::max_subdivisions
+    pub(super) fn halving(&self) -> StepHalving {
+        StepHalving {
             longest: self.longest_step(),
-        })
+            max_subdivisions: self.solver.max_subdivisions,
+            max_substeps: interval::MAX_SUBSTEPS,
+        }
+    }
+
+    /// The error of a move from `start` to `phi` that stopped short: its walk's error, or
+    /// [`Error::MoveTooLong`] once it would take more than [`interval::MAX_SUBSTEPS`]
+    /// sub-steps.
+    pub(super) fn stopped(&self, start: f64, phi: f64, stop: Stop<Error>) -> Error {
+        match stop {
+            Stop::Failed(e) => e,
+            Stop::TooLong => Error::MoveTooLong {
+                from: start,
+                to: phi,
+                steps: interval::MAX_SUBSTEPS,
+                longest: self.longest_step(),
+            },
+        }
     }
 
     /// The formulas at `target`, into `closed_q`, `closed_frames`, `closed_margins`.
@@ -116,6 +119,9 @@ impl Tracker<'_> {
     }
 
     /// Makes the closed forms' pose (in `closed_q`, `closed_frames`) current at `phi`.
+    // Inlined into the step that accepts, as before the walk was shared: called from two
+    // places (a step accepted, or taken after all at the end of its halvings), it was not.
+    #[inline(always)]
     pub(super) fn accept_closed(&mut self, phi: f64) {
         let poses = self.q.as_mut_slice().iter_mut();
         let derivatives = self

@@ -6,6 +6,7 @@
 use super::{Loops, SolveReport, Tracker, amax};
 use crate::Error;
 use crate::geometry::constraints::Frames;
+use crate::geometry::halving::Attempt;
 use crate::geometry::implicit::Factorised;
 use crate::geometry::{branch, frames, mobility};
 use nalgebra::DVector;
@@ -26,91 +27,91 @@ const STAGNATING: usize = 3;
 impl Tracker<'_> {
     /// Moves to `phi` by predictor, Newton and the checks, halving the step on failure.
     pub(super) fn move_newton(&mut self, phi: f64) -> Result<SolveReport, Error> {
-        let mut report = SolveReport::starting(self.phi);
-        let mut halvings: usize = 0;
-        // Steps of at most 1/8 rad (or 1/8 of the sketch), as on the closed-form path:
-        // Newton's landing is checked (branch certificates) at least that often.
-        let longest = self.longest_step();
         let start = self.phi;
-        while self.phi != phi {
-            let substeps = report.steps + report.newton_failures + report.branch_rejections;
-            self.bounded(start, phi, substeps)?;
-            let remaining = phi - self.phi;
-            let full = if remaining.abs() > longest {
-                longest.copysign(remaining)
-            } else {
-                remaining
-            };
-            let h = full / f64::powi(2.0, halvings.min(1074) as i32);
-            let target = if halvings == 0 && full == remaining {
-                phi
-            } else {
-                self.phi + h
-            };
-            // Taylor predictor q + h q′ + h²/2 q″.
-            let derivatives = self.dq.as_slice().iter().zip(self.ddq.as_slice());
-            let poses = self.trial.as_mut_slice().iter_mut().zip(self.q.as_slice());
-            for ((x, &q), (&dq, &ddq)) in poses.zip(derivatives) {
-                *x = q + h * (dq + 0.5 * h * ddq);
-            }
-            for (f, pose) in self
-                .trial_frames
-                .iter_mut()
-                .zip(self.trial.as_slice().chunks_exact(3))
-            {
-                *f = pose[2].sin_cos();
-            }
-            if self.seeding {
-                let (q, frames) = (self.q.as_slice(), &mut self.trial_frames);
-                self.closed
-                    .seed(target, q, self.trial.as_mut_slice(), frames);
-            }
-            let failure = match self.newton(target) {
-                Ok(iterations) => {
-                    report.iterations += iterations;
-                    self.check_trial(target)?;
-                    match self
-                        .trial_certificates
-                        .iter()
-                        .zip(&self.certificates)
-                        .position(|(a, b)| a != b)
-                    {
-                        None => {
-                            self.accept(target)?;
-                            report.steps += 1;
-                            halvings = halvings.saturating_sub(1);
-                            continue;
-                        }
-                        Some(l) => {
-                            report.branch_rejections += 1;
-                            Error::BranchFlip {
-                                from: self.phi,
-                                to: target,
-                                joints: self.loop_joints(&self.loops[l]),
-                            }
-                        }
+        let mut state = (self, SolveReport::starting(start));
+        if start != phi {
+            // Steps of at most 1/8 rad (or 1/8 of the sketch), as on the closed-form path:
+            // Newton's landing is checked (branch certificates) at least that often.
+            let walked = state.0.halving().walk(
+                &mut state,
+                start,
+                phi,
+                |(t, report), target, h| t.attempt_newton(phi, target, h, report),
+                // Given up after the allowed halvings, or once a halved step no longer
+                // moves φ.
+                |_, _, failure| Err(failure),
+            );
+            walked.map_err(|stop| state.0.stopped(start, phi, stop))?;
+        }
+        let (t, mut report) = state;
+        report.phi = t.phi;
+        report.residual = Some(amax(t.residual.as_slice()));
+        Ok(report)
+    }
+
+    /// One step of a move to `phi`: to `target`, `h` from the current position, by the
+    /// Taylor predictor, Newton and the checks. A failure of Newton (counted in `report`
+    /// with the iterations) or a branch flip fails the step; a toggle ends the move.
+    fn attempt_newton(
+        &mut self,
+        phi: f64,
+        target: f64,
+        h: f64,
+        report: &mut SolveReport,
+    ) -> Result<Attempt<Error>, Error> {
+        // Taylor predictor q + h q′ + h²/2 q″.
+        let derivatives = self.dq.as_slice().iter().zip(self.ddq.as_slice());
+        let poses = self.trial.as_mut_slice().iter_mut().zip(self.q.as_slice());
+        for ((x, &q), (&dq, &ddq)) in poses.zip(derivatives) {
+            *x = q + h * (dq + 0.5 * h * ddq);
+        }
+        for (f, pose) in self
+            .trial_frames
+            .iter_mut()
+            .zip(self.trial.as_slice().chunks_exact(3))
+        {
+            *f = pose[2].sin_cos();
+        }
+        if self.seeding {
+            let (q, frames) = (self.q.as_slice(), &mut self.trial_frames);
+            self.closed
+                .seed(target, q, self.trial.as_mut_slice(), frames);
+        }
+        match self.newton(target) {
+            Ok(iterations) => {
+                report.iterations += iterations;
+                self.check_trial(target)?;
+                match self
+                    .trial_certificates
+                    .iter()
+                    .zip(&self.certificates)
+                    .position(|(a, b)| a != b)
+                {
+                    None => {
+                        self.accept(target)?;
+                        report.steps += 1;
+                        Ok(Attempt::Accepted)
+                    }
+                    Some(l) => {
+                        report.branch_rejections += 1;
+                        Ok(Attempt::Failed(Error::BranchFlip {
+                            from: self.phi,
+                            to: target,
+                            joints: self.loop_joints(&self.loops[l]),
+                        }))
                     }
                 }
-                Err((residual, l)) => {
-                    report.newton_failures += 1;
-                    Error::Unassemblable {
-                        phi,
-                        last_assembled: self.phi,
-                        joints: self.loop_joints(&self.loops[l]),
-                        residual,
-                    }
-                }
-            };
-            halvings += 1;
-            // Give up after the allowed halvings, or once a halved step no longer moves φ.
-            let next = self.phi + full / f64::powi(2.0, halvings.min(1074) as i32);
-            if halvings > self.solver.max_subdivisions || next == self.phi {
-                return Err(failure);
+            }
+            Err((residual, l)) => {
+                report.newton_failures += 1;
+                Ok(Attempt::Failed(Error::Unassemblable {
+                    phi,
+                    last_assembled: self.phi,
+                    joints: self.loop_joints(&self.loops[l]),
+                    residual,
+                }))
             }
         }
-        report.phi = self.phi;
-        report.residual = Some(amax(self.residual.as_slice()));
-        Ok(report)
     }
 
     /// Newton on `trial` at drive position `phi`: the iterations, or the final residual and
