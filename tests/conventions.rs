@@ -3,7 +3,7 @@
 //! forces as docs/scene-format.md ("Conventions") states them, and dynamics columns
 //! printed in the file's force and torque units.
 
-mod common;
+use crate::common;
 
 use mechdiff::scene::{self, Report};
 
