@@ -5,7 +5,6 @@
 //! ([`mechanisms`]) and the [`derivatives`] attribute, and holds what the `mechdiff`
 //! command-line tool does: scene files ([`scene`]), reports ([`report`]), code generation
 //! ([`codegen`]) and the care of the user's files ([`files`]).
-#![warn(missing_docs)]
 
 pub mod accuracy;
 pub mod codegen;

@@ -8,7 +8,6 @@
 //! [`DeadPositionSearch`] finds where a coefficient changes sign. [`geometry`] derives, solves
 //! and differentiates the equations of a mechanism given only as points, links, joints and a
 //! drive.
-#![warn(missing_docs)]
 
 pub mod balancing;
 pub mod cams;
