@@ -1,8 +1,8 @@
 //! What does code generated from a scene file cost, against the hand-derived formulas?
 //!
 //! The Whitworth shaping machine from `scenes/whitworth.toml`: its generated module
-//! (`tests/generated/whitworth.rs`, ψ and x_C with derivatives 1 and 2 and every loop's
-//! guard), the same for ψ alone (`tests/generated/whitworth_psi.rs`), the run-time
+//! (`mechdiff_scene!`, ψ and x_C with derivatives 1 and 2 and every loop's guard), the
+//! same for ψ alone (`tests/data/whitworth_psi.toml`), the run-time
 //! evaluator of the same graph, the hand-derived formulas (1.35), (1.36), (1.39), (1.41),
 //! and Dual2 through the closed-form ψ, in one run; and the whole pose (ψ, A, C, S1, S2, S3
 //! with ′ and ″) generated from `tests/data/whitworth_pose.toml` against the hand-derived
@@ -41,22 +41,22 @@ use std::hint::black_box;
 
 #[allow(dead_code, clippy::all)]
 mod generated {
-    include!("../tests/generated/whitworth.rs");
+    mechdiff_scene_macros::mechdiff_scene!("scenes/whitworth.toml");
 }
 
 #[allow(dead_code, clippy::all)]
 mod generated_psi {
-    include!("../tests/generated/whitworth_psi.rs");
+    mechdiff_scene_macros::mechdiff_scene!("tests/data/whitworth_psi.toml");
 }
 
 #[allow(dead_code, clippy::all)]
 mod generated_pose {
-    include!("../tests/generated/whitworth_pose.rs");
+    mechdiff_scene_macros::mechdiff_scene!("tests/data/whitworth_pose.toml");
 }
 
 #[allow(dead_code, clippy::all)]
 mod generated_triad_slider {
-    include!("../tests/generated/triad_slider.rs");
+    mechdiff_scene_macros::mechdiff_scene!("tests/data/triad_slider.toml");
 }
 
 /// The crank angle (rad): a generic position, as in `derivative_methods`.

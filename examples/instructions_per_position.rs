@@ -29,18 +29,18 @@ use mechdiff::mechanisms::whitworth::hand;
 use std::hint::black_box;
 use std::process::ExitCode;
 
-/// Whitworth's ψ, ψ′, ψ″ generated from its scene (`mechdiff codegen`, see
-/// `tests/scene_codegen.rs`).
+/// Whitworth's ψ, ψ′, ψ″ generated from `tests/data/whitworth_psi.toml` at compile time
+/// (`mechdiff_scene!`: the module `mechdiff codegen` prints, see `tests/scene_codegen.rs`).
 #[allow(dead_code, clippy::all)]
 mod generated_psi {
-    include!("../tests/generated/whitworth_psi.rs");
+    mechdiff_scene_macros::mechdiff_scene!("tests/data/whitworth_psi.toml");
 }
 
 /// Whitworth's whole pose (ψ, A, C, S1, S2, S3 with ′ and ″) generated from
 /// `tests/data/whitworth_pose.toml`.
 #[allow(dead_code, clippy::all)]
 mod generated_pose {
-    include!("../tests/generated/whitworth_pose.rs");
+    mechdiff_scene_macros::mechdiff_scene!("tests/data/whitworth_pose.toml");
 }
 
 /// The sum of every value and derivative of a hand-derived whole pose.

@@ -191,11 +191,14 @@ fn read_text(file: File, path: &Path) -> Result<String> {
     })
 }
 
-/// A file on disk, whatever its name: device and inode (elsewhere, the resolved path).
+/// A file on disk, whatever its name: device, inode and birth time (elsewhere, the
+/// resolved path). The birth time tells a file that reuses the inode of a deleted input
+/// (a process that reads and deletes many files: a study, the tests) from that input;
+/// renames and hard links keep it. `None` where the file system records none.
 #[derive(Debug, Clone, PartialEq, Eq)]
 enum FileId {
     #[cfg(unix)]
-    Inode(u64, u64),
+    Inode(u64, u64, Option<std::time::SystemTime>),
     #[cfg(not(unix))]
     Path(PathBuf),
 }
@@ -205,7 +208,11 @@ impl FileId {
         #[cfg(unix)]
         {
             use std::os::unix::fs::MetadataExt;
-            Some(FileId::Inode(metadata.dev(), metadata.ino()))
+            Some(FileId::Inode(
+                metadata.dev(),
+                metadata.ino(),
+                metadata.created().ok(),
+            ))
         }
         #[cfg(not(unix))]
         {

@@ -75,7 +75,6 @@
 //! - `parallel`: streamed sweeps and Monte-Carlo samples on several threads (rayon); without
 //!   it the same work runs in order, with the same bytes.
 //! - `progress`: the progress bar of a long streamed run (indicatif).
-#![warn(missing_docs)]
 #![cfg_attr(docsrs, feature(doc_cfg))]
 
 pub mod accuracy;

@@ -1,6 +1,6 @@
 //! `mechdiff accuracy` as a user calls it: the table, the CSV and SVG files, the errors.
 
-mod common;
+use crate::common;
 use common::{mechdiff, temp_file};
 
 /// `mechdiff accuracy whitworth` prints one row per method — every exact method and the

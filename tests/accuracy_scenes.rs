@@ -6,7 +6,7 @@
 
 use std::path::Path;
 
-mod common;
+use crate::common;
 
 use mechdiff::accuracy::reference::Formulas;
 use mechdiff::accuracy::{Timing, scene as scene_case};

@@ -10,7 +10,7 @@
 use mechdiff::Error;
 use mechdiff::scene::{self, Report, parameters::Setting};
 
-mod common;
+use crate::common;
 use common::line_of;
 
 const A: f64 = 0.86;

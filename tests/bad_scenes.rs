@@ -4,7 +4,7 @@
 use mechdiff::Error;
 use mechdiff::scene;
 
-mod common;
+use crate::common;
 use common::assert_message;
 
 /// A valid four-bar; each test breaks one thing in it.

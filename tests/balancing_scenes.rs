@@ -8,7 +8,7 @@ use mechdiff::Error;
 use mechdiff::scene::balancing::{RotorScene, rotor_scene};
 use mechdiff::scene::{self};
 
-mod common;
+use crate::common;
 use common::{column, mechdiff, run_scene as run};
 
 /// At constant speed ω a crank counterweight b (global, at the sketch) adds the force

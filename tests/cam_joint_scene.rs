@@ -8,7 +8,7 @@ use std::f64::consts::TAU;
 use mechdiff::scene::{self, Report};
 use num_dual::{Dual3_64, DualNum};
 
-mod common;
+use crate::common;
 use common::{column, scene_path};
 
 fn run() -> Report {

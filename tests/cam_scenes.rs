@@ -2,8 +2,6 @@
 //! reference table through the scene's units; bad input is refused with `file:line:col` and
 //! the cam angle; `--csv` and `--profile-csv` write what the report shows.
 
-mod common;
-
 use std::path::PathBuf;
 use std::process::Command;
 

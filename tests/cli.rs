@@ -5,7 +5,7 @@ use std::path::Path;
 
 use mechdiff::scene;
 
-mod common;
+use crate::common;
 use common::{mechdiff, scene_path, stderr, stdout, temp_file};
 
 /// The table of the offset slider-crank (millimetres, rpm): plan line, headers with units,

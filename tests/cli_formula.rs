@@ -3,7 +3,7 @@
 //! a zero base — with a note naming the position — and a typed error naming the position
 //! where there is no limit. Never NaN.
 
-mod common;
+use crate::common;
 use common::{mechdiff, stderr, stdout, temp_file};
 
 /// The CSV rows of `run <scene> --csv`, as numbers (header checked by the caller).

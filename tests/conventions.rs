@@ -4,10 +4,7 @@
 //! printed in the file's force and torque units; and the code's own conventions: no import
 //! circle of more than two modules in any crate (issue 23).
 
-mod common;
-// A file beside this one (`#[path]`: the same file whether this is a test crate's root or a
-// module of one).
-#[path = "conventions/import_graph.rs"]
+use crate::common;
 mod import_graph;
 
 use mechdiff::scene::{self, Report};

@@ -6,7 +6,7 @@ use std::path::Path;
 use mechdiff::Error;
 use mechdiff::scene::{self};
 
-mod common;
+use crate::common;
 use common::{column, run_scene as run};
 
 /// whitworth_000.json `table_recomputed.A_exact_dead_positions` (the copy the core tests use;

@@ -6,7 +6,7 @@
 //! Examples/, with the `mech=` header and flags PMKS writes; the first joint marked as the
 //! driving input).
 
-mod common;
+use crate::common;
 
 use std::process::Command;
 

@@ -9,7 +9,7 @@ use mechdiff::scene::{self, Report, Scene};
 use mechdiff::{Error, Result};
 use mechdiff_core::trace::Backend;
 
-mod common;
+use crate::common;
 use common::{mechdiff, stderr, stdout, temp_file};
 
 fn with(mut scene: Scene, evaluator: Evaluator) -> Scene {

@@ -1,12 +1,11 @@
-//! Code generated from scene files (`mechdiff codegen <scene.toml>`): the modules of
-//! `tests/generated/` are what the command prints today, they compile (each is included
-//! below), and they agree with the solver (`mechdiff run`) and with the run-time
-//! evaluator, guards included.
+//! Code generated from scene files (`mechdiff codegen <scene.toml>`): the modules compile
+//! (each is expanded below by `mechdiff_scene!`, which emits the text the command prints),
+//! and they agree with the solver (`mechdiff run`) and with the run-time evaluator, guards
+//! included. The text is reviewed as snapshots in `tests/snapshots/`: Whitworth's whole
+//! module, and a digest of every module (header, item signatures, size).
 //!
-//! To regenerate the modules after a change of the code generator:
-//! `MECHDIFF_BLESS=1 cargo test --test scene_codegen generated_modules_are_current`.
-
-use std::path::Path;
+//! After a change of the code generator, review and accept the new snapshots:
+//! `cargo insta review` (or `INSTA_UPDATE=always cargo test --test integration scene_codegen`).
 
 use mechdiff::codegen::scene::{SceneCode, guard_error, module};
 use mechdiff::error::Error;
@@ -21,7 +20,7 @@ macro_rules! generated {
         $(
             #[allow(dead_code, clippy::all)]
             mod $name {
-                include!(concat!("generated/", stringify!($name), ".rs"));
+                mechdiff_scene_macros::mechdiff_scene!($path);
             }
         )*
         /// Every scene with generated code: its path, its module's `LOOPS`, its `pose`.
@@ -71,7 +70,7 @@ macro_rules! mixed {
         $(
             #[allow(dead_code, clippy::all)]
             mod $name {
-                include!(concat!("generated/", stringify!($name), ".rs"));
+                mechdiff_scene_macros::mechdiff_scene!($path);
             }
         )*
         /// Every scene with a mixed plan: its path, its module's `LOOPS` and `PATHS`, and a
@@ -112,27 +111,33 @@ mixed! {
     triad_slider => "tests/data/triad_slider.toml",
 }
 
-fn generated_path(scene: &str) -> String {
-    let stem = Path::new(scene).file_stem().unwrap().to_str().unwrap();
-    format!("tests/generated/{stem}.rs")
+/// What a reviewer of a generated module needs to see change: its size, its header
+/// comment (what it solves, the count of each operation) and its items' signatures (the
+/// lines that start an item at the top level or in an `impl`), without the formulas.
+fn digest(path: &str, text: &str) -> String {
+    let mut digest = format!("{path}: {} lines\n", text.lines().count());
+    let header = text.lines().take_while(|line| line.starts_with("// "));
+    let signatures = text.lines().filter(|line| {
+        let item = line.strip_prefix("    ").unwrap_or(line);
+        item.starts_with("pub ") || item.starts_with("impl")
+    });
+    for line in header.chain(signatures) {
+        digest.push_str("    ");
+        digest.push_str(line.trim_start());
+        digest.push('\n');
+    }
+    digest
 }
 
 #[test]
-fn generated_modules_are_current() {
+fn generated_modules_digest() {
+    // The text `mechdiff_scene!` expanded above, scene by scene; the snapshot is reviewed on
+    // change (the whole text of one module is `whitworth_scene_module_snapshot`).
     let paths = SCENES.iter().map(|s| s.0).chain(MIXED.iter().map(|s| s.0));
-    for path in paths {
-        let text = module(&scene::load(path).unwrap(), path).unwrap();
-        let file = generated_path(path);
-        if std::env::var_os("MECHDIFF_BLESS").is_some() {
-            std::fs::write(&file, &text).unwrap();
-        }
-        let checked_in = std::fs::read_to_string(&file).unwrap();
-        assert!(
-            checked_in == text,
-            "{file} is not what `mechdiff codegen {path}` prints: regenerate it (see the top \
-             of this file)"
-        );
-    }
+    let digests: Vec<String> = paths
+        .map(|path| digest(path, &module(&scene::load(path).unwrap(), path).unwrap()))
+        .collect();
+    insta::assert_snapshot!(digests.join("\n"));
 }
 
 #[test]
@@ -346,17 +351,15 @@ fn generated_whitworth_matches_the_30_digit_reference() {
 #[test]
 fn build_script_helper_writes_the_printed_module() {
     // The compile-time back end writes exactly what `mechdiff codegen` prints (and what
-    // the modules included above were generated as).
+    // `mechdiff_scene!` expands above).
     let dir = std::env::temp_dir().join(format!("mechdiff-scene-codegen-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let out = dir.join("whitworth.rs");
     mechdiff::codegen::scene::write_module("scenes/whitworth.toml", &out).unwrap();
     let written = std::fs::read_to_string(&out).unwrap();
     std::fs::remove_dir_all(&dir).unwrap();
-    assert_eq!(
-        written,
-        std::fs::read_to_string("tests/generated/whitworth.rs").unwrap()
-    );
+    let path = "scenes/whitworth.toml";
+    assert_eq!(written, module(&scene::load(path).unwrap(), path).unwrap());
 }
 
 #[test]
@@ -369,7 +372,8 @@ fn codegen_command_prints_the_module_and_refuses_other_scenes() {
     };
     let printed = run("scenes/whitworth.toml");
     assert!(printed.status.success());
-    let expected = std::fs::read_to_string("tests/generated/whitworth.rs").unwrap();
+    let path = "scenes/whitworth.toml";
+    let expected = module(&scene::load(path).unwrap(), path).unwrap();
     assert_eq!(String::from_utf8(printed.stdout).unwrap(), expected);
     // A formula (accuracy) scene is not a mechanism: the scene reader's located error.
     let refused = run("scenes/formulas/shaper.toml");

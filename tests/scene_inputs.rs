@@ -8,7 +8,7 @@ use std::path::Path;
 use mechdiff::Error;
 use mechdiff::scene::{self, Report};
 
-mod common;
+use crate::common;
 use common::assert_message;
 
 /// The text of `scenes/<name>`.

@@ -8,7 +8,7 @@ use std::path::Path;
 use mechdiff::pictures::run::diagram;
 use mechdiff::scene::{self, Scene};
 
-mod common;
+use crate::common;
 use common::{column, scaled_error};
 
 /// The Whitworth scene with jerks asked for, and a drive acceleration of 3 rad/s² so that the

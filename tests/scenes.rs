@@ -6,7 +6,7 @@ use std::path::Path;
 
 use mechdiff::scene::{self};
 
-mod common;
+use crate::common;
 use common::{column, run_scene as run, scaled_error, scene_path};
 
 #[test]

@@ -7,7 +7,7 @@
 //! parameter converge to the exact columns as h². The kinematic columns are exact (dual
 //! numbers); the Richardson fallback is checked on the same references.
 
-mod common;
+use crate::common;
 
 use mechdiff::Error;
 use mechdiff::core::symbolic::{Graph, Id};

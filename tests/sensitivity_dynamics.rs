@@ -4,8 +4,6 @@
 //! differences of whole runs (`sensitivity::extrapolated`, an independent method) within
 //! their own error estimate.
 
-mod common;
-
 use mechdiff::scene::parameters::Setting;
 use mechdiff::sensitivity::{self, Method, Options, Parameter};
 

@@ -2,8 +2,6 @@
 //! independent references: Richardson-extrapolated differences of whole runs (with their
 //! own error estimate), the chain rule through a parameter formula, a unit's factor.
 
-mod common;
-
 use mechdiff::sensitivity::{self, Method, Options, Parameter};
 
 const NORTON: &str = include_str!("../scenes/norton_four_bar.toml");

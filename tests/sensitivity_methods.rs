@@ -2,7 +2,7 @@
 //! output says so — exact (dual numbers) where the exact route reaches, Richardson-
 //! extrapolated differences, labelled with the reason, where it does not.
 
-mod common;
+use crate::common;
 
 use mechdiff::sensitivity::{self, Method, Options, Study};
 

@@ -3,7 +3,7 @@
 //! poses inside the sweep); the first error in drive order with the rows before it; files whole or not at all; no cap on
 //! the number of drive positions of a streamed run.
 
-mod common;
+use crate::common;
 
 use std::io::Write;
 use std::path::PathBuf;

@@ -2,7 +2,7 @@
 //! `run` reports them (never a table that jumps them), `check` prints the drive's motion
 //! range, and unrelated far points change nothing.
 
-mod common;
+use crate::common;
 
 use mechdiff::Error;
 use mechdiff::scene;

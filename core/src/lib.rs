@@ -18,7 +18,6 @@
 //!   quote, prettyplease), for the proc-macros and code generation;
 //! - `big-float`: evaluation in arbitrary precision (`symbolic::bigfloat`, astro-float), the
 //!   references accuracy is measured against.
-#![warn(missing_docs)]
 #![cfg_attr(docsrs, feature(doc_cfg))]
 
 pub mod balancing;

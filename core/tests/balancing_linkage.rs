@@ -2,7 +2,7 @@
 //! conditions (derived independently below), an in-line slider-crank's least-squares crank
 //! counterweight against the half-reciprocating-mass rule, and bad input.
 
-mod common;
+use crate::common;
 
 use common::{four_bar_rocker_pin, revolution};
 use mechdiff_core::balancing::{Counterweight, SliderCrankUnbalance, balance_linkage};

@@ -5,7 +5,7 @@
 //! formulas, differentiated by dual numbers in the cam angle, and the torque from the power
 //! balance of that closed form.
 
-mod common;
+use crate::common;
 
 use std::f64::consts::{PI, TAU};
 

@@ -2,7 +2,7 @@
 //! equilibrium equations against the power balance over full revolutions, ideal and with a
 //! gear pair of efficiency η whose power flow reverses during the revolution.
 
-mod common;
+use crate::common;
 
 use common::{four_bar_rocker_pin, revolution, scaled_error};
 use mechdiff_core::DriveState;

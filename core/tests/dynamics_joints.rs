@@ -1,7 +1,7 @@
 //! Kinetostatics through the joint kinds not covered by the reference mechanisms: a rigid
 //! (welded) joint and a displacement drive.
 
-mod common;
+use crate::common;
 
 use common::slider_crank_parts;
 use mechdiff_core::DriveState;

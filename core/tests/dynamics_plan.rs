@@ -1,8 +1,8 @@
 //! The plan: the derivative order and the effects the requested outputs need, and the proof
 //! (the run's trace) that nothing else is evaluated.
 
+use crate::common;
 use mechdiff_core::DriveState;
-mod common;
 
 use common::slider_crank_parts;
 use mechdiff_core::Error;

@@ -1,7 +1,7 @@
 //! Property test: for random crank-rocker four-bars with random masses, gravity and loads, the
 //! drive torque from the equilibrium equations equals the one from the power balance.
 
-mod common;
+use crate::common;
 
 use common::four_bar_rocker_pin;
 use mechdiff_core::DriveState;

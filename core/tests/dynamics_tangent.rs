@@ -5,7 +5,7 @@
 //! parameter moves the effects' data (masses, centre, moment, gravity, load, ω, α) and, through
 //! `geometry::Parametric`, the crank's length.
 
-mod common;
+use crate::common;
 
 use common::slider_crank_parts;
 use mechdiff_core::dynamics::{

@@ -2,7 +2,7 @@
 //! foundation against whitworth_000.json, and the drive torque from the equilibrium equations
 //! against the power balance over full revolutions.
 
-mod common;
+use crate::common;
 #[path = "data/whitworth_inertial_forces.rs"]
 mod reference;
 

@@ -1,7 +1,7 @@
 //! The closed-form loop solutions (`Solver::with_closed_form`) against the Newton path and
 //! against hand-written closed forms, and their errors.
 
-mod common;
+use crate::common;
 
 use common::{
     four_bar, four_bar_pin, gear_pair, rack_slotted_link, revolution, scaled_error, slider_crank,

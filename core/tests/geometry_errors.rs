@@ -1,6 +1,6 @@
 //! Every failure is a typed error naming what is wrong and where; none is a panic.
 
-mod common;
+use crate::common;
 
 use common::{crank_rod, four_bar, revolution, slider_crank};
 use mechdiff_core::Error;

@@ -1,6 +1,6 @@
 //! Every joint kind against a closed form, and the branch kept over full revolutions.
 
-mod common;
+use crate::common;
 
 use common::{
     four_bar, four_bar_pin, four_bar_rocker_pin, gear_pair, revolution, scaled_error, slider_crank,

@@ -1,7 +1,7 @@
 //! Mechanism 001 (gear rack, slotted link, coupler rod, slider on an incline) defined by
 //! geometry only, against rack_slotted_link_001.json (`kinematics`, `kinematics_other_branch`).
 
-mod common;
+use crate::common;
 
 use common::{Closure001, rack_slotted_link, rack_slotted_link_incline};
 use mechdiff_core::DriveState;

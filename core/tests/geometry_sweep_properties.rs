@@ -4,7 +4,7 @@
 //! depend on an unrelated far point or on the scale. The assembly conditions are computed
 //! here from the closed forms, independently of the solver.
 
-mod common;
+use crate::common;
 
 use common::{four_bar, four_bar_rocker_pin};
 use mechdiff_core::Error;

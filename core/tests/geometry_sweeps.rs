@@ -1,7 +1,7 @@
 //! Sweeps that never lie: steps that straddle a blocked range, limit positions, change
 //! points, and verdicts that do not depend on unrelated points or on the scale.
 
-mod common;
+use crate::common;
 
 use common::{four_bar, four_bar_rocker_pin};
 use mechdiff_core::Error;

@@ -1,6 +1,6 @@
 //! The Whitworth defined by geometry only against its closed form and the 30-digit reference.
 
-mod common;
+use crate::common;
 #[path = "data/whitworth_sweep_30digits.rs"]
 mod reference;
 

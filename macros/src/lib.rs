@@ -5,7 +5,6 @@
 //! arguments) → `ast` (the function's Rust into the engine's IR) → `differentiate`
 //! (derivatives; simplification and CSE happen in the engine as nodes are built) →
 //! `expand` (straight-line Rust).
-#![warn(missing_docs)]
 
 use proc_macro::TokenStream;
 

@@ -6,7 +6,6 @@
 //! | module | mechanism |
 //! |---|---|
 //! | [`whitworth`] | Whitworth shaping machine: crank, slotted rocker, ram (inertial forces on the frame) |
-#![warn(missing_docs)]
 
 pub mod error;
 pub mod whitworth;

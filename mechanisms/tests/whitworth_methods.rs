@@ -5,7 +5,7 @@
 //! Reference: `tests/data/whitworth_000.json` (copied from the project's reference
 //! `whitworth_000.json`, computed in 40-digit arithmetic).
 
-mod common;
+use crate::common;
 
 use common::{digits, number, reference};
 use mechdiff_core::method::{

@@ -4,7 +4,7 @@
 //! Reference: `tests/data/whitworth_000.json` (copied from the project's reference
 //! `whitworth_000.json`, section `sweep_30digits`, computed in 40-digit arithmetic).
 
-mod common;
+use crate::common;
 
 use common::{digits, reference};
 use mechdiff_core::Jet;

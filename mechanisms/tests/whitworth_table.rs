@@ -3,7 +3,7 @@
 //! Reference: `tests/data/whitworth_000.json` (copied from the project's reference
 //! `whitworth_000.json`; printed table and misprints from `whitworth_000.md`).
 
-mod common;
+use crate::common;
 
 use common::{TABLE_KEYS, number, reference, table_column};
 use mechdiff_mechanisms::Whitworth;

@@ -6,7 +6,6 @@
 //! The stages are modules returning `syn::Result`: `expand` (the path → the scene → the
 //! module's tokens). The scene reader and the emitter are those of the `mechdiff`
 //! library, so the macro's code is `mechdiff codegen`'s, token for token.
-#![warn(missing_docs)]
 
 use proc_macro::TokenStream;
 

@@ -1,9 +1,10 @@
-//! `mechdiff_scene!` in a crate: the module it expands to is the one `mechdiff codegen`
-//! prints (bit for bit the same numbers), agrees with the solver, and reports the
-//! solver's guard failures. (A scene it cannot read is a compile error: the error path is
+//! `mechdiff_scene!` in a crate: the module it expands to computes what the run-time
+//! evaluator of the same graph computes (bit for bit), agrees with the solver, and reports
+//! the solver's guard failures. (A scene it cannot read is a compile error: the error path is
 //! tested in `src/expand.rs`; a trybuild case would rebuild the whole `mechdiff` library in
 //! trybuild's own target folder, minutes of CI for one message.)
 
+use mechdiff::codegen::scene::SceneCode;
 use mechdiff::scene;
 
 mod whitworth {
@@ -14,56 +15,73 @@ mod four_bar_unassemblable {
     mechdiff_scene_macros::mechdiff_scene!("../tests/data/four_bar_unassemblable.toml");
 }
 
-#[allow(dead_code, clippy::all)]
-mod printed {
-    include!("../../tests/generated/whitworth.rs");
-}
-
 // A mixed plan (the triad by Newton, a slider dyad in closed form after it).
 mod triad_slider {
     mechdiff_scene_macros::mechdiff_scene!("../tests/data/triad_slider.toml");
 }
 
-#[allow(dead_code, clippy::all)]
-mod printed_triad_slider {
-    include!("../../tests/generated/triad_slider.rs");
+/// The scene file at `path`, relative to the workspace's root.
+fn load(path: &str) -> scene::Scene {
+    scene::load(format!("{}/../{path}", env!("CARGO_MANIFEST_DIR"))).unwrap()
 }
 
 #[test]
-fn the_macro_expands_a_mixed_plan_to_the_printed_module() {
-    // Bit for bit, walking the same drive positions in the same order: the same source
-    // (with its Newton solver and state) compiled in two crates. The walk ends past the
-    // triad's limit position (91.17°): both fail there with the same error.
-    assert_eq!(triad_slider::LOOPS, printed_triad_slider::LOOPS);
+fn the_macros_mixed_plan_is_the_run_time_evaluator_bit_for_bit() {
+    // Bit for bit, walking the same drive positions in the same order: the evaluator's
+    // programs compute the same graph's operations in the same order as the emitted Rust,
+    // with the same Newton steps and Gaussian elimination (tests/scene_codegen.rs checks
+    // every scene so). The walk ends past the triad's limit position (91.17°): there the
+    // macro's tracker fails and the evaluator leaves the step to the solver.
     assert_eq!(
         triad_slider::PATHS,
         ["closed form", "Newton", "closed form"]
     );
-    let mut a = triad_slider::Tracker::new().unwrap();
-    let mut b = printed_triad_slider::Tracker::new().unwrap();
+    let scene = load("tests/data/triad_slider.toml");
+    let code = SceneCode::of(&scene).unwrap();
+    let m = scene::build::mechanism(&scene).unwrap();
+    let solver = mechdiff::core::geometry::Solver::default()
+        .track(&m)
+        .unwrap();
+    let values: Vec<_> = code.jets.iter().flatten().copied().collect();
+    let mut evaluator =
+        mechdiff::core::trace::MixedTracker::new(&solver, &code.position, &values)
+            .unwrap();
+    let mut tracker = triad_slider::Tracker::new().unwrap();
+    let (mut failed, mut assembled) = (0, 0);
     for k in 0..=100 {
         let phi = (1.0 + k as f64).to_radians();
-        match (a.pose(phi), b.pose(phi)) {
-            (Ok(x), Ok(y)) => {
-                let bits = |rows: [[f64; 3]; 3]| rows.map(|r| r.map(f64::to_bits));
-                assert_eq!(bits(x), bits(y), "φ = {phi}");
+        match (tracker.pose(phi), evaluator.move_to(phi)) {
+            (Ok(rows), Some(values)) => {
+                let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&rows.concat()), bits(values), "φ = {phi}");
+                assembled += 1;
             }
-            (Err(x), Err(y)) => assert_eq!(format!("{x:?}"), format!("{y:?}"), "φ = {phi}"),
-            (x, y) => panic!("φ = {phi}: macro {x:?}, printed {y:?}"),
+            (Err(_), None) => failed += 1,
+            (x, y) => panic!("φ = {phi}: macro {x:?}, evaluator {y:?}"),
         }
     }
+    assert!(
+        failed > 5 && assembled > 80,
+        "{failed} failed, {assembled} assembled"
+    );
 }
 
 #[test]
-fn the_macro_expands_to_the_printed_module() {
-    // Bit for bit: the same source, compiled in two crates.
-    assert_eq!(whitworth::OUTPUTS, printed::OUTPUTS);
-    assert_eq!(whitworth::LOOPS, printed::LOOPS);
+fn the_macros_whitworth_is_the_run_time_evaluator_bit_for_bit() {
+    // Bit for bit: the evaluator computes the same graph's operations in the same order
+    // (sin_cos, powi, the engine's f64 arithmetic) as the emitted Rust.
+    let scene = load("scenes/whitworth.toml");
+    let code = SceneCode::of(&scene).unwrap();
+    assert_eq!(code.names, whitworth::OUTPUTS);
+    let program = code.program(&scene).unwrap();
+    let (mut registers, mut out) = (program.registers(), vec![0.0; program.outputs()]);
     for k in 0..=720 {
         let phi = -6.0 + k as f64 / 60.0;
-        let (a, b) = (whitworth::pose(phi).unwrap(), printed::pose(phi).unwrap());
-        let bits = |rows: [[f64; 3]; 2]| rows.map(|r| r.map(f64::to_bits));
-        assert_eq!(bits(a), bits(b), "φ = {phi}");
+        program.evaluate(phi, &mut registers, &mut out);
+        let values = code.read(&out).unwrap();
+        let rows = whitworth::pose(phi).unwrap();
+        let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&rows.concat()), bits(values), "φ = {phi}");
     }
 }
 

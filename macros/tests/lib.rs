@@ -1,0 +1,5 @@
+//! The integration tests of `mechdiff-macros`, one module per topic, compiled and linked
+//! as one test binary.
+
+mod agree_with_dual;
+mod compile_fail;
