@@ -652,3 +652,28 @@ fn a_scene_with_outputs_dynamics_and_balancing_solves_each_position_once() {
     assert!(s.dead_positions > 0, "{s:?}");
     assert_eq!((s.sweep_of, s.limit_walks), (0, 1));
 }
+
+/// A drive speed whose square underflows (1e-300 rad/s: ω² = 0 in f64) leaves the shaking
+/// force zero at every position, so the counterweights are not determined: `check` refuses
+/// it before solving, as `run` does, naming `[balancing]` (found by tests/fuzz_scenes.rs,
+/// where `check` passed it and `run` refused it only after the sweep).
+#[test]
+fn a_drive_speed_whose_square_underflows_is_refused_before_solving() {
+    let path = format!(
+        "{}/scenes/whitworth_balancing.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let text = std::fs::read_to_string(&path).unwrap();
+    let text = text.replace("speed = 100 ", "speed = 1e-300 ");
+    assert!(
+        text.contains("speed = 1e-300"),
+        "the scene's speed line moved"
+    );
+    let scene = scene::parse(&path, &text).unwrap();
+    let checked = scene::check(&scene).expect_err("check refuses an underflowing speed");
+    let ran = scene::run(&scene).expect_err("run refuses it too");
+    for e in [checked, ran] {
+        assert!(!e.is_found_by_solving(), "{e}");
+        assert!(e.to_string().contains("underflows to zero"), "{e}");
+    }
+}

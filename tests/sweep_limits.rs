@@ -317,7 +317,10 @@ fn check_of_a_sweep_of_a_third_of_a_trillion_positions_is_prompt() {
 #[test]
 fn a_move_the_solver_cannot_certify_is_refused_while_solving_in_the_scene_units() {
     use mechdiff::scene::{self, any};
-    let path = format!("{}/tests/data/whitworth_psi.toml", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/tests/data/whitworth_psi.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
     let text = std::fs::read_to_string(&path)
         .unwrap()
         .replace("A0 = [0.0, 0.400]", "A0 = [1e9, 0.400]");
@@ -331,5 +334,8 @@ fn a_move_the_solver_cannot_certify_is_refused_while_solving_in_the_scene_units(
         "{e}"
     );
     let message = e.to_string();
-    assert!(message.contains(" deg to 0 deg") && message.contains("sizes"), "{message}");
+    assert!(
+        message.contains(" deg to 0 deg") && message.contains("sizes"),
+        "{message}"
+    );
 }

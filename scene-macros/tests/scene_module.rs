@@ -44,8 +44,7 @@ fn the_macros_mixed_plan_is_the_run_time_evaluator_bit_for_bit() {
         .unwrap();
     let values: Vec<_> = code.jets.iter().flatten().copied().collect();
     let mut evaluator =
-        mechdiff::core::trace::MixedTracker::new(&solver, &code.position, &values)
-            .unwrap();
+        mechdiff::core::trace::MixedTracker::new(&solver, &code.position, &values).unwrap();
     let mut tracker = triad_slider::Tracker::new().unwrap();
     let (mut failed, mut assembled) = (0, 0);
     for k in 0..=100 {

@@ -106,20 +106,29 @@ pub(crate) fn before_solving(
         let requests: Vec<_> = counterweights.iter().map(|(c, _)| c.clone()).collect();
         check_balance_request(mechanism, &requests)
             .map_err(|e| balance_error(scene, counterweights, location, e))?;
+        let alpha = scene.drive.acceleration;
         let message = match scene.drive.speed {
-            None => {
-                "`[balancing]` sizes counterweights from the shaking force: give the \
+            None => "`[balancing]` sizes counterweights from the shaking force: give the \
                      drive's `speed`"
-            }
-            Some(omega) if omega == 0.0 && scene.drive.acceleration == 0.0 => {
+                .to_owned(),
+            Some(omega) if omega == 0.0 && alpha == 0.0 => {
                 "`[balancing]` sizes counterweights from the shaking force, which is zero at a \
                  drive `speed` of 0 (and no acceleration): give a non-zero `speed`"
+                    .to_owned()
             }
+            // The shaking force scales with ω² and α: below the smallest normal f64 it is
+            // zero or a few bits at every position, and determines nothing.
+            Some(omega) if omega * omega + alpha.abs() < f64::MIN_POSITIVE => format!(
+                "`[balancing]` sizes counterweights from the shaking force, which scales with \
+                 the drive's speed squared: at a speed of {omega:e} rad/s (and acceleration \
+                 {alpha:e}) it underflows to zero in f64 arithmetic; give a speed above \
+                 1e-150 rad/s (any speed gives the same counterweights)"
+            ),
             Some(_) => return Ok(()),
         };
         return Err(Error::Invalid {
             location: location.clone(),
-            message: message.to_owned(),
+            message,
         });
     }
     Ok(())
