@@ -583,10 +583,10 @@ fn crate_roots() -> Vec<(std::path::PathBuf, String)> {
 }
 
 /// The largest import circles of the facade (`mechdiff`'s `src/lib.rs` and `src/main.rs`)
-/// as measured after the first merges of issue 23 (18 when the checker was written; the
-/// scene reading modules, `src/scene`, are being split): they may shrink, never grow. Lower
-/// them as circles are broken.
-const FACADE_LARGEST_CIRCLE: [(&str, usize); 2] = [("src/lib.rs", 17), ("src/main.rs", 4)];
+/// as measured after the first merges of issue 23 (18 when the checker was written; 17 until
+/// the scene reading modules of `src/scene` were layered): they may shrink, never grow.
+/// Lower them as circles are broken.
+const FACADE_LARGEST_CIRCLE: [(&str, usize); 2] = [("src/lib.rs", 10), ("src/main.rs", 4)];
 
 /// Issue 23: no import circle of more than two modules in any crate (see
 /// `import_graph` for what counts as an edge); the facade's circles may only shrink.

@@ -6,8 +6,8 @@ use mechdiff_core::geometry::{Mechanism, PointOutput};
 
 use super::drawing::{Drawing, Style};
 use crate::error::{Error, Result};
+use crate::scene::context::GROUND;
 use crate::scene::model::{JointKind, Scene};
-use crate::scene::resolve::GROUND;
 use crate::scene::run::solver_error;
 
 /// Every scene point's position at a list of drive positions.

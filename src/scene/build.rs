@@ -4,8 +4,8 @@ use mechdiff_core::geometry::{Drive, Mechanism};
 
 use crate::error::{Error, Result};
 
+use super::context::GROUND;
 use super::model::{DriveKind, JointKind, Scene};
-use super::resolve::GROUND;
 
 /// Builds the core [`Mechanism`] of a scene (the sketch, its links and joints, the drive with
 /// its value at the sketch pose).

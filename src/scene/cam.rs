@@ -15,9 +15,8 @@ use mechdiff_core::cams::{
 };
 
 use super::bindings::Bindings;
-use super::format::UnitsSection;
 use super::source::Source;
-use super::units::{Dimension, Units};
+use super::units::{Dimension, Units, UnitsSection};
 use super::values::Number;
 use crate::error::{Error, Result};
 
@@ -277,7 +276,7 @@ fn constant(v: &Spanned<Number>, source: &Source) -> Result<f64> {
 }
 
 fn resolve(file: CamFile, source: &Source) -> Result<CamScene> {
-    let units = super::resolve::units(&file.units);
+    let units = Units::declared(&file.units);
     let cam = file.cam.get_ref();
     let at = |span: std::ops::Range<usize>| source.location(span);
     let invalid = |span: std::ops::Range<usize>, message: String| Error::Invalid {

@@ -9,14 +9,11 @@ use crate::error::{Error, Result};
 use super::format::{DriveSection, SweepSection};
 use mechdiff_core::cams::{CamJoint, Follower};
 
+use super::context::{Context, GROUND, Geometry};
 use super::model::{Drive, DriveCam, DriveKind, Joint, JointKind, Output, OutputKind};
 use super::positions::Positions;
-use super::resolve::{Context, GROUND, Geometry};
 use super::scalar::Carried;
 use super::units::Dimension;
-
-/// The most drive positions a `positions = [...]` list may have (the file is parsed whole).
-pub const MAX_POSITIONS: usize = 1_000_000;
 
 /// The most intervals of `from`, `to`, `step`: below 2⁵³ every `from + i·step` is counted
 /// with an exact `i`. A longer sweep is bounded by time and disk, not memory (it streams).

@@ -13,11 +13,11 @@ use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
 use toml::Spanned;
 
 use super::construct::{Along, Side};
-use super::units::{AngleUnit, AngularAccelerationUnit, AngularVelocityUnit, LengthUnit};
+use super::dynamics::DynamicsSections;
+pub use super::quantity::{Quantity, Sense};
+pub use super::units::UnitsSection;
+pub use super::values::Name;
 use super::values::Number;
-
-/// A name with the place where it is written.
-pub type Name = Spanned<String>;
 
 /// The whole scene file.
 #[derive(Debug, Deserialize)]
@@ -76,26 +76,20 @@ pub struct SceneFile {
     pub tolerances: Option<de::IgnoredAny>,
 }
 
-/// `[units]`: every field has an SI default.
-#[derive(Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct UnitsSection {
-    /// `"m"` (default), `"mm"`, `"in"` or `"ft"`; velocities and accelerations of points follow (per s, s²).
-    pub length: Option<Spanned<LengthUnit>>,
-    /// `"rad"` (default) or `"deg"`.
-    pub angle: Option<Spanned<AngleUnit>>,
-    /// `"rad/s"` (default), `"deg/s"` or `"rpm"`.
-    pub angular_velocity: Option<Spanned<AngularVelocityUnit>>,
-    /// `"rad/s^2"` (default) or `"deg/s^2"`.
-    pub angular_acceleration: Option<Spanned<AngularAccelerationUnit>>,
-    /// `"kg"` (default), `"lb"` or `"slug"`: masses; densities are per length unit.
-    pub mass: Option<Spanned<super::units::MassUnit>>,
-    /// `"N"` (default) or `"lbf"`: load forces.
-    pub force: Option<Spanned<super::units::ForceUnit>>,
-    /// `"N*m"` (default), `"N*mm"`, `"lbf*in"` or `"lbf*ft"`: load torques.
-    pub torque: Option<Spanned<super::units::TorqueUnit>>,
-    /// `"kg*m^2"` (default), `"kg*mm^2"`, `"lb*in^2"` or `"slug*ft^2"`: moments of inertia.
-    pub inertia: Option<Spanned<super::units::InertiaUnit>>,
+impl<'a> DynamicsSections<'a> {
+    /// The dynamic sections of the scene file `file` (written here, beside the file they
+    /// view, so that the sections' own format does not name the whole file).
+    pub fn of(file: &'a SceneFile) -> Self {
+        DynamicsSections {
+            masses: file.masses.as_ref(),
+            gravity: file.gravity.as_ref(),
+            loads: &file.loads,
+            friction: file.friction.as_ref(),
+            efficiency: file.efficiency.as_ref(),
+            motor: file.motor.as_ref(),
+            outputs: &file.dynamics,
+        }
+    }
 }
 
 /// How a point is placed in the sketch.
@@ -375,26 +369,6 @@ pub struct SweepSection {
     pub of: Option<Name>,
 }
 
-/// What an output reports.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Quantity {
-    /// The value (position, angle, displacement).
-    Position,
-    /// First derivative with respect to the drive (ψ′).
-    VelocityCoefficient,
-    /// Second derivative with respect to the drive (ψ″).
-    AccelerationCoefficient,
-    /// Time derivative (ψ̇ = ω ψ′).
-    Velocity,
-    /// Second time derivative (ψ̈ = α ψ′ + ω² ψ″).
-    Acceleration,
-    /// Third derivative with respect to the drive (ψ‴).
-    JerkCoefficient,
-    /// Third time derivative (ψ⃛ = φ⃛ ψ′ + 3ωα ψ″ + ω³ ψ‴, with φ⃛ = 0).
-    Jerk,
-}
-
 /// One `[[output]]` entry: exactly one of `point`, `angle`, `slider`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -419,14 +393,4 @@ pub struct OutputDef {
     /// print those dead positions and the stroke between them.
     #[serde(default)]
     pub dead_positions: bool,
-}
-
-/// The sense in which an output angle is counted.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Sense {
-    /// Counter-clockwise positive.
-    Ccw,
-    /// Clockwise positive.
-    Cw,
 }

@@ -4,10 +4,10 @@ use toml::Spanned;
 
 use crate::error::{Error, Result};
 
+use super::context::{Context, GROUND, Geometry};
 use super::format::{JointDef, JointKind as Kind, Name};
 use super::limits;
 use super::model::{Joint, JointKind};
-use super::resolve::{Context, GROUND, Geometry};
 use super::units::Dimension;
 use super::values::Number;
 

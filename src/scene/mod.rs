@@ -39,6 +39,7 @@ pub mod bindings;
 pub mod build;
 pub mod cam;
 pub(crate) mod construct;
+pub(crate) mod context;
 mod dimension;
 mod drive;
 pub mod dynamics;
@@ -55,6 +56,7 @@ pub(crate) mod plan;
 pub mod plot;
 pub(crate) mod positions;
 pub(crate) mod preflight;
+mod quantity;
 pub(crate) mod resolve;
 pub mod run;
 pub mod scalar;
@@ -82,9 +84,10 @@ pub use sweep::Sweeper;
 pub use sweep_limits::SweepLimit;
 
 /// The most list entries (commas) a scene's text may hold: a `positions` list of
-/// `drive::MAX_POSITIONS` ([`Positions::to_vec`]) and room for the rest. TOML is parsed whole before a list is
-/// read, at about 150 bytes an entry, so a longer list is refused before parsing.
-pub const MAX_LIST_ENTRIES: usize = drive::MAX_POSITIONS + 100_000;
+/// `positions::MAX_POSITIONS` ([`Positions::to_vec`]) and room for the rest. TOML is parsed
+/// whole before a list is read, at about 150 bytes an entry, so a longer list is refused
+/// before parsing.
+pub const MAX_LIST_ENTRIES: usize = positions::MAX_POSITIONS + 100_000;
 
 /// What a scene file describes, from its top-level sections.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -127,7 +130,7 @@ pub fn parse_with(file: &str, text: &str, settings: &[parameters::Setting]) -> R
                 "the file has more than {MAX_LIST_ENTRIES} list entries (commas) before this \
                  one; a `positions` list holds at most {} drive positions: use `from`, `to` \
                  and `step`, or split the sweep into several scenes",
-                drive::MAX_POSITIONS
+                positions::MAX_POSITIONS
             ),
         });
     }

@@ -2,7 +2,7 @@
 
 use crate::error::Location;
 
-use super::format::{Quantity, Sense};
+use super::quantity::{Quantity, Sense};
 use super::units::{Dimension, Units};
 
 /// A scene after parsing and checking: ready to build into a geometry model and run.
@@ -34,7 +34,7 @@ pub struct Scene {
     /// The rotor and counterweights to balance, if the scene has them.
     pub balancing: Option<super::balancing::SceneBalancing>,
     /// What the pictures show (`[plot]`; empty when the file has none).
-    pub plot: super::plot::Plot,
+    pub plot: Plot,
     /// The position solver every solve of the scene uses (`[solver]`; the default solver
     /// when the file has none).
     pub solver: mechdiff_core::geometry::Solver,
@@ -43,6 +43,17 @@ pub struct Scene {
     pub parameters: Vec<(String, f64)>,
     /// How a run evaluates the positions (`mechdiff run --evaluator`; not in the file).
     pub evaluator: crate::evaluator::Evaluator,
+}
+
+/// `[plot]` checked: names resolved, numbers in SI, places kept.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Plot {
+    /// Points whose paths are traced; `None`: the points of the `[[output]] point` entries.
+    pub trace: Option<Vec<String>>,
+    /// Drive positions (SI) to draw the mechanism at, each with its place in the file.
+    pub positions: Vec<(f64, Location)>,
+    /// Panel selection (output or column names, with their places); `None`: every column.
+    pub panels: Option<Vec<(String, Location)>>,
 }
 
 /// A named point at its sketch position.
@@ -272,39 +283,6 @@ pub struct Output {
     pub dead_positions: bool,
     /// Where it is defined.
     pub location: Location,
-}
-
-impl Quantity {
-    /// The derivative order this quantity needs (0 to 3).
-    pub fn order(self) -> usize {
-        match self {
-            Quantity::Position => 0,
-            Quantity::VelocityCoefficient | Quantity::Velocity => 1,
-            Quantity::AccelerationCoefficient | Quantity::Acceleration => 2,
-            Quantity::JerkCoefficient | Quantity::Jerk => 3,
-        }
-    }
-
-    /// Whether the quantity is a time derivative (needs the drive's speed).
-    pub fn is_time_derivative(self) -> bool {
-        matches!(
-            self,
-            Quantity::Velocity | Quantity::Acceleration | Quantity::Jerk
-        )
-    }
-
-    /// The quantity's name in words, for messages (`"jerk"`, `"velocity coefficient"`).
-    pub fn words(self) -> &'static str {
-        match self {
-            Quantity::Position => "position",
-            Quantity::VelocityCoefficient => "velocity coefficient",
-            Quantity::AccelerationCoefficient => "acceleration coefficient",
-            Quantity::JerkCoefficient => "jerk coefficient",
-            Quantity::Velocity => "velocity",
-            Quantity::Acceleration => "acceleration",
-            Quantity::Jerk => "jerk",
-        }
-    }
 }
 
 impl Scene {

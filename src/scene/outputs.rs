@@ -4,9 +4,9 @@ use toml::Spanned;
 
 use crate::error::{Error, Result};
 
+use super::context::{Context, Geometry};
 use super::format::{OutputDef, Quantity, Sense};
 use super::model::{Drive, Joint, JointKind, Output, OutputKind};
-use super::resolve::{Context, Geometry};
 use super::units::{Dimension, Units};
 
 /// What an output reports when `quantities` is not given.
@@ -222,7 +222,7 @@ fn line(
     let b = cx.point(b, geometry.names, context)?;
     let (pa, pb) = (geometry.sketch(a), geometry.sketch(b));
     let length = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
-    if super::resolve::coincident(pa, pb) {
+    if super::context::coincident(pa, pb) {
         return Err(Error::NonPositiveLength {
             location: cx.at(line),
             what: format!("the line `{a}`–`{b}` of {context} (distance between its points)"),

@@ -18,11 +18,10 @@ use toml::Spanned;
 use crate::error::{Error, Result};
 
 use super::dimension::{ParameterDimensions, Quantity, infer};
-use super::format::Name;
 use super::scalar::Carried;
 use super::source::Source;
-use super::units::{Dimension, Units, unit_factor};
-use super::values::{formula_in, formula_names, parameters_used, parse_formula};
+use super::units::{Dimension, Units, UnitsSection, unit_factor};
+use super::values::{Name, formula_in, formula_names, parameters_used, parse_formula};
 use mechdiff_core::num_dual::Dual64;
 
 pub use super::bindings::Bindings;
@@ -159,7 +158,7 @@ pub type ParameterTable = Spanned<BTreeMap<Name, Spanned<ParameterValue>>>;
 struct ParametersOnly {
     parameters: Option<ParameterTable>,
     #[serde(default)]
-    units: super::format::UnitsSection,
+    units: UnitsSection,
 }
 
 /// `--set name=value`: a parameter's value from the command line (a number or a formula of
@@ -257,7 +256,7 @@ fn read_in<D: Carried>(
 /// As [`read`].
 pub fn bindings_of(
     parameters: Option<&ParameterTable>,
-    units: &super::format::UnitsSection,
+    units: &UnitsSection,
     source: &Source,
     settings: &[Setting],
     seed: Option<&str>,
@@ -277,12 +276,12 @@ pub fn bindings_of(
 /// As [`read_in`], of `[parameters]` (`parameters`) and `[units]` (`units`) as read.
 fn evaluate_in<D: Carried>(
     parameters: Option<&ParameterTable>,
-    units: &super::format::UnitsSection,
+    units: &UnitsSection,
     source: &Source,
     settings: &[Setting],
     seed: Option<&str>,
 ) -> Result<Vec<(String, D, f64)>> {
-    let file_units = super::resolve::units(units);
+    let file_units = Units::declared(units);
     let empty = BTreeMap::new();
     let table = parameters.map_or(&empty, Spanned::get_ref);
     let mut pending: Vec<Pending> = Vec::with_capacity(table.len());

@@ -9,9 +9,9 @@ use toml::Spanned;
 use crate::error::{Error, Result};
 
 use super::construct::{self, NoSolution};
+use super::context::Context;
 use super::format::{Name, PointDef};
 use super::model::Point;
-use super::resolve::Context;
 use super::scalar::Carried;
 use super::units::{Dimension, Units};
 use super::values::Number;
@@ -120,7 +120,7 @@ impl Context<'_> {
             location: self.at(used),
             name: used.get_ref().clone(),
             context: context.to_owned(),
-            known: super::resolve::listed(&known),
+            known: super::context::listed(&known),
         })
     }
 

@@ -10,10 +10,10 @@ use toml::Spanned;
 
 use crate::error::{Location, Result};
 
-use super::format::Name;
+use super::context::{Context, Geometry};
 use super::model::DriveKind;
-use super::resolve::{Context, Geometry};
-use super::values::Number;
+pub use super::model::Plot;
+use super::values::{Name, Number};
 
 /// `[plot]` as written.
 #[derive(Debug, Deserialize)]
@@ -25,17 +25,6 @@ pub struct PlotDef {
     pub positions: Option<Spanned<Vec<Spanned<f64>>>>,
     /// The diagram's panels: output names (every column of the output) or column names.
     pub panels: Option<Spanned<Vec<Name>>>,
-}
-
-/// `[plot]` checked: names resolved, numbers in SI, places kept.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct Plot {
-    /// Points whose paths are traced; `None`: the points of the `[[output]] point` entries.
-    pub trace: Option<Vec<String>>,
-    /// Drive positions (SI) to draw the mechanism at, each with its place in the file.
-    pub positions: Vec<(f64, Location)>,
-    /// Panel selection (output or column names, with their places); `None`: every column.
-    pub panels: Option<Vec<(String, Location)>>,
 }
 
 /// Checks `[plot]`: every traced point exists and moves, no list is empty, every position

@@ -12,7 +12,7 @@ use toml::Spanned;
 
 use crate::error::Result;
 
-use super::resolve::Context;
+use super::context::Context;
 
 /// Tolerances allowed (relative to each loop's size). Below 1e-15 (~5 ε) Newton cannot
 /// reach the tolerance: rounding in the loop equations is a few ε of the loop's size, so

@@ -30,13 +30,14 @@ use toml::de::{DeTable, DeValue};
 
 use crate::error::Result;
 
+use super::context::{Context, Geometry};
 use super::dynamics::{DynamicsSections, numbers_in};
 use super::format::{JointDef, SceneFile};
 use super::model::JointKind;
 use super::parameters::{self, Setting};
-use super::resolve::{self, Context};
+use super::resolve;
 use super::source::Source;
-use super::units::Dimension;
+use super::units::{Dimension, Units};
 
 /// A number that moves with the parameter and that the tangent does not carry.
 #[derive(Debug, Clone, PartialEq)]
@@ -147,7 +148,7 @@ pub fn scene_tangent(
     let parameters = raw.parameters.as_ref();
     let bindings =
         parameters::bindings_of(parameters, &raw.units, &source, settings, Some(parameter))?;
-    let cx = Context::new(&source, resolve::units(&raw.units), &bindings);
+    let cx = Context::new(&source, Units::declared(&raw.units), &bindings);
     // The scene resolved as a run resolves it (every number read and checked, the formulas
     // that move noted), then the mechanism's numbers in Dual64 by the same steps.
     let scene = resolve::scene(&raw, &cx)?;
@@ -155,7 +156,7 @@ pub fn scene_tangent(
     let names: HashMap<&str, usize> = (placed.iter().enumerate())
         .map(|(i, p)| (p.name.as_str(), i))
         .collect();
-    let geometry = resolve::Geometry::new(&placed, &names, &scene.links);
+    let geometry = Geometry::new(&placed, &names, &scene.links);
     let joints = &scene.joints;
     let mut joint_tangents = vec![0.0; joints.len()];
     for (t, joint) in joint_tangents.iter_mut().zip(joints) {
@@ -333,7 +334,7 @@ positions = [0.0]
         let source = Source::new("t.toml", SCENE);
         let bindings = parameters::bindings(SCENE, &source, &[], Some("l")).unwrap();
         let raw: SceneFile = toml::from_str(SCENE).unwrap();
-        let cx = Context::new(&source, resolve::units(&raw.units), &bindings);
+        let cx = Context::new(&source, Units::declared(&raw.units), &bindings);
         for text in ["2*l", "l^2", "exp(-l)/7 + k", "l*100/3", "2*k + l^3", "k"] {
             let n = Number::Formula(text.to_owned());
             let re: f64 = n.value_in(&bindings).unwrap();

@@ -4,6 +4,7 @@
 //! and prints every result back in the same units, with the unit in the column header.
 
 use serde::Deserialize;
+use toml::Spanned;
 
 /// Length unit (`[units] length`); also fixes the units of linear velocity (per s) and
 /// linear acceleration (per s²).
@@ -156,6 +157,47 @@ pub struct Units {
     pub torque: TorqueUnit,
     /// Moments of inertia.
     pub inertia: InertiaUnit,
+}
+
+/// `[units]`: every field has an SI default.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct UnitsSection {
+    /// `"m"` (default), `"mm"`, `"in"` or `"ft"`; velocities and accelerations of points follow (per s, s²).
+    pub length: Option<Spanned<LengthUnit>>,
+    /// `"rad"` (default) or `"deg"`.
+    pub angle: Option<Spanned<AngleUnit>>,
+    /// `"rad/s"` (default), `"deg/s"` or `"rpm"`.
+    pub angular_velocity: Option<Spanned<AngularVelocityUnit>>,
+    /// `"rad/s^2"` (default) or `"deg/s^2"`.
+    pub angular_acceleration: Option<Spanned<AngularAccelerationUnit>>,
+    /// `"kg"` (default), `"lb"` or `"slug"`: masses; densities are per length unit.
+    pub mass: Option<Spanned<MassUnit>>,
+    /// `"N"` (default) or `"lbf"`: load forces.
+    pub force: Option<Spanned<ForceUnit>>,
+    /// `"N*m"` (default), `"N*mm"`, `"lbf*in"` or `"lbf*ft"`: load torques.
+    pub torque: Option<Spanned<TorqueUnit>>,
+    /// `"kg*m^2"` (default), `"kg*mm^2"`, `"lb*in^2"` or `"slug*ft^2"`: moments of inertia.
+    pub inertia: Option<Spanned<InertiaUnit>>,
+}
+
+impl Units {
+    /// The units a `[units]` section declares (SI where it is silent).
+    pub fn declared(section: &UnitsSection) -> Units {
+        fn or_default<T: Copy + Default>(unit: &Option<Spanned<T>>) -> T {
+            unit.as_ref().map(|u| *u.get_ref()).unwrap_or_default()
+        }
+        Units {
+            length: or_default(&section.length),
+            angle: or_default(&section.angle),
+            angular_velocity: or_default(&section.angular_velocity),
+            angular_acceleration: or_default(&section.angular_acceleration),
+            mass: or_default(&section.mass),
+            force: or_default(&section.force),
+            torque: or_default(&section.torque),
+            inertia: or_default(&section.inertia),
+        }
+    }
 }
 
 /// The physical dimension of a printed column, which fixes its unit.

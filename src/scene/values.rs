@@ -15,7 +15,7 @@ use serde::de::{self, Deserializer, SeqAccess, Visitor};
 use toml::Spanned;
 
 use super::bindings::Bindings;
-use super::drive::MAX_POSITIONS;
+use super::positions::MAX_POSITIONS;
 use super::scalar::Carried;
 
 /// The longest formula a scene may quote (characters).
@@ -311,8 +311,8 @@ fn exactly_two<T, E: de::Error>(list: Spanned<Vec<T>>, what: &str) -> Result<Spa
     Ok(Spanned::new(span, pair))
 }
 
-/// A name with the place where it is written (as [`super::format::Name`]).
-type Name = Spanned<String>;
+/// A name with the place where it is written.
+pub type Name = Spanned<String>;
 
 /// An optional pair of names (a line, the links of a slide, two gears): exactly two entries,
 /// never silently the first two of a longer list (use with `#[serde(default)]`).

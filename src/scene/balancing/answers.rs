@@ -4,7 +4,7 @@ use mechdiff_core::balancing::{Correction, CouplePlane, Polygons, TwoPlaneBalanc
 
 use crate::error::{Error, Result};
 
-use super::resolve::SceneRotor;
+use super::model::SceneRotor;
 
 /// Everything asked of a `[rotor]` (SI: kg·m, kg·m², m, rad).
 #[derive(Debug, Clone, PartialEq)]

@@ -3,7 +3,7 @@
 use serde::Deserialize;
 use toml::Spanned;
 
-use crate::scene::format::Name;
+use crate::scene::values::Name;
 use crate::scene::values::Number;
 
 /// One mass of `[rotor] masses`.

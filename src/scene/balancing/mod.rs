@@ -24,14 +24,15 @@
 
 mod answers;
 mod format;
+mod model;
 mod resolve;
 pub mod rotor_scene;
 mod run;
 
 pub use answers::RotorAnswers;
 pub use format::{BalancingDef, CounterweightDef, RotorDef, RotorMassDef, SliderCrankDef};
+pub use model::{SceneBalancing, SceneRotor, SceneSliderCrank};
 pub(crate) use resolve::resolve;
-pub use resolve::{SceneBalancing, SceneRotor, SceneSliderCrank};
 pub use rotor_scene::RotorScene;
 pub use run::BalancingReport;
 pub(crate) use run::{BalancingSweep, before_solving, columns, rotor_lines, run};

@@ -3,55 +3,16 @@
 use mechdiff_core::balancing::{Counterweight, Rotor, RotorMass};
 use toml::Spanned;
 
-use crate::error::{Error, Location, Result};
+use crate::error::{Error, Result};
+use crate::scene::context::{Context, Geometry};
 use crate::scene::limits;
-use crate::scene::resolve::{Context, Geometry};
 use crate::scene::units::{Dimension, Units};
 use crate::scene::values::Number;
 
+// The checked types are named here by the run side (`run.rs`) too.
+pub(super) use super::model::{SceneBalancing, SceneRotor, SceneSliderCrank};
+
 use super::format::{BalancingDef, RotorDef};
-
-/// A checked `[rotor]` (SI).
-#[derive(Debug, Clone, PartialEq)]
-pub struct SceneRotor {
-    /// The rotor.
-    pub rotor: Rotor,
-    /// Two correction planes (m).
-    pub planes: Option<[f64; 2]>,
-    /// The couple polygon's plane (m).
-    pub reference: f64,
-    /// Radius of the correcting masses (m).
-    pub correction_radius: Option<f64>,
-    /// Mass-radius of one correcting mass that cancels the couple (kg·m).
-    pub couple_mass_radius: Option<f64>,
-    /// Where `[rotor]` is.
-    pub location: Location,
-    /// Where `planes` is written, if it is.
-    pub planes_at: Option<Location>,
-}
-
-/// The checked balancing sections of a scene.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SceneBalancing {
-    /// `[rotor]`.
-    pub rotor: Option<SceneRotor>,
-    /// `[balancing]` counterweights (SI), each with its place in the file, and the section's
-    /// place.
-    pub counterweights: Option<(Vec<(Counterweight, Location)>, Location)>,
-    /// `[balancing] slider_crank`: crank, rod and slider links, the fraction, and its place.
-    pub slider_crank: Option<SceneSliderCrank>,
-}
-
-/// A checked `[balancing] slider_crank`.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SceneSliderCrank {
-    /// Crank, rod and slider links.
-    pub links: [String; 3],
-    /// Fraction of the reciprocating mass balanced, in [0, 1].
-    pub fraction: f64,
-    /// Where it is.
-    pub location: Location,
-}
 
 /// Checks `[rotor]` and `[balancing]`; `None` when the scene has neither.
 pub(crate) fn resolve(

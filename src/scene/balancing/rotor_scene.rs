@@ -5,13 +5,13 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use crate::error::Result;
-use crate::scene::format::UnitsSection;
-use crate::scene::resolve::Context;
+use crate::scene::context::Context;
 use crate::scene::source::Source;
-use crate::scene::units::Units;
+use crate::scene::units::{Units, UnitsSection};
 
 use super::format::RotorDef;
-use super::resolve::{SceneRotor, resolve_rotor};
+use super::model::SceneRotor;
+use super::resolve::resolve_rotor;
 
 /// A rotor-only scene file as written.
 #[derive(Debug, Deserialize)]
@@ -58,7 +58,7 @@ impl RotorScene {
 pub fn parse(file: &str, text: &str) -> Result<RotorScene> {
     let source = Source::new(file, text);
     let raw: RotorFile = toml::from_str(text).map_err(|e| source.syntax_error(&e))?;
-    let units = crate::scene::resolve::units(&raw.units);
+    let units = Units::declared(&raw.units);
     // A rotor scene has no `[parameters]`: its formulas are constant.
     let parameters = crate::scene::bindings::Bindings::default();
     let cx = Context::new(&source, units, &parameters);

@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 use serde::Deserialize;
 use toml::Spanned;
 
-use crate::scene::format::Name;
+use crate::scene::values::Name;
 use crate::scene::values::Number;
 
 /// `[masses.<link>]`: a `mass` with its `center` (and `inertia`), or a `density` per length
@@ -201,19 +201,4 @@ pub struct DynamicsSections<'a> {
     pub motor: Option<&'a Spanned<MotorDef>>,
     /// `[[dynamics]]`.
     pub outputs: &'a [Spanned<DynamicsOutputDef>],
-}
-
-impl<'a> DynamicsSections<'a> {
-    /// The dynamic sections of the scene file `file`.
-    pub fn of(file: &'a crate::scene::format::SceneFile) -> Self {
-        DynamicsSections {
-            masses: file.masses.as_ref(),
-            gravity: file.gravity.as_ref(),
-            loads: &file.loads,
-            friction: file.friction.as_ref(),
-            efficiency: file.efficiency.as_ref(),
-            motor: file.motor.as_ref(),
-            outputs: &file.dynamics,
-        }
-    }
 }

@@ -29,6 +29,7 @@
 //! effects needed; effects whose data is given but which no output needs are not computed.
 
 mod format;
+mod model;
 mod resolve;
 mod run;
 mod tangent;
@@ -37,7 +38,7 @@ pub use format::{
     CenterDef, DrivingSide, DynamicQuantity, DynamicsOutputDef, DynamicsSections, EfficiencyDef,
     FrictionDef, GravityDef, LoadDef, MassDef, MotorDef,
 };
-pub use resolve::{DynamicsOutput, SceneDynamics};
+pub use model::{DynamicsOutput, SceneDynamics};
 pub(crate) use resolve::{numbers_in, resolve};
 pub use run::DynamicsReport;
 pub(crate) use run::{DynamicsSweep, before_solving, columns, error};

@@ -1,67 +1,24 @@
 //! Checking the dynamic sections: names resolved, values in range, every error located.
 
 use mechdiff_core::dynamics::{
-    Driving, Dynamics, Efficiency, Friction, Gravity, Load, LoadKind, Motor, Plan, Request,
+    Driving, Dynamics, Efficiency, Friction, Gravity, Load, LoadKind, Motor,
 };
-use mechdiff_core::geometry::{Inertia, Mechanism};
+use mechdiff_core::geometry::Inertia;
 use toml::Spanned;
 
-use crate::error::{Error, Location, Result};
+use crate::error::{Error, Result};
+use crate::scene::context::{Context, Geometry};
 use crate::scene::format::Name;
 use crate::scene::limits;
 use crate::scene::model::{DriveKind, Joint, JointKind};
-use crate::scene::resolve::{Context, Geometry};
 use crate::scene::scalar::Carried;
 use crate::scene::units::Dimension;
 use crate::scene::values::Number;
 
+// The checked types are named here by the run side (`run.rs`) too.
+pub(super) use super::model::{DynamicsOutput, SceneDynamics};
+
 use super::format::{CenterDef, DrivingSide, DynamicQuantity, DynamicsSections, LoadDef, MassDef};
-
-/// One checked `[[dynamics]]` output.
-#[derive(Debug, Clone, PartialEq)]
-pub struct DynamicsOutput {
-    /// What it reports.
-    pub quantity: DynamicQuantity,
-    /// Joints (reactions) or links (inertial forces) it names; empty: all.
-    pub names: Vec<String>,
-    /// Where it is defined.
-    pub location: Location,
-}
-
-/// The checked dynamic data and outputs of a scene.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SceneDynamics {
-    /// Mass properties by link (SI).
-    pub masses: Vec<(String, Inertia)>,
-    /// The effects' data for mechdiff-core.
-    pub data: Dynamics,
-    /// The outputs, in column order.
-    pub outputs: Vec<DynamicsOutput>,
-}
-
-impl SceneDynamics {
-    /// The requests of the outputs.
-    pub fn requests(&self) -> Vec<Request> {
-        self.outputs
-            .iter()
-            .map(|o| match o.quantity {
-                DynamicQuantity::ShakingForce | DynamicQuantity::InertialForces => {
-                    Request::ShakingForce
-                }
-                DynamicQuantity::Reactions => Request::Reactions,
-                DynamicQuantity::DriveTorque => Request::DriveTorque,
-                DynamicQuantity::KineticEnergy => Request::KineticEnergy,
-                DynamicQuantity::ReducedInertia => Request::ReducedInertia,
-                DynamicQuantity::PowerBalance => Request::PowerBalance,
-            })
-            .collect()
-    }
-
-    /// The plan for `mechanism` (built with the masses).
-    pub fn plan(&self, mechanism: &Mechanism) -> Plan {
-        Plan::for_requests(&self.requests(), self.data.available(mechanism))
-    }
-}
 
 /// A non-negative number the file writes in SI (m/s², a ratio), at most `largest`, in the
 /// scalar `D` (with its derivative).

@@ -12,7 +12,7 @@ use crate::error::{Error, Result};
 use crate::scene::model::Scene;
 
 use super::format::DynamicQuantity;
-use super::resolve::SceneDynamics;
+use super::model::SceneDynamics;
 use super::run::{SolutionValues, StepValues, drive_state, output_columns, output_row};
 
 /// The exact derivatives d/dp of the dynamic columns of a run, or why a column has none.
