@@ -34,4 +34,4 @@ pub(crate) use resolve::resolve;
 pub use resolve::{SceneBalancing, SceneRotor, SceneSliderCrank};
 pub use rotor_scene::RotorScene;
 pub use run::BalancingReport;
-pub(crate) use run::{BalancingSweep, before_solving, columns, rotor_lines, run};
+pub(crate) use run::{BalancingSweep, before_solving, columns, report, rotor_lines};
