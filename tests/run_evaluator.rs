@@ -143,7 +143,7 @@ fn unassemblable(sweep: &str) -> Scene {
 /// compiled to native code: the same results, checked here, errors word for word).
 fn both(scene: &Scene) -> [Result<Report>; 2] {
     let [solver, interpreted, compiled] =
-        [Evaluator::Solver, Evaluator::Interpreter, Evaluator::Jit].map(|e| run_by(&scene, e));
+        [Evaluator::Solver, Evaluator::Interpreter, Evaluator::Jit].map(|e| run_by(scene, e));
     match (&interpreted, &compiled) {
         (Ok(a), Ok(b)) => assert_same_bits("both", a, b),
         (a, b) => assert_eq!(
