@@ -32,7 +32,7 @@ use criterion::{
 };
 use mechdiff::codegen::scene::SceneCode;
 use mechdiff::evaluator::Evaluator;
-use mechdiff::scene::{Plan, Scene, Sweeper, build};
+use mechdiff::scene::{Plan, RunOptions, Scene, Setup, Sweeper};
 use mechdiff_core::method::{Differentiator, Dual2};
 use mechdiff_core::trace::JitProgram;
 use mechdiff_mechanisms::Whitworth;
@@ -164,16 +164,15 @@ fn whitworth_from_scene(c: &mut Criterion) {
 /// Positions of the in-process sweeps.
 const POSITIONS: usize = 10_000;
 
-fn whitworth_sweep(evaluator: Evaluator) -> Scene {
+fn whitworth_sweep() -> Scene {
     let text = std::fs::read_to_string("scenes/whitworth.toml").unwrap();
     let step = 360.0 / POSITIONS as f64;
     let text = text.replace("step = 0.5\n", &format!("step = {step}\n"));
-    let mut scene = mechdiff::scene::parse("whitworth.toml", &text).unwrap();
+    let scene = mechdiff::scene::parse("whitworth.toml", &text).unwrap();
     assert!(
         scene.positions.len() > POSITIONS,
         "the sweep's step was not replaced"
     );
-    scene.evaluator = evaluator;
     scene
 }
 
@@ -187,7 +186,7 @@ fn sweep_solver_vs_program(c: &mut Criterion) {
         ("interpreter", Evaluator::Interpreter),
         ("JIT (what `program` chooses at 10^4)", Evaluator::Jit),
     ] {
-        bench_rows(&mut group, name, &whitworth_sweep(evaluator));
+        bench_rows(&mut group, name, &whitworth_sweep(), evaluator);
     }
     group.finish();
     let mut group = c.benchmark_group("whitworth.toml sweep set-up: solver vs run-time evaluator");
@@ -202,29 +201,30 @@ fn sweep_solver_vs_program(c: &mut Criterion) {
             Evaluator::Jit,
         ),
     ] {
-        let scene = whitworth_sweep(evaluator);
-        let mechanism = build::mechanism(&scene).unwrap();
-        let plan = Plan::of(&scene);
+        let scene = whitworth_sweep();
+        let setup = Setup::of(&scene, &RunOptions { evaluator }).unwrap();
+        let plan = Plan::of(&setup);
         group.bench_function(name, |b| {
-            b.iter(|| {
-                Sweeper::new(&scene, &mechanism, &plan)
-                    .unwrap()
-                    .loops()
-                    .len()
-            })
+            b.iter(|| Sweeper::new(&setup, &plan).unwrap().loops().len())
         });
     }
     group.finish();
 }
 
-/// `mechdiff run`'s rows of `scene` in process (`Sweeper::row` at every drive position; the
-/// sweeper's set-up outside the measurement), as `rows, {name}`.
-fn bench_rows(group: &mut BenchmarkGroup<'_, WallTime>, name: &str, scene: &Scene) {
-    let mechanism = build::mechanism(scene).unwrap();
-    let plan = Plan::of(scene);
+/// `mechdiff run`'s rows of `scene` in process, its positions evaluated by `evaluator`
+/// (`Sweeper::row` at every drive position; the sweeper's set-up outside the measurement),
+/// as `rows, {name}`.
+fn bench_rows(
+    group: &mut BenchmarkGroup<'_, WallTime>,
+    name: &str,
+    scene: &Scene,
+    evaluator: Evaluator,
+) {
+    let setup = Setup::of(scene, &RunOptions { evaluator }).unwrap();
+    let plan = Plan::of(&setup);
     group.bench_function(format!("rows, {name}"), |b| {
         b.iter_batched(
-            || Sweeper::new(scene, &mechanism, &plan).unwrap(),
+            || Sweeper::new(&setup, &plan).unwrap(),
             |mut sweeper| {
                 let mut row = Vec::new();
                 let mut sum = 0.0;
@@ -257,9 +257,7 @@ fn mixed_plan_sweep(c: &mut Criterion) {
         ("solver", Evaluator::Solver),
         ("program", Evaluator::Program),
     ] {
-        let mut scene = scene.clone();
-        scene.evaluator = evaluator;
-        bench_rows(&mut group, name, &scene);
+        bench_rows(&mut group, name, &scene, evaluator);
     }
     group.bench_function(
         "generated Tracker::pose (SI values, no row formatting)",

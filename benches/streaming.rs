@@ -17,7 +17,7 @@ use std::hint::black_box;
 use std::path::PathBuf;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use mechdiff::scene::{self, Plan, Scene, Sweeper, build};
+use mechdiff::scene::{self, Plan, Scene, Setup, Sweeper};
 use mechdiff::stream::{self, Options, Sink, Sinks};
 
 const POSITIONS: usize = 1_000_000;
@@ -32,8 +32,8 @@ fn slider_crank() -> Scene {
 
 fn streaming(c: &mut Criterion) {
     let scene = slider_crank();
-    let mechanism = build::mechanism(&scene).unwrap();
-    let plan = Plan::of(&scene);
+    let setup = Setup::of(&scene, &Default::default()).unwrap();
+    let plan = Plan::of(&setup);
     let mut group = c
         .benchmark_group("slider_crank.toml, 10^6 positions: in-process sweep vs streamed outputs");
     group.sample_size(10);
@@ -41,7 +41,7 @@ fn streaming(c: &mut Criterion) {
     group.throughput(Throughput::Elements(scene.positions.len() as u64));
     group.bench_function(BenchmarkId::from_parameter("sweep rows in process"), |b| {
         b.iter(|| {
-            let mut sweeper = Sweeper::new(&scene, &mechanism, &plan).unwrap();
+            let mut sweeper = Sweeper::new(&setup, &plan).unwrap();
             let mut row = Vec::new();
             let mut sum = 0.0;
             for phi in scene.positions.iter() {

@@ -7,7 +7,8 @@
 //! A scene file describes a mechanism by its geometry (see `docs/scene-format.md`). Read it
 //! with [`load`] or [`parse`] (or [`load_with`] and [`parse_with`], with [`Setting`]s that
 //! replace values of its `[parameters]`), [`run`] it to a [`Report`] of [`Column`]s and
-//! rows, or stream its rows to [`Sinks`] ([`stream::run`]); [`sensitivity::run`] adds the
+//! rows ([`run_with`] and [`RunOptions`]: by the run-time evaluator), or stream its rows to
+//! [`Sinks`] ([`stream::run`]); [`sensitivity::run`] adds the
 //! derivative columns `d(COLUMN)/d(PARAMETER)` a `[sensitivity]` table asks for, exact where
 //! the exact route reaches ([`Study`] says which). Every failure is an [`Error`] saying what
 //! is wrong and where.
@@ -105,8 +106,7 @@ pub mod stream;
 pub use error::{Error, Result};
 pub use scene::outputs::Column;
 pub use scene::parameters::Setting;
-pub use scene::run::run;
-pub use scene::{Report, Scene, load, load_with, parse, parse_with};
+pub use scene::{Report, RunOptions, Scene, load, load_with, parse, parse_with, run, run_with};
 pub use sensitivity::Study;
 pub use stream::{Sink, Sinks};
 

@@ -6,15 +6,15 @@ use std::path::Path;
 
 use mechdiff::evaluator::{Evaluator, LoopPath};
 use mechdiff::scene::{self, Report, Scene};
-use mechdiff::{Error, Result};
+use mechdiff::{Error, Result, RunOptions};
 use mechdiff_core::trace::Backend;
 
 use crate::common;
 use common::{mechdiff, stderr, stdout, temp_file};
 
-fn with(mut scene: Scene, evaluator: Evaluator) -> Scene {
-    scene.evaluator = evaluator;
-    scene
+/// Runs `scene` with its positions evaluated by `evaluator` (`mechdiff run --evaluator`).
+fn run_by(scene: &Scene, evaluator: Evaluator) -> Result<Report> {
+    scene::run_with(scene, &RunOptions { evaluator })
 }
 
 /// Every linkage scene file of `scenes/`.
@@ -86,7 +86,7 @@ fn every_scene_runs_the_same_by_the_program_and_by_the_solver() {
     let mut programs = 0;
     for path in linkage_scenes() {
         let scene = scene::load(&path).unwrap();
-        let solver = scene::run(&with(scene.clone(), Evaluator::Solver)).unwrap();
+        let solver = run_by(&scene, Evaluator::Solver).unwrap();
         assert!(
             solver
                 .plan
@@ -95,7 +95,7 @@ fn every_scene_runs_the_same_by_the_program_and_by_the_solver() {
                 .all(|l| l.path != LoopPath::Program),
             "{path}"
         );
-        match scene::run(&with(scene.clone(), Evaluator::Interpreter)) {
+        match run_by(&scene, Evaluator::Interpreter) {
             Ok(program) => {
                 assert!(
                     program
@@ -109,7 +109,7 @@ fn every_scene_runs_the_same_by_the_program_and_by_the_solver() {
                 assert_agree(&path, &solver, &program);
                 assert_eq!(solver.warnings, program.warnings, "{path}");
                 // The compiled program: the interpreter's rows, bit for bit.
-                let jit = scene::run(&with(scene.clone(), Evaluator::Jit)).unwrap();
+                let jit = run_by(&scene, Evaluator::Jit).unwrap();
                 assert_same_bits(&path, &program, &jit);
                 programs += 1;
             }
@@ -119,7 +119,7 @@ fn every_scene_runs_the_same_by_the_program_and_by_the_solver() {
                 assert!(scene.drive.cam.is_some(), "{path}: {reason}");
                 assert!(reason.contains("cam"), "{path}: {reason}");
                 // The error names the option's value the user gave.
-                let e = scene::run(&with(scene.clone(), Evaluator::Jit)).unwrap_err();
+                let e = run_by(&scene, Evaluator::Jit).unwrap_err();
                 assert!(
                     e.to_string().contains("--evaluator jit cannot evaluate"),
                     "{path}: {e}"
@@ -143,8 +143,7 @@ fn unassemblable(sweep: &str) -> Scene {
 /// compiled to native code: the same results, checked here, errors word for word).
 fn both(scene: &Scene) -> [Result<Report>; 2] {
     let [solver, interpreted, compiled] =
-        [Evaluator::Solver, Evaluator::Interpreter, Evaluator::Jit]
-            .map(|e| scene::run(&with(scene.clone(), e)));
+        [Evaluator::Solver, Evaluator::Interpreter, Evaluator::Jit].map(|e| run_by(scene, e));
     match (&interpreted, &compiled) {
         (Ok(a), Ok(b)) => assert_same_bits("both", a, b),
         (a, b) => assert_eq!(
@@ -261,12 +260,12 @@ fn a_long_sweep_by_the_program_agrees_with_the_solver() {
         "{:?}",
         auto.plan.loops
     );
-    let program = scene::run(&with(scene.clone(), Evaluator::Program)).unwrap();
+    let program = run_by(&scene, Evaluator::Program).unwrap();
     assert_agree("slider_crank.toml at 0.1°", &auto, &program);
     // 3 601 positions: `program` compiles to native code (JIT_FROM_POSITIONS); the same
     // bits as the interpreter.
     assert!(scene.positions.len() >= mechdiff::evaluator::JIT_FROM_POSITIONS);
-    let interpreted = scene::run(&with(scene, Evaluator::Interpreter)).unwrap();
+    let interpreted = run_by(&scene, Evaluator::Interpreter).unwrap();
     assert_same_bits("slider_crank.toml at 0.1°", &interpreted, &program);
 }
 
@@ -301,8 +300,7 @@ fn a_loop_without_a_closed_form_is_solved_by_newton_in_the_program() {
             .describe(&scene)
             .contains("by the geometry solver (exact; Newton with implicit differentiation)")
     );
-    let scene = with(scene, Evaluator::Program);
-    let program = scene::run(&scene).unwrap();
+    let program = run_by(&scene, Evaluator::Program).unwrap();
     let paths: Vec<LoopPath> = program.plan.loops.iter().map(|l| l.path).collect();
     assert_eq!(paths, [LoopPath::Program, LoopPath::NewtonInProgram]);
     let line = program.plan.describe(&scene);
@@ -315,7 +313,7 @@ fn a_loop_without_a_closed_form_is_solved_by_newton_in_the_program() {
     assert_agree("triad.toml", &auto, &program);
     // `--evaluator jit` on a mixed plan: its programs (inputs: the drive and the Newton
     // loop's coordinates) are interpreted, the same values bit for bit, and a warning says so.
-    let jit = scene::run(&with(scene, Evaluator::Jit)).unwrap();
+    let jit = run_by(&scene, Evaluator::Jit).unwrap();
     assert_eq!(jit.rows, program.rows);
     assert!(
         jit.warnings
@@ -344,8 +342,8 @@ fn mixed_plans_run_the_same_by_the_program_and_by_the_solver() {
         "tests/data/triad_slider.toml",
     ] {
         let scene = scene::load(path).unwrap();
-        let solver = scene::run(&with(scene.clone(), Evaluator::Solver)).unwrap();
-        let program = scene::run(&with(scene, Evaluator::Program)).unwrap();
+        let solver = run_by(&scene, Evaluator::Solver).unwrap();
+        let program = run_by(&scene, Evaluator::Program).unwrap();
         assert!(
             (program.plan.loops.iter()).any(|l| l.path == LoopPath::NewtonInProgram),
             "{path}"
@@ -360,8 +358,8 @@ fn mixed_plans_run_the_same_by_the_program_and_by_the_solver() {
         r#""acceleration_coefficient", "jerk_coefficient"]"#,
     );
     let scene = scene::parse("triad_slider.toml", &text).unwrap();
-    let solver = scene::run(&with(scene.clone(), Evaluator::Solver)).unwrap();
-    let program = scene::run(&with(scene, Evaluator::Program)).unwrap();
+    let solver = run_by(&scene, Evaluator::Solver).unwrap();
+    let program = run_by(&scene, Evaluator::Program).unwrap();
     assert!(solver.columns.iter().any(|c| c.name == "theta'''"));
     assert!(assert_agree("triad_slider.toml (jerk)", &solver, &program) > 350);
 }
@@ -382,8 +380,8 @@ quantities = ["position", "velocity_coefficient"]
 "#,
     );
     let scene = scene::parse("triad.toml", &text).unwrap();
-    let solver = scene::run(&with(scene.clone(), Evaluator::Solver)).unwrap_err();
-    let program = scene::run(&with(scene, Evaluator::Program)).unwrap_err();
+    let solver = run_by(&scene, Evaluator::Solver).unwrap_err();
+    let program = run_by(&scene, Evaluator::Program).unwrap_err();
     assert!(
         matches!(solver, Error::Singular { .. } | Error::Unassemblable { .. }),
         "{solver}"
@@ -424,7 +422,7 @@ fn dynamics_under_the_run_time_evaluator_read_the_tracker_that_follows_it() {
     let scene = scene::load("scenes/whitworth_forces.toml").unwrap();
     let n = scene.positions.len();
     let solver = scene::run(&scene).unwrap();
-    let program = scene::run(&with(scene, Evaluator::Interpreter)).unwrap();
+    let program = run_by(&scene, Evaluator::Interpreter).unwrap();
     assert!(program.plan.backend.is_some());
     let s = program.stats.sweep;
     assert_eq!((s.rows, s.program_steps, s.solves), (n, n, n));

@@ -74,9 +74,13 @@ impl<'s> Outputs<'s> {
             names: Vec::new(),
         };
         for output in &scene.outputs {
-            outputs
-                .resolved
-                .push(Resolved::new(scene, mechanism, output)?);
+            outputs.resolved.push(Resolved::in_model(
+                &scene.error_context(),
+                &scene.links,
+                &scene.points,
+                mechanism,
+                output,
+            )?);
             match &output.kind {
                 OutputKind::Point(name) => {
                     outputs
@@ -319,7 +323,7 @@ pub fn case_at<'a>(
     let mut tracker = scene
         .solver
         .track(mechanism)
-        .map_err(|e| crate::scene::run::solver_error(scene, e))?;
+        .map_err(|e| scene.error_context().solver_error(e))?;
     let loops = tracker.closed_form_loops();
     let all_closed = loops.iter().all(|&c| c);
     let equations = (!all_closed).then(|| Equations::new(mechanism));
@@ -334,10 +338,10 @@ pub fn case_at<'a>(
             // proved).
             (Some(cam), Some(from)) => (cam.joint)
                 .move_tracker(&mut tracker, scene.drive.at_sketch, from, phi)
-                .map_err(|e| crate::scene::run::cam_error(scene, e))?,
+                .map_err(|e| scene.error_context().cam_error(e))?,
             _ => (tracker.move_to(drive.joint(phi)))
                 .map(drop)
-                .map_err(|e| crate::scene::run::solver_error(scene, e))?,
+                .map_err(|e| scene.error_context().solver_error(e))?,
         }
         previous = Some(phi);
         trackers.push(tracker.clone());

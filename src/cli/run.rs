@@ -5,6 +5,7 @@ use std::io::{BufWriter, IsTerminal, Write};
 use std::path::PathBuf;
 
 use clap::Args;
+use mechdiff::RunOptions;
 use mechdiff::evaluator::Evaluator;
 use mechdiff::scene::any::AnyScene;
 use mechdiff::scene::{self, table};
@@ -134,16 +135,18 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
             (scene, report)
         }
         None => {
-            let mut scene = *read;
-            scene.evaluator = args.evaluator;
+            let scene = *read;
+            let options = RunOptions {
+                evaluator: args.evaluator,
+            };
             let in_memory = scene.balancing.is_some()
                 || args.json.is_some()
                 || args.plot.is_some()
                 || args.report.is_some();
             if !in_memory {
-                return stream(&scene, args);
+                return stream(&scene, args, &options);
             }
-            let report = scene::run(&scene)?;
+            let report = scene::run_with(&scene, &options)?;
             (scene, report)
         }
         Some(sweep) => scene::study::run_sweep(&file, &text, &args.set, sweep)?,
@@ -202,7 +205,7 @@ fn outputs(args: &RunArgs) -> impl Iterator<Item = &std::path::Path> {
 
 /// Runs a kinematic scene streaming its rows: the table to stdout, `--csv` and `--jsonl`
 /// into temporary files renamed over the user's only when the run succeeded.
-fn stream(scene: &scene::Scene, args: &RunArgs) -> Result<(), Error> {
+fn stream(scene: &scene::Scene, args: &RunArgs, run: &RunOptions) -> Result<(), Error> {
     let mut csv = args
         .csv
         .as_deref()
@@ -233,6 +236,7 @@ fn stream(scene: &scene::Scene, args: &RunArgs) -> Result<(), Error> {
         threads: args.threads as usize,
         progress: std::io::stderr().is_terminal()
             && scene.positions.len() > stream::TABLE_FROM_VALUES,
+        evaluator: run.evaluator,
         ..stream::Options::default()
     };
     let streamed = stream::run(scene, &mut sinks, &options)?;

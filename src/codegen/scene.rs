@@ -16,90 +16,30 @@
 //! (`Tracker::new()`, `tracker.pose(phi)`): it keeps the Newton loops' state between calls
 //! and solves them as the solver does (see `mixed`).
 
-use mechdiff_core::geometry::Mechanism;
 use mechdiff_core::symbolic::{Id, format_rust};
-use mechdiff_core::trace::{self, GuardKind, PositionGraph, Program};
+use mechdiff_core::trace::{self, GuardKind, Program};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 use std::path::Path;
 
 use crate::error::{Error, Result};
-use crate::scene::build::mechanism;
-use crate::scene::evaluate::{Resolved, values_on_sketch_turn};
-use crate::scene::model::{OutputKind, Scene};
-use crate::scene::plan::Plan;
-use crate::scene::run::solver_error;
+use crate::evaluator::code::refuse_a_cam_drive;
+use crate::scene::model::Scene;
+use crate::scene::setup::{RunOptions, Setup};
+
+pub use crate::evaluator::code::SceneCode;
 
 mod mixed;
 
-/// A scene's position solution, traced and differentiated.
-#[derive(Debug, Clone)]
-pub struct SceneCode {
-    /// The traced graph, its outputs and guards.
-    pub position: PositionGraph,
-    /// The outputs' names: the scene's, `name.x` and `name.y` for a point.
-    pub names: Vec<String>,
-    /// The highest derivative order.
-    pub order: usize,
-    /// Per output, its value and derivatives 1 to `order`.
-    pub jets: Vec<Vec<Id>>,
-}
-
 impl SceneCode {
-    /// Traces `scene`.
+    /// Traces `scene` ([`SceneCode::trace`], its model built as a run builds it).
     ///
     /// # Errors
     /// The scene's model and sketch errors; the symbolic engine's limits (as
     /// [`Error::Codegen`]).
     pub fn of(scene: &Scene) -> Result<Self> {
-        if scene.drive.cam.is_some() {
-            // The generated pose would be a function of the follower's position, not of the
-            // cam angle the scene's table is written in: refused rather than mislabelled.
-            return Err(Error::Codegen {
-                origin: scene.file.clone(),
-                source: mechdiff_core::Error::Untraceable {
-                    operation: "a cam-driven joint ([drive] cam; the cam program is not traced)"
-                        .to_owned(),
-                },
-            });
-        }
-        let m = mechanism(scene)?;
-        let tracker = scene.solver.track(&m).map_err(|e| solver_error(scene, e))?;
-        let resolved = scene
-            .outputs
-            .iter()
-            .map(|o| Resolved::new(scene, &m, o))
-            .collect::<Result<Vec<_>>>()?;
-        let codegen = |source| Error::Codegen {
-            origin: scene.file.clone(),
-            source,
-        };
-        let mut position = trace::trace(&tracker, |pose| {
-            resolved
-                .iter()
-                .flat_map(|r| {
-                    let point = |i: usize| pose.point(&r.points()[i]);
-                    values_on_sketch_turn(scene, r.output, point)
-                })
-                .collect()
-        })
-        .map_err(codegen)?;
-        let names = scene
-            .outputs
-            .iter()
-            .flat_map(|o| match o.kind {
-                OutputKind::Point(_) => vec![format!("{}.x", o.name), format!("{}.y", o.name)],
-                _ => vec![o.name.clone()],
-            })
-            .collect();
-        let order = Plan::of(scene).order.max(2);
-        let jets = position.jets(order).map_err(codegen)?;
-        Ok(SceneCode {
-            position,
-            names,
-            order,
-            jets,
-        })
+        refuse_a_cam_drive(&scene.error_context())?;
+        Self::trace(&Setup::of(scene, &RunOptions::default())?)
     }
 
     /// Every node the code computes: the jets, output by output, then the guards.
@@ -144,9 +84,10 @@ impl SceneCode {
 /// # Errors
 /// The scene's model errors.
 pub fn guard_error(scene: &Scene, phi: f64) -> Result<Option<Error>> {
-    let m: Mechanism = mechanism(scene)?;
-    let tracker = scene.solver.track(&m).map_err(|e| solver_error(scene, e))?;
-    Ok(trace::closed_form_error(&tracker, phi).map(|e| solver_error(scene, e)))
+    let m = crate::scene::build::mechanism(scene)?;
+    let cx = scene.error_context();
+    let tracker = scene.solver.track(&m).map_err(|e| cx.solver_error(e))?;
+    Ok(trace::closed_form_error(&tracker, phi).map(|e| cx.solver_error(e)))
 }
 
 /// A name as a Rust identifier: other characters become `_`.

@@ -37,6 +37,7 @@
 //! making it the default changes the last printed digits of existing runs, so `auto` is
 //! where that choice changes once the outputs are re-baselined.
 
+pub(crate) mod code;
 mod program;
 
 pub(crate) use program::{ProgramPath, solver_loops};

@@ -4,10 +4,10 @@
 use mechdiff_core::geometry::Tracker;
 use mechdiff_core::trace::{Backend, MixedTracker, ProgramTracker};
 
+use super::code::SceneCode;
 use super::{Evaluator, JIT_FROM_POSITIONS, LoopPath, LoopPlan};
-use crate::codegen::scene::SceneCode;
 use crate::error::{Error, Result};
-use crate::scene::model::Scene;
+use crate::scene::setup::Setup;
 
 /// The program of a scene walking its sweep.
 #[derive(Debug, Clone)]
@@ -33,34 +33,34 @@ enum Walker {
 }
 
 impl ProgramPath {
-    /// The program for `scene`, as its `evaluator` asks, with `tracker` the solver's
+    /// The program for `setup`'s run, as its `evaluator` asks, with `tracker` the solver's
     /// tracker at the sketch: `None` for the solver.
     ///
     /// # Errors
     /// For `--evaluator program|interpreter|jit` only: [`Error::NoEvaluator`] when the
     /// scene has a cam drive or an output the trace cannot follow.
-    pub fn choose(scene: &Scene, tracker: &Tracker<'_>) -> Result<Option<Self>> {
-        let backend = match scene.evaluator {
+    pub fn choose(setup: &Setup<'_>, tracker: &Tracker<'_>) -> Result<Option<Self>> {
+        let backend = match setup.evaluator {
             // `auto`: the solver for now (see `evaluator`).
             Evaluator::Solver | Evaluator::Auto => return Ok(None),
-            Evaluator::Program if scene.positions.len() >= JIT_FROM_POSITIONS => Backend::Jit,
+            Evaluator::Program if setup.positions.len() >= JIT_FROM_POSITIONS => Backend::Jit,
             Evaluator::Program | Evaluator::Interpreter => Backend::Interpreter,
             Evaluator::Jit => Backend::Jit,
         };
-        Self::new(scene, tracker, backend).map(Some)
+        Self::new(setup, tracker, backend).map(Some)
     }
 
-    /// Traces `scene` (as `mechdiff codegen` does), with its loops' margins, and compiles it
-    /// for `backend`.
-    fn new(scene: &Scene, tracker: &Tracker<'_>, backend: Backend) -> Result<Self> {
+    /// Traces `setup`'s scene (as `mechdiff codegen` does), with its loops' margins, and
+    /// compiles it for `backend`.
+    fn new(setup: &Setup<'_>, tracker: &Tracker<'_>, backend: Backend) -> Result<Self> {
         let unavailable = |reason: String| Error::NoEvaluator {
-            file: scene.file.clone(),
-            evaluator: scene.evaluator.to_string(),
+            file: setup.file().to_owned(),
+            evaluator: setup.evaluator.to_string(),
             reason,
         };
-        let mut code = SceneCode::of(scene).map_err(|e| {
+        let mut code = SceneCode::trace(setup).map_err(|e| {
             let text = e.to_string();
-            let file = format!("{}: ", scene.file);
+            let file = format!("{}: ", setup.file());
             unavailable(text.strip_prefix(&file).unwrap_or(&text).to_owned())
         })?;
         let values: Vec<_> = code.jets.iter().flatten().copied().collect();
@@ -70,7 +70,7 @@ impl ProgramPath {
         let walker = if code.position.newton.is_empty() {
             ProgramTracker::new(tracker, &mut code.position, &values, backend).map(Walker::Closed)
         } else {
-            if scene.evaluator == Evaluator::Jit {
+            if setup.evaluator == Evaluator::Jit {
                 jit_refused = Some(
                     "--evaluator jit: the scene has loops solved by Newton inside the \
                      run-time evaluator, whose programs are interpreted (the JIT compiles \
@@ -195,12 +195,11 @@ mod tests {
     fn the_back_end_follows_the_number_of_positions() {
         let text = std::fs::read_to_string("scenes/slider_crank.toml").unwrap();
         for (step, positions) in [("step = 5\n", 73), ("step = 0.1\n", 3601)] {
-            let mut scene =
-                crate::scene::parse("slider_crank.toml", &text.replace("step = 5\n", step))
-                    .unwrap();
+            let scene = crate::scene::parse("slider_crank.toml", &text.replace("step = 5\n", step))
+                .unwrap();
             assert_eq!(scene.positions.len(), positions);
-            let mechanism = crate::scene::build::mechanism(&scene).unwrap();
-            let tracker = scene.solver.track(&mechanism).unwrap();
+            let mut setup = Setup::of(&scene, &Default::default()).unwrap();
+            let tracker = setup.solver.track(&setup.mechanism).unwrap();
             let long = positions >= JIT_FROM_POSITIONS;
             for (evaluator, want) in [
                 (Evaluator::Interpreter, Backend::Interpreter),
@@ -214,8 +213,8 @@ mod tests {
                     },
                 ),
             ] {
-                scene.evaluator = evaluator;
-                let path = ProgramPath::choose(&scene, &tracker).unwrap().unwrap();
+                setup.evaluator = evaluator;
+                let path = ProgramPath::choose(&setup, &tracker).unwrap().unwrap();
                 assert_eq!(
                     path.backend(),
                     want,

@@ -8,7 +8,6 @@ use super::drawing::{Drawing, Style};
 use crate::error::{Error, Result};
 use crate::scene::context::GROUND;
 use crate::scene::model::{JointKind, Scene};
-use crate::scene::run::solver_error;
 
 /// Every scene point's position at a list of drive positions.
 #[derive(Debug, Clone, PartialEq)]
@@ -48,7 +47,7 @@ pub fn poses(scene: &Scene, mechanism: &Mechanism, phi: &[f64]) -> Result<Poses>
                 Some(l) => mechanism
                     .point_output(&l.name, &p.name)
                     .map(Source::Moving)
-                    .map_err(|e| solver_error(scene, e)),
+                    .map_err(|e| scene.error_context().solver_error(e)),
                 None => Ok(Source::Fixed(p.sketch)),
             }
         })
@@ -56,14 +55,16 @@ pub fn poses(scene: &Scene, mechanism: &Mechanism, phi: &[f64]) -> Result<Poses>
     let mut tracker = scene
         .solver
         .track(mechanism)
-        .map_err(|e| solver_error(scene, e))?;
+        .map_err(|e| scene.error_context().solver_error(e))?;
     let mut xy = Vec::with_capacity(phi.len());
     for &p in phi {
         let p = scene.drive.joint_position(p);
-        tracker.move_to(p).map_err(|e| solver_error(scene, e))?;
+        tracker
+            .move_to(p)
+            .map_err(|e| scene.error_context().solver_error(e))?;
         let k = tracker
             .kinematics::<1>()
-            .map_err(|e| solver_error(scene, e))?;
+            .map_err(|e| scene.error_context().solver_error(e))?;
         xy.push(
             sources
                 .iter()

@@ -9,7 +9,8 @@ use crate::error::Result;
 
 use super::balancing::rotor_scene::{self, RotorScene};
 use super::cam::{self, CamScene};
-use super::{Kind, Scene, build, parameters, preflight};
+use super::setup::{RunOptions, Setup};
+use super::{Kind, Scene, parameters, preflight};
 
 /// A scene file read and checked up to solving.
 #[derive(Debug, Clone)]
@@ -34,8 +35,7 @@ pub fn read(file: &str, text: &str, settings: &[parameters::Setting]) -> Result<
     Ok(match super::kind(text) {
         Kind::Linkage => {
             let scene = super::parse_with(file, text, settings)?;
-            let mechanism = build::mechanism(&scene)?;
-            preflight::before_solving(&scene, &mechanism)?;
+            preflight::before_solving(&Setup::of(&scene, &RunOptions::default())?)?;
             AnyScene::Linkage(Box::new(scene))
         }
         Kind::Cam => AnyScene::Cam(Box::new(cam::parse(file, text)?)),

@@ -7,9 +7,10 @@ use mechdiff_core::{DriveState, Jet, Scalar};
 
 use crate::error::{Error, Result};
 
+use super::error_context::ErrorContext;
 use super::format::{Quantity, Sense};
-use super::model::{Output, OutputKind, Scene};
-use super::run::solver_error;
+use super::model::{Link, Output, OutputKind, Point};
+use super::setup::Setup;
 
 /// One quantity of a jet: its value, a coefficient, or a time derivative (a derivative
 /// beyond the jet's order reads as zero; the plan asks for the order the outputs need).
@@ -42,20 +43,38 @@ pub(crate) struct Resolved<'s> {
     pub output: &'s Output,
     /// Its points, in the order of [`point_names`].
     points: Vec<PointOutput>,
+    /// An angle output's value at the sketch pose, where a sweep's angle continuity starts
+    /// (0 for the others).
+    sketch: f64,
 }
 
 impl<'s> Resolved<'s> {
-    /// Resolves `output`'s points in `mechanism` (built from `scene`).
-    pub fn new(scene: &Scene, mechanism: &Mechanism, output: &'s Output) -> Result<Self> {
-        let points = points_on_links(scene, output)?
+    /// Resolves `output`'s points in the model of `setup`.
+    pub fn new(setup: &Setup<'_>, output: &'s Output) -> Result<Self> {
+        let (cx, model) = (&setup.context, &setup.mechanism);
+        Self::in_model(cx, setup.links, setup.points, model, output)
+    }
+
+    /// Resolves `output`'s points in `mechanism`, built from the scene whose `links` carry
+    /// them and whose `points` give their sketch positions.
+    pub fn in_model(
+        cx: &ErrorContext<'_>,
+        links: &[Link],
+        points: &[Point],
+        mechanism: &Mechanism,
+        output: &'s Output,
+    ) -> Result<Self> {
+        let resolved = points_on_links(links, output)?
             .into_iter()
             .map(|(link, name)| {
-                mechanism
-                    .point_output(link, name)
-                    .map_err(|e| solver_error(scene, e))
+                (mechanism.point_output(link, name)).map_err(|e| cx.solver_error(e))
             })
             .collect::<Result<_>>()?;
-        Ok(Resolved { output, points })
+        Ok(Resolved {
+            output,
+            points: resolved,
+            sketch: sketch_angle(points, output),
+        })
     }
 
     /// The output's points resolved in the model, in the order [`values`] reads them.
@@ -67,13 +86,13 @@ impl<'s> Resolved<'s> {
 /// The points an output is computed from, each with a link that carries it: `(link,
 /// point)`, in the order [`values`] reads them.
 pub(crate) fn points_on_links<'a>(
-    scene: &'a Scene,
+    links: &'a [Link],
     output: &'a Output,
 ) -> Result<Vec<(&'a str, &'a str)>> {
     point_names(output)
         .into_iter()
         .map(|name| {
-            let link = (scene.links.iter())
+            let link = (links.iter())
                 .find(|l| l.points.iter().any(|p| p == name))
                 .ok_or_else(|| Error::Invalid {
                     location: output.location.clone(),
@@ -106,7 +125,6 @@ fn point_names(output: &Output) -> Vec<&str> {
 /// The output's jets at the current pose: `[x, y]` for a point, one jet otherwise. Angles are
 /// kept continuous along the sweep through `previous`.
 pub(crate) fn evaluate<const N: usize>(
-    scene: &Scene,
     k: &Kinematics<'_, N>,
     resolved: &Resolved<'_>,
     previous: &mut Option<f64>,
@@ -118,7 +136,7 @@ pub(crate) fn evaluate<const N: usize>(
     let output = resolved.output;
     let mut values = values(output, point);
     if let OutputKind::Angle { .. } = &output.kind {
-        let target = previous.unwrap_or_else(|| sketch_angle(scene, output));
+        let target = previous.unwrap_or(resolved.sketch);
         to_turn(&mut values[0], target);
         *previous = Some(values[0].re);
     }
@@ -130,7 +148,6 @@ pub(crate) fn evaluate<const N: usize>(
 /// `values[*at..]`; `at` is moved past them), an angle kept continuous along the sweep
 /// through `previous` as [`evaluate`] keeps it.
 pub(crate) fn from_code<const N: usize>(
-    scene: &Scene,
     resolved: &Resolved<'_>,
     values: &[f64],
     at: &mut usize,
@@ -153,7 +170,7 @@ pub(crate) fn from_code<const N: usize>(
         .collect();
     *at += rows * width;
     if let OutputKind::Angle { .. } = &output.kind {
-        let target = previous.unwrap_or_else(|| sketch_angle(scene, output));
+        let target = previous.unwrap_or(resolved.sketch);
         to_turn(&mut jets[0].value, target);
         *previous = Some(jets[0].value);
     }
@@ -163,13 +180,12 @@ pub(crate) fn from_code<const N: usize>(
 /// The output's values as [`values`] gives them, with an angle moved by whole turns to the
 /// one nearest its angle in the sketch (where a sweep's angle continuity starts).
 pub(crate) fn values_on_sketch_turn<D: Scalar>(
-    scene: &Scene,
-    output: &Output,
+    resolved: &Resolved<'_>,
     point: impl Fn(usize) -> [D; 2],
 ) -> Vec<D> {
-    let mut values = values(output, point);
-    if let OutputKind::Angle { .. } = &output.kind {
-        to_turn(&mut values[0], sketch_angle(scene, output));
+    let mut values = values(resolved.output, point);
+    if let OutputKind::Angle { .. } = &resolved.output.kind {
+        to_turn(&mut values[0], resolved.sketch);
     }
     values
 }
@@ -213,10 +229,9 @@ pub(crate) fn values<D: Scalar>(output: &Output, point: impl Fn(usize) -> [D; 2]
 }
 
 /// The output angle at the sketch pose, where the sweep's angle continuity starts.
-fn sketch_angle(scene: &Scene, output: &Output) -> f64 {
+fn sketch_angle(points: &[Point], output: &Output) -> f64 {
     let sketch = |name: &str| {
-        scene
-            .points
+        points
             .iter()
             .find(|p| p.name == name)
             .map_or([0.0, 0.0], |p| p.sketch)

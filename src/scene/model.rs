@@ -41,8 +41,6 @@ pub struct Scene {
     /// The values of `[parameters]` (after `--set`), in the order they were evaluated, in
     /// the units of the fields that use them.
     pub parameters: Vec<(String, f64)>,
-    /// How a run evaluates the positions (`mechdiff run --evaluator`; not in the file).
-    pub evaluator: crate::evaluator::Evaluator,
 }
 
 /// `[plot]` checked: names resolved, numbers in SI, places kept.

@@ -4,9 +4,8 @@ use std::fmt;
 
 use mechdiff_core::DriveState;
 
-use super::model::Scene;
 use super::outputs::columns;
-use super::units::Units;
+use super::setup::Setup;
 
 /// What a run computes, printed before the table.
 #[derive(Debug, Clone, PartialEq)]
@@ -36,134 +35,47 @@ pub struct Plan {
 }
 
 impl Plan {
-    /// The plan of a scene.
-    pub fn of(scene: &Scene) -> Self {
-        let (lo, hi) = scene.positions.range();
-        let times = scene
-            .outputs
-            .iter()
-            .any(|o| o.quantities.iter().any(|q| q.is_time_derivative()));
-        let drive = match (times, scene.drive.speed) {
-            (true, Some(omega)) => Some(DriveState::accelerating(omega, scene.drive.acceleration)),
+    /// The plan of a scene's run.
+    pub fn of(setup: &Setup<'_>) -> Self {
+        let (lo, hi) = setup.positions.range();
+        let drive = setup.drive();
+        let times =
+            (setup.outputs.iter()).any(|o| o.quantities.iter().any(|q| q.is_time_derivative()));
+        let state = match (times, drive.speed) {
+            (true, Some(omega)) => Some(DriveState::accelerating(omega, drive.acceleration)),
             _ => None,
         };
-        let drive_dimension = scene.drive.kind.dimension();
+        let drive_dimension = drive.kind.dimension();
         Plan {
-            positions: scene.positions.len(),
+            positions: setup.positions.len(),
             range: (lo, hi),
-            given_by: scene.sweep_of.map(|k| scene.outputs[k].name.clone()),
-            order: scene.order(),
-            drive,
-            columns: scene
-                .outputs
-                .iter()
-                .map(|o| columns(o, &scene.units, drive_dimension).len())
+            given_by: setup.sweep_of.map(|k| setup.outputs[k].name.clone()),
+            order: setup.order,
+            drive: state,
+            columns: (setup.outputs.iter())
+                .map(|o| columns(o, &setup.context.units, drive_dimension).len())
                 .sum(),
-            dead_positions: scene
-                .outputs
-                .iter()
+            dead_positions: (setup.outputs.iter())
                 .filter(|o| o.dead_positions)
                 .map(|o| o.name.clone())
                 .collect(),
-            dynamics: scene
-                .dynamics
-                .as_ref()
+            dynamics: (setup.dynamics)
                 .filter(|d| !d.outputs.is_empty())
-                .and_then(|d| super::build::mechanism(scene).ok().map(|m| d.plan(&m))),
+                .map(|d| d.plan(&setup.mechanism)),
             loops: Vec::new(),
             backend: None,
         }
     }
-    /// Records who evaluates `sweeper`'s positions: each loop's path and the run-time
-    /// evaluator's back end (for the plan line).
-    pub(crate) fn evaluated_by(&mut self, sweeper: &super::Sweeper<'_>) {
-        self.loops = sweeper.loops();
-        self.backend = sweeper.backend();
-    }
 
-    /// The plan as one line, in the scene's units.
-    pub fn describe(&self, scene: &Scene) -> String {
-        let what = match self.order {
-            0 => "positions only (order 0)",
-            1 => "positions and velocity coefficients (order 1)",
-            2 => "positions, velocity and acceleration coefficients (order 2)",
-            _ => "positions, velocity, acceleration and jerk coefficients (order 3)",
-        };
-        let range = if let Some(k) = scene.sweep_of {
-            let output = &scene.outputs[k];
-            let text = |v: f64| {
-                let d = output.kind.dimension();
-                let u = &scene.units;
-                format!("{} {}", Units::tidy(u.from_si(v, d)), u.symbol(d))
-            };
-            let values = if self.positions == 1 {
-                format!(
-                    "1 drive position where {} = {}",
-                    output.name,
-                    text(self.range.0)
-                )
-            } else {
-                format!(
-                    "{} drive positions where {} goes from {} to {}",
-                    self.positions,
-                    output.name,
-                    text(self.range.0),
-                    text(self.range.1)
-                )
-            };
-            format!(
-                "{values} (drive positions solved by Newton on {}')",
-                output.name
-            )
-        } else if self.positions == 1 {
-            format!("1 drive position, phi = {}", scene.drive_text(self.range.0))
-        } else {
-            format!(
-                "{} drive positions, phi from {} to {}",
-                self.positions,
-                scene.drive_text(self.range.0),
-                scene.drive_text(self.range.1)
-            )
-        };
-        let motion = match self.drive {
-            Some(d) => {
-                let kind = scene.drive.kind;
-                let u = &scene.units;
-                format!(
-                    "; {} for speed {} {}, acceleration {} {}",
-                    if self.order >= 3 {
-                        "velocities, accelerations and jerks"
-                    } else {
-                        "velocities and accelerations"
-                    },
-                    Units::tidy(u.from_si(d.omega, kind.speed_dimension())),
-                    u.symbol(kind.speed_dimension()),
-                    Units::tidy(u.from_si(d.alpha, kind.acceleration_dimension())),
-                    u.symbol(kind.acceleration_dimension()),
-                )
-            }
-            None => String::new(),
-        };
-        let dead = if self.dead_positions.is_empty() {
-            String::new()
-        } else {
-            format!("; dead positions of {}", self.dead_positions.join(", "))
-        };
-        let dynamics = match &self.dynamics {
-            Some(p) => format!("\ndynamics plan: {p}"),
-            None => String::new(),
-        };
-        let by = if self.loops.is_empty() {
-            "by the geometry solver (exact: loops in closed form where they match a standard \
-             group, else Newton with implicit differentiation)"
-                .to_owned()
-        } else {
-            crate::evaluator::describe(&self.loops, self.backend)
-        };
-        format!(
-            "plan: {range}; {what} {by}{motion}; {} columns{dead}{dynamics}",
-            self.columns
-        )
+    /// Records who evaluates the sweep's positions: each loop's path and the run-time
+    /// evaluator's back end (for the plan line; see [`super::Sweeper::loops`]).
+    pub(crate) fn evaluated_by(
+        &mut self,
+        loops: Vec<crate::evaluator::LoopPlan>,
+        backend: Option<mechdiff_core::trace::Backend>,
+    ) {
+        self.loops = loops;
+        self.backend = backend;
     }
 }
 

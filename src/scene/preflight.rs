@@ -3,12 +3,12 @@
 //! run can give before solving. `check` also holds the sweep against the drive's motion range
 //! it walked ([`sweep_within_motion_range`]), which a run finds when it reaches the limit.
 
-use mechdiff_core::geometry::{DriveLimit, LimitKind, Mechanism, MotionRange};
+use mechdiff_core::geometry::{DriveLimit, LimitKind, MotionRange};
 
 use crate::error::{Error, Result};
 
-use super::model::Scene;
 use super::positions::{MAX_IN_MEMORY, Positions};
+use super::setup::Setup;
 
 /// Every check of a scene's dynamics and balancing that needs no solved position: the
 /// dynamic model compiles, the drive has the speed the outputs need (a power balance or
@@ -17,18 +17,19 @@ use super::positions::{MAX_IN_MEMORY, Positions};
 ///
 /// # Errors
 /// The located error a run would give for the first of these that fails.
-pub fn before_solving(scene: &Scene, mechanism: &Mechanism) -> Result<()> {
-    if let Some(d) = scene.dynamics.as_ref().filter(|d| !d.outputs.is_empty()) {
-        super::dynamics::before_solving(scene, d, mechanism, scene.drive.speed)?;
+pub fn before_solving(setup: &Setup<'_>) -> Result<()> {
+    let (cx, mechanism) = (&setup.context, &setup.mechanism);
+    if let Some(d) = setup.dynamics.filter(|d| !d.outputs.is_empty()) {
+        super::dynamics::before_solving(cx, d, mechanism, cx.drive.speed)?;
     }
-    if let Some(b) = &scene.balancing {
-        super::balancing::before_solving(scene, b, mechanism)?;
+    if let Some(b) = setup.balancing {
+        super::balancing::before_solving(cx, b, mechanism)?;
     }
     // Counterweights are sized from every position before a row is known: held in memory.
-    let in_memory = (scene.balancing.as_ref()).is_some_and(|b| b.counterweights.is_some());
-    if in_memory && scene.positions.len() > MAX_IN_MEMORY {
+    let in_memory = (setup.balancing).is_some_and(|b| b.counterweights.is_some());
+    if in_memory && setup.positions.len() > MAX_IN_MEMORY {
         // The error names `step` and what to do instead; nothing is allocated.
-        scene.positions.to_vec()?;
+        setup.positions.to_vec()?;
     }
     Ok(())
 }
@@ -47,8 +48,8 @@ const LIMIT_SLACK: f64 = 1e-9;
 /// # Errors
 /// [`Error::Blocked`] with the last position of the sweep inside the range (or the sketch's),
 /// the first one past it, and the limit.
-pub fn sweep_within_motion_range(scene: &Scene, range: &MotionRange) -> Result<()> {
-    if scene.sweep_of.is_some() {
+pub fn sweep_within_motion_range(setup: &Setup<'_>, range: &MotionRange) -> Result<()> {
+    if setup.sweep_of.is_some() {
         return Ok(());
     }
     fn limit(end: Option<&DriveLimit>) -> Option<&DriveLimit> {
@@ -63,21 +64,21 @@ pub fn sweep_within_motion_range(scene: &Scene, range: &MotionRange) -> Result<(
             .filter(|l| phi < l.phi - LIMIT_SLACK * (1.0 + l.phi.abs()))
             .or_else(|| upper.filter(|u| phi > u.phi + LIMIT_SLACK * (1.0 + u.phi.abs())))
     };
-    let positions = &scene.positions;
+    let (positions, cx) = (setup.positions, &setup.context);
     let Some(first_past) = first_past(positions, |phi| past(phi).is_some()) else {
         return Ok(());
     };
     let phi = positions.get(first_past);
     let inside = match first_past {
-        0 => scene.drive.at_sketch,
+        0 => cx.drive.at_sketch,
         k => positions.get(k - 1),
     };
     let l = past(phi).expect("past the limit");
     Err(Error::Blocked {
-        file: scene.file.clone(),
-        from: scene.joint_text(inside).into(),
-        to: scene.joint_text(phi).into(),
-        limit: scene.joint_text(l.phi).into(),
+        file: cx.file.to_owned(),
+        from: cx.joint_text(inside).into(),
+        to: cx.joint_text(phi).into(),
+        limit: cx.joint_text(l.phi).into(),
         loop_joints: l.joints.join(", ").into(),
     })
 }

@@ -108,7 +108,6 @@ pub(crate) fn scene(file: &SceneFile, cx: &Context<'_>) -> Result<Scene> {
         plot,
         solver,
         parameters: cx.parameters.ordered().to_vec(),
-        evaluator: Default::default(),
     })
 }
 

@@ -1,5 +1,6 @@
-//! Running a scene: the drive positions, the sweep, the outputs at every drive position,
-//! and the dead positions asked for.
+//! Running a scene's [`Setup`]: the drive positions, the sweep, the outputs at every drive
+//! position, and the dead positions asked for. The scene itself is read once, at the edge
+//! ([`super::launch`]): nothing here takes the [`super::Scene`].
 
 use std::cell::RefCell;
 
@@ -8,14 +9,18 @@ use mechdiff_core::{DeadPosition, DeadPositionSearch};
 
 use crate::error::{Error, Result};
 
-use super::build::mechanism;
+use super::error_context::ErrorContext;
 use super::evaluate::{Resolved, evaluate};
-use super::model::{DriveKind, Output, Scene};
+use super::model::{DriveKind, Output};
 use super::outputs::Column;
 use super::plan::Plan;
 use super::positions::Positions;
+use super::setup::Setup;
 use super::sweep::{Counts, Sweeper, check_row, kinematic_columns, not_finite, solve};
 use super::units::{Dimension, Units};
+
+pub use super::describe::describe_motion_range;
+pub use super::launch::run;
 
 /// The dead positions of one output found in the sweep's range.
 #[derive(Debug, Clone, PartialEq)]
@@ -94,103 +99,98 @@ pub struct Checked {
     pub columns: Vec<Column>,
 }
 
-/// Checks a scene without running its sweep: builds the model, makes every check a run
-/// makes before solving (`scene::preflight`), checks its mobility and the sketch's
-/// assembly, walks the drive's motion range and holds the sweep against it.
-pub fn check(scene: &Scene) -> Result<Checked> {
-    let mechanism = mechanism(scene)?;
-    super::preflight::before_solving(scene, &mechanism)?;
+/// Checks a scene's run without running its sweep: makes every check a run makes before
+/// solving (`scene::preflight`) on the model `setup` built, checks its mobility and the
+/// sketch's assembly, walks the drive's motion range and holds the sweep against it.
+pub fn check(setup: Setup<'_>) -> Result<Checked> {
+    super::preflight::before_solving(&setup)?;
+    let cx = &setup.context;
     let (mobility, loops, closed_form, motion_range) = {
-        let tracker = scene
-            .solver
-            .track(&mechanism)
-            .map_err(|e| solver_error(scene, e))?;
+        let tracker = (setup.solver)
+            .track(&setup.mechanism)
+            .map_err(|e| cx.solver_error(e))?;
         (
             tracker.mobility(),
             tracker.loops(),
             tracker.closed_form_loops(),
-            match scene.drive.cam {
+            match cx.drive.cam {
                 // The cam's follower moves within the cam program's stroke.
                 Some(_) => {
                     Err("not walked for a cam drive (the cam sets the joint's travel)".into())
                 }
-                None => (tracker.motion_range()).map_err(|e| solver_error(scene, e).to_string()),
+                None => (tracker.motion_range()).map_err(|e| cx.solver_error(e).to_string()),
             },
         )
     };
     if let Ok(range) = &motion_range {
-        super::preflight::sweep_within_motion_range(scene, range)?;
+        super::preflight::sweep_within_motion_range(&setup, range)?;
     }
+    let (plan, columns) = (Plan::of(&setup), columns(&setup));
     Ok(Checked {
         mobility,
         loops,
         closed_form,
         motion_range,
-        plan: Plan::of(scene),
-        columns: columns(scene, &mechanism),
-        mechanism,
+        plan,
+        columns,
+        mechanism: setup.mechanism,
     })
 }
 
 /// The columns of a run's table, known before anything is solved: the drive, the outputs'
-/// columns, then those of `[[dynamics]]` and `[balancing]`, as [`run`] fills them.
-pub fn columns(scene: &Scene, mechanism: &Mechanism) -> Vec<Column> {
-    let mut all = kinematic_columns(scene);
-    if let Some(d) = &scene.dynamics {
+/// columns, then those of `[[dynamics]]` and `[balancing]`, as [`collect`] fills them.
+pub fn columns(setup: &Setup<'_>) -> Vec<Column> {
+    let (cx, mechanism) = (&setup.context, &setup.mechanism);
+    let mut all = kinematic_columns(cx, setup.outputs);
+    if let Some(d) = setup.dynamics {
         all.extend(super::dynamics::columns(
-            scene,
+            cx,
             d,
             mechanism,
             &d.plan(mechanism),
         ));
     }
-    if let Some(b) = &scene.balancing {
-        all.extend(super::balancing::columns(scene, b));
+    if let Some(b) = setup.balancing {
+        all.extend(super::balancing::columns(cx, b));
     }
     all
 }
 
-/// Runs a scene: solves every drive position of the sweep once (keeping the sketch's
-/// assembly branch) and feeds that pose to the outputs, `[[dynamics]]` and `[balancing]`;
-/// then searches the dead positions asked for.
-pub fn run(scene: &Scene) -> Result<Report> {
-    let mechanism = mechanism(scene)?;
-    super::preflight::before_solving(scene, &mechanism)?;
-    let mut plan = Plan::of(scene);
-    let mut all = columns(scene, &mechanism);
+/// Runs a scene's `setup` in memory: solves every drive position of the sweep once
+/// (keeping the sketch's assembly branch) and feeds that pose to the outputs,
+/// `[[dynamics]]` and `[balancing]`; then searches the dead positions asked for.
+pub fn collect(setup: &Setup<'_>) -> Result<Report> {
+    super::preflight::before_solving(setup)?;
+    let (cx, mechanism) = (&setup.context, &setup.mechanism);
+    let mut plan = Plan::of(setup);
+    let mut all = columns(setup);
     let mut stats = Stats::default();
-    let positions = drive_positions(scene, &mechanism, &mut stats)?;
-    let mut sweeper = sweeper(scene, &mechanism, &plan, true)?;
-    plan.evaluated_by(&sweeper);
-    let width = all.len()
-        - (scene.balancing.as_ref()).map_or(0, |b| super::balancing::columns(scene, b).len());
+    let positions = drive_positions(setup, &mut stats)?;
+    let mut sweeper = sweeper(setup, &plan, true)?;
+    plan.evaluated_by(sweeper.loops(), sweeper.backend());
+    let width = all.len() - (setup.balancing).map_or(0, |b| super::balancing::columns(cx, b).len());
     let mut rows = Vec::with_capacity(positions.len());
     for &phi in &positions {
         let mut row = Vec::with_capacity(all.len());
         sweeper.row(phi, &mut row)?;
         // The first error in drive order, as a streamed run reports it.
-        check_row(scene, &all[..width], &row)?;
+        check_row(cx, &all[..width], &row)?;
         rows.push(row);
     }
     let warnings = sweeper.warnings();
     stats.sweep = sweeper.counts();
-    let dead_positions = dead_positions(scene, &mechanism, positions.iter().copied(), &mut stats)?;
+    let dead_positions = dead_positions(setup, positions.iter().copied(), &mut stats)?;
     // The dynamic columns follow the drive's and the outputs'.
-    let first = kinematic_columns(scene).len();
+    let first = kinematic_columns(cx, setup.outputs).len();
     let dynamics = (sweeper.dynamics())
-        .map(|d| {
-            d.report(
-                scene,
-                rows.iter().map(|r| r[first..width].to_vec()).collect(),
-            )
-        })
+        .map(|d| d.report(cx, rows.iter().map(|r| r[first..width].to_vec()).collect()))
         .transpose()?;
     let linkage = (sweeper.take_balancing())
-        .map(|b| b.finish(scene))
+        .map(|b| b.finish(cx))
         .transpose()?;
     drop(sweeper);
-    let balancing = match &scene.balancing {
-        Some(b) => Some(super::balancing::run(scene, b, &mechanism, linkage)?),
+    let balancing = match setup.balancing {
+        Some(b) => Some(super::balancing::report(cx, b, mechanism, linkage)?),
         None => None,
     };
     if let Some(b) = balancing.as_ref().filter(|b| !b.columns.is_empty()) {
@@ -200,7 +200,7 @@ pub fn run(scene: &Scene) -> Result<Report> {
     } else {
         all.truncate(width);
     }
-    stats.limit_walks = usize::from(super::sweep_limits::walks(scene, positions.len()));
+    stats.limit_walks = usize::from(super::sweep_limits::walks(setup, positions.len()));
     let report = Report {
         plan,
         columns: all,
@@ -209,30 +209,30 @@ pub fn run(scene: &Scene) -> Result<Report> {
         dynamics,
         warnings,
         balancing,
-        limits: super::sweep_limits::in_sweep(scene, &mechanism, positions.iter().copied()),
+        limits: super::sweep_limits::in_sweep(setup, positions.iter().copied()),
         stats,
     };
-    all_finite(scene, &report)?;
+    all_finite(cx, &report)?;
     Ok(report)
 }
 
-/// The sweep of `scene` with its `[[dynamics]]` and `[balancing]` fed from the one walk;
+/// The sweep of `setup` with its `[[dynamics]]` and `[balancing]` fed from the one walk;
 /// `keep_steps` keeps every dynamics step for the report (a run in memory).
 pub(crate) fn sweeper<'s>(
-    scene: &'s Scene,
-    mechanism: &'s Mechanism,
+    setup: &'s Setup<'s>,
     plan: &Plan,
     keep_steps: bool,
 ) -> Result<Sweeper<'s>> {
-    let dynamics = match &scene.dynamics {
-        Some(d) => super::dynamics::DynamicsSweep::new(scene, d, mechanism, keep_steps)?,
+    let (cx, mechanism) = (&setup.context, &setup.mechanism);
+    let dynamics = match setup.dynamics {
+        Some(d) => super::dynamics::DynamicsSweep::new(cx, d, mechanism, keep_steps)?,
         None => None,
     };
-    let balancing = match &scene.balancing {
-        Some(b) => super::balancing::BalancingSweep::new(scene, b, mechanism)?,
+    let balancing = match setup.balancing {
+        Some(b) => super::balancing::BalancingSweep::new(cx, setup.dynamics, b, mechanism)?,
         None => None,
     };
-    Ok(Sweeper::new(scene, mechanism, plan)?.with_effects(dynamics, balancing))
+    Ok(Sweeper::new(setup, plan)?.with_effects(dynamics, balancing))
 }
 
 /// What a run evaluated: the sweep's own solves (each drive position once) and the
@@ -254,16 +254,19 @@ pub struct Stats {
 /// Checks that every number of a report is finite before it is printed or written: an
 /// overflow for some combination of inputs is an error naming the quantity and the drive
 /// position, never an `inf` or `NaN` in the table.
-fn all_finite(scene: &Scene, report: &Report) -> Result<()> {
+fn all_finite(cx: &ErrorContext<'_>, report: &Report) -> Result<()> {
     for row in &report.rows {
-        check_row(scene, &report.columns, row)?;
+        check_row(cx, &report.columns, row)?;
     }
-    check_dead_positions(scene, &report.dead_positions)
+    check_dead_positions(cx, &report.dead_positions)
 }
 
 /// Checks that the dead positions found and their strokes are finite.
-pub(crate) fn check_dead_positions(scene: &Scene, dead_positions: &[DeadPositions]) -> Result<()> {
-    let not_finite = |quantity, value, phi| not_finite(scene, quantity, value, phi);
+pub(crate) fn check_dead_positions(
+    cx: &ErrorContext<'_>,
+    dead_positions: &[DeadPositions],
+) -> Result<()> {
+    let not_finite = |quantity, value, phi| not_finite(cx, quantity, value, phi);
     for dead in dead_positions {
         for d in &dead.positions {
             if !(d.value.is_finite() && d.phi.is_finite()) {
@@ -281,14 +284,10 @@ pub(crate) fn check_dead_positions(scene: &Scene, dead_positions: &[DeadPosition
 
 /// The drive positions of a streamed sweep: as given (counted on demand), or solved for
 /// `[sweep] of` (a list from the file, held in memory).
-pub(crate) fn streamed_positions(
-    scene: &Scene,
-    mechanism: &Mechanism,
-    stats: &mut Stats,
-) -> Result<Positions> {
-    match scene.sweep_of {
-        None => Ok(scene.positions.clone()),
-        Some(_) => drive_positions(scene, mechanism, stats).map(Positions::List),
+pub(crate) fn streamed_positions(setup: &Setup<'_>, stats: &mut Stats) -> Result<Positions> {
+    match setup.sweep_of {
+        None => Ok(setup.positions.clone()),
+        Some(_) => drive_positions(setup, stats).map(Positions::List),
     }
 }
 
@@ -296,17 +295,17 @@ pub(crate) fn streamed_positions(
 /// that the output takes each given value (Newton on the output's exact velocity
 /// coefficient, from the sketch or the previous position; steps limited to a quarter turn or
 /// a quarter of the sketch's size).
-fn drive_positions(scene: &Scene, mechanism: &Mechanism, stats: &mut Stats) -> Result<Vec<f64>> {
-    let Some(k) = scene.sweep_of else {
-        return scene.positions.to_vec();
+fn drive_positions(setup: &Setup<'_>, stats: &mut Stats) -> Result<Vec<f64>> {
+    let Some(k) = setup.sweep_of else {
+        return setup.positions.to_vec();
     };
-    let resolved = Resolved::new(scene, mechanism, &scene.outputs[k])?;
+    let cx = &setup.context;
+    let resolved = Resolved::new(setup, &setup.outputs[k])?;
     let output = resolved.output;
-    let mut tracker = scene
-        .solver
-        .track(mechanism)
-        .map_err(|e| solver_error(scene, e))?;
-    let max_step = match scene.drive.kind {
+    let mut tracker = (setup.solver)
+        .track(&setup.mechanism)
+        .map_err(|e| cx.solver_error(e))?;
+    let max_step = match cx.drive.kind {
         DriveKind::Angle => std::f64::consts::FRAC_PI_4,
         DriveKind::Displacement => 0.25 * tracker.length_scale(),
     };
@@ -314,13 +313,13 @@ fn drive_positions(scene: &Scene, mechanism: &Mechanism, stats: &mut Stats) -> R
     let text = |v: f64| {
         format!(
             "{} {}",
-            Units::tidy(scene.units.from_si(v, dimension)),
-            scene.units.symbol(dimension)
+            Units::tidy(cx.units.from_si(v, dimension)),
+            cx.units.symbol(dimension)
         )
     };
     let mut previous = None;
-    let mut drive = Vec::with_capacity(scene.positions.len());
-    for target in scene.positions.iter() {
+    let mut drive = Vec::with_capacity(setup.positions.len());
+    for target in setup.positions.iter() {
         let mut phi = tracker.phi();
         let mut reached = false;
         // Why the last trial position failed, if it did: a step that leaves the positions
@@ -329,7 +328,7 @@ fn drive_positions(scene: &Scene, mechanism: &Mechanism, stats: &mut Stats) -> R
         let mut beyond: Option<Error> = None;
         for _ in 0..60 {
             stats.sweep_of += 1;
-            let k = match solve::<1>(scene, &mut tracker, phi) {
+            let k = match solve::<1>(cx, &mut tracker, phi) {
                 Ok(k) => k,
                 Err(e) => {
                     let good = tracker.phi();
@@ -343,7 +342,7 @@ fn drive_positions(scene: &Scene, mechanism: &Mechanism, stats: &mut Stats) -> R
                 }
             };
             beyond = None;
-            let jet = evaluate(scene, &k, &resolved, &mut previous)[0];
+            let jet = evaluate(&k, &resolved, &mut previous)[0];
             let (miss, slope) = (jet.value - target, jet.d1());
             if miss.abs() <= 4.0 * f64::EPSILON * target.abs().max(jet.value.abs()) {
                 reached = true;
@@ -361,14 +360,14 @@ fn drive_positions(scene: &Scene, mechanism: &Mechanism, stats: &mut Stats) -> R
         }
         if !reached {
             return Err(Error::NotReached {
-                file: scene.file.clone(),
+                file: cx.file.to_owned(),
                 output: output.name.clone(),
                 value: text(target),
-                last: scene.drive_text(tracker.phi()),
+                last: cx.drive_text(tracker.phi()),
                 beyond: beyond
                     .map_or_else(String::new, |e| {
                         let e = e.to_string();
-                        let file = format!("{}: ", scene.file);
+                        let file = format!("{}: ", cx.file);
                         format!("; beyond it: {}", e.strip_prefix(&file).unwrap_or(&e))
                     })
                     .into(),
@@ -381,14 +380,13 @@ fn drive_positions(scene: &Scene, mechanism: &Mechanism, stats: &mut Stats) -> R
 
 /// The dead positions asked for, searched in the range of the sweep's drive positions.
 pub(crate) fn dead_positions(
-    scene: &Scene,
-    mechanism: &Mechanism,
+    setup: &Setup<'_>,
     positions: impl Iterator<Item = f64> + Clone,
     stats: &mut Stats,
 ) -> Result<Vec<DeadPositions>> {
     let mut dead_positions = Vec::new();
-    for output in scene.outputs.iter().filter(|o| o.dead_positions) {
-        let (found, solved) = search_dead_positions(scene, mechanism, output, positions.clone())?;
+    for output in setup.outputs.iter().filter(|o| o.dead_positions) {
+        let (found, solved) = search_dead_positions(setup, output, positions.clone())?;
         stats.dead_positions += solved;
         dead_positions.push(DeadPositions {
             output: output.name.clone(),
@@ -405,8 +403,7 @@ const DEAD_POSITION_INTERVALS: f64 = 65_536.0;
 /// Every dead position of an angle or slider output in the sweep's range, and the number of
 /// positions the search solved.
 fn search_dead_positions(
-    scene: &Scene,
-    mechanism: &Mechanism,
+    setup: &Setup<'_>,
     output: &Output,
     positions: impl Iterator<Item = f64> + Clone,
 ) -> Result<(Vec<DeadPosition>, usize)> {
@@ -424,13 +421,13 @@ fn search_dead_positions(
     let step = sweep_step
         .min((hi - lo) / 360.0)
         .max((hi - lo) / DEAD_POSITION_INTERVALS);
+    let cx = &setup.context;
     let tracker = RefCell::new(
-        scene
-            .solver
-            .track(mechanism)
-            .map_err(|e| solver_error(scene, e))?,
+        (setup.solver)
+            .track(&setup.mechanism)
+            .map_err(|e| cx.solver_error(e))?,
     );
-    let resolved = Resolved::new(scene, mechanism, output)?;
+    let resolved = Resolved::new(setup, output)?;
     let previous = RefCell::new(None);
     let solved = std::cell::Cell::new(0);
     let found = DeadPositionSearch::new(lo..=hi)
@@ -439,49 +436,10 @@ fn search_dead_positions(
             solved.set(solved.get() + 1);
             let mut t = tracker.borrow_mut();
             let k = t.move_to(phi).and_then(|_| t.kinematics::<3>())?;
-            Ok(evaluate(scene, &k, &resolved, &mut previous.borrow_mut())[0])
+            Ok(evaluate(&k, &resolved, &mut previous.borrow_mut())[0])
         })
-        .map_err(|e| solver_error(scene, e))?;
+        .map_err(|e| cx.solver_error(e))?;
     Ok((found, solved.get()))
-}
-
-/// The drive's motion range in words, in the scene's units: `"from … (…) to … (…)"`, or
-/// that no limit was met within the distance searched.
-pub fn describe_motion_range(scene: &Scene, range: &MotionRange) -> String {
-    let end = |limit: &Option<mechdiff_core::geometry::DriveLimit>, sign: f64| match limit {
-        Some(l) => {
-            let what = super::sweep_limits::kind_words(l.kind);
-            let joints = l.joints.join(", ");
-            format!(
-                "{} ({what}, loop of joints {joints})",
-                scene.drive_text(l.phi)
-            )
-        }
-        None => format!(
-            "beyond {} (no limit met)",
-            scene.drive_text(scene.drive.at_sketch + sign * range.searched)
-        ),
-    };
-    if range.lower.is_none() && range.upper.is_none() && scene.drive.kind == DriveKind::Angle {
-        return "full turns (no limit position, change point or toggle in a turn)".to_owned();
-    }
-    format!(
-        "from {} to {}",
-        end(&range.lower, -1.0),
-        end(&range.upper, 1.0)
-    )
-}
-
-/// A core solver error, with drive positions in the scene's units (see
-/// [`super::error_context::ErrorContext::solver_error`]).
-pub(crate) fn solver_error(scene: &Scene, source: mechdiff_core::Error) -> Error {
-    scene.error_context().solver_error(source)
-}
-
-/// The error of a move along a cam, its drive positions cam angles (see
-/// [`super::error_context::ErrorContext::cam_error`]).
-pub(crate) fn cam_error(scene: &Scene, source: mechdiff_core::Error) -> Error {
-    scene.error_context().cam_error(source)
 }
 
 #[cfg(test)]
@@ -516,9 +474,10 @@ mod tests {
             "#,
         )
         .unwrap();
-        let mut report = run(&scene).unwrap();
+        let setup = Setup::of(&scene, &Default::default()).unwrap();
+        let mut report = collect(&setup).unwrap();
         report.rows[1][2] = f64::INFINITY;
-        let e = all_finite(&scene, &report).unwrap_err();
+        let e = all_finite(&setup.context, &report).unwrap_err();
         assert!(matches!(e, Error::NotFinite { .. }), "{e:?}");
         let message = e.to_string();
         assert!(
@@ -527,7 +486,7 @@ mod tests {
         );
         report.rows[1][2] = f64::NAN;
         assert!(
-            all_finite(&scene, &report)
+            all_finite(&setup.context, &report)
                 .unwrap_err()
                 .to_string()
                 .contains("is NaN")

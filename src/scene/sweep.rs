@@ -5,7 +5,7 @@
 //! [`super::run()`] collects the rows; [`crate::stream`] formats and writes them as they come.
 
 use mechdiff_core::DriveState;
-use mechdiff_core::geometry::{Kinematics, Mechanism, Tracker};
+use mechdiff_core::geometry::{Kinematics, Tracker};
 use mechdiff_core::sweep::Consumer;
 
 use crate::error::{Error, Result};
@@ -14,11 +14,12 @@ use mechdiff_core::trace::Backend;
 
 use super::balancing::BalancingSweep;
 use super::dynamics::DynamicsSweep;
+use super::error_context::ErrorContext;
 use super::evaluate::{Resolved, evaluate, from_code, quantity};
-use super::model::Scene;
+use super::model::Output;
 use super::outputs::{Column, columns};
 use super::plan::Plan;
-use super::run::{cam_error, solver_error};
+use super::setup::Setup;
 
 /// A pose that amplifies rounding more than this (see `Tracker::amplification`) is
 /// reported as ill-conditioned: its results carry a relative error above ~2e-12.
@@ -35,22 +36,19 @@ fn is_worse(candidate: f64, worst: Option<&Worst>) -> bool {
     worst.is_none_or(|w| !candidate.is_nan() && (w.0.is_nan() || candidate > w.0))
 }
 
-/// The columns of a scene's kinematic outputs: the drive first, then each output's.
-pub fn kinematic_columns(scene: &Scene) -> Vec<Column> {
-    let drive_dimension = scene.drive.kind.dimension();
+/// The columns of a run's kinematic `outputs`: the drive first, then each output's, in the
+/// units of the scene's words `cx`.
+pub fn kinematic_columns(cx: &ErrorContext<'_>, outputs: &[Output]) -> Vec<Column> {
+    let (drive, units) = (cx.drive, &cx.units);
+    let drive_dimension = drive.kind.dimension();
     let mut all = vec![Column {
         // A cam drive's column is the cam angle θ; the driven joint follows s(θ).
-        name: if scene.drive.cam.is_some() {
-            "theta"
-        } else {
-            "phi"
-        }
-        .to_owned(),
-        unit: scene.units.symbol(drive_dimension).to_owned(),
-        factor: scene.units.factor(drive_dimension),
+        name: if drive.cam.is_some() { "theta" } else { "phi" }.to_owned(),
+        unit: units.symbol(drive_dimension).to_owned(),
+        factor: units.factor(drive_dimension),
     }];
-    for output in &scene.outputs {
-        all.extend(columns(output, &scene.units, drive_dimension));
+    for output in outputs {
+        all.extend(columns(output, units, drive_dimension));
     }
     all
 }
@@ -59,10 +57,10 @@ pub fn kinematic_columns(scene: &Scene) -> Vec<Column> {
 /// continues from the same state independently (see [`Sweeper::same_state`]).
 #[derive(Debug, Clone)]
 pub struct Sweeper<'s> {
-    scene: &'s Scene,
+    setup: &'s Setup<'s>,
     walk: Walk<'s>,
     worst: Option<Worst>,
-    /// The run-time evaluator, when the scene's `evaluator` chose it: it takes every step
+    /// The run-time evaluator, when the run's `evaluator` chose it: it takes every step
     /// it can prove, the solver the others (see [`crate::evaluator`]).
     program: Option<ProgramPath>,
     /// Why the run-time evaluator is interpreted where the JIT was asked for.
@@ -122,16 +120,15 @@ struct Outputs<'s> {
 }
 
 impl<'s> Sweeper<'s> {
-    /// Starts a sweep at the sketch pose.
-    pub fn new(scene: &'s Scene, mechanism: &'s Mechanism, plan: &Plan) -> Result<Self> {
-        let tracker = scene
-            .solver
-            .track(mechanism)
-            .map_err(|e| solver_error(scene, e))?;
-        let outputs = (scene.outputs.iter())
-            .map(|output| Resolved::new(scene, mechanism, output))
+    /// Starts a sweep of `setup`'s run at the sketch pose.
+    pub fn new(setup: &'s Setup<'s>, plan: &Plan) -> Result<Self> {
+        let tracker = (setup.solver)
+            .track(&setup.mechanism)
+            .map_err(|e| setup.context.solver_error(e))?;
+        let outputs = (setup.outputs.iter())
+            .map(|output| Resolved::new(setup, output))
             .collect::<Result<Vec<_>>>()?;
-        let program = ProgramPath::choose(scene, &tracker)?;
+        let program = ProgramPath::choose(setup, &tracker)?;
         let jit_warning = program.as_ref().and_then(ProgramPath::jit_warning);
         let outputs = Outputs {
             tracker,
@@ -145,7 +142,7 @@ impl<'s> Sweeper<'s> {
             _ => Walk::Third(outputs),
         };
         Ok(Self {
-            scene,
+            setup,
             walk,
             worst: None,
             program,
@@ -187,15 +184,15 @@ impl<'s> Sweeper<'s> {
     /// Feeds the pose the tracker stands at, drive position `phi`, to `[[dynamics]]` (its
     /// columns appended to `row`) and `[balancing]`.
     fn effects(&mut self, phi: f64, row: &mut Vec<f64>) -> Result<()> {
-        let scene = self.scene;
+        let cx = &self.setup.context;
         let tracker = match &self.walk {
             Walk::First(o) | Walk::Second(o) | Walk::Third(o) => &o.tracker,
         };
         if let Some(d) = &mut self.dynamics {
-            (d.at(tracker, phi, row)).map_err(|e| super::dynamics::error(scene, e))?;
+            (d.at(tracker, phi, row)).map_err(|e| super::dynamics::error(cx, e))?;
         }
         if let Some(b) = &mut self.balancing {
-            (b.at(tracker, phi, row)).map_err(|e| b.error(scene, e))?;
+            (b.at(tracker, phi, row)).map_err(|e| b.error(cx, e))?;
         }
         Ok(())
     }
@@ -232,11 +229,10 @@ impl<'s> Sweeper<'s> {
         let Some(values) = p.move_to(phi) else {
             return false;
         };
-        let scene = self.scene;
         match &mut self.walk {
-            Walk::First(o) => o.push_code::<1>(scene, values, width, row),
-            Walk::Second(o) => o.push_code::<2>(scene, values, width, row),
-            Walk::Third(o) => o.push_code::<3>(scene, values, width, row),
+            Walk::First(o) => o.push_code::<1>(values, width, row),
+            Walk::Second(o) => o.push_code::<2>(values, width, row),
+            Walk::Third(o) => o.push_code::<3>(values, width, row),
         }
         let (amplification, l) = p.amplification();
         if is_worse(amplification, self.worst.as_ref()) {
@@ -251,13 +247,13 @@ impl<'s> Sweeper<'s> {
         row.clear();
         row.push(phi);
         self.counts.rows += 1;
-        let scene = self.scene;
+        let setup = self.setup;
         if self.program_row(phi, row) {
             self.counts.program_steps += 1;
             if self.has_effects() {
                 // The effects read the tracker's pose: it follows the program.
                 let last = self.last;
-                move_along(scene, &mut self.outputs_mut().tracker, last, phi)?;
+                move_along(&setup.context, &mut self.outputs_mut().tracker, last, phi)?;
                 self.counts.solves += 1;
             }
             self.last = Some(phi);
@@ -268,26 +264,28 @@ impl<'s> Sweeper<'s> {
             // since the last step it took; the steps between were proven).
             let tracker = &mut self.outputs_mut().tracker;
             if tracker.phi() != at {
-                tracker.move_to(at).map_err(|e| solver_error(scene, e))?;
+                tracker
+                    .move_to(at)
+                    .map_err(|e| setup.context.solver_error(e))?;
                 self.counts.solves += 1;
             }
         }
-        let last = self.last;
+        let (last, cx) = (self.last, &setup.context);
         self.counts.solves += 1;
         let o = match &mut self.walk {
             Walk::First(o) => {
-                let k = solve_along::<1>(scene, &mut o.tracker, last, phi)?;
-                o.push(scene, phi, &k, row);
+                let k = solve_along::<1>(cx, &mut o.tracker, last, phi)?;
+                o.push(cx, phi, &k, row);
                 o
             }
             Walk::Second(o) => {
-                let k = solve_along::<2>(scene, &mut o.tracker, last, phi)?;
-                o.push(scene, phi, &k, row);
+                let k = solve_along::<2>(cx, &mut o.tracker, last, phi)?;
+                o.push(cx, phi, &k, row);
                 o
             }
             Walk::Third(o) => {
-                let k = solve_along::<3>(scene, &mut o.tracker, last, phi)?;
-                o.push(scene, phi, &k, row);
+                let k = solve_along::<3>(cx, &mut o.tracker, last, phi)?;
+                o.push(cx, phi, &k, row);
                 o
             }
         };
@@ -391,7 +389,7 @@ impl<'s> Sweeper<'s> {
             "ill-conditioned position at drive position {}: the loop of joints {} amplifies \
              rounding by {amplification:.1e} (its lever is that much shorter than in the \
              sketch); expect a relative error of about {:.0e} in the results there",
-            self.scene.drive_text(*phi),
+            self.setup.context.drive_text(*phi),
             joints.join(", "),
             amplification * f64::EPSILON,
         ));
@@ -402,16 +400,10 @@ impl<'s> Sweeper<'s> {
 impl Outputs<'_> {
     /// Pushes the columns of every output from the generated code's `values` (each output
     /// row `[x, x′, …]`, `width` values).
-    fn push_code<const N: usize>(
-        &mut self,
-        scene: &Scene,
-        values: &[f64],
-        width: usize,
-        row: &mut Vec<f64>,
-    ) {
+    fn push_code<const N: usize>(&mut self, values: &[f64], width: usize, row: &mut Vec<f64>) {
         let mut at = 0;
         for (resolved, previous) in self.outputs.iter().zip(self.previous.iter_mut()) {
-            let jets = from_code::<N>(scene, resolved, values, &mut at, width, previous);
+            let jets = from_code::<N>(resolved, values, &mut at, width, previous);
             for q in &resolved.output.quantities {
                 for v in &jets {
                     row.push(quantity(v, *q, &self.drive));
@@ -422,14 +414,14 @@ impl Outputs<'_> {
 
     fn push<const N: usize>(
         &mut self,
-        scene: &Scene,
+        cx: &ErrorContext<'_>,
         phi: f64,
         k: &Kinematics<'_, N>,
         row: &mut Vec<f64>,
     ) {
         for (resolved, previous) in self.outputs.iter().zip(self.previous.iter_mut()) {
-            let mut values = evaluate(scene, k, resolved, previous);
-            if let Some(cam) = &scene.drive.cam {
+            let mut values = evaluate(k, resolved, previous);
+            if let Some(cam) = &cx.drive.cam {
                 // Derivatives with respect to the cam angle (the chain rule through s(θ)).
                 values = values.iter().map(|v| cam.joint.compose(phi, v)).collect();
             }
@@ -448,63 +440,66 @@ impl Outputs<'_> {
 /// between them, see [`mechdiff_core::cams::CamJoint::move_tracker`]; from the sketch,
 /// straight to s(θ)).
 fn solve_along<'m, const N: usize>(
-    scene: &Scene,
+    cx: &ErrorContext<'_>,
     tracker: &mut Tracker<'m>,
     last: Option<f64>,
     phi: f64,
 ) -> Result<Kinematics<'m, N>> {
-    move_along(scene, tracker, last, phi)?;
-    tracker
-        .kinematics::<N>()
-        .map_err(|e| solver_error(scene, e))
+    move_along(cx, tracker, last, phi)?;
+    tracker.kinematics::<N>().map_err(|e| cx.solver_error(e))
 }
 
 /// Moves `tracker` to drive position `phi` as [`solve_along`] does, lifting nothing.
-fn move_along(scene: &Scene, tracker: &mut Tracker<'_>, last: Option<f64>, phi: f64) -> Result<()> {
-    match (&scene.drive.cam, last) {
+fn move_along(
+    cx: &ErrorContext<'_>,
+    tracker: &mut Tracker<'_>,
+    last: Option<f64>,
+    phi: f64,
+) -> Result<()> {
+    match (&cx.drive.cam, last) {
         (Some(cam), Some(from)) => {
-            let offset = scene.drive.at_sketch;
+            let offset = cx.drive.at_sketch;
             (cam.joint)
                 .move_tracker(tracker, offset, from, phi)
-                .map_err(|e| cam_error(scene, e))
+                .map_err(|e| cx.cam_error(e))
         }
-        _ => (tracker.move_to(scene.drive.joint_position(phi)))
+        _ => (tracker.move_to(cx.drive.joint_position(phi)))
             .map(drop)
-            .map_err(|e| solver_error(scene, e)),
+            .map_err(|e| cx.solver_error(e)),
     }
 }
 
+/// Moves `tracker` to the driven joint's position `phi` and lifts the pose to `N`
+/// derivatives.
 pub(crate) fn solve<'m, const N: usize>(
-    scene: &Scene,
+    cx: &ErrorContext<'_>,
     tracker: &mut Tracker<'m>,
     phi: f64,
 ) -> Result<Kinematics<'m, N>> {
-    tracker.move_to(phi).map_err(|e| solver_error(scene, e))?;
-    tracker
-        .kinematics::<N>()
-        .map_err(|e| solver_error(scene, e))
+    tracker.move_to(phi).map_err(|e| cx.solver_error(e))?;
+    tracker.kinematics::<N>().map_err(|e| cx.solver_error(e))
 }
 
 /// Checks that every value of a row is finite, and still finite in the column's printed
 /// unit: an overflow for some combination of inputs is an error naming the column and the
 /// drive position, never an `inf` or `NaN` in the table.
-pub fn check_row(scene: &Scene, columns: &[Column], row: &[f64]) -> Result<()> {
+pub fn check_row(cx: &ErrorContext<'_>, columns: &[Column], row: &[f64]) -> Result<()> {
     for (value, column) in row.iter().zip(columns) {
         if !value.is_finite() || !(value / column.factor).is_finite() {
-            return Err(not_finite(scene, column.header(), *value, row[0]));
+            return Err(not_finite(cx, column.header(), *value, row[0]));
         }
     }
     Ok(())
 }
 
 /// `quantity` is `value` (not finite) at drive position `phi`.
-pub(crate) fn not_finite(scene: &Scene, quantity: String, value: f64, phi: f64) -> Error {
+pub(crate) fn not_finite(cx: &ErrorContext<'_>, quantity: String, value: f64, phi: f64) -> Error {
     Error::NotFinite {
-        file: scene.file.clone(),
+        file: cx.file.to_owned(),
         quantity,
         value: value.to_string(),
         position: if phi.is_finite() {
-            scene.drive_text(phi)
+            cx.drive_text(phi)
         } else {
             phi.to_string()
         },

@@ -1,10 +1,11 @@
 //! The ends of the drive's motion range (limit positions, change points, toggles) that a
 //! run's sweep reaches: marked on the diagrams and listed after the dead positions.
 
-use mechdiff_core::geometry::{DriveLimit, LimitKind, Mechanism};
+use mechdiff_core::geometry::{DriveLimit, LimitKind};
 use std::f64::consts::TAU;
 
-use super::model::{DriveKind, Scene};
+use super::model::DriveKind;
+use super::setup::Setup;
 
 /// One end of the drive's motion range that the sweep reaches.
 #[derive(Debug, Clone, PartialEq)]
@@ -17,8 +18,8 @@ pub struct SweepLimit {
 
 /// Whether [`in_sweep`] walks the drive's motion range for a sweep of `positions` drive
 /// positions: not for a cam drive or fewer than two positions.
-pub fn walks(scene: &Scene, positions: usize) -> bool {
-    scene.drive.cam.is_none() && positions >= 2
+pub fn walks(setup: &Setup<'_>, positions: usize) -> bool {
+    setup.drive().cam.is_none() && positions >= 2
 }
 
 /// The ends of the motion range walked from the sketch (`Tracker::motion_range`) that lie in
@@ -27,16 +28,14 @@ pub fn walks(scene: &Scene, positions: usize) -> bool {
 /// fewer than two positions or a range that cannot be walked give none (the run itself has
 /// already solved every position it reports).
 pub fn in_sweep(
-    scene: &Scene,
-    mechanism: &Mechanism,
+    setup: &Setup<'_>,
     positions: impl ExactSizeIterator<Item = f64> + Clone,
 ) -> Vec<SweepLimit> {
-    if !walks(scene, positions.len()) {
+    if !walks(setup, positions.len()) {
         return Vec::new();
     }
-    let Some(range) = scene
-        .solver
-        .track(mechanism)
+    let Some(range) = (setup.solver)
+        .track(&setup.mechanism)
         .and_then(|t| t.motion_range())
         .ok()
     else {
@@ -50,7 +49,7 @@ pub fn in_sweep(
         .zip(positions.skip(1))
         .map(|(a, b)| (b - a).abs())
         .fold(0.0, f64::max);
-    let turns: &[f64] = match scene.drive.kind {
+    let turns: &[f64] = match setup.drive().kind {
         DriveKind::Angle => &[0.0, -TAU, TAU],
         DriveKind::Displacement => &[0.0],
     };
@@ -78,21 +77,4 @@ pub fn kind_words(kind: LimitKind) -> &'static str {
         LimitKind::Toggle => "toggle",
         LimitKind::BranchFlip => "branch flip beyond",
     }
-}
-
-/// One line per limit the sweep reaches, in the scene's units: `phi = … deg: limit position
-/// (loop of joints A, B, guide)`.
-pub fn lines(scene: &Scene, limits: &[SweepLimit]) -> Vec<String> {
-    limits
-        .iter()
-        .map(|l| {
-            format!(
-                "  phi = {}: {} (loop of joints {}){}",
-                scene.drive_text(l.limit.phi),
-                kind_words(l.limit.kind),
-                l.limit.joints.join(", "),
-                l.tag
-            )
-        })
-        .collect()
 }

@@ -154,7 +154,7 @@ pub fn write_dead_positions(
             out,
             "the sweep reaches the end of the drive's motion range (walked from the sketch):"
         )?;
-        for line in super::sweep_limits::lines(scene, &report.limits) {
+        for line in super::describe::limit_lines(scene, &report.limits) {
             writeln!(out, "{line}")?;
         }
     }

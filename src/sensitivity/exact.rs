@@ -21,7 +21,7 @@ use mechdiff_core::num_dual::Dual64;
 use crate::error::Result;
 use crate::scene::dynamics::column_derivatives;
 use crate::scene::evaluate::{points_on_links, quantity_in, values};
-use crate::scene::run::solver_error;
+use crate::scene::setup::{RunOptions, Setup};
 use crate::scene::sweep::solve;
 use crate::scene::tangent::{SceneTangent, scene_tangent};
 use crate::scene::{Plan, Scene};
@@ -56,38 +56,37 @@ pub fn kinematic_derivatives(
     tangent: &SceneTangent,
     positions: &[f64],
 ) -> Result<Vec<Vec<f64>>> {
-    let mechanism = crate::scene::build::mechanism(scene)?;
-    let data = tangent.data_tangent(&mechanism);
-    let parametric = Parametric::new(&mechanism, &data).map_err(|e| solver_error(scene, e))?;
-    match scene.order() {
-        0 | 1 => walk::<1>(scene, &parametric, tangent, positions),
-        2 => walk::<2>(scene, &parametric, tangent, positions),
-        _ => walk::<3>(scene, &parametric, tangent, positions),
+    let setup = Setup::of(scene, &RunOptions::default())?;
+    let data = tangent.data_tangent(&setup.mechanism);
+    let parametric =
+        Parametric::new(&setup.mechanism, &data).map_err(|e| setup.context.solver_error(e))?;
+    match setup.order {
+        0 | 1 => walk::<1>(&setup, &parametric, tangent, positions),
+        2 => walk::<2>(&setup, &parametric, tangent, positions),
+        _ => walk::<3>(&setup, &parametric, tangent, positions),
     }
 }
 
 /// The walk at derivative order `N`.
 fn walk<const N: usize>(
-    scene: &Scene,
+    setup: &Setup<'_>,
     parametric: &Parametric<'_>,
     tangent: &SceneTangent,
     positions: &[f64],
 ) -> Result<Vec<Vec<f64>>> {
-    let mechanism = parametric.mechanism();
-    let outputs = (scene.outputs.iter())
+    let (mechanism, cx) = (parametric.mechanism(), &setup.context);
+    let outputs = (setup.outputs.iter())
         .map(|output| {
-            let points = points_on_links(scene, output)?
+            let points = points_on_links(setup.links, output)?
                 .into_iter()
                 .map(|(link, point)| {
-                    parametric
-                        .point_output(link, point)
-                        .map_err(|e| solver_error(scene, e))
+                    (parametric.point_output(link, point)).map_err(|e| cx.solver_error(e))
                 })
                 .collect::<Result<Vec<_>>>()?;
             Ok((output, points))
         })
         .collect::<Result<Vec<_>>>()?;
-    let state = Plan::of(scene)
+    let state = Plan::of(setup)
         .drive
         .unwrap_or(DriveState::constant_speed(0.0));
     let drive = DriveState {
@@ -95,14 +94,13 @@ fn walk<const N: usize>(
         alpha: Dual64::new(state.alpha, tangent.acceleration),
         jerk: Dual64::from(state.jerk),
     };
-    let mut tracker = scene
-        .solver
+    let mut tracker = (setup.solver)
         .track(mechanism)
-        .map_err(|e| solver_error(scene, e))?;
+        .map_err(|e| cx.solver_error(e))?;
     let mut rows = Vec::with_capacity(positions.len());
     for &phi in positions {
-        let k = solve::<N>(scene, &mut tracker, phi)?;
-        let pose = parametric.pose(&k).map_err(|e| solver_error(scene, e))?;
+        let k = solve::<N>(cx, &mut tracker, phi)?;
+        let pose = parametric.pose(&k).map_err(|e| cx.solver_error(e))?;
         let mut row = vec![0.0];
         for (output, points) in &outputs {
             // An angle's whole turns (kept continuous by a run) do not change d/dp.
@@ -175,11 +173,12 @@ pub(super) fn dynamics(
     let failed = |e: crate::error::Error| format!("the exact route failed ({e})");
     let mechanism = crate::scene::build::mechanism(scene).map_err(failed)?;
     let data = tangent.data_tangent(&mechanism);
-    let parametric =
-        Parametric::new(&mechanism, &data).map_err(|e| failed(solver_error(scene, e)))?;
+    let cx = scene.error_context();
+    let parametric = Parametric::new(&mechanism, &data).map_err(|e| failed(cx.solver_error(e)))?;
     let effects = tangent.effects_tangent();
     let columns = column_derivatives(
-        scene,
+        &cx,
+        &scene.solver,
         d,
         &parametric,
         &effects,

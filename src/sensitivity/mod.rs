@@ -410,12 +410,13 @@ struct ColumnClasses {
 
 impl ColumnClasses {
     fn of(scene: &Scene, columns: usize) -> Self {
+        let cx = scene.error_context();
         let balancing = scene
             .balancing
             .as_ref()
-            .map_or(0, |b| crate::scene::balancing::columns(scene, b).len());
+            .map_or(0, |b| crate::scene::balancing::columns(&cx, b).len());
         ColumnClasses {
-            kinematic: crate::scene::sweep::kinematic_columns(scene).len(),
+            kinematic: crate::scene::sweep::kinematic_columns(&cx, &scene.outputs).len(),
             dynamics_end: columns - balancing,
         }
     }

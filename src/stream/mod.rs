@@ -24,15 +24,22 @@ use std::io::{self, Write};
 use std::path::PathBuf;
 
 use crate::error::{Error, Result};
+use crate::evaluator::Evaluator;
 use crate::parallel::prelude::*;
 use crate::scene::run::{
-    self, Report, Stats, check_dead_positions, dead_positions, streamed_positions,
+    Report, Stats, check_dead_positions, collect, columns, dead_positions, streamed_positions,
+    sweeper,
 };
-use crate::scene::{Plan, Scene, build, table};
+use crate::scene::setup::Setup;
+use crate::scene::{Plan, table};
 
 use format::{RowFormat, Texts, Wanted};
 use speculate::{Batch, Sweep};
 pub use speculate::{Pieces, Speculation};
+
+/// Runs a scene and streams its rows to sinks (see [`sweep`]); the scene is resolved once
+/// into its [`Setup`] with [`Options::evaluator`], and its table worded by the scene itself.
+pub use crate::scene::launch::stream as run;
 
 /// The longest sweep whose table is printed as in memory (each column in the format its
 /// values need, see [`crate::scene::table::write_table`]); a longer one is printed with
@@ -90,6 +97,8 @@ pub struct Options {
     pub speculation: Speculation,
     /// The longest sweep whose table is printed from its values ([`TABLE_FROM_VALUES`]).
     pub table_from_values: usize,
+    /// How the run evaluates its positions (`--evaluator`, [`crate::RunOptions::evaluator`]).
+    pub evaluator: Evaluator,
 }
 
 impl Default for Options {
@@ -102,6 +111,7 @@ impl Default for Options {
             piece: 1 << 12,
             speculation: Speculation::Auto,
             table_from_values: TABLE_FROM_VALUES,
+            evaluator: Evaluator::default(),
         }
     }
 }
@@ -119,31 +129,53 @@ pub struct Streamed {
     pub stats: Stats,
 }
 
-/// Runs a scene and streams its rows to `sinks`: the kinematic outputs and `[[dynamics]]`
-/// from the one walk of the sweep, in constant memory. Counterweights (`[balancing]`) are
-/// sized from every position before their columns are known: such a run is carried out in
-/// memory ([`crate::scene::run()`]) and written by the same writers.
+/// The terminal table's words besides its rows, in the scene's terms: a presenter the edge
+/// makes from the scene ([`crate::scene::launch`]), so that the runner never reads it.
+pub trait TableWords {
+    /// The lines before the table's header: the title, if any, and the plan line, each
+    /// ending in a newline.
+    fn head(&self, plan: &Plan) -> String;
+    /// The whole table of a run held in memory
+    /// ([`crate::scene::table::write_table`]).
+    ///
+    /// # Errors
+    /// The writer's.
+    fn table(&self, report: &Report, out: &mut Vec<u8>) -> io::Result<()>;
+    /// What follows the rows of a table printed as they were computed: the dead positions
+    /// and the limits ([`crate::scene::table::write_after_rows`]).
+    ///
+    /// # Errors
+    /// The writer's.
+    fn after_rows(&self, report: &Report, out: &mut Vec<u8>) -> io::Result<()>;
+}
+
+/// Runs a scene's `setup` and streams its rows to `sinks`, the table worded by `words`:
+/// the kinematic outputs and `[[dynamics]]` from the one walk of the sweep, in constant
+/// memory. Counterweights (`[balancing]`) are sized from every position before their
+/// columns are known: such a run is carried out in memory ([`crate::scene::run::collect`])
+/// and written by the same writers.
 ///
 /// # Errors
 /// The first error in drive order (a solver error, a non-finite value), after the rows
 /// before it were written to every output; then an error of the dead-position search; or
 /// [`Error::Write`] naming the output that failed. The caller discards partial files.
-pub fn run(scene: &Scene, sinks: &mut Sinks<'_>, options: &Options) -> Result<Streamed> {
-    if scene
-        .balancing
-        .as_ref()
-        .is_some_and(|b| b.counterweights.is_some())
-    {
-        return in_memory(scene, sinks);
+pub fn sweep(
+    setup: &Setup<'_>,
+    words: &dyn TableWords,
+    sinks: &mut Sinks<'_>,
+    options: &Options,
+) -> Result<Streamed> {
+    if (setup.balancing).is_some_and(|b| b.counterweights.is_some()) {
+        return in_memory(setup, words, sinks);
     }
-    let mechanism = build::mechanism(scene)?;
-    crate::scene::preflight::before_solving(scene, &mechanism)?;
-    let mut plan = Plan::of(scene);
-    let columns = run::columns(scene, &mechanism);
+    let cx = &setup.context;
+    crate::scene::preflight::before_solving(setup)?;
+    let mut plan = Plan::of(setup);
+    let columns = columns(setup);
     let mut stats = Stats::default();
-    let positions = streamed_positions(scene, &mechanism, &mut stats)?;
-    let mut sweeper = run::sweeper(scene, &mechanism, &plan, false)?;
-    plan.evaluated_by(&sweeper);
+    let positions = streamed_positions(setup, &mut stats)?;
+    let mut sweeper = sweeper(setup, &plan, false)?;
+    plan.evaluated_by(sweeper.loops(), sweeper.backend());
     let format = RowFormat::new(&columns);
     let streamed_table = positions.len() > options.table_from_values;
     let mut kept_rows: Vec<Vec<f64>> = Vec::new();
@@ -153,13 +185,7 @@ pub fn run(scene: &Scene, sinks: &mut Sinks<'_>, options: &Options) -> Result<St
         sink.write(header.as_bytes())?;
     }
     if streamed_table && sinks.table.is_some() {
-        let mut head = String::new();
-        if let Some(title) = &scene.title {
-            head.push_str(title);
-            head.push('\n');
-        }
-        head.push_str(&plan.describe(scene));
-        head.push('\n');
+        let mut head = words.head(&plan);
         format.table_header(&columns, &mut head);
         write_table(sinks, head.as_bytes())?;
     }
@@ -188,7 +214,7 @@ pub fn run(scene: &Scene, sinks: &mut Sinks<'_>, options: &Options) -> Result<St
     };
     let (batch, chunk) = (options.batch.max(1), options.chunk.max(1));
     let sweep = Sweep {
-        scene,
+        context: cx,
         columns: &columns,
         positions: &positions,
     };
@@ -245,19 +271,19 @@ pub fn run(scene: &Scene, sinks: &mut Sinks<'_>, options: &Options) -> Result<St
     if let Some(error) = stopped {
         return Err(error);
     }
-    let dead = dead_positions(scene, &mechanism, positions.iter(), &mut stats)?;
-    check_dead_positions(scene, &dead)?;
+    let dead = dead_positions(setup, positions.iter(), &mut stats)?;
+    check_dead_positions(cx, &dead)?;
     let warnings = sweeper.warnings();
     stats.sweep = sweeper.counts();
     let dynamics = (sweeper.dynamics())
-        .map(|d| d.report(scene, Vec::new()))
+        .map(|d| d.report(cx, Vec::new()))
         .transpose()?;
-    let balancing = (scene.balancing.as_ref())
-        .map(|b| crate::scene::balancing::run(scene, b, &mechanism, None))
+    let balancing = (setup.balancing)
+        .map(|b| crate::scene::balancing::report(cx, b, &setup.mechanism, None))
         .transpose()?;
     if sinks.table.is_some() {
         let mut text = Vec::new();
-        stats.limit_walks = usize::from(crate::scene::sweep_limits::walks(scene, positions.len()));
+        stats.limit_walks = usize::from(crate::scene::sweep_limits::walks(setup, positions.len()));
         let report = Report {
             plan,
             columns,
@@ -266,13 +292,13 @@ pub fn run(scene: &Scene, sinks: &mut Sinks<'_>, options: &Options) -> Result<St
             dynamics,
             warnings: warnings.clone(),
             balancing,
-            limits: crate::scene::sweep_limits::in_sweep(scene, &mechanism, positions.iter()),
+            limits: crate::scene::sweep_limits::in_sweep(setup, positions.iter()),
             stats,
         };
         let result = if streamed_table {
-            table::write_after_rows(scene, &report, &mut text)
+            words.after_rows(&report, &mut text)
         } else {
-            table::write_table(scene, &report, &mut text)
+            words.table(&report, &mut text)
         };
         result.map_err(|source| Error::Write {
             path: PathBuf::from("<stdout>"),
@@ -288,10 +314,10 @@ pub fn run(scene: &Scene, sinks: &mut Sinks<'_>, options: &Options) -> Result<St
     })
 }
 
-/// [`run`] for a scene whose rows are known only at the end (counterweights): run in
+/// [`sweep`] for a scene whose rows are known only at the end (counterweights): run in
 /// memory, then written by the writers of a run in memory.
-fn in_memory(scene: &Scene, sinks: &mut Sinks<'_>) -> Result<Streamed> {
-    let report = crate::scene::run(scene)?;
+fn in_memory(setup: &Setup<'_>, words: &dyn TableWords, sinks: &mut Sinks<'_>) -> Result<Streamed> {
+    let report = collect(setup)?;
     let write = |sink: &mut Sink<'_>, f: &dyn Fn(&mut Vec<u8>) -> io::Result<()>| {
         let mut bytes = Vec::new();
         f(&mut bytes).map_err(|source| Error::Write {
@@ -308,7 +334,7 @@ fn in_memory(scene: &Scene, sinks: &mut Sinks<'_>) -> Result<Streamed> {
     }
     if sinks.table.is_some() {
         let mut text = Vec::new();
-        (table::write_table(scene, &report, &mut text)).map_err(|source| Error::Write {
+        (words.table(&report, &mut text)).map_err(|source| Error::Write {
             path: PathBuf::from("<stdout>"),
             source,
         })?;

@@ -19,7 +19,7 @@
 use crate::error::Error;
 use crate::parallel::prelude::*;
 use crate::scene::Positions;
-use crate::scene::Scene;
+use crate::scene::error_context::ErrorContext;
 use crate::scene::outputs::Column;
 use crate::scene::sweep::{Sweeper, check_row};
 
@@ -55,7 +55,7 @@ pub struct Pieces {
 
 /// The drive positions and outputs of a sweep, for solving pieces of it.
 pub(crate) struct Sweep<'a> {
-    pub scene: &'a Scene,
+    pub context: &'a ErrorContext<'a>,
     pub columns: &'a [Column],
     pub positions: &'a Positions,
 }
@@ -76,7 +76,7 @@ impl Sweep<'_> {
         let mut row = Vec::with_capacity(self.columns.len());
         for i in range {
             let result = (sweeper.row(self.positions.get(i), &mut row))
-                .and_then(|()| check_row(self.scene, self.columns, &row));
+                .and_then(|()| check_row(self.context, self.columns, &row));
             if let Err(error) = result {
                 return Batch {
                     rows,

@@ -35,4 +35,4 @@ pub use model::{SceneBalancing, SceneRotor, SceneSliderCrank};
 pub(crate) use resolve::resolve;
 pub use rotor_scene::RotorScene;
 pub use run::BalancingReport;
-pub(crate) use run::{BalancingSweep, before_solving, columns, rotor_lines, run};
+pub(crate) use run::{BalancingSweep, before_solving, columns, report, rotor_lines};

@@ -11,7 +11,9 @@ use mechdiff_core::geometry::{Mechanism, Tracker};
 use mechdiff_core::sweep::Consumer;
 
 use crate::error::{Error, Location, Result};
-use crate::scene::model::{DriveKind, Scene};
+use crate::scene::dynamics::SceneDynamics;
+use crate::scene::error_context::ErrorContext;
+use crate::scene::model::DriveKind;
 use crate::scene::outputs::Column;
 use crate::scene::units::{Dimension, Units};
 
@@ -46,13 +48,13 @@ fn core_error(location: &Location, e: mechdiff_core::Error) -> Error {
     }
 }
 
-/// The columns the balancing sections `b` of `scene` add to the table (those of the
-/// counterweights' linkage balance), known before anything is solved.
-pub(crate) fn columns(scene: &Scene, b: &SceneBalancing) -> Vec<Column> {
+/// The columns the balancing sections `b` of a scene (its words `cx`) add to the table
+/// (those of the counterweights' linkage balance), known before anything is solved.
+pub(crate) fn columns(cx: &ErrorContext<'_>, b: &SceneBalancing) -> Vec<Column> {
     if b.counterweights.is_none() {
         return Vec::new();
     }
-    let torque = if scene.drive.kind == DriveKind::Angle {
+    let torque = if cx.drive.kind == DriveKind::Angle {
         ("M_drive_bal", "N m")
     } else {
         ("F_drive_bal", "N")
@@ -69,7 +71,7 @@ pub(crate) fn columns(scene: &Scene, b: &SceneBalancing) -> Vec<Column> {
 /// with drive positions in the scene's units; one naming a counterweight's link located at
 /// that counterweight; any other at `[balancing]` (`location`).
 fn balance_error(
-    scene: &Scene,
+    cx: &ErrorContext<'_>,
     counterweights: &[(Counterweight, Location)],
     location: &Location,
     e: mechdiff_core::Error,
@@ -83,7 +85,7 @@ fn balance_error(
     match e {
         mechdiff_core::Error::Unassemblable { .. }
         | mechdiff_core::Error::Singular { .. }
-        | mechdiff_core::Error::BranchFlip { .. } => crate::scene::run::solver_error(scene, e),
+        | mechdiff_core::Error::BranchFlip { .. } => cx.solver_error(e),
         mechdiff_core::Error::NotPivoted { ref link, .. } => core_error(at(link), e),
         mechdiff_core::Error::DuplicateName { ref name, .. } => core_error(at(name), e),
         other => core_error(location, other),
@@ -95,7 +97,7 @@ fn balance_error(
 /// with mass data, one each ([`check_balance_request`]), and have a shaking force to size
 /// them from (a drive `speed`, or an acceleration, that is not zero).
 pub(crate) fn before_solving(
-    scene: &Scene,
+    cx: &ErrorContext<'_>,
     b: &SceneBalancing,
     mechanism: &Mechanism,
 ) -> Result<()> {
@@ -105,9 +107,9 @@ pub(crate) fn before_solving(
     if let Some((counterweights, location)) = &b.counterweights {
         let requests: Vec<_> = counterweights.iter().map(|(c, _)| c.clone()).collect();
         check_balance_request(mechanism, &requests)
-            .map_err(|e| balance_error(scene, counterweights, location, e))?;
-        let alpha = scene.drive.acceleration;
-        let message = match scene.drive.speed {
+            .map_err(|e| balance_error(cx, counterweights, location, e))?;
+        let alpha = cx.drive.acceleration;
+        let message = match cx.drive.speed {
             None => "`[balancing]` sizes counterweights from the shaking force: give the \
                      drive's `speed`"
                 .to_owned(),
@@ -146,25 +148,24 @@ pub(crate) struct BalancingSweep<'s> {
 }
 
 impl<'s> BalancingSweep<'s> {
-    /// The counterweights of `b` ready for a sweep of `scene` (after [`before_solving`]'s
-    /// checks); `None` without counterweights.
+    /// The counterweights of `b` ready for a sweep of a scene (its words `cx`, its masses
+    /// and effects `dynamics`), after [`before_solving`]'s checks; `None` without
+    /// counterweights.
     pub(crate) fn new(
-        scene: &Scene,
+        cx: &ErrorContext<'_>,
+        dynamics: Option<&SceneDynamics>,
         b: &'s SceneBalancing,
         mechanism: &'s Mechanism,
     ) -> Result<Option<Self>> {
         let Some((counterweights, location)) = &b.counterweights else {
             return Ok(None);
         };
-        let omega = scene.drive.speed.unwrap_or(0.0);
-        let data = scene
-            .dynamics
-            .as_ref()
-            .map_or_else(Dynamics::new, |d| d.data.clone());
-        let drive = DriveState::accelerating(omega, scene.drive.acceleration);
+        let omega = cx.drive.speed.unwrap_or(0.0);
+        let data = dynamics.map_or_else(Dynamics::new, |d| d.data.clone());
+        let drive = DriveState::accelerating(omega, cx.drive.acceleration);
         let requests: Vec<_> = counterweights.iter().map(|(c, _)| c.clone()).collect();
         let balancing = LinkageBalancing::new(mechanism, &data, &requests, drive)
-            .map_err(|e| balance_error(scene, counterweights, location, e))?;
+            .map_err(|e| balance_error(cx, counterweights, location, e))?;
         Ok(Some(Self {
             balancing,
             counterweights,
@@ -173,14 +174,14 @@ impl<'s> BalancingSweep<'s> {
     }
 
     /// The scene's error for an error of the counterweights' sizing (see [`balance_error`]).
-    pub(crate) fn error(&self, scene: &Scene, e: mechdiff_core::Error) -> Error {
-        balance_error(scene, self.counterweights, self.location, e)
+    pub(crate) fn error(&self, cx: &ErrorContext<'_>, e: mechdiff_core::Error) -> Error {
+        balance_error(cx, self.counterweights, self.location, e)
     }
 
     /// Sizes the counterweights and evaluates the balanced linkage.
-    pub(crate) fn finish(self, scene: &Scene) -> Result<LinkageBalance> {
+    pub(crate) fn finish(self, cx: &ErrorContext<'_>) -> Result<LinkageBalance> {
         (self.balancing.finish())
-            .map_err(|e| balance_error(scene, self.counterweights, self.location, e))
+            .map_err(|e| balance_error(cx, self.counterweights, self.location, e))
     }
 }
 
@@ -197,15 +198,16 @@ impl Consumer for BalancingSweep<'_> {
     }
 }
 
-/// The balancing answers of `scene`: the rotor's and the slider-crank's lines, and the
-/// counterweights `linkage` sized over the sweep ([`BalancingSweep`]) with their columns.
-pub(crate) fn run(
-    scene: &Scene,
+/// The balancing answers of a scene (its words `cx`): the rotor's and the slider-crank's
+/// lines, and the counterweights `linkage` sized over the sweep ([`BalancingSweep`]) with
+/// their columns.
+pub(crate) fn report(
+    cx: &ErrorContext<'_>,
     b: &SceneBalancing,
     mechanism: &Mechanism,
     linkage: Option<LinkageBalance>,
 ) -> Result<BalancingReport> {
-    before_solving(scene, b, mechanism)?;
+    before_solving(cx, b, mechanism)?;
     let mut report = BalancingReport {
         columns: Vec::new(),
         rows: Vec::new(),
@@ -215,14 +217,14 @@ pub(crate) fn run(
     if let Some(r) = &b.rotor {
         report
             .lines
-            .extend(rotor_lines(&scene.units.for_outputs(), r)?);
+            .extend(rotor_lines(&cx.units.for_outputs(), r)?);
     }
     if let Some(sc) = &b.slider_crank {
         let [crank, rod, slider] = &sc.links;
         let u = SliderCrankUnbalance::from_mechanism(mechanism, crank, rod, slider)
             .map_err(|e| core_error(&sc.location, e))?;
-        let omega = scene.drive.speed.unwrap_or(0.0);
-        let units = scene.units.for_outputs();
+        let omega = cx.drive.speed.unwrap_or(0.0);
+        let units = cx.units.for_outputs();
         let p = u
             .partial_balance(sc.fraction, omega)
             .map_err(|e| core_error(&sc.location, e))?;
@@ -247,13 +249,15 @@ pub(crate) fn run(
         ));
     }
     if let Some(result) = linkage {
-        report.columns = columns(scene, b);
+        report.columns = columns(cx, b);
         let torque = &report.columns[3].unit;
         let a = &result.after;
         report.rows = (0..a.phi.len())
             .map(|j| vec![a.force[j][0], a.force[j][1], a.moment[j], a.drive_torque[j]])
             .collect();
-        report.lines.extend(linkage_lines(scene, &result, torque));
+        report
+            .lines
+            .extend(linkage_lines(&cx.units, &result, torque));
         report.linkage = Some(result);
     }
     Ok(report)
@@ -353,8 +357,8 @@ pub(crate) fn rotor_lines(units: &Units, r: &SceneRotor) -> Result<Vec<String>> 
     Ok(lines)
 }
 
-fn linkage_lines(scene: &Scene, r: &LinkageBalance, torque_unit: &str) -> Vec<String> {
-    let units = scene.units.for_outputs();
+fn linkage_lines(units: &Units, r: &LinkageBalance, torque_unit: &str) -> Vec<String> {
+    let units = units.for_outputs();
     let mut lines = vec![String::new()];
     for c in &r.counterweights {
         lines.push(format!(

@@ -10,7 +10,8 @@ use mechdiff_core::sweep::Consumer;
 use mechdiff_core::{DriveState, Scalar};
 
 use crate::error::{Error, Result};
-use crate::scene::model::{DriveKind, Joint, JointKind, Scene};
+use crate::scene::error_context::ErrorContext;
+use crate::scene::model::{Drive, DriveKind, Joint, JointKind};
 use crate::scene::outputs::Column;
 use crate::scene::units::{Dimension, Units};
 
@@ -67,11 +68,11 @@ pub(crate) struct DynamicsSweep<'s> {
 }
 
 impl<'s> DynamicsSweep<'s> {
-    /// The dynamic outputs `d` of `scene` ready for a sweep (after [`before_solving`]'s
-    /// checks); `None` without outputs. `keep_steps` keeps every position's step for the
-    /// report (a run in memory).
+    /// The dynamic outputs `d` of a scene (its words `cx`) ready for a sweep (after
+    /// [`before_solving`]'s checks); `None` without outputs. `keep_steps` keeps every
+    /// position's step for the report (a run in memory).
     pub(crate) fn new(
-        scene: &'s Scene,
+        cx: &ErrorContext<'s>,
         d: &'s SceneDynamics,
         mechanism: &'s Mechanism,
         keep_steps: bool,
@@ -79,14 +80,14 @@ impl<'s> DynamicsSweep<'s> {
         if d.outputs.is_empty() {
             return Ok(None);
         }
-        let (model, plan, drive) = before_solving(scene, d, mechanism, scene.drive.speed)?;
-        mechdiff_core::dynamics::run::check(&plan, &model)
-            .map_err(|e| crate::scene::run::solver_error(scene, e))?;
+        let scene_drive: &'s Drive = cx.drive;
+        let (model, plan, drive) = before_solving(cx, d, mechanism, scene_drive.speed)?;
+        mechdiff_core::dynamics::run::check(&plan, &model).map_err(|e| cx.solver_error(e))?;
         Ok(Some(Self {
             d,
             mechanism,
-            joints: &scene.joints,
-            cam: (scene.drive.cam.as_ref()).map(|c| (&c.joint, scene.drive.at_sketch)),
+            joints: cx.joints,
+            cam: (scene_drive.cam.as_ref()).map(|c| (&c.joint, scene_drive.at_sketch)),
             model,
             plan,
             drive,
@@ -121,13 +122,17 @@ impl<'s> DynamicsSweep<'s> {
         }
     }
 
-    /// The report of the sweep so far: the columns (`scene`'s units), the summary lines and
-    /// the trace (with the steps, when kept); `rows` are the dynamic columns of the rows kept,
-    /// if any.
+    /// The report of the sweep so far: the columns (in the units of the scene's words `cx`),
+    /// the summary lines and the trace (with the steps, when kept); `rows` are the dynamic
+    /// columns of the rows kept, if any.
     ///
     /// # Errors
     /// [`Error::NotFinite`] for a shaking force whose magnitude overflowed.
-    pub(crate) fn report(&self, scene: &Scene, rows: Vec<Vec<f64>>) -> Result<DynamicsReport> {
+    pub(crate) fn report(
+        &self,
+        cx: &ErrorContext<'_>,
+        rows: Vec<Vec<f64>>,
+    ) -> Result<DynamicsReport> {
         let mut summary = Vec::new();
         let asked = |q| self.d.outputs.iter().any(|o| o.quantity == q);
         if asked(DynamicQuantity::ShakingForce)
@@ -135,17 +140,17 @@ impl<'s> DynamicsSweep<'s> {
         {
             if !s.magnitude.value.is_finite() {
                 return Err(crate::error::Error::NotFinite {
-                    file: scene.file.clone(),
+                    file: cx.file.to_owned(),
                     quantity: "the magnitude of the shaking force |SumF| [N]".to_owned(),
                     value: s.magnitude.value.to_string(),
-                    position: scene.drive_text(s.magnitude.phi),
+                    position: cx.drive_text(s.magnitude.phi),
                 });
             }
             summary.push(format!(
                 "shaking force over the sweep: SumF_x from {:.6} N (at {}) to {:.6} N (at {}); SumF_y from {:.6} N (at {}) to {:.6} N (at {}); largest |SumF| {:.6} N (at {})",
-                s.force_x[0].value, scene.drive_text(s.force_x[0].phi), s.force_x[1].value, scene.drive_text(s.force_x[1].phi),
-                s.force_y[0].value, scene.drive_text(s.force_y[0].phi), s.force_y[1].value, scene.drive_text(s.force_y[1].phi),
-                s.magnitude.value, scene.drive_text(s.magnitude.phi),
+                s.force_x[0].value, cx.drive_text(s.force_x[0].phi), s.force_x[1].value, cx.drive_text(s.force_x[1].phi),
+                s.force_y[0].value, cx.drive_text(s.force_y[0].phi), s.force_y[1].value, cx.drive_text(s.force_y[1].phi),
+                s.magnitude.value, cx.drive_text(s.magnitude.phi),
             ));
         }
         if asked(DynamicQuantity::PowerBalance) {
@@ -156,7 +161,7 @@ impl<'s> DynamicsSweep<'s> {
         }
         Ok(DynamicsReport {
             plan: self.plan,
-            columns: columns(scene, self.d, self.mechanism, &self.plan),
+            columns: columns(cx, self.d, self.mechanism, &self.plan),
             rows,
             summary,
             run: Run {
@@ -227,19 +232,19 @@ impl Consumer for DynamicsSweep<'_> {
 /// The scene's error for an error of the `[[dynamics]]` outputs at a solved pose: a
 /// self-locking drive located at `[drive]`, the others with drive positions in the scene's
 /// units.
-pub(crate) fn error(scene: &Scene, e: mechdiff_core::Error) -> Error {
+pub(crate) fn error(cx: &ErrorContext<'_>, e: mechdiff_core::Error) -> Error {
     match e {
         mechdiff_core::Error::SelfLocking {
             phi,
             joints,
             reason,
         } => Error::SelfLocking {
-            location: scene.drive.location.clone(),
-            position: scene.joint_text(phi),
+            location: cx.drive.location.clone(),
+            position: cx.joint_text(phi),
             joints: joints.join(", "),
             reason,
         },
-        other => crate::scene::run::solver_error(scene, other),
+        other => cx.solver_error(other),
     }
 }
 
@@ -247,17 +252,17 @@ pub(crate) fn error(scene: &Scene, e: mechdiff_core::Error) -> Error {
 /// model compiles with the masses, the plan's drive state has the speed it needs, and a power
 /// balance has a non-zero speed to divide by. Returns the model, the plan and the drive.
 pub(crate) fn before_solving<'m>(
-    scene: &Scene,
+    cx: &ErrorContext<'_>,
     d: &SceneDynamics,
     mechanism: &'m Mechanism,
     speed: Option<f64>,
 ) -> Result<(mechdiff_core::dynamics::CompiledModel<'m>, Plan, DriveState)> {
     let model = d.data.compile(mechanism).map_err(|source| Error::Model {
-        file: scene.file.clone(),
+        file: cx.file.to_owned(),
         source,
     })?;
     let plan = d.plan(mechanism);
-    let drive = drive_state(scene, &plan, speed)?;
+    let drive = drive_state(cx.drive, &plan, speed)?;
     if drive.omega == 0.0
         && let Some(o) = d
             .outputs
@@ -274,13 +279,13 @@ pub(crate) fn before_solving<'m>(
     Ok((model, plan, drive))
 }
 
-/// The drive's speed (`speed`, when the scene gives one) and acceleration for `plan`: an
+/// The `drive`'s speed (`speed`, when the scene gives one) and acceleration for `plan`: an
 /// error naming the drive when the plan needs velocities and no speed is given.
-pub(super) fn drive_state(scene: &Scene, plan: &Plan, speed: Option<f64>) -> Result<DriveState> {
+pub(super) fn drive_state(drive: &Drive, plan: &Plan, speed: Option<f64>) -> Result<DriveState> {
     match speed {
-        Some(omega) => Ok(DriveState::accelerating(omega, scene.drive.acceleration)),
+        Some(omega) => Ok(DriveState::accelerating(omega, drive.acceleration)),
         None if plan.order >= 1 => Err(Error::Invalid {
-            location: scene.drive.location.clone(),
+            location: drive.location.clone(),
             message: "the `[[dynamics]]` outputs need the drive's `speed`".to_owned(),
         }),
         None => Ok(DriveState::constant_speed(0.0)),
@@ -443,40 +448,40 @@ fn in_file_units(column: &mut Column, units: &Units) {
     }
 }
 
-/// The columns the dynamic outputs `d` of `scene` add to the table, in order, in the file's
-/// units: what [`run`] fills, known before anything is solved (`mechdiff check` checks a
-/// study's columns against them).
+/// The columns the dynamic outputs `d` of a scene (its words `cx`) add to the table, in
+/// order, in the file's units: what [`DynamicsSweep`] fills, known before anything is
+/// solved (`mechdiff check` checks a study's columns against them).
 pub(crate) fn columns(
-    scene: &Scene,
+    cx: &ErrorContext<'_>,
     d: &SceneDynamics,
     mechanism: &Mechanism,
     plan: &Plan,
 ) -> Vec<Column> {
     let mut columns: Vec<Column> = (d.outputs.iter())
-        .flat_map(|o| output_columns(scene, d, mechanism, plan, o))
+        .flat_map(|o| output_columns(cx, d, mechanism, plan, o))
         .collect();
     for c in &mut columns {
-        in_file_units(c, &scene.units);
+        in_file_units(c, &cx.units);
     }
     columns
 }
 
 /// The columns of output `o` (in SI; [`columns`] puts them in the file's units).
 pub(super) fn output_columns(
-    scene: &Scene,
+    cx: &ErrorContext<'_>,
     d: &SceneDynamics,
     mechanism: &Mechanism,
     plan: &Plan,
     o: &DynamicsOutput,
 ) -> Vec<Column> {
-    let torque_unit = if scene.drive.joint_kind() == DriveKind::Angle {
+    let torque_unit = if cx.drive.joint_kind() == DriveKind::Angle {
         ("M_drive", "N m")
     } else {
         ("F_drive", "N")
     };
     let mass_links: Vec<&str> = model_links(d);
     // With a cam the balance gives the cam-shaft torque.
-    let balance_unit = if scene.drive.cam.is_some() {
+    let balance_unit = if cx.drive.cam.is_some() {
         "N m"
     } else {
         torque_unit.1
@@ -500,12 +505,12 @@ pub(super) fn output_columns(
         DynamicQuantity::Reactions => {
             let all: Vec<&str> = mechanism.joints().iter().map(|j| j.name.as_str()).collect();
             for j in selected(&o.names, &all) {
-                columns.extend(reaction_columns(scene, j));
+                columns.extend(reaction_columns(cx.joints, j));
             }
         }
         DynamicQuantity::DriveTorque => {
             columns.push(column(torque_unit.0, torque_unit.1));
-            if scene.drive.cam.is_some() {
+            if cx.drive.cam.is_some() {
                 columns.push(column("M_cam", "N m"));
             }
             if d.data.motor.is_some() && plan.effects.motor {
@@ -514,7 +519,7 @@ pub(super) fn output_columns(
         }
         DynamicQuantity::KineticEnergy => columns.push(column("T", "J")),
         DynamicQuantity::ReducedInertia => {
-            let u = if scene.drive.kind == DriveKind::Angle {
+            let u = if cx.drive.kind == DriveKind::Angle {
                 ["kg m^2", "kg m^2/rad"]
             } else {
                 ["kg", "kg/m"]
@@ -552,8 +557,8 @@ fn joint_kind<'s>(joints: &'s [Joint], name: &str) -> &'s JointKind {
         .kind
 }
 
-fn reaction_columns(scene: &Scene, j: &str) -> Vec<Column> {
-    match joint_kind(&scene.joints, j) {
+fn reaction_columns(joints: &[Joint], j: &str) -> Vec<Column> {
+    match joint_kind(joints, j) {
         JointKind::Revolute { .. } => vec![
             column(format!("Fx_{j}"), "N"),
             column(format!("Fy_{j}"), "N"),

@@ -5,11 +5,11 @@
 use mechdiff_core::dynamics::tangent::{
     EffectsTangent, ModelTangent, NotCarried, SolutionTangent, TangentError, carried,
 };
-use mechdiff_core::geometry::Parametric;
+use mechdiff_core::geometry::{Parametric, Solver};
 use mechdiff_core::num_dual::Dual64;
 
 use crate::error::{Error, Result};
-use crate::scene::model::Scene;
+use crate::scene::error_context::ErrorContext;
 
 use super::format::DynamicQuantity;
 use super::model::SceneDynamics;
@@ -36,8 +36,9 @@ fn needs_equilibrium(quantity: DynamicQuantity) -> bool {
 }
 
 /// The exact derivative with respect to one parameter p of every `[[dynamics]]` column of
-/// `scene` at each drive position of `positions` (the run's, in order), in the order of the
-/// table's dynamic columns and in SI units (as [`super::DynamicsReport::rows`]).
+/// a scene (its words `cx`, its `solver`) at each drive position of `positions` (the run's,
+/// in order), in the order of the table's dynamic columns and in SI units (as
+/// [`super::DynamicsReport::rows`]).
 ///
 /// Inputs: the scene's dynamics `d`; `parametric`, the built mechanism with the d/dp of its
 /// data (`DataTangent`: sketch points, joints' numbers, the drive's sketch value, inertias);
@@ -52,7 +53,8 @@ fn needs_equilibrium(quantity: DynamicQuantity) -> bool {
 /// equilibrium (as the run's), a non-finite derivative (naming the column and the position),
 /// a tangent that does not match the mechanism.
 pub fn column_derivatives(
-    scene: &Scene,
+    cx: &ErrorContext<'_>,
+    solver: &Solver,
     d: &SceneDynamics,
     parametric: &Parametric<'_>,
     effects: &EffectsTangent,
@@ -62,24 +64,24 @@ pub fn column_derivatives(
     let mechanism = parametric.mechanism();
     let plan = d.plan(mechanism);
     let widths: Vec<usize> = (d.outputs.iter())
-        .map(|o| output_columns(scene, d, mechanism, &plan, o).len())
+        .map(|o| output_columns(cx, d, mechanism, &plan, o).len())
         .collect();
     let all_not_carried = |reason: String| DynamicsTangent {
         not_carried: vec![Some(reason); widths.iter().sum()],
         rows: vec![vec![None; widths.iter().sum()]; positions.len()],
     };
-    if scene.drive.cam.is_some() {
+    if cx.drive.cam.is_some() {
         return Ok(all_not_carried(
             "a cam drive (the exact route does not follow the cam's follower)".to_owned(),
         ));
     }
     let model = d.data.compile(mechanism).map_err(|source| Error::Model {
-        file: scene.file.clone(),
+        file: cx.file.to_owned(),
         source,
     })?;
-    let drive = drive_state(scene, &plan, speed)?;
+    let drive = drive_state(cx.drive, &plan, speed)?;
     let internal = |e: TangentError| Error::Invalid {
-        location: scene.drive.location.clone(),
+        location: cx.drive.location.clone(),
         message: format!("the exact derivative of the dynamics: {e}"),
     };
     // The equilibrium's columns need every effect of the plan carried; the others (shaking
@@ -112,8 +114,8 @@ pub fn column_derivatives(
         .any(|o| needs_equilibrium(o.quantity) && carried_output(o.quantity));
     let omega = Dual64::new(drive.omega, effects.omega);
     let mut rows = Vec::with_capacity(positions.len());
-    let solver_error = |e| crate::scene::run::solver_error(scene, e);
-    let mut tracker = scene.solver.track(mechanism).map_err(solver_error)?;
+    let solver_error = |e| cx.solver_error(e);
+    let mut tracker = solver.track(mechanism).map_err(solver_error)?;
     for &phi in positions {
         tracker.move_to(phi).map_err(solver_error)?;
         let k = tracker.kinematics::<2>().map_err(solver_error)?;
@@ -121,7 +123,7 @@ pub fn column_derivatives(
         let jacobian = parametric.jacobian(&pose);
         let solution: Option<SolutionTangent> = if plan.kinetostatics && needs_solution {
             Some(tangent.solve(phi, &pose, &jacobian).map_err(|e| match e {
-                TangentError::Model(source) => crate::scene::run::solver_error(scene, source),
+                TangentError::Model(source) => cx.solver_error(source),
                 other => internal(other),
             })?)
         } else {
@@ -150,7 +152,7 @@ pub fn column_derivatives(
         let mut row = Vec::with_capacity(not_carried.len());
         for (o, &w) in d.outputs.iter().zip(&widths) {
             if carried_output(o.quantity) {
-                let values = output_row(&scene.joints, d, mechanism, o, &step, omega, None);
+                let values = output_row(cx.joints, d, mechanism, o, &step, omega, None);
                 row.extend(values.iter().map(|v| Some(v.eps)));
             } else {
                 row.extend(std::iter::repeat_n(None, w));
@@ -158,14 +160,14 @@ pub fn column_derivatives(
         }
         if let Some(i) = row.iter().position(|v| v.is_some_and(|x| !x.is_finite())) {
             let c = (d.outputs.iter())
-                .flat_map(|o| output_columns(scene, d, mechanism, &plan, o))
+                .flat_map(|o| output_columns(cx, d, mechanism, &plan, o))
                 .nth(i)
                 .expect("a column per value");
             return Err(Error::NotFinite {
-                file: scene.file.clone(),
+                file: cx.file.to_owned(),
                 quantity: format!("the derivative of {} [{}]", c.name, c.unit),
                 value: row[i].expect("a value").to_string(),
-                position: scene.drive_text(phi),
+                position: cx.drive_text(phi),
             });
         }
         rows.push(row);
@@ -176,6 +178,7 @@ pub fn column_derivatives(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::Scene;
     use crate::scene::parameters::Setting;
     use mechdiff_core::geometry::{DataTangent, Inertia};
 
@@ -276,7 +279,8 @@ output = "power_balance"
         tangent(&m, &mut data);
         let parametric = Parametric::new(&m, &data).unwrap();
         let t = column_derivatives(
-            &s,
+            &s.error_context(),
+            &s.solver,
             d,
             &parametric,
             &EffectsTangent::zero(&d.data),
@@ -399,7 +403,7 @@ output = "power_balance"
         let plan = d.plan(&m);
         let mut k = 0;
         for o in &d.outputs {
-            for _ in output_columns(&s, d, &m, &plan, o) {
+            for _ in output_columns(&s.error_context(), d, &m, &plan, o) {
                 let reason = &t.not_carried[k];
                 if needs_equilibrium(o.quantity) {
                     let reason = reason.as_deref().unwrap();
