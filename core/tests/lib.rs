@@ -35,3 +35,4 @@ mod symbolic_reference_precision;
 mod symbolic_removable;
 mod symbolic_rules;
 mod symbolic_signs;
+mod linkage_metrics;

@@ -114,9 +114,10 @@ impl GrashofClass {
 pub struct Grashof {
     /// The class.
     pub class: GrashofClass,
-    /// s, the shortest link (the first of equals in the order frame, input, coupler, output).
+    /// s, the shortest link (of lengths equal within the tolerance, the first in the order
+    /// frame, input, coupler, output).
     pub shortest: LengthTerm,
-    /// l, the longest link.
+    /// l, the longest link (the first of equals, as for s).
     pub longest: LengthTerm,
     /// p and q, the other two.
     pub others: [LengthTerm; 2],
@@ -148,9 +149,17 @@ impl Grashof {
             role: roles[i],
             length: values[i],
         };
-        let mut order = [0, 1, 2, 3];
-        order.sort_by(|&i, &j| values[i].total_cmp(&values[j]));
-        let [s, p, q, l] = order;
+        // Of lengths equal within the tolerance, the first in the order frame, input,
+        // coupler, output is named (not the one rounding made a hair shorter).
+        let (min, max) = (values.iter()).fold((f64::INFINITY, 0.0f64), |(lo, hi), &v| {
+            (lo.min(v), hi.max(v))
+        });
+        let s = (0..4).find(|&i| values[i] <= min + tolerance).unwrap_or(0);
+        let l = (0..4)
+            .find(|&i| i != s && values[i] >= max - tolerance)
+            .unwrap_or((s + 1) % 4);
+        let mut rest = (0..4).filter(|&i| i != s && i != l);
+        let (p, q) = (rest.next().unwrap_or(s), rest.next().unwrap_or(l));
         let (s_plus_l, p_plus_q) = (values[s] + values[l], values[p] + values[q]);
         let excess = s_plus_l - p_plus_q;
         let class = if excess.abs() <= tolerance {
