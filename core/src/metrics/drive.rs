@@ -91,12 +91,24 @@ fn reason(limit: &DriveLimit) -> String {
 }
 
 impl fmt::Display for DriveMotion {
-    /// [`DriveMotion::describe`] in degrees for an angle, metres for a displacement.
+    /// [`DriveMotion::describe`] in degrees for an angle, metres for a displacement, to six
+    /// decimals.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let text = match self.kind {
-            DriveKind::Angle => self.describe(|phi| format!("{}°", phi.to_degrees())),
-            DriveKind::Displacement => self.describe(|s| format!("{s} m")),
+            DriveKind::Angle => self.describe(|phi| format!("{}°", short(phi.to_degrees()))),
+            DriveKind::Displacement => self.describe(|s| format!("{} m", short(s))),
         };
         f.write_str(&text)
+    }
+}
+
+/// `x` to six decimals, without trailing zeros ("-30", "12.5").
+fn short(x: f64) -> String {
+    let text = format!("{x:.6}");
+    let text = text.trim_end_matches('0').trim_end_matches('.');
+    if text == "-0" {
+        "0".to_owned()
+    } else {
+        text.to_owned()
     }
 }

@@ -142,7 +142,12 @@ impl Grashof {
     /// assert_eq!((g.shortest.link.as_str(), g.longest.link.as_str()), ("crank", "coupler"));
     /// ```
     pub fn classify(lengths: &FourBarLengths, names: [&str; 4], tolerance: f64) -> Grashof {
-        let values = [lengths.frame, lengths.input, lengths.coupler, lengths.output];
+        let values = [
+            lengths.frame,
+            lengths.input,
+            lengths.coupler,
+            lengths.output,
+        ];
         let roles = [Role::Frame, Role::Input, Role::Coupler, Role::Output];
         let term = |i: usize| LengthTerm {
             link: names[i].to_owned(),

@@ -172,7 +172,10 @@ impl Band {
         }
         // t = θ − θ_c at the sketch, and the range of t on its side.
         let t = wrap(input.sketch - self.centre);
-        let (alpha_high, alpha_low) = (self.high.clamp(-1.0, 1.0).acos(), self.low.clamp(-1.0, 1.0).acos());
+        let (alpha_high, alpha_low) = (
+            self.high.clamp(-1.0, 1.0).acos(),
+            self.low.clamp(-1.0, 1.0).acos(),
+        );
         let (lower, upper, toggles) = match (passes_centre, passes_opposite) {
             (true, true) => return InputRange::Full { change_points },
             // Through θ_c + 180°: t in [α_high, 2π − α_high] (t taken in [0, 2π)).
@@ -336,6 +339,9 @@ mod tests {
         // Taken on the sketch's turn: −3 rad lies in [−2π + π/3, −π/3].
         assert!((lower.at.angle - (third - TAU)).abs() < 1e-15);
         assert!((upper.at.angle + third).abs() < 1e-15);
-        assert_eq!((lower.toggle, upper.toggle), (Toggle::Folded, Toggle::Folded));
+        assert_eq!(
+            (lower.toggle, upper.toggle),
+            (Toggle::Folded, Toggle::Folded)
+        );
     }
 }

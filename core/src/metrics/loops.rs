@@ -146,7 +146,9 @@ impl Loops {
         let mut rejected: Vec<(Vec<usize>, String)> = Vec::new();
         let ground = 0;
         for pivot in hinges.iter().filter(|h| h.other(ground).is_some()) {
-            let input = pivot.other(ground).expect("filtered");
+            let Some(input) = pivot.other(ground) else {
+                continue;
+            };
             for pin in hinges.iter().filter(|h| h.joint != pivot.joint) {
                 let Some(coupler) = pin.other(input) else {
                     continue;
@@ -172,8 +174,12 @@ fn four_bars(
     found: &mut Loops,
     rejected: &mut Vec<(Vec<usize>, String)>,
 ) {
-    let input = pivot.other(0).expect("a ground pivot");
-    let coupler = pin.other(input).expect("a pin of the input");
+    let Some(input) = pivot.other(0) else {
+        return;
+    };
+    let Some(coupler) = pin.other(input) else {
+        return;
+    };
     for joint in hinges.iter().filter(|h| h.joint != pin.joint) {
         let Some(output) = joint.other(coupler) else {
             continue;
@@ -220,8 +226,13 @@ fn four_bar(
         coupler: length(a, b),
         output: length(b, o_out),
     };
-    let all = [lengths.frame, lengths.input, lengths.coupler, lengths.output];
-    if all.iter().any(|&l| l == 0.0) {
+    let all = [
+        lengths.frame,
+        lengths.input,
+        lengths.coupler,
+        lengths.output,
+    ];
+    if all.contains(&0.0) {
         return None;
     }
     let name = |k: usize| m.links()[k].name.clone();
@@ -252,6 +263,18 @@ fn four_bar(
     })
 }
 
+/// How a rod's pin B runs on a straight path of the ground.
+struct Path {
+    /// The slider link (`None`: the pin runs in a slot of the ground).
+    slider: Option<usize>,
+    /// The pin B (a point of the rod).
+    pin: usize,
+    /// The joints after the crank pin: rod–slider and the guide, or the pin-in-slot.
+    joints: Vec<usize>,
+    /// The path's line: two points of the ground.
+    line: [usize; 2],
+}
+
 /// The slider-cranks through `pivot` (ground–crank) and `pin` (crank–rod).
 fn slider_cranks(
     m: &Mechanism,
@@ -261,11 +284,14 @@ fn slider_cranks(
     found: &mut Loops,
     rejected: &mut Vec<(Vec<usize>, String)>,
 ) {
-    let crank = pivot.other(0).expect("a ground pivot");
-    let rod = pin.other(crank).expect("a pin of the crank");
+    let Some(crank) = pivot.other(0) else {
+        return;
+    };
+    let Some(rod) = pin.other(crank) else {
+        return;
+    };
     let name = |k: usize| m.links()[k].name.clone();
-    // (slider link, slider pin point, joints after the crank pin, guide line on the ground).
-    let mut paths: Vec<(Option<usize>, usize, Vec<usize>, [usize; 2])> = Vec::new();
+    let mut paths: Vec<Path> = Vec::new();
     for (j, joint) in m.joints().iter().enumerate() {
         match joint.kind {
             JointKind::PinInSlot {
@@ -273,7 +299,12 @@ fn slider_cranks(
                 line,
                 pin_link,
                 pin: point,
-            } if pin_link == rod => paths.push((None, point, vec![j], line)),
+            } if pin_link == rod => paths.push(Path {
+                slider: None,
+                pin: point,
+                joints: vec![j],
+                line,
+            }),
             JointKind::Prismatic {
                 guide: 0,
                 line,
@@ -282,13 +313,24 @@ fn slider_cranks(
             } if ![0, crank, rod].contains(&slider) => {
                 let hinge = hinges.iter().filter(|h| h.joint != pin.joint);
                 for h in hinge.filter(|h| h.links == [rod, slider] || h.links == [slider, rod]) {
-                    paths.push((Some(slider), h.point, vec![h.joint, j], line));
+                    paths.push(Path {
+                        slider: Some(slider),
+                        pin: h.point,
+                        joints: vec![h.joint, j],
+                        line,
+                    });
                 }
             }
             _ => {}
         }
     }
-    for (slider, point, rest, line) in paths {
+    for Path {
+        slider,
+        pin: point,
+        joints: rest,
+        line,
+    } in paths
+    {
         let dyad: Vec<usize> = [rod].into_iter().chain(slider).collect();
         let mut links = vec![crank];
         links.extend(&dyad);

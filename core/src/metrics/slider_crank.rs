@@ -127,7 +127,8 @@ impl SliderCrankLoop {
         let [x, y] = k.position(&self.points[1]);
         let [u, o] = [self.direction, self.pivot];
         let value = u[0] * (x.value - o[0]) + u[1] * (y.value - o[1]);
-        let derivatives = std::array::from_fn(|i| u[0] * x.derivatives[i] + u[1] * y.derivatives[i]);
+        let derivatives =
+            std::array::from_fn(|i| u[0] * x.derivatives[i] + u[1] * y.derivatives[i]);
         Jet::new(value, derivatives)
     }
 }
