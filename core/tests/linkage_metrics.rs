@@ -45,7 +45,19 @@ fn circles(p: [f64; 2], r1: f64, q: [f64; 2], r2: f64, side: f64) -> [f64; 2] {
 
 /// The four-bar's points and links: O2 at the origin, O4 = (d, 0), crank pin A at input
 /// angle θ, B on the `side` of A → O4; φ = θ.
-fn four_bar_parts([a, b, c, d]: [f64; 4], theta: f64, side: f64) -> MechanismBuilder {
+fn four_bar_parts(abcd: [f64; 4], theta: f64, side: f64) -> MechanismBuilder {
+    four_bar_driven(abcd, theta, side, ["ground", "crank"], theta)
+}
+
+/// [`four_bar_parts`] with the crank's pivot joining `pivot` (link a, link b: φ is b's
+/// rotation relative to a) and φ = `phi` at the sketch.
+fn four_bar_driven(
+    [a, b, c, d]: [f64; 4],
+    theta: f64,
+    side: f64,
+    pivot: [&str; 2],
+    phi: f64,
+) -> MechanismBuilder {
     let pin = [a * theta.cos(), a * theta.sin()];
     Mechanism::builder()
         .point("O2", [0.0, 0.0])
@@ -54,11 +66,11 @@ fn four_bar_parts([a, b, c, d]: [f64; 4], theta: f64, side: f64) -> MechanismBui
         .point("B", circles(pin, b, [d, 0.0], c, side))
         .link("crank", ["O2", "A"])
         .link("rocker", ["O4", "B"])
-        .revolute("O2", "ground", "crank", "O2")
+        .revolute("O2", pivot[0], pivot[1], "O2")
         .revolute("A", "crank", "coupler", "A")
         .revolute("B", "coupler", "rocker", "B")
         .revolute("O4", "ground", "rocker", "O4")
-        .drive(Drive::angle("O2").at_sketch(theta))
+        .drive(Drive::angle("O2").at_sketch(phi))
 }
 
 fn four_bar(abcd: [f64; 4], theta: f64, side: f64) -> Mechanism {
@@ -261,6 +273,10 @@ fn input_ranges_and_transmission_extremes_follow_the_law_of_cosines() {
                 // side: θ = 2π (and θ = 0 below).
                 let limit = drive.range.upper.as_ref().expect("a change point");
                 assert_eq!(limit.kind, LimitKind::ChangePoint, "{drive}");
+                close("solver's change point above", limit.phi, TAU);
+                let below = drive.range.lower.as_ref().expect("a change point");
+                assert_eq!(below.kind, LimitKind::ChangePoint, "{drive}");
+                close("solver's change point below", below.phi, 0.0);
                 (
                     None,
                     (0.0, law_of_cosines(case.abcd, 0.0)),
@@ -718,4 +734,34 @@ fn a_whitworth_has_no_linkage_loops_and_says_why() {
         "{}",
         loops.not_applicable[1].reason
     );
+}
+
+/// The drive positions given for μ's extremes are where the solved pose's μ is extreme
+/// (μ′ = 0 there), also when the drive turns the other way (the pivot joint declared
+/// crank → ground, φ = 1 − (θ − 90°)) and when the drive starts elsewhere.
+#[test]
+fn transmission_extremes_are_where_the_solved_pose_has_them() {
+    for (pivot, phi_at_sketch, slope) in [
+        (["ground", "crank"], 2.0, 1.0),
+        (["crank", "ground"], 1.0, -1.0),
+    ] {
+        let m = four_bar_driven(CRANK_ROCKER, FRAC_PI_2, 1.0, pivot, phi_at_sketch)
+            .ground(["O2", "O4"])
+            .link("coupler", ["A", "B"])
+            .build()
+            .unwrap();
+        let linkage = the_four_bar(&m);
+        let extremes = linkage.transmission_extremes();
+        let mut tracker = Solver::default().track(&m).unwrap();
+        for (what, at) in [("min", extremes.min), ("max", extremes.max)] {
+            let phi = at.at.drive.unwrap();
+            // φ = φ_sketch + slope·(θ − 90°), on the turn nearest the sketch.
+            let theta = FRAC_PI_2 + (phi - phi_at_sketch) * slope;
+            same_angle(&format!("{what}: θ"), theta, at.at.angle);
+            tracker.move_to(phi).unwrap();
+            let mu = linkage.transmission_at(&tracker.kinematics::<1>().unwrap());
+            close(&format!("{what} μ at its φ"), mu.unsigned.value, at.angle);
+            close(&format!("{what}: μ′ at its φ"), mu.unsigned.d1(), 0.0);
+        }
+    }
 }

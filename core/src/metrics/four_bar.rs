@@ -41,6 +41,10 @@ pub struct FourBarLoop {
 }
 
 impl FourBarLoop {
+    /// What the transmission angle rests on, for a report: the law of cosines in the two
+    /// triangles O_in A O_out and A B O_out.
+    pub const TRANSMISSION_FORMULA: &'static str = "cos μ = (b² + c² − a² − d² + 2ad·cos θ)/(2bc)";
+
     /// The lengths as `[a, b, c, d]` (input, coupler, output, frame).
     pub fn abcd(&self) -> [f64; 4] {
         let l = &self.lengths;
@@ -72,6 +76,9 @@ impl FourBarLoop {
 
     /// How far the input turns, from the loop's lengths: fully, or between the toggle
     /// positions where coupler and output fold or stretch in line (on the sketch's side).
+    /// When the input is not the drive (a second four-bar driven by the first's rocker),
+    /// the other loops may hold it to a narrower range: read μ along the sweep with
+    /// [`FourBarLoop::transmission_at`] for the extremes the mechanism reaches.
     pub fn input_range(&self) -> InputRange {
         self.band().range(&self.input)
     }

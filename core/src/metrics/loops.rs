@@ -17,8 +17,9 @@
 //!
 //! Every solver loop whose links no recognised loop covers is reported as not applicable,
 //! with why: a cycle found but whose input is not placed first (e.g. a slider-crank driven
-//! at its slider, an engine), or no such cycle at all (slotted links, gears, racks, welded
-//! links, loops of five or more links).
+//! at its slider, an engine), or no such cycle at all (slotted links, gears, racks, loops
+//! of five or more links). Links welded by a rigid joint are two links to this search: draw
+//! a ternary link as one link with three points to have its loops recognised.
 
 use super::four_bar::{FourBarLoop, angle_from, sub};
 use super::grashof::{FourBarLengths, SliderCrankLengths, length_tolerance};

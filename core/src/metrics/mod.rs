@@ -136,6 +136,17 @@ impl LinkageMetrics {
     pub fn of(m: &Mechanism, solver: &Solver) -> Result<LinkageMetrics, MetricsError> {
         let drive = DriveMotion::of(m, solver)?;
         let loops = Loops::find(m)?;
+        // The quick return of a loop's output, when the loop's input is the drive.
+        let quick_return =
+            |driven: bool, input: &str, output: &dyn Fn(&Kinematics<'_, 3>) -> Jet<3>| {
+                if driven {
+                    QuickReturn::over_turn(&drive, solver.track(m)?, output)
+                } else {
+                    Err(MetricsError::InputNotDriven {
+                        input: input.to_owned(),
+                    })
+                }
+            };
         let four_bars = (loops.four_bars.into_iter())
             .map(|l| {
                 let rotation = l.output_rotation();
@@ -144,7 +155,7 @@ impl LinkageMetrics {
                     grashof: l.grashof(),
                     input_range: l.input_range(),
                     transmission: l.transmission_extremes(),
-                    quick_return: quick_return(m, solver, l.driven, &l.links[1], output),
+                    quick_return: quick_return(l.driven, &l.links[1], &output),
                     linkage: l,
                 }
             })
@@ -156,7 +167,7 @@ impl LinkageMetrics {
                     criterion: l.criterion(),
                     input_range: l.input_range(),
                     transmission: l.transmission_extremes(),
-                    quick_return: quick_return(m, solver, l.driven, &l.crank, output),
+                    quick_return: quick_return(l.driven, &l.crank, &output),
                     linkage: l,
                 }
             })
@@ -166,23 +177,6 @@ impl LinkageMetrics {
             four_bars,
             slider_cranks,
             not_applicable: loops.not_applicable,
-        })
-    }
-}
-
-/// The quick return of a loop's output, if the loop's input is the drive.
-fn quick_return(
-    m: &Mechanism,
-    solver: &Solver,
-    driven: bool,
-    input: &str,
-    output: impl Fn(&Kinematics<'_, 3>) -> Jet<3>,
-) -> Result<QuickReturn, MetricsError> {
-    if driven {
-        QuickReturn::find(m, solver, output)
-    } else {
-        Err(MetricsError::InputNotDriven {
-            input: input.to_owned(),
         })
     }
 }

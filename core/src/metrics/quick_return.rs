@@ -8,9 +8,10 @@
 //! crank positions' lines). The output's travel between the dead positions is the stroke
 //! of a slider or the swing angle of a rocker.
 
+use super::drive::DriveMotion;
 use super::error::MetricsError;
 use crate::dead_position::{DeadPosition, DeadPositionSearch};
-use crate::geometry::{DriveKind, Kinematics, Mechanism, Solver};
+use crate::geometry::{DriveKind, Kinematics, Mechanism, Solver, Tracker};
 use crate::{Error, Jet};
 use std::cell::RefCell;
 use std::f64::consts::{PI, TAU};
@@ -43,6 +44,10 @@ pub struct QuickReturn {
 }
 
 impl QuickReturn {
+    /// What the time ratio rests on, for a report.
+    pub const FORMULA: &'static str = "Q = α/β ≥ 1, α + β = 360°: the crank angles between \
+         the output's two dead positions (x′ = 0), α for the slower (forward) stroke";
+
     /// The quick return of the output `output` reads from each solved pose, over one turn
     /// of `m`'s crank from the sketch, solved by `solver`. Dead positions are bracketed at
     /// 1° steps and refined by Newton on the exact x″ to full precision.
@@ -56,15 +61,26 @@ impl QuickReturn {
         solver: &Solver,
         output: impl Fn(&Kinematics<'_, 3>) -> Jet<3>,
     ) -> Result<QuickReturn, MetricsError> {
-        if *m.drive_kind() != DriveKind::Angle {
+        Self::over_turn(&DriveMotion::of(m, solver)?, solver.track(m)?, output)
+    }
+
+    /// [`QuickReturn::find`] with the drive's motion range already walked, from `tracker`
+    /// at the sketch.
+    pub(crate) fn over_turn(
+        drive: &DriveMotion,
+        tracker: Tracker<'_>,
+        output: impl Fn(&Kinematics<'_, 3>) -> Jet<3>,
+    ) -> Result<QuickReturn, MetricsError> {
+        let m = tracker.mechanism();
+        if drive.kind != DriveKind::Angle {
             return Err(MetricsError::NotAngleDrive {
                 joint: m.joints()[m.drive_joint()].name.clone(),
             });
         }
-        let tracker = solver.track(m)?;
-        let range = tracker.motion_range()?;
-        if let Some(limit) = range.lower.or(range.upper) {
-            return Err(MetricsError::CrankDoesNotTurn { limit });
+        if let Some(limit) = (drive.range.lower.as_ref()).or(drive.range.upper.as_ref()) {
+            return Err(MetricsError::CrankDoesNotTurn {
+                limit: limit.clone(),
+            });
         }
         let start = tracker.phi();
         let tracker = RefCell::new(tracker);

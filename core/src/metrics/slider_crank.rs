@@ -50,6 +50,9 @@ pub struct SliderCrankLoop {
 }
 
 impl SliderCrankLoop {
+    /// What the transmission angle rests on, for a report: the rod's rise over its length.
+    pub const TRANSMISSION_FORMULA: &'static str = "cos μ = (r·sin θ − e)/l";
+
     /// The lengths as `[r, l, e]`.
     pub fn rle(&self) -> [f64; 3] {
         let l = &self.lengths;
