@@ -28,7 +28,7 @@ use super::slider_crank::SliderCrankLoop;
 use super::transmission::TransmissionAngle;
 use crate::Error;
 use crate::geometry::branch;
-use crate::geometry::{DriveKind, Equations, JointKind, Mechanism};
+use crate::geometry::{DriveKind, Equations, JointKind, Mechanism, check_mobility};
 
 /// Links that no recognised loop covers, and why they have no linkage metrics.
 #[derive(Debug, Clone, PartialEq)]
@@ -68,6 +68,59 @@ impl Hinge {
             [a, b] if b == link => Some(a),
             _ => None,
         }
+    }
+}
+
+/// The link graph: the revolute joints, and the joints at each link.
+struct Graph {
+    hinges: Vec<Hinge>,
+    /// Per link, indices into `hinges` of the revolutes at it.
+    hinges_at: Vec<Vec<usize>>,
+    /// Per link, indices of all the joints joining it to another link.
+    joints_at: Vec<Vec<usize>>,
+}
+
+impl Graph {
+    fn new(m: &Mechanism) -> Graph {
+        let links = m.links().len();
+        let (mut hinges, mut hinges_at, mut joints_at) =
+            (Vec::new(), vec![Vec::new(); links], vec![Vec::new(); links]);
+        for (joint, j) in m.joints().iter().enumerate() {
+            let Some(joined) = j.kind.joined_links() else {
+                continue;
+            };
+            for k in joined {
+                joints_at[k].push(joint);
+            }
+            if let JointKind::Revolute {
+                link_a,
+                link_b,
+                point,
+            } = j.kind
+            {
+                for k in joined {
+                    hinges_at[k].push(hinges.len());
+                }
+                hinges.push(Hinge {
+                    joint,
+                    links: [link_a, link_b],
+                    point,
+                });
+            }
+        }
+        Graph {
+            hinges,
+            hinges_at,
+            joints_at,
+        }
+    }
+
+    /// The revolutes at `link` other than joint `except`, with the link across each.
+    fn hinges_at(&self, link: usize, except: usize) -> impl Iterator<Item = (&Hinge, usize)> {
+        (self.hinges_at[link].iter())
+            .map(|&h| &self.hinges[h])
+            .filter(move |h| h.joint != except)
+            .filter_map(move |h| h.other(link).map(|other| (h, other)))
     }
 }
 
@@ -116,28 +169,18 @@ impl Loops {
     /// The four-bar and slider-crank loops of `m` (see the module documentation).
     ///
     /// # Errors
-    /// [`Error::Underconstrained`] when the equations split into no loops (the mobility
-    /// check says more).
+    /// The errors of [`check_mobility`] (too large a model, over- or under-constrained);
+    /// [`Error::Underconstrained`] when the equations split into no loops.
     pub fn find(m: &Mechanism) -> Result<Loops, Error> {
+        // Bounds the mechanism's size (and says what is wrong with its mobility) before
+        // the search.
+        check_mobility(m)?;
         let order = Order::new(m).ok_or_else(|| Error::Underconstrained {
             free: 0,
             links: Vec::new(),
             joints: m.joints().iter().map(|j| j.name.clone()).collect(),
         })?;
-        let hinges: Vec<Hinge> = (m.joints().iter().enumerate())
-            .filter_map(|(joint, j)| match j.kind {
-                JointKind::Revolute {
-                    link_a,
-                    link_b,
-                    point,
-                } => Some(Hinge {
-                    joint,
-                    links: [link_a, link_b],
-                    point,
-                }),
-                _ => None,
-            })
-            .collect();
+        let graph = Graph::new(m);
         let mut found = Loops {
             four_bars: Vec::new(),
             slider_cranks: Vec::new(),
@@ -145,20 +188,13 @@ impl Loops {
         };
         // Cycles found whose input is not placed first: (links, description).
         let mut rejected: Vec<(Vec<usize>, String)> = Vec::new();
-        let ground = 0;
-        for pivot in hinges.iter().filter(|h| h.other(ground).is_some()) {
-            let Some(input) = pivot.other(ground) else {
-                continue;
-            };
-            for pin in hinges.iter().filter(|h| h.joint != pivot.joint) {
-                let Some(coupler) = pin.other(input) else {
-                    continue;
-                };
-                if coupler == ground || coupler == input {
+        for (pivot, input) in graph.hinges_at(0, usize::MAX) {
+            for (pin, coupler) in graph.hinges_at(input, pivot.joint) {
+                if coupler == 0 || coupler == input {
                     continue;
                 }
-                four_bars(m, &order, &hinges, [pivot, pin], &mut found, &mut rejected);
-                slider_cranks(m, &order, &hinges, [pivot, pin], &mut found, &mut rejected);
+                four_bars(m, &order, &graph, [pivot, pin], &mut found, &mut rejected);
+                slider_cranks(m, &order, &graph, [pivot, pin], &mut found, &mut rejected);
             }
         }
         found.not_applicable = not_applicable(m, &order, &found, &rejected);
@@ -170,7 +206,7 @@ impl Loops {
 fn four_bars(
     m: &Mechanism,
     order: &Order,
-    hinges: &[Hinge],
+    graph: &Graph,
     [pivot, pin]: [&Hinge; 2],
     found: &mut Loops,
     rejected: &mut Vec<(Vec<usize>, String)>,
@@ -181,15 +217,12 @@ fn four_bars(
     let Some(coupler) = pin.other(input) else {
         return;
     };
-    for joint in hinges.iter().filter(|h| h.joint != pin.joint) {
-        let Some(output) = joint.other(coupler) else {
-            continue;
-        };
+    for (joint, output) in graph.hinges_at(coupler, pin.joint) {
         if [0, input, coupler].contains(&output) {
             continue;
         }
-        let frame_pivots = hinges.iter().filter(|h| h.joint != pivot.joint);
-        for out_pivot in frame_pivots.filter(|h| h.other(0) == Some(output)) {
+        let frame_pivots = graph.hinges_at(output, joint.joint);
+        for (out_pivot, _) in frame_pivots.filter(|&(_, other)| other == 0) {
             let points = [pivot.point, pin.point, joint.point, out_pivot.point];
             let links = vec![input, coupler, output];
             if !order.input_first(input, &[coupler, output]) {
@@ -280,7 +313,7 @@ struct Path {
 fn slider_cranks(
     m: &Mechanism,
     order: &Order,
-    hinges: &[Hinge],
+    graph: &Graph,
     [pivot, pin]: [&Hinge; 2],
     found: &mut Loops,
     rejected: &mut Vec<(Vec<usize>, String)>,
@@ -293,36 +326,43 @@ fn slider_cranks(
     };
     let name = |k: usize| m.links()[k].name.clone();
     let mut paths: Vec<Path> = Vec::new();
-    for (j, joint) in m.joints().iter().enumerate() {
-        match joint.kind {
-            JointKind::PinInSlot {
-                slot_link: 0,
-                line,
-                pin_link,
-                pin: point,
-            } if pin_link == rod => paths.push(Path {
+    for &j in &graph.joints_at[rod] {
+        if let JointKind::PinInSlot {
+            slot_link: 0,
+            line,
+            pin_link,
+            pin: point,
+        } = m.joints()[j].kind
+            && pin_link == rod
+        {
+            paths.push(Path {
                 slider: None,
                 pin: point,
                 joints: vec![j],
                 line,
-            }),
-            JointKind::Prismatic {
+            });
+        }
+    }
+    for (hinge, slider) in graph.hinges_at(rod, pin.joint) {
+        if [0, crank, rod].contains(&slider) {
+            continue;
+        }
+        for &j in &graph.joints_at[slider] {
+            if let JointKind::Prismatic {
                 guide: 0,
                 line,
-                slider,
+                slider: moving,
                 ..
-            } if ![0, crank, rod].contains(&slider) => {
-                let hinge = hinges.iter().filter(|h| h.joint != pin.joint);
-                for h in hinge.filter(|h| h.links == [rod, slider] || h.links == [slider, rod]) {
-                    paths.push(Path {
-                        slider: Some(slider),
-                        pin: h.point,
-                        joints: vec![h.joint, j],
-                        line,
-                    });
-                }
+            } = m.joints()[j].kind
+                && moving == slider
+            {
+                paths.push(Path {
+                    slider: Some(slider),
+                    pin: hinge.point,
+                    joints: vec![hinge.joint, j],
+                    line,
+                });
             }
-            _ => {}
         }
     }
     for Path {
