@@ -765,3 +765,55 @@ fn transmission_extremes_are_where_the_solved_pose_has_them() {
         }
     }
 }
+
+/// Any output with two dead positions has a time ratio: the ram of the crank and
+/// slotted-lever shaper of scenes/shaper.toml (reference 003: crank l1 = 0.1 m, lever pivot
+/// l0 = 0.315 m below the crank's, lever l3 = 0.48 m). The lever swings to its extremes
+/// where the crank stands perpendicular to it, sin φ1 = −l1/l0; the crank turns
+/// 180° + 2 asin(l1/l0) forward and 180° − 2 asin(l1/l0) back, and the ram's stroke is
+/// 2 l3 l1/l0 = 0.304761904761905 m.
+#[test]
+fn time_ratio_and_stroke_of_the_slotted_lever_shaper_are_the_closed_forms() {
+    let (l0, l1, l3, l5) = (0.315, 0.1, 0.48, 0.18);
+    let m = Mechanism::builder()
+        .point("A", [0.0, 0.0])
+        .point("C", [0.0, -l0])
+        .point("B", [0.0, l1])
+        .point("D", [0.0, l3 - l0])
+        .point("G", [0.0, l5])
+        .point("H", [1.0, l5])
+        .point("F", [0.0, l5])
+        .point("F1", [0.0, 0.0])
+        .ground(["A", "C", "G", "H"])
+        .link("crank", ["A", "B"])
+        .link("lever", ["C", "D"])
+        .link("ram", ["F", "F1"])
+        .revolute("A", "ground", "crank", "A")
+        .revolute("C", "ground", "lever", "C")
+        .pin_in_slot("block2", "lever", ["C", "D"], "crank", "B")
+        .prismatic("ram_guide", "ground", ["G", "H"], "ram", "F")
+        .pin_in_slot("block4", "ram", ["F", "F1"], "lever", "D")
+        .drive(Drive::angle("A").at_sketch(FRAC_PI_2))
+        .build()
+        .unwrap();
+    let ram = m.displacement_output("ram_guide").unwrap();
+    let q = QuickReturn::find(&m, &Solver::default(), |k| k.value(&ram)).unwrap();
+    let beta = (l1 / l0).asin();
+    close(
+        "forward crank angle",
+        q.forward.crank_angle,
+        PI + 2.0 * beta,
+    );
+    close("return crank angle", q.back.crank_angle, PI - 2.0 * beta);
+    close(
+        "time ratio",
+        q.time_ratio,
+        (PI + 2.0 * beta) / (PI - 2.0 * beta),
+    );
+    close("stroke", q.travel, 2.0 * l3 * l1 / l0);
+    same_angle("first dead position", q.dead_positions[0].phi, PI + beta);
+    same_angle("second dead position", q.dead_positions[1].phi, TAU - beta);
+    // Not a four-bar or a slider-crank: its loops have no Grashof class.
+    let loops = Loops::find(&m).unwrap();
+    assert!(loops.four_bars.is_empty() && loops.slider_cranks.is_empty());
+}
