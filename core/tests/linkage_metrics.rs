@@ -202,7 +202,8 @@ fn cases() -> Vec<Case> {
 #[test]
 fn grashof_classes_of_textbook_four_bars_follow_the_inequality() {
     for case in cases() {
-        let linkage = the_four_bar(&four_bar(case.abcd, case.theta, 1.0));
+        let m = four_bar(case.abcd, case.theta, 1.0);
+        let linkage = the_four_bar(&m);
         let g = linkage.grashof();
         assert_eq!(g.class, case.class, "{g}");
         assert_eq!(
@@ -215,6 +216,20 @@ fn grashof_classes_of_textbook_four_bars_follow_the_inequality() {
         close("s + l", g.s_plus_l, sorted[0] + sorted[3]);
         close("p + q", g.p_plus_q, sorted[1] + sorted[2]);
         assert!(linkage.driven);
+        // A time ratio needs a crank input and a rocking output: the crank-rocker only.
+        let metrics = LinkageMetrics::of(&m, &Solver::default()).unwrap();
+        let quick_return = &metrics.four_bars[0].quick_return;
+        match case.class {
+            GrashofClass::CrankRocker => assert!(quick_return.is_ok()),
+            GrashofClass::DoubleCrank => {
+                assert_eq!(quick_return, &Err(MetricsError::DeadPositions { found: 0 }))
+            }
+            _ => assert!(
+                matches!(quick_return, Err(MetricsError::CrankDoesNotTurn { .. })),
+                "{}: {quick_return:?}",
+                case.class.name()
+            ),
+        }
     }
 }
 

@@ -1,6 +1,7 @@
 //! The drive's motion range in words: a full turn, or between which limits and why.
 
 use super::error::MetricsError;
+use super::short;
 use crate::geometry::{DriveKind, DriveLimit, LimitKind, Mechanism, MotionRange, Solver};
 use std::fmt;
 
@@ -74,7 +75,7 @@ impl DriveMotion {
 }
 
 /// Why the drive stops at `limit`, in words.
-fn reason(limit: &DriveLimit) -> String {
+pub(crate) fn reason(limit: &DriveLimit) -> String {
     let joints = limit.joints.join(", ");
     match limit.kind {
         LimitKind::Limit => {
@@ -99,16 +100,5 @@ impl fmt::Display for DriveMotion {
             DriveKind::Displacement => self.describe(|s| format!("{} m", short(s))),
         };
         f.write_str(&text)
-    }
-}
-
-/// `x` to six decimals, without trailing zeros ("-30", "12.5").
-fn short(x: f64) -> String {
-    let text = format!("{x:.6}");
-    let text = text.trim_end_matches('0').trim_end_matches('.');
-    if text == "-0" {
-        "0".to_owned()
-    } else {
-        text.to_owned()
     }
 }

@@ -19,11 +19,10 @@ pub enum MetricsError {
     },
     /// A time ratio needs a crank that turns fully, and the drive stops.
     #[error(
-        "the crank does not turn fully: it stops at drive position {} rad ({:?} in the loop of \
-         joints {}), so it has no time ratio",
+        "the crank does not turn fully: it stops at drive position {} rad ({}), so it has no \
+         time ratio",
         limit.phi,
-        limit.kind,
-        limit.joints.join(", ")
+        super::drive::reason(limit)
     )]
     CrankDoesNotTurn {
         /// Where it stops, and why.

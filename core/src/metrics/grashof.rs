@@ -15,6 +15,7 @@
 //! Strict Grashof linkages have exactly one shortest link: with two equal shortest links
 //! s + l ≥ p + q always (p + q = s + m, m ≤ l).
 
+use super::short;
 use std::fmt;
 
 /// The four lengths of a four-bar loop (m): frame d, input a, coupler b, output c.
@@ -68,7 +69,7 @@ pub struct LengthTerm {
 
 impl fmt::Display for LengthTerm {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{} {} m", self.link, self.length)
+        write!(f, "{} {} m", self.link, short(self.length))
     }
 }
 
@@ -119,7 +120,7 @@ pub struct Grashof {
     pub shortest: LengthTerm,
     /// l, the longest link (the first of equals, as for s).
     pub longest: LengthTerm,
-    /// p and q, the other two.
+    /// p and q, the other two (in the order frame, input, coupler, output).
     pub others: [LengthTerm; 2],
     /// s + l (m).
     pub s_plus_l: f64,
@@ -140,6 +141,11 @@ impl Grashof {
     /// let g = Grashof::classify(&lengths, ["ground", "crank", "coupler", "rocker"], 1e-15);
     /// assert_eq!(g.class, GrashofClass::CrankRocker);
     /// assert_eq!((g.shortest.link.as_str(), g.longest.link.as_str()), ("crank", "coupler"));
+    /// assert_eq!(
+    ///     g.to_string(),
+    ///     "crank-rocker: s + l = crank 0.1 m + coupler 0.45 m = 0.55 m \
+    ///      < p + q = ground 0.4 m + rocker 0.3 m = 0.7 m"
+    /// );
     /// ```
     pub fn classify(lengths: &FourBarLengths, names: [&str; 4], tolerance: f64) -> Grashof {
         let values = [
@@ -192,7 +198,8 @@ impl Grashof {
 }
 
 impl fmt::Display for Grashof {
-    /// `crank-rocker: s + l = crank 0.1 m + coupler 0.45 m = 0.55 m < p + q = … = 0.7 m`.
+    /// `crank-rocker: s + l = crank 0.1 m + coupler 0.45 m = 0.55 m < p + q = … = 0.7 m`
+    /// (lengths to six decimals).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let relation = match self.class {
             GrashofClass::ChangePoint => "=",
@@ -205,10 +212,10 @@ impl fmt::Display for Grashof {
             self.class.name(),
             self.shortest,
             self.longest,
-            self.s_plus_l,
+            short(self.s_plus_l),
             self.others[0],
             self.others[1],
-            self.p_plus_q
+            short(self.p_plus_q)
         )
     }
 }
@@ -318,8 +325,8 @@ impl fmt::Display for SliderCrankCriterion {
             f,
             "{}: r + |e| = {} m {relation} l = {} m",
             self.class.name(),
-            self.crank_plus_offset,
-            self.rod
+            short(self.crank_plus_offset),
+            short(self.rod)
         )
     }
 }

@@ -3,7 +3,7 @@
 //! The link graph (links as nodes, joints as edges) is searched for cycles through the
 //! ground:
 //! - **four-bar**: ground – input – coupler – output – ground, four distinct links joined by
-//!   four revolute joints at four distinct points;
+//!   four revolute joints, no two consecutive ones at the same point (no zero length);
 //! - **slider-crank**: ground – crank – rod by two revolutes, then the rod's pin B on a
 //!   straight path of the ground: a revolute to a slider that a prismatic joint guides along
 //!   a line of the ground, or a pin-in-slot joint whose slot is on the ground.
@@ -35,7 +35,7 @@ use crate::geometry::{DriveKind, Equations, JointKind, Mechanism, check_mobility
 pub struct NotApplicable {
     /// The links (one loop of the solver).
     pub links: Vec<String>,
-    /// The joints of that loop (`drive `name`` for the drive).
+    /// The joints of that loop (the drive named as "drive `O2`").
     pub joints: Vec<String>,
     /// Why no metrics apply.
     pub reason: String,
