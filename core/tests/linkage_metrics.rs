@@ -198,9 +198,17 @@ fn cases() -> Vec<Case> {
 }
 
 /// Grashof's class of each textbook four-bar, with s + l and p + q equal to the sums of its
-/// lengths.
+/// lengths; the class does not change when the linkage is drawn a thousand times smaller or
+/// larger (the change point's tolerance scales with the lengths).
 #[test]
 fn grashof_classes_of_textbook_four_bars_follow_the_inequality() {
+    for scale in [1e-3, 1e3] {
+        for case in cases() {
+            let m = four_bar(case.abcd.map(|x| x * scale), case.theta, 1.0);
+            let g = the_four_bar(&m).grashof();
+            assert_eq!(g.class, case.class, "scaled by {scale}: {g}");
+        }
+    }
     for case in cases() {
         let m = four_bar(case.abcd, case.theta, 1.0);
         let linkage = the_four_bar(&m);

@@ -330,3 +330,60 @@ impl fmt::Display for SliderCrankCriterion {
         )
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const NAMES: [&str; 4] = ["ground", "crank", "coupler", "rocker"];
+
+    /// a + b = c + d is a change point only within the rounding tolerance: a frame 1e-9 m
+    /// longer makes a Grashof crank-rocker, 1e-9 m shorter a triple-rocker.
+    #[test]
+    fn a_change_point_is_equality_within_rounding() {
+        for (offset, class) in [
+            (0.0, GrashofClass::ChangePoint),
+            (1e-9, GrashofClass::CrankRocker),
+            (-1e-9, GrashofClass::TripleRocker),
+        ] {
+            let lengths = FourBarLengths {
+                frame: 0.2 + offset,
+                input: 0.1,
+                coupler: 0.3,
+                output: 0.2,
+            };
+            let all = [
+                lengths.frame,
+                lengths.input,
+                lengths.coupler,
+                lengths.output,
+            ];
+            let tolerance = length_tolerance(&all, 0.3);
+            assert!(tolerance < 1e-13, "{tolerance}");
+            assert_eq!(Grashof::classify(&lengths, NAMES, tolerance).class, class);
+        }
+    }
+
+    /// r + |e| = l is the slider-crank's change point; the sign of the offset does not
+    /// matter.
+    #[test]
+    fn a_slider_crank_turns_iff_crank_plus_offset_is_at_most_the_rod() {
+        for (offset, class) in [
+            (0.1, SliderCrankClass::ChangePoint),
+            (-0.1, SliderCrankClass::ChangePoint),
+            (0.099, SliderCrankClass::Crank),
+            (-0.101, SliderCrankClass::Rocker),
+        ] {
+            let lengths = SliderCrankLengths {
+                crank: 0.2,
+                rod: 0.3,
+                offset,
+            };
+            let tolerance = length_tolerance(&[0.2, 0.3, offset], 0.3);
+            assert_eq!(
+                SliderCrankCriterion::classify(&lengths, tolerance).class,
+                class
+            );
+        }
+    }
+}
