@@ -840,3 +840,37 @@ fn time_ratio_and_stroke_of_the_slotted_lever_shaper_are_the_closed_forms() {
     let loops = Loops::find(&m).unwrap();
     assert!(loops.four_bars.is_empty() && loops.slider_cranks.is_empty());
 }
+
+/// A slider-crank driven at its slider (an engine) is found but its crank is not placed
+/// first, so it has no slider-crank metrics, and both its loops say why.
+#[test]
+fn an_engine_driven_at_its_slider_is_not_applicable_and_says_why() {
+    let [r, l] = [0.1, 0.4];
+    let m = Mechanism::builder()
+        .point("O", [0.0, 0.0])
+        .point("A", [0.0, r])
+        .point("B", [(l * l - r * r).sqrt(), 0.0])
+        .point("G0", [0.0, 0.0])
+        .point("G1", [1.0, 0.0])
+        .ground(["O", "G0", "G1"])
+        .link("crank", ["O", "A"])
+        .link("rod", ["A", "B"])
+        .link("piston", ["B"])
+        .revolute("O", "ground", "crank", "O")
+        .revolute("A", "crank", "rod", "A")
+        .revolute("B", "rod", "piston", "B")
+        .prismatic("cylinder", "ground", ["G0", "G1"], "piston", "B")
+        .drive(Drive::displacement("cylinder"))
+        .build()
+        .unwrap();
+    let loops = Loops::find(&m).unwrap();
+    assert!(loops.slider_cranks.is_empty() && loops.four_bars.is_empty());
+    assert_eq!(loops.not_applicable.len(), 2, "{:#?}", loops.not_applicable);
+    for loop_ in &loops.not_applicable {
+        assert!(
+            loop_.reason.contains("crank is not placed before its rod"),
+            "{}",
+            loop_.reason
+        );
+    }
+}
