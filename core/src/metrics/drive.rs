@@ -1,8 +1,8 @@
 //! The drive's motion range in words: a full turn, or between which limits and why.
 
 use super::error::MetricsError;
-use super::short;
-use crate::geometry::{DriveKind, DriveLimit, LimitKind, Mechanism, MotionRange, Solver};
+use super::words::{reason, short};
+use crate::geometry::{DriveKind, DriveLimit, Mechanism, MotionRange, Solver};
 use std::fmt;
 
 /// How far the drive moves from the sketch, as the solver walks it (see
@@ -71,23 +71,6 @@ impl DriveMotion {
             end(&self.range.lower, -1.0),
             end(&self.range.upper, 1.0)
         )
-    }
-}
-
-/// Why the drive stops at `limit`, in words.
-pub(crate) fn reason(limit: &DriveLimit) -> String {
-    let joints = limit.joints.join(", ");
-    match limit.kind {
-        LimitKind::Limit => {
-            format!("a limit position: the loop of joints {joints} cannot close beyond it")
-        }
-        LimitKind::ChangePoint => {
-            format!("a change point: the two branches of the loop of joints {joints} meet")
-        }
-        LimitKind::Toggle => format!("a toggle: the loop of joints {joints} is singular"),
-        LimitKind::BranchFlip => {
-            format!("beyond it the loop of joints {joints} would switch to its other branch")
-        }
     }
 }
 

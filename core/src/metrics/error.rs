@@ -22,7 +22,7 @@ pub enum MetricsError {
         "the crank does not turn fully: it stops at drive position {} rad ({}), so it has no \
          time ratio",
         limit.phi,
-        super::drive::reason(limit)
+        super::words::reason(limit)
     )]
     CrankDoesNotTurn {
         /// Where it stops, and why.

@@ -15,7 +15,7 @@
 //! Strict Grashof linkages have exactly one shortest link: with two equal shortest links
 //! s + l ≥ p + q always (p + q = s + m, m ≤ l).
 
-use super::short;
+use super::words::short;
 use std::fmt;
 
 /// The four lengths of a four-bar loop (m): frame d, input a, coupler b, output c.

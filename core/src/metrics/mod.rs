@@ -61,6 +61,7 @@ mod loops;
 mod quick_return;
 mod slider_crank;
 mod transmission;
+mod words;
 
 pub use drive::DriveMotion;
 pub use error::MetricsError;
@@ -81,17 +82,6 @@ pub use transmission::{
 
 use crate::Jet;
 use crate::geometry::{Kinematics, Mechanism, Solver};
-
-/// `x` to six decimals, without trailing zeros ("-30", "12.5"): numbers in messages.
-pub(crate) fn short(x: f64) -> String {
-    let text = format!("{x:.6}");
-    let text = text.trim_end_matches('0').trim_end_matches('.');
-    if text == "-0" {
-        "0".to_owned()
-    } else {
-        text.to_owned()
-    }
-}
 
 /// The metrics of one four-bar loop.
 #[derive(Debug, Clone, PartialEq)]
