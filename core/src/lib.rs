@@ -28,6 +28,7 @@ pub mod error;
 pub mod geometry;
 pub mod jet;
 pub mod method;
+pub mod metrics;
 pub mod motion;
 pub mod point;
 pub mod position;
