@@ -1,6 +1,6 @@
 //! One step-halving walk from one drive position to another, written once: the solver's
 //! closed-form and Newton paths ([`super::Tracker::move_to`]), the mixed plan's run-time
-//! evaluator ([`super::trace::MixedTracker`]) and the generated code of a mixed plan (which
+//! evaluator ([`crate::trace::MixedTracker`]) and the generated code of a mixed plan (which
 //! includes [`SOURCE`], so that it depends on nothing) all walk with [`StepHalving::walk`].
 //!
 //! Steps of at most a longest one (1/8 rad, or 1/8 of the sketch for a displacement drive:
