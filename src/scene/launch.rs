@@ -34,10 +34,10 @@ pub fn run(scene: &Scene) -> Result<Report> {
     run_with(scene, &RunOptions::default())
 }
 
-/// [`run`] with `options`: how the positions are evaluated ([`RunOptions::evaluator`]).
+/// [`run()`] with `options`: how the positions are evaluated ([`RunOptions::evaluator`]).
 ///
 /// # Errors
-/// As [`run`]; [`crate::Error::NoEvaluator`] when the run-time evaluator asked for cannot
+/// As [`run()`]; [`crate::Error::NoEvaluator`] when the run-time evaluator asked for cannot
 /// evaluate the scene.
 pub fn run_with(scene: &Scene, options: &RunOptions) -> Result<Report> {
     run::collect(&Setup::of(scene, options)?)
