@@ -104,9 +104,10 @@ pub mod sensitivity;
 pub mod stream;
 
 pub use error::{Error, Result};
+pub use scene::launch::{run, run_with};
 pub use scene::outputs::Column;
 pub use scene::parameters::Setting;
-pub use scene::{Report, RunOptions, Scene, load, load_with, parse, parse_with, run, run_with};
+pub use scene::{Report, RunOptions, Scene, load, load_with, parse, parse_with};
 pub use sensitivity::Study;
 pub use stream::{Sink, Sinks};
 

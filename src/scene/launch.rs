@@ -34,10 +34,30 @@ pub fn run(scene: &Scene) -> Result<Report> {
     run_with(scene, &RunOptions::default())
 }
 
-/// [`run`] with `options`: how the positions are evaluated ([`RunOptions::evaluator`]).
+/// [`run()`] with `options`: how the positions are evaluated ([`RunOptions::evaluator`]).
+///
+/// ```
+/// use mechdiff::{RunOptions, evaluator::Evaluator};
+///
+/// let scene = mechdiff::load("scenes/slider_crank.toml")?;
+/// let solver = mechdiff::run(&scene)?;
+/// let options = RunOptions { evaluator: Evaluator::Interpreter };
+/// let program = mechdiff::run_with(&scene, &options)?;
+/// assert!(solver.plan.backend.is_none() && program.plan.backend.is_some());
+/// assert_eq!(solver.rows.len(), program.rows.len());
+/// for (c, column) in solver.columns.iter().enumerate() {
+///     // The same closed forms, differentiated differently, agree to rounding: 1e-13 of
+///     // the column's largest magnitude (the bound tests/run_evaluator.rs holds every scene to).
+///     let largest = solver.rows.iter().fold(0.0f64, |m, r| m.max(r[c].abs()));
+///     for (a, b) in solver.rows.iter().zip(&program.rows) {
+///         assert!((a[c] - b[c]).abs() <= 1e-13 * largest, "{}", column.name);
+///     }
+/// }
+/// # Ok::<(), mechdiff::Error>(())
+/// ```
 ///
 /// # Errors
-/// As [`run`]; [`crate::Error::NoEvaluator`] when the run-time evaluator asked for cannot
+/// As [`run()`]; [`crate::Error::NoEvaluator`] when the run-time evaluator asked for cannot
 /// evaluate the scene.
 pub fn run_with(scene: &Scene, options: &RunOptions) -> Result<Report> {
     run::collect(&Setup::of(scene, options)?)

@@ -1,6 +1,7 @@
 //! Running a scene's [`Setup`]: the drive positions, the sweep, the outputs at every drive
 //! position, and the dead positions asked for. The scene itself is read once, at the edge
-//! ([`super::launch`]): nothing here takes the [`super::Scene`].
+//! ([`Setup::of`], in [`super::run()`] and the other entry points): nothing here takes the
+//! [`super::Scene`].
 
 use std::cell::RefCell;
 
@@ -19,6 +20,7 @@ use super::setup::Setup;
 use super::sweep::{Counts, Sweeper, check_row, kinematic_columns, not_finite, solve};
 use super::units::{Dimension, Units};
 
+// The motion range in words and the entry point, at the paths they have always had.
 pub use super::describe::describe_motion_range;
 pub use super::launch::run;
 

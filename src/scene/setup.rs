@@ -2,7 +2,7 @@
 //! the outputs, the effects' settings, the solver, and the scene's words for errors
 //! ([`ErrorContext`]: file, units, drive, joints).
 //!
-//! The runner ([`super::run`], [`super::Sweeper`], [`crate::stream`]) and the effects
+//! The runner ([`super::run`](mod@super::run), [`super::Sweeper`], [`crate::stream`]) and the effects
 //! (`[[dynamics]]`, `[balancing]`) take a [`Setup`] or the parts of it they need, never the
 //! whole [`Scene`]: the scene is data, read once here. How a run evaluates its positions is
 //! an option of the run ([`RunOptions`]), not part of the scene.

@@ -130,7 +130,8 @@ pub struct Streamed {
 }
 
 /// The terminal table's words besides its rows, in the scene's terms: a presenter the edge
-/// makes from the scene ([`crate::scene::launch`]), so that the runner never reads it.
+/// hands the runner (a [`crate::Scene`] words its own table), so that the runner never
+/// reads the scene.
 pub trait TableWords {
     /// The lines before the table's header: the title, if any, and the plan line, each
     /// ending in a newline.
