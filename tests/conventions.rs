@@ -582,11 +582,12 @@ fn crate_roots() -> Vec<(std::path::PathBuf, String)> {
     roots
 }
 
-/// The largest import circles of the facade (`mechdiff`'s `src/lib.rs` and `src/main.rs`)
-/// as measured after the first merges of issue 23 (18 when the checker was written; the
-/// scene reading modules, `src/scene`, are being split): they may shrink, never grow. Lower
-/// them as circles are broken.
-const FACADE_LARGEST_CIRCLE: [(&str, usize); 2] = [("src/lib.rs", 17), ("src/main.rs", 4)];
+/// The largest import circle of the facade library (`mechdiff`'s `src/lib.rs`) as measured
+/// after the first merges of issue 23 (18 when the checker was written; the scene reading
+/// modules, `src/scene`, are being split): it may shrink, never grow. Lower it as circles
+/// are broken. (`src/main.rs` had one of 4, the subcommands around `cli::run`; it has none
+/// now and is held to 2 like every other crate.)
+const FACADE_LARGEST_CIRCLE: [(&str, usize); 1] = [("src/lib.rs", 17)];
 
 /// Issue 23: no import circle of more than two modules in any crate (see
 /// `import_graph` for what counts as an edge); the facade's circles may only shrink.
