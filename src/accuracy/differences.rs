@@ -16,7 +16,7 @@
 
 use mechdiff_core::method::CentralDifference;
 
-use super::{Case, Kind, MAX_ORDER, Method, Positions, Values};
+use super::method::{Kind, MAX_ORDER, Method, Positions, Values};
 use crate::Error;
 
 /// A finite-difference scheme.
@@ -146,32 +146,37 @@ pub fn method<'a>(
     }
 }
 
-/// Every scheme's error over [`steps`] on `case`, with the best step per order.
+/// Every scheme's error over [`steps`] of the outputs `f` (`outputs` of them), with the best
+/// step per order: `errors` gives a method's scaled errors at every position of the sweep,
+/// `[position][order]` ([`Case::errors`](super::Case::errors)).
 ///
 /// # Errors
 /// The evaluation's error if the case's `f64` evaluation fails at a sample (a step that
 /// leaves the range where the mechanism assembles).
-pub fn scan(case: &Case<'_>, scales: &[[f64; MAX_ORDER + 1]]) -> Result<Vec<StepScan>, Error> {
-    let outputs = case.outputs.len();
+pub fn scan(
+    f: &Positions<'_>,
+    outputs: usize,
+    mut errors: impl FnMut(&mut Method<'_>) -> Result<Vec<Values>, Error>,
+) -> Result<Vec<StepScan>, Error> {
     let steps = steps();
     Scheme::ALL
         .iter()
         .map(|&scheme| {
-            let mut errors = Vec::with_capacity(steps.len());
+            let mut worst_per_step = Vec::with_capacity(steps.len());
             for &h in &steps {
-                let mut method = method(&case.positions_f64, scheme, h, outputs, String::new());
+                let mut method = method(f, scheme, h, outputs, String::new());
                 // A NaN of a finite difference at a too-large step (outside the domain) is
                 // an infinite error of that step, not a failure of the report.
-                let (per_position, _) = case.errors(&mut method, scales)?;
+                let per_position = errors(&mut method)?;
                 let worst = std::array::from_fn(|k| {
                     per_position.iter().map(|e| e[k + 1]).fold(0.0, f64::max)
                 });
-                errors.push(worst);
+                worst_per_step.push(worst);
             }
             let best = std::array::from_fn(|k| {
                 steps
                     .iter()
-                    .zip(&errors)
+                    .zip(&worst_per_step)
                     .map(|(&h, e)| (h, e[k]))
                     .min_by(|a, b| a.1.total_cmp(&b.1))
                     .unwrap_or((f64::NAN, f64::INFINITY))
@@ -179,7 +184,7 @@ pub fn scan(case: &Case<'_>, scales: &[[f64; MAX_ORDER + 1]]) -> Result<Vec<Step
             Ok(StepScan {
                 scheme,
                 steps: steps.clone(),
-                errors,
+                errors: worst_per_step,
                 best,
             })
         })

@@ -7,8 +7,8 @@
 
 use mechdiff_core::symbolic::{Arithmetic, BigArithmetic, BigReal, Graph, Id};
 
-use super::MAX_ORDER;
 use super::double_double::DoubleDouble;
+use super::method::MAX_ORDER;
 use crate::Error;
 
 /// Bits of the reference evaluation.

@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 
 use super::differences::StepScan;
-use super::{EPSILON, Failure, Kind, MAX_ORDER, Method, Values};
+use super::method::{EPSILON, Failure, Kind, MAX_ORDER, Method, Values};
 use crate::Error;
 use crate::report::Table;
 use crate::stream::record::csv_quoted;

@@ -16,7 +16,7 @@
 use crate::error::Result;
 use crate::scene::Source;
 
-use super::{Joint, JointKind, Linkage, error};
+use super::linkage::{Joint, JointKind, Linkage, error};
 
 /// Reads PMKS text.
 ///

@@ -18,7 +18,7 @@ use std::ops::Range;
 use crate::error::Result;
 use crate::scene::Source;
 
-use super::{Joint, JointKind, Linkage, error};
+use super::linkage::{Joint, JointKind, Linkage, error};
 
 #[derive(Debug, Clone, PartialEq)]
 enum Token {

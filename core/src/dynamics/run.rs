@@ -26,6 +26,20 @@ pub struct Step {
     pub shaking: Option<ShakingForce>,
 }
 
+impl Step {
+    /// The step at drive position `phi` with drive state `drive`, before anything is
+    /// evaluated: the results the plan asks for are filled in by the runner.
+    pub(crate) fn at(phi: f64, drive: DriveState) -> Self {
+        Step {
+            phi,
+            drive,
+            solution: None,
+            energy: None,
+            shaking: None,
+        }
+    }
+}
+
 /// The results of a planned sweep and what it evaluated.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Run {
@@ -160,13 +174,7 @@ pub fn step_at(
     trace: &mut Trace,
 ) -> Result<Step, Error> {
     trace.positions += 1;
-    let mut step = Step {
-        phi,
-        drive: d,
-        solution: None,
-        energy: None,
-        shaking: None,
-    };
+    let mut step = Step::at(phi, d);
     match plan.order {
         0 => {}
         1 => {
@@ -224,13 +232,7 @@ pub fn step_from(
     trace: &mut Trace,
 ) -> Result<Step, Error> {
     debug_assert!(plan.order >= 2, "a plan of order {} lifts less", plan.order);
-    let mut step = Step {
-        phi,
-        drive: d,
-        solution: None,
-        energy: None,
-        shaking: None,
-    };
+    let mut step = Step::at(phi, d);
     trace.derivatives += 1;
     if plan.energy {
         step.energy = Some(energy(model, coordinates, &d));

@@ -11,15 +11,34 @@
 
 mod walk;
 
+use std::sync::LazyLock;
+
 pub use walk::{Attempt, StepHalving, Stop, Walked};
 
+/// The walk's source as the solver compiles it.
+const WALK: &str = include_str!("halving/walk.rs");
+
 /// The source of the walk (`halving/walk.rs`), for the generated code of a mixed plan to
-/// include: the same text the solver compiles, so the two walk alike step for step.
-pub const SOURCE: &str = include_str!("halving/walk.rs");
+/// include in a module of its own: the same text the solver compiles, so the two walk alike
+/// step for step, except that its items are `pub(super)` instead of `pub` — visible to the
+/// generated module that includes them, not a part of that module's public items.
+pub static SOURCE: LazyLock<String> = LazyLock::new(|| WALK.replace("\npub ", "\npub(super) "));
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The emitted walk is the compiled one with each of its items (a line starting `pub `:
+    /// `Attempt`, `Walked`, `Stop`, `StepHalving`) made `pub(super)`, and nothing else
+    /// changed.
+    #[test]
+    fn the_emitted_walk_has_its_items_private_to_the_including_module() {
+        let items = |text: &str, start: &str| text.lines().filter(|l| l.starts_with(start)).count();
+        assert_eq!(items(WALK, "pub "), 4);
+        assert_eq!(items(&SOURCE, "pub "), 0);
+        assert_eq!(items(&SOURCE, "pub(super) "), 4);
+        assert_eq!(SOURCE.replace("\npub(super) ", "\npub "), WALK);
+    }
 
     const HALVING: StepHalving = StepHalving {
         longest: 0.125,

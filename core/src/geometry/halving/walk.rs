@@ -1,6 +1,6 @@
-// This file is also emitted, as it is, into the generated module of a mixed plan (see
-// `halving::SOURCE`): it uses nothing but `core` and `std`, has no inner attributes and
-// no tests (the module's documentation and tests are in `halving.rs`).
+// This file is also emitted into the generated module of a mixed plan, its items `pub(super)`
+// there (see `halving::SOURCE`): it uses nothing but `core` and `std`, has no inner
+// attributes and no tests (the module's documentation and tests are in `halving.rs`).
 
 /// What one attempted step came to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
