@@ -27,6 +27,7 @@ mod geometry_sweep_properties;
 mod geometry_sweeps;
 mod geometry_trace;
 mod geometry_whitworth;
+mod machine_motion;
 mod symbolic_evaluator_edges;
 mod symbolic_hard_points;
 mod symbolic_limits;

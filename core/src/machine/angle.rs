@@ -5,7 +5,7 @@
 
 use super::equation::{Machine, Speed};
 use super::error::MotionError;
-use super::integrate::{Tolerances, crossed, failed, locate};
+use super::integrate::{Tolerances, crossed, failed, locate, state_at};
 use super::time::at_time;
 use crate::dynamics::CompiledModel;
 use crate::geometry::Tracker;
@@ -119,6 +119,8 @@ struct Watch<'s, 'a, 'm> {
     alpha: f64,
     steps: usize,
     max_steps: usize,
+    /// Where φ̈ = 0 inside a step: the step's start and the angle.
+    candidates: Vec<(f64, [f64; 2], f64)>,
     /// The last accepted step's end.
     last: Option<(f64, [f64; 2])>,
     failure: Option<MotionError>,
@@ -130,7 +132,7 @@ impl Solout<f64, [f64; 2]> for &mut Watch<'_, '_, '_> {
         phi: f64,
         phi_prev: f64,
         y: &[f64; 2],
-        _: &[f64; 2],
+        y_prev: &[f64; 2],
         interpolator: &mut I,
         _: &mut Solution<f64, [f64; 2]>,
     ) -> ControlFlag<f64, [f64; 2]>
@@ -157,16 +159,16 @@ impl Solout<f64, [f64; 2]> for &mut Watch<'_, '_, '_> {
             if crossed(self.alpha, alpha) {
                 // φ̈ = 0 on the dense output, located in φ (the independent variable).
                 let system = self.system;
-                let (p, s, _) = locate(
+                let (p, _, _) = locate(
                     interpolator,
                     (phi_prev, self.alpha),
                     (phi, alpha),
                     *y,
                     |p, s| system.speed(p, s[0]).map_or(f64::NAN, |v| v.1),
                 );
-                if let Ok((w, _)) = system.speed(p, s[0]) {
-                    x.add(w, p);
-                }
+                // The speed there is integrated from the step's start after the stretch:
+                // the dense output is less accurate than the steps.
+                self.candidates.push((phi_prev, *y_prev, p));
             }
         }
         self.alpha = alpha;
@@ -226,7 +228,7 @@ pub(crate) fn integrate<'m>(
         };
         let system = InAngle {
             machine,
-            model: machine.loads_between(lower, upper),
+            model: machine.loads_between(phi, (lower, upper), true),
             tracker: RefCell::new(t),
             failure: RefCell::new(None),
             evaluations: Cell::new(0),
@@ -258,17 +260,34 @@ pub(crate) fn integrate<'m>(
             steps: run.steps,
             max_steps: tolerances.max_steps,
             failure: None,
+            candidates: Vec::new(),
             last: None,
         };
         let left = tolerances.max_steps - run.steps;
+        // Steps of at most half a radian: the geometry tracker follows every stage.
         let result = IVP::ode(&system, phi, end, y)
-            .method(tolerances.method(left + 1))
+            .method(tolerances.method(left + 1).h_max(0.5))
             .solout(&mut watch)
             .solve();
         run.steps = watch.steps;
         run.extremes = watch.extremes;
         let failure = watch.failure.take();
         let last = watch.last;
+        let candidates = std::mem::take(&mut watch.candidates);
+        if failure.is_none() && system.failure.borrow().is_none() {
+            for (from, y_from, p) in candidates {
+                let at = state_at(&system, (from, y_from), p, tolerances)
+                    .and_then(|s| system.speed(p, s[0]));
+                match (at, run.extremes.as_mut()) {
+                    (Ok((w, _)), Some(x)) => x.add(w, p),
+                    (Err(e), _) => {
+                        *tracker = Some(system.tracker.into_inner());
+                        return Err(e);
+                    }
+                    _ => {}
+                }
+            }
+        }
         run.evaluations += system.evaluations.get();
         *tracker = Some(system.tracker.into_inner());
         if let Some(e) = system.failure.into_inner().or(failure) {

@@ -323,16 +323,23 @@ impl<'m> Machine<'m> {
         })
     }
 
-    /// The machine's model with only the loads acting between the switches `lower` and
-    /// `upper` (either may be infinite), each made to act everywhere: the right-hand side of
-    /// one stretch between two load switches, smooth up to and beyond its ends.
-    pub(crate) fn loads_between(&self, lower: f64, upper: f64) -> CompiledModel<'m> {
-        let mid = if lower.is_finite() && upper.is_finite() {
-            0.5 * (lower + upper)
-        } else if lower.is_finite() {
-            lower + 1.0
+    /// The machine's model with only the loads acting between `from` and the next switch
+    /// in the direction of motion (`forward`: up to `upper`, else down to `lower`), each
+    /// made to act everywhere: the right-hand side of one stretch between two load switches,
+    /// smooth up to and beyond its ends.
+    pub(crate) fn loads_between(
+        &self,
+        from: f64,
+        (lower, upper): (f64, f64),
+        forward: bool,
+    ) -> CompiledModel<'m> {
+        let to = if forward { upper } else { lower };
+        let mid = if to.is_finite() {
+            0.5 * (from + to)
+        } else if forward {
+            from + 1.0
         } else {
-            upper - 1.0
+            from - 1.0
         };
         let mut model = self.model.clone();
         model.loads.retain(|l| l.acts_at(mid));

@@ -4,7 +4,7 @@
 
 use super::error::MotionError;
 use differential_equations::methods::{DormandPrince, Ordinary};
-use differential_equations::prelude::{ExplicitRungeKutta, Interpolation};
+use differential_equations::prelude::{ExplicitRungeKutta, IVP, Interpolation, ODE};
 
 /// DOP853 on a state of two numbers.
 pub(crate) type Dop853 = ExplicitRungeKutta<Ordinary, DormandPrince, f64, [f64; 2], 8, 12, 16>;
@@ -139,6 +139,28 @@ pub(crate) fn locate<I: Interpolation<f64, [f64; 2]> + ?Sized>(
         }
     }
     best
+}
+
+/// The state at `to` of the system `ode` integrated from `(from, y)` with `tolerances`: a
+/// value of full accuracy where the dense output has less (the interpolant of the crate's
+/// DOP853 is of lower order than its steps).
+pub(crate) fn state_at<F: ODE<f64, [f64; 2]>>(
+    ode: &F,
+    (from, y): (f64, [f64; 2]),
+    to: f64,
+    tolerances: &Tolerances,
+) -> Result<[f64; 2], MotionError> {
+    if to == from {
+        return Ok(y);
+    }
+    let solution = IVP::ode(ode, from, to, y)
+        .method(tolerances.method(tolerances.max_steps))
+        .solve()
+        .map_err(failed)?;
+    solution.y.last().copied().ok_or(MotionError::Integrator {
+        time: from,
+        message: "no step was taken".to_owned(),
+    })
 }
 
 /// Whether `g` crossed zero on a step from `g0` to `g1` (leaving zero does not count).

@@ -187,12 +187,28 @@ pub fn steady_state(
             ));
         }
         if lo.0.is_nan() {
+            if hi.0 < 1e-6 * e_guess {
+                return Err(no_steady(
+                    turns,
+                    hi.1,
+                    hi.0,
+                    "every turn loses energy down to 1/1000 of the guess speed",
+                ));
+            }
             let e = hi.0 / 2.25;
             match gain(e, &mut turns)? {
                 Some(g) if g > 0.0 => lo = (e, g),
                 other => hi = (e, other),
             }
         } else {
+            if lo.0 > 1e6 * e_guess {
+                return Err(no_steady(
+                    turns,
+                    Some(lo.1),
+                    lo.0,
+                    "every turn gains energy up to 1000 times the guess speed",
+                ));
+            }
             let e = lo.0 * 2.25;
             match gain(e, &mut turns)? {
                 Some(g) if g > 0.0 => lo = (e, g),

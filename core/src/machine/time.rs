@@ -11,7 +11,7 @@
 
 use super::equation::{Machine, Speed};
 use super::error::MotionError;
-use super::integrate::{Tolerances, crossed, failed, locate};
+use super::integrate::{Tolerances, crossed, failed, locate, state_at};
 use crate::dynamics::CompiledModel;
 use crate::geometry::Tracker;
 use differential_equations::prelude::{ControlFlag, IVP, Interpolation, ODE, Solout, Solution};
@@ -225,7 +225,9 @@ struct Watch<'s, 'a, 'm> {
     max_steps: usize,
     /// The last accepted step's end.
     last: Option<(f64, [f64; 2])>,
-    met: Option<Event>,
+    /// The event met on the last step (located on the dense output), its angle if it is
+    /// one, and the step's start.
+    met: Option<(Event, Option<f64>, (f64, [f64; 2]))>,
     peak: f64,
     max_speed: f64,
 }
@@ -302,17 +304,9 @@ impl Solout<f64, [f64; 2]> for &mut Watch<'_, '_, '_> {
             consider(&|y: &[f64; 2]| y[1] - w, EventKind::Speed, None);
         }
         consider(&|y: &[f64; 2]| y[1], EventKind::Rest, None);
-        if let Some((t, mut y, residual, kind, exact)) = first {
-            if let Some(a) = exact {
-                y[0] = a;
-            }
-            if kind == EventKind::Rest {
-                y[1] = 0.0;
-            }
+        if let Some((t, y, residual, kind, exact)) = first {
             let at = self.sample(t, y);
-            let e = Event { kind, at, residual };
-            self.record(Record::Event(e));
-            self.met = Some(e);
+            self.met = Some((Event { kind, at, residual }, exact, (t_prev, *y_prev)));
             return ControlFlag::Terminate;
         }
         let s = self.sample(t_curr, *y_curr);
@@ -379,7 +373,7 @@ pub fn simulate(
         let (lower, upper) = machine.switches_around(y[0]);
         let system = InTime {
             machine,
-            model: machine.loads_between(lower, upper),
+            model: machine.loads_between(y[0], (lower, upper), y[1] >= 0.0),
             tracker: RefCell::new(tracker),
             failure: RefCell::new(None),
             evaluations: Cell::new(0),
@@ -416,23 +410,30 @@ pub fn simulate(
             .method(tolerances.method(left + 1))
             .solout(&mut watch)
             .solve();
-        let (steps, met, peak, max_speed, last) = (
-            watch.steps,
-            watch.met,
-            watch.peak,
-            watch.max_speed,
-            watch.last,
-        );
-        simulation.steps = steps;
-        simulation.peak_motor_torque = peak;
-        simulation.max_speed = max_speed;
+        let (steps, met, last) = (watch.steps, watch.met, watch.last);
         simulation.stretches += 1;
-        simulation.evaluations += system.evaluations.get();
-        if let Some(e) = system.failure.into_inner() {
+        if let Some(e) = system.failure.borrow_mut().take() {
             return Err(e);
         }
+        let result = result.map_err(failed);
+        let met = match met {
+            Some((e, angle, from)) => {
+                let speed = match e.kind {
+                    EventKind::Speed => stop.speed.unwrap_or(0.0),
+                    _ => 0.0,
+                };
+                let e = refine(&system, tolerances, from, e, angle, speed)?;
+                watch.record(Record::Event(e));
+                Some(e)
+            }
+            None => None,
+        };
+        simulation.steps = steps;
+        simulation.peak_motor_torque = watch.peak;
+        simulation.max_speed = watch.max_speed;
+        simulation.evaluations += system.evaluations.get();
         tracker = system.tracker.into_inner();
-        result.map_err(failed)?;
+        result?;
         let Some(event) = met else {
             let Some((te, ye)) = last else {
                 return Err(MotionError::Integrator {
@@ -493,6 +494,67 @@ pub fn simulate(
             return Ok(simulation);
         }
     }
+}
+
+/// The event `e`, located on the dense output on the step from `from`, moved to where the
+/// integration itself meets it: the state at the located time integrated from the step's
+/// start, and Newton steps in time on `φ − angle` (rate φ̇) or `φ̇ − speed` (rate φ̈); the
+/// event's angle or speed is then set exactly, the residual kept.
+fn refine(
+    system: &InTime<'_, '_>,
+    tolerances: &Tolerances,
+    from: (f64, [f64; 2]),
+    mut e: Event,
+    angle: Option<f64>,
+    speed: f64,
+) -> Result<Event, MotionError> {
+    let mut t = e.at.time;
+    let mut y = [e.at.phi, e.at.omega];
+    let mut residual = f64::INFINITY;
+    for _ in 0..8 {
+        y = state_at(system, from, t, tolerances)?;
+        if let Some(e) = system.failure.borrow_mut().take() {
+            return Err(e);
+        }
+        let (g, rate, scale) = match angle {
+            Some(a) => (y[0] - a, y[1], a.abs().max(1.0)),
+            None => {
+                let s = system.machine.state_in(
+                    &system.model,
+                    &mut system.tracker.borrow_mut(),
+                    y[0],
+                    Speed::Omega(y[1]),
+                );
+                (
+                    y[1] - speed,
+                    s.map_err(|e| at_time(e, t))?.alpha,
+                    speed.abs().max(1.0),
+                )
+            }
+        };
+        residual = g.abs();
+        if residual <= 4.0 * f64::EPSILON * scale || rate == 0.0 || !rate.is_finite() {
+            break;
+        }
+        t -= g / rate;
+    }
+    match angle {
+        Some(a) => y[0] = a,
+        None => y[1] = speed,
+    }
+    let motor_torque = system
+        .machine
+        .motor
+        .as_ref()
+        .map_or(0.0, |c| c.torque(y[1] / system.machine.ratio()));
+    e.at = Sample {
+        time: t,
+        phi: y[0],
+        omega: y[1],
+        motor_torque,
+    };
+    e.residual = residual;
+    Ok(e)
 }
 
 /// [`simulate`] keeping every record.
