@@ -134,6 +134,9 @@ fn j_mechanism<T: Scalar>(phi: T) -> T {
     T::from(M1 * C1 * C1 + I1) + (gx * gx + gy * gy) * M2 + beta * beta * I2 + xb * xb * M3
 }
 
+/// An event function of the reference integration, `g(φ, φ̇)`.
+type EventFunction<'a> = dyn Fn([f64; 2]) -> f64 + 'a;
+
 /// The hand model: J(φ) with the rotor (and a flywheel `fly`), J′(φ), and the reduced
 /// torque `M_char(φ̇/τ)/τ + Q_load(φ)` with the load on or off.
 struct Hand {
@@ -212,11 +215,10 @@ impl Hand {
                 .map(|a| turn + a)
                 .find(|&a| a > y[0] + 1e-12)
                 .unwrap_or(f64::INFINITY);
-            let g: Vec<(f64, Box<dyn Fn([f64; 2]) -> f64 + '_>)> = vec![
-                (0.0, Box::new(|y: [f64; 2]| y[0] - switch)),
-                (1.0, Box::new(&stop)),
-            ];
-            let mut hit: Option<(f64, f64)> = None;
+            let at_switch = |y: [f64; 2]| y[0] - switch;
+            // (whether it is the stop, its function)
+            let g: [(bool, &EventFunction); 2] = [(false, &at_switch), (true, &stop)];
+            let mut hit: Option<(f64, bool)> = None;
             for (which, gf) in &g {
                 if gf(y).signum() != gf(full).signum() && gf(y) != 0.0 {
                     // Secant on the step length.
@@ -240,7 +242,7 @@ impl Hand {
                 Some((hh, which)) => {
                     y = self.rk4_time(y, hh, load);
                     t += hh;
-                    if which == 1.0 {
+                    if which {
                         return (t, y);
                     }
                     y[0] = switch;

@@ -7,7 +7,7 @@
 //! `J(φ)·φ̈ + ½·J′(φ)·φ̇² = M_motor(φ̇/τ)/τ − M_res(φ, φ̇)`,
 //!
 //! with `J(φ)` and `J′(φ)` exact from the mechanism's velocity and acceleration coefficients
-//! ([`crate::dynamics::energy`]) and the right-hand side the mechanism's kinetostatics
+//! ([`energy`](mod@crate::dynamics::energy)) and the right-hand side the mechanism's kinetostatics
 //! ([`crate::dynamics::kinetostatics`]) with exactly the effects asked for (see [`equation`]
 //! for the relation between `M_motor` and the kinetostatic `M_drive`).
 //!
@@ -18,7 +18,7 @@
 //!   events, records streamed to a sink; [`start_up`], [`coast_down`];
 //! - [`steady_state`]: the periodic state by shooting in the energy form (`E = ½Jφ̇²`
 //!   integrated over φ), with ω(φ), t(φ), the period, ω_min, ω_max and δ;
-//! - [`flywheel`]: the flywheel for a requested δ, exactly and by the classic energy method.
+//! - [`flywheel()`]: the flywheel for a requested δ, exactly and by the classic energy method.
 //!
 //! Integration: DOP853 (order 8, dense output of order 7) of the `differential-equations`
 //! crate, behind the `simulate` feature.

@@ -213,6 +213,16 @@ pub(crate) fn at_time(e: MotionError, t: f64) -> MotionError {
     }
 }
 
+/// An event met on a step, located on the dense output.
+#[derive(Clone, Copy)]
+struct Met {
+    event: Event,
+    /// The event's angle, for an angle event.
+    angle: Option<f64>,
+    /// The step's start `(t, y)`.
+    from: (f64, [f64; 2]),
+}
+
 /// The event functions of one stretch and what the stretch met.
 struct Watch<'s, 'a, 'm> {
     system: &'s InTime<'a, 'm>,
@@ -227,7 +237,7 @@ struct Watch<'s, 'a, 'm> {
     last: Option<(f64, [f64; 2])>,
     /// The event met on the last step (located on the dense output), its angle if it is
     /// one, and the step's start.
-    met: Option<(Event, Option<f64>, (f64, [f64; 2]))>,
+    met: Option<Met>,
     peak: f64,
     max_speed: f64,
 }
@@ -282,7 +292,7 @@ impl Solout<f64, [f64; 2]> for &mut Watch<'_, '_, '_> {
         self.steps += 1;
         self.last = Some((t_curr, *y_curr));
         // The earliest event on this step.
-        let mut first: Option<(f64, [f64; 2], f64, EventKind, Option<f64>)> = None;
+        let mut first: Option<Met> = None;
         let mut consider = |g: &dyn Fn(&[f64; 2]) -> f64, kind, exact: Option<f64>| {
             let (g0, g1) = (g(y_prev), g(y_curr));
             if crossed(g0, g1) {
@@ -290,8 +300,22 @@ impl Solout<f64, [f64; 2]> for &mut Watch<'_, '_, '_> {
                     locate(interpolator, (t_prev, g0), (t_curr, g1), *y_curr, |_, y| {
                         g(y)
                     });
-                if first.is_none_or(|f| t < f.0) {
-                    first = Some((t, y, r, kind, exact));
+                if first.is_none_or(|f| t < f.event.at.time) {
+                    let at = Sample {
+                        time: t,
+                        phi: y[0],
+                        omega: y[1],
+                        motor_torque: f64::NAN,
+                    };
+                    first = Some(Met {
+                        event: Event {
+                            kind,
+                            at,
+                            residual: r,
+                        },
+                        angle: exact,
+                        from: (t_prev, *y_prev),
+                    });
                 }
             }
         };
@@ -304,9 +328,8 @@ impl Solout<f64, [f64; 2]> for &mut Watch<'_, '_, '_> {
             consider(&|y: &[f64; 2]| y[1] - w, EventKind::Speed, None);
         }
         consider(&|y: &[f64; 2]| y[1], EventKind::Rest, None);
-        if let Some((t, y, residual, kind, exact)) = first {
-            let at = self.sample(t, y);
-            self.met = Some((Event { kind, at, residual }, exact, (t_prev, *y_prev)));
+        if first.is_some() {
+            self.met = first;
             return ControlFlag::Terminate;
         }
         let s = self.sample(t_curr, *y_curr);
@@ -417,12 +440,12 @@ pub fn simulate(
         }
         let result = result.map_err(failed);
         let met = match met {
-            Some((e, angle, from)) => {
-                let speed = match e.kind {
+            Some(Met { event, angle, from }) => {
+                let speed = match event.kind {
                     EventKind::Speed => stop.speed.unwrap_or(0.0),
                     _ => 0.0,
                 };
-                let e = refine(&system, tolerances, from, e, angle, speed)?;
+                let e = refine(&system, tolerances, from, event, angle, speed)?;
                 watch.record(Record::Event(e));
                 Some(e)
             }

@@ -44,7 +44,7 @@ pub fn start_up(
     machine.validate()?;
     let mut tracker = machine.tracker()?;
     let rest = machine.state(&mut tracker, phi, 0.0)?;
-    if !(rest.alpha > 0.0) {
+    if rest.alpha.is_nan() || rest.alpha <= 0.0 {
         return Err(MotionError::CannotStart {
             phi,
             motor_torque: rest.motor_torque,
