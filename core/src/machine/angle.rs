@@ -102,9 +102,10 @@ impl Extremes {
 pub struct AngleRun {
     /// The end.
     pub end: AngleSample,
-    /// Extreme speeds: at the step ends, the stretch ends and where φ̈ changes sign inside a
-    /// step (located on the dense output); `None` unless asked for.
-    pub extremes: Option<Extremes>,
+    /// Extreme speeds: at the step ends and the stretch ends, and, if asked for, where φ̈
+    /// changes sign inside a step (located on the dense output, the speed there integrated
+    /// from the step's start).
+    pub extremes: Extremes,
     /// Accepted steps.
     pub steps: usize,
     /// Evaluations of the equation of motion.
@@ -114,7 +115,9 @@ pub struct AngleRun {
 struct Watch<'s, 'a, 'm> {
     system: &'s InAngle<'a, 'm>,
     sink: &'s mut dyn FnMut(AngleSample),
-    extremes: Option<Extremes>,
+    extremes: Extremes,
+    /// Whether φ̈ = 0 is located inside the steps.
+    locate_extremes: bool,
     /// φ̈ at the start of the step.
     alpha: f64,
     steps: usize,
@@ -154,22 +157,20 @@ impl Solout<f64, [f64; 2]> for &mut Watch<'_, '_, '_> {
                 return ControlFlag::Terminate;
             }
         };
-        if let Some(x) = self.extremes.as_mut() {
-            x.add(omega, phi);
-            if crossed(self.alpha, alpha) {
-                // φ̈ = 0 on the dense output, located in φ (the independent variable).
-                let system = self.system;
-                let (p, _, _) = locate(
-                    interpolator,
-                    (phi_prev, self.alpha),
-                    (phi, alpha),
-                    *y,
-                    |p, s| system.speed(p, s[0]).map_or(f64::NAN, |v| v.1),
-                );
-                // The speed there is integrated from the step's start after the stretch:
-                // the dense output is less accurate than the steps.
-                self.candidates.push((phi_prev, *y_prev, p));
-            }
+        self.extremes.add(omega, phi);
+        if self.locate_extremes && crossed(self.alpha, alpha) {
+            // φ̈ = 0 on the dense output, located in φ (the independent variable).
+            let system = self.system;
+            let (p, _, _) = locate(
+                interpolator,
+                (phi_prev, self.alpha),
+                (phi, alpha),
+                *y,
+                |p, s| system.speed(p, s[0]).map_or(f64::NAN, |v| v.1),
+            );
+            // The speed there is integrated from the step's start after the stretch:
+            // the dense output is less accurate than the steps.
+            self.candidates.push((phi_prev, *y_prev, p));
         }
         self.alpha = alpha;
         (self.sink)(AngleSample {
@@ -187,7 +188,8 @@ impl Solout<f64, [f64; 2]> for &mut Watch<'_, '_, '_> {
 
 /// Integrates the energy form of `machine` from angle `from` with energy `energy` and time
 /// `time` to angle `to > from`, stretch by stretch between load switches; every accepted step
-/// goes to `sink`; the extremes of the speed are found if `extremes`. `tracker` is moved along.
+/// goes to `sink`; the extreme speeds inside the steps are located if `extremes`. `tracker` is
+/// moved along.
 ///
 /// # Errors
 /// [`MotionError::Stalled`] when the energy reaches zero (the energy form needs φ̇ > 0), the
@@ -211,7 +213,7 @@ pub(crate) fn integrate<'m>(
             omega: f64::NAN,
             energy,
         },
-        extremes: extremes.then(Extremes::none),
+        extremes: Extremes::none(),
         steps: 0,
         evaluations: 0,
     };
@@ -241,9 +243,7 @@ pub(crate) fn integrate<'m>(
                 return Err(at_time(e, y[1]));
             }
         };
-        if let Some(x) = run.extremes.as_mut() {
-            x.add(omega0, phi);
-        }
+        run.extremes.add(omega0, phi);
         if run.steps == 0 {
             sink(AngleSample {
                 phi,
@@ -256,6 +256,7 @@ pub(crate) fn integrate<'m>(
             system: &system,
             sink,
             extremes: run.extremes,
+            locate_extremes: extremes,
             alpha: alpha0,
             steps: run.steps,
             max_steps: tolerances.max_steps,
@@ -278,13 +279,12 @@ pub(crate) fn integrate<'m>(
             for (from, y_from, p) in candidates {
                 let at = state_at(&system, (from, y_from), p, tolerances)
                     .and_then(|s| system.speed(p, s[0]));
-                match (at, run.extremes.as_mut()) {
-                    (Ok((w, _)), Some(x)) => x.add(w, p),
-                    (Err(e), _) => {
+                match at {
+                    Ok((w, _)) => run.extremes.add(w, p),
+                    Err(e) => {
                         *tracker = Some(system.tracker.into_inner());
                         return Err(e);
                     }
-                    _ => {}
                 }
             }
         }

@@ -127,11 +127,9 @@ pub fn steady_state(
         },
     };
     let phi0 = settings.phi;
-    let mut tracker = Some(machine.tracker()?);
-    let j0 = {
-        let t = tracker.as_mut().ok_or(MotionError::NoStopCondition)?;
-        machine.state(t, phi0, guess)?.reduced_inertia
-    };
+    let mut t = machine.tracker()?;
+    let j0 = machine.state(&mut t, phi0, guess)?.reduced_inertia;
+    let mut tracker = Some(t);
     let mut turns = 0;
     let mut evaluations = 0;
     // The energy gained over one turn from start energy `e`; `None`: the machine stalls.
@@ -287,7 +285,7 @@ pub fn steady_state(
         sink,
     )?;
     evaluations += run.evaluations;
-    let x = run.extremes.ok_or(MotionError::NoStopCondition)?;
+    let x = run.extremes;
     let period = run.end.time;
     let mean_time = TAU / period;
     let mean_mid = 0.5 * (x.max.0 + x.min.0);
