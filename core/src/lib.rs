@@ -17,7 +17,10 @@
 //! - `emit`: expressions emitted as Rust tokens and formatted source (`symbolic::emit`: syn,
 //!   quote, prettyplease), for the proc-macros and code generation;
 //! - `big-float`: evaluation in arbitrary precision (`symbolic::bigfloat`, astro-float), the
-//!   references accuracy is measured against.
+//!   references accuracy is measured against;
+//! - `simulate`: the machine in motion under its motor (`machine`: motor characteristics,
+//!   the reduced equation of motion integrated with error control and events, start-up,
+//!   steady state, flywheel sizing; differential-equations).
 #![cfg_attr(docsrs, feature(doc_cfg))]
 
 pub mod balancing;
@@ -27,6 +30,9 @@ pub mod dynamics;
 pub mod error;
 pub mod geometry;
 pub mod jet;
+#[cfg(feature = "simulate")]
+#[cfg_attr(docsrs, doc(cfg(feature = "simulate")))]
+pub mod machine;
 pub mod method;
 pub mod metrics;
 pub mod motion;

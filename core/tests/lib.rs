@@ -28,6 +28,7 @@ mod geometry_sweeps;
 mod geometry_trace;
 mod geometry_whitworth;
 mod linkage_metrics;
+mod machine_motion;
 mod symbolic_evaluator_edges;
 mod symbolic_hard_points;
 mod symbolic_limits;
