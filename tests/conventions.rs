@@ -791,3 +791,29 @@ fn the_scene_checker_finds_each_planted_scene_parameter() {
         ]
     );
 }
+
+/// A module that re-exports another crate's module (`pub use other::units;`, as the facade
+/// re-exports `mechdiff-scene`'s) is not where its children's paths through it lead: a child
+/// naming `super::units::Dimension` names the other crate, so the parent, whose own code
+/// names that child, is in no circle with it.
+#[test]
+fn the_import_checker_takes_a_path_through_another_crates_module_as_external() {
+    let files: std::collections::HashMap<&str, &str> = [
+        ("src/lib.rs", "mod scene;\n"),
+        (
+            "src/scene.rs",
+            "mod drive;\npub use other::units;\nfn f() -> drive::Drive { drive::Drive }\n",
+        ),
+        (
+            "src/scene/drive.rs",
+            "pub struct Drive;\nfn g() -> super::units::Dimension { todo!() }\n",
+        ),
+    ]
+    .into_iter()
+    .collect();
+    let read = |path: &std::path::Path| files.get(path.to_str()?).map(|s| s.to_string());
+    let graph = import_graph::ImportGraph::load("src/lib.rs".as_ref(), &read).unwrap();
+    let edges = graph.named_edges();
+    assert_eq!(edges, [("scene".to_owned(), "scene::drive".to_owned())]);
+    assert!(graph.circles().is_empty(), "{:?}", graph.circles());
+}

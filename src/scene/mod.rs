@@ -35,10 +35,8 @@
 
 pub mod any;
 pub mod balancing;
-pub mod bindings;
 pub mod build;
 pub mod cam;
-pub(crate) mod construct;
 pub(crate) mod context;
 mod describe;
 mod dimension;
@@ -49,7 +47,6 @@ pub(crate) mod evaluate;
 pub mod format;
 mod joints;
 pub(crate) mod launch;
-pub(crate) mod limits;
 pub mod model;
 pub(crate) mod outputs;
 pub mod parameters;
@@ -58,10 +55,8 @@ pub(crate) mod plan;
 pub mod plot;
 pub(crate) mod positions;
 pub(crate) mod preflight;
-mod quantity;
 pub(crate) mod resolve;
 pub mod run;
-pub mod scalar;
 pub mod setup;
 pub mod solver;
 pub(crate) mod source;
@@ -70,8 +65,10 @@ pub(crate) mod sweep;
 pub(crate) mod sweep_limits;
 pub mod table;
 pub mod tangent;
-pub mod units;
-pub mod values;
+
+// The lower layers of reading, in the `mechdiff-scene` crate, under their old paths.
+pub use mechdiff_scene::{bindings, scalar, units, values};
+pub(crate) use mechdiff_scene::{construct, limits, quantity};
 
 use std::path::Path;
 
@@ -89,10 +86,10 @@ pub use sweep::Sweeper;
 pub use sweep_limits::SweepLimit;
 
 /// The most list entries (commas) a scene's text may hold: a `positions` list of
-/// `positions::MAX_POSITIONS` ([`Positions::to_vec`]) and room for the rest. TOML is parsed
+/// `values::MAX_POSITIONS` ([`Positions::to_vec`]) and room for the rest. TOML is parsed
 /// whole before a list is read, at about 150 bytes an entry, so a longer list is refused
 /// before parsing.
-pub const MAX_LIST_ENTRIES: usize = positions::MAX_POSITIONS + 100_000;
+pub const MAX_LIST_ENTRIES: usize = values::MAX_POSITIONS + 100_000;
 
 /// What a scene file describes, from its top-level sections.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -135,7 +132,7 @@ pub fn parse_with(file: &str, text: &str, settings: &[parameters::Setting]) -> R
                 "the file has more than {MAX_LIST_ENTRIES} list entries (commas) before this \
                  one; a `positions` list holds at most {} drive positions: use `from`, `to` \
                  and `step`, or split the sweep into several scenes",
-                positions::MAX_POSITIONS
+                values::MAX_POSITIONS
             ),
         });
     }

@@ -3,9 +3,6 @@
 
 use crate::error::{Error, Location, Result};
 
-/// The most drive positions a `positions = [...]` list may have (the file is parsed whole).
-pub const MAX_POSITIONS: usize = 1_000_000;
-
 /// The most positions of a sweep whose rows are all held in memory: the runs that need every
 /// row at once (dynamics, balancing, `--json`, `--plot`, `--report`). A streamed run (the
 /// table, `--csv`, `--jsonl`) has no such limit.

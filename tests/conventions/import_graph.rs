@@ -329,6 +329,12 @@ impl ImportGraph {
         None
     }
 
+    /// Whether module `m` imports `name` from outside the crate.
+    fn imports_from_outside(&self, m: usize, name: &str, depth: usize) -> bool {
+        (self.modules[m].imports.iter())
+            .any(|i| i.name == name && self.resolve(m, &i.path, depth + 1).is_none())
+    }
+
     /// Where `path`, written in module `m`, leads (`None`: outside the crate).
     fn resolve(&self, m: usize, path: &[String], depth: usize) -> Option<Target> {
         if depth > 32 || path.is_empty() {
@@ -355,6 +361,9 @@ impl ImportGraph {
             match self.lookup(at, name, depth) {
                 Some(Target::Module(module)) => at = module,
                 Some(Target::Item(defining)) => return Some(Target::Item(defining)),
+                // A name the module imports from another crate (`pub use other::units;`):
+                // the path leads outside the crate, not to the module that re-exports it.
+                None if self.imports_from_outside(at, name, depth) => return None,
                 None => break,
             }
             rest = &rest[1..];

@@ -2,11 +2,11 @@
 //! (two circles), the RRP dyad (a circle and a line) and a polar offset.
 //!
 //! Pure plane geometry (SI), in any [`Carried`] scalar: `f64`, or dual numbers carrying
-//! the derivative of every length with respect to a parameter (the scene's tangent,
-//! [`super::tangent`]), whose real parts are the `f64` results bit for bit. The scene ([`super::placement`]) names the points,
+//! the derivative of every length with respect to a parameter (the scene's tangent), whose
+//! real parts are the `f64` results bit for bit. The scene's placement names the points,
 //! converts units and turns a [`NoSolution`] into a message at the place in the file.
 
-use super::scalar::Carried;
+use crate::scalar::Carried;
 
 /// Which of the two intersections of two circles: on the left or right of the directed line
 /// from the first centre to the second.

@@ -6,7 +6,7 @@ use std::collections::HashMap;
 use mechdiff_core::num_dual::Dual64;
 
 /// The scene's parameters, evaluated: the explicit context a scene's formulas are resolved
-/// in ([`super::values::Number::value_in`]); nothing is evaluated while the file is
+/// in ([`crate::values::Number::value_in`]); nothing is evaluated while the file is
 /// deserialised. With a seeded parameter, each value also carries its derivative with
 /// respect to that parameter ([`Bindings::duals`]), so that the resolver run in
 /// [`Dual64`] gives the scene's tangent.

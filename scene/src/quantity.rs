@@ -1,6 +1,6 @@
 //! What an output reports (`quantities = [...]`) and the sense an output angle is counted
 //! in: words of the file that the checked scene keeps as they are, so both the file as
-//! written ([`super::format`]) and the checked scene ([`super::model`]) name them.
+//! written and the checked scene name them.
 
 use serde::Deserialize;
 

@@ -4,12 +4,12 @@
 //! a million radians per second) and close enough to 1 that the engine's products of them
 //! (ω²·ψ″·m·l, …) stay well inside `f64`. A number outside its range is refused where it is
 //! written, with `file:line:column`; what may still overflow in combination is caught when
-//! the results are checked (see [`super::run`]). The table is repeated in
+//! the results are checked (by the run). The table is repeated in
 //! `docs/scene-format.md`.
 
 use std::ops::RangeInclusive;
 
-use super::units::Dimension;
+use crate::units::Dimension;
 
 /// Largest magnitude of a length: coordinates, lengths, radii, offsets (m).
 pub const LENGTH: f64 = 1e9;

@@ -256,7 +256,7 @@ impl Dimension {
 /// `"kg*mm^2"`) and its value in SI.
 ///
 /// ```
-/// use mechdiff::scene::units::{Dimension, unit_factor};
+/// use mechdiff_scene::units::{Dimension, unit_factor};
 ///
 /// assert_eq!(unit_factor("in"), Some((Dimension::Length, 0.0254)));
 /// assert_eq!(unit_factor("furlong"), None);

@@ -1,7 +1,7 @@
 //! The values of a scene file as serde reads them: numbers (or quoted constant formulas),
 //! pairs that must have exactly two entries, and lists with a length limit.
 //!
-//! These are `deserialize_with` helpers for [`super::format`]; every error they raise gets
+//! These are `deserialize_with` helpers for the file's format; every error they raise gets
 //! the value's span from toml, so the message is printed at `file:line:column`.
 
 use std::collections::HashMap;
@@ -14,9 +14,11 @@ use serde::Deserialize;
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
 use toml::Spanned;
 
-use super::bindings::Bindings;
-use super::positions::MAX_POSITIONS;
-use super::scalar::Carried;
+use crate::bindings::Bindings;
+use crate::scalar::Carried;
+
+/// The most drive positions a `positions = [...]` list may have (the file is parsed whole).
+pub const MAX_POSITIONS: usize = 1_000_000;
 
 /// The longest formula a scene may quote (characters).
 pub const MAX_FORMULA_LENGTH: usize = 200;
@@ -88,7 +90,7 @@ impl Visitor<'_> for NumberVisitor {
 /// formulas may also use its `[parameters]` ([`Number::value_in`]).
 ///
 /// ```
-/// use mechdiff::scene::values::constant_formula;
+/// use mechdiff_scene::values::constant_formula;
 ///
 /// assert_eq!(constant_formula("23.4791*0.86").unwrap(), 23.4791 * 0.86);
 /// assert_eq!(constant_formula("2*pi").unwrap(), std::f64::consts::TAU);
@@ -113,7 +115,7 @@ pub fn formula(text: &str, bindings: &HashMap<String, f64>) -> Result<f64, Strin
 
 /// The value of a formula in any scalar `D` (see [`constant_formula`]), its names `pi`,
 /// `tau` and the given `bindings`: with dual numbers for the `bindings`, the formula's
-/// derivative with respect to what they carry (the tangent of a scene, [`super::tangent`]).
+/// derivative with respect to what they carry (the tangent of a scene).
 ///
 /// # Errors
 /// As [`constant_formula`].
@@ -181,7 +183,7 @@ fn unknown_name(text: &str, symbols: &[&str], parameters: &[&str]) -> Result<(),
 ///
 /// # Errors
 /// As [`constant_formula`], for a formula that cannot be read or an unknown name.
-pub(crate) fn parameters_used(text: &str, parameters: &[&str]) -> Result<Vec<String>, String> {
+pub fn parameters_used(text: &str, parameters: &[&str]) -> Result<Vec<String>, String> {
     let (graph, id) = parse_formula(text)?;
     let symbols = graph.symbols(&[id]);
     unknown_name(text, &symbols, parameters)?;
@@ -226,7 +228,7 @@ fn name_column(text: &str, name: &str) -> usize {
 }
 
 /// A formula checked for size and parsed by the symbolic engine.
-pub(crate) fn parse_formula(text: &str) -> Result<(Graph, mechdiff_core::symbolic::Id), String> {
+pub fn parse_formula(text: &str) -> Result<(Graph, mechdiff_core::symbolic::Id), String> {
     let quoted = format!("the formula \"{text}\"");
     if text.chars().count() > MAX_FORMULA_LENGTH {
         return Err(format!(

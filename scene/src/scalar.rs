@@ -3,7 +3,7 @@
 //!
 //! The resolver's steps (a number's value, the placement of points, the constructions, the
 //! drive's measure, the dynamics' numbers) are generic over [`Carried`],
-//! so the exact tangent of a scene ([`super::tangent`]) is the same resolver run in
+//! so the exact tangent of a scene is the same resolver run in
 //! [`Dual64`].
 
 use std::collections::HashMap;
@@ -11,7 +11,7 @@ use std::collections::HashMap;
 use mechdiff_core::Scalar;
 use mechdiff_core::num_dual::Dual64;
 
-use super::bindings::Bindings;
+use crate::bindings::Bindings;
 
 /// A scalar a scene's numbers are read in: `f64` (no derivative) or [`Dual64`] (the
 /// derivative with respect to one parameter).
