@@ -408,3 +408,238 @@ fn names_that_look_like_markup_or_hold_control_characters_stay_text() {
     assert!(names.contains(&"<!--<script>"), "{names:?}");
     assert!(names.contains(&"<!--<script>''"), "{names:?}");
 }
+
+/// The numbers printed under the x axis of each panel of a diagram's SVG (the tick labels:
+/// texts within 24 px below a plot frame's bottom edge that parse as numbers), per panel.
+fn x_ticks(doc: &roxmltree::Document) -> Vec<Vec<f64>> {
+    let frames: Vec<(f64, f64, f64)> = doc
+        .descendants()
+        .filter(|n| n.attribute("class") == Some("plot-frame"))
+        .map(|n| {
+            let at = |a| n.attribute(a).unwrap().parse::<f64>().unwrap();
+            (at("x"), at("x") + at("width"), at("y") + at("height"))
+        })
+        .collect();
+    frames
+        .iter()
+        .map(|&(left, right, bottom)| {
+            doc.descendants()
+                .filter(|n| n.has_tag_name("text"))
+                .filter_map(|n| {
+                    let x: f64 = n.attribute("x")?.parse().ok()?;
+                    let y: f64 = n.attribute("y")?.parse().ok()?;
+                    let v: f64 = n.text()?.trim().parse().ok()?;
+                    (y > bottom && y < bottom + 24.0 && x >= left - 2.0 && x <= right + 2.0)
+                        .then_some(v)
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Issue 24, item 4: every shipped scene's diagram, parsed from its SVG, has angle ticks at
+/// multiples of 15° (4 to 9 per panel; before: every 50°), labels with symbols (no `''`
+/// left; before: `psi''`), dead-position labels that do not overlap (their boxes estimated
+/// at 0.62 em per character, 11 px font, one row 13 px; before: printed at one height over
+/// each other), no panel of an all-zero column (before: seven zero friction torques), and
+/// files no higher than `MAX_HEIGHT` (before: one 9690 px strip).
+#[test]
+fn diagrams_hold_up() {
+    use mechdiff::pictures::diagram::MAX_HEIGHT;
+    let mut primes = 0;
+    for path in scenes() {
+        let (scene, report) = load(&path);
+        let d = diagram(&scene, &report).unwrap();
+        for panel in &d.panels {
+            if scene.plot.panels.is_none() {
+                assert!(
+                    panel
+                        .series
+                        .iter()
+                        .all(|s| s.points.iter().any(|p| p[1] != 0.0)),
+                    "{path:?}: a zero column is drawn in `{}`",
+                    panel.y_label
+                );
+            }
+        }
+        for page in d.pages() {
+            let svg = page.to_svg().unwrap();
+            let doc = roxmltree::Document::parse(&svg).unwrap();
+            let root = doc.root_element();
+            let height: f64 = root.attribute("height").unwrap().parse().unwrap();
+            assert!(height <= f64::from(MAX_HEIGHT), "{path:?}: {height}");
+            let texts: Vec<&str> = doc
+                .descendants()
+                .filter(|n| n.has_tag_name("text"))
+                .filter_map(|n| n.text())
+                .collect();
+            assert!(
+                texts.iter().all(|t| !t.contains("''")),
+                "{path:?}: {texts:?}"
+            );
+            primes += texts.iter().filter(|t| t.contains('″')).count();
+            if page.x_label.ends_with("[deg]") {
+                for ticks in x_ticks(&doc) {
+                    assert!((4..=9).contains(&ticks.len()), "{path:?}: {ticks:?}");
+                    let step = ticks[1] - ticks[0];
+                    assert!(
+                        ticks.iter().all(|t| (t / 15.0).fract().abs() < 1e-9) || step < 15.0,
+                        "{path:?}: {ticks:?}"
+                    );
+                }
+            }
+            // Marker labels: the texts painted in a marker colour.
+            let boxes: Vec<[f64; 4]> = doc
+                .descendants()
+                .filter(|n| n.has_tag_name("text"))
+                .filter(|n| matches!(n.attribute("fill"), Some("#D62728") | Some("#9467BD")))
+                .map(|n| {
+                    let x: f64 = n.attribute("x").unwrap().parse().unwrap();
+                    let y: f64 = n.attribute("y").unwrap().parse().unwrap();
+                    let w = 0.62 * 11.0 * n.text().unwrap().trim().chars().count() as f64;
+                    [x, y, x + w, y + 11.0]
+                })
+                .collect();
+            for (i, a) in boxes.iter().enumerate() {
+                for b in &boxes[i + 1..] {
+                    let apart = a[2] <= b[0] || b[2] <= a[0] || a[3] <= b[1] || b[3] <= a[1];
+                    assert!(apart, "{path:?}: marker labels overlap: {a:?} {b:?}");
+                }
+            }
+        }
+    }
+    assert!(primes > 0, "some diagram labels a coefficient with ″");
+}
+
+/// `panels = ["M_drive"]` draws the drive torque alone (before: beside a zero column of the
+/// same unit); the SVG has one plot frame and its y label names M_drive only.
+#[test]
+fn a_column_asked_by_name_is_drawn_alone() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/rack_slotted_link_dynamics.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let (_, report) = load(&path);
+    let name = &report
+        .columns
+        .iter()
+        .find(|c| c.name.starts_with("M_"))
+        .expect("a drive torque column")
+        .name;
+    let scene = scene::parse(
+        "s.toml",
+        &format!("{text}\n[plot]\npanels = [\"{name}\"]\n"),
+    )
+    .unwrap();
+    let report = scene::run(&scene).unwrap();
+    let svg = diagram(&scene, &report).unwrap().to_svg().unwrap();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let frames = doc
+        .descendants()
+        .filter(|n| n.attribute("class") == Some("plot-frame"))
+        .count();
+    assert_eq!(frames, 1);
+    let d = diagram(&scene, &report).unwrap();
+    assert_eq!(d.panels[0].series.len(), 1, "{:?}", d.panels[0].y_label);
+}
+
+/// Issue 24, item 5: a drawing of a scene with masses, parsed from its SVG, has a grid and a
+/// scale bar of a round length in the scene's unit (1, 2 or 5 × 10ⁿ), traced paths in
+/// distinct colours named in a legend, each centre of mass drawn as a quartered circle (not a
+/// joint ring) at the solver-free rigid position of the sketch (the `[masses]` centre itself,
+/// to 1e-9 of the frame width: a few f64 operations), and labels set off away from their
+/// links. Before: no grid, no scale, one colour, no legend, no centre of mass, labels at a
+/// fixed up-right offset whatever the links.
+#[test]
+fn drawings_have_axes_scale_legend_and_mass_centres() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/whitworth_forces.toml");
+    let (scene, report) = load(&path);
+    let animation = Animation::of(&scene, &report).unwrap();
+    let drawn = drawings(&scene, &report, &animation).unwrap();
+    let (_, sketch) = &drawn[0];
+    let sketch = sketch
+        .clone()
+        .path("first", &[[0.0, 0.0], [0.01, -0.01], [0.02, 0.0]])
+        .path("second", &[[0.0, 0.0], [0.01, 0.01], [0.02, 0.0]]);
+    let svg = sketch.to_svg();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let class = |c: &str| {
+        doc.descendants()
+            .filter(|n| n.attribute("class") == Some(c))
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(class("grid").len(), 1);
+    let bar = class("scale-bar");
+    assert_eq!(bar.len(), 1);
+    let length: f64 = bar[0].attribute("data-length").unwrap().parse().unwrap();
+    let mantissa = length / 10f64.powf(length.log10().floor());
+    assert!(
+        [1.0, 2.0, 5.0].iter().any(|m| (mantissa - m).abs() < 1e-9),
+        "{length}"
+    );
+    assert_eq!(
+        bar[0].attribute("data-unit"),
+        Some(scene.units.symbol(scene::units::Dimension::Length))
+    );
+    let colours: Vec<&str> = doc
+        .descendants()
+        .filter(|n| n.attribute("class").is_some_and(|c| c.starts_with("path ")))
+        .map(|n| n.attribute("stroke").unwrap())
+        .collect();
+    assert!(colours.len() >= 2, "{colours:?}");
+    let mut distinct = colours.clone();
+    distinct.sort_unstable();
+    distinct.dedup();
+    assert_eq!(distinct.len(), colours.len(), "{colours:?}");
+    let legend: Vec<String> = class("legend")[0]
+        .descendants()
+        .filter_map(|n| n.text())
+        .map(str::to_owned)
+        .collect();
+    assert!(legend.iter().any(|t| t == "path of second"), "{legend:?}");
+    let masses = class("mass-centre");
+    let centres = &scene.dynamics.as_ref().unwrap().masses;
+    assert_eq!(masses.len(), centres.len());
+    let f = frame(&svg);
+    for (node, (_, inertia)) in masses.iter().zip(centres) {
+        let circle = node.children().find(|n| n.has_tag_name("circle")).unwrap();
+        let at = |a| circle.attribute(a).unwrap().parse::<f64>().unwrap();
+        let [x, y] = f.pixel(inertia.center);
+        // Written with three decimals: half a thousandth of a pixel.
+        assert!((at("cx") - x).abs() < 6e-4 && (at("cy") - y).abs() < 6e-4);
+        assert!(node.descendants().any(|n| n.has_tag_name("path")));
+    }
+}
+
+/// Arrows of a drawing are drawn to their stated scale: a velocity of (1, 0) m/s at 0.05 m
+/// per m/s is 0.05 m long in model units (to 1e-3 px: three written decimals), and the
+/// legend states the scale in the drawing's unit.
+#[test]
+fn vectors_are_drawn_to_their_stated_scale() {
+    use mechdiff::pictures::{Drawing, VectorKind};
+    let d = Drawing::new("v")
+        .unit("mm", 1e-3)
+        .polyline(&[[0.0, 0.0], [0.1, 0.0]], mechdiff::pictures::Style::link())
+        .vector(VectorKind::Velocity, [0.1, 0.0], [1.0, 0.0], 0.05);
+    let svg = d.to_svg();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let arrow = doc
+        .descendants()
+        .find(|n| n.attribute("class") == Some("vector"))
+        .unwrap();
+    let line = arrow.children().find(|n| n.has_tag_name("line")).unwrap();
+    let head = arrow
+        .children()
+        .find(|n| n.has_tag_name("polygon"))
+        .unwrap();
+    let tip: Vec<f64> = head
+        .attribute("points")
+        .unwrap()
+        .split([' ', ','])
+        .take(2)
+        .map(|v| v.parse().unwrap())
+        .collect();
+    let f = frame(&svg);
+    let x0: f64 = line.attribute("x1").unwrap().parse().unwrap();
+    assert!((tip[0] - x0 - 0.05 * f.scale).abs() < 2e-3);
+    let legend: String = doc.descendants().filter_map(|n| n.text()).collect();
+    assert!(legend.contains("v: 1 m/s ≙ 50 mm"), "{legend}");
+}

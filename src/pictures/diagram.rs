@@ -11,10 +11,12 @@ use std::path::Path;
 use std::sync::OnceLock;
 
 use plotters::coord::Shift;
+use plotters::coord::ranged1d::{KeyPointHint, NoDefaultFormatting, ValueFormatter};
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
 
-use super::{FONT, FONT_FAMILY, raster, write_file};
+use super::{FONT, FONT_FAMILY, axis, raster, write_file};
 use crate::error::{Error, Result};
 
 /// One curve: `[x, y]` points in drawing order; non-finite points break the curve.
@@ -301,14 +303,19 @@ impl Diagram {
             .iter()
             .flat_map(|s| s.points.iter().map(|q| q[1]));
         let y = padded(finite_range(ys), 0.05);
+        let keys = if self.x_label.ends_with("[deg]") {
+            axis::angle_ticks(&x)
+        } else {
+            axis::ticks(&x, 10)
+        };
         let mut chart = ChartBuilder::on(area)
             .margin(6)
             .margin_right(20)
             .x_label_area_size(36)
             .y_label_area_size(80)
-            .build_cartesian_2d(x.clone(), y.clone())
+            .build_cartesian_2d(Ticked::new(x.clone(), keys), y.clone())
             .map_err(draw_error)?;
-        let text = |size| (FONT_FAMILY, size).into_font();
+        let text = text_style;
         chart
             .configure_mesh()
             .x_desc(self.x_label.as_str())
@@ -334,22 +341,33 @@ impl Diagram {
                     .draw_series(DashedLineSeries::new(line, 6, 4, style))
                     .map_err(draw_error)?;
             }
-            if first {
-                let at = chart.backend_coord(&(marker.x, y.end));
+        }
+        if first {
+            let placed =
+                place_marker_labels(&self.markers, &x, |v| chart.backend_coord(&(v, y.end)).0);
+            let top = chart.backend_coord(&(x.start, y.end)).1;
+            for (left, row, text, kind) in placed {
                 area.draw_text(
-                    &marker.label,
-                    &text(11).color(&marker.kind.colour()),
-                    (at.0 + 3, at.1 + 2),
+                    &text,
+                    &text_style(11).color(&kind.colour()),
+                    (left, top + 2 + row * MARKER_ROW),
                 )
                 .map_err(draw_error)?;
             }
         }
+        let (pixels_x, pixels_y) = chart.plotting_area().get_pixel_range();
+        let per_x = f64::from(pixels_x.end - pixels_x.start) / (x.end - x.start);
         for (k, series) in panel.series.iter().enumerate() {
             let colour = PALETTE[k % PALETTE.len()];
             for run in finite_runs(&series.points) {
+                let drawn_points = if series.points.len() > SPARSE {
+                    smooth(run, per_x)
+                } else {
+                    run.to_vec()
+                };
                 let drawn = chart
                     .draw_series(LineSeries::new(
-                        run.iter().map(|p| (p[0], p[1])),
+                        drawn_points.iter().map(|p| (p[0], p[1])),
                         colour.stroke_width(2),
                     ))
                     .map_err(draw_error)?;
@@ -369,12 +387,17 @@ impl Diagram {
             }
         }
         if panel.series.len() > 1 {
+            let corner = emptiest_corner(
+                panel,
+                |p| chart.backend_coord(&(p[0], p[1])),
+                (&pixels_x, &pixels_y),
+            );
             chart
                 .configure_series_labels()
                 .label_font(text(12))
                 .background_style(WHITE.mix(0.8))
                 .border_style(RGBColor(0xcc, 0xcc, 0xcc))
-                .position(SeriesLabelPosition::UpperRight)
+                .position(corner)
                 .draw()
                 .map_err(draw_error)?;
         }
@@ -398,6 +421,270 @@ impl Diagram {
     /// Renders the SVG with the bundled font and writes it as PNG to `path`.
     pub fn write_png(&self, path: &Path) -> Result<()> {
         raster::write_png(&self.to_svg()?, path)
+    }
+}
+
+/// A linear axis with chosen ticks (plotters' `WithKeyPoints` has no formatter for `f64`).
+struct Ticked {
+    inner: RangedCoordf64,
+    bold: Vec<f64>,
+    light: Vec<f64>,
+}
+
+impl Ticked {
+    /// The axis over `range` with ticks at `bold` and light grid lines halfway between.
+    fn new(range: Range<f64>, bold: Vec<f64>) -> Self {
+        let light = bold.windows(2).map(|w| 0.5 * (w[0] + w[1])).collect();
+        Ticked {
+            inner: range.into(),
+            bold,
+            light,
+        }
+    }
+}
+
+impl Ranged for Ticked {
+    type ValueType = f64;
+    type FormatOption = NoDefaultFormatting;
+
+    fn range(&self) -> Range<f64> {
+        self.inner.range()
+    }
+
+    fn map(&self, value: &f64, limit: (i32, i32)) -> i32 {
+        self.inner.map(value, limit)
+    }
+
+    fn key_points<Hint: KeyPointHint>(&self, hint: Hint) -> Vec<f64> {
+        if hint.weight().allow_light_points() {
+            self.light.clone()
+        } else {
+            self.bold.clone()
+        }
+    }
+}
+
+impl ValueFormatter<f64> for Ticked {
+    fn format(value: &f64) -> String {
+        value.to_string()
+    }
+}
+
+/// The bundled font at `size` px.
+fn text_style(size: i32) -> FontDesc<'static> {
+    (FONT_FAMILY, size).into_font()
+}
+
+/// Height of one row of marker labels (px).
+const MARKER_ROW: i32 = 13;
+/// Average advance of a character of the bundled font, as a fraction of its size.
+const ADVANCE: f64 = 0.62;
+
+/// The labels of the markers, placed so that none prints over another: markers at the same
+/// position (several outputs dead at one drive position) share one label (`"ψ, x_C: dead"`),
+/// and a label that would run into one placed before it moves down a row. Returns the left
+/// pixel, the row, the text and the kind; `pixel` maps a drive position to its pixel column.
+fn place_marker_labels(
+    markers: &[Marker],
+    x: &Range<f64>,
+    pixel: impl Fn(f64) -> i32,
+) -> Vec<(i32, i32, String, MarkerKind)> {
+    let same = 1e-9 * (x.end - x.start).abs().max(1e-300);
+    let mut merged: Vec<(f64, Vec<&str>, MarkerKind)> = Vec::new();
+    let mut sorted: Vec<&Marker> = markers.iter().filter(|m| m.x.is_finite()).collect();
+    sorted.sort_by(|a, b| a.x.total_cmp(&b.x));
+    for m in sorted {
+        match merged.last_mut() {
+            Some((at, labels, kind)) if (m.x - *at).abs() <= same && *kind == m.kind => {
+                if !labels.contains(&m.label.as_str()) {
+                    labels.push(&m.label);
+                }
+            }
+            _ => merged.push((m.x, vec![&m.label], m.kind)),
+        }
+    }
+    let mut row_ends: Vec<i32> = Vec::new();
+    let mut out = Vec::new();
+    for (at, labels, kind) in merged {
+        let text = join_labels(&labels);
+        let left = pixel(at) + 3;
+        let width = (ADVANCE * 11.0 * text.chars().count() as f64).ceil() as i32 + 6;
+        let row = match row_ends.iter().position(|&end| end <= left) {
+            Some(r) => r,
+            None => {
+                row_ends.push(i32::MIN);
+                row_ends.len() - 1
+            }
+        };
+        row_ends[row] = left + width;
+        out.push((left, row as i32, text, kind));
+    }
+    out
+}
+
+/// Labels of one position joined: `"a: dead"` and `"b: dead"` become `"a, b: dead"`.
+fn join_labels(labels: &[&str]) -> String {
+    let split: Vec<Option<(&str, &str)>> = labels.iter().map(|l| l.rsplit_once(": ")).collect();
+    if let Some(Some((_, suffix))) = split.first()
+        && split.iter().all(|s| s.is_some_and(|(_, t)| t == *suffix))
+    {
+        let names: Vec<&str> = split.iter().flatten().map(|(n, _)| *n).collect();
+        return format!("{}: {suffix}", names.join(", "));
+    }
+    labels.join("; ")
+}
+
+/// Pixels between drawn points of a smoothed curve, at most.
+const SMOOTH_PIXELS: f64 = 2.0;
+/// Points inserted into one interval, at most.
+const SMOOTH_MOST: usize = 64;
+
+/// A run of points refined for drawing: where x increases (or decreases) strictly along the
+/// run, each interval wider than [`SMOOTH_PIXELS`] at `per_x` pixels per unit of x is
+/// divided into pieces of at most that width on the monotone cubic Hermite interpolant
+/// (Fritsch–Carlson slopes: it passes through every point and adds no extremum between
+/// points), so that the printed curve shows no kink at the points; otherwise the run as is.
+fn smooth(run: &[[f64; 2]], per_x: f64) -> Vec<[f64; 2]> {
+    let n = run.len();
+    if n < 3 || !(per_x.is_finite() && per_x > 0.0) {
+        return run.to_vec();
+    }
+    let dx: Vec<f64> = run.windows(2).map(|w| w[1][0] - w[0][0]).collect();
+    let rising = dx[0] > 0.0;
+    if !dx.iter().all(|&d| if rising { d > 0.0 } else { d < 0.0 }) {
+        return run.to_vec();
+    }
+    let slope: Vec<f64> = run
+        .windows(2)
+        .zip(&dx)
+        .map(|(w, d)| (w[1][1] - w[0][1]) / d)
+        .collect();
+    // Fritsch–Carlson: the mean of neighbouring secants where they agree in sign, zero at an
+    // extremum, limited to three times the smaller secant.
+    let mut tangent = vec![0.0; n];
+    tangent[0] = slope[0];
+    tangent[n - 1] = slope[n - 2];
+    for k in 1..n - 1 {
+        let (a, b) = (slope[k - 1], slope[k]);
+        tangent[k] = if a * b > 0.0 {
+            let m = 0.5 * (a + b);
+            m.signum() * m.abs().min(3.0 * a.abs().min(b.abs()))
+        } else {
+            0.0
+        };
+    }
+    let mut out = Vec::with_capacity(n);
+    out.push(run[0]);
+    for k in 0..n - 1 {
+        let pieces = ((dx[k].abs() * per_x / SMOOTH_PIXELS).ceil() as usize).clamp(1, SMOOTH_MOST);
+        let (y0, y1, h) = (run[k][1], run[k + 1][1], dx[k]);
+        for j in 1..pieces {
+            let t = j as f64 / pieces as f64;
+            let (t2, t3) = (t * t, t * t * t);
+            let y = (2.0 * t3 - 3.0 * t2 + 1.0) * y0
+                + (t3 - 2.0 * t2 + t) * h * tangent[k]
+                + (-2.0 * t3 + 3.0 * t2) * y1
+                + (t3 - t2) * h * tangent[k + 1];
+            out.push([run[k][0] + t * h, y]);
+        }
+        out.push(run[k + 1]);
+    }
+    out
+}
+
+/// The corner of the plotting rectangle (`pixels`) whose legend-sized box holds the fewest
+/// points of the panel's curves (`pixel` maps a point to its pixel); upper right on a tie.
+fn emptiest_corner(
+    panel: &Panel,
+    pixel: impl Fn([f64; 2]) -> (i32, i32),
+    (px, py): (&Range<i32>, &Range<i32>),
+) -> SeriesLabelPosition {
+    let longest = panel
+        .series
+        .iter()
+        .map(|s| s.name.chars().count())
+        .max()
+        .unwrap_or(0) as f64;
+    let w = (30.0 + ADVANCE * 12.0 * longest) as i32 + 10;
+    let h = 18 * panel.series.len() as i32 + 10;
+    let corners = [
+        (
+            SeriesLabelPosition::UpperRight,
+            px.end - w..px.end,
+            py.start..py.start + h,
+        ),
+        (
+            SeriesLabelPosition::UpperLeft,
+            px.start..px.start + w,
+            py.start..py.start + h,
+        ),
+        (
+            SeriesLabelPosition::LowerRight,
+            px.end - w..px.end,
+            py.end - h..py.end,
+        ),
+        (
+            SeriesLabelPosition::LowerLeft,
+            px.start..px.start + w,
+            py.end - h..py.end,
+        ),
+    ];
+    let points: Vec<(i32, i32)> = panel
+        .series
+        .iter()
+        .flat_map(|s| s.points.iter())
+        .filter(|p| p[0].is_finite() && p[1].is_finite())
+        .map(|&p| pixel(p))
+        .collect();
+    let mut best = (usize::MAX, SeriesLabelPosition::UpperRight);
+    for (position, xs, ys) in corners {
+        let inside = points
+            .iter()
+            .filter(|(x, y)| xs.contains(x) && ys.contains(y))
+            .count();
+        if inside < best.0 {
+            best = (inside, position);
+        }
+    }
+    best.1
+}
+
+/// The most a diagram file is high (px): a taller diagram is split into pages.
+pub const MAX_HEIGHT: u32 = 2000;
+
+impl Diagram {
+    /// The diagram split into pages of at most [`MAX_HEIGHT`] px each (one page if it fits):
+    /// the cartesian panels in order, as many per page as fit, then the polar panels; every
+    /// page keeps the title (with "page k of n"), the x label and the markers.
+    pub fn pages(&self) -> Vec<Diagram> {
+        if self.height() <= MAX_HEIGHT {
+            return vec![self.clone()];
+        }
+        let room = MAX_HEIGHT - TITLE;
+        let per_page = (room / self.panel_height.max(1)).max(1) as usize;
+        let polars_per_page = 2 * (room / POLAR_HEIGHT).max(1) as usize;
+        let empty = Diagram {
+            panels: Vec::new(),
+            polars: Vec::new(),
+            ..self.clone()
+        };
+        let mut pages: Vec<Diagram> = self
+            .panels
+            .chunks(per_page)
+            .map(|c| Diagram {
+                panels: c.to_vec(),
+                ..empty.clone()
+            })
+            .collect();
+        pages.extend(self.polars.chunks(polars_per_page).map(|c| Diagram {
+            polars: c.to_vec(),
+            ..empty.clone()
+        }));
+        let n = pages.len();
+        for (k, page) in pages.iter_mut().enumerate() {
+            page.title = format!("{} (page {} of {n})", self.title, k + 1);
+        }
+        pages
     }
 }
 

@@ -7,10 +7,11 @@
 //! to the model. Joints carry their exact model position in `data-x`/`data-y` and their name
 //! in `data-point`.
 
+use std::f64::consts::FRAC_1_SQRT_2;
 use std::fmt::Write as _;
 use std::path::Path;
 
-use super::{FONT_FAMILY, escape, raster, write_file};
+use super::{FONT_FAMILY, axis, escape, raster, write_file};
 use crate::error::Result;
 
 /// How a line or area is painted.
@@ -132,8 +133,55 @@ pub enum Shape {
         at: [f64; 2],
         /// Text.
         text: String,
+        /// The direction (model axes, y up) the label is set off in from its anchor: away
+        /// from the links at the anchor.
+        toward: [f64; 2],
+    },
+    /// A centre of mass: the conventional quartered circle (two opposite quarters black).
+    MassCentre {
+        /// Position.
+        at: [f64; 2],
+    },
+    /// An arrow from `at` to `at + value·scale` (a velocity or an acceleration).
+    Arrow {
+        /// Tail.
+        at: [f64; 2],
+        /// The vector in its own unit (m/s, m/s²).
+        value: [f64; 2],
+        /// Which quantity: its colour and legend entry.
+        kind: VectorKind,
     },
 }
+
+/// What an arrow of a drawing shows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum VectorKind {
+    /// A velocity (m/s): green.
+    Velocity,
+    /// An acceleration (m/s²): magenta.
+    Acceleration,
+}
+
+impl VectorKind {
+    fn colour(self) -> &'static str {
+        match self {
+            VectorKind::Velocity => "#2ca02c",
+            VectorKind::Acceleration => "#c2185b",
+        }
+    }
+
+    fn words(self) -> (&'static str, &'static str) {
+        match self {
+            VectorKind::Velocity => ("v", "m/s"),
+            VectorKind::Acceleration => ("a", "m/s²"),
+        }
+    }
+}
+
+/// Colours of traced paths, in order (the Dark2 palette, distinct from links and joints).
+const PATH_COLOURS: [&str; 6] = [
+    "#d95f02", "#7570b3", "#1b9e77", "#e7298a", "#66a61e", "#a6761d",
+];
 
 /// The mapping from model units to pixels chosen by the automatic framing.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -186,6 +234,11 @@ pub struct Drawing {
     /// Animation bindings: shape index and key, written as `data-bind` (see
     /// [`Drawing::bind`]).
     pub binds: Vec<(usize, String)>,
+    /// The length unit the axes and the scale bar are labelled in, and its size in model
+    /// units (`("mm", 1e-3)`).
+    pub unit: (String, f64),
+    /// Model length of an arrow per unit of each vector kind (m per m/s, m per m/s²).
+    pub vector_scales: Vec<(VectorKind, f64)>,
 }
 
 /// Margin around the framed shapes, as a fraction of the picture's smaller side.
@@ -205,7 +258,52 @@ impl Drawing {
             height: 600,
             extent: Vec::new(),
             binds: Vec::new(),
+            unit: ("m".to_owned(), 1.0),
+            vector_scales: Vec::new(),
         }
+    }
+
+    /// Labels the axes and the scale bar in `symbol`, a unit of `size` model units.
+    pub fn unit(mut self, symbol: &str, size: f64) -> Self {
+        if size.is_finite() && size > 0.0 {
+            self.unit = (symbol.to_owned(), size);
+        }
+        self
+    }
+
+    /// Adds a centre of mass at `at`, drawn as a quartered circle.
+    pub fn mass_centre(mut self, at: [f64; 2]) -> Self {
+        self.shapes.push(Shape::MassCentre { at });
+        self
+    }
+
+    /// Adds an arrow of `kind` from `at` showing `value` (m/s or m/s²), drawn `scale` model
+    /// units long per unit of the quantity; the legend states the scale. The first scale
+    /// given for a kind holds for every arrow of that kind, so that arrows compare.
+    pub fn vector(mut self, kind: VectorKind, at: [f64; 2], value: [f64; 2], scale: f64) -> Self {
+        if !self.vector_scales.iter().any(|(k, _)| *k == kind) && scale.is_finite() && scale > 0.0 {
+            self.vector_scales.push((kind, scale));
+        }
+        self.shapes.push(Shape::Arrow { at, value, kind });
+        self
+    }
+
+    /// The model length of one unit of `kind`, if any arrow of that kind was added.
+    fn vector_scale(&self, kind: VectorKind) -> Option<f64> {
+        self.vector_scales
+            .iter()
+            .find(|(k, _)| *k == kind)
+            .map(|(_, s)| *s)
+    }
+
+    /// Adds a text label beside `at`, set off in the direction `toward` (model axes).
+    pub fn label_toward(mut self, at: [f64; 2], text: &str, toward: [f64; 2]) -> Self {
+        self.shapes.push(Shape::Label {
+            at,
+            text: text.to_owned(),
+            toward,
+        });
+        self
     }
 
     /// The picture's size in pixels.
@@ -237,12 +335,17 @@ impl Drawing {
         self
     }
 
-    /// Adds the path traced by point `name` (a coupler curve).
+    /// Adds the path traced by point `name` (a coupler curve), each path in its own colour,
+    /// named in the legend.
     pub fn path(mut self, name: &str, points: &[[f64; 2]]) -> Self {
+        let index = self.paths().len();
         self.shapes.push(Shape::Polyline {
             points: points.to_vec(),
             closed: false,
-            style: Style::path(),
+            style: Style {
+                stroke: PATH_COLOURS[index % PATH_COLOURS.len()].to_owned(),
+                ..Style::path()
+            },
             class: format!("path path-{}", escape(name)),
         });
         self
@@ -290,6 +393,7 @@ impl Drawing {
         self.shapes.push(Shape::Label {
             at,
             text: text.to_owned(),
+            toward: [1.0, 1.0],
         });
         self
     }
@@ -328,8 +432,15 @@ impl Drawing {
             match shape {
                 Shape::Polyline { points, .. } => points.iter().for_each(|&p| add(p, 0.0)),
                 Shape::Circle { center, radius, .. } => add(*center, radius.abs()),
-                Shape::Joint { at, .. } | Shape::Ground { at } | Shape::Label { at, .. } => {
-                    add(*at, 0.0)
+                Shape::Joint { at, .. }
+                | Shape::Ground { at }
+                | Shape::Label { at, .. }
+                | Shape::MassCentre { at } => add(*at, 0.0),
+                Shape::Arrow { at, value, kind } => {
+                    add(*at, 0.0);
+                    if let Some(scale) = self.vector_scale(*kind) {
+                        add([at[0] + scale * value[0], at[1] + scale * value[1]], 0.0);
+                    }
                 }
                 Shape::Guide { from, to } => {
                     add(*from, 0.0);
@@ -417,6 +528,8 @@ impl Drawing {
             r#"<text x="8" y="18" font-size="{size:.1}" fill="black">{}</text>"#,
             escape(&self.title)
         );
+        self.grid(&mut out, frame);
+        self.legend(&mut out, frame);
         let s = self.symbol();
         let px = |p: [f64; 2]| frame.pixel(p);
         let (last, first): (Vec<_>, Vec<_>) = self
@@ -471,15 +584,35 @@ impl Drawing {
                         (0.35 * s * frame.scale).clamp(3.0, 7.0),
                     );
                 }
-                Shape::Label { at, text } => {
+                Shape::Label { at, text, toward } => {
                     let [x, y] = px(*at);
+                    let length = toward[0].hypot(toward[1]);
+                    let (ux, uy) = if length > 0.0 && length.is_finite() {
+                        (toward[0] / length, -toward[1] / length)
+                    } else {
+                        (FRAC_1_SQRT_2, -FRAC_1_SQRT_2)
+                    };
+                    // The text's box (13 px font, ~0.62 em per character) is set off 10 px
+                    // from the anchor along the direction, its near side towards the anchor.
+                    let width = 0.62 * 13.0 * text.chars().count() as f64;
+                    let (cx, cy) = (x + ux * (10.0 + 0.5 * width), y + uy * 16.0);
                     let _ = writeln!(
                         out,
-                        r#"<text class="label"{bind} x="{}" y="{}" font-size="13" fill="black">{}</text>"#,
-                        x + 7.0,
-                        y - 7.0,
+                        r#"<text class="label"{bind} x="{:.3}" y="{:.3}" font-size="13" fill="black">{}</text>"#,
+                        // Inside the picture, clear of its white border.
+                        (cx - 0.5 * width).clamp(6.0, (frame.width - 6.0 - width).max(6.0)),
+                        (cy + 4.5).clamp(TITLE_HEIGHT + 12.0, frame.height - 6.0),
                         escape(text)
                     );
+                }
+                Shape::MassCentre { at } => {
+                    mass_centre(&mut out, px(*at), (0.5 * s * frame.scale).clamp(4.0, 9.0))
+                }
+                Shape::Arrow { at, value, kind } => {
+                    if let Some(scale) = self.vector_scale(*kind) {
+                        let tip = [at[0] + scale * value[0], at[1] + scale * value[1]];
+                        arrow(&mut out, px(*at), px(tip), kind.colour());
+                    }
                 }
                 Shape::Ground { at } => ground(&mut out, px(*at), s * frame.scale),
                 Shape::Guide { from, to } => guide(&mut out, px(*from), px(*to), s * frame.scale),
@@ -500,6 +633,198 @@ impl Drawing {
     pub fn write_png(&self, path: &Path) -> Result<()> {
         raster::write_png(&self.to_svg(), path)
     }
+}
+
+impl Drawing {
+    /// The traced paths: their names and colours.
+    fn paths(&self) -> Vec<(&str, &str)> {
+        self.shapes
+            .iter()
+            .filter_map(|shape| match shape {
+                Shape::Polyline { class, style, .. } => class
+                    .strip_prefix("path path-")
+                    .map(|name| (name, style.stroke.as_str())),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// A light grid at round multiples of the unit with its values along the left and
+    /// bottom edges, darker axes through the origin where it is in view, and a scale bar of
+    /// a round length (1, 2 or 5 × 10ⁿ units, at most a fifth of the width) at the bottom
+    /// left; all inside a 6 px inset, so the border stays white.
+    fn grid(&self, out: &mut String, frame: &Frame) {
+        let (unit, size) = (&self.unit.0, self.unit.1);
+        let (left, right) = (6.0, frame.width - 6.0);
+        let (top, bottom) = (TITLE_HEIGHT + 4.0, frame.height - 6.0);
+        let lo = frame.model([left, bottom]);
+        let hi = frame.model([right, top]);
+        let (x_range, y_range) = (lo[0] / size..hi[0] / size, lo[1] / size..hi[1] / size);
+        let step_ticks = axis::ticks(&x_range, 12);
+        let step = match step_ticks.as_slice() {
+            [a, b, ..] => b - a,
+            _ => return,
+        };
+        let ys = axis::ticks(&y_range, 1_000)
+            .into_iter()
+            .filter(|v| ((v / step).round() * step - v).abs() <= 1e-9 * step)
+            .collect::<Vec<_>>();
+        out.push_str("<g class=\"grid\" font-size=\"9\" fill=\"#888888\">\n");
+        for &v in &step_ticks {
+            let x = frame.pixel([v * size, 0.0])[0];
+            let colour = if v == 0.0 { "#aaaaaa" } else { "#eeeeee" };
+            let _ = write!(
+                out,
+                r#"<line x1="{x:.3}" y1="{top:.3}" x2="{x:.3}" y2="{bottom:.3}" stroke="{colour}" stroke-width="1"/>"#
+            );
+            // A value only where it fits inside the inset (9 px font, ~0.62 em a character).
+            let text = number(v);
+            if x + 2.0 + 5.6 * text.chars().count() as f64 <= right {
+                let _ = write!(
+                    out,
+                    r#"<text x="{:.3}" y="{:.3}">{text}</text>"#,
+                    x + 2.0,
+                    bottom - 3.0
+                );
+            }
+            out.push('\n');
+        }
+        for &v in &ys {
+            let y = frame.pixel([0.0, v * size])[1];
+            let colour = if v == 0.0 { "#aaaaaa" } else { "#eeeeee" };
+            let _ = write!(
+                out,
+                r#"<line x1="{left:.3}" y1="{y:.3}" x2="{right:.3}" y2="{y:.3}" stroke="{colour}" stroke-width="1"/>"#
+            );
+            if y - 11.0 >= top {
+                let _ = write!(
+                    out,
+                    r#"<text x="{:.3}" y="{:.3}">{}</text>"#,
+                    left + 2.0,
+                    y - 2.0,
+                    number(v)
+                );
+            }
+            out.push('\n');
+        }
+        out.push_str("</g>\n");
+        let length = axis::round_length(0.2 * (x_range.end - x_range.start));
+        let pixels = length * size * frame.scale;
+        let (x0, y0) = (left + 30.0, bottom - 18.0);
+        let _ = writeln!(
+            out,
+            r#"<g class="scale-bar" data-length="{length}" data-unit="{}"><line x1="{x0:.3}" y1="{y0:.3}" x2="{:.3}" y2="{y0:.3}" stroke="black" stroke-width="2"/><line x1="{x0:.3}" y1="{:.3}" x2="{x0:.3}" y2="{:.3}" stroke="black" stroke-width="1.5"/><line x1="{:.3}" y1="{:.3}" x2="{:.3}" y2="{:.3}" stroke="black" stroke-width="1.5"/><text x="{:.3}" y="{:.3}" font-size="11" text-anchor="middle" fill="black">{} {}</text></g>"#,
+            escape(unit),
+            x0 + pixels,
+            y0 - 4.0,
+            y0 + 4.0,
+            x0 + pixels,
+            y0 - 4.0,
+            x0 + pixels,
+            y0 + 4.0,
+            x0 + 0.5 * pixels,
+            y0 - 6.0,
+            number(length),
+            escape(unit),
+        );
+    }
+
+    /// The legend at the top right: a swatch and the name of each traced path, and the scale
+    /// of each kind of arrow.
+    fn legend(&self, out: &mut String, frame: &Frame) {
+        let mut entries: Vec<(String, String)> = self
+            .paths()
+            .into_iter()
+            .map(|(name, colour)| (format!("path of {name}"), colour.to_owned()))
+            .collect();
+        for (kind, scale) in &self.vector_scales {
+            let (symbol, unit) = kind.words();
+            let length = self.unit.1;
+            entries.push((
+                format!(
+                    "{symbol}: 1 {unit} ≙ {} {}",
+                    number(scale / length),
+                    self.unit.0
+                ),
+                kind.colour().to_owned(),
+            ));
+        }
+        if entries.is_empty() {
+            return;
+        }
+        let longest = entries
+            .iter()
+            .map(|(t, _)| t.chars().count())
+            .max()
+            .unwrap_or(0);
+        let width = 0.62 * 11.0 * longest as f64 + 34.0;
+        let x = frame.width - 8.0 - width;
+        let mut y = TITLE_HEIGHT + 6.0;
+        let _ = writeln!(
+            out,
+            r##"<g class="legend"><rect x="{x:.3}" y="{y:.3}" width="{width:.3}" height="{:.3}" fill="white" fill-opacity="0.85" stroke="#cccccc"/>"##,
+            16.0 * entries.len() as f64 + 6.0
+        );
+        for (text, colour) in &entries {
+            y += 16.0;
+            let _ = writeln!(
+                out,
+                r#"<line x1="{:.3}" y1="{:.3}" x2="{:.3}" y2="{:.3}" stroke="{colour}" stroke-width="2.5"/><text x="{:.3}" y="{y:.3}" font-size="11" fill="black">{}</text>"#,
+                x + 6.0,
+                y - 4.0,
+                x + 24.0,
+                y - 4.0,
+                x + 28.0,
+                escape(text)
+            );
+        }
+        out.push_str("</g>\n");
+    }
+}
+
+/// A grid or scale value: at most six significant digits, no trailing zeros.
+fn number(v: f64) -> String {
+    match format!("{v:.5e}").parse::<f64>() {
+        Ok(r) => (r + 0.0).to_string(),
+        Err(_) => v.to_string(),
+    }
+}
+
+/// The conventional centre-of-mass symbol at pixel `p`, radius `r`: a ring with the first
+/// and third quarters filled black.
+fn mass_centre(out: &mut String, [x, y]: [f64; 2], r: f64) {
+    let _ = writeln!(
+        out,
+        r#"<g class="mass-centre"><circle cx="{x:.3}" cy="{y:.3}" r="{r:.3}" fill="white" stroke="black" stroke-width="1.2"/><path d="M{x:.3},{y:.3} L{:.3},{y:.3} A{r:.3},{r:.3} 0 0 0 {x:.3},{:.3} Z M{x:.3},{y:.3} L{:.3},{y:.3} A{r:.3},{r:.3} 0 0 0 {x:.3},{:.3} Z" fill="black"/></g>"#,
+        x + r,
+        y - r,
+        x - r,
+        y + r,
+    );
+}
+
+/// An arrow from pixel `a` to pixel `b` with a filled head.
+fn arrow(out: &mut String, a: [f64; 2], b: [f64; 2], colour: &str) {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let length = dx.hypot(dy);
+    if !(length.is_finite() && length > 0.5) {
+        return;
+    }
+    let (ux, uy) = (dx / length, dy / length);
+    let head = 9.0_f64.min(0.5 * length);
+    let (bx, by) = (b[0] - ux * head, b[1] - uy * head);
+    let _ = writeln!(
+        out,
+        r#"<g class="vector" stroke="{colour}" fill="{colour}"><line x1="{:.3}" y1="{:.3}" x2="{bx:.3}" y2="{by:.3}" stroke-width="2"/><polygon points="{:.3},{:.3} {:.3},{:.3} {:.3},{:.3}"/></g>"#,
+        a[0],
+        a[1],
+        b[0],
+        b[1],
+        bx - 0.4 * head * uy,
+        by + 0.4 * head * ux,
+        bx + 0.4 * head * uy,
+        by - 0.4 * head * ux,
+    );
 }
 
 /// `x,y x,y ...` with pixel coordinates, skipping non-finite points.

@@ -43,6 +43,7 @@
 //! the traced paths, all written to a folder); a whole run becomes one self-contained HTML
 //! file in [`report`]. Long sweeps are drawn through `decimate` (never the CSV or JSON).
 
+pub(crate) mod axis;
 pub mod balancing;
 pub mod cam;
 pub(crate) mod decimate;
@@ -52,13 +53,14 @@ pub mod raster;
 pub mod report;
 pub mod run;
 pub mod scene;
+pub mod symbols;
 
 use std::path::Path;
 
 use crate::error::Result;
 
 pub use diagram::{Diagram, Marker, MarkerKind, Panel, Polar, Series};
-pub use drawing::{Drawing, Frame, Style};
+pub use drawing::{Drawing, Frame, Style, VectorKind};
 
 /// The font every picture is drawn with: DejaVu Sans (Bitstream Vera licence, see
 /// `assets/fonts/LICENSE-DejaVu.txt`), bundled so that a fresh machine renders the same

@@ -7,6 +7,7 @@ use super::decimate::{decimate, sample};
 use super::diagram::{Diagram, Marker, MarkerKind, Panel, Polar, Series};
 use super::drawing::Drawing;
 use super::scene::{Poses, Rig, plot_positions, poses, sketch_pose};
+use super::symbols::symbol;
 use crate::error::{Error, Result};
 use crate::scene::Scene;
 use crate::scene::build::mechanism;
@@ -66,21 +67,40 @@ pub fn groups(scene: &Scene, report: &Report) -> Vec<Group> {
     groups
 }
 
-/// The groups chosen by `[plot] panels` (every group without it): a name selects the groups
-/// of the output of that name and the group holding the column of that name.
+/// The groups chosen by `[plot] panels`: a name selects the groups of the output of that
+/// name, or the column of that name alone. Without `[plot] panels`, every group, less the
+/// columns that are zero at every row (a picture-only rule: the table and CSV keep them).
 pub fn selected(scene: &Scene, report: &Report) -> Result<Vec<Group>> {
     let all = groups(scene, report);
     let Some(panels) = &scene.plot.panels else {
-        return Ok(all);
+        let zero = |c: usize| report.rows.iter().all(|r| r[c] == 0.0);
+        return Ok(all
+            .into_iter()
+            .filter_map(|mut g| {
+                g.columns.retain(|&c| !zero(c));
+                (!g.columns.is_empty()).then_some(g)
+            })
+            .collect());
     };
     let mut chosen: Vec<Group> = Vec::new();
     for (name, location) in panels {
-        let matching: Vec<&Group> = all
-            .iter()
-            .filter(|g| {
-                g.output == *name || g.columns.iter().any(|&c| report.columns[c].name == *name)
-            })
-            .collect();
+        let by_output: Vec<Group> = all.iter().filter(|g| g.output == *name).cloned().collect();
+        let matching: Vec<Group> = if by_output.is_empty() {
+            all.iter()
+                .filter_map(|g| {
+                    let c = g
+                        .columns
+                        .iter()
+                        .find(|&&c| report.columns[c].name == *name)?;
+                    Some(Group {
+                        columns: vec![*c],
+                        output: g.output.clone(),
+                    })
+                })
+                .collect()
+        } else {
+            by_output
+        };
         if matching.is_empty() {
             let mut known: Vec<String> = scene.outputs.iter().map(|o| o.name.clone()).collect();
             known.extend(report.columns.iter().skip(1).map(|c| c.name.clone()));
@@ -95,8 +115,8 @@ pub fn selected(scene: &Scene, report: &Report) -> Result<Vec<Group>> {
             });
         }
         for g in matching {
-            if !chosen.contains(g) {
-                chosen.push(g.clone());
+            if !chosen.contains(&g) {
+                chosen.push(g);
             }
         }
     }
@@ -116,9 +136,9 @@ fn curve(report: &Report, c: usize) -> Vec<[f64; 2]> {
     )
 }
 
-/// `name [unit]` for a panel's y axis: the column names joined, one unit.
+/// `name [unit]` for a panel's y axis: the columns' symbols joined, one unit.
 fn label(columns: &[&Column]) -> String {
-    let names: Vec<&str> = columns.iter().map(|c| c.name.as_str()).collect();
+    let names: Vec<String> = columns.iter().map(|c| symbol(&c.name)).collect();
     format!("{} [{}]", names.join(", "), columns[0].unit)
 }
 
@@ -130,18 +150,18 @@ pub fn diagram(scene: &Scene, report: &Report) -> Result<Diagram> {
     let drive = &report.columns[0];
     let title = scene.title.clone().unwrap_or_else(|| scene.file.clone());
     let mut d = Diagram::new(&title, &format!("φ [{}]", drive.unit));
-    let groups = selected(scene, report)?;
-    for g in &groups {
+    let chosen = selected(scene, report)?;
+    for g in &chosen {
         let columns: Vec<&Column> = g.columns.iter().map(|&c| &report.columns[c]).collect();
         let mut panel = Panel::new(&label(&columns));
         for &c in &g.columns {
-            panel = panel.series(&report.columns[c].name, curve(report, c));
+            panel = panel.series(&symbol(&report.columns[c].name), curve(report, c));
         }
         d = d.panel(panel);
     }
     for dead in &report.dead_positions {
         for p in &dead.positions {
-            let label = format!("{}: dead", dead.output);
+            let label = format!("{}: dead", symbol(&dead.output));
             d = d.marker(Marker::new(p.phi / drive.factor, &label, MarkerKind::Dead));
         }
     }
@@ -153,7 +173,13 @@ pub fn diagram(scene: &Scene, report: &Report) -> Result<Diagram> {
             MarkerKind::Limit,
         ));
     }
-    for g in &groups {
+    // Polar panels pair the x and y columns of a force, zero or not.
+    let pairs = if scene.plot.panels.is_none() {
+        groups(scene, report)
+    } else {
+        chosen
+    };
+    for g in &pairs {
         for pair in g.columns.windows(2) {
             let (a, b) = (&report.columns[pair[0]], &report.columns[pair[1]]);
             let title = if a.name == "SumF_x" && b.name == "SumF_y" {
@@ -258,9 +284,14 @@ pub fn drawings(
     animation: &Animation,
 ) -> Result<Vec<(String, Drawing)>> {
     let name = scene.title.clone().unwrap_or_else(|| scene.file.clone());
+    let sketch = sketch_pose(scene);
     let mut out = vec![(
         "mechanism_sketch".to_owned(),
-        animation.drawing(scene, &format!("{name} — sketch pose"), &sketch_pose(scene)),
+        with_mass_centres(
+            animation.drawing(scene, &format!("{name} — sketch pose"), &sketch),
+            scene,
+            &sketch,
+        ),
     )];
     let (lo, hi) = report
         .rows
@@ -280,26 +311,52 @@ pub fn drawings(
             let text = scene.drive_text(sorted[k]);
             out.push((
                 format!("mechanism_at_{}", text.replace(' ', "_")),
-                animation.drawing(scene, &format!("{name} — φ = {text}"), pose),
+                with_mass_centres(
+                    animation.drawing(scene, &format!("{name} — φ = {text}"), pose),
+                    scene,
+                    pose,
+                ),
             ));
         }
     }
     Ok(out)
 }
 
-/// Writes the pictures of a run into `dir` (created if missing): `diagram.svg/png`, one
-/// `mechanism_*.svg/png` per drawing, and `report.html`. Returns the files written. If any
+/// The drawing with the centres of mass of `[masses]` at `pose` (the still drawings only: the
+/// report's animation does not move them yet).
+fn with_mass_centres(drawing: Drawing, scene: &Scene, pose: &[[f64; 2]]) -> Drawing {
+    Rig::mass_centres(scene, pose)
+        .into_iter()
+        .fold(drawing, Drawing::mass_centre)
+}
+
+/// Writes the pictures of a run into `dir` (created if missing): `diagram.svg/png` (and
+/// `diagram_2.svg/png`, … when the diagram is higher than [`super::diagram::MAX_HEIGHT`]),
+/// one `mechanism_*.svg/png` per drawing, and `report.html` (with the whole diagram). Returns the files written. If any
 /// of them is one of the run's inputs (a scene named `report.html`), nothing is written.
 pub fn write_dir(scene: &Scene, report: &Report, dir: &Path) -> Result<Vec<PathBuf>> {
-    let diagram = diagram(scene, report)?.to_svg()?;
+    let diagram = diagram(scene, report)?;
+    let whole = diagram.to_svg()?;
+    let pages = diagram.pages();
     let animation = Animation::of(scene, report)?;
     let mut pictures = drawings(scene, report, &animation)?
         .into_iter()
         .map(|(name, drawing)| (name, drawing.to_svg()))
         .collect::<Vec<_>>();
     pictures.extend(super::balancing::pictures(scene, report)?);
-    pictures.insert(0, ("diagram".to_owned(), diagram));
-    let html = super::report::html(scene, report, &animation, &pictures[0].1)?;
+    let html = super::report::html(scene, report, &animation, &whole)?;
+    for (k, page) in pages.iter().enumerate().rev() {
+        let svg = if pages.len() == 1 {
+            whole.clone()
+        } else {
+            page.to_svg()?
+        };
+        let name = match k {
+            0 => "diagram".to_owned(),
+            _ => format!("diagram_{}", k + 1),
+        };
+        pictures.insert(0, (name, svg));
+    }
     let mut written = Vec::new();
     for (name, _) in &pictures {
         written.push(dir.join(format!("{name}.svg")));

@@ -8,6 +8,7 @@ use super::drawing::{Drawing, Style};
 use crate::error::{Error, Result};
 use crate::scene::context::GROUND;
 use crate::scene::model::{JointKind, Scene};
+use crate::scene::units::Dimension;
 
 /// Every scene point's position at a list of drive positions.
 #[derive(Debug, Clone, PartialEq)]
@@ -194,7 +195,11 @@ impl Rig {
         extent: &[[f64; 2]],
         paths: &[(usize, Vec<[f64; 2]>)],
     ) -> Drawing {
-        let mut d = Drawing::new(title).include(extent);
+        let units = &scene.units;
+        let mut d = Drawing::new(title).include(extent).unit(
+            units.symbol(Dimension::Length),
+            units.to_si(1.0, Dimension::Length),
+        );
         for [a, b] in &self.guides {
             let (from, to) = guide_extent(pose[*a], pose[*b], extent);
             d = d.guide(from, to);
@@ -236,10 +241,68 @@ impl Rig {
             d = d
                 .joint(name, pose[k])
                 .bind(&format!("c {k}"))
-                .label(pose[k], name)
+                .label_toward(pose[k], name, self.clear_of_links(k, pose))
                 .bind(&format!("t {k}"));
         }
         d
+    }
+
+    /// The direction from point `k` away from the links at it: minus the sum of the unit
+    /// vectors along its bars (to the other corners of each link holding it); a point on no
+    /// link, or where the bars cancel, gets the normal of the first bar, else up-right.
+    pub fn clear_of_links(&self, k: usize, pose: &[[f64; 2]]) -> [f64; 2] {
+        let at = pose[k];
+        let mut sum = [0.0, 0.0];
+        let mut first = None;
+        for link in self.links.iter().filter(|l| l.contains(&k)) {
+            for &j in link.iter().filter(|&&j| j != k) {
+                let (dx, dy) = (pose[j][0] - at[0], pose[j][1] - at[1]);
+                let length = dx.hypot(dy);
+                if length > 0.0 && length.is_finite() {
+                    sum[0] -= dx / length;
+                    sum[1] -= dy / length;
+                    first.get_or_insert([-dy / length, dx / length]);
+                }
+            }
+        }
+        if sum[0].hypot(sum[1]) > 1e-6 {
+            sum
+        } else {
+            first.unwrap_or([1.0, 1.0])
+        }
+    }
+
+    /// Where the centres of mass of the scene's `[masses]` are at `pose`: each moved with its
+    /// link (the rigid motion that takes the link's first two points from the sketch to the
+    /// pose; a link of one point only translates).
+    pub fn mass_centres(scene: &Scene, pose: &[[f64; 2]]) -> Vec<[f64; 2]> {
+        let Some(dynamics) = &scene.dynamics else {
+            return Vec::new();
+        };
+        let sketch = sketch_pose(scene);
+        let index = |name: &str| scene.points.iter().position(|p| p.name == name);
+        dynamics
+            .masses
+            .iter()
+            .filter_map(|(link, inertia)| {
+                let c = inertia.center;
+                if link == GROUND {
+                    return Some(c);
+                }
+                let link = scene.links.iter().find(|l| &l.name == link)?;
+                let points: Vec<usize> = link.points.iter().filter_map(|p| index(p)).collect();
+                let a = *points.first()?;
+                let (sa, pa) = (sketch[a], pose[a]);
+                let turn = points.iter().find(|&&b| sketch[b] != sa).map_or(0.0, |&b| {
+                    let before = (sketch[b][1] - sa[1]).atan2(sketch[b][0] - sa[0]);
+                    let after = (pose[b][1] - pa[1]).atan2(pose[b][0] - pa[0]);
+                    after - before
+                });
+                let (sin, cos) = turn.sin_cos();
+                let (dx, dy) = (c[0] - sa[0], c[1] - sa[1]);
+                Some([pa[0] + cos * dx - sin * dy, pa[1] + sin * dx + cos * dy])
+            })
+            .collect()
     }
 }
 
