@@ -110,11 +110,14 @@ fn jerk_columns_have_units_and_diagram_panels() {
     let report = scene::run(&scene).unwrap_or_else(|e| panic!("{e}"));
     let d = diagram(&scene, &report).unwrap();
     let labels: Vec<&str> = d.panels.iter().map(|p| p.y_label.as_str()).collect();
+    // Picture labels are written in symbols (issue 24 item 4): a third time derivative is
+    // the letter with three dots above (U+20DB), `psi` is ψ; the columns keep their names.
     assert_eq!(
         labels,
-        ["psi_dddot [rad/s^3]", "x_C_dddot [m/s^3]"],
+        ["\u{3c8}\u{20db} [rad/s^3]", "x\u{20db}_C [m/s^3]"],
         "the jerk panels"
     );
+    assert!(report.column("psi_dddot").is_some(), "the column keeps its name");
 }
 
 /// Asking for a jerk without a drive speed is refused, naming the jerk.
