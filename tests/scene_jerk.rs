@@ -117,7 +117,10 @@ fn jerk_columns_have_units_and_diagram_panels() {
         ["\u{3c8}\u{20db} [rad/s^3]", "x\u{20db}_C [m/s^3]"],
         "the jerk panels"
     );
-    assert!(report.column("psi_dddot").is_some(), "the column keeps its name");
+    assert!(
+        report.column("psi_dddot").is_some(),
+        "the column keeps its name"
+    );
 }
 
 /// Asking for a jerk without a drive speed is refused, naming the jerk.
