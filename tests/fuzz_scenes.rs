@@ -17,9 +17,11 @@ use mechdiff::{Error, report, scene};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, FileFailurePersistence, TestRunner};
 
-/// How many mutated scenes are tried. In a debug build the whole test takes about a minute on
-/// one core (the time is printed); CI runs it with `cargo test --workspace`.
-const CASES: u32 = 3000;
+/// How many mutated scenes are tried in `cargo test`: in a debug build about 20 s on one core
+/// (the time is printed). Each run draws new cases (failures are kept in
+/// `proptest-regressions/` and tried first); a longer fuzz by hand sets `PROPTEST_CASES`, e.g.
+/// `PROPTEST_CASES=100000 cargo test --release --test integration fuzz_scenes::`.
+const CASES: u32 = 1000;
 
 /// Longest time one mutated scene may take before it counts as a hang. A case that runs a
 /// full sweep with dead positions and dynamics takes well under a second in a debug build.
@@ -421,8 +423,12 @@ fn every_shipped_scene_gets_the_same_verdict_from_check_and_run() {
 fn mutated_scenes_give_an_error_or_finite_numbers_never_a_panic_or_a_hang() {
     let scenes = shipped_scenes();
     assert!(scenes.len() >= 40, "{} scenes shipped", scenes.len());
+    let cases = std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or(CASES);
     let config = Config {
-        cases: CASES,
+        cases,
         // Failures are saved here (committed) and tried first next time.
         failure_persistence: Some(Box::new(FileFailurePersistence::Direct(
             "proptest-regressions/fuzz_scenes.txt",
@@ -447,7 +453,7 @@ fn mutated_scenes_give_an_error_or_finite_numbers_never_a_panic_or_a_hang() {
         })
         .unwrap();
     eprintln!(
-        "fuzz: {CASES} mutated cases of {} shipped scenes in {:.1} s: {} passed check, {} ran \
+        "fuzz: {cases} mutated cases of {} shipped scenes in {:.1} s: {} passed check, {} ran \
          to the end, {} refused while solving after check, {} refused by check and run alike",
         scenes.len(),
         start.elapsed().as_secs_f64(),

@@ -312,21 +312,21 @@ fn slider_crank_sensitivities_match_the_hand_derived_formulas() {
 }
 
 #[test]
-fn the_worst_case_bounds_a_monte_carlo_run_of_10_000_samples() {
-    // Three drive positions keep the 10⁴ runs short; tolerances of 0.5 mm on 0.86–2.22 m.
+fn the_worst_case_bounds_a_monte_carlo_run_of_1_000_samples() {
+    // Three drive positions keep the 10³ runs short; tolerances of 0.5 mm on 0.86–2.22 m.
     let text = norton_with(
         "[tolerances]\ncolumns = [\"psi\", \"psi'\"]\n\
          parameters = { a = 0.0005, b = 0.0005, c = 0.0005, d = 0.0005 }\n",
     )
     .replace("to = 100\nstep = 10", "to = 100\nstep = 50");
     let options = Options {
-        monte_carlo: Some(10_000),
+        monte_carlo: Some(1_000),
         seed: 7,
     };
     let (report, study) = study(&text, &options);
     let study = study.unwrap();
     let mc = study.monte_carlo.as_ref().unwrap();
-    assert_eq!(mc.samples, 10_000);
+    assert_eq!(mc.samples, 1_000);
     for (k, c) in study.columns.iter().enumerate() {
         let (worst, row) = c.worst_case;
         let sampled = mc.max_deviation[k];
@@ -368,8 +368,10 @@ fn the_worst_case_bounds_a_monte_carlo_run_of_10_000_samples() {
             "{}: sampled {sampled} > worst case {worst} + {remainder}",
             c.column.name
         );
-        // And the samples explore the box: with 4 uniform parameters and 10⁴ samples the
-        // largest deviation sampled is well above half the worst case.
+        // And the samples explore the box: the largest deviation sampled is above half the
+        // worst case. With four equal first-order terms one sample in 12 lies beyond it
+        // (P(|u₁+u₂+u₃+u₄| > 2) = 1/12 for uniform uᵢ on [−1, 1]), so 10³ samples of the fixed
+        // seed 7 leave no doubt.
         assert!(
             sampled > 0.5 * worst,
             "{}: {sampled} vs {worst}",

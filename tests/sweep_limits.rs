@@ -130,6 +130,34 @@ fn an_unrelated_point_far_away_changes_no_verdict() {
 }
 
 #[test]
+fn a_far_ground_point_puts_no_limit_behind_the_start_of_a_travel() {
+    // The rack scene of reference 001 with the wheel's hinge 1e8 m or 1e9 m away (found by
+    // the scene fuzzer): the displacement drive's search steps grow with the sketch, the
+    // margin's Newton step went back past the start to the lower limit, and `check` refused
+    // a sweep that `run` sweeps. The lower limit stays where the loop C, D, incline stops
+    // closing; nothing is found above.
+    let shipped = include_str!("../scenes/rack_slotted_link_travel.toml");
+    for far in ["1e8", "1e9"] {
+        let text = shipped.replace("W = [0.0, 0.04]", &format!("W = [{far}, 0.04]"));
+        assert_ne!(text, shipped);
+        let s = scene::parse("far.toml", &text).unwrap();
+        let range = scene::check(&s)
+            .unwrap_or_else(|e| panic!("{far}: {e}"))
+            .motion_range
+            .unwrap();
+        let lower = range.lower.unwrap().phi;
+        // 1e-12 relative: the distance of C from the incline equals |CD| = 0.723 m, solved
+        // with mpmath at 40 digits (B, θ7, θ8 and the lengths of the scene's comments).
+        assert!(
+            (lower - 0.296_594_731_016_183_4).abs() < 1e-12,
+            "{far}: {lower}"
+        );
+        assert!(range.upper.is_none(), "{far}: {:?}", range.upper);
+        scene::run(&s).unwrap();
+    }
+}
+
+#[test]
 fn an_ill_conditioned_position_is_computed_with_a_warning() {
     // Slotted lever: crank l1 = 0.999999 m about O = (0, 1), pin A in the slot of a lever
     // hinged at B0 = (0, 0). At φ = 0 (crank pointing down) the pin passes 1e-6 m from B0

@@ -19,7 +19,7 @@ pub fn derivatives(args: TokenStream, function: ItemFn) -> TokenStream {
     }
 }
 
-fn generate(args: TokenStream, function: &ItemFn) -> syn::Result<TokenStream> {
+pub(crate) fn generate(args: TokenStream, function: &ItemFn) -> syn::Result<TokenStream> {
     let arguments = attr::parse(args);
     let lowered = ast::lower(function);
     let (arguments, mut lowered) = match (arguments, lowered) {

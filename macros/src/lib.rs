@@ -12,6 +12,8 @@ mod ast;
 mod attr;
 mod differentiate;
 mod expand;
+#[cfg(test)]
+mod unsupported;
 
 /// Generates, next to a plain `f64` function, a sibling that returns its value and its
 /// derivatives up to `order` with respect to the parameter `wrt`, as straight-line code.

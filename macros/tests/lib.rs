@@ -2,4 +2,3 @@
 //! as one test binary.
 
 mod agree_with_dual;
-mod compile_fail;

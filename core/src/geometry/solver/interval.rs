@@ -66,6 +66,10 @@ const REFINE: usize = 60;
 /// to adjacent numbers in at most ~2100 steps; 200 cover any bracket above 2⁻²⁰⁰ of φ).
 const BISECT: usize = 200;
 
+/// Positions sampled across a smallest step whose ends both close, when the margin's model
+/// does not place its zero inside the step.
+const SAMPLES: usize = 64;
+
 /// Whether a margin with values `a` at the start and `b` at the end of a step of length `h`
 /// (each with its first and second derivative in φ) is shown positive over the whole step
 /// (see the module documentation).
@@ -174,7 +178,20 @@ impl Tracker<'_> {
             }
             return Some(Error::ChangePoint { phi: at, joints });
         }
-        let limit = self.refine(l, lo, false).unwrap_or(lo);
+        let refined = self.refine(l, lo, false);
+        let limit = if at_tried.is_some() {
+            // Bisected where the loops stop closing; Newton polishes that to the margin's
+            // zero (which rounding may place a few 1e-12 past the bisection's bracket).
+            refined.unwrap_or(lo)
+        } else {
+            // Both ends of the step close (`lo` is its start). Newton from there may leave
+            // the step for a zero behind the start (the limit on the other side, seen at
+            // sketch sizes of 1e8 m); then the margin's first zero inside the step, if any.
+            match refined.filter(|&x| bracketed(x, a, tried)) {
+                Some(limit) => limit,
+                None => self.first_zero_sampled(l, a, tried)?,
+            }
+        };
         if let Some(condition) = toggle_at_phi {
             // Asked for the limit position itself (within the band where the loop's
             // condition exceeds the threshold): a toggle there.
@@ -203,6 +220,35 @@ impl Tracker<'_> {
                 .position(|m| m.re.is_nan() || m.re <= 0.0)
                 .map(|l| (l, None)),
         }
+    }
+
+    /// The first zero of loop `l`'s margin from `a` towards `b` (both close), found where a
+    /// sample of [`SAMPLES`] evenly spaced positions first sees it not positive and then
+    /// bisected to full precision; `None` if every sample is clear of zero.
+    fn first_zero_sampled(&mut self, l: usize, a: f64, b: f64) -> Option<f64> {
+        let positive = |this: &mut Self, x: f64| this.margin(l, x).is_some_and(|f| f.re > 0.0);
+        let mut lo = a;
+        for k in 1..=SAMPLES {
+            let x = a + (b - a) * (k as f64 / SAMPLES as f64);
+            if positive(self, x) {
+                lo = x;
+                continue;
+            }
+            let mut hi = x;
+            for _ in 0..BISECT {
+                let mid = lo + 0.5 * (hi - lo);
+                if mid == lo || mid == hi {
+                    break;
+                }
+                if positive(self, mid) {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            return Some(lo);
+        }
+        None
     }
 
     /// Loop `l`'s margin at `phi`, if the loops before it close there.
@@ -235,6 +281,13 @@ impl Tracker<'_> {
         }
         Some(x)
     }
+}
+
+/// Whether `x` lies between `a` and `b`, or within a few rounding errors of either end (a
+/// root polished by Newton may land an ulp past the bracket's end).
+fn bracketed(x: f64, a: f64, b: f64) -> bool {
+    let slack = 4.0 * f64::EPSILON * x.abs().max(a.abs()).max(b.abs());
+    x >= a.min(b) - slack && x <= a.max(b) + slack
 }
 
 #[cfg(test)]
