@@ -154,15 +154,22 @@ pub fn profile_drawing(scene: &CamScene, theta: f64) -> Drawing {
     drawing.joint("contact", touch).label(centre, "follower")
 }
 
-/// Writes `svaj.svg`, `svaj.png`, `profile.svg`, `profile.png` into `dir` (created if
+/// Writes `svaj.svg`, `svaj.png` (and `svaj_2.svg`, … when the diagram is higher than
+/// [`super::diagram::MAX_HEIGHT`]), `profile.svg`, `profile.png` into `dir` (created if
 /// missing).
 pub fn write_dir(scene: &CamScene, dir: &Path) -> Result<()> {
-    let names = ["svaj.svg", "svaj.png", "profile.svg", "profile.png"];
-    crate::files::refuse_inputs(names.map(|name| dir.join(name)).iter().map(|p| p.as_path()))?;
+    let pages = svaj_diagram(scene).named_pages("svaj");
+    let mut names: Vec<String> = (pages.iter())
+        .flat_map(|(stem, _)| [format!("{stem}.svg"), format!("{stem}.png")])
+        .collect();
+    names.extend(["profile.svg".to_owned(), "profile.png".to_owned()]);
+    let paths: Vec<std::path::PathBuf> = names.iter().map(|name| dir.join(name)).collect();
+    crate::files::refuse_inputs(paths.iter().map(std::path::PathBuf::as_path))?;
     crate::files::create_output_folder(dir)?;
-    let diagram = svaj_diagram(scene);
-    diagram.write_svg(&dir.join("svaj.svg"))?;
-    diagram.write_png(&dir.join("svaj.png"))?;
+    for (stem, page) in &pages {
+        page.write_svg(&dir.join(format!("{stem}.svg")))?;
+        page.write_png(&dir.join(format!("{stem}.png")))?;
+    }
     let drawing = profile_drawing(scene, 0.0);
     drawing.write_svg(&dir.join("profile.svg"))?;
     drawing.write_png(&dir.join("profile.png"))

@@ -46,6 +46,7 @@
 pub(crate) mod axis;
 pub mod balancing;
 pub mod cam;
+pub(crate) mod curve;
 pub(crate) mod decimate;
 pub mod diagram;
 pub(crate) mod drawing;

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use super::decimate::{decimate, sample};
 use super::diagram::{Diagram, Marker, MarkerKind, Panel, Polar, Series};
-use super::drawing::Drawing;
+use super::drawing::{Drawing, VectorKind};
 use super::scene::{Poses, Rig, plot_positions, poses, sketch_pose};
 use super::symbols::symbol;
 use crate::error::{Error, Result};
@@ -123,17 +123,39 @@ pub fn selected(scene: &Scene, report: &Report) -> Result<Vec<Group>> {
     Ok(chosen)
 }
 
-/// The values of column `c` against the drive, in printed units, decimated for drawing.
-fn curve(report: &Report, c: usize) -> Vec<[f64; 2]> {
+/// The values of column `c` against the drive, in printed units, decimated for drawing, with
+/// their exact slopes where the table has the column's derivative with respect to the drive
+/// (`psi'` beside `psi`, `x_C''` beside `x_C'`, `J_red'` beside `J_red`).
+fn curve(report: &Report, c: usize) -> (Vec<[f64; 2]>, Option<Vec<f64>>) {
     let (x, y) = (&report.columns[0], &report.columns[c]);
-    decimate(
+    // Row indices of the decimated points (exact in f64 below 2⁵³ rows).
+    let kept = decimate(
         report
             .rows
             .iter()
-            .map(|r| [r[0] / x.factor, r[c] / y.factor]),
+            .enumerate()
+            .map(|(k, r)| [k as f64, r[c] / y.factor]),
         report.rows.len(),
         BUCKETS,
-    )
+    );
+    let rows = || kept.iter().map(|p| &report.rows[p[0] as usize]);
+    let points = rows().map(|r| [r[0] / x.factor, r[c] / y.factor]).collect();
+    let slopes = derivative_column(report, c).map(|d| {
+        // dy/dx in printed units: (dY/dφ in SI) · (SI per printed x) / (SI per printed y).
+        rows().map(|r| r[d] * x.factor / y.factor).collect()
+    });
+    (points, slopes)
+}
+
+/// The column holding column `c`'s derivative with respect to the drive, if the table has it
+/// and the first column is the drive (`phi`, or a cam drive's `theta`).
+fn derivative_column(report: &Report, c: usize) -> Option<usize> {
+    let columns = &report.columns;
+    if !matches!(columns[0].name.as_str(), "phi" | "theta") {
+        return None;
+    }
+    let name = format!("{}'", columns[c].name);
+    columns.iter().position(|d| d.name == name)
 }
 
 /// `name [unit]` for a panel's y axis: the columns' symbols joined, one unit.
@@ -155,7 +177,11 @@ pub fn diagram(scene: &Scene, report: &Report) -> Result<Diagram> {
         let columns: Vec<&Column> = g.columns.iter().map(|&c| &report.columns[c]).collect();
         let mut panel = Panel::new(&label(&columns));
         for &c in &g.columns {
-            panel = panel.series(&symbol(&report.columns[c].name), curve(report, c));
+            let name = symbol(&report.columns[c].name);
+            panel = match curve(report, c) {
+                (points, Some(slopes)) => panel.series_with_slopes(&name, points, slopes),
+                (points, None) => panel.series(&name, points),
+            };
         }
         d = d.panel(panel);
     }
@@ -202,10 +228,7 @@ pub fn diagram(scene: &Scene, report: &Report) -> Result<Diagram> {
                 d = d.polar(Polar {
                     title,
                     unit: a.unit.clone(),
-                    series: vec![Series {
-                        name: a.name.clone(),
-                        points,
-                    }],
+                    series: vec![Series::new(&a.name, points)],
                 });
             }
         }
@@ -300,6 +323,16 @@ pub fn drawings(
             (lo.min(r[0]), hi.max(r[0]))
         });
     let positions = plot_positions(scene, lo, hi)?;
+    if let Some((_, location)) = &scene.plot.vectors
+        && positions.is_empty()
+    {
+        return Err(Error::Invalid {
+            location: location.clone(),
+            message: "`[plot] vectors` are drawn at the `[plot] positions`; name at least one \
+                      position there"
+                .to_owned(),
+        });
+    }
     if !positions.is_empty() {
         let m = mechanism(scene)?;
         // Solved in sweep order from the sketch, as the run went.
@@ -307,19 +340,136 @@ pub fn drawings(
         order.sort_by(|&a, &b| positions[a].total_cmp(&positions[b]));
         let sorted: Vec<f64> = order.iter().map(|&k| positions[k]).collect();
         let poses = poses(scene, &m, &sorted)?;
+        let vectors = Vectors::of(scene, &m, &sorted, &animation.extent(scene))?;
         for (k, pose) in poses.xy.iter().enumerate() {
             let text = scene.drive_text(sorted[k]);
+            let drawing = with_mass_centres(
+                animation.drawing(scene, &format!("{name} — φ = {text}"), pose),
+                scene,
+                pose,
+            );
             out.push((
                 format!("mechanism_at_{}", text.replace(' ', "_")),
-                with_mass_centres(
-                    animation.drawing(scene, &format!("{name} — φ = {text}"), pose),
-                    scene,
-                    pose,
-                ),
+                match &vectors {
+                    Some(v) => v.drawn(drawing, k, pose),
+                    None => drawing,
+                },
             ));
         }
     }
     Ok(out)
+}
+
+/// The velocity and acceleration arrows of the `[plot] vectors` points at the `[plot]
+/// positions`, each kind to one scale for all drawings (so that arrows compare).
+struct Vectors {
+    /// Indices of the points (into the scene's points).
+    points: Vec<usize>,
+    /// Per position, per scene point: `[v, a]` (m/s, m/s²).
+    motions: Vec<Vec<[[f64; 2]; 2]>>,
+    /// Model length (m) per m/s and per m/s².
+    scales: [f64; 2],
+}
+
+/// The longest arrow, as a fraction of the larger side of the drawings' extent.
+const ARROW_SHARE: f64 = 0.25;
+
+impl Vectors {
+    /// The arrows at the drive positions `phi` (in sweep order), scaled so that the longest
+    /// of each kind is at most [`ARROW_SHARE`] of `extent`'s larger side, at a round scale
+    /// (1, 2 or 5 × 10ⁿ model units per unit of the quantity); `None` without
+    /// `[plot] vectors`. Without a drive speed, or with a velocity or acceleration that is not
+    /// finite (a singular position), an error at `[plot] vectors`.
+    fn of(
+        scene: &Scene,
+        m: &mechdiff_core::geometry::Mechanism,
+        phi: &[f64],
+        extent: &[[f64; 2]],
+    ) -> Result<Option<Vectors>> {
+        let Some((names, location)) = &scene.plot.vectors else {
+            return Ok(None);
+        };
+        let invalid = |message: String| Error::Invalid {
+            location: location.clone(),
+            message,
+        };
+        let Some(omega) = scene.drive.speed else {
+            return Err(invalid(
+                "`[plot] vectors` needs the drive speed: give `[drive] speed` (a point's \
+                 velocity is ω times its velocity coefficient)"
+                    .to_owned(),
+            ));
+        };
+        let points: Vec<usize> = (names.iter())
+            .filter_map(|n| scene.points.iter().position(|p| p.name == *n))
+            .collect();
+        let motions = super::scene::point_motions(scene, m, phi, omega, scene.drive.acceleration)?;
+        let mut longest = [0.0_f64; 2];
+        for (pose, &at) in motions.iter().zip(phi) {
+            for &p in &points {
+                for (kind, value) in pose[p].iter().enumerate() {
+                    let length = value[0].hypot(value[1]);
+                    if !length.is_finite() {
+                        return Err(invalid(format!(
+                            "the {} of point `{}` at drive position {} is not defined (a \
+                             singular position); choose another `[plot] position`",
+                            ["velocity", "acceleration"][kind],
+                            scene.points[p].name,
+                            scene.drive_text(at)
+                        )));
+                    }
+                    longest[kind] = longest[kind].max(length);
+                }
+            }
+        }
+        let (lo, hi) = extent.iter().fold(
+            ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
+            |(lo, hi), p| {
+                (
+                    [lo[0].min(p[0]), lo[1].min(p[1])],
+                    [hi[0].max(p[0]), hi[1].max(p[1])],
+                )
+            },
+        );
+        let size = (hi[0] - lo[0]).max(hi[1] - lo[1]);
+        let size = if size.is_finite() && size > 0.0 {
+            size
+        } else {
+            1.0
+        };
+        let scales =
+            longest.map(|l| round_down(ARROW_SHARE * size / if l > 0.0 { l } else { 1.0 }));
+        Ok(Some(Vectors {
+            points,
+            motions,
+            scales,
+        }))
+    }
+
+    /// `drawing` (at position `k`, pose `pose`) with its arrows.
+    fn drawn(&self, drawing: Drawing, k: usize, pose: &[[f64; 2]]) -> Drawing {
+        let kinds = [VectorKind::Velocity, VectorKind::Acceleration];
+        self.points.iter().fold(drawing, |d, &p| {
+            (0..2).fold(d, |d, kind| {
+                d.vector(
+                    kinds[kind],
+                    pose[p],
+                    self.motions[k][p][kind],
+                    self.scales[kind],
+                )
+            })
+        })
+    }
+}
+
+/// The largest 1, 2 or 5 × 10ⁿ not above `v` (> 0).
+fn round_down(v: f64) -> f64 {
+    let decade = 10f64.powf(v.log10().floor());
+    [5.0, 2.0, 1.0]
+        .into_iter()
+        .map(|m| m * decade)
+        .find(|&r| r <= v * (1.0 + 1e-12))
+        .unwrap_or(decade)
 }
 
 /// The drawing with the centres of mass of `[masses]` at `pose` (the still drawings only: the
@@ -337,7 +487,7 @@ fn with_mass_centres(drawing: Drawing, scene: &Scene, pose: &[[f64; 2]]) -> Draw
 pub fn write_dir(scene: &Scene, report: &Report, dir: &Path) -> Result<Vec<PathBuf>> {
     let diagram = diagram(scene, report)?;
     let whole = diagram.to_svg()?;
-    let pages = diagram.pages();
+    let pages = diagram.named_pages("diagram");
     let animation = Animation::of(scene, report)?;
     let mut pictures = drawings(scene, report, &animation)?
         .into_iter()
@@ -345,17 +495,13 @@ pub fn write_dir(scene: &Scene, report: &Report, dir: &Path) -> Result<Vec<PathB
         .collect::<Vec<_>>();
     pictures.extend(super::balancing::pictures(scene, report)?);
     let html = super::report::html(scene, report, &animation, &whole)?;
-    for (k, page) in pages.iter().enumerate().rev() {
+    for (name, page) in pages.iter().rev() {
         let svg = if pages.len() == 1 {
             whole.clone()
         } else {
             page.to_svg()?
         };
-        let name = match k {
-            0 => "diagram".to_owned(),
-            _ => format!("diagram_{}", k + 1),
-        };
-        pictures.insert(0, (name, svg));
+        pictures.insert(0, (name.clone(), svg));
     }
     let mut written = Vec::new();
     for (name, _) in &pictures {
