@@ -32,6 +32,10 @@ pub fn svaj_diagram(scene: &CamScene) -> Diagram {
         ),
     };
     let mut curves: [Vec<[f64; 2]>; 4] = Default::default();
+    // The exact slopes of s, s′ and s″ in printed units (s‴'s would need s⁗).
+    let mut slopes: [Vec<f64>; 3] = Default::default();
+    let per_angle = u.factor(Dimension::Angle);
+    let s_factor = u.factor(dimension);
     for (lo, hi) in cam.pieces() {
         let n = ((hi - lo) / TAU * CURVE_POINTS as f64).ceil().max(2.0) as usize;
         for i in 0..=n {
@@ -48,14 +52,26 @@ pub fn svaj_diagram(scene: &CamScene) -> Diagram {
             for (curve, v) in curves.iter_mut().zip(values) {
                 curve.push([x, v]);
             }
+            let exact = [
+                j.d1() * per_angle / s_factor,
+                j.d2() * k * per_angle,
+                j.d3() * k * per_angle,
+            ];
+            for (slope, m) in slopes.iter_mut().zip(exact) {
+                slope.push(m);
+            }
         }
         // A gap between pieces: a jump is never drawn as a steep line.
         for curve in curves.iter_mut() {
             let x = u.from_si(hi, Dimension::Angle);
             curve.push([x, f64::NAN]);
         }
+        for slope in slopes.iter_mut() {
+            slope.push(f64::NAN);
+        }
     }
     let [s, v, a, j] = curves;
+    let [ds, dv, da] = slopes;
     let s_unit = if dimension == Dimension::Angle {
         angle.to_owned()
     } else {
@@ -65,9 +81,9 @@ pub fn svaj_diagram(scene: &CamScene) -> Diagram {
         scene.title.as_deref().unwrap_or("cam: follower motion"),
         &format!("cam angle θ [{angle}]"),
     )
-    .panel(Panel::new(&format!("s [{s_unit}]")).series("s", s))
-    .panel(Panel::new(&format!("s′ [{unit}/rad]")).series("s′", v))
-    .panel(Panel::new(&format!("s″ [{unit}/rad²]")).series("s″", a))
+    .panel(Panel::new(&format!("s [{s_unit}]")).series_with_slopes("s", s, ds))
+    .panel(Panel::new(&format!("s′ [{unit}/rad]")).series_with_slopes("s′", v, dv))
+    .panel(Panel::new(&format!("s″ [{unit}/rad²]")).series_with_slopes("s″", a, da))
     .panel(Panel::new(&format!("s‴ [{unit}/rad³]")).series("s‴", j));
     for index in 0..cam.program.len() {
         let x = u.from_si(cam.program.start(index), Dimension::Angle);

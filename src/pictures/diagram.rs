@@ -3,7 +3,11 @@
 //!
 //! Every cartesian panel's plotting rectangle is written into the SVG as an invisible
 //! `<rect class="plot-frame">` with its data range (`data-x0`, `data-x1`, `data-y0`,
-//! `data-y1`), so that the HTML report can draw a cursor at a drive position.
+//! `data-y1`): `data-x0` maps to its left edge and `data-x1` to its right edge, `data-y0` to
+//! its bottom and `data-y1` to its top, linearly, so that the HTML report can draw a cursor at
+//! a drive position. The curves are `<path class="curve">` elements of cubic Hermite segments
+//! (with a series' exact slopes where it has them, see [`Series::slopes`]), drawn over the
+//! grid and the markers and under the legend.
 
 use std::fmt::Write as _;
 use std::ops::Range;
