@@ -8,6 +8,11 @@
 //! between points). A Hermite segment from `(x₀, y₀)` to `(x₁, y₁)` with slopes `m₀`, `m₁`
 //! is the Bézier curve with control points `(x₀ + h/3, y₀ + m₀h/3)` and
 //! `(x₁ − h/3, y₁ − m₁h/3)`, `h = x₁ − x₀`; its x is linear in the curve parameter.
+//!
+//! A Bézier curve lies inside the hull of its control points. A segment whose exact-slope
+//! control points leave the panel's y range (a step too coarse for the curve's bend, near a
+//! singular position) is drawn with the estimated slopes instead, whose control points lie
+//! between its ends: no curve leaves its panel.
 
 use std::fmt::Write as _;
 use std::ops::Range;
@@ -81,26 +86,39 @@ fn write_run(
         format!("{x:.3} {y:.3}")
     };
     let _ = write!(d, "M{}", p(run[0]));
-    let tangents = if smooth { tangents(run, exact) } else { None };
-    let Some(m) = tangents else {
+    let estimated = if smooth { fritsch_carlson(run) } else { None };
+    let Some(estimated) = estimated else {
         for q in &run[1..] {
             let _ = write!(d, " L{}", p(*q));
         }
         return;
     };
+    let slope = |k: usize| match exact.map(|e| e[k]) {
+        Some(m) if m.is_finite() => m,
+        _ => estimated[k],
+    };
+    let (lo, hi) = (map.y.start.min(map.y.end), map.y.start.max(map.y.end));
     for (k, w) in run.windows(2).enumerate() {
         let h = w[1][0] - w[0][0];
-        let c1 = [w[0][0] + h / 3.0, w[0][1] + m[k] * h / 3.0];
-        let c2 = [w[1][0] - h / 3.0, w[1][1] - m[k + 1] * h / 3.0];
+        let controls = |m0: f64, m1: f64| {
+            (
+                [w[0][0] + h / 3.0, w[0][1] + m0 * h / 3.0],
+                [w[1][0] - h / 3.0, w[1][1] - m1 * h / 3.0],
+            )
+        };
+        let (mut c1, mut c2) = controls(slope(k), slope(k + 1));
+        if ![c1[1], c2[1]].iter().all(|y| (lo..=hi).contains(y)) {
+            (c1, c2) = controls(estimated[k], estimated[k + 1]);
+        }
         let _ = write!(d, " C{} {} {}", p(c1), p(c2), p(w[1]));
     }
 }
 
-/// The slopes dy/dx at the points of a run whose x runs strictly one way (`None` otherwise, or
-/// with fewer than two points): the exact slope where given and finite, else Fritsch–Carlson's
-/// (the mean of neighbouring secants where they agree in sign, zero at an extremum, limited to
-/// three times the smaller secant; the end secants at the ends).
-fn tangents(run: &[[f64; 2]], exact: Option<&[f64]>) -> Option<Vec<f64>> {
+/// Fritsch–Carlson's slopes dy/dx at the points of a run whose x runs strictly one way
+/// (`None` otherwise, or with fewer than two points): the mean of neighbouring secants where
+/// they agree in sign, zero at an extremum, limited to three times the smaller secant; the
+/// end secants at the ends. The Hermite curve with these slopes is monotone between points.
+fn fritsch_carlson(run: &[[f64; 2]]) -> Option<Vec<f64>> {
     let n = run.len();
     if n < 2 {
         return None;
@@ -115,26 +133,22 @@ fn tangents(run: &[[f64; 2]], exact: Option<&[f64]>) -> Option<Vec<f64>> {
         .zip(&dx)
         .map(|(w, d)| (w[1][1] - w[0][1]) / d)
         .collect();
-    let estimate = |k: usize| {
-        if k == 0 {
-            return secant[0];
-        }
-        if k == n - 1 {
-            return secant[n - 2];
-        }
-        let (a, b) = (secant[k - 1], secant[k]);
-        if a * b > 0.0 {
-            let m = 0.5 * (a + b);
-            m.signum() * m.abs().min(3.0 * a.abs().min(b.abs()))
-        } else {
-            0.0
-        }
-    };
     Some(
         (0..n)
-            .map(|k| match exact.map(|e| e[k]) {
-                Some(m) if m.is_finite() => m,
-                _ => estimate(k),
+            .map(|k| {
+                if k == 0 {
+                    return secant[0];
+                }
+                if k == n - 1 {
+                    return secant[n - 2];
+                }
+                let (a, b) = (secant[k - 1], secant[k]);
+                if a * b > 0.0 {
+                    let m = 0.5 * (a + b);
+                    m.signum() * m.abs().min(3.0 * a.abs().min(b.abs()))
+                } else {
+                    0.0
+                }
             })
             .collect(),
     )
@@ -158,7 +172,7 @@ mod tests {
     /// written digits).
     #[test]
     fn exact_slopes_reproduce_a_cubic() {
-        let f = |x: f64| x * x * x - 0.5 * x;
+        let f = |x: f64| 0.5 + x * x * x - 0.5 * x;
         let df = |x: f64| 3.0 * x * x - 0.5;
         let points = [[0.0, f(0.0)], [1.0, f(1.0)]];
         let d = path_data(&points, Some(&[df(0.0), df(1.0)]), true, &unit_map());
@@ -173,6 +187,26 @@ mod tests {
         assert!(
             (x - want[0]).abs() < 2e-3 && (y - want[1]).abs() < 2e-3,
             "{x} {y} {want:?}"
+        );
+    }
+
+    /// An exact slope too steep for the step (its control point would leave the panel's y
+    /// range) gives way to the estimated slope: every control point, hence the whole curve,
+    /// stays inside the panel.
+    #[test]
+    fn steep_slopes_stay_inside_the_panel() {
+        let points = [[0.0, 0.1], [0.5, 0.5], [1.0, 0.9]];
+        let d = path_data(&points, Some(&[1e6, 0.8, -1e6]), true, &unit_map());
+        let n: Vec<f64> = d
+            .split(|c: char| c == ' ' || c.is_ascii_alphabetic())
+            .filter_map(|t| t.parse().ok())
+            .collect();
+        assert!(
+            n.iter()
+                .skip(1)
+                .step_by(2)
+                .all(|y| (0.0..=1000.0).contains(y)),
+            "{d}"
         );
     }
 
