@@ -55,6 +55,7 @@ pub mod report;
 pub mod run;
 pub mod scene;
 pub mod symbols;
+pub(crate) mod vectors;
 
 use std::path::Path;
 
