@@ -412,3 +412,50 @@ fn dynamic_columns_are_the_core_runs_numbers_bit_for_bit() {
     assert_eq!(bits(&column(&r, "M_shaking")), bits(&moment));
     assert_eq!(r.dynamics.as_ref().unwrap().run.steps, core.steps);
 }
+
+/// The CSV header of a run of the shipped scene `name`, split into column names (units off).
+fn csv_header(name: &str) -> Vec<String> {
+    let csv = common::temp_file(&format!("header-{name}.csv"));
+    let scene = common::scene_path(name);
+    let out = common::mechdiff(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--csv",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", common::stderr(&out));
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let _ = std::fs::remove_file(&csv);
+    let header = text.lines().next().unwrap_or_default();
+    header
+        .split(',')
+        .map(|c| c.split(" [").next().unwrap_or(c).to_owned())
+        .collect()
+}
+
+/// Issue 24: a joint without `[friction]` gets no friction column (before: `Mf_J` and `T_J`
+/// columns of zeros for every joint, in the table, the CSV and the diagram). The cam-driven
+/// rocker has no friction: its reactions are `Fx`, `Fy` per pin and `N`, `M` for the guide.
+/// The rack-and-slotted-link scene has friction in the slot `A` and the `incline` only: those
+/// two keep their friction forces `T_A`, `T_incline`; its pins `B`, `C`, `D` have none.
+#[test]
+fn friction_columns_only_for_joints_with_friction() {
+    let rocker = csv_header("cam_driven_rocker.toml");
+    for gone in ["Mf_O", "Mf_A", "Mf_B", "T_guide"] {
+        assert!(!rocker.iter().any(|c| c == gone), "{gone} in {rocker:?}");
+    }
+    for kept in ["Fx_O", "Fy_O", "N_guide", "M_guide"] {
+        assert!(rocker.iter().any(|c| c == kept), "{kept} not in {rocker:?}");
+    }
+    let rack = csv_header("rack_slotted_link_dynamics.toml");
+    for kept in ["N_A", "T_A", "N_incline", "T_incline", "M_incline", "Fx_B"] {
+        assert!(rack.iter().any(|c| c == kept), "{kept} not in {rack:?}");
+    }
+    for gone in ["Mf_B", "Mf_C", "Mf_D"] {
+        assert!(!rack.iter().any(|c| c == gone), "{gone} in {rack:?}");
+    }
+    // The library's table has the same columns as the CSV.
+    let r = run("rack_slotted_link_dynamics.toml");
+    let names: Vec<&str> = r.columns.iter().map(|c| c.name.as_str()).collect();
+    assert_eq!(names, rack, "library columns and CSV header");
+}

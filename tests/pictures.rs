@@ -643,3 +643,395 @@ fn vectors_are_drawn_to_their_stated_scale() {
     let legend: String = doc.descendants().filter_map(|n| n.text()).collect();
     assert!(legend.contains("v: 1 m/s ≙ 50 mm"), "{legend}");
 }
+
+/// The numbers of an SVG path's `d` attribute, in order.
+fn path_numbers(d: &str) -> Vec<f64> {
+    d.split(|c: char| c == ' ' || c == ',' || c.is_ascii_alphabetic())
+        .filter_map(|t| t.parse().ok())
+        .collect()
+}
+
+/// The plot frames of a diagram's SVG: `(x, y, width, height, x0, x1, y0, y1)`, in order.
+fn plot_frames(doc: &roxmltree::Document) -> Vec<[f64; 8]> {
+    doc.descendants()
+        .filter(|n| n.attribute("class") == Some("plot-frame"))
+        .map(|n| {
+            [
+                "x", "y", "width", "height", "data-x0", "data-x1", "data-y0", "data-y1",
+            ]
+            .map(|a| n.attribute(a).unwrap().parse::<f64>().unwrap())
+        })
+        .collect()
+}
+
+/// Issue 24, item 4: a diagram's curves are cubic Hermite segments with the exact slopes of
+/// the table's derivative columns (ψ′ for ψ, x_P′ for x_P, ψ″ for ψ′): at the middle of every
+/// segment of a 5° sweep (the four-bar's, and the Whitworth's over 0°…360°, where the sweep
+/// ends), the drawn curve (the Bézier point at t = ½, whose x is the middle drive position)
+/// is within 0.5 px of the solver's value there, from a second run at the middle positions
+/// mapped through the plot frame. Before: straight lines between points (5° polylines with
+/// kinks), and no `C` command in the SVG.
+#[test]
+fn diagram_curves_follow_the_exact_derivatives() {
+    use mechdiff::scene::Positions;
+    for name in ["four_bar.toml", "whitworth.toml"] {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("scenes")
+            .join(name);
+        let mut scene = scene::load(&path).unwrap();
+        scene.plot = Default::default();
+        scene.positions =
+            Positions::List((0..=72).map(|k| f64::from(k) * 5f64.to_radians()).collect());
+        let report = scene::run(&scene).unwrap();
+        let phi: Vec<f64> = report.rows.iter().map(|r| r[0]).collect();
+        let mids: Vec<f64> = phi.windows(2).map(|w| 0.5 * (w[0] + w[1])).collect();
+        let mut middle = scene.clone();
+        middle.positions = Positions::List(mids.clone());
+        let exact = scene::run(&middle).unwrap();
+        let d = diagram(&scene, &report).unwrap();
+        let svg = d.to_svg().unwrap();
+        let doc = roxmltree::Document::parse(&svg).unwrap();
+        let frames = plot_frames(&doc);
+        let curves: Vec<&str> = doc
+            .descendants()
+            .filter(|n| n.attribute("class") == Some("curve"))
+            .map(|n| n.attribute("d").unwrap())
+            .collect();
+        let series: Vec<(usize, &str)> = (d.panels.iter().enumerate())
+            .flat_map(|(k, p)| p.series.iter().map(move |s| (k, s.name.as_str())))
+            .collect();
+        assert_eq!(curves.len(), series.len(), "{name}: one path per curve");
+        let mut checked = 0;
+        for (&(k, label), d_attr) in series.iter().zip(&curves) {
+            let column = report
+                .columns
+                .iter()
+                .position(|c| mechdiff::pictures::symbols::symbol(&c.name) == label)
+                .unwrap();
+            let derivative = format!("{}'", report.columns[column].name);
+            if !report.columns.iter().any(|c| c.name == derivative) {
+                continue;
+            }
+            let n = path_numbers(d_attr);
+            // M x y, then per segment: C c1x c1y c2x c2y x y.
+            assert_eq!(n.len(), 2 + 6 * mids.len(), "{name} {label}: {d_attr:.80}");
+            let [fx, fy, fw, fh, x0, x1, y0, y1] = frames[k];
+            let (xf, yf) = (report.columns[0].factor, report.columns[column].factor);
+            for (s, row) in exact.rows.iter().enumerate() {
+                let p = &n[6 * s..6 * s + 8];
+                let bezier = |a: f64, b: f64, c: f64, e: f64| (a + 3.0 * b + 3.0 * c + e) / 8.0;
+                let (bx, by) = (
+                    bezier(p[0], p[2], p[4], p[6]),
+                    bezier(p[1], p[3], p[5], p[7]),
+                );
+                let want_x = fx + (row[0] / xf - x0) / (x1 - x0) * fw;
+                let want_y = fy + fh - (row[column] / yf - y0) / (y1 - y0) * fh;
+                // x: the middle drive position (the written 1e-3 px digits); y: 0.5 px.
+                assert!(
+                    (bx - want_x).abs() < 0.01,
+                    "{name} {label} segment {s}: x {bx} vs {want_x}"
+                );
+                assert!(
+                    (by - want_y).abs() <= 0.5,
+                    "{name} {label} at {:.3}°: {by} px vs {want_y} px",
+                    row[0].to_degrees()
+                );
+                checked += 1;
+            }
+        }
+        assert!(
+            checked >= 2 * mids.len(),
+            "{name}: {checked} points checked"
+        );
+    }
+}
+
+/// Issue 24, item 4: marker labels stay inside the picture and clear of their own lines, and
+/// never overlap: dead and limit positions crowded at both ends of the sweep and in the
+/// middle, their boxes estimated at 0.62 em per character (11 px font, 11 px high). Before:
+/// a label near the right end ran off the picture (it always stood right of its line).
+#[test]
+fn marker_labels_stay_inside_and_clear_of_their_lines() {
+    use mechdiff::pictures::{Diagram, Marker, MarkerKind, Panel};
+    let points: Vec<[f64; 2]> = (0..=72)
+        .map(|k| [f64::from(k) * 5.0, f64::from(k).sin()])
+        .collect();
+    let mut d = Diagram::new("crowded", "φ [deg]").panel(Panel::new("y [1]").series("y", points));
+    let at = [
+        0.0, 1.0, 3.0, 178.0, 180.0, 181.0, 352.0, 356.0, 359.0, 360.0,
+    ];
+    for (k, x) in at.iter().enumerate() {
+        let kind = if k % 3 == 0 {
+            MarkerKind::Limit
+        } else {
+            MarkerKind::Dead
+        };
+        d = d.marker(Marker::new(*x, &format!("x_C{k}: dead at {x}"), kind));
+    }
+    let svg = d.to_svg().unwrap();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let width: f64 = doc
+        .root_element()
+        .attribute("width")
+        .unwrap()
+        .parse()
+        .unwrap();
+    let [fx, _, fw, _, x0, x1, _, _] = plot_frames(&doc)[0];
+    let boxes: Vec<([f64; 4], f64)> = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("text"))
+        .filter(|n| matches!(n.attribute("fill"), Some("#D62728") | Some("#9467BD")))
+        .map(|n| {
+            let text = n.text().unwrap().trim();
+            let x: f64 = n.attribute("x").unwrap().parse().unwrap();
+            let y: f64 = n.attribute("y").unwrap().parse().unwrap();
+            let w = 0.62 * 11.0 * text.chars().count() as f64;
+            let own: f64 = text.rsplit(' ').next().unwrap().parse().unwrap();
+            ([x, y, x + w, y + 11.0], fx + (own - x0) / (x1 - x0) * fw)
+        })
+        .collect();
+    assert_eq!(boxes.len(), at.len(), "one label per marker");
+    for (i, (a, line)) in boxes.iter().enumerate() {
+        assert!(
+            a[0] >= 0.0 && a[2] <= width,
+            "label {a:?} outside 0..{width}"
+        );
+        assert!(
+            a[2] <= line - 1.0 || a[0] >= line + 1.0,
+            "label {a:?} crosses its line at {line}"
+        );
+        for (b, _) in &boxes[i + 1..] {
+            let apart = a[2] <= b[0] || b[2] <= a[0] || a[3] <= b[1] || b[3] <= a[1];
+            assert!(apart, "marker labels overlap: {a:?} {b:?}");
+        }
+    }
+}
+
+/// Issue 24, item 4: diagrams of cams and balancing are paged like a run's: a diagram of 12
+/// panels becomes `svaj.svg` and `svaj_2.svg`, each at most `MAX_HEIGHT` px high, and a cam
+/// scene's `--plot` folder holds only pages of at most that height.
+#[test]
+fn cam_and_balancing_diagrams_are_paged() {
+    use mechdiff::pictures::diagram::MAX_HEIGHT;
+    use mechdiff::pictures::{Diagram, Panel};
+    let mut d = Diagram::new("tall", "θ [deg]");
+    for k in 0..12 {
+        d = d.panel(Panel::new(&format!("s{k} [mm]")).series("s", vec![[0.0, 0.0], [1.0, 1.0]]));
+    }
+    assert!(d.height() > MAX_HEIGHT);
+    let pages = d.named_pages("svaj");
+    let names: Vec<&str> = pages.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(names, ["svaj", "svaj_2"]);
+    assert!(pages.iter().all(|(_, p)| p.height() <= MAX_HEIGHT));
+    let cam =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/cams/rise_dwell_return_dwell.toml");
+    let dir = std::env::temp_dir().join(format!("mechdiff-cam-pages-{}", std::process::id()));
+    let out = Command::new(env!("CARGO_BIN_EXE_mechdiff"))
+        .args([
+            "run",
+            cam.to_str().unwrap(),
+            "--plot",
+            dir.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "svg") {
+            let svg = std::fs::read_to_string(&path).unwrap();
+            let doc = roxmltree::Document::parse(&svg).unwrap();
+            let height: f64 = doc
+                .root_element()
+                .attribute("height")
+                .unwrap()
+                .parse()
+                .unwrap();
+            assert!(height <= f64::from(MAX_HEIGHT), "{path:?}: {height}");
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    let balancing = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/whitworth_balancing.toml");
+    let (scene, report) = load(&balancing);
+    for (name, svg) in mechdiff::pictures::balancing::pictures(&scene, &report).unwrap() {
+        let doc = roxmltree::Document::parse(&svg).unwrap();
+        let height: f64 = doc
+            .root_element()
+            .attribute("height")
+            .unwrap()
+            .parse()
+            .unwrap();
+        assert!(height <= f64::from(MAX_HEIGHT), "{name}: {height}");
+    }
+}
+
+/// Issue 24, item 5: `[plot] vectors = ["P"]` draws the velocity and acceleration of the
+/// four-bar's coupler point at the `[plot] positions`, to the scale the legend states: each
+/// arrow starts at P and its length over the stated scale is the run's |v_P| (from `vx_P`,
+/// `vy_P`) and |a_P| (`ax_P`, `ay_P`, with the scene's α = 5 rad/s²) at φ = 30°, to 0.01 px
+/// (three written decimals of each end); the direction agrees to 1e-3 rad. Before: no
+/// `[plot] vectors` (an unknown field).
+#[test]
+fn plot_vectors_are_drawn_to_the_stated_scale() {
+    let text = format!("{FOUR_BAR}\n[plot]\npositions = [30]\nvectors = [\"P\"]\n");
+    let scene = scene::parse("four_bar.toml", &text).unwrap();
+    let report = scene::run(&scene).unwrap();
+    let animation = Animation::of(&scene, &report).unwrap();
+    let drawn = drawings(&scene, &report, &animation).unwrap();
+    let (_, at30) = drawn.iter().find(|(n, _)| n.contains("30")).unwrap();
+    let svg = at30.to_svg();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let f = frame(&svg);
+    let legend: Vec<&str> = doc.descendants().filter_map(|n| n.text()).collect();
+    // `v: 1 m/s ≙ 20 mm`: model metres per unit of the quantity.
+    let stated = |prefix: &str| -> f64 {
+        let line = legend.iter().find(|t| t.starts_with(prefix)).unwrap();
+        let rest = line.split('≙').nth(1).unwrap().trim();
+        let (number, unit) = rest.split_once(' ').unwrap();
+        let per = match unit {
+            "mm" => 1e-3,
+            "m" => 1.0,
+            other => panic!("unit {other}"),
+        };
+        number.parse::<f64>().unwrap() * per
+    };
+    let scales = [stated("v: 1 m/s"), stated("a: 1 m/s²")];
+    let row = report
+        .rows
+        .iter()
+        .find(|r| (r[0] - 30f64.to_radians()).abs() < 1e-9)
+        .unwrap();
+    let value = |name: &str| row[report.columns.iter().position(|c| c.name == name).unwrap()];
+    let want = [
+        [value("vx_P"), value("vy_P")],
+        [value("ax_P"), value("ay_P")],
+    ];
+    let p = joints(&svg).into_iter().find(|(n, _)| n == "P").unwrap().1;
+    let arrows: Vec<roxmltree::Node> = doc
+        .descendants()
+        .filter(|n| n.attribute("class") == Some("vector"))
+        .collect();
+    assert_eq!(arrows.len(), 2, "a velocity and an acceleration arrow");
+    for (arrow, (w, scale)) in arrows.iter().zip(want.iter().zip(scales)) {
+        let line = arrow.children().find(|n| n.has_tag_name("line")).unwrap();
+        let head = arrow
+            .children()
+            .find(|n| n.has_tag_name("polygon"))
+            .unwrap();
+        let at = |a: &str| line.attribute(a).unwrap().parse::<f64>().unwrap();
+        let tail = f.model([at("x1"), at("y1")]);
+        let tip: Vec<f64> = head
+            .attribute("points")
+            .unwrap()
+            .split([' ', ','])
+            .take(2)
+            .map(|v| v.parse().unwrap())
+            .collect();
+        let tip = f.model([tip[0], tip[1]]);
+        let tol = 0.01 / f.scale;
+        assert!(
+            (tail[0] - p[0]).abs() < tol && (tail[1] - p[1]).abs() < tol,
+            "tail {tail:?} vs P {p:?}"
+        );
+        let drawn = [(tip[0] - tail[0]) / scale, (tip[1] - tail[1]) / scale];
+        let length = drawn[0].hypot(drawn[1]);
+        let expected = w[0].hypot(w[1]);
+        assert!(
+            (length - expected).abs() <= 2.0 * tol / scale,
+            "{length} vs {expected}"
+        );
+        let turn = (drawn[1].atan2(drawn[0]) - w[1].atan2(w[0])).sin().abs();
+        assert!(turn < 1e-3, "direction {drawn:?} vs {w:?}");
+    }
+}
+
+/// `[plot] vectors` without a drive speed, without positions, or naming an unknown point is
+/// refused at its `file:line:col` with what to do.
+#[test]
+fn bad_plot_vectors_are_located() {
+    let line = plot_line();
+    let cases = [
+        ("vectors = [\"Z\"]", "unknown point `Z` in `[plot] vectors`"),
+        ("vectors = []", "`[plot] vectors` is empty"),
+        ("vectors = [\"P\"]", "are drawn at the `[plot] positions`"),
+    ];
+    for (plot, message) in cases {
+        let text = with_plot(plot).to_string();
+        assert!(
+            text.starts_with(&format!("four_bar.toml:{line}:")),
+            "{plot}: {text}"
+        );
+        assert!(text.contains(message), "{plot}: {text}");
+    }
+    let still = FOUR_BAR
+        .replace("speed = 10           # rad/s\n", "")
+        .replace("acceleration = 5     # rad/s²\n", "")
+        .replace("\"velocity\", \"acceleration\"", "")
+        .replace(
+            "point = \"P\"",
+            "point = \"P\"\nquantities = [\"position\"]",
+        );
+    let text = format!("{still}\n[plot]\npositions = [30]\nvectors = [\"P\"]\n");
+    let scene = scene::parse("four_bar.toml", &text).unwrap();
+    let report = scene::run(&scene).unwrap();
+    let animation = Animation::of(&scene, &report).unwrap();
+    let error = drawings(&scene, &report, &animation)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(error.contains("needs the drive speed"), "{error}");
+}
+
+/// Issue 24, item 4, for cams: the SVAJ diagram's s, s′ and s″ curves are Hermite segments
+/// with the exact slopes s′, s″, s‴: at the middle of every segment (cam angles from the
+/// path's own ends, read back through the plot frame), the drawn curve is within 0.5 px of the
+/// cam program's value there. Before: polylines refined by estimated slopes.
+#[test]
+fn cam_curves_follow_the_exact_derivatives() {
+    use mechdiff::scene::units::Dimension;
+    use mechdiff_core::cams::Side;
+    let path =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/cams/rise_dwell_return_dwell.toml");
+    let cam = mechdiff::scene::cam::load(&path).unwrap();
+    let svg = mechdiff::pictures::cam::svaj_diagram(&cam)
+        .to_svg()
+        .unwrap();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let frames = plot_frames(&doc);
+    let curves: Vec<&str> = doc
+        .descendants()
+        .filter(|n| n.attribute("class") == Some("curve"))
+        .map(|n| n.attribute("d").unwrap())
+        .collect();
+    let u = &cam.units;
+    let length = u.factor(Dimension::Length);
+    let mut checked = 0;
+    for (k, d) in curves.iter().enumerate().take(3) {
+        let [fx, fy, fw, fh, x0, x1, y0, y1] = frames[k];
+        for run in d.split('M').filter(|r| !r.trim().is_empty()) {
+            let n = path_numbers(run);
+            for s in 0..(n.len() - 2) / 6 {
+                let p = &n[6 * s..6 * s + 8];
+                let bezier = |a: f64, b: f64, c: f64, e: f64| (a + 3.0 * b + 3.0 * c + e) / 8.0;
+                let (bx, by) = (
+                    bezier(p[0], p[2], p[4], p[6]),
+                    bezier(p[1], p[3], p[5], p[7]),
+                );
+                let theta = u.to_si(x0 + (bx - fx) / fw * (x1 - x0), Dimension::Angle);
+                let j = cam.mechanism.program.svaj(theta, Side::Left);
+                let value = [j.value / length, j.d1() / length, j.d2() / length][k];
+                let want = fy + fh - (value - y0) / (y1 - y0) * fh;
+                assert!(
+                    (by - want).abs() <= 0.5,
+                    "panel {k} at θ = {theta}: {by} vs {want}"
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 3000, "{checked} segments checked");
+}

@@ -50,17 +50,13 @@ pub fn pictures(scene: &Scene, report: &Report) -> Result<Vec<(String, String)>>
             title: "shaking force ΣF: locus of its tip".to_owned(),
             unit: "N".to_owned(),
             series: vec![
-                Series {
-                    name: "before".to_owned(),
-                    points: linkage.before.force.clone(),
-                },
-                Series {
-                    name: "after".to_owned(),
-                    points: linkage.after.force.clone(),
-                },
+                Series::new("before", linkage.before.force.clone()),
+                Series::new("after", linkage.after.force.clone()),
             ],
         });
-        out.push(("shaking_force_balancing".to_owned(), diagram.to_svg()?));
+        for (name, page) in diagram.named_pages("shaking_force_balancing") {
+            out.push((name, page.to_svg()?));
+        }
     }
     Ok(out)
 }

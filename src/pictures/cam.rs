@@ -32,6 +32,10 @@ pub fn svaj_diagram(scene: &CamScene) -> Diagram {
         ),
     };
     let mut curves: [Vec<[f64; 2]>; 4] = Default::default();
+    // The exact slopes of s, s′ and s″ in printed units (s‴'s would need s⁗).
+    let mut slopes: [Vec<f64>; 3] = Default::default();
+    let per_angle = u.factor(Dimension::Angle);
+    let s_factor = u.factor(dimension);
     for (lo, hi) in cam.pieces() {
         let n = ((hi - lo) / TAU * CURVE_POINTS as f64).ceil().max(2.0) as usize;
         for i in 0..=n {
@@ -48,14 +52,26 @@ pub fn svaj_diagram(scene: &CamScene) -> Diagram {
             for (curve, v) in curves.iter_mut().zip(values) {
                 curve.push([x, v]);
             }
+            let exact = [
+                j.d1() * per_angle / s_factor,
+                j.d2() * k * per_angle,
+                j.d3() * k * per_angle,
+            ];
+            for (slope, m) in slopes.iter_mut().zip(exact) {
+                slope.push(m);
+            }
         }
         // A gap between pieces: a jump is never drawn as a steep line.
         for curve in curves.iter_mut() {
             let x = u.from_si(hi, Dimension::Angle);
             curve.push([x, f64::NAN]);
         }
+        for slope in slopes.iter_mut() {
+            slope.push(f64::NAN);
+        }
     }
     let [s, v, a, j] = curves;
+    let [ds, dv, da] = slopes;
     let s_unit = if dimension == Dimension::Angle {
         angle.to_owned()
     } else {
@@ -65,9 +81,9 @@ pub fn svaj_diagram(scene: &CamScene) -> Diagram {
         scene.title.as_deref().unwrap_or("cam: follower motion"),
         &format!("cam angle θ [{angle}]"),
     )
-    .panel(Panel::new(&format!("s [{s_unit}]")).series("s", s))
-    .panel(Panel::new(&format!("s′ [{unit}/rad]")).series("s′", v))
-    .panel(Panel::new(&format!("s″ [{unit}/rad²]")).series("s″", a))
+    .panel(Panel::new(&format!("s [{s_unit}]")).series_with_slopes("s", s, ds))
+    .panel(Panel::new(&format!("s′ [{unit}/rad]")).series_with_slopes("s′", v, dv))
+    .panel(Panel::new(&format!("s″ [{unit}/rad²]")).series_with_slopes("s″", a, da))
     .panel(Panel::new(&format!("s‴ [{unit}/rad³]")).series("s‴", j));
     for index in 0..cam.program.len() {
         let x = u.from_si(cam.program.start(index), Dimension::Angle);
@@ -154,15 +170,22 @@ pub fn profile_drawing(scene: &CamScene, theta: f64) -> Drawing {
     drawing.joint("contact", touch).label(centre, "follower")
 }
 
-/// Writes `svaj.svg`, `svaj.png`, `profile.svg`, `profile.png` into `dir` (created if
+/// Writes `svaj.svg`, `svaj.png` (and `svaj_2.svg`, … when the diagram is higher than
+/// [`super::diagram::MAX_HEIGHT`]), `profile.svg`, `profile.png` into `dir` (created if
 /// missing).
 pub fn write_dir(scene: &CamScene, dir: &Path) -> Result<()> {
-    let names = ["svaj.svg", "svaj.png", "profile.svg", "profile.png"];
-    crate::files::refuse_inputs(names.map(|name| dir.join(name)).iter().map(|p| p.as_path()))?;
+    let pages = svaj_diagram(scene).named_pages("svaj");
+    let mut names: Vec<String> = (pages.iter())
+        .flat_map(|(stem, _)| [format!("{stem}.svg"), format!("{stem}.png")])
+        .collect();
+    names.extend(["profile.svg".to_owned(), "profile.png".to_owned()]);
+    let paths: Vec<std::path::PathBuf> = names.iter().map(|name| dir.join(name)).collect();
+    crate::files::refuse_inputs(paths.iter().map(std::path::PathBuf::as_path))?;
     crate::files::create_output_folder(dir)?;
-    let diagram = svaj_diagram(scene);
-    diagram.write_svg(&dir.join("svaj.svg"))?;
-    diagram.write_png(&dir.join("svaj.png"))?;
+    for (stem, page) in &pages {
+        page.write_svg(&dir.join(format!("{stem}.svg")))?;
+        page.write_png(&dir.join(format!("{stem}.png")))?;
+    }
     let drawing = profile_drawing(scene, 0.0);
     drawing.write_svg(&dir.join("profile.svg"))?;
     drawing.write_png(&dir.join("profile.png"))

@@ -3,7 +3,11 @@
 //!
 //! Every cartesian panel's plotting rectangle is written into the SVG as an invisible
 //! `<rect class="plot-frame">` with its data range (`data-x0`, `data-x1`, `data-y0`,
-//! `data-y1`), so that the HTML report can draw a cursor at a drive position.
+//! `data-y1`): `data-x0` maps to its left edge and `data-x1` to its right edge, `data-y0` to
+//! its bottom and `data-y1` to its top, linearly, so that the HTML report can draw a cursor at
+//! a drive position. The curves are `<path class="curve">` elements of cubic Hermite segments
+//! (with a series' exact slopes where it has them, see [`Series::slopes`]), drawn over the
+//! grid and the markers and under the legend.
 
 use std::fmt::Write as _;
 use std::ops::Range;
@@ -16,6 +20,7 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
 
+use super::curve::{PixelMap, path_data};
 use super::{FONT, FONT_FAMILY, axis, raster, write_file};
 use crate::error::{Error, Result};
 
@@ -26,6 +31,21 @@ pub struct Series {
     pub name: String,
     /// The points.
     pub points: Vec<[f64; 2]>,
+    /// The exact slope dy/dx at each point (same length as `points`), if known: the curve is
+    /// then drawn as cubic Hermite segments with these slopes (a non-finite slope, or none,
+    /// is estimated from the neighbouring points).
+    pub slopes: Option<Vec<f64>>,
+}
+
+impl Series {
+    /// A curve named `name` through `points`, slopes unknown.
+    pub fn new(name: &str, points: Vec<[f64; 2]>) -> Self {
+        Series {
+            name: name.to_owned(),
+            points,
+            slopes: None,
+        }
+    }
 }
 
 /// One panel: one quantity (one unit) against the shared x axis.
@@ -48,9 +68,20 @@ impl Panel {
 
     /// Adds a curve.
     pub fn series(mut self, name: &str, points: Vec<[f64; 2]>) -> Self {
+        self.series.push(Series::new(name, points));
+        self
+    }
+
+    /// Adds a curve with the exact slope dy/dx at each point (see [`Series::slopes`]).
+    pub fn series_with_slopes(
+        mut self,
+        name: &str,
+        points: Vec<[f64; 2]>,
+        slopes: Vec<f64>,
+    ) -> Self {
         self.series.push(Series {
-            name: name.to_owned(),
-            points,
+            slopes: Some(slopes),
+            ..Series::new(name, points)
         });
         self
     }
@@ -238,6 +269,7 @@ impl Diagram {
         font()?;
         let mut svg = String::new();
         let mut frames = Vec::new();
+        let mut curves = Vec::new();
         {
             let size = (self.width.max(200), self.height());
             let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
@@ -253,7 +285,9 @@ impl Diagram {
             for (k, panel) in self.panels.iter().enumerate() {
                 let (area, below) = rest.split_vertically(self.panel_height);
                 rest = below;
-                frames.push(self.draw_panel(&area, panel, x.clone(), k == 0)?);
+                let (frame, drawn) = self.draw_panel(&area, panel, x.clone(), k)?;
+                frames.push(frame);
+                curves.push(drawn);
             }
             for pair in self.polars.chunks(2) {
                 let (row, below) = rest.split_vertically(POLAR_HEIGHT);
@@ -264,9 +298,15 @@ impl Diagram {
             }
             root.present().map_err(draw_error)?;
         }
+        put_curves(&mut svg, &curves);
         let mut extra = String::from("<g class=\"plot-frames\">\n");
         for (k, f) in frames.iter().enumerate() {
-            let (px, py) = &f.pixels;
+            // The pixels plotters maps the data range onto: the last column and row of the
+            // plotting rectangle are outside (plotters' `build_cartesian_2d`).
+            let (px, py) = (
+                f.pixels.0.start..f.pixels.0.end - 1,
+                f.pixels.1.start..f.pixels.1.end - 1,
+            );
             let _ = writeln!(
                 extra,
                 r#"<rect class="plot-frame" data-panel="{k}" data-x0="{:e}" data-x1="{:e}" data-y0="{:e}" data-y1="{:e}" x="{}" y="{}" width="{}" height="{}" fill="none" stroke="none"/>"#,
@@ -296,8 +336,9 @@ impl Diagram {
         area: &DrawingArea<SVGBackend, Shift>,
         panel: &Panel,
         x: Range<f64>,
-        first: bool,
-    ) -> Result<PlotFrame> {
+        index: usize,
+    ) -> Result<(PlotFrame, String)> {
+        let first = index == 0;
         let ys = panel
             .series
             .iter()
@@ -343,8 +384,10 @@ impl Diagram {
             }
         }
         if first {
-            let placed =
-                place_marker_labels(&self.markers, &x, |v| chart.backend_coord(&(v, y.end)).0);
+            let plot_columns = chart.plotting_area().get_pixel_range().0;
+            let placed = place_marker_labels(&self.markers, &x, plot_columns, |v| {
+                chart.backend_coord(&(v, y.end)).0
+            });
             let top = chart.backend_coord(&(x.start, y.end)).1;
             for (left, row, text, kind) in placed {
                 area.draw_text(
@@ -356,27 +399,45 @@ impl Diagram {
             }
         }
         let (pixels_x, pixels_y) = chart.plotting_area().get_pixel_range();
-        let per_x = f64::from(pixels_x.end - pixels_x.start) / (x.end - x.start);
+        let map = PixelMap {
+            x: x.clone(),
+            y: y.clone(),
+            columns: (f64::from(pixels_x.start), f64::from(pixels_x.end - 1)),
+            rows: (f64::from(pixels_y.end - 1), f64::from(pixels_y.start)),
+        };
+        // The curves are put where this placeholder is drawn (see `put_curves`): over the
+        // grid and the markers, under the dots, the legend and the cursor.
+        area.draw(&Rectangle::new(
+            [(0, 0), (0, 0)],
+            placeholder(index).filled(),
+        ))
+        .map_err(draw_error)?;
+        let mut drawn = String::new();
         for (k, series) in panel.series.iter().enumerate() {
             let colour = PALETTE[k % PALETTE.len()];
-            for run in finite_runs(&series.points) {
-                let drawn_points = if series.points.len() > SPARSE {
-                    smooth(run, per_x)
-                } else {
-                    run.to_vec()
-                };
-                let drawn = chart
-                    .draw_series(LineSeries::new(
-                        drawn_points.iter().map(|p| (p[0], p[1])),
-                        colour.stroke_width(2),
-                    ))
-                    .map_err(draw_error)?;
-                if run.as_ptr() == first_run_start(&series.points) {
-                    drawn.label(series.name.as_str()).legend(move |(x, y)| {
-                        PathElement::new([(x, y), (x + 16, y)], colour.stroke_width(2))
-                    });
-                }
-                if series.points.len() <= SPARSE {
+            let sparse = series.points.len() <= SPARSE;
+            let d = path_data(
+                &series.points,
+                series.slopes.as_deref(),
+                series.slopes.is_some() || !sparse,
+                &map,
+            );
+            if !d.is_empty() {
+                let _ = writeln!(
+                    drawn,
+                    r#"<path class="curve" d="{d}" fill="none" stroke="{}" stroke-width="2" stroke-linejoin="round"/>"#,
+                    hex(colour)
+                );
+            }
+            chart
+                .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())
+                .map_err(draw_error)?
+                .label(series.name.as_str())
+                .legend(move |(x, y)| {
+                    PathElement::new([(x, y), (x + 16, y)], colour.stroke_width(2))
+                });
+            if sparse {
+                for run in finite_runs(&series.points) {
                     chart
                         .draw_series(
                             run.iter()
@@ -406,11 +467,14 @@ impl Diagram {
                 .draw_series(LineSeries::new([(c, y.start), (c, y.end)], BLACK))
                 .map_err(draw_error)?;
         }
-        Ok(PlotFrame {
-            pixels: chart.plotting_area().get_pixel_range(),
-            x,
-            y,
-        })
+        Ok((
+            PlotFrame {
+                pixels: chart.plotting_area().get_pixel_range(),
+                x,
+                y,
+            },
+            drawn,
+        ))
     }
 
     /// Writes the SVG to `path` (through a temporary file).
@@ -470,6 +534,35 @@ impl ValueFormatter<f64> for Ticked {
     }
 }
 
+/// The colour of panel `index`'s placeholder: a zero-sized rectangle that [`put_curves`]
+/// replaces with the panel's curves (no picture element has this colour; text cannot hold it,
+/// since plotters escapes quotes).
+fn placeholder(index: usize) -> RGBColor {
+    RGBColor(0x01, (index >> 8) as u8, index as u8)
+}
+
+/// `#RRGGBB`, as plotters writes colours.
+fn hex(c: RGBColor) -> String {
+    format!("#{:02X}{:02X}{:02X}", c.0, c.1, c.2)
+}
+
+/// Replaces the panels' placeholders in `svg`, in order, with their curves (`curves[k]`:
+/// panel `k`'s `<path>` elements). Each is searched after the one before, so that panel
+/// numbers sharing a colour (beyond 65 536) still go to their own panel.
+fn put_curves(svg: &mut String, curves: &[String]) {
+    let mut from = 0;
+    for (k, drawn) in curves.iter().enumerate() {
+        let key = format!(r#"fill="{}""#, hex(placeholder(k)));
+        let Some(at) = svg[from..].find(&key).map(|i| from + i) else {
+            continue;
+        };
+        let start = svg[..at].rfind("<rect").unwrap_or(at);
+        let end = svg[at..].find("/>").map_or(at, |i| at + i + 2);
+        svg.replace_range(start..end, drawn.trim_end());
+        from = start + drawn.trim_end().len();
+    }
+}
+
 /// The bundled font at `size` px.
 fn text_style(size: i32) -> FontDesc<'static> {
     (FONT_FAMILY, size).into_font()
@@ -480,13 +573,17 @@ const MARKER_ROW: i32 = 13;
 /// Average advance of a character of the bundled font, as a fraction of its size.
 const ADVANCE: f64 = 0.62;
 
-/// The labels of the markers, placed so that none prints over another: markers at the same
-/// position (several outputs dead at one drive position) share one label (`"ψ, x_C: dead"`),
-/// and a label that would run into one placed before it moves down a row. Returns the left
-/// pixel, the row, the text and the kind; `pixel` maps a drive position to its pixel column.
+/// The labels of the markers, placed so that none prints over another nor crosses its own
+/// line, and all stay inside the plotting rectangle's columns `plot` where they fit: markers
+/// at the same position (several outputs dead at one drive position) share one label
+/// (`"ψ, x_C: dead"`); a label stands right of its line, or left of it where the right side
+/// has no room; a label that would run into one placed before it moves down a row. Returns
+/// the left pixel, the row, the text and the kind; `pixel` maps a drive position to its pixel
+/// column.
 fn place_marker_labels(
     markers: &[Marker],
     x: &Range<f64>,
+    plot: Range<i32>,
     pixel: impl Fn(f64) -> i32,
 ) -> Vec<(i32, i32, String, MarkerKind)> {
     let same = 1e-9 * (x.end - x.start).abs().max(1e-300);
@@ -503,23 +600,43 @@ fn place_marker_labels(
             _ => merged.push((m.x, vec![&m.label], m.kind)),
         }
     }
-    let mut row_ends: Vec<i32> = Vec::new();
+    // The columns taken in each row so far.
+    let mut rows: Vec<Vec<Range<i32>>> = Vec::new();
     let mut out = Vec::new();
     for (at, labels, kind) in merged {
         let text = join_labels(&labels);
-        let left = pixel(at) + 3;
-        let width = (ADVANCE * 11.0 * text.chars().count() as f64).ceil() as i32 + 6;
-        let row = match row_ends.iter().position(|&end| end <= left) {
+        let line = pixel(at);
+        let width = label_width(&text);
+        let right_side = line + MARKER_GAP;
+        let left_side = line - MARKER_GAP - width;
+        let left = if right_side + width <= plot.end || left_side < plot.start {
+            right_side
+        } else {
+            left_side
+        };
+        let taken = left..left + width;
+        let row = match rows.iter().position(|r| {
+            r.iter()
+                .all(|t| t.end <= taken.start || taken.end <= t.start)
+        }) {
             Some(r) => r,
             None => {
-                row_ends.push(i32::MIN);
-                row_ends.len() - 1
+                rows.push(Vec::new());
+                rows.len() - 1
             }
         };
-        row_ends[row] = left + width;
+        rows[row].push(taken);
         out.push((left, row as i32, text, kind));
     }
     out
+}
+
+/// Pixels between a marker's line and its label.
+const MARKER_GAP: i32 = 3;
+
+/// The estimated width (px) of a marker label at 11 px, with 6 px to spare.
+fn label_width(text: &str) -> i32 {
+    (ADVANCE * 11.0 * text.chars().count() as f64).ceil() as i32 + 6
 }
 
 /// Labels of one position joined: `"a: dead"` and `"b: dead"` become `"a, b: dead"`.
@@ -532,64 +649,6 @@ fn join_labels(labels: &[&str]) -> String {
         return format!("{}: {suffix}", names.join(", "));
     }
     labels.join("; ")
-}
-
-/// Pixels between drawn points of a smoothed curve, at most.
-const SMOOTH_PIXELS: f64 = 2.0;
-/// Points inserted into one interval, at most.
-const SMOOTH_MOST: usize = 64;
-
-/// A run of points refined for drawing: where x increases (or decreases) strictly along the
-/// run, each interval wider than [`SMOOTH_PIXELS`] at `per_x` pixels per unit of x is
-/// divided into pieces of at most that width on the monotone cubic Hermite interpolant
-/// (Fritsch–Carlson slopes: it passes through every point and adds no extremum between
-/// points), so that the printed curve shows no kink at the points; otherwise the run as is.
-fn smooth(run: &[[f64; 2]], per_x: f64) -> Vec<[f64; 2]> {
-    let n = run.len();
-    if n < 3 || !(per_x.is_finite() && per_x > 0.0) {
-        return run.to_vec();
-    }
-    let dx: Vec<f64> = run.windows(2).map(|w| w[1][0] - w[0][0]).collect();
-    let rising = dx[0] > 0.0;
-    if !dx.iter().all(|&d| if rising { d > 0.0 } else { d < 0.0 }) {
-        return run.to_vec();
-    }
-    let slope: Vec<f64> = run
-        .windows(2)
-        .zip(&dx)
-        .map(|(w, d)| (w[1][1] - w[0][1]) / d)
-        .collect();
-    // Fritsch–Carlson: the mean of neighbouring secants where they agree in sign, zero at an
-    // extremum, limited to three times the smaller secant.
-    let mut tangent = vec![0.0; n];
-    tangent[0] = slope[0];
-    tangent[n - 1] = slope[n - 2];
-    for k in 1..n - 1 {
-        let (a, b) = (slope[k - 1], slope[k]);
-        tangent[k] = if a * b > 0.0 {
-            let m = 0.5 * (a + b);
-            m.signum() * m.abs().min(3.0 * a.abs().min(b.abs()))
-        } else {
-            0.0
-        };
-    }
-    let mut out = Vec::with_capacity(n);
-    out.push(run[0]);
-    for k in 0..n - 1 {
-        let pieces = ((dx[k].abs() * per_x / SMOOTH_PIXELS).ceil() as usize).clamp(1, SMOOTH_MOST);
-        let (y0, y1, h) = (run[k][1], run[k + 1][1], dx[k]);
-        for j in 1..pieces {
-            let t = j as f64 / pieces as f64;
-            let (t2, t3) = (t * t, t * t * t);
-            let y = (2.0 * t3 - 3.0 * t2 + 1.0) * y0
-                + (t3 - 2.0 * t2 + t) * h * tangent[k]
-                + (-2.0 * t3 + 3.0 * t2) * y1
-                + (t3 - t2) * h * tangent[k + 1];
-            out.push([run[k][0] + t * h, y]);
-        }
-        out.push(run[k + 1]);
-    }
-    out
 }
 
 /// The corner of the plotting rectangle (`pixels`) whose legend-sized box holds the fewest
@@ -685,6 +744,19 @@ impl Diagram {
             page.title = format!("{} (page {} of {n})", self.title, k + 1);
         }
         pages
+    }
+
+    /// The [`pages`](Self::pages) with the stems of their files: `stem` for the first,
+    /// `stem_2`, `stem_3`, … for the others.
+    pub fn named_pages(&self, stem: &str) -> Vec<(String, Diagram)> {
+        self.pages()
+            .into_iter()
+            .enumerate()
+            .map(|(k, page)| match k {
+                0 => (stem.to_owned(), page),
+                _ => (format!("{stem}_{}", k + 1), page),
+            })
+            .collect()
     }
 }
 
@@ -796,13 +868,6 @@ fn finite_runs(points: &[[f64; 2]]) -> impl Iterator<Item = &[[f64; 2]]> {
     points
         .split(|p| !(p[0].is_finite() && p[1].is_finite()))
         .filter(|run| !run.is_empty())
-}
-
-/// Where the first finite run starts (the run that carries the legend entry).
-fn first_run_start(points: &[[f64; 2]]) -> *const [f64; 2] {
-    finite_runs(points)
-        .next()
-        .map_or(std::ptr::null(), <[_]>::as_ptr)
 }
 
 #[cfg(test)]

@@ -46,6 +46,7 @@
 pub(crate) mod axis;
 pub mod balancing;
 pub mod cam;
+pub(crate) mod curve;
 pub(crate) mod decimate;
 pub mod diagram;
 pub(crate) mod drawing;
@@ -54,6 +55,7 @@ pub mod report;
 pub mod run;
 pub mod scene;
 pub mod symbols;
+pub(crate) mod vectors;
 
 use std::path::Path;
 

@@ -8,6 +8,7 @@ use super::diagram::{Diagram, Marker, MarkerKind, Panel, Polar, Series};
 use super::drawing::Drawing;
 use super::scene::{Poses, Rig, plot_positions, poses, sketch_pose};
 use super::symbols::symbol;
+use super::vectors::Vectors;
 use crate::error::{Error, Result};
 use crate::scene::Scene;
 use crate::scene::build::mechanism;
@@ -123,17 +124,39 @@ pub fn selected(scene: &Scene, report: &Report) -> Result<Vec<Group>> {
     Ok(chosen)
 }
 
-/// The values of column `c` against the drive, in printed units, decimated for drawing.
-fn curve(report: &Report, c: usize) -> Vec<[f64; 2]> {
+/// The values of column `c` against the drive, in printed units, decimated for drawing, with
+/// their exact slopes where the table has the column's derivative with respect to the drive
+/// (`psi'` beside `psi`, `x_C''` beside `x_C'`, `J_red'` beside `J_red`).
+fn curve(report: &Report, c: usize) -> (Vec<[f64; 2]>, Option<Vec<f64>>) {
     let (x, y) = (&report.columns[0], &report.columns[c]);
-    decimate(
+    // Row indices of the decimated points (exact in f64 below 2⁵³ rows).
+    let kept = decimate(
         report
             .rows
             .iter()
-            .map(|r| [r[0] / x.factor, r[c] / y.factor]),
+            .enumerate()
+            .map(|(k, r)| [k as f64, r[c] / y.factor]),
         report.rows.len(),
         BUCKETS,
-    )
+    );
+    let rows = || kept.iter().map(|p| &report.rows[p[0] as usize]);
+    let points = rows().map(|r| [r[0] / x.factor, r[c] / y.factor]).collect();
+    let slopes = derivative_column(report, c).map(|d| {
+        // dy/dx in printed units: (dY/dφ in SI) · (SI per printed x) / (SI per printed y).
+        rows().map(|r| r[d] * x.factor / y.factor).collect()
+    });
+    (points, slopes)
+}
+
+/// The column holding column `c`'s derivative with respect to the drive, if the table has it
+/// and the first column is the drive (`phi`, or a cam drive's `theta`).
+fn derivative_column(report: &Report, c: usize) -> Option<usize> {
+    let columns = &report.columns;
+    if !matches!(columns[0].name.as_str(), "phi" | "theta") {
+        return None;
+    }
+    let name = format!("{}'", columns[c].name);
+    columns.iter().position(|d| d.name == name)
 }
 
 /// `name [unit]` for a panel's y axis: the columns' symbols joined, one unit.
@@ -155,7 +178,11 @@ pub fn diagram(scene: &Scene, report: &Report) -> Result<Diagram> {
         let columns: Vec<&Column> = g.columns.iter().map(|&c| &report.columns[c]).collect();
         let mut panel = Panel::new(&label(&columns));
         for &c in &g.columns {
-            panel = panel.series(&symbol(&report.columns[c].name), curve(report, c));
+            let name = symbol(&report.columns[c].name);
+            panel = match curve(report, c) {
+                (points, Some(slopes)) => panel.series_with_slopes(&name, points, slopes),
+                (points, None) => panel.series(&name, points),
+            };
         }
         d = d.panel(panel);
     }
@@ -202,10 +229,7 @@ pub fn diagram(scene: &Scene, report: &Report) -> Result<Diagram> {
                 d = d.polar(Polar {
                     title,
                     unit: a.unit.clone(),
-                    series: vec![Series {
-                        name: a.name.clone(),
-                        points,
-                    }],
+                    series: vec![Series::new(&a.name, points)],
                 });
             }
         }
@@ -300,6 +324,16 @@ pub fn drawings(
             (lo.min(r[0]), hi.max(r[0]))
         });
     let positions = plot_positions(scene, lo, hi)?;
+    if let Some((_, location)) = &scene.plot.vectors
+        && positions.is_empty()
+    {
+        return Err(Error::Invalid {
+            location: location.clone(),
+            message: "`[plot] vectors` are drawn at the `[plot] positions`; name at least one \
+                      position there"
+                .to_owned(),
+        });
+    }
     if !positions.is_empty() {
         let m = mechanism(scene)?;
         // Solved in sweep order from the sketch, as the run went.
@@ -307,15 +341,20 @@ pub fn drawings(
         order.sort_by(|&a, &b| positions[a].total_cmp(&positions[b]));
         let sorted: Vec<f64> = order.iter().map(|&k| positions[k]).collect();
         let poses = poses(scene, &m, &sorted)?;
+        let vectors = Vectors::of(scene, &m, &sorted, &animation.extent(scene))?;
         for (k, pose) in poses.xy.iter().enumerate() {
             let text = scene.drive_text(sorted[k]);
+            let drawing = with_mass_centres(
+                animation.drawing(scene, &format!("{name} — φ = {text}"), pose),
+                scene,
+                pose,
+            );
             out.push((
                 format!("mechanism_at_{}", text.replace(' ', "_")),
-                with_mass_centres(
-                    animation.drawing(scene, &format!("{name} — φ = {text}"), pose),
-                    scene,
-                    pose,
-                ),
+                match &vectors {
+                    Some(v) => v.drawn(drawing, k, pose),
+                    None => drawing,
+                },
             ));
         }
     }
@@ -337,7 +376,7 @@ fn with_mass_centres(drawing: Drawing, scene: &Scene, pose: &[[f64; 2]]) -> Draw
 pub fn write_dir(scene: &Scene, report: &Report, dir: &Path) -> Result<Vec<PathBuf>> {
     let diagram = diagram(scene, report)?;
     let whole = diagram.to_svg()?;
-    let pages = diagram.pages();
+    let pages = diagram.named_pages("diagram");
     let animation = Animation::of(scene, report)?;
     let mut pictures = drawings(scene, report, &animation)?
         .into_iter()
@@ -345,17 +384,13 @@ pub fn write_dir(scene: &Scene, report: &Report, dir: &Path) -> Result<Vec<PathB
         .collect::<Vec<_>>();
     pictures.extend(super::balancing::pictures(scene, report)?);
     let html = super::report::html(scene, report, &animation, &whole)?;
-    for (k, page) in pages.iter().enumerate().rev() {
+    for (name, page) in pages.iter().rev() {
         let svg = if pages.len() == 1 {
             whole.clone()
         } else {
             page.to_svg()?
         };
-        let name = match k {
-            0 => "diagram".to_owned(),
-            _ => format!("diagram_{}", k + 1),
-        };
-        pictures.insert(0, (name, svg));
+        pictures.insert(0, (name.clone(), svg));
     }
     let mut written = Vec::new();
     for (name, _) in &pictures {

@@ -3,6 +3,7 @@
 //! them ([`Rig`]).
 
 use mechdiff_core::geometry::{Mechanism, PointOutput};
+use mechdiff_core::{DriveState, Jet};
 
 use super::drawing::{Drawing, Style};
 use crate::error::{Error, Result};
@@ -36,6 +37,53 @@ enum Source {
 /// Solves the scene at the drive positions `phi`, in order, from the sketch (keeping the
 /// sketch's assembly branches, as a run does), and reads every point.
 pub fn poses(scene: &Scene, mechanism: &Mechanism, phi: &[f64]) -> Result<Poses> {
+    let xy = jets(scene, mechanism, phi)?
+        .into_iter()
+        .map(|pose| pose.iter().map(|p| p.map(|j| j.value)).collect())
+        .collect();
+    Ok(Poses {
+        phi: phi.to_vec(),
+        xy,
+    })
+}
+
+/// The velocity and acceleration `[v, a]` (m/s, m/s²) of every scene point at each of the
+/// drive positions `phi` (solved as [`poses`] solves them), for the drive speed `omega` and
+/// acceleration `alpha` (a cam drive's: its follower's motion is taken through s(θ)).
+pub fn point_motions(
+    scene: &Scene,
+    mechanism: &Mechanism,
+    phi: &[f64],
+    omega: f64,
+    alpha: f64,
+) -> Result<Vec<Vec<[[f64; 2]; 2]>>> {
+    let drive = DriveState::accelerating(omega, alpha);
+    let jets = jets(scene, mechanism, phi)?;
+    Ok(phi
+        .iter()
+        .zip(jets)
+        .map(|(&p, pose)| {
+            // The driven joint's speed and acceleration: the drive's, or a cam follower's.
+            let joint = match &scene.drive.cam {
+                Some(c) => c.joint.drive_at(p, &drive).1,
+                None => drive,
+            };
+            pose.iter()
+                .map(|[x, y]| {
+                    let (mx, my) = (x.motion(&joint), y.motion(&joint));
+                    [
+                        [mx.velocity, my.velocity],
+                        [mx.acceleration, my.acceleration],
+                    ]
+                })
+                .collect()
+        })
+        .collect())
+}
+
+/// Every point's position with its first two derivatives with respect to the driven joint,
+/// at the drive positions `phi`, solved in order from the sketch.
+fn jets(scene: &Scene, mechanism: &Mechanism, phi: &[f64]) -> Result<Vec<Vec<[Jet<2>; 2]>>> {
     let sources = scene
         .points
         .iter()
@@ -57,29 +105,23 @@ pub fn poses(scene: &Scene, mechanism: &Mechanism, phi: &[f64]) -> Result<Poses>
         .solver
         .track(mechanism)
         .map_err(|e| scene.error_context().solver_error(e))?;
-    let mut xy = Vec::with_capacity(phi.len());
+    let mut out = Vec::with_capacity(phi.len());
     for &p in phi {
         let p = scene.drive.joint_position(p);
         tracker
             .move_to(p)
             .map_err(|e| scene.error_context().solver_error(e))?;
-        let k = tracker
-            .kinematics::<1>()
-            .map_err(|e| scene.error_context().solver_error(e))?;
-        xy.push(
+        out.push(
             sources
                 .iter()
                 .map(|s| match s {
-                    Source::Moving(out) => k.position(out).map(|j| j.value),
-                    Source::Fixed(at) => *at,
+                    Source::Moving(point) => tracker.position(point),
+                    Source::Fixed(at) => at.map(Jet::from),
                 })
                 .collect(),
         );
     }
-    Ok(Poses {
-        phi: phi.to_vec(),
-        xy,
-    })
+    Ok(out)
 }
 
 /// The sketch pose: every point where the file puts it.

@@ -52,6 +52,9 @@ pub struct Plot {
     pub positions: Vec<(f64, Location)>,
     /// Panel selection (output or column names, with their places); `None`: every column.
     pub panels: Option<Vec<(String, Location)>>,
+    /// Points whose velocity and acceleration are drawn as arrows in the still drawings,
+    /// with the place of the list (they need the drive speed, checked when drawn).
+    pub vectors: Option<(Vec<String>, Location)>,
 }
 
 /// A named point at its sketch position.

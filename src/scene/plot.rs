@@ -25,10 +25,12 @@ pub struct PlotDef {
     pub positions: Option<Spanned<Vec<Spanned<f64>>>>,
     /// The diagram's panels: output names (every column of the output) or column names.
     pub panels: Option<Spanned<Vec<Name>>>,
+    /// Points whose velocity and acceleration arrows are drawn in the still drawings.
+    pub vectors: Option<Spanned<Vec<Name>>>,
 }
 
-/// Checks `[plot]`: every traced point exists and moves, no list is empty, every position
-/// is a finite number.
+/// Checks `[plot]`: every traced point and every point with vectors exists, no list is
+/// empty, every position is a finite number.
 pub(crate) fn resolve(
     cx: &Context,
     def: Option<&Spanned<PlotDef>>,
@@ -82,9 +84,22 @@ pub(crate) fn resolve(
             )
         }
     };
+    let vectors = match &d.vectors {
+        None => None,
+        Some(list) => {
+            nonempty("vectors", list.get_ref().is_empty(), cx.at(list))?;
+            let mut names = Vec::new();
+            for name in list.get_ref() {
+                let point = cx.point(name, geometry.names, "`[plot] vectors`")?;
+                names.push(point.to_owned());
+            }
+            Some((names, cx.at(list)))
+        }
+    };
     Ok(Plot {
         trace,
         positions,
         panels,
+        vectors,
     })
 }

@@ -370,7 +370,7 @@ pub(super) fn output_row<T: Scalar>(
                     .iter()
                     .find(|r| r.joint == j)
                     .expect("every joint");
-                row.extend(reaction_values(joints, r));
+                row.extend(reaction_values(joints, r, has_friction(d, j)));
             }
         }
         DynamicQuantity::DriveTorque => {
@@ -505,7 +505,7 @@ pub(super) fn output_columns(
         DynamicQuantity::Reactions => {
             let all: Vec<&str> = mechanism.joints().iter().map(|j| j.name.as_str()).collect();
             for j in selected(&o.names, &all) {
-                columns.extend(reaction_columns(cx.joints, j));
+                columns.extend(reaction_columns(cx.joints, j, has_friction(d, j)));
             }
         }
         DynamicQuantity::DriveTorque => {
@@ -557,8 +557,15 @@ fn joint_kind<'s>(joints: &'s [Joint], name: &str) -> &'s JointKind {
         .kind
 }
 
-fn reaction_columns(joints: &[Joint], j: &str) -> Vec<Column> {
-    match joint_kind(joints, j) {
+/// Whether joint `j` has friction in the scene (`[friction.j]`): only then do its reactions
+/// carry a friction column (a joint without friction gets none, not a column of zeros).
+fn has_friction(d: &SceneDynamics, j: &str) -> bool {
+    d.data.friction.iter().any(|f| f.joint == j)
+}
+
+/// The reaction columns of joint `j`; the friction column (`Mf_j`, `T_j`) only if `friction`.
+fn reaction_columns(joints: &[Joint], j: &str, friction: bool) -> Vec<Column> {
+    let mut columns = match joint_kind(joints, j) {
         JointKind::Revolute { .. } => vec![
             column(format!("Fx_{j}"), "N"),
             column(format!("Fy_{j}"), "N"),
@@ -581,15 +588,34 @@ fn reaction_columns(joints: &[Joint], j: &str) -> Vec<Column> {
             column(format!("Fy_{j}"), "N"),
             column(format!("M_{j}"), "N m"),
         ],
+    };
+    if let Some(k) = friction_index(joint_kind(joints, j)).filter(|_| !friction) {
+        columns.remove(k);
+    }
+    columns
+}
+
+/// Where a joint kind's reaction numbers hold the friction (torque or force), if they hold
+/// one: the one place [`reaction_columns`] and [`reaction_values`] agree on.
+fn friction_index(kind: &JointKind) -> Option<usize> {
+    match kind {
+        JointKind::Revolute { .. } => Some(2),
+        JointKind::Prismatic { .. } | JointKind::PinInSlot { .. } => Some(1),
+        JointKind::RackPinion { .. } | JointKind::Gear { .. } | JointKind::Weld { .. } => None,
     }
 }
 
-fn reaction_values<T: Scalar>(joints: &[Joint], r: &JointReaction<T>) -> Vec<T> {
-    match joint_kind(joints, &r.joint) {
+fn reaction_values<T: Scalar>(joints: &[Joint], r: &JointReaction<T>, friction: bool) -> Vec<T> {
+    let kind = joint_kind(joints, &r.joint);
+    let mut values = match kind {
         JointKind::Revolute { .. } => vec![r.force[0], r.force[1], r.friction],
         JointKind::Prismatic { .. } => vec![r.normal, r.friction, r.couple],
         JointKind::PinInSlot { .. } => vec![r.normal, r.friction],
         JointKind::RackPinion { .. } | JointKind::Gear { .. } => vec![r.normal],
         JointKind::Weld { .. } => vec![r.force[0], r.force[1], r.couple],
+    };
+    if let Some(k) = friction_index(kind).filter(|_| !friction) {
+        values.remove(k);
     }
+    values
 }
