@@ -49,10 +49,12 @@ pub mod cam;
 pub(crate) mod decimate;
 pub mod diagram;
 pub(crate) mod drawing;
+pub mod path;
 pub mod raster;
 pub mod report;
 pub mod run;
 pub mod scene;
+pub mod study;
 pub mod symbols;
 
 use std::path::Path;

@@ -369,7 +369,23 @@ pub struct SweepSection {
     pub of: Option<Name>,
 }
 
-/// One `[[output]]` entry: exactly one of `point`, `angle`, `slider`.
+/// The form a `transmission_angle` output reports μ in (see
+/// [`mechdiff_core::metrics::TransmissionAngle`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TransmissionForm {
+    /// The oriented angle from the coupler to the follower, in (−180°, 180°]: its sign is
+    /// the loop's assembly branch.
+    Signed,
+    /// μ = |signed| in [0°, 180°]: the textbooks' transmission angle.
+    Unsigned,
+    /// min(μ, 180° − μ) in [0°, 90°]: 90° is ideal transmission.
+    Effective,
+    /// 90° − effective, in [0°, 90°]: how far from ideal.
+    Deviation,
+}
+
+/// One `[[output]]` entry: exactly one of `point`, `angle`, `slider`, `transmission_angle`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct OutputDef {
@@ -387,6 +403,11 @@ pub struct OutputDef {
     pub sense: Option<Spanned<Sense>>,
     /// The displacement of a prismatic or pin-in-slot joint.
     pub slider: Option<Name>,
+    /// The transmission angle μ of the four-bar or slider-crank loop whose follower (output
+    /// link, or slider) is this link.
+    pub transmission_angle: Option<Name>,
+    /// For `transmission_angle`: which form (default `"unsigned"`).
+    pub form: Option<Spanned<TransmissionForm>>,
     /// What to report (default: position, velocity, acceleration).
     pub quantities: Option<Spanned<Vec<Spanned<Quantity>>>>,
     /// Find where this output's velocity coefficient changes sign in the sweep range and
