@@ -15,7 +15,7 @@ use crate::error::Result;
 use crate::scene::build::mechanism;
 use crate::scene::model::OutputKind;
 use crate::scene::study::{ParameterSweep, StudyRun};
-use crate::scene::units::Dimension;
+use crate::scene::units::{Dimension, Units};
 
 /// The most curves one panel of a family draws (one colour each): with more values, this
 /// many spread evenly over them, both ends included, and the title says so. The summary
@@ -37,7 +37,7 @@ pub fn drawn(runs: usize) -> Vec<usize> {
 
 /// `NAME = V`: a value's name in legends and titles.
 fn value_name(sweep: &ParameterSweep, value: f64) -> String {
-    format!("{} = {value}", sweep.name)
+    format!("{} = {}", sweep.name, Units::tidy(value))
 }
 
 /// The diagram of a study: per column chosen as [`selected`] chooses them for the first
