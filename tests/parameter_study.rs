@@ -159,8 +159,9 @@ fn a_parameter_studys_pictures_are_families_on_the_drive_axis() {
         assert!(pictures.join(file).exists(), "{file}");
     }
     let (texts, frames) = svg_texts(&pictures.join("sweep_summary.svg"));
+    assert!(texts.iter().any(|t| t == "min μ_eff rocker [deg]"), "{texts:?}");
     assert!(texts.iter().any(|t| t == "b [as set]"), "{texts:?}");
-    assert!(texts.iter().any(|t| t.starts_with("ψ max − min over the sweep [deg]")), "{texts:?}");
+    assert!(texts.iter().any(|t| t == "Δψ [deg]"), "{texts:?}");
     for (x0, x1) in &frames {
         assert!(*x0 <= 1.85 && *x1 >= 1.95 && *x1 <= 2.0, "{x0}..{x1}");
     }

@@ -650,7 +650,8 @@ fn vectors_are_drawn_to_their_stated_scale() {
 /// are written to 3 decimals and lie hundreds of pixels apart); every point of the curve maps back, through the
 /// picture's frame, to the solver's position of P at the drive position of its CSV row
 /// (≤ 0.5 px); the CSV holds the solver's x, y to full digits (1e-12 m); and the drive
-/// position is marked along the curve at multiples of 45°.
+/// position is marked along the curve at multiples of 45° (0° and 360° at one place, one
+/// label).
 #[test]
 fn a_coupler_curve_is_drawn_to_scale_where_the_solver_puts_the_point() {
     let dir = std::env::temp_dir().join(format!("mechdiff-paths-{}", std::process::id()));
@@ -742,8 +743,8 @@ fn a_coupler_curve_is_drawn_to_scale_where_the_solver_puts_the_point() {
         .collect();
     assert_eq!(
         ticks,
-        ["φ = 0 deg", "φ = 45 deg", "φ = 90 deg", "φ = 135 deg", "φ = 180 deg", "φ = 225 deg",
-         "φ = 270 deg", "φ = 315 deg", "φ = 360 deg"]
+        ["φ = 0, 360 deg", "φ = 45 deg", "φ = 90 deg", "φ = 135 deg", "φ = 180 deg",
+         "φ = 225 deg", "φ = 270 deg", "φ = 315 deg"]
     );
     // The rocker's two dead positions are marked on the curve.
     assert_eq!(svg.matches("dead: psi").count(), 2, "{svg}");

@@ -3,6 +3,7 @@
 //! marked along it at round values, and the dead positions and limits the sweep reaches
 //! marked; and the path as CSV (`x, y` at each drawn drive position).
 
+use std::f64::consts::TAU;
 use std::fmt::Write as _;
 
 use super::axis;
@@ -97,23 +98,42 @@ pub fn plots(scene: &Scene, report: &Report, animation: &Animation) -> Result<Ve
         .include(&path)
         .path(point, &path);
         let size = extent(&path) * 0.006;
-        for (pose, v) in tick_poses.xy.iter().zip(&ticks) {
-            let at = pose[k];
+        // Drive values a whole number of turns apart mark one place: one label for them.
+        let mut marks: Vec<(usize, Vec<f64>)> = Vec::new();
+        for (i, (&v, &phi)) in ticks.iter().zip(&tick_phi).enumerate() {
+            let same = |&(j, _): &(usize, Vec<f64>)| {
+                angle_drive && ((phi - tick_phi[j]) / TAU - ((phi - tick_phi[j]) / TAU).round()).abs() < 1e-9
+            };
+            match marks.iter_mut().find(|m| same(m)) {
+                Some((_, values)) => values.push(v),
+                None => marks.push((i, vec![v])),
+            }
+        }
+        for (i, values) in &marks {
+            let at = tick_poses.xy[*i][k];
+            let values: Vec<String> = values.iter().map(|v| short(*v)).collect();
+            let text = format!("φ = {} {}", values.join(", "), drive.unit);
             d = d
                 .circle(at, size, Style::stroke(TICK, 1.0).filled(TICK))
-                .label_toward(at, &format!("φ = {} {}", short(*v), drive.unit), away(at));
+                .label_toward(at, &text, away(at));
         }
+        // Dead positions and limits are labelled on the other side of the curve, clear of
+        // the drive's marks.
+        let inward = |p: [f64; 2]| {
+            let a = away(p);
+            [-a[0], -a[1]]
+        };
         for (pose, (_, words)) in dead_poses.xy.iter().zip(&dead) {
             let at = pose[k];
             d = d
                 .circle(at, 2.0 * size, Style::stroke(DEAD, 2.0))
-                .label_toward(at, words, away(at));
+                .label_toward(at, words, inward(at));
         }
         for (pose, (_, words)) in limit_poses.xy.iter().zip(&limits) {
             let at = pose[k];
             d = d
                 .circle(at, 2.0 * size, Style::stroke(LIMIT, 2.0))
-                .label_toward(at, words, away(at));
+                .label_toward(at, words, inward(at));
         }
         let mut csv = format!(
             "phi [{}],x_{point} [{length}],y_{point} [{length}]\n",

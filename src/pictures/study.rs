@@ -77,14 +77,15 @@ pub fn family(sweep: &ParameterSweep, runs: &[StudyRun]) -> Result<Option<Diagra
 }
 
 /// The headline numbers of a study against the parameter: per angle or slider output, its
-/// range over the sweep (max − min: the stroke or swing when the sweep holds both dead
+/// range Δ over the sweep (max − min: the stroke or swing when the sweep holds both dead
 /// positions); per transmission-angle output, its smallest value; the largest |drive
-/// torque| (or force); per four-bar or slider-crank loop, its worst effective transmission
-/// angle min(μ, 180° − μ) over the input's range (from its lengths). `None` without any.
+/// torque| (or force); per four-bar or slider-crank loop (named by its follower), its worst
+/// effective transmission angle μ_eff = min(μ, 180° − μ) over the input's range (from its
+/// lengths). `None` without any.
 pub fn summary(sweep: &ParameterSweep, runs: &[StudyRun]) -> Option<Diagram> {
     let first = runs.first()?;
     let scene = &first.scene;
-    // (label, unit, per run its value in the printed unit or NaN)
+    // (label with unit, per run: [value, headline number in the printed unit])
     let mut panels: Vec<(String, Vec<[f64; 2]>)> = Vec::new();
     let mut add = |label: String, value: &dyn Fn(&StudyRun) -> Option<f64>| {
         let points: Vec<[f64; 2]> = (runs.iter())
@@ -113,7 +114,7 @@ pub fn summary(sweep: &ParameterSweep, runs: &[StudyRun]) -> Option<Diagram> {
                 &|r| column_values(r, n).map(|(v, _)| v.into_iter().fold(f64::INFINITY, f64::min)),
             ),
             OutputKind::Angle { .. } | OutputKind::Slider { .. } => add(
-                format!("{} max − min over the sweep [{unit}]", symbol(n)),
+                format!("Δ{} [{unit}]", symbol(n)),
                 &|r| {
                     column_values(r, n).map(|(v, _)| {
                         let (lo, hi) = (v.iter())
@@ -140,20 +141,21 @@ pub fn summary(sweep: &ParameterSweep, runs: &[StudyRun]) -> Option<Diagram> {
             return Vec::new();
         };
         let effective = |mu: f64| units.from_si(mu.min(std::f64::consts::PI - mu), Dimension::Angle);
+        // Each loop named by its follower (a four-bar's output, a slider-crank's slider).
         let mut out: Vec<(String, f64)> = (loops.four_bars.iter())
             .map(|l| {
-                let name = format!("four-bar {}", l.links.join("–"));
+                let name = l.links[3].clone();
                 (name, effective(l.transmission_extremes().worst.angle))
             })
             .collect();
         out.extend(loops.slider_cranks.iter().map(|l| {
-            let name = format!("slider-crank {}–{}", l.crank, l.rod);
+            let name = l.slider.clone().unwrap_or_else(|| l.rod.clone());
             (name, effective(l.transmission_extremes().worst.angle))
         }));
         out
     };
     for (name, _) in worst(first) {
-        add(format!("worst effective μ, {name} [{angle}]"), &|r| {
+        add(format!("min μ_eff {name} [{angle}]"), &|r| {
             worst(r).into_iter().find(|(n, _)| *n == name).map(|(_, v)| v)
         });
     }
@@ -162,7 +164,10 @@ pub fn summary(sweep: &ParameterSweep, runs: &[StudyRun]) -> Option<Diagram> {
     }
     let title = scene.title.clone().unwrap_or_else(|| scene.file.clone());
     let mut d = Diagram::new(
-        &format!("{title} — headline numbers against {}", sweep.name),
+        &format!(
+            "{title} — against {} (Δ: max − min over the sweep)",
+            sweep.name
+        ),
         &format!("{} [as set]", sweep.name),
     );
     for (label, points) in panels {
