@@ -35,13 +35,19 @@ fn four_bar_time_ratio([a, b, c, d]: [f64; 4]) -> f64 {
 #[test]
 fn the_shapers_time_ratio_is_its_slotted_lever_closed_form() {
     let scene = scene::load(scene_path("shaper.toml")).unwrap();
-    let metrics = SceneMetrics::of(&scene).unwrap().expect("the ram asks for its dead positions");
+    let metrics = SceneMetrics::of(&scene)
+        .unwrap()
+        .expect("the ram asks for its dead positions");
     let (name, _, found) = &metrics.outputs[0];
     let q = found.as_ref().unwrap();
     let delta = 2.0 * (0.100f64 / 0.315).asin();
     let closed = (PI + delta) / (PI - delta);
     assert_eq!(name, "s5");
-    assert!((q.time_ratio - closed).abs() <= 1e-9, "{} vs {closed}", q.time_ratio);
+    assert!(
+        (q.time_ratio - closed).abs() <= 1e-9,
+        "{} vs {closed}",
+        q.time_ratio
+    );
     assert!((q.forward.crank_angle - (PI + delta)).abs() <= 1e-9);
     // The stroke 2·l3·l1/l0 (the scene's header): 1e-12 m.
     assert!((q.travel - 2.0 * 0.480 * 0.100 / 0.315).abs() <= 1e-12);
@@ -62,10 +68,19 @@ fn the_shapers_time_ratio_is_its_slotted_lever_closed_form() {
 #[test]
 fn run_prints_and_writes_the_four_bars_metrics() {
     let [a, b, c, d] = ABCD;
-    let mu = |r: f64| ((b * b + c * c - r * r) / (2.0 * b * c)).acos().to_degrees();
+    let mu = |r: f64| {
+        ((b * b + c * c - r * r) / (2.0 * b * c))
+            .acos()
+            .to_degrees()
+    };
     let (mu_min, mu_max) = (mu(d - a), mu(d + a));
     let json_path = temp_file("four_bar_metrics.json");
-    let out = mechdiff(&["run", "scenes/four_bar.toml", "--json", json_path.to_str().unwrap()]);
+    let out = mechdiff(&[
+        "run",
+        "scenes/four_bar.toml",
+        "--json",
+        json_path.to_str().unwrap(),
+    ]);
     assert!(out.status.success(), "{}", stderr(&out));
     let text = stdout(&out);
     for line in [
@@ -76,7 +91,10 @@ fn run_prints_and_writes_the_four_bars_metrics() {
          < p + q = ground 0.4 m + rocker 0.3 m = 0.7 m",
         "    input crank turns fully",
     ] {
-        assert!(text.lines().any(|l| l == line), "no line `{line}` in\n{text}");
+        assert!(
+            text.lines().any(|l| l == line),
+            "no line `{line}` in\n{text}"
+        );
     }
     assert!(
         text.contains(" deg at φ = 0 deg, max ") && text.contains(" deg at φ = 180 deg; worst"),
@@ -98,10 +116,19 @@ fn run_prints_and_writes_the_four_bars_metrics() {
     assert!((number(&t["worst"]["deviation"]) - (90.0 - mu_min)).abs() <= 1e-9);
     let q = &f["quick_return"];
     let closed = four_bar_time_ratio(ABCD);
-    assert!((number(&q["time_ratio"]) - closed).abs() <= 1e-9, "{q} vs {closed}");
-    let (forward, back) = (number(&q["forward"]["crank_angle"]), number(&q["return"]["crank_angle"]));
+    assert!(
+        (number(&q["time_ratio"]) - closed).abs() <= 1e-9,
+        "{q} vs {closed}"
+    );
+    let (forward, back) = (
+        number(&q["forward"]["crank_angle"]),
+        number(&q["return"]["crank_angle"]),
+    );
     assert!((forward + back - 360.0).abs() <= 1e-9 && forward > back);
-    assert!(text.contains(&format!("time ratio Q = {closed:.9}")), "{text}");
+    assert!(
+        text.contains(&format!("time ratio Q = {closed:.9}")),
+        "{text}"
+    );
 }
 
 /// The non-Grashof Norton four-bar (a + d > b + c): a triple-rocker whose crank rocks
@@ -111,19 +138,33 @@ fn run_prints_and_writes_the_four_bars_metrics() {
 #[test]
 fn check_names_a_triple_rocker_and_why_it_has_no_time_ratio() {
     let (a, b, c, d) = (0.86f64, 1.85, 0.86, 2.22);
-    let toggle = ((a * a + d * d - (b + c) * (b + c)) / (2.0 * a * d)).acos().to_degrees();
+    let toggle = ((a * a + d * d - (b + c) * (b + c)) / (2.0 * a * d))
+        .acos()
+        .to_degrees();
     let out = mechdiff(&["check", "scenes/norton_four_bar.toml"]);
     assert!(out.status.success(), "{}", stderr(&out));
     let text = stdout(&out);
     assert!(text.contains("Grashof: triple-rocker (non-Grashof): s + l = crank 0.86 m + ground 2.22 m = 3.08 m > p + q = coupler 1.85 m + rocker 0.86 m = 2.71 m"), "{text}");
-    let line = text.lines().find(|l| l.contains("input crank rocks from")).unwrap();
+    let line = text
+        .lines()
+        .find(|l| l.contains("input crank rocks from"))
+        .unwrap();
     let number = |after: &str| -> f64 {
         let rest = &line[line.find(after).unwrap() + after.len()..];
         rest.split(' ').next().unwrap().parse().unwrap()
     };
-    assert!((number("from φ = ") + toggle).abs() <= 1e-7, "{line} vs {toggle}");
-    assert!((number("to φ = ") - toggle).abs() <= 1e-7, "{line} vs {toggle}");
-    assert!(text.contains("no time ratio (the crank does not turn fully"), "{text}");
+    assert!(
+        (number("from φ = ") + toggle).abs() <= 1e-7,
+        "{line} vs {toggle}"
+    );
+    assert!(
+        (number("to φ = ") - toggle).abs() <= 1e-7,
+        "{line} vs {toggle}"
+    );
+    assert!(
+        text.contains("no time ratio (the crank does not turn fully"),
+        "{text}"
+    );
 }
 
 /// A `transmission_angle` output is μ at every drive position in the form asked, with its
@@ -153,8 +194,18 @@ fn a_transmission_angle_output_follows_the_law_of_cosines_in_every_form() {
         let want = cos.acos();
         let want1 = a * d * phi[k].sin() / (b * c * want.sin());
         // Report columns are SI (rad, rad/rad).
-        assert!((mu[k] - want).abs() <= 1e-10_f64.to_radians(), "φ = {}: {} vs {want}", phi[k], mu[k]);
-        assert!((mu1[k] - want1).abs() <= 1e-10, "φ = {}: μ′ {} vs {want1}", phi[k], mu1[k]);
+        assert!(
+            (mu[k] - want).abs() <= 1e-10_f64.to_radians(),
+            "φ = {}: {} vs {want}",
+            phi[k],
+            mu[k]
+        );
+        assert!(
+            (mu1[k] - want1).abs() <= 1e-10,
+            "φ = {}: μ′ {} vs {want1}",
+            phi[k],
+            mu1[k]
+        );
         // The sketch's branch keeps its sign all along: at the sketch BA = (−0.4, −0.2),
         // BO4 = (0, −0.3), cross product 0.12 > 0, so μ is counter-clockwise from BA.
         assert!((signed[k].abs() - want).abs() <= 1e-12 && signed[k] > 0.0);
@@ -167,13 +218,20 @@ fn a_transmission_angle_output_follows_the_law_of_cosines_in_every_form() {
 #[test]
 fn a_transmission_angle_of_a_link_that_is_no_follower_names_the_followers() {
     let text = format!("{FOUR_BAR}\n[[output]]\ntransmission_angle = \"crank\"\n");
-    let e = scene::parse("four_bar_mu.toml", &text).unwrap_err().to_string();
+    let e = scene::parse("four_bar_mu.toml", &text)
+        .unwrap_err()
+        .to_string();
     assert!(
         e.contains("link `crank` is the follower of no four-bar or slider-crank loop")
             && e.contains("`rocker` (four-bar ground–crank–coupler–rocker)"),
         "{e}"
     );
     let bad_form = format!("{FOUR_BAR}\n[[output]]\npoint = \"B\"\nform = \"signed\"\n");
-    let e = scene::parse("four_bar_mu.toml", &bad_form).unwrap_err().to_string();
-    assert!(e.contains("`form` applies to a `transmission_angle` output only"), "{e}");
+    let e = scene::parse("four_bar_mu.toml", &bad_form)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("`form` applies to a `transmission_angle` output only"),
+        "{e}"
+    );
 }

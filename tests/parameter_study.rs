@@ -93,7 +93,13 @@ fn study_pictures(dir: &std::path::Path) -> std::process::Output {
     let scene = dir.join("norton.toml");
     std::fs::write(&scene, format!("{NORTON}\n[plot]\npositions = [0, 50]\n")).unwrap();
     std::process::Command::new(env!("CARGO_BIN_EXE_mechdiff"))
-        .args(["run", scene.to_str().unwrap(), "--sweep", "b=1.85:1.95:3", "--plot"])
+        .args([
+            "run",
+            scene.to_str().unwrap(),
+            "--sweep",
+            "b=1.85:1.95:3",
+            "--plot",
+        ])
         .arg(dir.join("pictures"))
         .output()
         .unwrap()
@@ -130,13 +136,20 @@ fn svg_texts(path: &std::path::Path) -> (Vec<String>, Vec<(f64, f64)>) {
 fn a_parameter_studys_pictures_are_families_on_the_drive_axis() {
     let dir = std::env::temp_dir().join(format!("mechdiff-study-{}", std::process::id()));
     let out = study_pictures(&dir);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let pictures = dir.join("pictures");
     let (texts, frames) = svg_texts(&pictures.join("diagram.svg"));
     assert!(texts.iter().any(|t| t == "φ [deg]"), "{texts:?}");
     assert!(!frames.is_empty());
     for (x0, x1) in &frames {
-        assert!(*x0 <= 0.0 && *x0 >= -5.0 && *x1 >= 100.0 && *x1 <= 105.0, "{x0}..{x1}");
+        assert!(
+            *x0 <= 0.0 && *x0 >= -5.0 && *x1 >= 100.0 && *x1 <= 105.0,
+            "{x0}..{x1}"
+        );
     }
     // Each column's label with its own unit (psi: deg; psi': deg/deg; psi_dot: rad/s).
     let sweep: study::ParameterSweep = "b=1.85:1.95:3".parse().unwrap();
@@ -155,11 +168,18 @@ fn a_parameter_studys_pictures_are_families_on_the_drive_axis() {
     for value in ["b = 1.85", "b = 1.9", "b = 1.95"] {
         assert!(texts.iter().any(|t| t == value), "{value} not in {texts:?}");
     }
-    for file in ["mechanism_at_0_deg.svg", "mechanism_at_50_deg.svg", "sweep_summary.svg"] {
+    for file in [
+        "mechanism_at_0_deg.svg",
+        "mechanism_at_50_deg.svg",
+        "sweep_summary.svg",
+    ] {
         assert!(pictures.join(file).exists(), "{file}");
     }
     let (texts, frames) = svg_texts(&pictures.join("sweep_summary.svg"));
-    assert!(texts.iter().any(|t| t == "min μ_eff rocker [deg]"), "{texts:?}");
+    assert!(
+        texts.iter().any(|t| t == "min μ_eff rocker [deg]"),
+        "{texts:?}"
+    );
     assert!(texts.iter().any(|t| t == "b [as set]"), "{texts:?}");
     assert!(texts.iter().any(|t| t == "Δψ [deg]"), "{texts:?}");
     for (x0, x1) in &frames {

@@ -656,11 +656,20 @@ fn vectors_are_drawn_to_their_stated_scale() {
 fn a_coupler_curve_is_drawn_to_scale_where_the_solver_puts_the_point() {
     let dir = std::env::temp_dir().join(format!("mechdiff-paths-{}", std::process::id()));
     let out = Command::new(env!("CARGO_BIN_EXE_mechdiff"))
-        .args(["run", "scenes/four_bar.toml", "--plot", dir.to_str().unwrap()])
+        .args([
+            "run",
+            "scenes/four_bar.toml",
+            "--plot",
+            dir.to_str().unwrap(),
+        ])
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let svg = std::fs::read_to_string(dir.join("path_P.svg")).unwrap();
     let csv = std::fs::read_to_string(dir.join("path_P.csv")).unwrap();
     assert!(dir.join("path_P.png").exists());
@@ -703,10 +712,14 @@ fn a_coupler_curve_is_drawn_to_scale_where_the_solver_puts_the_point() {
     assert!(across.len() >= 2 && up.len() >= 2, "{across:?} {up:?}");
     let (sx, sy) = (per_metre(&across), -per_metre(&up));
     assert!((sx - sy).abs() <= 1e-5 * sx, "x {sx} px/m, y {sy} px/m");
-    assert!((sx - frame.scale).abs() <= 1e-5 * sx, "{sx} vs {}", frame.scale);
+    assert!(
+        (sx - frame.scale).abs() <= 1e-5 * sx,
+        "{sx} vs {}",
+        frame.scale
+    );
     // The curve against the solver: P's position at each CSV row's drive position.
-    let scene = scene::load(Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/four_bar.toml"))
-        .unwrap();
+    let scene =
+        scene::load(Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/four_bar.toml")).unwrap();
     let report = scene::run(&scene).unwrap();
     let (phi, x, y) = (
         report.column("phi").unwrap(),
@@ -743,8 +756,16 @@ fn a_coupler_curve_is_drawn_to_scale_where_the_solver_puts_the_point() {
         .collect();
     assert_eq!(
         ticks,
-        ["φ = 0, 360 deg", "φ = 45 deg", "φ = 90 deg", "φ = 135 deg", "φ = 180 deg",
-         "φ = 225 deg", "φ = 270 deg", "φ = 315 deg"]
+        [
+            "φ = 0, 360 deg",
+            "φ = 45 deg",
+            "φ = 90 deg",
+            "φ = 135 deg",
+            "φ = 180 deg",
+            "φ = 225 deg",
+            "φ = 270 deg",
+            "φ = 315 deg"
+        ]
     );
     // The rocker's two dead positions are marked on the curve.
     assert_eq!(svg.matches("dead: psi").count(), 2, "{svg}");

@@ -120,7 +120,9 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         files::write_atomically(path, |mut out| table::write_jsonl(&report, &mut out))?;
     }
     if let Some(path) = &args.json {
-        files::write_atomically(path, |mut out| table::write_json_with(&scene, &report, metrics.as_ref(), &mut out))?;
+        files::write_atomically(path, |mut out| {
+            table::write_json_with(&scene, &report, metrics.as_ref(), &mut out)
+        })?;
     }
     let study_pictures = args.sweep.as_ref().zip(study_runs.as_deref());
     if let Some(dir) = &args.plot {

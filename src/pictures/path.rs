@@ -102,7 +102,9 @@ pub fn plots(scene: &Scene, report: &Report, animation: &Animation) -> Result<Ve
         let mut marks: Vec<(usize, Vec<f64>)> = Vec::new();
         for (i, (&v, &phi)) in ticks.iter().zip(&tick_phi).enumerate() {
             let same = |&(j, _): &(usize, Vec<f64>)| {
-                angle_drive && ((phi - tick_phi[j]) / TAU - ((phi - tick_phi[j]) / TAU).round()).abs() < 1e-9
+                angle_drive
+                    && ((phi - tick_phi[j]) / TAU - ((phi - tick_phi[j]) / TAU).round()).abs()
+                        < 1e-9
             };
             match marks.iter_mut().find(|m| same(m)) {
                 Some((_, values)) => values.push(v),
@@ -171,7 +173,11 @@ fn file_safe(name: &str) -> String {
 fn short(v: f64) -> String {
     let text = format!("{v:.6}");
     let text = text.trim_end_matches('0').trim_end_matches('.');
-    if text == "-0" { "0".to_owned() } else { text.to_owned() }
+    if text == "-0" {
+        "0".to_owned()
+    } else {
+        text.to_owned()
+    }
 }
 
 /// The mean of `points`.

@@ -109,13 +109,11 @@ pub fn summary(sweep: &ParameterSweep, runs: &[StudyRun]) -> Option<Diagram> {
         let n = &output.name;
         match output.kind {
             OutputKind::Point(_) => {}
-            OutputKind::Transmission { .. } => add(
-                format!("min {} [{unit}]", symbol(n)),
-                &|r| column_values(r, n).map(|(v, _)| v.into_iter().fold(f64::INFINITY, f64::min)),
-            ),
-            OutputKind::Angle { .. } | OutputKind::Slider { .. } => add(
-                format!("Δ{} [{unit}]", symbol(n)),
-                &|r| {
+            OutputKind::Transmission { .. } => add(format!("min {} [{unit}]", symbol(n)), &|r| {
+                column_values(r, n).map(|(v, _)| v.into_iter().fold(f64::INFINITY, f64::min))
+            }),
+            OutputKind::Angle { .. } | OutputKind::Slider { .. } => {
+                add(format!("Δ{} [{unit}]", symbol(n)), &|r| {
                     column_values(r, n).map(|(v, _)| {
                         let (lo, hi) = (v.iter())
                             .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
@@ -123,8 +121,8 @@ pub fn summary(sweep: &ParameterSweep, runs: &[StudyRun]) -> Option<Diagram> {
                             });
                         hi - lo
                     })
-                },
-            ),
+                })
+            }
         }
     }
     for torque in ["M_drive", "F_drive"] {
@@ -140,7 +138,8 @@ pub fn summary(sweep: &ParameterSweep, runs: &[StudyRun]) -> Option<Diagram> {
         let Some(loops) = (mechanism(&r.scene).ok()).and_then(|m| Loops::find(&m).ok()) else {
             return Vec::new();
         };
-        let effective = |mu: f64| units.from_si(mu.min(std::f64::consts::PI - mu), Dimension::Angle);
+        let effective =
+            |mu: f64| units.from_si(mu.min(std::f64::consts::PI - mu), Dimension::Angle);
         // Each loop named by its follower (a four-bar's output, a slider-crank's slider).
         let mut out: Vec<(String, f64)> = (loops.four_bars.iter())
             .map(|l| {
@@ -156,7 +155,10 @@ pub fn summary(sweep: &ParameterSweep, runs: &[StudyRun]) -> Option<Diagram> {
     };
     for (name, _) in worst(first) {
         add(format!("min μ_eff {name} [{angle}]"), &|r| {
-            worst(r).into_iter().find(|(n, _)| *n == name).map(|(_, v)| v)
+            worst(r)
+                .into_iter()
+                .find(|(n, _)| *n == name)
+                .map(|(_, v)| v)
         });
     }
     if panels.is_empty() {

@@ -9,9 +9,9 @@ use crate::error::{Error, Result};
 
 use super::error_context::ErrorContext;
 use super::format::{Quantity, Sense, TransmissionForm};
-use mechdiff_core::metrics::TransmissionAngle;
 use super::model::{Link, Output, OutputKind, Point};
 use super::setup::Setup;
+use mechdiff_core::metrics::TransmissionAngle;
 
 /// One quantity of a jet: its value, a coefficient, or a time derivative (a derivative
 /// beyond the jet's order reads as zero; the plan asks for the order the outputs need).

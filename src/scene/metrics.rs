@@ -27,7 +27,11 @@ pub struct SceneMetrics {
     pub linkage: std::result::Result<LinkageMetrics, MetricsError>,
     /// Per angle or slider output with `dead_positions = true`: its quick return over one
     /// turn of the crank, or why it has none.
-    pub outputs: Vec<(String, Dimension, std::result::Result<QuickReturn, MetricsError>)>,
+    pub outputs: Vec<(
+        String,
+        Dimension,
+        std::result::Result<QuickReturn, MetricsError>,
+    )>,
 }
 
 impl SceneMetrics {
@@ -285,7 +289,8 @@ impl<'s> Words<'s> {
     }
 
     fn transmission(&self, formula: &str, t: &TransmissionExtremes) -> String {
-        let at = |a: &TransmissionAt| format!("{} at {}", self.angle(a.angle), self.position(&a.at));
+        let at =
+            |a: &TransmissionAt| format!("{} at {}", self.angle(a.angle), self.position(&a.at));
         let effective = t.worst.angle.min(std::f64::consts::PI - t.worst.angle);
         format!(
             "    transmission angle μ ({formula}): min {}, max {}; worst effective μ {} \
@@ -307,10 +312,8 @@ impl<'s> Words<'s> {
         let effective = t.worst.angle.min(std::f64::consts::PI - t.worst.angle);
         let mut worst = at(&t.worst);
         worst["effective"] = json!(self.number(effective, Dimension::Angle));
-        worst["deviation"] = json!(self.number(
-            std::f64::consts::FRAC_PI_2 - effective,
-            Dimension::Angle
-        ));
+        worst["deviation"] =
+            json!(self.number(std::f64::consts::FRAC_PI_2 - effective, Dimension::Angle));
         json!({ "formula": formula, "min": at(&t.min), "max": at(&t.max), "worst": worst })
     }
 
@@ -412,9 +415,7 @@ impl<'s> Words<'s> {
 
     fn four_bar_json(&self, f: &mechdiff_core::metrics::FourBarMetrics) -> Value {
         let (l, g) = (&f.linkage, &f.grashof);
-        let term = |t: &mechdiff_core::metrics::LengthTerm| {
-            json!({ "link": t.link, "role": t.role.name(), "length": self.number(t.length, Dimension::Length) })
-        };
+        let term = |t: &mechdiff_core::metrics::LengthTerm| json!({ "link": t.link, "role": t.role.name(), "length": self.number(t.length, Dimension::Length) });
         json!({
             "links": l.links,
             "joints": l.joints,

@@ -381,7 +381,13 @@ pub(crate) fn locate_transmissions(scene: &mut super::model::Scene) -> Result<()
     }
     let m = super::build::mechanism(scene)?;
     let found = mechdiff_core::metrics::Loops::find(&m);
-    let joint = |name: &str| scene.joints.iter().find(|j| j.name == name).map(|j| &j.kind);
+    let joint = |name: &str| {
+        scene
+            .joints
+            .iter()
+            .find(|j| j.name == name)
+            .map(|j| &j.kind)
+    };
     let pin = |name: &str| match joint(name) {
         Some(J::Revolute { at, .. }) => Some(at.clone()),
         Some(J::PinInSlot { pin, .. }) => Some(pin.clone()),
