@@ -235,3 +235,53 @@ fn a_transmission_angle_of_a_link_that_is_no_follower_names_the_followers() {
         "{e}"
     );
 }
+
+/// A Watt six-bar: the four-bar of scenes/four_bar.toml whose rocker, a ternary link O4–B–C,
+/// drives a second four-bar O4–C–D–O6. Both loops are found inside it: the first is the
+/// crank-rocker with the same time ratio as alone (the law-of-cosines closed form, 1e-9);
+/// the second's Grashof class follows from its sketch lengths (s + l vs p + q computed
+/// here: 0.7236 > 0.6994, a triple-rocker), and it has no time ratio of its own since its
+/// input is not the drive. (|O6 C| stays in [0.401, 0.569] m over the crank's turn, inside
+/// the second loop's [|b − c|, b + c] = [0.029, 0.699] m: the six-bar turns fully.)
+#[test]
+fn the_four_bars_inside_a_six_bar_have_their_metrics() {
+    let text = FOUR_BAR
+        .replace(
+            "P = [0.3, 0.45]      # coupler point",
+            "P = [0.3, 0.45]\nC = [0.5, 0.2]\nO6 = [0.9, 0.0]\nD = [0.8, 0.35]",
+        )
+        .replace("ground = [\"O2\", \"O4\"]", "ground = [\"O2\", \"O4\", \"O6\"]")
+        .replace(
+            "rocker = [\"O4\", \"B\"]",
+            "rocker = [\"O4\", \"B\", \"C\"]\ncoupler2 = [\"C\", \"D\"]\nrocker2 = [\"O6\", \"D\"]",
+        )
+        .replace(
+            "O4 = { type = \"revolute\", at = \"O4\", links = [\"ground\", \"rocker\"] }",
+            "O4 = { type = \"revolute\", at = \"O4\", links = [\"ground\", \"rocker\"] }\n\
+             C = { type = \"revolute\", at = \"C\", links = [\"rocker\", \"coupler2\"] }\n\
+             D = { type = \"revolute\", at = \"D\", links = [\"coupler2\", \"rocker2\"] }\n\
+             O6 = { type = \"revolute\", at = \"O6\", links = [\"ground\", \"rocker2\"] }",
+        );
+    let scene = scene::parse("watt.toml", &text).unwrap();
+    let metrics = SceneMetrics::of(&scene).unwrap().unwrap();
+    let linkage = metrics.linkage.as_ref().unwrap();
+    assert_eq!(linkage.four_bars.len(), 2, "{:?}", linkage.four_bars);
+    let first = &linkage.four_bars[0];
+    assert_eq!(first.linkage.links, ["ground", "crank", "coupler", "rocker"]);
+    let q = first.quick_return.as_ref().unwrap();
+    assert!((q.time_ratio - four_bar_time_ratio(ABCD)).abs() <= 1e-9);
+    let second = &linkage.four_bars[1];
+    assert_eq!(second.linkage.links, ["ground", "rocker", "coupler2", "rocker2"]);
+    let length = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]);
+    let mut l = [
+        length([0.4, 0.0], [0.9, 0.0]),
+        length([0.4, 0.0], [0.5, 0.2]),
+        length([0.5, 0.2], [0.8, 0.35]),
+        length([0.9, 0.0], [0.8, 0.35]),
+    ];
+    l.sort_by(f64::total_cmp);
+    assert!(l[0] + l[3] > l[1] + l[2]);
+    assert_eq!(second.grashof.class.name(), "triple-rocker (non-Grashof)");
+    assert!((second.grashof.s_plus_l - (l[0] + l[3])).abs() <= 1e-15);
+    assert!(second.quick_return.is_err());
+}
