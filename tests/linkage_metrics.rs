@@ -114,6 +114,11 @@ fn run_prints_and_writes_the_four_bars_metrics() {
     assert!((number(&t["max"]["mu"]) - mu_max).abs() <= 1e-9, "{t}");
     assert!((number(&t["min"]["phi"]) - 0.0).abs() <= 1e-9, "{t}");
     assert!((number(&t["worst"]["deviation"]) - (90.0 - mu_min)).abs() <= 1e-9);
+    // The sweep (0° to 360° in 5° steps) holds θ = 0 and 180°: the same extremes there.
+    let s = &t["over_sweep"];
+    assert!((number(&s["min"]["mu"]) - mu_min).abs() <= 1e-9, "{s}");
+    assert!((number(&s["max"]["mu"]) - mu_max).abs() <= 1e-9, "{s}");
+    assert!((number(&s["max"]["phi"]) - 180.0).abs() <= 1e-9, "{s}");
     let q = &f["quick_return"];
     let closed = four_bar_time_ratio(ABCD);
     assert!(
@@ -250,7 +255,10 @@ fn the_four_bars_inside_a_six_bar_have_their_metrics() {
             "P = [0.3, 0.45]      # coupler point",
             "P = [0.3, 0.45]\nC = [0.5, 0.2]\nO6 = [0.9, 0.0]\nD = [0.8, 0.35]",
         )
-        .replace("ground = [\"O2\", \"O4\"]", "ground = [\"O2\", \"O4\", \"O6\"]")
+        .replace(
+            "ground = [\"O2\", \"O4\"]",
+            "ground = [\"O2\", \"O4\", \"O6\"]",
+        )
         .replace(
             "rocker = [\"O4\", \"B\"]",
             "rocker = [\"O4\", \"B\", \"C\"]\ncoupler2 = [\"C\", \"D\"]\nrocker2 = [\"O6\", \"D\"]",
@@ -267,11 +275,17 @@ fn the_four_bars_inside_a_six_bar_have_their_metrics() {
     let linkage = metrics.linkage.as_ref().unwrap();
     assert_eq!(linkage.four_bars.len(), 2, "{:?}", linkage.four_bars);
     let first = &linkage.four_bars[0];
-    assert_eq!(first.linkage.links, ["ground", "crank", "coupler", "rocker"]);
+    assert_eq!(
+        first.linkage.links,
+        ["ground", "crank", "coupler", "rocker"]
+    );
     let q = first.quick_return.as_ref().unwrap();
     assert!((q.time_ratio - four_bar_time_ratio(ABCD)).abs() <= 1e-9);
     let second = &linkage.four_bars[1];
-    assert_eq!(second.linkage.links, ["ground", "rocker", "coupler2", "rocker2"]);
+    assert_eq!(
+        second.linkage.links,
+        ["ground", "rocker", "coupler2", "rocker2"]
+    );
     let length = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]);
     let mut l = [
         length([0.4, 0.0], [0.9, 0.0]),
@@ -284,4 +298,33 @@ fn the_four_bars_inside_a_six_bar_have_their_metrics() {
     assert_eq!(second.grashof.class.name(), "triple-rocker (non-Grashof)");
     assert!((second.grashof.s_plus_l - (l[0] + l[3])).abs() <= 1e-15);
     assert!(second.quick_return.is_err());
+}
+
+/// Over a sweep of part of the turn (30° to 150°), μ's extremes over the sweep are at its
+/// ends — μ grows with θ on (0°, 180°) since cos μ falls with cos θ — and equal the law of
+/// cosines there (1e-12 deg: one closed form each, in degrees); the input's range keeps
+/// its extremes at 0° and 180°.
+#[test]
+fn the_transmission_angles_extremes_over_a_partial_sweep_are_at_its_ends() {
+    let [a, b, c, d] = ABCD;
+    let mu = |phi: f64| {
+        let cos =
+            (b * b + c * c - a * a - d * d + 2.0 * a * d * phi.to_radians().cos()) / (2.0 * b * c);
+        cos.acos().to_degrees()
+    };
+    let text = FOUR_BAR.replace(
+        "from = 0\nto = 360\nstep = 5",
+        "from = 30\nto = 150\nstep = 5",
+    );
+    assert_ne!(text, FOUR_BAR);
+    let scene = scene::parse("four_bar_part.toml", &text).unwrap();
+    let json = SceneMetrics::of(&scene).unwrap().unwrap().json(&scene);
+    let t = &json["linkage"]["four_bars"][0]["transmission_angle"];
+    let number = |v: &serde_json::Value| v.as_f64().unwrap();
+    let s = &t["over_sweep"];
+    assert!((number(&s["min"]["phi"]) - 30.0).abs() <= 1e-12, "{s}");
+    assert!((number(&s["min"]["mu"]) - mu(30.0)).abs() <= 1e-12, "{s}");
+    assert!((number(&s["max"]["phi"]) - 150.0).abs() <= 1e-12, "{s}");
+    assert!((number(&s["max"]["mu"]) - mu(150.0)).abs() <= 1e-12, "{s}");
+    assert!((number(&t["min"]["mu"]) - mu(0.0)).abs() <= 1e-12, "{t}");
 }

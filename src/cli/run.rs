@@ -110,7 +110,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
     files::refuse_inputs(outputs(args))?;
     // A parameter study's rows are of many linkages: their metrics are not one block.
     let metrics = match &args.sweep {
-        None => scene::metrics::SceneMetrics::of(&scene)?,
+        None => metrics_of(&scene),
         Some(_) => None,
     };
     if let Some(path) = &args.csv {
@@ -207,7 +207,7 @@ fn stream(scene: &scene::Scene, args: &RunArgs, run: &RunOptions) -> Result<(), 
     };
     let streamed = stream::run(scene, &mut sinks, &options)?;
     drop(sinks);
-    let metrics = scene::metrics::SceneMetrics::of(scene)?;
+    let metrics = metrics_of(scene);
     let written = write_metrics(scene, metrics.as_ref(), &mut stdout);
     for warning in &streamed.warnings {
         eprintln!(
@@ -225,6 +225,16 @@ fn stream(scene: &scene::Scene, args: &RunArgs, run: &RunOptions) -> Result<(), 
             source,
         }),
     }
+}
+
+/// The scene's linkage metrics; a failure to compute them is a warning, not the run's
+/// failure (the run's results are complete without them).
+fn metrics_of(scene: &scene::Scene) -> Option<scene::metrics::SceneMetrics> {
+    scene::metrics::SceneMetrics::of(scene).unwrap_or_else(|e| {
+        let line = format!("warning: {}: no linkage metrics: {e}", scene.file);
+        eprintln!("{}", escape::terminal(&line));
+        None
+    })
 }
 
 /// Writes the scene's linkage metrics after its table, a blank line before them.

@@ -8,8 +8,7 @@ use std::fmt::Write as _;
 
 use super::axis;
 use super::drawing::{Drawing, Style};
-use super::run::Animation;
-use super::scene::poses;
+use super::scene::{Poses, poses};
 use crate::error::Result;
 use crate::scene::Scene;
 use crate::scene::build::mechanism;
@@ -34,15 +33,20 @@ pub struct PathPlot {
     pub csv: String,
 }
 
-/// The path plots of a run: one per traced point of `animation` (the `[plot] trace` points,
-/// or the `[[output]] point` points), over the poses it solved (at most
-/// [`super::run::FRAMES`], spread over the sweep).
+/// The path plots of a run: one per `traced` point (indices into the scene's points: the
+/// `[plot] trace` points, or the `[[output]] point` points), over the `drawn` poses (those
+/// of the run's animation: at most [`super::run::FRAMES`], spread over the sweep).
 ///
 /// # Errors
 /// The solver's errors at a marked drive position (the run solved them already, so none is
 /// expected).
-pub fn plots(scene: &Scene, report: &Report, animation: &Animation) -> Result<Vec<PathPlot>> {
-    if animation.traced.is_empty() || animation.poses.phi.is_empty() {
+pub fn plots(
+    scene: &Scene,
+    report: &Report,
+    drawn: &Poses,
+    traced: &[usize],
+) -> Result<Vec<PathPlot>> {
+    if traced.is_empty() || drawn.phi.is_empty() {
         return Ok(Vec::new());
     }
     let m = mechanism(scene)?;
@@ -54,10 +58,9 @@ pub fn plots(scene: &Scene, report: &Report, animation: &Animation) -> Result<Ve
     let drive = &report.columns[0];
     let angle_drive = scene.drive.kind.dimension() == Dimension::Angle;
     // The round drive values marked along the path, in the drive's printed unit.
-    let (lo, hi) = (animation.poses.phi.iter())
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &p| {
-            (lo.min(p), hi.max(p))
-        });
+    let (lo, hi) = (drawn.phi.iter()).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &p| {
+        (lo.min(p), hi.max(p))
+    });
     let range = lo / drive.factor..hi / drive.factor;
     let mut ticks = if angle_drive && drive.unit == "deg" {
         axis::angle_ticks(&range)
@@ -86,9 +89,9 @@ pub fn plots(scene: &Scene, report: &Report, animation: &Animation) -> Result<Ve
     let limit_poses = poses(scene, &m, &limits.iter().map(|l| l.0).collect::<Vec<_>>())?;
     let title = scene.title.clone().unwrap_or_else(|| scene.file.clone());
     let mut out = Vec::new();
-    for &k in &animation.traced {
+    for &k in traced {
         let point = &scene.points[k].name;
-        let path = animation.poses.path(k);
+        let path = drawn.path(k);
         let centre = centroid(&path);
         let away = |p: [f64; 2]| [p[0] - centre[0], p[1] - centre[1]];
         let mut d = Drawing::new(&format!(
@@ -141,7 +144,7 @@ pub fn plots(scene: &Scene, report: &Report, animation: &Animation) -> Result<Ve
             "phi [{}],x_{point} [{length}],y_{point} [{length}]\n",
             drive.unit
         );
-        for (phi, xy) in animation.poses.phi.iter().zip(&path) {
+        for (phi, xy) in drawn.phi.iter().zip(&path) {
             let _ = writeln!(
                 csv,
                 "{},{},{}",

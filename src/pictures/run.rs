@@ -345,7 +345,7 @@ pub fn write_dir(scene: &Scene, report: &Report, dir: &Path) -> Result<Vec<PathB
         .map(|(name, drawing)| (name, drawing.to_svg()))
         .collect::<Vec<_>>();
     pictures.extend(super::balancing::pictures(scene, report)?);
-    let paths = super::path::plots(scene, report, &animation)?;
+    let paths = super::path::plots(scene, report, &animation.poses, &animation.traced)?;
     pictures.extend(paths.iter().map(|p| (p.name.clone(), p.drawing.to_svg())));
     let html = super::report::html(scene, report, &animation, &whole)?;
     for (k, page) in pages.iter().enumerate().rev() {

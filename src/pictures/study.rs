@@ -219,7 +219,7 @@ pub fn write_dir(sweep: &ParameterSweep, runs: &[StudyRun], dir: &Path) -> Resul
         drawing.title = format!("{} ({tag})", drawing.title);
         pictures.push((name, drawing.to_svg()));
     }
-    let paths = super::path::plots(scene, report, &animation)?;
+    let paths = super::path::plots(scene, report, &animation.poses, &animation.traced)?;
     for p in &paths {
         let mut drawing = p.drawing.clone();
         drawing.title = format!("{} ({tag})", drawing.title);

@@ -14,7 +14,7 @@ use toml::Spanned;
 
 use super::construct::{Along, Side};
 use super::dynamics::DynamicsSections;
-pub use super::quantity::{Quantity, Sense};
+pub use super::quantity::{Quantity, Sense, TransmissionForm};
 pub use super::units::UnitsSection;
 pub use super::values::Name;
 use super::values::Number;
@@ -367,22 +367,6 @@ pub struct SweepSection {
     /// The positions (range or list) are values of this output (an angle or slider output),
     /// in its unit; the drive positions that give them are solved for.
     pub of: Option<Name>,
-}
-
-/// The form a `transmission_angle` output reports μ in (see
-/// [`mechdiff_core::metrics::TransmissionAngle`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum TransmissionForm {
-    /// The oriented angle from the coupler to the follower, in (−180°, 180°]: its sign is
-    /// the loop's assembly branch.
-    Signed,
-    /// μ = |signed| in [0°, 180°]: the textbooks' transmission angle.
-    Unsigned,
-    /// min(μ, 180° − μ) in [0°, 90°]: 90° is ideal transmission.
-    Effective,
-    /// 90° − effective, in [0°, 90°]: how far from ideal.
-    Deviation,
 }
 
 /// One `[[output]]` entry: exactly one of `point`, `angle`, `slider`, `transmission_angle`.

@@ -16,7 +16,7 @@ use std::f64::consts::TAU;
 use crate::error::Result;
 
 use super::evaluate::{Resolved, evaluate};
-use super::model::{DriveKind, OutputKind, Scene};
+use super::model::{DriveKind, JointKind, OutputKind, Scene};
 use super::setup::{RunOptions, Setup};
 use super::units::{Dimension, Units};
 
@@ -288,22 +288,101 @@ impl<'s> Words<'s> {
         }
     }
 
-    fn transmission(&self, formula: &str, t: &TransmissionExtremes) -> String {
+    fn transmission(
+        &self,
+        formula: &str,
+        t: &TransmissionExtremes,
+        sweep: Option<SweepExtremes>,
+    ) -> Vec<String> {
         let at =
             |a: &TransmissionAt| format!("{} at {}", self.angle(a.angle), self.position(&a.at));
         let effective = t.worst.angle.min(std::f64::consts::PI - t.worst.angle);
-        format!(
-            "    transmission angle μ ({formula}): min {}, max {}; worst effective μ {} \
-             (deviation from 90° {}) at {}",
+        let mut lines = vec![format!(
+            "    transmission angle μ ({formula}), over the input's range: min {}, max {}; \
+             worst effective μ {} (deviation from 90° {}) at {}",
             at(&t.min),
             at(&t.max),
             self.angle(effective),
             self.angle(std::f64::consts::FRAC_PI_2 - effective),
             self.position(&t.worst.at)
-        )
+        )];
+        if let Some(s) = sweep {
+            lines.push(format!(
+                "    over the sweep: min μ {} at φ = {}, max μ {} at φ = {}; worst effective μ {} \
+                 (deviation from 90° {})",
+                self.angle(s.min.1),
+                self.drive(s.min.0),
+                self.angle(s.max.1),
+                self.drive(s.max.0),
+                self.angle(s.worst_effective()),
+                self.angle(std::f64::consts::FRAC_PI_2 - s.worst_effective()),
+            ));
+        }
+        lines
     }
 
-    fn transmission_json(&self, formula: &str, t: &TransmissionExtremes) -> Value {
+    /// μ's extremes over the sweep's drive positions, from the loop's closed form `mu` of
+    /// its input angle θ: for a loop whose input is the drive (its pivot `pivot` turning
+    /// `input`), θ = θ_sketch ± (φ − φ_sketch). `None` for a loop not driven, a `[sweep] of`
+    /// scene (its drive positions are found by the run), or a sweep longer than
+    /// [`SWEEP_EXTREMES_UP_TO`].
+    fn over_sweep(
+        &self,
+        driven: bool,
+        pivot: &str,
+        input: &str,
+        sketch: f64,
+        mu: impl Fn(f64) -> f64,
+    ) -> Option<SweepExtremes> {
+        let scene = self.scene;
+        let positions = &scene.positions;
+        if !driven || scene.sweep_of.is_some() || positions.len() > SWEEP_EXTREMES_UP_TO {
+            return None;
+        }
+        let joint = scene.joints.iter().find(|j| j.name == pivot)?;
+        let sign = match &joint.kind {
+            JointKind::Revolute { links, .. } if links[1] == input => 1.0,
+            JointKind::Revolute { .. } => -1.0,
+            _ => return None,
+        };
+        let at_sketch = scene.drive.at_sketch;
+        let (mut min, mut max) = ((f64::NAN, f64::INFINITY), (f64::NAN, f64::NEG_INFINITY));
+        for phi in positions.iter() {
+            let m = mu(sketch + sign * (phi - at_sketch));
+            if m < min.1 {
+                min = (phi, m);
+            }
+            if m > max.1 {
+                max = (phi, m);
+            }
+        }
+        (min.1.is_finite() && max.1.is_finite()).then_some(SweepExtremes { min, max })
+    }
+
+    fn sweep_json(&self, s: Option<SweepExtremes>) -> Value {
+        let Some(s) = s else {
+            return Value::Null;
+        };
+        let drive = self.scene.drive.kind.dimension();
+        let at = |(phi, mu): (f64, f64)| {
+            json!({
+                "phi": self.scene.units.from_si(phi, drive) + 0.0,
+                "mu": self.number(mu, Dimension::Angle),
+            })
+        };
+        json!({
+            "min": at(s.min),
+            "max": at(s.max),
+            "worst_effective": self.number(s.worst_effective(), Dimension::Angle),
+        })
+    }
+
+    fn transmission_json(
+        &self,
+        formula: &str,
+        t: &TransmissionExtremes,
+        sweep: Option<SweepExtremes>,
+    ) -> Value {
         let at = |a: &TransmissionAt| {
             let mut v = self.position_json(&a.at);
             v["mu"] = json!(self.number(a.angle, Dimension::Angle));
@@ -314,7 +393,29 @@ impl<'s> Words<'s> {
         worst["effective"] = json!(self.number(effective, Dimension::Angle));
         worst["deviation"] =
             json!(self.number(std::f64::consts::FRAC_PI_2 - effective, Dimension::Angle));
-        json!({ "formula": formula, "min": at(&t.min), "max": at(&t.max), "worst": worst })
+        json!({
+            "formula": formula, "min": at(&t.min), "max": at(&t.max), "worst": worst,
+            "over_sweep": self.sweep_json(sweep),
+        })
+    }
+
+    /// μ's extremes over the sweep for a four-bar loop.
+    fn four_bar_sweep(&self, l: &FourBarLoop) -> Option<SweepExtremes> {
+        let (pivot, input) = (&l.joints[0], &l.links[1]);
+        self.over_sweep(l.driven, pivot, input, l.sketch_angle(), |theta| {
+            l.transmission_angle(theta)
+        })
+    }
+
+    /// μ's extremes over the sweep for a slider-crank loop.
+    fn slider_crank_sweep(&self, l: &SliderCrankLoop) -> Option<SweepExtremes> {
+        self.over_sweep(
+            l.driven,
+            &l.joints[0],
+            &l.crank,
+            l.sketch_angle(),
+            |theta| l.transmission_angle(theta),
+        )
     }
 
     /// A quick return in words: the time ratio, the forward and return crank angles and
@@ -387,7 +488,7 @@ impl<'s> Words<'s> {
             mechdiff_core::metrics::GrashofClass::TripleRocker => ">",
             _ => "<",
         };
-        vec![
+        let mut lines = vec![
             format!(
                 "  four-bar {} (joints {}):",
                 l.links.join("–"),
@@ -404,13 +505,15 @@ impl<'s> Words<'s> {
                 self.length(g.p_plus_q)
             ),
             self.range(&l.links[1], &f.input_range),
-            self.transmission(FourBarLoop::TRANSMISSION_FORMULA, &f.transmission),
-            format!(
-                "    output {}: {}",
-                l.links[3],
-                self.quick_return(&f.quick_return, Dimension::Angle)
-            ),
-        ]
+        ];
+        let sweep = self.four_bar_sweep(l);
+        lines.extend(self.transmission(FourBarLoop::TRANSMISSION_FORMULA, &f.transmission, sweep));
+        lines.push(format!(
+            "    output {}: {}",
+            l.links[3],
+            self.quick_return(&f.quick_return, Dimension::Angle)
+        ));
+        lines
     }
 
     fn four_bar_json(&self, f: &mechdiff_core::metrics::FourBarMetrics) -> Value {
@@ -429,7 +532,9 @@ impl<'s> Words<'s> {
                 "p_plus_q": self.number(g.p_plus_q, Dimension::Length),
             },
             "input_range": self.range_json(&f.input_range),
-            "transmission_angle": self.transmission_json(FourBarLoop::TRANSMISSION_FORMULA, &f.transmission),
+            "transmission_angle": self.transmission_json(
+                FourBarLoop::TRANSMISSION_FORMULA, &f.transmission, self.four_bar_sweep(l)
+            ),
             "quick_return": self.quick_return_json(&f.quick_return, Dimension::Angle),
         })
     }
@@ -444,7 +549,7 @@ impl<'s> Words<'s> {
         };
         let mut links = vec![l.frame.clone(), l.crank.clone(), l.rod.clone()];
         links.extend(l.slider.clone());
-        vec![
+        let mut lines = vec![
             format!(
                 "  slider-crank {} (joints {}):",
                 links.join("–"),
@@ -459,13 +564,19 @@ impl<'s> Words<'s> {
                 self.length(c.rod)
             ),
             self.range(&l.crank, &s.input_range),
-            self.transmission(SliderCrankLoop::TRANSMISSION_FORMULA, &s.transmission),
-            format!(
-                "    {}: {}",
-                l.slider.as_deref().unwrap_or(&l.rod),
-                self.quick_return(&s.quick_return, Dimension::Length)
-            ),
-        ]
+        ];
+        let sweep = self.slider_crank_sweep(l);
+        lines.extend(self.transmission(
+            SliderCrankLoop::TRANSMISSION_FORMULA,
+            &s.transmission,
+            sweep,
+        ));
+        lines.push(format!(
+            "    {}: {}",
+            l.slider.as_deref().unwrap_or(&l.rod),
+            self.quick_return(&s.quick_return, Dimension::Length)
+        ));
+        lines
     }
 
     fn slider_crank_json(&self, s: &mechdiff_core::metrics::SliderCrankMetrics) -> Value {
@@ -482,9 +593,30 @@ impl<'s> Words<'s> {
                 "r_plus_abs_e": self.number(c.crank_plus_offset, Dimension::Length),
             },
             "input_range": self.range_json(&s.input_range),
-            "transmission_angle": self.transmission_json(SliderCrankLoop::TRANSMISSION_FORMULA, &s.transmission),
+            "transmission_angle": self.transmission_json(
+                SliderCrankLoop::TRANSMISSION_FORMULA, &s.transmission, self.slider_crank_sweep(l)
+            ),
             "quick_return": self.quick_return_json(&s.quick_return, Dimension::Length),
         })
+    }
+}
+
+/// The longest sweep whose transmission-angle extremes are evaluated (one closed form per
+/// drive position: a few milliseconds for this many).
+pub const SWEEP_EXTREMES_UP_TO: usize = 10_000_000;
+
+/// μ's smallest and largest value over the sweep: `(φ, μ)` each (rad).
+#[derive(Debug, Clone, Copy)]
+struct SweepExtremes {
+    min: (f64, f64),
+    max: (f64, f64),
+}
+
+impl SweepExtremes {
+    /// The worst effective μ = min(μ, 180° − μ) over the sweep: at the smallest or the
+    /// largest μ.
+    fn worst_effective(&self) -> f64 {
+        self.min.1.min(std::f64::consts::PI - self.max.1)
     }
 }
 

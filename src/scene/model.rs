@@ -263,11 +263,11 @@ pub enum OutputKind {
         /// slider (or its rod when the rod's pin runs in a slot of the ground).
         follower: String,
         /// The form reported.
-        form: super::format::TransmissionForm,
+        form: super::quantity::TransmissionForm,
         /// The points μ is read from: B (coupler–follower), A (coupler–input), then the
         /// follower's pivot O_out (four-bar) or the two points of the slider's path line
-        /// (slider-crank). Empty until the loop is found in the model (when the scene is
-        /// read whole, [`super::outputs::locate_transmissions`]).
+        /// (slider-crank). Empty until the loop is found in the model, when the scene has
+        /// been read whole.
         points: Vec<String>,
     },
 }
