@@ -86,8 +86,8 @@ fn a_sweep_that_fails_names_the_value_and_a_set_sweep_is_refused() {
     assert!(e.to_string().starts_with("--sweep q: "), "{e}");
 }
 
-/// `mechdiff run NORTON --sweep b=1.85:1.95:3 --plot DIR` with `[plot] positions`, in the
-/// folder `dir`: the scene written there, the run's status and the SVG texts of `name`.
+/// `mechdiff run NORTON --sweep b=1.85:1.95:3 --plot DIR --report FILE` with `[plot]
+/// positions`, in the folder `dir` (the scene written there): the run's output.
 fn study_pictures(dir: &std::path::Path) -> std::process::Output {
     std::fs::create_dir_all(dir).unwrap();
     let scene = dir.join("norton.toml");
@@ -101,6 +101,8 @@ fn study_pictures(dir: &std::path::Path) -> std::process::Output {
             "--plot",
         ])
         .arg(dir.join("pictures"))
+        .arg("--report")
+        .arg(dir.join("study.html"))
         .output()
         .unwrap()
 }
@@ -130,8 +132,8 @@ fn svg_texts(path: &std::path::Path) -> (Vec<String>, Vec<(f64, f64)>) {
 /// SVGs: the diagram's x axis is the drive φ [deg] over the sweep's 0°–100° (each frame's
 /// data range holds it and no more than 5 % padding beyond), each panel is labelled with its
 /// own column's unit, one curve per value with a legend `b = …`; the drawings at the
-/// `[plot] positions` are written; and `sweep_summary.svg` draws the headline numbers
-/// against `b [as set]`.
+/// `[plot] positions` are written; `sweep_summary.svg` draws the headline numbers against
+/// `b [as set]`; and `--report` holds the same families.
 #[test]
 fn a_parameter_studys_pictures_are_families_on_the_drive_axis() {
     let dir = std::env::temp_dir().join(format!("mechdiff-study-{}", std::process::id()));
@@ -175,6 +177,9 @@ fn a_parameter_studys_pictures_are_families_on_the_drive_axis() {
     ] {
         assert!(pictures.join(file).exists(), "{file}");
     }
+    // `--report` alone draws the same families.
+    let report_html = std::fs::read_to_string(dir.join("study.html")).unwrap();
+    assert!(report_html.contains("b = 1.9") && report_html.contains("ψ\u{307} [rad/s]"));
     let (texts, frames) = svg_texts(&pictures.join("sweep_summary.svg"));
     assert!(
         texts.iter().any(|t| t == "min μ_eff rocker [deg]"),
