@@ -23,6 +23,7 @@ mod fuzz_scenes;
 mod hard_cases;
 mod import;
 mod joint_types;
+mod linkage_metrics;
 mod parameter_study;
 mod pictures;
 mod run_evaluator;

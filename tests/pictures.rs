@@ -1035,3 +1035,130 @@ fn cam_curves_follow_the_exact_derivatives() {
     }
     assert!(checked > 3000, "{checked} segments checked");
 }
+
+/// Issue 24, item 2: `--plot` draws the coupler curve of each traced point to scale. Parsed
+/// from `path_P.svg` of scenes/four_bar.toml: the grid's vertical and horizontal lines are
+/// the same number of pixels per metre (equal axes, to 1e-5 relative: the lines' positions
+/// are written to 3 decimals and lie hundreds of pixels apart); every point of the curve maps back, through the
+/// picture's frame, to the solver's position of P at the drive position of its CSV row
+/// (≤ 0.5 px); the CSV holds the solver's x, y to full digits (1e-12 m); and the drive
+/// position is marked along the curve at multiples of 45° (0° and 360° at one place, one
+/// label).
+#[test]
+fn a_coupler_curve_is_drawn_to_scale_where_the_solver_puts_the_point() {
+    let dir = std::env::temp_dir().join(format!("mechdiff-paths-{}", std::process::id()));
+    let out = Command::new(env!("CARGO_BIN_EXE_mechdiff"))
+        .args([
+            "run",
+            "scenes/four_bar.toml",
+            "--plot",
+            dir.to_str().unwrap(),
+        ])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let svg = std::fs::read_to_string(dir.join("path_P.svg")).unwrap();
+    let csv = std::fs::read_to_string(dir.join("path_P.csv")).unwrap();
+    assert!(dir.join("path_P.png").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let root = doc.root_element();
+    let number = |n: roxmltree::Node, a: &str| n.attribute(a).unwrap().parse::<f64>().unwrap();
+    let frame = Frame {
+        scale: number(root, "data-scale"),
+        origin_x: number(root, "data-origin-x"),
+        origin_y: number(root, "data-origin-y"),
+        width: number(root, "width"),
+        height: number(root, "height"),
+    };
+    // The grid: each line followed by the value it stands at (in metres here).
+    let grid = doc
+        .descendants()
+        .find(|n| n.attribute("class") == Some("grid"))
+        .unwrap();
+    let (mut across, mut up) = (Vec::new(), Vec::new());
+    let children: Vec<_> = grid.children().filter(|n| n.is_element()).collect();
+    for pair in children.windows(2) {
+        let (line, text) = (pair[0], pair[1]);
+        let Some(value) = (text.has_tag_name("text") && line.has_tag_name("line"))
+            .then(|| text.text()?.trim().parse::<f64>().ok())
+            .flatten()
+        else {
+            continue;
+        };
+        if number(line, "x1") == number(line, "x2") {
+            across.push((value, number(line, "x1")));
+        } else {
+            up.push((value, number(line, "y1")));
+        }
+    }
+    let per_metre = |lines: &[(f64, f64)]| {
+        let (first, last) = (lines[0], lines[lines.len() - 1]);
+        (last.1 - first.1) / (last.0 - first.0)
+    };
+    assert!(across.len() >= 2 && up.len() >= 2, "{across:?} {up:?}");
+    let (sx, sy) = (per_metre(&across), -per_metre(&up));
+    assert!((sx - sy).abs() <= 1e-5 * sx, "x {sx} px/m, y {sy} px/m");
+    assert!(
+        (sx - frame.scale).abs() <= 1e-5 * sx,
+        "{sx} vs {}",
+        frame.scale
+    );
+    // The curve against the solver: P's position at each CSV row's drive position.
+    let scene =
+        scene::load(Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/four_bar.toml")).unwrap();
+    let report = scene::run(&scene).unwrap();
+    let (phi, x, y) = (
+        report.column("phi").unwrap(),
+        report.column("x_P").unwrap(),
+        report.column("y_P").unwrap(),
+    );
+    let curve = doc
+        .descendants()
+        .find(|n| n.attribute("class") == Some("path path-P"))
+        .unwrap();
+    let drawn: Vec<[f64; 2]> = (curve.attribute("points").unwrap().split(' '))
+        .map(|p| {
+            let (a, b) = p.split_once(',').unwrap();
+            [a.parse().unwrap(), b.parse().unwrap()]
+        })
+        .collect();
+    let rows: Vec<Vec<f64>> = (csv.lines().skip(1))
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(csv.lines().next().unwrap(), "phi [deg],x_P [m],y_P [m]");
+    assert_eq!(rows.len(), drawn.len());
+    assert_eq!(rows.len(), phi.len(), "a 73-row sweep is drawn whole");
+    for ((row, pixel), k) in rows.iter().zip(&drawn).zip(0..) {
+        assert!((row[0].to_radians() - phi[k]).abs() <= 1e-12, "{row:?}");
+        assert!((row[1] - x[k]).abs() <= 1e-12 && (row[2] - y[k]).abs() <= 1e-12);
+        let want = frame.pixel([x[k], y[k]]);
+        let off = (want[0] - pixel[0]).hypot(want[1] - pixel[1]);
+        assert!(off <= 0.5, "φ = {}: {pixel:?} vs {want:?}", row[0]);
+    }
+    let ticks: Vec<&str> = (doc.descendants())
+        .filter(|n| n.has_tag_name("text"))
+        .filter_map(|n| n.text())
+        .filter(|t| t.starts_with("φ = "))
+        .collect();
+    assert_eq!(
+        ticks,
+        [
+            "φ = 0, 360 deg",
+            "φ = 45 deg",
+            "φ = 90 deg",
+            "φ = 135 deg",
+            "φ = 180 deg",
+            "φ = 225 deg",
+            "φ = 270 deg",
+            "φ = 315 deg"
+        ]
+    );
+    // The rocker's two dead positions are marked on the curve.
+    assert_eq!(svg.matches("dead: psi").count(), 2, "{svg}");
+}

@@ -66,3 +66,19 @@ pub enum Sense {
     /// Clockwise positive.
     Cw,
 }
+
+/// The form a `transmission_angle` output reports μ in (see
+/// `mechdiff_core::metrics::TransmissionAngle`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TransmissionForm {
+    /// The oriented angle from the coupler to the follower, in (−180°, 180°]: its sign is
+    /// the loop's assembly branch.
+    Signed,
+    /// μ = |signed| in [0°, 180°]: the textbooks' transmission angle.
+    Unsigned,
+    /// min(μ, 180° − μ) in [0°, 90°]: 90° is ideal transmission.
+    Effective,
+    /// 90° − effective, in [0°, 90°]: how far from ideal.
+    Deviation,
+}

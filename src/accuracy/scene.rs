@@ -88,7 +88,7 @@ impl<'s> Outputs<'s> {
                         .extend([format!("x_{name}"), format!("y_{name}")]);
                     outputs.angle.extend([false, false]);
                 }
-                OutputKind::Angle { .. } => {
+                OutputKind::Angle { .. } | OutputKind::Transmission { .. } => {
                     outputs.names.push(format!("{} [rad]", output.name));
                     outputs.angle.push(true);
                 }

@@ -96,6 +96,11 @@ pub fn check(args: &CheckArgs) -> Result<(), Error> {
     if let Some(study) = &study {
         let _ = writeln!(out, "{}", study.describe(&checked.columns));
     }
+    if let Some(metrics) = scene::metrics::SceneMetrics::of(&scene)? {
+        for line in metrics.lines(&scene) {
+            let _ = writeln!(out, "{line}");
+        }
+    }
     print!("{}", escape::terminal(&out));
     Ok(())
 }

@@ -44,6 +44,8 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
     files::refuse_inputs(outputs(args))?;
     let study_asked = sensitivity::requested(&text) || args.monte_carlo.is_some();
     let mut study = None;
+    // A parameter study's runs, kept apart for its pictures (one curve per value).
+    let mut study_runs = None;
     let (scene, report) = match &args.sweep {
         Some(_) if study_asked => {
             return Err(Error::OptionNotApplicable {
@@ -88,7 +90,16 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
             let report = scene::run_with(&scene, &options)?;
             (scene, report)
         }
-        Some(sweep) => scene::study::run_sweep(&file, &text, &args.set, sweep)?,
+        Some(sweep) => {
+            let runs = scene::study::run_each(&file, &text, &args.set, sweep)?;
+            if args.plot.is_some() || args.report.is_some() {
+                let joined = scene::study::join(sweep, runs.clone())?;
+                study_runs = Some(runs);
+                joined
+            } else {
+                scene::study::join(sweep, runs)?
+            }
+        }
     };
     for warning in &report.warnings {
         eprintln!(
@@ -97,6 +108,11 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         );
     }
     files::refuse_inputs(outputs(args))?;
+    // A parameter study's rows are of many linkages: their metrics are not one block.
+    let metrics = match &args.sweep {
+        None => metrics_of(&scene),
+        Some(_) => None,
+    };
     if let Some(path) = &args.csv {
         files::write_atomically(path, |mut out| table::write_csv(&report, &mut out))?;
     }
@@ -104,20 +120,31 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         files::write_atomically(path, |mut out| table::write_jsonl(&report, &mut out))?;
     }
     if let Some(path) = &args.json {
-        files::write_atomically(path, |mut out| table::write_json(&scene, &report, &mut out))?;
+        files::write_atomically(path, |mut out| {
+            table::write_json_with(&scene, &report, metrics.as_ref(), &mut out)
+        })?;
     }
+    let study_pictures = args.sweep.as_ref().zip(study_runs.as_deref());
     if let Some(dir) = &args.plot {
-        pictures::run::write_dir(&scene, &report, dir)?;
+        match study_pictures {
+            Some((sweep, runs)) => pictures::study::write_dir(sweep, runs, dir)?,
+            None => pictures::run::write_dir(&scene, &report, dir)?,
+        };
     }
     if let Some(path) = &args.report {
-        pictures::report::write(&scene, &report, path)?;
+        match study_pictures {
+            Some((sweep, runs)) => pictures::study::write_report(sweep, runs, path)?,
+            None => pictures::report::write(&scene, &report, path)?,
+        }
     }
     let stdout = std::io::stdout();
     let mut out = BufWriter::new(escape::Terminal::new(stdout.lock()));
-    let written = table::write_table(&scene, &report, &mut out).and_then(|()| match &study {
-        Some(study) => sensitivity::write_summary(study, &mut out),
-        None => Ok(()),
-    });
+    let written = table::write_table(&scene, &report, &mut out)
+        .and_then(|()| match &study {
+            Some(study) => sensitivity::write_summary(study, &mut out),
+            None => Ok(()),
+        })
+        .and_then(|()| write_metrics(&scene, metrics.as_ref(), &mut out));
     match written.and_then(|()| out.flush()) {
         // The reader went away (`mechdiff run s.toml | head`): not an error of ours.
         Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
@@ -180,6 +207,8 @@ fn stream(scene: &scene::Scene, args: &RunArgs, run: &RunOptions) -> Result<(), 
     };
     let streamed = stream::run(scene, &mut sinks, &options)?;
     drop(sinks);
+    let metrics = metrics_of(scene);
+    let written = write_metrics(scene, metrics.as_ref(), &mut stdout);
     for warning in &streamed.warnings {
         eprintln!(
             "{}",
@@ -189,11 +218,37 @@ fn stream(scene: &scene::Scene, args: &RunArgs, run: &RunOptions) -> Result<(), 
     for file in [csv, jsonl].into_iter().flatten() {
         file.commit()?;
     }
-    match stdout.flush() {
+    match written.and_then(|()| stdout.flush()) {
         Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
         result => result.map_err(|source| Error::Write {
             path: PathBuf::from("<stdout>"),
             source,
         }),
     }
+}
+
+/// The scene's linkage metrics; a failure to compute them is a warning, not the run's
+/// failure (the run's results are complete without them).
+fn metrics_of(scene: &scene::Scene) -> Option<scene::metrics::SceneMetrics> {
+    scene::metrics::SceneMetrics::of(scene).unwrap_or_else(|e| {
+        let line = format!("warning: {}: no linkage metrics: {e}", scene.file);
+        eprintln!("{}", escape::terminal(&line));
+        None
+    })
+}
+
+/// Writes the scene's linkage metrics after its table, a blank line before them.
+fn write_metrics(
+    scene: &scene::Scene,
+    metrics: Option<&scene::metrics::SceneMetrics>,
+    out: &mut impl Write,
+) -> std::io::Result<()> {
+    let Some(metrics) = metrics else {
+        return Ok(());
+    };
+    writeln!(out)?;
+    for line in metrics.lines(scene) {
+        writeln!(out, "{line}")?;
+    }
+    Ok(())
 }

@@ -50,10 +50,12 @@ pub(crate) mod curve;
 pub(crate) mod decimate;
 pub mod diagram;
 pub(crate) mod drawing;
+pub mod path;
 pub mod raster;
 pub mod report;
 pub mod run;
 pub mod scene;
+pub mod study;
 pub mod symbols;
 pub(crate) mod vectors;
 

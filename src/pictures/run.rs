@@ -127,7 +127,7 @@ pub fn selected(scene: &Scene, report: &Report) -> Result<Vec<Group>> {
 /// The values of column `c` against the drive, in printed units, decimated for drawing, with
 /// their exact slopes where the table has the column's derivative with respect to the drive
 /// (`psi'` beside `psi`, `x_C''` beside `x_C'`, `J_red'` beside `J_red`).
-fn curve(report: &Report, c: usize) -> (Vec<[f64; 2]>, Option<Vec<f64>>) {
+pub(crate) fn curve(report: &Report, c: usize) -> (Vec<[f64; 2]>, Option<Vec<f64>>) {
     let (x, y) = (&report.columns[0], &report.columns[c]);
     // Row indices of the decimated points (exact in f64 below 2⁵³ rows).
     let kept = decimate(
@@ -371,7 +371,8 @@ fn with_mass_centres(drawing: Drawing, scene: &Scene, pose: &[[f64; 2]]) -> Draw
 
 /// Writes the pictures of a run into `dir` (created if missing): `diagram.svg/png` (and
 /// `diagram_2.svg/png`, … when the diagram is higher than [`super::diagram::MAX_HEIGHT`]),
-/// one `mechanism_*.svg/png` per drawing, and `report.html` (with the whole diagram). Returns the files written. If any
+/// one `mechanism_*.svg/png` per drawing, one `path_<point>.svg/png/csv` per traced point
+/// (its coupler curve, [`super::path`]), and `report.html` (with the whole diagram). Returns the files written. If any
 /// of them is one of the run's inputs (a scene named `report.html`), nothing is written.
 pub fn write_dir(scene: &Scene, report: &Report, dir: &Path) -> Result<Vec<PathBuf>> {
     let diagram = diagram(scene, report)?;
@@ -383,6 +384,8 @@ pub fn write_dir(scene: &Scene, report: &Report, dir: &Path) -> Result<Vec<PathB
         .map(|(name, drawing)| (name, drawing.to_svg()))
         .collect::<Vec<_>>();
     pictures.extend(super::balancing::pictures(scene, report)?);
+    let paths = super::path::plots(scene, report, &animation.poses, &animation.traced)?;
+    pictures.extend(paths.iter().map(|p| (p.name.clone(), p.drawing.to_svg())));
     let html = super::report::html(scene, report, &animation, &whole)?;
     for (name, page) in pages.iter().rev() {
         let svg = if pages.len() == 1 {
@@ -397,13 +400,18 @@ pub fn write_dir(scene: &Scene, report: &Report, dir: &Path) -> Result<Vec<PathB
         written.push(dir.join(format!("{name}.svg")));
         written.push(dir.join(format!("{name}.png")));
     }
+    let pngs = written.len();
     written.push(dir.join("report.html"));
+    written.extend(paths.iter().map(|p| dir.join(format!("{}.csv", p.name))));
     crate::files::refuse_inputs(written.iter().map(PathBuf::as_path))?;
     crate::files::create_output_folder(dir)?;
-    for ((_, svg), paths) in pictures.iter().zip(written.chunks(2)) {
-        super::write_file(&paths[0], svg.as_bytes())?;
-        super::raster::write_png(svg, &paths[1])?;
+    for ((_, svg), files) in pictures.iter().zip(written[..pngs].chunks(2)) {
+        super::write_file(&files[0], svg.as_bytes())?;
+        super::raster::write_png(svg, &files[1])?;
     }
     super::write_file(&dir.join("report.html"), html.as_bytes())?;
+    for p in &paths {
+        super::write_file(&dir.join(format!("{}.csv", p.name)), p.csv.as_bytes())?;
+    }
     Ok(written)
 }

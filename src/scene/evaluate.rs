@@ -8,9 +8,10 @@ use mechdiff_core::{DriveState, Jet, Scalar};
 use crate::error::{Error, Result};
 
 use super::error_context::ErrorContext;
-use super::format::{Quantity, Sense};
+use super::format::{Quantity, Sense, TransmissionForm};
 use super::model::{Link, Output, OutputKind, Point};
 use super::setup::Setup;
+use mechdiff_core::metrics::TransmissionAngle;
 
 /// One quantity of a jet: its value, a coefficient, or a time derivative (a derivative
 /// beyond the jet's order reads as zero; the plan asks for the order the outputs need).
@@ -119,6 +120,7 @@ fn point_names(output: &Output) -> Vec<&str> {
             .chain(line)
             .map(String::as_str)
             .collect(),
+        OutputKind::Transmission { points, .. } => points.iter().map(String::as_str).collect(),
     }
 }
 
@@ -224,6 +226,28 @@ pub(crate) fn values<D: Scalar>(output: &Output, point: impl Fn(usize) -> [D; 2]
             let norm = (u[0] * u[0] + u[1] * u[1]).sqrt();
             let s = ((p[0] - a[0]) * u[0] + (p[1] - a[1]) * u[1]) / norm;
             vec![s]
+        }
+        OutputKind::Transmission { form, points, .. } => {
+            // μ between the coupler B → A and the follower B → O_out, or the normal of the
+            // slider's path (its direction g0 → g1 turned +90°), as core defines it.
+            let (b, a) = (point(0), point(1));
+            let follower = match points.len() {
+                3 => {
+                    let o = point(2);
+                    [o[0] - b[0], o[1] - b[1]]
+                }
+                _ => {
+                    let (g0, g1) = (point(2), point(3));
+                    [g0[1] - g1[1], g1[0] - g0[0]]
+                }
+            };
+            let mu = TransmissionAngle::between([a[0] - b[0], a[1] - b[1]], follower);
+            vec![match form {
+                TransmissionForm::Signed => mu.signed,
+                TransmissionForm::Unsigned => mu.unsigned,
+                TransmissionForm::Effective => mu.effective,
+                TransmissionForm::Deviation => mu.deviation,
+            }]
         }
     }
 }

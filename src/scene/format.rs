@@ -14,7 +14,7 @@ use toml::Spanned;
 
 use super::construct::{Along, Side};
 use super::dynamics::DynamicsSections;
-pub use super::quantity::{Quantity, Sense};
+pub use super::quantity::{Quantity, Sense, TransmissionForm};
 pub use super::units::UnitsSection;
 pub use super::values::Name;
 use super::values::Number;
@@ -369,7 +369,7 @@ pub struct SweepSection {
     pub of: Option<Name>,
 }
 
-/// One `[[output]]` entry: exactly one of `point`, `angle`, `slider`.
+/// One `[[output]]` entry: exactly one of `point`, `angle`, `slider`, `transmission_angle`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct OutputDef {
@@ -387,6 +387,11 @@ pub struct OutputDef {
     pub sense: Option<Spanned<Sense>>,
     /// The displacement of a prismatic or pin-in-slot joint.
     pub slider: Option<Name>,
+    /// The transmission angle μ of the four-bar or slider-crank loop whose follower (output
+    /// link, or slider) is this link.
+    pub transmission_angle: Option<Name>,
+    /// For `transmission_angle`: which form (default `"unsigned"`).
+    pub form: Option<Spanned<TransmissionForm>>,
     /// What to report (default: position, velocity, acceleration).
     pub quantities: Option<Spanned<Vec<Spanned<Quantity>>>>,
     /// Find where this output's velocity coefficient changes sign in the sweep range and

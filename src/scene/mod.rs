@@ -47,6 +47,7 @@ pub(crate) mod evaluate;
 pub mod format;
 mod joints;
 pub(crate) mod launch;
+pub mod metrics;
 pub mod model;
 pub(crate) mod outputs;
 pub mod parameters;

@@ -259,13 +259,27 @@ pub enum OutputKind {
         /// The line (two points of the guide or slotted link).
         line: [String; 2],
     },
+    /// The transmission angle μ of the four-bar or slider-crank loop whose follower is the
+    /// link `follower` (see docs/scene-format.md, "Linkage metrics").
+    Transmission {
+        /// The follower link named in the file: a four-bar's output link, a slider-crank's
+        /// slider (or its rod when the rod's pin runs in a slot of the ground).
+        follower: String,
+        /// The form reported.
+        form: super::quantity::TransmissionForm,
+        /// The points μ is read from: B (coupler–follower), A (coupler–input), then the
+        /// follower's pivot O_out (four-bar) or the two points of the slider's path line
+        /// (slider-crank). Empty until the loop is found in the model, when the scene has
+        /// been read whole.
+        points: Vec<String>,
+    },
 }
 
 impl OutputKind {
     /// The dimension of the output's value.
     pub fn dimension(&self) -> Dimension {
         match self {
-            OutputKind::Angle { .. } => Dimension::Angle,
+            OutputKind::Angle { .. } | OutputKind::Transmission { .. } => Dimension::Angle,
             OutputKind::Point(_) | OutputKind::Slider { .. } => Dimension::Length,
         }
     }

@@ -5,7 +5,7 @@ use toml::Spanned;
 use crate::error::{Error, Result};
 
 use super::context::{Context, Geometry};
-use super::format::{OutputDef, Quantity, Sense};
+use super::format::{OutputDef, Quantity, Sense, TransmissionForm};
 use super::model::{Drive, Joint, JointKind, Output, OutputKind};
 use super::units::{Dimension, Units};
 
@@ -54,10 +54,34 @@ fn resolve_one(
     drive: &Drive,
 ) -> Result<Output> {
     let d = def.get_ref();
-    let expected =
-        "expected exactly one of `point = \"P\"`, `angle = [\"P\", \"Q\"]`, `slider = \"joint\"`";
-    let (kind, default_name) = match (&d.point, &d.angle, &d.slider) {
-        (Some(point), None, None) => {
+    let expected = "expected exactly one of `point = \"P\"`, `angle = [\"P\", \"Q\"]`, \
+                    `slider = \"joint\"`, `transmission_angle = \"follower link\"`";
+    let (kind, default_name) = match (&d.point, &d.angle, &d.slider, &d.transmission_angle) {
+        (None, None, None, Some(link)) => {
+            if !geometry.links.iter().any(|l| l.name == *link.get_ref()) {
+                let known: Vec<&str> = geometry.links.iter().map(|l| l.name.as_str()).collect();
+                return Err(Error::UnknownName {
+                    location: cx.at(link),
+                    what: "link",
+                    name: link.get_ref().clone(),
+                    context: "`[[output]] transmission_angle`".to_owned(),
+                    known: known.join(", "),
+                });
+            }
+            let form = d
+                .form
+                .as_ref()
+                .map_or(TransmissionForm::Unsigned, |f| *f.get_ref());
+            (
+                OutputKind::Transmission {
+                    follower: link.get_ref().clone(),
+                    form,
+                    points: Vec::new(),
+                },
+                Some(format!("mu_{}", link.get_ref())),
+            )
+        }
+        (Some(point), None, None, None) => {
             let name = cx.point(point, geometry.names, "`[[output]] point`")?;
             if !geometry.on_a_link(name) {
                 return Err(cx.invalid(
@@ -70,7 +94,7 @@ fn resolve_one(
             }
             (OutputKind::Point(name.to_owned()), Some(name.to_owned()))
         }
-        (None, Some(angle), None) => {
+        (None, Some(angle), None, None) => {
             let line = line(cx, angle, geometry, "`[[output]] angle`")?;
             let reference = d
                 .reference
@@ -87,7 +111,7 @@ fn resolve_one(
                 None,
             )
         }
-        (None, None, Some(slider)) => {
+        (None, None, Some(slider), None) => {
             let Some(joint) = joints.iter().find(|j| &j.name == slider.get_ref()) else {
                 let known: Vec<&str> = joints.iter().map(|j| j.name.as_str()).collect();
                 return Err(Error::UnknownName {
@@ -192,6 +216,21 @@ fn resolve_one(
                 q.words()
             ),
         });
+    }
+    if let (Some(form), false) = (&d.form, matches!(kind, OutputKind::Transmission { .. })) {
+        return Err(Error::Invalid {
+            location: cx.source.location(form.span()),
+            message: "`form` applies to a `transmission_angle` output only".to_owned(),
+        });
+    }
+    if d.dead_positions && matches!(kind, OutputKind::Transmission { .. }) {
+        return Err(cx.invalid(
+            def,
+            format!(
+                "output `{name}`: `dead_positions` applies to an angle or slider output; the \
+                 transmission angle's extremes are printed with the linkage metrics"
+            ),
+        ));
     }
     if d.dead_positions && matches!(kind, OutputKind::Point(_)) {
         return Err(cx.invalid(
@@ -326,4 +365,91 @@ pub fn columns(output: &Output, units: &Units, drive: Dimension) -> Vec<Column> 
         }));
     }
     columns
+}
+
+/// Finds, for every `transmission_angle` output of `scene`, the four-bar or slider-crank
+/// loop whose follower it names ([`mechdiff_core::metrics::Loops::find`]) and records the
+/// points its μ is read from.
+///
+/// # Errors
+/// The model's errors; a link that is no recognised loop's follower, at the output, with
+/// the followers there are (or why the scene has none).
+pub(crate) fn locate_transmissions(scene: &mut super::model::Scene) -> Result<()> {
+    use super::model::JointKind as J;
+    if !(scene.outputs.iter()).any(|o| matches!(o.kind, OutputKind::Transmission { .. })) {
+        return Ok(());
+    }
+    let m = super::build::mechanism(scene)?;
+    let found = mechdiff_core::metrics::Loops::find(&m);
+    let joint = |name: &str| {
+        scene
+            .joints
+            .iter()
+            .find(|j| j.name == name)
+            .map(|j| &j.kind)
+    };
+    let pin = |name: &str| match joint(name) {
+        Some(J::Revolute { at, .. }) => Some(at.clone()),
+        Some(J::PinInSlot { pin, .. }) => Some(pin.clone()),
+        _ => None,
+    };
+    let line = |name: &str| match joint(name) {
+        Some(J::Prismatic { line, .. }) => Some(line.to_vec()),
+        Some(J::PinInSlot { slot, .. }) => Some(slot.to_vec()),
+        _ => None,
+    };
+    // (follower, points, the loop in words)
+    let mut followers: Vec<(String, Option<Vec<String>>, String)> = Vec::new();
+    if let Ok(loops) = &found {
+        for l in &loops.four_bars {
+            let [_, a, b, o] = l.joints.each_ref().map(|j| pin(j));
+            let points = (b.zip(a).zip(o)).map(|((b, a), o)| vec![b, a, o]);
+            let words = format!("four-bar {}", l.links.join("–"));
+            followers.push((l.links[3].clone(), points, words));
+        }
+        for l in &loops.slider_cranks {
+            let follower = l.slider.clone().unwrap_or_else(|| l.rod.clone());
+            let (a, b) = (pin(&l.joints[1]), pin(&l.joints[2]));
+            let path = line(l.joints.last().map_or("", String::as_str));
+            let points = (b.zip(a).zip(path)).map(|((b, a), path)| {
+                let mut points = vec![b, a];
+                points.extend(path);
+                points
+            });
+            let words = format!("slider-crank {}–{}–{}", l.frame, l.crank, l.rod);
+            followers.push((follower, points, words));
+        }
+    }
+    for output in &mut scene.outputs {
+        let OutputKind::Transmission {
+            follower, points, ..
+        } = &mut output.kind
+        else {
+            continue;
+        };
+        match followers.iter().find(|(f, ..)| f == follower) {
+            Some((_, Some(found), _)) => *points = found.clone(),
+            _ => {
+                let known: Vec<String> = (followers.iter())
+                    .map(|(f, _, words)| format!("`{f}` ({words})"))
+                    .collect();
+                let why = match (&found, known.is_empty()) {
+                    (Err(e), _) => format!("the model's loops could not be found: {e}"),
+                    (Ok(_), true) => "the scene has no four-bar or slider-crank loop driven \
+                                      through its input (see `mechdiff check`)"
+                        .to_owned(),
+                    (Ok(_), false) => format!("the followers there are: {}", known.join(", ")),
+                };
+                return Err(Error::Invalid {
+                    location: output.location.clone(),
+                    message: format!(
+                        "output `{}`: link `{follower}` is the follower of no four-bar or \
+                         slider-crank loop; {why}",
+                        output.name
+                    ),
+                });
+            }
+        }
+    }
+    Ok(())
 }

@@ -92,7 +92,7 @@ pub(crate) fn scene(file: &SceneFile, cx: &Context<'_>) -> Result<Scene> {
             });
         }
     }
-    Ok(Scene {
+    let mut scene = Scene {
         file: cx.source.file.clone(),
         title: file.title.clone(),
         units: cx.units,
@@ -108,7 +108,9 @@ pub(crate) fn scene(file: &SceneFile, cx: &Context<'_>) -> Result<Scene> {
         plot,
         solver,
         parameters: cx.parameters.ordered().to_vec(),
-    })
+    };
+    outputs::locate_transmissions(&mut scene)?;
+    Ok(scene)
 }
 
 impl Context<'_> {

@@ -97,6 +97,17 @@ impl FromStr for ParameterSweep {
     }
 }
 
+/// One run of a parameter study: the value, the scene read with it, and its report.
+#[derive(Debug, Clone)]
+pub struct StudyRun {
+    /// The parameter's value (as set).
+    pub value: f64,
+    /// The scene read with that value.
+    pub scene: Scene,
+    /// Its run.
+    pub report: Report,
+}
+
 /// Runs the scene `text` (named `file` in messages) once per value of `sweep`, with
 /// `settings` applied first, and joins the reports into one: the parameter's column first
 /// (unit `as set`: the value as given on the command line), then the columns of a run,
@@ -116,6 +127,20 @@ pub fn run_sweep(
     settings: &[Setting],
     sweep: &ParameterSweep,
 ) -> Result<(Scene, Report)> {
+    join(sweep, run_each(file, text, settings, sweep)?)
+}
+
+/// Runs the scene `text` once per value of `sweep` (see [`run_sweep`]), each run kept on
+/// its own: what the pictures of a study draw (one curve per value).
+///
+/// # Errors
+/// As [`run_sweep`].
+pub fn run_each(
+    file: &str,
+    text: &str,
+    settings: &[Setting],
+    sweep: &ParameterSweep,
+) -> Result<Vec<StudyRun>> {
     if settings.iter().any(|s| s.name == sweep.name) {
         return Err(Error::Setting {
             option: "--sweep",
@@ -126,7 +151,7 @@ pub fn run_sweep(
             ),
         });
     }
-    let mut joined: Option<(Scene, Report)> = None;
+    let mut runs = Vec::with_capacity(sweep.values.len());
     for &value in &sweep.values {
         let mut with = settings.to_vec();
         with.push(Setting {
@@ -151,7 +176,29 @@ pub fn run_sweep(
             },
         };
         let scene = super::parse_with(file, text, &with).map_err(at)?;
-        let mut report = super::run(&scene).map_err(at)?;
+        let report = super::run(&scene).map_err(at)?;
+        runs.push(StudyRun {
+            value,
+            scene,
+            report,
+        });
+    }
+    Ok(runs)
+}
+
+/// The runs of a study joined into one report (see [`run_sweep`]), with the scene of the
+/// first value.
+///
+/// # Errors
+/// [`Error::Setting`] when there is no run.
+pub fn join(sweep: &ParameterSweep, runs: Vec<StudyRun>) -> Result<(Scene, Report)> {
+    let mut joined: Option<(Scene, Report)> = None;
+    for StudyRun {
+        value,
+        scene,
+        mut report,
+    } in runs
+    {
         let tag = format!(" ({} = {value})", sweep.name);
         for row in &mut report.rows {
             row.insert(0, value);

@@ -204,6 +204,17 @@ pub fn write_jsonl(report: &Report, out: &mut impl Write) -> io::Result<()> {
 /// [{"output", "phi", "value"}], "limits": [{"phi", "kind", "joints"}]}`, every value in the scene's units with all the digits of an
 /// `f64`; a non-finite value is written as `null`.
 pub fn write_json(scene: &Scene, report: &Report, out: &mut impl Write) -> io::Result<()> {
+    write_json_with(scene, report, None, out)
+}
+
+/// [`write_json`] with the scene's linkage metrics under `"metrics"` (see
+/// [`super::metrics::SceneMetrics::json`]) when it has some.
+pub fn write_json_with(
+    scene: &Scene,
+    report: &Report,
+    metrics: Option<&super::metrics::SceneMetrics>,
+    out: &mut impl Write,
+) -> io::Result<()> {
     let columns: Vec<_> = (report.columns.iter())
         .map(|c| serde_json::json!({"name": c.name, "unit": c.unit}))
         .collect();
@@ -237,9 +248,12 @@ pub fn write_json(scene: &Scene, report: &Report, out: &mut impl Write) -> io::R
             })
         })
         .collect();
-    let value = serde_json::json!({
+    let mut value = serde_json::json!({
         "columns": columns, "rows": rows, "dead_positions": dead, "limits": limits
     });
+    if let Some(metrics) = metrics {
+        value["metrics"] = metrics.json(scene);
+    }
     serde_json::to_writer(&mut *out, &value)?;
     writeln!(out)
 }

@@ -56,16 +56,14 @@ impl<D: Scalar> TransmissionAngle<D> {
         let dot = coupler[0] * follower[0] + coupler[1] * follower[1];
         let signed = atan2(cross, dot);
         let unsigned = signed.abs();
-        let effective = if unsigned.re() <= FRAC_PI_2 {
-            unsigned
-        } else {
-            -unsigned + std::f64::consts::PI
-        };
+        // Without a branch on the value, so that a traced scalar records one expression
+        // for every pose: deviation = |μ − 90°|, effective = 90° − deviation.
+        let deviation = (unsigned - D::from(FRAC_PI_2)).abs();
         TransmissionAngle {
             signed,
             unsigned,
-            effective,
-            deviation: -effective + FRAC_PI_2,
+            effective: -deviation + FRAC_PI_2,
+            deviation,
         }
     }
 
