@@ -44,6 +44,7 @@
 //! assert!((report.value("drive0").unwrap() - 0.3).abs() < 1e-12);
 //! ```
 
+mod certify;
 mod error;
 mod linkage;
 mod lm;
@@ -51,6 +52,7 @@ mod problem;
 mod search;
 mod task;
 
+pub use certify::Certificate;
 pub use error::{Defect, SynthesisError};
 pub use linkage::{Linkage, LinkagePose, NoAssembly};
 pub use lm::LocalStop;

@@ -106,6 +106,10 @@ pub struct Report {
     pub local_stop: LocalStop,
     /// Wall-clock time.
     pub elapsed: Duration,
+    /// The answer moved through the targets by core's geometry solver
+    /// ([`Problem::certify`]): the largest deviation from the closed forms, or why it
+    /// cannot move (never expected: every candidate was checked between the targets).
+    pub certificate: Result<super::Certificate, crate::Error>,
 }
 
 impl Report {
@@ -313,6 +317,7 @@ impl Synthesis {
             stop,
             local_stop: best.stop,
             elapsed: started.elapsed(),
+            certificate: problem.certify(&best.x),
         })
     }
 
