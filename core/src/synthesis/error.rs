@@ -104,6 +104,17 @@ pub enum SynthesisError {
         /// What is allowed.
         reason: &'static str,
     },
+    /// The time limit ran out before any sample of the bounds was a usable mechanism.
+    #[error(
+        "the time limit of {limit:?} ran out after {samples} samples of the bounds, none of \
+         them a usable mechanism; allow more time or fewer samples"
+    )]
+    TimeLimit {
+        /// How many samples were tried.
+        samples: usize,
+        /// The limit.
+        limit: std::time::Duration,
+    },
     /// No sample of the bounds gives a usable mechanism: the bounds exclude every assembly
     /// (with the branch, order and constraints asked for).
     #[error(

@@ -106,11 +106,29 @@ pub(crate) fn minimize(
         for i in 0..free.len() {
             scale[i] = scale[i].max(jtj[(i, i)]).max(1e-300);
         }
-        let mut a = jtj.clone();
-        for i in 0..free.len() {
-            a[(i, i)] += lambda * scale[i];
+        // Variables at a bound that the descent direction −g pushes outwards stay there:
+        // the step is solved for the others only (a projected step would crawl along it).
+        let moving: Vec<usize> = (0..free.len())
+            .filter(|&k| {
+                let i = free[k];
+                !((x[i] <= lower[i] && g[k] > 0.0) || (x[i] >= upper[i] && g[k] < 0.0))
+            })
+            .collect();
+        let mut a = DMatrix::from_fn(moving.len(), moving.len(), |p, q| {
+            jtj[(moving[p], moving[q])]
+        });
+        for (p, &k) in moving.iter().enumerate() {
+            a[(p, p)] += lambda * scale[k];
         }
-        let step = a.cholesky().map(|c| c.solve(&(-&g)));
+        let rhs = DVector::from_iterator(moving.len(), moving.iter().map(|&k| -g[k]));
+        let step = a.cholesky().map(|c| {
+            let reduced = c.solve(&rhs);
+            let mut full = DVector::<f64>::zeros(free.len());
+            for (p, &k) in moving.iter().enumerate() {
+                full[k] = reduced[p];
+            }
+            full
+        });
         let Some(step) = step.filter(|s| s.iter().all(|v| v.is_finite())) else {
             lambda *= nu;
             nu *= 2.0;

@@ -10,7 +10,7 @@ use num_dual::Dual64;
 use std::time::{Duration, Instant};
 
 /// The most starts a search may sample.
-pub const MAX_STARTS: usize = 1_000_000;
+pub const MAX_STARTS: usize = 100_000;
 
 /// How the local phase gets its Jacobian.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -143,7 +143,11 @@ impl Report {
                  minimum is better (more starts may find it)",
                 self.local_searches, self.gradient_norm
             ),
-            LocalStop::Iterations => "the best local search ran out of iterations".into(),
+            LocalStop::Iterations => format!(
+                "the best local search ran out of iterations while still descending \
+                 (|Jᵀr| = {:.3e}); allow more iterations",
+                self.gradient_norm
+            ),
             LocalStop::Budget => "the best local search was stopped by the budget".into(),
             LocalStop::Objective => "it reached the level asked for".into(),
         };
@@ -236,6 +240,12 @@ impl Synthesis {
                 .map(|(d, n)| (*d, *n))
                 .collect::<Vec<_>>()
         };
+        if ranked.is_empty() && deadline.is_some_and(|d| Instant::now() >= d) {
+            return Err(SynthesisError::TimeLimit {
+                samples,
+                limit: self.time_limit.unwrap_or_default(),
+            });
+        }
         if ranked.is_empty() {
             return Err(SynthesisError::NoAssembly {
                 samples,
@@ -244,6 +254,13 @@ impl Synthesis {
         }
         ranked.sort_by(|a, b| a.0.total_cmp(&b.0));
         let feasible_samples = ranked.len();
+        // The best sample stands as the answer if the budget allows no local search.
+        let fallback = lm::Local {
+            x: ranked[0].1.clone(),
+            objective: ranked[0].0,
+            gradient_norm: f64::NAN,
+            stop: LocalStop::Budget,
+        };
         let mut f = Evaluator {
             problem,
             free: &free,
@@ -288,10 +305,17 @@ impl Synthesis {
                 break;
             }
         }
+        if stop != StopReason::Objective {
+            if deadline.is_some_and(|d| Instant::now() >= d) {
+                stop = StopReason::Time;
+            } else if f.evaluations >= self.max_evaluations {
+                stop = StopReason::Evaluations;
+            }
+        }
         for (d, n) in defects.iter_mut().zip(&f.rejected) {
             *d += n;
         }
-        let best = best.expect("at least one feasible sample was searched");
+        let best = best.unwrap_or(fallback);
         let residuals = problem.residuals(&best.x).unwrap_or_default();
         let names = problem.variable_names();
         let at_bounds = free
@@ -333,7 +357,7 @@ impl Synthesis {
             return bad(
                 "starts",
                 self.starts as f64,
-                "between 1 and 1 000 000 samples",
+                "between 1 and 100 000 samples",
             );
         }
         if self.local_searches == 0 || self.iterations == 0 || self.iterations > 100_000 {
