@@ -256,7 +256,7 @@ mod tests {
 
     #[test]
     fn four_bar_closes_its_loop_on_both_branches() {
-        let x = [0.0, 0.0, 1.0, 0.0, 0.4, 1.2, 0.9, 0.5, 0.3];
+        let x: [f64; 9] = [0.0, 0.0, 1.0, 0.0, 0.4, 1.2, 0.9, 0.5, 0.3];
         for branch in [1.0, -1.0] {
             let pose = Linkage::FourBar.pose(&x, 0.7, &[branch]).unwrap();
             let [a, b] = [pose.points[0], pose.points[1]];
@@ -271,7 +271,7 @@ mod tests {
 
     #[test]
     fn a_dyad_too_short_to_close_is_no_assembly() {
-        let x = [0.0, 0.0, 3.0, 0.0, 0.4, 1.0, 1.0, 0.5, 0.3];
+        let x: [f64; 9] = [0.0, 0.0, 3.0, 0.0, 0.4, 1.0, 1.0, 0.5, 0.3];
         let err = Linkage::FourBar.pose(&x, 0.0, &[1.0]).unwrap_err();
         assert_eq!(err.dyad, 0);
         assert!(err.margin < 0.0);
