@@ -257,3 +257,72 @@ fn four_bar_motion_generation_is_recovered() {
     );
     assert_recovered(&reports, &known);
 }
+
+#[test]
+fn constraints_reject_what_they_should_and_keep_the_known_linkage() {
+    use mechdiff_core::synthesis::{Constraints, Defect};
+    let rel: Vec<f64> = (0..10).map(|k| 0.5 * k as f64).collect();
+    let phis: Vec<f64> = rel.iter().map(|r| 0.3 + r).collect();
+    let task = Task::Path {
+        point: "P".into(),
+        targets: targets(Linkage::FourBar, &FOUR_BAR, &phis, 2),
+        timing: Timing::Relative(rel),
+    };
+    // The known four-bar is a Grashof crank-rocker (0.4 + 1.204 < 1.1 + 0.9) whose
+    // transmission angle stays between 46° and 106° (cos μ = (1.1² + 0.9² − d²)/(2·1.1·0.9)
+    // with d = |A − O4| from 0.804 to 1.604): it passes a 30° minimum, fails a 60° one.
+    let with = |min_transmission: f64| {
+        four_bar_bounds(Problem::builder(Linkage::FourBar, task.clone()))
+            .constraints(Constraints {
+                crank_rotates: true,
+                min_transmission,
+                ..Constraints::default()
+            })
+            .build()
+            .unwrap()
+    };
+    let mut x = FOUR_BAR.to_vec();
+    x.push(0.3);
+    assert_eq!(with(30f64.to_radians()).check(&x), Ok(()));
+    assert_eq!(
+        with(60f64.to_radians()).check(&x),
+        Err(Defect::TransmissionBelowMinimum)
+    );
+    // A crank longer than the rocker cannot turn fully.
+    let mut long_crank = x.clone();
+    long_crank[4] = 1.0;
+    assert_eq!(
+        with(0.0).check(&long_crank),
+        Err(Defect::CrankDoesNotRotate)
+    );
+    // Solved with the constraints, the known linkage is still found.
+    let problem = with(30f64.to_radians());
+    let report = Synthesis::seeded(0)
+        .with_starts(2000, 200)
+        .solve(&problem)
+        .unwrap();
+    assert!(report.objective <= 1e-20, "{report:?}");
+    assert!((report.value("crank").unwrap() - 0.4).abs() <= 1e-9);
+}
+
+#[test]
+fn free_drive_angles_must_increase_within_a_turn() {
+    use mechdiff_core::synthesis::Defect;
+    let phis = [0.2, 1.0, 1.8];
+    let task = Task::Path {
+        point: "P".into(),
+        targets: targets(Linkage::FourBar, &FOUR_BAR, &phis, 2),
+        timing: Timing::Free,
+    };
+    let problem = four_bar_bounds(Problem::builder(Linkage::FourBar, task))
+        .build()
+        .unwrap();
+    let at = |drive: [f64; 3]| {
+        let mut x = FOUR_BAR.to_vec();
+        x.extend(drive);
+        problem.check(&x)
+    };
+    assert_eq!(at(phis), Ok(()));
+    assert_eq!(at([0.2, 1.8, 1.0]), Err(Defect::OutOfOrder));
+    assert_eq!(at([0.2, 1.0, 0.2 + 7.0]), Err(Defect::OutOfOrder));
+}
