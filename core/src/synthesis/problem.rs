@@ -6,6 +6,8 @@ use super::error::{Defect, SynthesisError};
 use super::linkage::{Linkage, LinkagePose};
 use super::task::{Task, Timing};
 use crate::Scalar;
+use nalgebra::DMatrix;
+use num_dual::Dual64;
 use std::f64::consts::{PI, TAU};
 
 /// The most targets a task may have.
@@ -153,6 +155,22 @@ impl Problem {
             }
         }
         Ok(r)
+    }
+
+    /// The exact Jacobian of the residuals at `x` with respect to the variables `columns`
+    /// (indices into [`Problem::variable_names`]): one evaluation of
+    /// [`Problem::residuals`] in `Dual64` numbers per column, no difference quotient. The
+    /// objective's gradient is 2·Jᵀr.
+    pub fn jacobian(&self, x: &[f64], columns: &[usize]) -> Result<DMatrix<f64>, Defect> {
+        let mut jac = DMatrix::zeros(self.task.residual_count(), columns.len());
+        for (k, &i) in columns.iter().enumerate() {
+            let mut xd: Vec<Dual64> = x.iter().map(|&v| Dual64::from(v)).collect();
+            xd[i].eps = 1.0;
+            for (row, v) in self.residuals(&xd)?.iter().enumerate() {
+                jac[(row, k)] = v.eps;
+            }
+        }
+        Ok(jac)
     }
 
     /// The sum of squared residuals at `x`, or the first defect found there.

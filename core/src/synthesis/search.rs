@@ -6,7 +6,6 @@ use super::lm::{self, LeastSquares, LocalStop};
 use super::problem::Problem;
 use super::task::Timing;
 use nalgebra::DMatrix;
-use num_dual::Dual64;
 use std::time::{Duration, Instant};
 
 /// The most starts a search may sample.
@@ -443,15 +442,8 @@ impl LeastSquares for Evaluator<'_> {
         let mut jac = DMatrix::zeros(rows, self.free.len());
         match self.derivatives {
             Derivatives::Exact => {
-                for (k, &i) in self.free.iter().enumerate() {
-                    self.evaluations += 1;
-                    let mut xd: Vec<Dual64> = x.iter().map(|&v| Dual64::from(v)).collect();
-                    xd[i].eps = 1.0;
-                    let r = self.problem.residuals(&xd).ok()?;
-                    for (row, v) in r.iter().enumerate() {
-                        jac[(row, k)] = v.eps;
-                    }
-                }
+                self.evaluations += self.free.len();
+                jac = self.problem.jacobian(x, self.free).ok()?;
             }
             Derivatives::CentralDifferences => {
                 let (lower, upper) = self.problem.bounds();
