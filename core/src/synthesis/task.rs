@@ -7,7 +7,7 @@ pub enum Timing {
     /// The drive angle of each target, absolute (rad).
     Absolute(Vec<f64>),
     /// The drive angle of each target relative to an unknown starting angle `drive0` (a design
-    /// variable): φᵢ = drive0 + given[i] (rad).
+    /// variable): φᵢ = drive0 + the i-th given angle (rad).
     Relative(Vec<f64>),
     /// Free: each target's drive angle is a design variable (`drive1`, `drive2`, …), the
     /// targets met in the order given along one counter-clockwise turn of the crank
