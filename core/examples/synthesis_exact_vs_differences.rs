@@ -1,5 +1,5 @@
 //! What exact derivatives buy in synthesis: the known-answer problems (targets generated
-//! from a known four-bar, slider-crank and Stephenson six-bar; function and motion
+//! from a known four-bar (timed and untimed), slider-crank and Stephenson six-bar; function and motion
 //! generation of a known four-bar) solved over ten seeds with the exact Jacobian (dual
 //! numbers) and with central differences, same starts, same limits. Prints, per problem and
 //! method: successes (objective ≤ 1e-20 within the limits), median and total residual
@@ -129,8 +129,26 @@ fn problems() -> Result<Vec<(&'static str, Problem, usize, usize)>, SynthesisErr
         },
     ))
     .build()?;
+    let untimed = four_bar_bounds(Problem::builder(
+        Linkage::FourBar,
+        Task::Path {
+            point: "P".into(),
+            targets: (0..12)
+                .map(|k| {
+                    let phi = 0.2 + 0.5 * k as f64;
+                    Linkage::FourBar
+                        .pose(&FOUR_BAR, phi, &[1.0])
+                        .expect("assembles")
+                        .points[2]
+                })
+                .collect(),
+            timing: Timing::Free,
+        },
+    ))
+    .build()?;
     Ok(vec![
         ("four-bar path, timed (10 points)", four_bar, 2000, 200),
+        ("four-bar path, untimed (12 points)", untimed, 4000, 400),
         (
             "slider-crank path, timed (10 points)",
             slider_crank,

@@ -382,3 +382,26 @@ fn exact_jacobian_matches_extrapolated_differences() {
         }
     }
 }
+
+#[test]
+fn four_bar_path_without_timing_is_recovered() {
+    // Untimed: 12 points (24 equations for 9 dimensions and 12 drive angles). The Roberts
+    // cognates trace the same curve, but with other pivots or cranks that do not turn
+    // counter-clockwise through the points; with the order required, the known linkage is
+    // the answer found.
+    let phis: Vec<f64> = (0..12).map(|k| 0.2 + 0.5 * k as f64).collect();
+    let task = Task::Path {
+        point: "P".into(),
+        targets: targets(Linkage::FourBar, &FOUR_BAR, &phis, 2),
+        timing: Timing::Free,
+    };
+    let problem = four_bar_bounds(Problem::builder(Linkage::FourBar, task))
+        .build()
+        .unwrap();
+    let reports = over_seeds(&problem, &Synthesis::default().with_starts(4000, 400));
+    let names = Linkage::FourBar.variable_names();
+    let mut known: Vec<(&str, f64)> = names.iter().copied().zip(FOUR_BAR).collect();
+    let drives: Vec<String> = (1..=12).map(|i| format!("drive{i}")).collect();
+    known.extend(drives.iter().map(String::as_str).zip(phis.iter().copied()));
+    assert_recovered(&reports, &known);
+}

@@ -378,7 +378,8 @@ impl Synthesis {
 
     /// `starts` points of the box, one in each of `starts` slices of every free variable
     /// (slices matched at random, the point uniform in its cell); fixed variables at their
-    /// value; free drive angles sorted (the order the targets are met in).
+    /// value; free drive angles sorted (the order the targets are met in) and brought within
+    /// one turn of the first.
     fn latin_hypercube(&self, problem: &Problem, free: &[usize]) -> Vec<Vec<f64>> {
         let (lower, upper) = problem.bounds();
         let mut rng = fastrand::Rng::with_seed(self.seed);
@@ -395,7 +396,18 @@ impl Synthesis {
         if matches!(problem.task.timing(), Timing::Free) {
             let first = problem.variable_names().len() - problem.task.target_count();
             for point in &mut points {
-                point[first..].sort_by(f64::total_cmp);
+                let drive = &mut point[first..];
+                drive.sort_by(f64::total_cmp);
+                // Within one turn: offsets from the first angle shrunk towards it (inside
+                // the bounds still, as they only move towards a value within them).
+                let span = drive[drive.len() - 1] - drive[0];
+                let most = 0.999 * std::f64::consts::TAU;
+                if span >= most {
+                    let start = drive[0];
+                    for phi in drive.iter_mut() {
+                        *phi = start + (*phi - start) * (most / span);
+                    }
+                }
             }
         }
         points
