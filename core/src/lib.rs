@@ -20,7 +20,9 @@
 //!   references accuracy is measured against;
 //! - `simulate`: the machine in motion under its motor (`machine`: motor characteristics,
 //!   the reduced equation of motion integrated with error control and events, start-up,
-//!   steady state, flywheel sizing; differential-equations).
+//!   steady state, flywheel sizing; differential-equations);
+//! - `synthesis`: dimensions from what a linkage must do (`synthesis`: path, function and
+//!   motion generation as least squares with exact Jacobians from dual numbers; fastrand).
 #![cfg_attr(docsrs, feature(doc_cfg))]
 
 pub mod balancing;
@@ -41,6 +43,9 @@ pub mod position;
 pub mod scalar;
 pub mod sweep;
 pub mod symbolic;
+#[cfg(feature = "synthesis")]
+#[cfg_attr(docsrs, doc(cfg(feature = "synthesis")))]
+pub mod synthesis;
 pub mod trace;
 
 pub use dead_position::{DeadPosition, DeadPositionSearch};

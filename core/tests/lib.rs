@@ -37,3 +37,5 @@ mod symbolic_reference_precision;
 mod symbolic_removable;
 mod symbolic_rules;
 mod symbolic_signs;
+mod synthesis_bad_input;
+mod synthesis_known_answers;

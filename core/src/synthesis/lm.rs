@@ -1,0 +1,189 @@
+//! Levenberg–Marquardt in a box: the local phase of the search.
+//!
+//! Written here rather than taken from the `levenberg-marquardt` crate (0.15 builds on
+//! nalgebra 0.34; the workspace is on 0.35, so it would compile a second nalgebra) or argmin
+//! (its least-squares solvers need an ndarray or nalgebra backend feature of their own): the
+//! method is short, and it must reject steps into infeasible mechanisms (a candidate that
+//! does not assemble or moves through a limit position has no residual), which a generic
+//! implementation cannot express.
+//!
+//! Each iteration solves `(JᵀJ + λ·diag(JᵀJ)) δ = −Jᵀr` (Marquardt's scaling, the diagonal
+//! kept at its largest so far as in MINPACK), clips the step to the bounds, and accepts it
+//! when the gain ratio ρ (actual over predicted decrease) exceeds 1e-4; λ follows Nielsen's
+//! rule (λ·max(1/3, 1 − (2ρ − 1)³) on success, λ·ν with ν doubling on failure). An
+//! infeasible trial point is a failure.
+
+use nalgebra::{DMatrix, DVector};
+use std::time::Instant;
+
+/// How a local search ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum LocalStop {
+    /// The objective reached the level asked for.
+    Objective,
+    /// The step became negligible against x (relative 1e-15): a stationary point, or the
+    /// best the bounds allow.
+    Step,
+    /// The damping grew past 1e16: no descent found (a stationary point or a boundary of
+    /// the feasible set).
+    Damping,
+    /// The iteration limit.
+    Iterations,
+    /// The evaluation or time budget of the whole search.
+    Budget,
+}
+
+/// The result of one local search.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Local {
+    pub x: Vec<f64>,
+    pub objective: f64,
+    pub gradient_norm: f64,
+    pub stop: LocalStop,
+}
+
+/// The functions a local search calls and the limits it honours.
+pub(crate) trait LeastSquares {
+    /// The residuals at x, `None` where x is not a usable mechanism.
+    fn residuals(&mut self, x: &[f64]) -> Option<Vec<f64>>;
+    /// The Jacobian at x (rows: residuals, columns: the free variables), `None` if it cannot
+    /// be formed (a difference step into an infeasible point on both sides).
+    fn jacobian(&mut self, x: &[f64]) -> Option<DMatrix<f64>>;
+    /// Whether the search's budget is spent.
+    fn exhausted(&self) -> bool;
+}
+
+/// Minimises the sum of squares from `x` in the box [lower, upper] (only the entries of
+/// `free` move).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn minimize(
+    f: &mut dyn LeastSquares,
+    mut x: Vec<f64>,
+    free: &[usize],
+    lower: &[f64],
+    upper: &[f64],
+    stop_objective: f64,
+    max_iterations: usize,
+    deadline: Option<Instant>,
+) -> Local {
+    let Some(mut r) = f.residuals(&x).map(DVector::from_vec) else {
+        return Local {
+            objective: f64::INFINITY,
+            gradient_norm: f64::NAN,
+            x,
+            stop: LocalStop::Damping,
+        };
+    };
+    let mut objective = r.norm_squared();
+    let mut lambda = 1e-3;
+    let mut nu = 2.0;
+    let mut scale = DVector::<f64>::zeros(free.len());
+    let mut gradient_norm = f64::NAN;
+    let mut fresh = true;
+    let mut jac = DMatrix::zeros(0, 0);
+    let mut stop = LocalStop::Iterations;
+    for _ in 0..max_iterations {
+        if objective <= stop_objective {
+            stop = LocalStop::Objective;
+            break;
+        }
+        if f.exhausted() || deadline.is_some_and(|d| Instant::now() >= d) {
+            stop = LocalStop::Budget;
+            break;
+        }
+        if fresh {
+            let Some(j) = f.jacobian(&x) else {
+                stop = LocalStop::Damping;
+                break;
+            };
+            jac = j;
+            fresh = false;
+        }
+        let jtj = jac.tr_mul(&jac);
+        let g = jac.tr_mul(&r);
+        gradient_norm = g.norm();
+        for i in 0..free.len() {
+            scale[i] = scale[i].max(jtj[(i, i)]).max(1e-300);
+        }
+        // Variables at a bound that the descent direction −g pushes outwards stay there:
+        // the step is solved for the others only (a projected step would crawl along it).
+        let moving: Vec<usize> = (0..free.len())
+            .filter(|&k| {
+                let i = free[k];
+                !((x[i] <= lower[i] && g[k] > 0.0) || (x[i] >= upper[i] && g[k] < 0.0))
+            })
+            .collect();
+        let mut a = DMatrix::from_fn(moving.len(), moving.len(), |p, q| {
+            jtj[(moving[p], moving[q])]
+        });
+        for (p, &k) in moving.iter().enumerate() {
+            a[(p, p)] += lambda * scale[k];
+        }
+        let rhs = DVector::from_iterator(moving.len(), moving.iter().map(|&k| -g[k]));
+        let step = a.cholesky().map(|c| {
+            let reduced = c.solve(&rhs);
+            let mut full = DVector::<f64>::zeros(free.len());
+            for (p, &k) in moving.iter().enumerate() {
+                full[k] = reduced[p];
+            }
+            full
+        });
+        let Some(step) = step.filter(|s| s.iter().all(|v| v.is_finite())) else {
+            lambda *= nu;
+            nu *= 2.0;
+            if lambda > 1e16 {
+                stop = LocalStop::Damping;
+                break;
+            }
+            continue;
+        };
+        let mut trial = x.clone();
+        let mut taken = DVector::<f64>::zeros(free.len());
+        for (k, &i) in free.iter().enumerate() {
+            trial[i] = (x[i] + step[k]).clamp(lower[i], upper[i]);
+            taken[k] = trial[i] - x[i];
+        }
+        let small = free
+            .iter()
+            .enumerate()
+            .all(|(k, &i)| taken[k].abs() <= 1e-15 * x[i].abs().max(1e-3));
+        if small {
+            stop = LocalStop::Step;
+            break;
+        }
+        let predicted = -(2.0 * g.dot(&taken) + (&jac * &taken).norm_squared());
+        let accepted = f.residuals(&trial).map(DVector::from_vec).and_then(|rt| {
+            let value = rt.norm_squared();
+            let rho = (objective - value) / predicted;
+            (predicted > 0.0 && rho > 1e-4).then_some((rt, value, rho))
+        });
+        match accepted {
+            Some((rt, value, rho)) => {
+                x = trial;
+                r = rt;
+                objective = value;
+                lambda *= (1.0 - (2.0 * rho - 1.0).powi(3)).max(1.0 / 3.0);
+                nu = 2.0;
+                fresh = true;
+            }
+            None => {
+                lambda *= nu;
+                nu *= 2.0;
+                if lambda > 1e16 {
+                    stop = LocalStop::Damping;
+                    break;
+                }
+            }
+        }
+    }
+    if objective <= stop_objective {
+        stop = LocalStop::Objective;
+    }
+    Local {
+        x,
+        objective,
+        gradient_norm,
+        stop,
+    }
+}

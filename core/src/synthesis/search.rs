@@ -1,0 +1,502 @@
+//! The search: space-filling starts from the bounds alone (a seeded Latin hypercube), ranked
+//! by their objective, each polished by Levenberg–Marquardt with the exact Jacobian.
+
+use super::error::{Defect, SynthesisError};
+use super::lm::{self, LeastSquares, LocalStop};
+use super::problem::Problem;
+use super::task::Timing;
+use nalgebra::DMatrix;
+use std::time::{Duration, Instant};
+
+/// The most starts a search may sample.
+pub const MAX_STARTS: usize = 100_000;
+
+/// How the local phase gets its Jacobian.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Derivatives {
+    /// Exact: one evaluation of the residuals in `Dual64` numbers per free variable.
+    Exact,
+    /// Central differences, step h = ε^(1/3)·max(|x|, 1) (one-sided where a side is
+    /// infeasible): two evaluations per free variable; the baseline exact derivatives are
+    /// compared with.
+    CentralDifferences,
+}
+
+/// Search settings, with builder methods; [`Synthesis::solve`] runs it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Synthesis {
+    /// Seed of the starts: the same seed gives the same result.
+    pub seed: u64,
+    /// Samples of the bounds (Latin hypercube).
+    pub starts: usize,
+    /// The most local searches (the best-ranked feasible samples first).
+    pub local_searches: usize,
+    /// Iterations of one local search.
+    pub iterations: usize,
+    /// Stop as soon as the objective is at most this.
+    pub stop_objective: f64,
+    /// The most residual evaluations in all (a Jacobian counts as its passes).
+    pub max_evaluations: usize,
+    /// Wall-clock limit of the whole search.
+    pub time_limit: Option<Duration>,
+    /// Exact or difference Jacobians.
+    pub derivatives: Derivatives,
+}
+
+impl Default for Synthesis {
+    fn default() -> Self {
+        Synthesis {
+            seed: 0,
+            starts: 1000,
+            local_searches: 100,
+            iterations: 200,
+            stop_objective: 1e-24,
+            max_evaluations: 10_000_000,
+            time_limit: None,
+            derivatives: Derivatives::Exact,
+        }
+    }
+}
+
+/// How the whole search ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum StopReason {
+    /// The objective reached [`Synthesis::stop_objective`].
+    Objective,
+    /// Every local search asked for was run.
+    Starts,
+    /// The evaluation limit.
+    Evaluations,
+    /// The time limit.
+    Time,
+}
+
+/// What the search found, and what it cost.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Report {
+    /// The design variables' names and values (fixed ones included), in the problem's order.
+    pub variables: Vec<(String, f64)>,
+    /// The sum of squared residuals.
+    pub objective: f64,
+    /// The residuals (per target: x, y; the function's error; x, y, weighted angle).
+    pub residuals: Vec<f64>,
+    /// The norm of the objective's half-gradient Jᵀr at the answer.
+    pub gradient_norm: f64,
+    /// Variables at a bound at the answer (name, and whether the upper one).
+    pub at_bounds: Vec<(String, bool)>,
+    /// Residual evaluations (a dual Jacobian counts one per free variable, a difference one
+    /// two per free variable).
+    pub evaluations: usize,
+    /// Samples of the bounds.
+    pub samples: usize,
+    /// Samples that were usable mechanisms.
+    pub feasible_samples: usize,
+    /// Local searches run.
+    pub local_searches: usize,
+    /// Local searches that reached [`Synthesis::stop_objective`].
+    pub successes: usize,
+    /// Samples and trial points rejected, by defect.
+    pub defects: Vec<(Defect, usize)>,
+    /// How the search ended.
+    pub stop: StopReason,
+    /// How the best local search ended.
+    pub local_stop: LocalStop,
+    /// Wall-clock time.
+    pub elapsed: Duration,
+    /// The answer moved through the targets by core's geometry solver
+    /// ([`Problem::certify`]): the largest deviation from the closed forms, or why it
+    /// cannot move (never expected: every candidate was checked between the targets).
+    pub certificate: Result<super::Certificate, crate::Error>,
+}
+
+impl Report {
+    /// The value of design variable `name`.
+    pub fn value(&self, name: &str) -> Option<f64> {
+        self.variables.iter().find(|(n, _)| n == name).map(|v| v.1)
+    }
+
+    /// The values in the problem's order.
+    pub fn x(&self) -> Vec<f64> {
+        self.variables.iter().map(|v| v.1).collect()
+    }
+
+    /// `None` when the objective reached the level asked for; otherwise why the answer is
+    /// not better, in words: the budget ran out, or the best search ended at a stationary
+    /// point (a local or the global minimum of targets out of reach) or against bounds.
+    pub fn why_not_better(&self, settings: &Synthesis) -> Option<String> {
+        if self.objective <= settings.stop_objective {
+            return None;
+        }
+        let budget = match self.stop {
+            StopReason::Evaluations => "the evaluation limit was reached; ",
+            StopReason::Time => "the time limit was reached; ",
+            _ => "",
+        };
+        let end = match self.local_stop {
+            LocalStop::Step | LocalStop::Damping => format!(
+                "the best of {} local searches ended where no step lowers the objective \
+                 (|Jᵀr| = {:.3e}): a minimum of the squared errors, so the targets are out \
+                 of reach of this linkage within the bounds and constraints, or another \
+                 minimum is better (more starts may find it)",
+                self.local_searches, self.gradient_norm
+            ),
+            LocalStop::Iterations => format!(
+                "the best local search ran out of iterations while still descending \
+                 (|Jᵀr| = {:.3e}); allow more iterations",
+                self.gradient_norm
+            ),
+            LocalStop::Budget => "the best local search was stopped by the budget".into(),
+            LocalStop::Objective => "it reached the level asked for".into(),
+        };
+        let bounds = if self.at_bounds.is_empty() {
+            String::new()
+        } else {
+            format!(
+                "; at a bound: {}",
+                self.at_bounds
+                    .iter()
+                    .map(|(n, up)| format!("{n} ({})", if *up { "upper" } else { "lower" }))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        };
+        Some(format!("{budget}{end}{bounds}"))
+    }
+}
+
+impl Synthesis {
+    /// Default settings with seed `seed`.
+    pub fn seeded(seed: u64) -> Self {
+        Synthesis {
+            seed,
+            ..Synthesis::default()
+        }
+    }
+
+    /// Sets the number of samples and of local searches.
+    pub fn with_starts(mut self, samples: usize, local_searches: usize) -> Self {
+        self.starts = samples;
+        self.local_searches = local_searches;
+        self
+    }
+
+    /// Sets the derivatives of the local phase.
+    pub fn with_derivatives(mut self, derivatives: Derivatives) -> Self {
+        self.derivatives = derivatives;
+        self
+    }
+
+    /// Sets the wall-clock limit.
+    pub fn with_time_limit(mut self, limit: Duration) -> Self {
+        self.time_limit = Some(limit);
+        self
+    }
+
+    /// Sets the evaluation limit.
+    pub fn with_max_evaluations(mut self, evaluations: usize) -> Self {
+        self.max_evaluations = evaluations;
+        self
+    }
+
+    /// Sets the objective at which the search stops.
+    pub fn with_stop_objective(mut self, objective: f64) -> Self {
+        self.stop_objective = objective;
+        self
+    }
+
+    /// Runs the search on `problem`.
+    pub fn solve(&self, problem: &Problem) -> Result<Report, SynthesisError> {
+        self.validate()?;
+        let started = Instant::now();
+        let deadline = self.time_limit.map(|t| started + t);
+        let (lower, upper) = problem.bounds();
+        let free: Vec<usize> = (0..lower.len()).filter(|&i| lower[i] < upper[i]).collect();
+        let mut defects = vec![0usize; Defect::ALL.len()];
+        let count = |d: Defect, defects: &mut Vec<usize>| {
+            defects[Defect::ALL.iter().position(|&k| k == d).unwrap_or(0)] += 1;
+        };
+        let mut ranked = Vec::new();
+        let mut evaluations = 0;
+        for x in self.latin_hypercube(problem, &free) {
+            evaluations += 1;
+            match problem.objective(&x) {
+                Ok(value) if value.is_finite() => ranked.push((value, x)),
+                Ok(_) => count(Defect::NoAssemblyAtTarget, &mut defects),
+                Err(d) => count(d, &mut defects),
+            }
+            if deadline.is_some_and(|d| Instant::now() >= d) {
+                break;
+            }
+        }
+        let samples = evaluations;
+        let tally = |defects: &[usize]| {
+            Defect::ALL
+                .iter()
+                .zip(defects)
+                .filter(|(_, n)| **n > 0)
+                .map(|(d, n)| (*d, *n))
+                .collect::<Vec<_>>()
+        };
+        if ranked.is_empty() && deadline.is_some_and(|d| Instant::now() >= d) {
+            return Err(SynthesisError::TimeLimit {
+                samples,
+                limit: self.time_limit.unwrap_or_default(),
+            });
+        }
+        if ranked.is_empty() {
+            return Err(SynthesisError::NoAssembly {
+                samples,
+                defects: tally(&defects),
+            });
+        }
+        ranked.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let feasible_samples = ranked.len();
+        // The best sample stands as the answer if the budget allows no local search.
+        let fallback = lm::Local {
+            x: ranked[0].1.clone(),
+            objective: ranked[0].0,
+            gradient_norm: f64::NAN,
+            stop: LocalStop::Budget,
+        };
+        let mut f = Evaluator {
+            problem,
+            free: &free,
+            derivatives: self.derivatives,
+            evaluations,
+            max_evaluations: self.max_evaluations,
+            deadline,
+            rejected: vec![0; Defect::ALL.len()],
+        };
+        let mut best: Option<lm::Local> = None;
+        let (mut searches, mut successes) = (0, 0);
+        let mut stop = StopReason::Starts;
+        for (_, x0) in ranked.into_iter().take(self.local_searches) {
+            if f.exhausted() {
+                stop = if deadline.is_some_and(|d| Instant::now() >= d) {
+                    StopReason::Time
+                } else {
+                    StopReason::Evaluations
+                };
+                break;
+            }
+            let local = lm::minimize(
+                &mut f,
+                x0,
+                &free,
+                lower,
+                upper,
+                self.stop_objective,
+                self.iterations,
+                deadline,
+            );
+            searches += 1;
+            successes += usize::from(local.objective <= self.stop_objective);
+            if best.as_ref().is_none_or(|b| local.objective < b.objective) {
+                best = Some(local);
+            }
+            if best
+                .as_ref()
+                .is_some_and(|b| b.objective <= self.stop_objective)
+            {
+                stop = StopReason::Objective;
+                break;
+            }
+        }
+        if stop != StopReason::Objective {
+            if deadline.is_some_and(|d| Instant::now() >= d) {
+                stop = StopReason::Time;
+            } else if f.evaluations >= self.max_evaluations {
+                stop = StopReason::Evaluations;
+            }
+        }
+        for (d, n) in defects.iter_mut().zip(&f.rejected) {
+            *d += n;
+        }
+        let best = best.unwrap_or(fallback);
+        let residuals = problem.residuals(&best.x).unwrap_or_default();
+        let names = problem.variable_names();
+        let at_bounds = free
+            .iter()
+            .filter_map(|&i| {
+                let x = best.x[i];
+                let touch = |b: f64| (x - b).abs() <= 1e-12 * b.abs().max(1.0);
+                (touch(lower[i]) || touch(upper[i])).then(|| (names[i].clone(), touch(upper[i])))
+            })
+            .collect();
+        Ok(Report {
+            variables: names.iter().cloned().zip(best.x.iter().copied()).collect(),
+            objective: best.objective,
+            residuals,
+            gradient_norm: best.gradient_norm,
+            at_bounds,
+            evaluations: f.evaluations,
+            samples,
+            feasible_samples,
+            local_searches: searches,
+            successes,
+            defects: tally(&defects),
+            stop,
+            local_stop: best.stop,
+            elapsed: started.elapsed(),
+            certificate: problem.certify(&best.x),
+        })
+    }
+
+    fn validate(&self) -> Result<(), SynthesisError> {
+        let bad = |setting, value: f64, reason| {
+            Err(SynthesisError::InvalidSetting {
+                setting,
+                value,
+                reason,
+            })
+        };
+        if self.starts == 0 || self.starts > MAX_STARTS {
+            return bad(
+                "starts",
+                self.starts as f64,
+                "between 1 and 100 000 samples",
+            );
+        }
+        if self.local_searches == 0 || self.iterations == 0 || self.iterations > 100_000 {
+            return bad(
+                "local_searches / iterations",
+                self.iterations.min(self.local_searches) as f64,
+                "at least one local search of 1 to 100 000 iterations",
+            );
+        }
+        if !(self.stop_objective >= 0.0 && self.stop_objective.is_finite()) {
+            return bad(
+                "stop_objective",
+                self.stop_objective,
+                "a finite objective ≥ 0",
+            );
+        }
+        Ok(())
+    }
+
+    /// `starts` points of the box, one in each of `starts` slices of every free variable
+    /// (slices matched at random, the point uniform in its cell); fixed variables at their
+    /// value; free drive angles sorted (the order the targets are met in) and brought within
+    /// one turn of the first.
+    fn latin_hypercube(&self, problem: &Problem, free: &[usize]) -> Vec<Vec<f64>> {
+        let (lower, upper) = problem.bounds();
+        let mut rng = fastrand::Rng::with_seed(self.seed);
+        let n = self.starts;
+        let mut points = vec![lower.to_vec(); n];
+        for &i in free {
+            let mut slices: Vec<usize> = (0..n).collect();
+            rng.shuffle(&mut slices);
+            for (point, slice) in points.iter_mut().zip(slices) {
+                let t = (slice as f64 + rng.f64()) / n as f64;
+                point[i] = lower[i] + (upper[i] - lower[i]) * t;
+            }
+        }
+        if matches!(problem.task.timing(), Timing::Free) {
+            let first = problem.variable_names().len() - problem.task.target_count();
+            for point in &mut points {
+                let drive = &mut point[first..];
+                drive.sort_by(f64::total_cmp);
+                // Within one turn: offsets from the first angle shrunk towards it (inside
+                // the bounds still, as they only move towards a value within them).
+                let span = drive[drive.len() - 1] - drive[0];
+                let most = 0.999 * std::f64::consts::TAU;
+                if span >= most {
+                    let start = drive[0];
+                    for phi in drive.iter_mut() {
+                        *phi = start + (*phi - start) * (most / span);
+                    }
+                }
+            }
+        }
+        points
+    }
+}
+
+/// The problem's residuals and Jacobians for the local phase, counting evaluations and
+/// rejected trial points.
+struct Evaluator<'p> {
+    problem: &'p Problem,
+    free: &'p [usize],
+    derivatives: Derivatives,
+    evaluations: usize,
+    max_evaluations: usize,
+    deadline: Option<Instant>,
+    rejected: Vec<usize>,
+}
+
+impl Evaluator<'_> {
+    fn feasible(&mut self, x: &[f64]) -> Option<Vec<f64>> {
+        self.evaluations += 1;
+        match self
+            .problem
+            .check(x)
+            .and_then(|()| self.problem.residuals(x))
+        {
+            Ok(r) if r.iter().all(|v| v.is_finite()) => Some(r),
+            Ok(_) => None,
+            Err(d) => {
+                self.rejected[Defect::ALL.iter().position(|&k| k == d).unwrap_or(0)] += 1;
+                None
+            }
+        }
+    }
+}
+
+impl LeastSquares for Evaluator<'_> {
+    fn residuals(&mut self, x: &[f64]) -> Option<Vec<f64>> {
+        self.feasible(x)
+    }
+
+    fn jacobian(&mut self, x: &[f64]) -> Option<DMatrix<f64>> {
+        let rows = self.problem.task.residual_count();
+        let mut jac = DMatrix::zeros(rows, self.free.len());
+        match self.derivatives {
+            Derivatives::Exact => {
+                self.evaluations += self.free.len();
+                jac = self.problem.jacobian(x, self.free).ok()?;
+            }
+            Derivatives::CentralDifferences => {
+                let (lower, upper) = self.problem.bounds();
+                for (k, &i) in self.free.iter().enumerate() {
+                    let h = f64::EPSILON.cbrt() * x[i].abs().max(1.0);
+                    let side = |s: f64, me: &mut Self| {
+                        let mut xs = x.to_vec();
+                        xs[i] = (x[i] + s * h).clamp(lower[i], upper[i]);
+                        let step = xs[i] - x[i];
+                        me.evaluations += 1;
+                        let r = me.problem.residuals(&xs).ok()?;
+                        (step != 0.0).then_some((r, step))
+                    };
+                    let plus = side(1.0, self);
+                    let minus = side(-1.0, self);
+                    let r0 = || self.problem.residuals(x).ok();
+                    let column: Vec<f64> = match (plus, minus) {
+                        (Some((rp, hp)), Some((rm, hm))) => rp
+                            .iter()
+                            .zip(&rm)
+                            .map(|(p, m)| (p - m) / (hp - hm))
+                            .collect(),
+                        (Some((rp, hp)), None) => {
+                            rp.iter().zip(r0()?).map(|(p, c)| (p - c) / hp).collect()
+                        }
+                        (None, Some((rm, hm))) => {
+                            rm.iter().zip(r0()?).map(|(m, c)| (m - c) / hm).collect()
+                        }
+                        (None, None) => return None,
+                    };
+                    for (row, v) in column.iter().enumerate() {
+                        jac[(row, k)] = *v;
+                    }
+                }
+            }
+        }
+        Some(jac)
+    }
+
+    fn exhausted(&self) -> bool {
+        self.evaluations >= self.max_evaluations
+            || self.deadline.is_some_and(|d| Instant::now() >= d)
+    }
+}
