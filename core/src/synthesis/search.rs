@@ -108,7 +108,7 @@ pub struct Report {
     /// The answer moved through the targets by core's geometry solver
     /// ([`Problem::certify`]): the largest deviation from the closed forms, or why it
     /// cannot move (never expected: every candidate was checked between the targets).
-    pub certificate: Result<super::Certificate, crate::Error>,
+    pub certificate: Result<super::certify::Certificate, crate::Error>,
 }
 
 impl Report {
