@@ -49,6 +49,7 @@ pub mod cam;
 pub(crate) mod decimate;
 pub mod diagram;
 pub(crate) mod drawing;
+pub mod motion;
 pub mod raster;
 pub mod report;
 pub mod run;

@@ -48,6 +48,7 @@ pub mod format;
 mod joints;
 pub(crate) mod launch;
 pub mod model;
+pub mod motion;
 pub(crate) mod outputs;
 pub mod parameters;
 mod placement;

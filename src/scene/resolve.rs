@@ -46,6 +46,8 @@ pub(crate) fn scene(file: &SceneFile, cx: &Context<'_>) -> Result<Scene> {
     let outputs = outputs::resolve(cx, &file.outputs, &geometry, &joints, &drive)?;
     let sections = super::dynamics::DynamicsSections::of(file);
     let dynamics = super::dynamics::resolve(cx, &sections, &geometry, &joints, drive.kind)?;
+    let motion =
+        super::motion::resolve(cx, file.motor.as_ref(), file.simulate.as_ref(), drive.kind)?;
     let balancing =
         super::balancing::resolve(cx, file.rotor.as_ref(), file.balancing.as_ref(), &geometry)?;
     let plot = super::plot::resolve(cx, file.plot.as_ref(), &geometry, drive.kind)?;
@@ -105,6 +107,7 @@ pub(crate) fn scene(file: &SceneFile, cx: &Context<'_>) -> Result<Scene> {
         outputs,
         dynamics,
         balancing,
+        motion,
         plot,
         solver,
         parameters: cx.parameters.ordered().to_vec(),
