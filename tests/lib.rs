@@ -35,6 +35,7 @@ mod sensitivity;
 mod sensitivity_dynamics;
 mod sensitivity_exact;
 mod sensitivity_methods;
+mod motion_scenes;
 mod streaming;
 mod sweep_limits;
 mod user_files;
