@@ -261,9 +261,9 @@ pub enum Error {
         analysis: &'static str,
         /// ` at drive position 12.5 deg, t = 0.31 s`, when the failure has a position.
         position: String,
-        /// The engine's error.
+        /// The engine's error (boxed: it carries the geometry's error at a position).
         #[source]
-        source: mechdiff_core::machine::MotionError,
+        source: Box<mechdiff_core::machine::MotionError>,
     },
     /// No friction forces consistent with the motion exist at a drive position: the
     /// mechanism is self-locking there (located at the drive, which would have to push

@@ -334,11 +334,11 @@ fn simulated_rows_are_streamed_not_kept() {
     drop(sinks);
     assert!(report.time_rows > 10);
     assert_eq!(csv.writes, report.time_rows + 1);
-    let mut thinned = mechdiff::scene::motion::run::Thinned::default();
+    let mut thinned = mechdiff::scene::motion::Thinned::default();
     for k in 0..1_000_000 {
         thinned.push([k as f64, 0.0]);
     }
-    let cap = mechdiff::scene::motion::run::CURVE_POINTS;
+    let cap = mechdiff::scene::motion::CURVE_POINTS;
     assert!(thinned.points.len() <= cap && thinned.points.len() >= cap / 2);
     assert_eq!(thinned.points[0], [0.0, 0.0]);
 }

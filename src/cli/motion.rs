@@ -70,10 +70,10 @@ pub fn run(args: &RunArgs, scene: &Scene) -> Result<(), Error> {
     if let Some(file) = time_csv {
         file.commit()?;
     }
-    if let Some(file) = steady_csv {
-        if report.steady_rows > 0 {
-            file.commit()?;
-        }
+    if let Some(file) = steady_csv
+        && report.steady_rows > 0
+    {
+        file.commit()?;
     }
     if let Some(dir) = &args.plot {
         let title = scene.title.as_deref().unwrap_or("the machine in motion");

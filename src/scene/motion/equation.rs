@@ -9,7 +9,7 @@ use crate::scene::units::Dimension;
 
 use super::format::Find;
 use super::model::SceneMotion;
-use super::run::significant;
+use super::words::significant;
 
 /// The equation of motion the run integrates, one line per term the scene gives (masses,
 /// rotor, flywheel; weights, loads with their ranges, friction, efficiencies; the motor),

@@ -37,12 +37,15 @@
 //! max_steps = 1000000          # per run
 //! ```
 
+mod curves;
 mod equation;
 mod format;
 mod model;
 mod resolve;
 pub mod run;
+mod words;
 
+pub use curves::{CURVE_POINTS, Curves, Thinned};
 pub use equation::describe;
 pub use format::{CharacteristicDef, CharacteristicKind, Find, MeanSpeedDef, SimulateDef};
 pub use model::SceneMotion;

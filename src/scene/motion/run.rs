@@ -9,28 +9,25 @@
 
 use mechdiff_core::DriveState;
 use mechdiff_core::machine::{
-    AngleSample, CoastDown, EventKind, FlywheelSizing, Machine, MeanSpeed, MotionError, Record,
-    Sample, Start, StartUp, SteadySettings, SteadyState, coast_down, flywheel, start_up,
-    steady_state,
+    AngleSample, CoastDown, EventKind, FlywheelSizing, Machine, MotionError, Record, Sample, Start,
+    StartUp, SteadySettings, SteadyState, coast_down, flywheel, start_up, steady_state,
 };
 
 use crate::error::{Error, Location, Result};
-use crate::scene::error_context::ErrorContext;
-use crate::scene::model::{DriveKind, Scene};
+use crate::scene::model::Scene;
 use crate::scene::outputs::Column;
 use crate::scene::plan::Plan;
 use crate::scene::run::{columns, sweeper};
 use crate::scene::setup::{RunOptions, Setup};
 use crate::scene::sweep::Sweeper;
-use crate::scene::units::{Dimension, Units};
+use crate::scene::units::Dimension;
 use crate::stream::motion::{MotionSinks, Rows, Table};
 
+use super::curves::Curves;
 use super::equation;
 use super::format::Find;
 use super::model::SceneMotion;
-
-/// The most points of each curve kept for the diagrams (thinned as the rows stream by).
-pub const CURVE_POINTS: usize = 4096;
+use super::words::{Words, column, flywheel_lines, motion_error, significant, steady_line};
 
 /// What a run with `[simulate]` found (its rows went to the sinks).
 #[derive(Debug, Clone, PartialEq)]
@@ -57,48 +54,6 @@ pub struct MotionReport {
     pub summary: Vec<String>,
 }
 
-/// The curves of the diagrams in printed units, each thinned to at most [`CURVE_POINTS`].
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct Curves {
-    /// ω over t.
-    pub omega_time: Thinned,
-    /// The motor's torque over t.
-    pub motor_torque: Thinned,
-    /// ω over φ at the steady state.
-    pub omega_angle: Thinned,
-    /// x and y labels with units: time, drive angle, speed, torque.
-    pub labels: [String; 4],
-}
-
-/// A curve kept with bounded memory: when it holds [`CURVE_POINTS`] points every other one
-/// is dropped and from then on only every other point is taken (the stride doubles).
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct Thinned {
-    /// The points kept.
-    pub points: Vec<[f64; 2]>,
-    stride: usize,
-    seen: usize,
-}
-
-impl Thinned {
-    /// Offers a point.
-    pub fn push(&mut self, point: [f64; 2]) {
-        let stride = self.stride.max(1);
-        if self.seen.is_multiple_of(stride) {
-            self.points.push(point);
-            if self.points.len() >= CURVE_POINTS {
-                let mut k = 0;
-                self.points.retain(|_| {
-                    k += 1;
-                    k % 2 == 1
-                });
-                self.stride = 2 * stride;
-            }
-        }
-        self.seen += 1;
-    }
-}
-
 /// The code of a row's `event` column.
 fn event_code(kind: Option<EventKind>) -> f64 {
     match kind {
@@ -107,77 +62,6 @@ fn event_code(kind: Option<EventKind>) -> f64 {
         Some(EventKind::Turn) => 2.0,
         Some(EventKind::Speed) => 3.0,
         Some(EventKind::Rest) => 4.0,
-    }
-}
-
-fn column(name: &str, unit: &str, factor: f64) -> Column {
-    Column {
-        name: name.to_owned(),
-        unit: unit.to_owned(),
-        factor,
-    }
-}
-
-/// The scene's words for the machine's quantities.
-struct Words<'a> {
-    cx: &'a ErrorContext<'a>,
-    drive: DriveKind,
-}
-
-impl Words<'_> {
-    fn units(&self) -> &Units {
-        &self.cx.units
-    }
-
-    fn of(&self, dimension: Dimension) -> Column {
-        column(
-            "",
-            self.units().symbol(dimension),
-            self.units().factor(dimension),
-        )
-    }
-
-    fn named(&self, name: &str, dimension: Dimension) -> Column {
-        Column {
-            name: name.to_owned(),
-            ..self.of(dimension)
-        }
-    }
-
-    /// `value` (SI) of `dimension` in the scene's unit, to 7 significant digits.
-    fn text(&self, value: f64, dimension: Dimension) -> String {
-        let v = self.units().from_si(value, dimension);
-        format!("{} {}", significant(v), self.units().symbol(dimension))
-    }
-
-    fn speed(&self, value: f64) -> String {
-        self.text(value, self.drive.speed_dimension())
-    }
-
-    fn position(&self, value: f64) -> String {
-        self.text(value, self.drive.dimension())
-    }
-
-    fn drive_torque(&self) -> Dimension {
-        match self.drive {
-            DriveKind::Angle => Dimension::Torque,
-            DriveKind::Displacement => Dimension::Force,
-        }
-    }
-
-    fn inertia(&self) -> Dimension {
-        match self.drive {
-            DriveKind::Angle => Dimension::MomentOfInertia,
-            DriveKind::Displacement => Dimension::Mass,
-        }
-    }
-}
-
-/// `v` to 7 significant digits, without trailing zeros.
-pub(crate) fn significant(v: f64) -> String {
-    match format!("{v:.6e}").parse::<f64>() {
-        Ok(r) => Units::tidy(r),
-        Err(_) => v.to_string(),
     }
 }
 
@@ -209,40 +93,6 @@ fn steady_columns(w: &Words<'_>) -> Vec<Column> {
         w.named("M_drive", w.drive_torque()),
         w.named("J", w.inertia()),
     ]
-}
-
-/// The engine's `error` in `analysis`, placed at `location`, with its drive position in the
-/// scene's units.
-fn motion_error(
-    w: &Words<'_>,
-    analysis: &'static str,
-    location: &Location,
-    error: MotionError,
-) -> Error {
-    let (phi, time) = match &error {
-        MotionError::Mechanism { phi, time, .. } | MotionError::Stalled { phi, time } => {
-            (Some(*phi), Some(*time))
-        }
-        MotionError::NoInertia { phi, .. }
-        | MotionError::NoConsistentAcceleration { phi, .. }
-        | MotionError::NonFinite { phi, .. }
-        | MotionError::CannotStart { phi, .. } => (Some(*phi), None),
-        MotionError::TooManySteps { phi, time, .. } => (Some(*phi), Some(*time)),
-        _ => (None, None),
-    };
-    let mut position = String::new();
-    if let Some(phi) = phi.filter(|p| p.is_finite()) {
-        position = format!(" at drive position {}", w.position(phi));
-        if let Some(t) = time.filter(|t| t.is_finite()) {
-            position.push_str(&format!(", t = {} s", significant(t)));
-        }
-    }
-    Error::Motion {
-        location: location.clone(),
-        analysis,
-        position,
-        source: error,
-    }
 }
 
 /// The rows of one table: the machine's state, then the scene's outputs at that state.
@@ -637,65 +487,4 @@ fn steady_settings(
         tolerances: *tolerances,
         ..SteadySettings::default()
     }
-}
-
-/// The steady state's headline numbers.
-fn steady_line(w: &Words<'_>, s: &SteadyState) -> String {
-    format!(
-        "steady state (from {} at {}): period {} s; ω_min {} at {}, ω_max {} at {}; mean speed \
-         {} as the time mean 2π/T and {} as the mid-range (ω_max + ω_min)/2; δ = \
-         (ω_max − ω_min)/ω_mean = {} against the time mean, {} against the mid-range \
-         ({} turns integrated)",
-        w.speed(s.omega),
-        w.position(s.phi),
-        significant(s.period),
-        w.speed(s.min.0),
-        w.position(s.min.1),
-        w.speed(s.max.0),
-        w.position(s.max.1),
-        w.speed(s.mean_time),
-        w.speed(s.mean_mid),
-        significant(s.delta_time),
-        significant(s.delta_mid),
-        s.turns,
-    )
-}
-
-/// The flywheel's headline numbers: exact and classic, and why they differ.
-fn flywheel_lines(w: &Words<'_>, motion: &SceneMotion, f: &FlywheelSizing) -> Vec<String> {
-    let mean = match motion.mean {
-        MeanSpeed::Time => "the time mean",
-        MeanSpeed::MidRange => "the mid-range speed",
-    };
-    let inertia = w.inertia();
-    let difference = if f.exact > 0.0 {
-        format!("{} %", significant(100.0 * (f.classic - f.exact) / f.exact))
-    } else {
-        "— (no flywheel needed)".to_owned()
-    };
-    vec![
-        format!(
-            "flywheel for δ = {} against {} ({}): {} exact (the periodic solution with the \
-             motor's characteristic and the varying J(φ), iterated {} times; simulated δ = {}), \
-             {} by the classic energy method (ΔE_max = {} J over ω_m² δ, less the rotor and the \
-             mean J_m); classic − exact = {}",
-            significant(f.target),
-            mean,
-            w.speed(f.mean_speed),
-            w.text(f.exact, inertia),
-            f.iterations,
-            significant(match motion.mean {
-                MeanSpeed::Time => f.steady.delta_time,
-                MeanSpeed::MidRange => f.steady.delta_mid,
-            }),
-            w.text(f.classic, inertia),
-            significant(f.energy_swing),
-            difference,
-        ),
-        "  the classic method holds the speed constant where it computes the torques, the \
-         motor's torque constant at its mean (a torque that falls with speed damps the \
-         fluctuation) and the inertia constant (the varying J_m(φ) exchanges energy with the \
-         flywheel); the exact value keeps all three"
-            .to_owned(),
-    ]
 }
