@@ -399,3 +399,67 @@ fn the_shaper_motor_work_over_a_steady_period_equals_the_cutting_work() {
     );
     assert!(f.exact > 0.0 && f.classic > 0.0);
 }
+
+/// `mechdiff run` of a scene with `[simulate]` (the rack machine started, then coasting to
+/// rest against its friction): the plan names the equation's terms, the tables and the
+/// headline numbers are printed, `--csv` writes the table over time (its time increasing,
+/// its last row at rest, event 4), `--plot` draws ω(t) and the motor's torque; an option
+/// the run cannot honour (`--json`) is refused naming it.
+#[test]
+fn mechdiff_run_simulates_prints_and_writes_the_tables_and_diagrams() {
+    use crate::common::{mechdiff, stderr, stdout, temp_file};
+    let text = text("rack_slotted_link_motor.toml").replacen(
+        "find = [\"start_up\"]",
+        "find = [\"start_up\", \"coast_down\"]",
+        1,
+    );
+    let path = temp_file("rack_motor.toml");
+    std::fs::write(&path, &text).unwrap();
+    let dir = temp_file("rack_motor_plot");
+    let csv = temp_file("rack_motor.csv");
+    let out = mechdiff(&[
+        "run",
+        path.to_str().unwrap(),
+        "--csv",
+        csv.to_str().unwrap(),
+        "--plot",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let printed = stdout(&out);
+    for says in [
+        "J(φ)·φ̈ + ½·J′(φ)·φ̇²",
+        "weights (g = 9.81",
+        "Coulomb friction in A, incline",
+        "the gearbox η = 0.9",
+        "linear (DC shunt)",
+        "the motion in time",
+        "start-up from rest",
+        "coast-down (motor off)",
+    ] {
+        assert!(printed.contains(says), "{says}: {printed}");
+    }
+    assert!(!printed.contains("steady state over one turn"));
+    let written = std::fs::read_to_string(&csv).unwrap();
+    let rows: Vec<Vec<f64>> = (written.lines().skip(1))
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert!(written.starts_with("t [s],phi [deg],omega [rad/s],alpha [rad/s^2],M_motor [N*m]"));
+    assert!(rows.windows(2).all(|w| w[1][0] >= w[0][0]));
+    let last = rows.last().unwrap();
+    assert_eq!((last[2], last[7]), (0.0, 4.0));
+    for name in ["omega_time.svg", "motor_torque.svg"] {
+        assert!(
+            std::fs::read_to_string(dir.join(name))
+                .unwrap()
+                .starts_with("<svg")
+        );
+    }
+    assert!(!dir.join("omega_angle.svg").exists());
+    let refused = mechdiff(&["run", path.to_str().unwrap(), "--json", "x.json"]);
+    assert!(!refused.status.success() && stderr(&refused).contains("--json"));
+    let _ = std::fs::remove_dir_all(&dir);
+    for f in [path, csv] {
+        let _ = std::fs::remove_file(f);
+    }
+}
