@@ -249,6 +249,22 @@ pub enum Error {
         /// What is wrong and what is expected.
         message: String,
     },
+    /// The machine moving under its motor (`[simulate]`) failed: the engine's error, placed
+    /// at the part of the scene it concerns (the motor's characteristic for a motor that
+    /// cannot start the machine, `turns` for a steady state not found within them, …),
+    /// with the drive position in the scene's units.
+    #[error("{location}: {analysis}{position}: {source}")]
+    Motion {
+        /// Where in the scene the cause is written.
+        location: Location,
+        /// The analysis that failed (`"start-up"`, `"steady state"`, …).
+        analysis: &'static str,
+        /// ` at drive position 12.5 deg, t = 0.31 s`, when the failure has a position.
+        position: String,
+        /// The engine's error (boxed: it carries the geometry's error at a position).
+        #[source]
+        source: Box<mechdiff_core::machine::MotionError>,
+    },
     /// No friction forces consistent with the motion exist at a drive position: the
     /// mechanism is self-locking there (located at the drive, which would have to push
     /// through it).

@@ -24,6 +24,7 @@ mod hard_cases;
 mod import;
 mod joint_types;
 mod linkage_metrics;
+mod motion_scenes;
 mod parameter_study;
 mod pictures;
 mod run_evaluator;

@@ -5,6 +5,7 @@ pub mod cam;
 pub mod check;
 pub mod formula;
 pub mod import;
+pub mod motion;
 pub mod rotor;
 pub mod run;
 

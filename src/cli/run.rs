@@ -42,6 +42,9 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
     };
     // The scene's cam files are inputs now too: refused before the run.
     files::refuse_inputs(outputs(args))?;
+    if read.motion.is_some() {
+        return super::motion::run(args, &read);
+    }
     let study_asked = sensitivity::requested(&text) || args.monte_carlo.is_some();
     let mut study = None;
     // A parameter study's runs, kept apart for its pictures (one curve per value).

@@ -51,6 +51,7 @@ pub(crate) mod decimate;
 pub mod diagram;
 pub(crate) mod drawing;
 pub mod path;
+pub mod motion;
 pub mod raster;
 pub mod report;
 pub mod run;

@@ -57,6 +57,8 @@ pub struct SceneFile {
     pub efficiency: Option<Spanned<BTreeMap<Name, Spanned<super::dynamics::EfficiencyDef>>>>,
     /// A motor at the drive joint.
     pub motor: Option<Spanned<super::dynamics::MotorDef>>,
+    /// The machine moving under its motor (see [`super::motion`]).
+    pub simulate: Option<Spanned<super::motion::SimulateDef>>,
     /// Dynamic outputs (forces, reactions, drive torque, energy, shaking force).
     #[serde(default, rename = "dynamics")]
     pub dynamics: Vec<Spanned<super::dynamics::DynamicsOutputDef>>,

@@ -49,6 +49,7 @@ mod joints;
 pub(crate) mod launch;
 pub mod metrics;
 pub mod model;
+pub mod motion;
 pub(crate) mod outputs;
 pub mod parameters;
 mod placement;

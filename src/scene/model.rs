@@ -33,6 +33,8 @@ pub struct Scene {
     pub dynamics: Option<super::dynamics::SceneDynamics>,
     /// The rotor and counterweights to balance, if the scene has them.
     pub balancing: Option<super::balancing::SceneBalancing>,
+    /// The machine moving under its motor (`[simulate]` and the motor's characteristic).
+    pub motion: Option<super::motion::SceneMotion>,
     /// What the pictures show (`[plot]`; empty when the file has none).
     pub plot: Plot,
     /// The position solver every solve of the scene uses (`[solver]`; the default solver

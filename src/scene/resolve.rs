@@ -46,6 +46,27 @@ pub(crate) fn scene(file: &SceneFile, cx: &Context<'_>) -> Result<Scene> {
     let outputs = outputs::resolve(cx, &file.outputs, &geometry, &joints, &drive)?;
     let sections = super::dynamics::DynamicsSections::of(file);
     let dynamics = super::dynamics::resolve(cx, &sections, &geometry, &joints, drive.kind)?;
+    let motion =
+        super::motion::resolve(cx, file.motor.as_ref(), file.simulate.as_ref(), drive.kind)?;
+    if let Some(simulate) = &file.simulate {
+        if file.balancing.is_some() || file.rotor.is_some() {
+            return Err(cx.invalid(
+                simulate,
+                "`[simulate]` runs the machine under its motor; balancing is sized at a \
+                 prescribed speed: run it from a scene without `[simulate]`",
+            ));
+        }
+        let power = (dynamics.iter().flat_map(|d| &d.outputs))
+            .find(|o| o.quantity == super::dynamics::DynamicQuantity::PowerBalance);
+        if let Some(o) = power {
+            return Err(Error::Invalid {
+                location: o.location.clone(),
+                message: "the power balance divides by the drive speed, which is 0 where a \
+                          simulated machine starts from rest: ask for `drive_torque` instead"
+                    .to_owned(),
+            });
+        }
+    }
     let balancing =
         super::balancing::resolve(cx, file.rotor.as_ref(), file.balancing.as_ref(), &geometry)?;
     let plot = super::plot::resolve(cx, file.plot.as_ref(), &geometry, drive.kind)?;
@@ -105,6 +126,7 @@ pub(crate) fn scene(file: &SceneFile, cx: &Context<'_>) -> Result<Scene> {
         outputs,
         dynamics,
         balancing,
+        motion,
         plot,
         solver,
         parameters: cx.parameters.ordered().to_vec(),

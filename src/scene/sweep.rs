@@ -166,6 +166,15 @@ impl<'s> Sweeper<'s> {
         self
     }
 
+    /// Sets the drive speed and acceleration the next rows are evaluated at, outputs and
+    /// `[[dynamics]]` alike (the machine in motion: each row at its simulated φ̇, φ̈).
+    pub(crate) fn set_drive(&mut self, drive: DriveState) {
+        self.outputs_mut().drive = drive;
+        if let Some(d) = &mut self.dynamics {
+            d.set_drive(drive);
+        }
+    }
+
     /// What the sweep evaluated so far (of a sweep solved in pieces: the pieces kept).
     pub fn counts(&self) -> Counts {
         self.counts

@@ -17,6 +17,7 @@
 //! whose width is bounded for any `f64` (`-d.dddddddde-308`).
 
 pub mod format;
+pub mod motion;
 pub mod record;
 pub(crate) mod speculate;
 

@@ -150,6 +150,10 @@ pub struct MotorDef {
     /// Gearbox efficiency in (0, 1]; default 1.
     #[serde(default)]
     pub efficiency: Option<Spanned<Number>>,
+    /// The torque–speed characteristic on the motor shaft, which `[simulate]` moves the
+    /// machine with (see [`crate::scene::motion`]).
+    #[serde(default)]
+    pub characteristic: Option<Spanned<crate::scene::motion::CharacteristicDef>>,
 }
 
 /// What a `[[dynamics]]` output reports.

@@ -98,6 +98,11 @@ impl<'s> DynamicsSweep<'s> {
         }))
     }
 
+    /// Sets the drive speed and acceleration the next positions are evaluated at.
+    pub(crate) fn set_drive(&mut self, drive: DriveState) {
+        self.drive = drive;
+    }
+
     /// Forgets what was summarised so far: a piece of a sweep counts its own.
     pub(crate) fn restart(&mut self) {
         self.shaking = None;

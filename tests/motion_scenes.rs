@@ -1,0 +1,465 @@
+//! Scenes with `[simulate]`: the machine moving under its motor, read, run and checked —
+//! located errors for bad input, the scene's outputs along the motion equal to a
+//! prescribed-motion run's at the simulated state, rows streamed, and the shipped examples
+//! (seed 000's shaper, seed 001's rack machine) against physical facts.
+
+use mechdiff::scene::motion::{MotionReport, run};
+use mechdiff::scene::{self, Positions, Scene};
+use mechdiff::stream::Sink;
+use mechdiff::stream::motion::MotionSinks;
+use std::path::PathBuf;
+
+fn text(name: &str) -> String {
+    std::fs::read_to_string(format!("{}/scenes/{name}", env!("CARGO_MANIFEST_DIR"))).unwrap()
+}
+
+/// The 1-based line of the first occurrence of `needle` in `text`.
+fn line_of(text: &str, needle: &str) -> usize {
+    let at = text
+        .find(needle)
+        .unwrap_or_else(|| panic!("{needle} not in the scene"));
+    text[..at].lines().count() + usize::from(text[..at].ends_with('\n'))
+}
+
+/// The rows of a CSV table in SI (each value times its column's factor).
+fn rows_si(csv: &[u8], columns: &[mechdiff::scene::Column]) -> Vec<Vec<f64>> {
+    let text = String::from_utf8(csv.to_vec()).unwrap();
+    let mut lines = text.lines();
+    let header = lines.next().unwrap();
+    assert_eq!(header.split(',').count(), columns.len());
+    lines
+        .map(|l| {
+            l.split(',')
+                .zip(columns)
+                .map(|(v, c)| v.parse::<f64>().unwrap() * c.factor)
+                .collect()
+        })
+        .collect()
+}
+
+/// Runs the `[simulate]` of `scene`: its report and its tables over time and over the angle
+/// (SI).
+fn simulated(scene: &Scene) -> (MotionReport, Vec<Vec<f64>>, Vec<Vec<f64>>) {
+    let (mut time, mut steady) = (Vec::new(), Vec::new());
+    let mut sinks = MotionSinks {
+        table: None,
+        time_csv: Some(Sink {
+            path: PathBuf::from("time.csv"),
+            out: &mut time,
+        }),
+        steady_csv: Some(Sink {
+            path: PathBuf::from("steady.csv"),
+            out: &mut steady,
+        }),
+    };
+    let report = run(scene, &mut sinks).unwrap();
+    drop(sinks);
+    let t = if time.is_empty() {
+        Vec::new()
+    } else {
+        rows_si(&time, &report.time_columns)
+    };
+    let s = if steady.is_empty() {
+        Vec::new()
+    } else {
+        rows_si(&steady, &report.steady_columns)
+    };
+    (report, t, s)
+}
+
+/// The prescribed-motion run of `scene` (without `[simulate]`) at drive position `phi` with
+/// speed `omega` and acceleration `alpha` (SI): its columns' names and its one row.
+fn prescribed(scene: &Scene, phi: f64, omega: f64, alpha: f64) -> (Vec<String>, Vec<f64>) {
+    let mut s = scene.clone();
+    s.motion = None;
+    s.positions = Positions::List(vec![phi]);
+    s.drive.speed = Some(omega);
+    s.drive.acceleration = alpha;
+    let report = scene::run(&s).unwrap();
+    let names = report.columns.iter().map(|c| c.name.clone()).collect();
+    (names, report.rows[0].clone())
+}
+
+/// Bad `[simulate]` and motor data are refused where they are written, saying what is
+/// wrong: a tolerance of 0, turns and time out of their bounds or not finite, a negative
+/// flywheel or rotor inertia, a breakdown slip of 0, a characteristic's missing number.
+#[test]
+fn bad_simulate_sections_are_located_errors() {
+    let good = text("shaper_motor.toml");
+    let cases: [(&str, &str, &str, &str); 8] = [
+        (
+            "tolerance = 1e-10",
+            "tolerance = 0",
+            "tolerance = 0",
+            "tolerance",
+        ),
+        (
+            "turns = 200",
+            "turns = 1e9",
+            "turns = 1e9",
+            "whole number from 2",
+        ),
+        (
+            "time = 20 ",
+            "time = inf ",
+            "time = inf",
+            "longest simulated time",
+        ),
+        (
+            "turns = 200",
+            "turns = 200\nflywheel = -1",
+            "flywheel = -1",
+            "must be ≥ 0",
+        ),
+        (
+            "rotor_inertia = 0.012",
+            "rotor_inertia = -0.012",
+            "rotor_inertia",
+            "rotor_inertia",
+        ),
+        (
+            "breakdown_slip = 0.25",
+            "breakdown_slip = 0",
+            "characteristic =",
+            "breakdown_slip",
+        ),
+        (
+            "breakdown_torque = 66, ",
+            "",
+            "characteristic =",
+            "needs `breakdown_torque`",
+        ),
+        ("delta = 0.02 ", "delta = 2 ", "delta = 2", "`delta`"),
+    ];
+    for (old, new, at, says) in cases {
+        assert!(good.contains(old), "{old}");
+        let bad = good.replacen(old, new, 1);
+        let e = scene::parse("shaper_motor.toml", &bad)
+            .unwrap_err()
+            .to_string();
+        let line = line_of(&bad, at);
+        assert!(
+            e.starts_with(&format!("shaper_motor.toml:{line}:")) && e.contains(says),
+            "{new}: {e}"
+        );
+    }
+    // A flywheel without its δ, and a steady state of a drive that slides.
+    let bad = good.replacen("delta = 0.02 ", "", 1);
+    let e = scene::parse("s.toml", &bad).unwrap_err().to_string();
+    assert!(e.contains("add `delta"), "{e}");
+}
+
+/// A motor too weak to move the machine against the cutting force where it starts is a
+/// located error at the motor's characteristic, with the drive position in degrees; a
+/// steady state not found within the turns allowed is one at `turns`. Neither hangs or
+/// gives a NaN.
+#[test]
+fn a_motor_that_cannot_start_and_a_missing_steady_state_are_located_errors() {
+    let good = text("shaper_motor.toml");
+    let weak = good
+        .replacen(
+            "characteristic = { type = \"induction\", synchronous_speed = 1500, breakdown_torque = 66, breakdown_slip = 0.25 }",
+            "characteristic = { type = \"constant\", torque = 0.001 }",
+            1,
+        )
+        .replacen("speed = 95 ", "start = 180\nspeed = 95 ", 1);
+    let scene = scene::parse("shaper_motor.toml", &weak).unwrap();
+    let mut sinks = MotionSinks::default();
+    let e = run(&scene, &mut sinks).unwrap_err().to_string();
+    let line = line_of(&weak, "characteristic =");
+    assert!(
+        e.starts_with(&format!("shaper_motor.toml:{line}:"))
+            && e.contains("cannot start")
+            && e.contains("180 deg"),
+        "{e}"
+    );
+
+    // A motor whose breakdown torque cannot carry the cut: every turn loses energy.
+    let stalling = good
+        .replacen("breakdown_torque = 66", "breakdown_torque = 5", 1)
+        .replacen(
+            "find = [\"start_up\", \"steady_state\", \"flywheel\"]",
+            "find = [\"steady_state\"]",
+            1,
+        )
+        .replacen("delta = 0.02 ", "", 1);
+    let scene = scene::parse("shaper_motor.toml", &stalling).unwrap();
+    let e = run(&scene, &mut MotionSinks::default())
+        .unwrap_err()
+        .to_string();
+    let line = line_of(&stalling, "turns = 200");
+    assert!(
+        e.starts_with(&format!("shaper_motor.toml:{line}:")) && e.contains("steady"),
+        "{e}"
+    );
+}
+
+/// The columns of the scene's own outputs in a simulated table (after the machine's state
+/// columns) by name, with the prescribed run's value of the same name.
+fn compare_outputs(
+    scene: &Scene,
+    columns: &[mechdiff::scene::Column],
+    first: usize,
+    row: &[f64],
+    (phi, omega, alpha): (f64, f64, f64),
+) -> usize {
+    let (names, values) = prescribed(scene, phi, omega, alpha);
+    let mut compared = 0;
+    for (c, v) in columns.iter().zip(row).skip(first) {
+        let k = names.iter().position(|n| *n == c.name).unwrap();
+        let w = values[k];
+        // The same exact evaluation at the same state: equal to rounding; 1e-12 of the
+        // value, or of 1 (SI) for a value near zero (a shaking moment crossing 0).
+        assert!(
+            (v - w).abs() <= 1e-12 * v.abs().max(w.abs()).max(1.0),
+            "{} at φ = {phi}: {v} vs {w}",
+            c.name
+        );
+        compared += 1;
+    }
+    compared
+}
+
+/// Item 5: along the simulated steady state, the scene's outputs (the ram's position,
+/// velocity and acceleration, the shaking force) are those of a prescribed-motion run at the
+/// same φ with ω and α set to the simulated ones, to 1e-12 (the same exact evaluation); and
+/// the motor torque the prescribed run's `[[dynamics]] drive_torque` needs for that
+/// acceleration is the characteristic's at that speed: the equation of motion holds, checked
+/// by the kinetostatics (1e-9 relative: φ̈ is the engine's to its Newton/closed-form
+/// rounding, the torque a difference of terms some 30 times larger).
+#[test]
+fn outputs_along_the_steady_state_equal_a_prescribed_run_at_the_simulated_state() {
+    let scene = scene::load("scenes/shaper_motor.toml").unwrap();
+    let (report, _, steady) = simulated(&scene);
+    assert!(report.steady.is_some() && steady.len() > 10);
+    let cols = &report.steady_columns;
+    let index = |name: &str| cols.iter().position(|c| c.name == name).unwrap();
+    let (phi, omega, alpha, motor) = (
+        index("phi"),
+        index("omega"),
+        index("alpha"),
+        index("M_motor"),
+    );
+    let first = index("J") + 1;
+    for row in [
+        &steady[1],
+        &steady[steady.len() / 3],
+        &steady[2 * steady.len() / 3],
+    ] {
+        let state = (row[phi], row[omega], row[alpha]);
+        assert_eq!(compare_outputs(&scene, cols, first, row, state), 6);
+        let (names, values) = prescribed(&scene, state.0, state.1, state.2);
+        let needed = values[names.iter().position(|n| n == "M_motor").unwrap()];
+        assert!(
+            (needed - row[motor]).abs() <= 1e-9 * row[motor].abs(),
+            "{needed} vs {}",
+            row[motor]
+        );
+    }
+}
+
+/// Seed 001's rack machine under its DC motor, with gravity, the resisting force, Coulomb
+/// friction in the slot and on the incline, the mesh's and the gearbox's efficiencies: at
+/// every row of the start-up the motor torque the kinetostatics need for the simulated φ̈
+/// (a prescribed-motion run at the row's φ, φ̇, φ̈) is the characteristic's torque at the
+/// motor's speed — the implicit equation of motion with friction and efficiencies is met, to
+/// 1e-9 relative (its Newton steps stop at 1e-13 of φ̈) — and the outputs agree as above.
+/// The start-up reaches 1.2 rad/s in less time than the machine would take at the stall
+/// torque's acceleration falling linearly to zero (a bound, not a result).
+#[test]
+fn the_rack_machine_starts_up_meeting_its_equation_of_motion_with_friction_and_efficiencies() {
+    let scene = scene::load("scenes/rack_slotted_link_motor.toml").unwrap();
+    let (report, time, _) = simulated(&scene);
+    let s = report.start_up.unwrap();
+    assert!(s.time_to_speed > 0.0 && s.time_to_speed < 1.0, "{s:?}");
+    let cols = &report.time_columns;
+    let index = |name: &str| cols.iter().position(|c| c.name == name).unwrap();
+    let (t, omega, motor) = (index("t"), index("omega"), index("M_motor"));
+    let last = time.last().unwrap();
+    assert!((last[omega] - 1.2).abs() < 1e-12 && last[t] == s.time_to_speed);
+    let first = index("event") + 1;
+    for row in time.iter().skip(1) {
+        let state = (row[index("phi")], row[omega], row[index("alpha")]);
+        compare_outputs(&scene, cols, first, row, state);
+        let (names, values) = prescribed(&scene, state.0, state.1, state.2);
+        let needed = values[names.iter().position(|n| n == "M_motor").unwrap()];
+        assert!(
+            (needed - row[motor]).abs() <= 1e-9 * row[motor].abs(),
+            "t = {}: {needed} vs {}",
+            row[t],
+            row[motor]
+        );
+    }
+}
+
+/// The rows go to the outputs as the integration gives them: one write per CSV row (and one
+/// for the header), while the report keeps only counts, the headline numbers and the
+/// diagrams' curves, each thinned to at most `CURVE_POINTS` however long the run.
+#[test]
+fn simulated_rows_are_streamed_not_kept() {
+    struct Counting {
+        writes: usize,
+        bytes: usize,
+    }
+    impl std::io::Write for Counting {
+        fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+            self.writes += 1;
+            self.bytes += buf.len();
+            Ok(buf.len())
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+    let text = text("shaper_motor.toml")
+        .replacen(
+            "find = [\"start_up\", \"steady_state\", \"flywheel\"]",
+            "find = [\"start_up\", \"steady_state\"]",
+            1,
+        )
+        .replacen("delta = 0.02 ", "", 1);
+    let scene = scene::parse("shaper_motor.toml", &text).unwrap();
+    let mut csv = Counting {
+        writes: 0,
+        bytes: 0,
+    };
+    let mut sinks = MotionSinks {
+        time_csv: Some(Sink {
+            path: PathBuf::from("time.csv"),
+            out: &mut csv,
+        }),
+        ..MotionSinks::default()
+    };
+    let report = run(&scene, &mut sinks).unwrap();
+    drop(sinks);
+    assert!(report.time_rows > 10);
+    assert_eq!(csv.writes, report.time_rows + 1);
+    let mut thinned = mechdiff::scene::motion::Thinned::default();
+    for k in 0..1_000_000 {
+        thinned.push([k as f64, 0.0]);
+    }
+    let cap = mechdiff::scene::motion::CURVE_POINTS;
+    assert!(thinned.points.len() <= cap && thinned.points.len() >= cap / 2);
+    assert_eq!(thinned.points[0], [0.0, 0.0]);
+}
+
+/// Seed 000's shaper under its induction motor: over one period of the steady state the
+/// motor's work equals the cutting force's (a lossless machine whose kinetic energy returns),
+/// W = F·stroke = 2000 N × 0.525875892721 m (whitworth_000.md: the load acts between the
+/// dead positions, where the ram travels its whole stroke), to 1e-8 relative. The motor's
+/// work ∫ M_motor/τ dφ is summed here over the table's rows by the trapezoid rule with its
+/// end correction h²/12·(f′₀ − f′₁) (error O(h⁴)), f′ from the Kloss formula's derivative
+/// written out here and the rows' φ̈ (continuous: the load switches where x_C′ = 0); at the
+/// scene's tolerance 1e-13 it changes by 1.4e-10 relative from 1e-14. The steady time-mean
+/// speed lies below the no-load 100 rpm (the motor slips under load) and the flywheel sized
+/// for δ = 0.02 gives δ = 0.02 when simulated (to 1e-6).
+#[test]
+fn the_shaper_motor_work_over_a_steady_period_equals_the_cutting_work() {
+    let text = text("shaper_motor.toml").replacen("tolerance = 1e-10", "tolerance = 1e-13", 1);
+    let scene = scene::parse("shaper_motor.toml", &text).unwrap();
+    let (report, _, steady) = simulated(&scene);
+    let cols = &report.steady_columns;
+    let index = |name: &str| cols.iter().position(|c| c.name == name).unwrap();
+    let (phi, omega, alpha, motor) = (
+        index("phi"),
+        index("omega"),
+        index("alpha"),
+        index("M_motor"),
+    );
+    let tau = 1.0 / 15.0;
+    let ws = 1500.0 * std::f64::consts::PI / 30.0;
+    let (mk, sk) = (66.0, 0.25);
+    // f = M_motor/τ; df/dφ = (dM/dω_m)(dω_m/dφ)/τ, dM/dω_m = −(dM/ds)/ω_s, dω_m/dφ = φ̈/(φ̇τ).
+    let df = |r: &[f64]| {
+        let s = (ws - r[omega] / tau) / ws;
+        let dm_ds = 2.0 * mk * sk * (sk * sk - s * s) / (s * s + sk * sk).powi(2);
+        -dm_ds / ws * r[alpha] / (r[omega] * tau) / tau
+    };
+    let mut work = 0.0;
+    for p in steady.windows(2) {
+        let h = p[1][phi] - p[0][phi];
+        work +=
+            0.5 * (p[0][motor] + p[1][motor]) / tau * h + h * h / 12.0 * (df(&p[0]) - df(&p[1]));
+    }
+    let load = 2000.0 * 0.525875892721;
+    assert!((work / load - 1.0).abs() < 1e-8, "{work} vs {load}");
+    assert!((steady.last().unwrap()[phi] - std::f64::consts::TAU).abs() < 1e-12);
+    let s = report.steady.unwrap();
+    let no_load = 100.0 * std::f64::consts::PI / 30.0;
+    assert!(
+        s.mean_time < no_load && s.mean_time > 0.9 * no_load,
+        "{}",
+        s.mean_time
+    );
+    let f = report.flywheel.unwrap();
+    assert!(
+        (f.steady.delta_time - 0.02).abs() < 1e-6,
+        "{}",
+        f.steady.delta_time
+    );
+    assert!(f.exact > 0.0 && f.classic > 0.0);
+}
+
+/// `mechdiff run` of a scene with `[simulate]` (the rack machine started, then coasting to
+/// rest against its friction): the plan names the equation's terms, the tables and the
+/// headline numbers are printed, `--csv` writes the table over time (its time increasing,
+/// its last row at rest, event 4), `--plot` draws ω(t) and the motor's torque; an option
+/// the run cannot honour (`--json`) is refused naming it.
+#[test]
+fn mechdiff_run_simulates_prints_and_writes_the_tables_and_diagrams() {
+    use crate::common::{mechdiff, stderr, stdout, temp_file};
+    let text = text("rack_slotted_link_motor.toml").replacen(
+        "find = [\"start_up\"]",
+        "find = [\"start_up\", \"coast_down\"]",
+        1,
+    );
+    let path = temp_file("rack_motor.toml");
+    std::fs::write(&path, &text).unwrap();
+    let dir = temp_file("rack_motor_plot");
+    let csv = temp_file("rack_motor.csv");
+    let out = mechdiff(&[
+        "run",
+        path.to_str().unwrap(),
+        "--csv",
+        csv.to_str().unwrap(),
+        "--plot",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let printed = stdout(&out);
+    for says in [
+        "J(φ)·φ̈ + ½·J′(φ)·φ̇²",
+        "weights (g = 9.81",
+        "Coulomb friction in A, incline",
+        "the gearbox η = 0.9",
+        "linear (DC shunt)",
+        "the motion in time",
+        "start-up from rest",
+        "coast-down (motor off)",
+    ] {
+        assert!(printed.contains(says), "{says}: {printed}");
+    }
+    assert!(!printed.contains("steady state over one turn"));
+    let written = std::fs::read_to_string(&csv).unwrap();
+    let rows: Vec<Vec<f64>> = (written.lines().skip(1))
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert!(written.starts_with("t [s],phi [deg],omega [rad/s],alpha [rad/s^2],M_motor [N*m]"));
+    assert!(rows.windows(2).all(|w| w[1][0] >= w[0][0]));
+    let last = rows.last().unwrap();
+    assert_eq!((last[2], last[7]), (0.0, 4.0));
+    for name in ["omega_time.svg", "motor_torque.svg"] {
+        assert!(
+            std::fs::read_to_string(dir.join(name))
+                .unwrap()
+                .starts_with("<svg")
+        );
+    }
+    assert!(!dir.join("omega_angle.svg").exists());
+    let refused = mechdiff(&["run", path.to_str().unwrap(), "--json", "x.json"]);
+    assert!(!refused.status.success() && stderr(&refused).contains("--json"));
+    let _ = std::fs::remove_dir_all(&dir);
+    for f in [path, csv] {
+        let _ = std::fs::remove_file(f);
+    }
+}
