@@ -25,6 +25,7 @@ mod import;
 mod joint_types;
 mod parameter_study;
 mod pictures;
+mod report_in_browser;
 mod run_evaluator;
 mod scene_codegen;
 mod scene_inputs;

@@ -190,10 +190,7 @@ pub fn html(scene: &CamScene) -> Result<String> {
     let diagram = crate::pictures::cam::svaj_diagram(scene).to_svg()?;
     let speed = scene.drive.omega;
     Ok(Page {
-        title: scene
-            .title
-            .clone()
-            .unwrap_or_else(|| scene.file.clone()),
+        title: scene.title.clone().unwrap_or_else(|| scene.file.clone()),
         notes: vec![format!(
             "{} segment(s) over one turn; the follower's positions, the contact and the \
              pressure angle at each frame are the cam's own (mechdiff-core's cams)",
@@ -204,11 +201,18 @@ pub fn html(scene: &CamScene) -> Result<String> {
         drive: "θ".to_owned(),
         columns,
         values,
-        points: ["cam centre", "follower", "contact", "follower end", "face 1", "face 2"]
-            .iter()
-            .take(xy[0].len())
-            .map(|s| (*s).to_owned())
-            .collect(),
+        points: [
+            "cam centre",
+            "follower",
+            "contact",
+            "follower end",
+            "face 1",
+            "face 2",
+        ]
+        .iter()
+        .take(xy[0].len())
+        .map(|s| (*s).to_owned())
+        .collect(),
         xy,
         rotation: Some(thetas),
         rate: (speed != 0.0).then(|| u.from_si(speed.abs(), Dimension::Angle)),
