@@ -6,8 +6,8 @@
 //!
 //! The page is laid out for any width from a phone's (400 px) to 4K: one column on a phone
 //! (the mechanism and the controls stay at the top while the table and the diagram scroll
-//! under them), two columns from 760 px (mechanism over diagram, the values beside them), three
-//! from 1400 px (mechanism, diagram, values side by side). It plays the sweep in real time
+//! under them), two columns from 760 px (mechanism over diagram, the values beside them), and
+//! from 1400 px the mechanism over the values, held in view, beside the diagram. It plays the sweep in real time
 //! at the scene's drive speed (a speed factor ×0.1…×10), steps with the keys (← →, Shift for
 //! ten frames, Home, End, space to play and pause), zooms the mechanism with the wheel and pans
 //! it by dragging (double-click resets), and draws the velocity and acceleration arrows of the
@@ -19,9 +19,11 @@
 //! [`MAX_BYTES`].
 //!
 //! The page opens at the frame named in its address: `report.html#frame=10` or
-//! `report.html#phi=90` (the nearest frame), and `&mark=C` paints joint `C` red (for the
-//! headless-browser check in `scripts/check_report_in_chromium.sh`). A script driving the page
-//! finds `window.mechdiffReport.show(frame)` there.
+//! `report.html#phi=90` (the nearest frame), `&mark=C` paints joint `C` red and `&vectors=1`
+//! shows the arrows. A script
+//! driving the page finds `window.mechdiffReport` there (`show(frame)`, `frame()`, `frames`):
+//! the browser test `tests/report_in_browser.rs` drives every shipped scene's report in
+//! headless Chromium through it.
 //!
 //! Cam scenes get their report from [`cam`] (the cam turning, the follower moving, the SVAJ
 //! diagram), rotor scenes from [`rotor`] (the force and couple polygons and the answers).
@@ -158,6 +160,7 @@ impl Page {
 <style>
 {STYLE}</style></head><body>
 <div id="report">
+<div id="pane">
 <section id="stage">
 <div id="controls">
 <input type="range" id="scrub" min="0" max="{last}" value="0" aria-label="drive position">
@@ -175,6 +178,7 @@ impl Page {
 <aside id="side"><h1>{title}</h1>
 <table id="values"></table>
 {notes}</aside>
+</div>
 <section id="diagram">{diagram}</section>
 </div>
 <script type="application/json" id="data">{data}</script>

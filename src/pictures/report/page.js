@@ -135,7 +135,7 @@ scrub.addEventListener('input', () => { stop(); show(+scrub.value); });
 const span = Math.abs(D.values[frames - 1][0] - D.values[0][0]);
 const secondsPerFrame = frames > 1 ? (D.rate > 0 ? span / D.rate : 4) / (frames - 1) : 1;
 document.getElementById('rate').textContent = D.rate > 0
-  ? '×1 = ' + fmt(D.rate) + ' ' + D.columns[0].unit + '/s'
+  ? '×1 = ' + +D.rate.toPrecision(4) + ' ' + D.columns[0].unit + '/s'
   : 'no drive speed: ×1 = one sweep in 4 s';
 const play = document.getElementById('play');
 const speed = document.getElementById('speed');
@@ -202,8 +202,8 @@ if (diagram) saveDiagram.addEventListener('click', () => save(diagram, 'diagram_
 else saveDiagram.classList.add('hidden');
 if (frames < 2) for (const id of ['playback', 'scrub', 'phi']) document.getElementById(id).classList.add('hidden');
 
-// The address may name the first frame (#frame=10, or #phi=90: the nearest) and a joint to
-// paint red (&mark=C).
+// The address may name the first frame (#frame=10, or #phi=90: the nearest), a joint to
+// paint red (&mark=C) and whether to show the vectors (&vectors=1).
 const hash = new URLSearchParams(location.hash.slice(1));
 let first = 0;
 if (hash.has('frame')) first = +hash.get('frame');
@@ -220,6 +220,7 @@ if (hash.has('mark')) {
     }
   }
 }
+if (hash.get('vectors') === '1') vectorBox.checked = true;
 show(first);
 // For scripts driving the page (the browser test): the frame shown and a way to show another.
 window.mechdiffReport = { show, frames, frame: () => frame };
