@@ -681,38 +681,41 @@ fn check_input(browser: &mut Chromium, case: &Case) -> Vec<String> {
     failures
 }
 
-/// Playback at the drive speed: with the speed factor chosen so that about 40 frames pass in
-/// 0.8 s, the frames shown after playing for a measured time are those the drive's speed
+/// Playback at the drive speed: with the speed factor chosen so that about 30 frames pass in
+/// 0.4 s, the frames shown after playing for a measured time are those the drive's speed
 /// gives, within 3 frames plus 15 % (the first animation frame only starts the clock; the
 /// page's timer runs at the display's rate, about 16 ms a step, under a loaded machine). On
 /// the page [`check_page`] left open.
 fn check_playback(browser: &mut Chromium, case: &Case) -> Vec<String> {
+    /// How long the page plays (s).
+    const PLAYED: f64 = 0.4;
     let Some(rate) = case.rate.filter(|r| *r > 0.0) else {
         return Vec::new();
     };
     let frames = case.joints.len();
     let per_frame = case.span / rate / (frames - 1) as f64;
     let factors = [0.1, 0.25, 0.5, 1.0, 2.0, 5.0, 10.0];
-    let target = 40.0;
+    let target = 30.0;
     let factor = factors
         .iter()
         .copied()
         .min_by(|a, b| {
-            let off = |k: f64| (0.8 * k / per_frame - target).abs();
+            let off = |k: f64| (PLAYED * k / per_frame - target).abs();
             off(*a).total_cmp(&off(*b))
         })
         .unwrap();
     let expected_rate = factor / per_frame;
-    if 0.8 * expected_rate < 5.0 || 0.8 * expected_rate > frames as f64 / 2.0 {
+    if PLAYED * expected_rate < 5.0 || PLAYED * expected_rate > frames as f64 / 2.0 {
         return Vec::new();
     }
+    let ms = (PLAYED * 1000.0).round();
     let played = browser
         .eval(&format!(
             "new Promise(done => {{ document.getElementById('speed').value = '{factor}'; \
              window.mechdiffReport.show(0); const play = document.getElementById('play'); \
              play.click(); const t0 = performance.now(); \
              setTimeout(() => {{ const f = window.mechdiffReport.frame(); \
-             const t = performance.now() - t0; play.click(); done([f, t]); }}, 800); }})"
+             const t = performance.now() - t0; play.click(); done([f, t]); }}, {ms}); }})"
         ))
         .unwrap();
     let shown = played[0].as_f64().unwrap();
