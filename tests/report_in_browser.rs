@@ -392,8 +392,9 @@ const SCRUB: &str = r#"
 
 /// The layout facts: sideways scrolling, value names outside the viewport's width or
 /// intersecting the drawing, the diagram or the controls (document coordinates), names not
-/// on top where they are scrolled into view, whether the drawing stays in view with the
-/// last name scrolled into view, and whether a diagram cursor is in view at the top.
+/// on top where they are scrolled into view, the share of the width the drawing, diagram and
+/// values' pane reach, whether the drawing stays in view with the last name scrolled into
+/// view, and whether a diagram cursor is in view at the top.
 const LAYOUT: &str = r#"
 (() => {
   window.scrollTo(0, 0);
@@ -426,6 +427,8 @@ const LAYOUT: &str = r#"
       if (!c.contains(e)) { out.covered.push(c.textContent + ' by ' + (e ? e.tagName + '#' + e.id : 'nothing')); break; }
     }
   }
+  out.used = Math.max(...['#mechanism svg', '#diagram svg', '#side']
+    .map(s => document.querySelector(s).getBoundingClientRect().right)) / vw;
   const m = document.querySelector('#mechanism svg').getBoundingClientRect();
   out.drawingInView = m.top >= -1 && m.bottom <= vh + 1 && m.height > 50;
   window.scrollTo(0, 0);
@@ -546,6 +549,13 @@ fn check_page(browser: &mut Chromium, case: &Case, viewport: (u32, u32)) -> Vec<
     if layout["drawingInView"] != json!(true) {
         failures.push(format!(
             "{label}: the mechanism leaves the view beside the values"
+        ));
+    }
+    // The old page left the right third of a 1920 px screen empty.
+    if layout["used"].as_f64().unwrap() < 0.9 {
+        failures.push(format!(
+            "{label}: the page uses only {} of the width",
+            layout["used"]
         ));
     }
     if width >= 760

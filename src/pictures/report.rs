@@ -259,17 +259,14 @@ fn arrows(scene: &Scene, report: &Report) -> Vec<Arrow> {
         let Some(point) = scene.points.iter().position(|q| q.name == *p) else {
             continue;
         };
-        for (q, kind, prefix) in [
-            (Quantity::Velocity, "v", "v"),
-            (Quantity::Acceleration, "a", "a"),
-        ] {
+        for (q, kind) in [(Quantity::Velocity, "v"), (Quantity::Acceleration, "a")] {
             if !output.quantities.contains(&q) {
                 continue;
             }
             let n = &output.name;
             if let (Some(x), Some(y)) = (
-                column(&format!("{prefix}x_{n}")),
-                column(&format!("{prefix}y_{n}")),
+                column(&format!("{kind}x_{n}")),
+                column(&format!("{kind}y_{n}")),
             ) {
                 out.push(Arrow {
                     point,
