@@ -27,6 +27,7 @@ mod linkage_metrics;
 mod motion_scenes;
 mod parameter_study;
 mod pictures;
+mod report_in_browser;
 mod run_evaluator;
 mod scene_codegen;
 mod scene_inputs;

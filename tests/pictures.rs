@@ -1162,3 +1162,103 @@ fn a_coupler_curve_is_drawn_to_scale_where_the_solver_puts_the_point() {
     // The rocker's two dead positions are marked on the curve.
     assert_eq!(svg.matches("dead: psi").count(), 2, "{svg}");
 }
+
+/// The data block of an HTML report.
+fn report_data(page: &str) -> serde_json::Value {
+    let open = r#"<script type="application/json" id="data">"#;
+    let start = page.find(open).unwrap() + open.len();
+    let end = start + page[start..].find("</script>").unwrap();
+    serde_json::from_str(&page[start..end]).unwrap()
+}
+
+/// Issue 24: cam and rotor scenes get a report (`--report` was refused for them). The cam's
+/// page has a frame every half degree, and at every row of the SVAJ table (`--csv`, written
+/// by another path) its s, s′, s″, s‴ and pressure angle are the table's to 1e-9 relative
+/// (the same dual-number evaluation; the page's cam angle is k·2π/720, the table's the file's
+/// degrees converted: they differ by rounding, so values agree to about 1e-14, and a jerk
+/// near zero is compared with 1e-9 of the column's largest). The rotor's page holds the m r of
+/// each row of the CSV. Both are self-contained and under [`MAX_BYTES`].
+#[test]
+fn cam_and_rotor_scenes_write_their_reports() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |scene: &str, report: &Path, csv: &Path| {
+        let output = Command::new(env!("CARGO_BIN_EXE_mechdiff"))
+            .args(["run", scene, "--report"])
+            .args([report, Path::new("--csv"), csv])
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .output()
+            .unwrap();
+        assert!(
+            output.status.success(),
+            "{scene}: {}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+        let page = std::fs::read_to_string(report).unwrap();
+        assert!(page.len() < MAX_BYTES && !page.contains("src=") && !page.contains("<link"));
+        let csv = std::fs::read_to_string(csv).unwrap();
+        (report_data(&page), csv)
+    };
+    let (cam, csv) = run(
+        "scenes/cams/rise_dwell_return_dwell.toml",
+        &dir.path().join("cam.html"),
+        &dir.path().join("cam.csv"),
+    );
+    let values = cam["values"].as_array().unwrap();
+    assert_eq!(values.len(), 721);
+    assert_eq!(cam["xy"].as_array().unwrap().len(), 721);
+    let number = |v: &serde_json::Value| v.as_f64().unwrap();
+    let largest: Vec<f64> = (0..6)
+        .map(|c| {
+            values
+                .iter()
+                .map(|r| number(&r[c]).abs())
+                .fold(0.0, f64::max)
+        })
+        .collect();
+    let mut compared = 0;
+    for line in csv.lines().skip(1) {
+        let cells: Vec<&str> = line.split(',').collect();
+        let theta: f64 = cells[0].parse().unwrap();
+        if cells[1] == "left" || theta >= 360.0 {
+            continue;
+        }
+        let frame = (theta * 2.0).round() as usize;
+        let row = &values[frame];
+        assert!((number(&row[0]) - theta).abs() <= 1e-9, "{theta}");
+        for (c, cell) in [(1, 2), (2, 3), (3, 4), (4, 5), (5, 9)] {
+            let want: f64 = cells[cell].parse().unwrap();
+            let got = number(&row[c]);
+            assert!(
+                (got - want).abs() <= 1e-9 * want.abs().max(largest[c]),
+                "θ = {theta}: column {c}: {got} on the page, {want} in the table"
+            );
+        }
+        compared += 1;
+    }
+    assert!(compared >= 24, "{compared} rows compared");
+
+    let (rotor, csv) = run(
+        "scenes/rotor_balancing.toml",
+        &dir.path().join("rotor.html"),
+        &dir.path().join("rotor.csv"),
+    );
+    let names: Vec<&str> = rotor["columns"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c["name"].as_str().unwrap())
+        .collect();
+    let shown = &rotor["values"][0];
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let mr = header.iter().position(|h| *h == "m r [kg m]").unwrap();
+    for line in csv.lines().skip(1) {
+        let cells: Vec<&str> = line.split(',').collect();
+        let name = match cells[1] {
+            "" => format!("{}: m r", cells[0]),
+            index => format!("{} {index}: m r", cells[0]),
+        };
+        let k = names.iter().position(|n| *n == name).unwrap();
+        let want: f64 = cells[mr].parse().unwrap();
+        assert_eq!(number(&shown[k]), want, "{name}");
+    }
+}

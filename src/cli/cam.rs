@@ -11,7 +11,8 @@ use mechdiff::{Error, files};
 use super::run::RunArgs;
 
 /// Runs a cam scene (read by `scene::any::read`): the report on stdout, its warnings on
-/// stderr, the SVAJ table and the profile as CSV and the summary as JSON if asked (the
+/// stderr, the SVAJ table and the profile as CSV, the summary as JSON and the animated report as HTML
+/// if asked (the
 /// options it cannot honour are refused by [`super::refuse_options`] before).
 pub fn run(args: &RunArgs, scene: &CamScene) -> Result<(), Error> {
     for warning in scene.warnings(&scene.mechanism.analyse()) {
@@ -28,6 +29,9 @@ pub fn run(args: &RunArgs, scene: &CamScene) -> Result<(), Error> {
     }
     if let Some(dir) = &args.plot {
         mechdiff::pictures::cam::write_dir(scene, dir)?;
+    }
+    if let Some(path) = &args.report {
+        mechdiff::pictures::report::cam::write(scene, path)?;
     }
     let stdout = std::io::stdout();
     let mut out = BufWriter::new(mechdiff::escape::Terminal::new(stdout.lock()));

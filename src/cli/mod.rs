@@ -15,8 +15,9 @@ use mechdiff::{Error, scene};
 
 /// Refuses the options a scene of this kind cannot honour, instead of ignoring them:
 /// `given` pairs each option with whether it was given. Cam and rotor scenes have no
-/// `[parameters]` (`--set`, `--sweep`) nor a drive-position table (`--jsonl`, `--report`;
-/// their `--json` is their summary); only cam scenes have a profile (`--profile-csv`).
+/// `[parameters]` (`--set`, `--sweep`) nor a drive-position table (`--jsonl`; their `--json`
+/// is their summary, their `--report` their own page); only cam scenes have a profile
+/// (`--profile-csv`).
 ///
 /// # Errors
 /// [`Error::OptionNotApplicable`] naming the first such option and the scene.
@@ -36,13 +37,12 @@ pub fn refuse_options(
                 "--set",
                 "--sweep",
                 "--jsonl",
-                "--report",
                 "--monte-carlo",
                 "--evaluator",
             ],
             "a cam scene has no `[parameters]` and no linkage to evaluate, and writes its SVAJ \
-             table with --csv, its profile with --profile-csv, its summary with --json and its \
-             pictures with --plot",
+             table with --csv, its profile with --profile-csv, its summary with --json, its \
+             pictures with --plot and its animated report with --report",
         ),
         scene::Kind::Formula => (
             &[
@@ -64,13 +64,12 @@ pub fn refuse_options(
                 "--set",
                 "--sweep",
                 "--jsonl",
-                "--report",
                 "--profile-csv",
                 "--monte-carlo",
                 "--evaluator",
             ],
             "a rotor scene has no `[parameters]` and no drive positions to tabulate; use --csv \
-             or --json for its answers and --plot for its polygons",
+             or --json for its answers, --plot for its polygons and --report for its page",
         ),
     };
     match given

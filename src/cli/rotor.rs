@@ -9,7 +9,7 @@ use mechdiff::{Error, files};
 use super::run::RunArgs;
 
 /// Runs a rotor scene (read by `scene::any::read`): its answers on stdout, as CSV with
-/// `--csv` and JSON with `--json`, its polygons with `--plot` (the options it cannot honour
+/// `--csv` and JSON with `--json`, its polygons with `--plot` and on a page with `--report` (the options it cannot honour
 /// are refused by [`super::refuse_options`] before).
 pub fn run(args: &RunArgs, scene: &RotorScene) -> Result<(), Error> {
     let lines = scene.lines()?;
@@ -26,6 +26,9 @@ pub fn run(args: &RunArgs, scene: &RotorScene) -> Result<(), Error> {
     }
     if let Some(dir) = &args.plot {
         mechdiff::pictures::balancing::write_rotor_dir(&scene.rotor, dir)?;
+    }
+    if let Some(path) = &args.report {
+        mechdiff::pictures::report::rotor::write(scene, path)?;
     }
     let stdout = std::io::stdout();
     let mut out = BufWriter::new(mechdiff::escape::Terminal::new(stdout.lock()));

@@ -1,8 +1,17 @@
 //! One self-contained HTML file per run (`mechdiff run scene.toml --report run.html`): the
 //! mechanism animated over the sweep with a slider to scrub the drive position, the diagram
 //! with a cursor there, the values at the cursor, and buttons that save the current frame
-//! and diagram as SVG. No network is needed to open it: the SVG, the data and the script are
-//! all inline.
+//! and diagram as SVG. No network is needed to open it: the SVG, the data, the style and the
+//! script are all inline.
+//!
+//! The page is laid out for any width from a phone's (400 px) to 4K: one column on a phone
+//! (the mechanism and the controls stay at the top while the table and the diagram scroll
+//! under them), two columns from 760 px (mechanism over diagram, the values beside them), and
+//! from 1400 px the mechanism over the values, held in view, beside the diagram. It plays the sweep in real time
+//! at the scene's drive speed (a speed factor ×0.1…×10), steps with the keys (← →, Shift for
+//! ten frames, Home, End, space to play and pause), zooms the mechanism with the wheel and pans
+//! it by dragging (double-click resets), and draws the velocity and acceleration arrows of the
+//! points whose columns the run has when asked.
 //!
 //! Its size is bounded whatever the sweep's length: at most [`super::run::FRAMES`] frames
 //! (every point's position and every column's value per frame) and diagram curves decimated
@@ -10,8 +19,17 @@
 //! [`MAX_BYTES`].
 //!
 //! The page opens at the frame named in its address: `report.html#frame=10` or
-//! `report.html#phi=90` (the nearest frame), and `&mark=C` paints joint `C` red (for the
-//! headless-browser check in `scripts/check_report_in_chromium.sh`).
+//! `report.html#phi=90` (the nearest frame), `&mark=C` paints joint `C` red and `&vectors=1`
+//! shows the arrows. A script
+//! driving the page finds `window.mechdiffReport` there (`show(frame)`, `frame()`, `frames`):
+//! the browser test `tests/report_in_browser.rs` drives every shipped scene's report in
+//! headless Chromium through it.
+//!
+//! Cam scenes get their report from [`cam`] (the cam turning, the follower moving, the SVAJ
+//! diagram), rotor scenes from [`rotor`] (the force and couple polygons and the answers).
+
+pub mod cam;
+pub mod rotor;
 
 use serde_json::json;
 
@@ -19,6 +37,8 @@ use super::escape;
 use super::run::Animation;
 use crate::error::Result;
 use crate::scene::Scene;
+use crate::scene::format::Quantity;
+use crate::scene::model::OutputKind;
 use crate::scene::run::Report;
 use crate::scene::table::write_dead_positions;
 
@@ -32,6 +52,148 @@ pub fn write(scene: &Scene, report: &Report, path: &std::path::Path) -> Result<(
 /// The bound on a report's size stated in the docs and checked by the tests (bytes).
 pub const MAX_BYTES: usize = 4_000_000;
 
+/// A column of the value table: its name and unit.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Column {
+    /// The column's name (`x_C`, `psi'`).
+    pub name: String,
+    /// Its unit symbol.
+    pub unit: String,
+}
+
+/// An arrow drawn at a point, from two columns of the table.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Arrow {
+    /// The point (index into [`Page::points`]).
+    pub point: usize,
+    /// `"v"` for a velocity, `"a"` for an acceleration.
+    pub kind: &'static str,
+    /// The columns of its x and y components.
+    pub columns: [usize; 2],
+    /// Their unit.
+    pub unit: String,
+}
+
+/// What a report page shows, whatever the scene's kind: a drawing whose `data-bind` shapes
+/// follow the frames, an optional diagram with a cursor, and the table of values per frame.
+#[derive(Debug, Clone, Default)]
+pub struct Page {
+    /// The page's title.
+    pub title: String,
+    /// Text shown under the title (the plan, the dead positions), each block preformatted.
+    pub notes: Vec<String>,
+    /// The drawing at the first frame (a [`super::Drawing`]'s SVG, with its frame and binds).
+    pub drawing: String,
+    /// The diagram (with `rect.plot-frame` elements carrying `data-x0`/`data-x1`), if any.
+    pub diagram: Option<String>,
+    /// The drive's symbol (`φ`, `θ`).
+    pub drive: String,
+    /// The table's columns, the drive first.
+    pub columns: Vec<Column>,
+    /// The values per frame, in the columns' units (non-finite shown as "—").
+    pub values: Vec<Vec<f64>>,
+    /// The names of the points the binds refer to.
+    pub points: Vec<String>,
+    /// Per frame, the points' model coordinates (x, y), in the drawing's units.
+    pub xy: Vec<Vec<[f64; 2]>>,
+    /// Per frame, the angle (rad, counterclockwise) by which shapes bound with `r k` are turned
+    /// about point `k`, if any shape is.
+    pub rotation: Option<Vec<f64>>,
+    /// The drive's speed in the drive column's unit per second, if the scene gives one.
+    pub rate: Option<f64>,
+    /// The arrows that the "vectors" box shows.
+    pub arrows: Vec<Arrow>,
+}
+
+impl Page {
+    /// The page as a self-contained HTML document.
+    pub fn html(&self) -> String {
+        let columns: Vec<_> = self
+            .columns
+            .iter()
+            .map(|c| json!({"name": c.name, "unit": c.unit}))
+            .collect();
+        let xy: Vec<Vec<f64>> = self
+            .xy
+            .iter()
+            .map(|pose| pose.iter().flatten().copied().collect())
+            .collect();
+        let vectors: Vec<_> = self
+            .arrows
+            .iter()
+            .map(|a| {
+                json!({"point": a.point, "kind": a.kind, "x": a.columns[0], "y": a.columns[1],
+                       "unit": a.unit})
+            })
+            .collect();
+        // serde_json writes non-finite numbers as null; the page shows them as "—".
+        let data = json!({
+            "names": self.points,
+            "drive": self.drive,
+            "columns": columns,
+            "values": self.values,
+            "xy": xy,
+            "rot": self.rotation,
+            "rate": self.rate.filter(|r| r.is_finite() && *r > 0.0),
+            "vectors": vectors,
+        })
+        .to_string();
+        let data = crate::escape::script_json(&data);
+        let notes: String = self
+            .notes
+            .iter()
+            .filter(|n| !n.is_empty())
+            .map(|n| format!("<pre>{}</pre>\n", escape(n)))
+            .collect();
+        let speeds: String = [0.1, 0.25, 0.5, 1.0, 2.0, 5.0, 10.0]
+            .iter()
+            .map(|s| {
+                let selected = if *s == 1.0 { " selected" } else { "" };
+                format!(r#"<option value="{s}"{selected}>×{s}</option>"#)
+            })
+            .collect();
+        format!(
+            r#"<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8">
+<meta name="viewport" content="width=device-width, initial-scale=1">
+<title>{title}</title>
+<style>
+{STYLE}</style></head><body>
+<div id="report">
+<div id="pane">
+<section id="stage">
+<div id="controls">
+<input type="range" id="scrub" min="0" max="{last}" value="0" aria-label="drive position">
+<span id="playback"><button id="play">▶ play</button>
+<label>speed <select id="speed">{speeds}</select></label> <span id="rate"></span></span>
+<label id="vectors-control"><input type="checkbox" id="vectors"> vectors</label>
+<button id="reset-view" title="or double-click the drawing">reset view</button>
+<button id="save-frame">save frame (SVG)</button>
+<button id="save-diagram">save diagram (SVG)</button>
+<span id="phi"></span>
+</div>
+<div id="mechanism">{drawing}</div>
+<div id="legend" class="hidden"></div>
+</section>
+<aside id="side"><h1>{title}</h1>
+<table id="values"></table>
+{notes}</aside>
+</div>
+<section id="diagram">{diagram}</section>
+</div>
+<script type="application/json" id="data">{data}</script>
+<script>
+{SCRIPT}</script>
+</body></html>
+"#,
+            title = escape(&self.title),
+            last = self.xy.len().saturating_sub(1),
+            drawing = self.drawing,
+            diagram = self.diagram.as_deref().unwrap_or(""),
+        )
+    }
+}
+
 /// The HTML report of a run; `diagram_svg` is the run's diagram (see [`super::run::diagram`]).
 pub fn html(
     scene: &Scene,
@@ -41,11 +203,14 @@ pub fn html(
 ) -> Result<String> {
     let title = scene.title.clone().unwrap_or_else(|| scene.file.clone());
     let first = animation.poses.xy.first().cloned().unwrap_or_default();
-    let mechanism = animation.drawing(scene, &title, &first).to_svg();
-    let columns: Vec<_> = report
+    let drawing = animation.drawing(scene, &title, &first).to_svg();
+    let columns = report
         .columns
         .iter()
-        .map(|c| json!({"name": c.name, "unit": c.unit}))
+        .map(|c| Column {
+            name: c.name.clone(),
+            unit: c.unit.clone(),
+        })
         .collect();
     let values: Vec<Vec<f64>> = animation
         .rows
@@ -58,154 +223,66 @@ pub fn html(
                 .collect()
         })
         .collect();
-    let xy: Vec<Vec<f64>> = animation
-        .poses
-        .xy
-        .iter()
-        .map(|pose| pose.iter().flatten().copied().collect())
-        .collect();
-    let names: Vec<&str> = scene.points.iter().map(|p| p.name.as_str()).collect();
-    // serde_json writes non-finite numbers as null; the page shows them as "—".
-    let data = json!({
-        "names": names,
-        "columns": columns,
-        "values": values,
-        "xy": xy,
-    })
-    .to_string();
-    let data = crate::escape::script_json(&data);
     let mut dead = Vec::new();
     write_dead_positions(scene, report, &mut dead).map_err(|source| crate::Error::Write {
         path: "<report>".into(),
         source,
     })?;
     let dead = String::from_utf8_lossy(&dead).trim().to_owned();
-    let plan = report.plan.describe(scene);
-    Ok(format!(
-        r#"<!DOCTYPE html>
-<html lang="en"><head><meta charset="utf-8">
-<title>{title}</title>
-<style>
-body {{ margin: 0; font-family: "DejaVu Sans", sans-serif; font-size: 14px; }}
-#mechanism {{ position: absolute; left: 0; top: 0; width: 800px; height: 600px; }}
-#side {{ position: absolute; left: 820px; top: 10px; width: 420px; }}
-#below {{ position: absolute; left: 0; top: 610px; }}
-#scrub {{ width: 780px; }}
-table {{ border-collapse: collapse; }} td {{ padding: 1px 8px; border-bottom: 1px solid #eee; }}
-td.v {{ text-align: right; font-variant-numeric: tabular-nums; }}
-pre {{ white-space: pre-wrap; }}
-</style></head><body>
-<div id="mechanism">{mechanism}</div>
-<div id="side"><b>{title}</b><pre>{plan}</pre><pre>{dead}</pre>
-<div id="where"></div><table id="values"></table></div>
-<div id="below">
-<div><input type="range" id="scrub" min="0" max="{last}" value="0"></div>
-<div><button id="play">play / pause</button> <button id="save-frame">save frame (SVG)</button>
-<button id="save-diagram">save diagram (SVG)</button> <span id="phi"></span></div>
-<div id="diagram">{diagram_svg}</div>
-</div>
-<script type="application/json" id="data">{data}</script>
-<script>
-{SCRIPT}
-</script>
-</body></html>
-"#,
-        title = escape(&title),
-        plan = escape(&plan),
-        dead = escape(&dead),
-        last = animation.rows.len().saturating_sub(1),
-    ))
+    let drive = &report.columns[0];
+    Ok(Page {
+        title,
+        notes: vec![report.plan.describe(scene), dead],
+        drawing,
+        diagram: Some(diagram_svg.to_owned()),
+        drive: "φ".to_owned(),
+        columns,
+        values,
+        points: scene.points.iter().map(|p| p.name.clone()).collect(),
+        xy: animation.poses.xy.clone(),
+        rotation: None,
+        rate: scene.drive.speed.map(|w| w / drive.factor),
+        arrows: arrows(scene, report),
+    }
+    .html())
 }
 
-/// The page's script: moves the bound shapes of the mechanism drawing to a frame, the
-/// diagram's cursor to its drive position, and fills the table of values.
-const SCRIPT: &str = r#"
-const D = JSON.parse(document.getElementById('data').textContent);
-const mech = document.querySelector('#mechanism svg');
-const scale = +mech.getAttribute('data-scale');
-const ox = +mech.getAttribute('data-origin-x'), oy = +mech.getAttribute('data-origin-y');
-const diagram = document.querySelector('#diagram svg');
-const scrub = document.getElementById('scrub');
-const fmt = v => (v === null ? '—' : (Math.abs(v) >= 1e6 || (Math.abs(v) < 1e-3 && v !== 0)) ? v.toExponential(6) : v.toPrecision(9));
-function px(k, f) { const xy = D.xy[f]; return [ox + scale * xy[2 * k], oy - scale * xy[2 * k + 1]]; }
-const cursors = [];
-if (diagram) {
-  for (const r of diagram.querySelectorAll('rect.plot-frame')) {
-    const line = document.createElementNS('http://www.w3.org/2000/svg', 'line');
-    line.setAttribute('stroke', 'black'); line.setAttribute('stroke-width', '1.5');
-    line.setAttribute('y1', r.getAttribute('y'));
-    line.setAttribute('y2', +r.getAttribute('y') + +r.getAttribute('height'));
-    diagram.appendChild(line);
-    cursors.push([r, line]);
-  }
-}
-const table = document.getElementById('values');
-for (const c of D.columns) {
-  const tr = table.insertRow(); tr.insertCell().textContent = c.name;
-  const v = tr.insertCell(); v.className = 'v'; tr.insertCell().textContent = c.unit;
-}
-let frame = 0;
-function show(f) {
-  frame = Math.max(0, Math.min(D.xy.length - 1, f));
-  scrub.value = frame;
-  for (const el of mech.querySelectorAll('[data-bind]')) {
-    const b = el.getAttribute('data-bind').split(' ');
-    const k = b.slice(1).map(Number);
-    const [x, y] = px(k[0], frame);
-    if (b[0] === 'p') {
-      el.setAttribute('points', k.map(i => px(i, frame).map(v => v.toFixed(3)).join(',')).join(' '));
-    } else if (b[0] === 'c') {
-      el.setAttribute('cx', x); el.setAttribute('cy', y);
-    } else if (b[0] === 't') {
-      el.setAttribute('x', x + 7); el.setAttribute('y', y - 7);
-    } else if (b[0] === 'b') {
-      const [ax, ay] = px(k[1], frame), [bx, by] = px(k[2], frame);
-      const w = +el.getAttribute('width'), h = +el.getAttribute('height');
-      const deg = Math.atan2(by - ay, bx - ax) * 180 / Math.PI;
-      el.setAttribute('x', x - w / 2); el.setAttribute('y', y - h / 2);
-      el.setAttribute('transform', 'rotate(' + deg + ' ' + x + ' ' + y + ')');
+/// The velocity and acceleration arrows of the run: one per `[[output]] point` whose
+/// velocity or acceleration columns the run has.
+fn arrows(scene: &Scene, report: &Report) -> Vec<Arrow> {
+    let column = |name: &str| report.columns.iter().position(|c| c.name == name);
+    let mut out = Vec::new();
+    for output in &scene.outputs {
+        let OutputKind::Point(p) = &output.kind else {
+            continue;
+        };
+        let Some(point) = scene.points.iter().position(|q| q.name == *p) else {
+            continue;
+        };
+        for (q, kind) in [(Quantity::Velocity, "v"), (Quantity::Acceleration, "a")] {
+            if !output.quantities.contains(&q) {
+                continue;
+            }
+            let n = &output.name;
+            if let (Some(x), Some(y)) = (
+                column(&format!("{kind}x_{n}")),
+                column(&format!("{kind}y_{n}")),
+            ) {
+                out.push(Arrow {
+                    point,
+                    kind,
+                    columns: [x, y],
+                    unit: report.columns[x].unit.clone(),
+                });
+            }
+        }
     }
-  }
-  const row = D.values[frame];
-  const phi = row[0];
-  for (const [r, line] of cursors) {
-    const x0 = +r.getAttribute('data-x0'), x1 = +r.getAttribute('data-x1');
-    const x = +r.getAttribute('x') + (phi - x0) / (x1 - x0) * +r.getAttribute('width');
-    line.setAttribute('x1', x); line.setAttribute('x2', x);
-  }
-  row.forEach((v, i) => { table.rows[i].cells[1].textContent = fmt(v); });
-  document.getElementById('phi').textContent =
-    'frame ' + frame + ' of ' + (D.xy.length - 1) + ': φ = ' + fmt(phi) + ' ' + D.columns[0].unit;
+    out
 }
-scrub.addEventListener('input', () => show(+scrub.value));
-let timer = null;
-document.getElementById('play').addEventListener('click', () => {
-  if (timer) { clearInterval(timer); timer = null; return; }
-  timer = setInterval(() => show((frame + 1) % D.xy.length), 40);
-});
-function save(svg, name) {
-  const text = new XMLSerializer().serializeToString(svg);
-  const a = document.createElement('a');
-  a.href = URL.createObjectURL(new Blob([text], { type: 'image/svg+xml' }));
-  a.download = name; a.click();
-}
-document.getElementById('save-frame').addEventListener('click', () => save(mech, 'frame_' + frame + '.svg'));
-document.getElementById('save-diagram').addEventListener('click', () => save(diagram, 'diagram_frame_' + frame + '.svg'));
-const hash = new URLSearchParams(location.hash.slice(1));
-let start = 0;
-if (hash.has('frame')) start = +hash.get('frame');
-if (hash.has('phi')) {
-  const want = +hash.get('phi');
-  let best = Infinity;
-  D.values.forEach((row, i) => { const d = Math.abs(row[0] - want); if (d < best) { best = d; start = i; } });
-}
-if (hash.has('mark')) {
-  for (const el of mech.querySelectorAll('circle.joint')) {
-    if (el.getAttribute('data-point') === hash.get('mark')) {
-      el.setAttribute('fill', '#ff0000'); el.setAttribute('stroke', '#ff0000');
-      el.parentNode.appendChild(el);
-    }
-  }
-}
-show(start);
-"#;
+
+/// The page's style sheet: the responsive layout.
+const STYLE: &str = include_str!("report/page.css");
+
+/// The page's script: moves the bound shapes of the drawing to a frame, the diagram's cursor
+/// to its drive position, fills the table of values; plays, steps, zooms and pans.
+const SCRIPT: &str = include_str!("report/page.js");

@@ -116,7 +116,7 @@ pub fn write_json(
 }
 
 /// The header and the cells of the CSV (layout in the module documentation).
-fn table(scene: &RotorScene, answers: &RotorAnswers) -> (Vec<String>, Vec<Vec<String>>) {
+pub(crate) fn table(scene: &RotorScene, answers: &RotorAnswers) -> (Vec<String>, Vec<Vec<String>>) {
     let u = &scene.units;
     let (length, angle) = (u.symbol(Dimension::Length), u.symbol(Dimension::Angle));
     let header = format!(

@@ -4,6 +4,7 @@
 //! Each test file that needs it says `mod common;`; not every file uses every helper.
 #![allow(dead_code)]
 
+pub mod chromium;
 pub mod many_names;
 
 use std::path::{Path, PathBuf};
