@@ -5,8 +5,8 @@
 //! script are all inline.
 //!
 //! The page is laid out for any width from a phone's (400 px) to 4K: one column on a phone
-//! (the mechanism and the controls stay at the top while the table and the diagram scroll
-//! under them), two columns from 760 px (mechanism over diagram, the values beside them), and
+//! (the mechanism and the controls stay at the top while the diagram, its cursor in view, and
+//! then the table scroll under them), two columns from 760 px (mechanism over diagram, the values beside them), and
 //! from 1400 px the mechanism over the values, held in view, beside the diagram. It plays the sweep in real time
 //! at the scene's drive speed (a speed factor ×0.1…×10), steps with the keys (← →, Shift for
 //! ten frames, Home, End, space to play and pause), zooms the mechanism with the wheel and pans
