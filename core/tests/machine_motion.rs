@@ -579,6 +579,13 @@ fn steady_state_agrees_with_an_independent_periodic_solution() {
     }
     assert!((s.mean_time - TAU / s.period).abs() < 1e-12 * s.mean_time);
     assert!(s.gain.abs() < 1e-9 * 0.5 * hand.j(0.0) * s.omega * s.omega);
+    // The two formulations side by side: the same turn in time ((φ, φ̇) over t, its end
+    // located as a turn event) takes the energy form's period and comes back to its start
+    // speed, each to 1e-8 relative (both at 1e-12 per-step tolerances; the agreement is the
+    // integrations' error, reported by `mechdiff run`).
+    assert!(s.period_agreement() < 1e-8, "{:?}", s.in_time);
+    assert!(s.speed_agreement() < 1e-8, "{:?}", s.in_time);
+    assert!((s.in_time.period / period - 1.0).abs() < 1e-8);
 }
 
 /// The flywheel sized for δ = 0.02 (mid-range mean) gives, simulated as a steady state,

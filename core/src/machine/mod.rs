@@ -60,7 +60,7 @@ pub use equation::{Machine, MachineState};
 pub use error::MotionError;
 pub use flywheel::{FlywheelSizing, MeanSpeed, flywheel};
 pub use integrate::Tolerances;
-pub use steady::{SteadySettings, SteadyState, steady_state};
+pub use steady::{InTimeCheck, SteadySettings, SteadyState, steady_state};
 pub use time::{
     Event, EventKind, Record, Sample, Simulation, Start, Stop, StopReason, simulate,
     simulate_collect,

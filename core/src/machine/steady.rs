@@ -11,6 +11,7 @@ use super::angle::{AngleSample, integrate};
 use super::equation::Machine;
 use super::error::MotionError;
 use super::integrate::Tolerances;
+use super::time::{Start, Stop, simulate};
 use crate::geometry::DriveKind;
 use std::f64::consts::TAU;
 
@@ -71,8 +72,33 @@ pub struct SteadyState {
     pub gain: f64,
     /// Turns integrated by the search (the reported turn included).
     pub turns: usize,
-    /// Evaluations of the equation of motion.
+    /// Evaluations of the equation of motion (the check in time included).
     pub evaluations: usize,
+    /// The same turn integrated in time from (φ₀, ω₀), beside the energy form that found it.
+    pub in_time: InTimeCheck,
+}
+
+/// The periodic turn of a [`SteadyState`], found in the energy form (E and t over φ), run
+/// again in time ((φ, φ̇) over t) from the same start: the two formulations side by side.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct InTimeCheck {
+    /// The time form's duration of the turn from φ₀ to φ₀ + 2π (s).
+    pub period: f64,
+    /// The time form's speed back at φ₀ + 2π (rad/s).
+    pub omega: f64,
+}
+
+impl SteadyState {
+    /// `|T_time − T|/T`: the formulations' agreement on the period.
+    pub fn period_agreement(&self) -> f64 {
+        (self.in_time.period - self.period).abs() / self.period
+    }
+
+    /// `|ω_time(φ₀ + 2π) − ω₀|/ω₀`: how closely the time form returns to the periodic
+    /// start speed.
+    pub fn speed_agreement(&self) -> f64 {
+        (self.in_time.omega - self.omega).abs() / self.omega
+    }
 }
 
 /// The steady periodic state of `machine`; the samples of the periodic turn (φ, t, ω, E)
@@ -290,9 +316,21 @@ pub fn steady_state(
     let mean_time = TAU / period;
     let mean_mid = 0.5 * (x.max.0 + x.min.0);
     let swing = x.max.0 - x.min.0;
+    let omega0 = (2.0 * e0 / j0).sqrt();
+    let start = Start {
+        time: 0.0,
+        phi: phi0,
+        omega: omega0,
+    };
+    let one_turn = Stop {
+        turns: Some(1.0),
+        ..Stop::default()
+    };
+    let again = simulate(machine, start, &one_turn, &settings.tolerances, &mut |_| {})?;
+    evaluations += again.evaluations;
     Ok(SteadyState {
         phi: phi0,
-        omega: (2.0 * e0 / j0).sqrt(),
+        omega: omega0,
         period,
         min: x.min,
         max: x.max,
@@ -303,5 +341,9 @@ pub fn steady_state(
         gain: run.end.energy - e0,
         turns,
         evaluations,
+        in_time: InTimeCheck {
+            period: again.last_period.unwrap_or(again.end.time),
+            omega: again.end.omega,
+        },
     })
 }

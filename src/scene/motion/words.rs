@@ -123,7 +123,9 @@ pub(crate) fn steady_line(w: &Words<'_>, s: &SteadyState) -> String {
         "steady state (from {} at {}): period {} s; ω_min {} at {}, ω_max {} at {}; mean speed \
          {} as the time mean 2π/T and {} as the mid-range (ω_max + ω_min)/2; δ = \
          (ω_max − ω_min)/ω_mean = {} against the time mean, {} against the mid-range \
-         ({} turns integrated)",
+         ({} turns integrated); the same turn in time from that start: period within {:.1e}, \
+         speed back at the start within {:.1e} (relative; the energy and time forms side by \
+         side)",
         w.speed(s.omega),
         w.position(s.phi),
         significant(s.period),
@@ -136,6 +138,8 @@ pub(crate) fn steady_line(w: &Words<'_>, s: &SteadyState) -> String {
         significant(s.delta_time),
         significant(s.delta_mid),
         s.turns,
+        s.period_agreement(),
+        s.speed_agreement(),
     )
 }
 
