@@ -35,7 +35,7 @@ def test_an_unknown_point_is_an_invalid_scene_error_naming_the_points(norton_pat
         mechdiff.parse(text, file="norton.toml")
     e = caught.value
     assert e.kind == "UnknownPoint" and e.line == line_of(text, '"O5"')
-    assert "`O5`" in str(e) and "O2, O4, A, B" in str(e)
+    assert "`O5`" in str(e) and "the points are: A, B, O2, O4" in str(e)
 
 
 def test_a_setting_of_no_parameter_is_a_setting_error(norton_path):
