@@ -78,6 +78,7 @@ class _Summary:
     failed: int = 0
     failures: List[Tuple[int, str, str, Dict[str, float]]] = field(default_factory=list)
     peak_rss: Dict[str, int] = field(default_factory=dict)  # worker → bytes
+    cpu: Dict[str, float] = field(default_factory=dict)  # worker → CPU seconds so far
 
     def merge(self, other: "_Summary") -> None:
         """Adds ``other`` (the next chunk in order) into this summary."""
@@ -91,12 +92,20 @@ class _Summary:
         self.failures.extend(other.failures[: max(room, 0)])
         for worker, peak in other.peak_rss.items():
             self.peak_rss[worker] = max(self.peak_rss.get(worker, 0), peak)
+        for worker, seconds in other.cpu.items():
+            self.cpu[worker] = max(self.cpu.get(worker, 0.0), seconds)
 
 
 def _peak_rss() -> int:
     """This process's peak resident memory, in bytes (Linux reports kB, macOS bytes)."""
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
     return peak if os.uname().sysname == "Darwin" else peak * 1024
+
+
+def _cpu_seconds() -> float:
+    """The CPU time this process has used (user and system), in seconds."""
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    return usage.ru_utime + usage.ru_stime
 
 
 def _chunk(
@@ -132,6 +141,7 @@ def _chunk(
         failed=int(count - ok.sum()),
         failures=failures,
         peak_rss={worker: _peak_rss()},
+        cpu={worker: _cpu_seconds()},
     )
 
 
@@ -165,6 +175,9 @@ class MonteCarlo:
     chunk: int
     #: Peak resident memory (bytes) of each process that ran chunks.
     peak_rss: Dict[str, int]
+    #: CPU seconds of each process that ran chunks, at its last chunk (for a fresh
+    #: LocalCluster: the study's cost, independent of other work on the machine).
+    cpu_seconds: Dict[str, float]
 
     def to_pandas(self):
         """The summary as a DataFrame, one row per drive position (pandas needed)."""
@@ -279,6 +292,7 @@ def monte_carlo(
         chunks=len(tasks),
         chunk=chunk,
         peak_rss=merged.peak_rss,
+        cpu_seconds=merged.cpu,
     )
 
 
