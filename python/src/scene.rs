@@ -26,6 +26,9 @@ pub struct Scene {
     scene: mechdiff::Scene,
 }
 
+/// What a scene pickles as: `Scene.parse` and its arguments (text, file, settings).
+type Reduced = (Py<PyAny>, (String, String, Vec<(String, String)>));
+
 /// `(name, value)` pairs as settings.
 fn settings_of(pairs: Vec<(String, String)>) -> Vec<Setting> {
     pairs
@@ -280,10 +283,7 @@ impl Scene {
 
     /// Pickling (Dask ships a scene to its workers): read again from the same text, name
     /// and settings.
-    fn __reduce__(
-        &self,
-        py: Python<'_>,
-    ) -> PyResult<(Py<PyAny>, (String, String, Vec<(String, String)>))> {
+    fn __reduce__(&self, py: Python<'_>) -> PyResult<Reduced> {
         let parse = py.get_type::<Scene>().getattr("parse")?.unbind();
         Ok((
             parse,
