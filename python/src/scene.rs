@@ -1,0 +1,293 @@
+//! The `Scene` class: a read and checked scene with the text and settings it was read from,
+//! so that a sensitivity study or a variant re-reads it as the command line's `--set` does.
+
+use std::path::PathBuf;
+
+use mechdiff::evaluator::Evaluator;
+use mechdiff::{RunOptions, Setting};
+use numpy::{PyReadonlyArray1, PyReadonlyArray2};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::columns::Columns;
+use crate::errors::{argument, to_py};
+use crate::variants;
+
+/// A scene file read and checked (`mechdiff.Scene` wraps it; see `mechdiff/__init__.py`).
+#[pyclass(module = "mechdiff._mechdiff", name = "Scene", frozen)]
+pub struct Scene {
+    /// The name the messages give the file.
+    file: String,
+    /// The scene's text as read.
+    text: String,
+    /// The parameters' values replaced (`--set NAME=VALUE`), in order.
+    settings: Vec<Setting>,
+    /// The scene read with them.
+    scene: mechdiff::Scene,
+}
+
+/// What a scene pickles as: `Scene.parse` and its arguments (text, file, settings).
+type Reduced = (Py<PyAny>, (String, String, Vec<(String, String)>));
+
+/// `(name, value)` pairs as settings.
+fn settings_of(pairs: Vec<(String, String)>) -> Vec<Setting> {
+    pairs
+        .into_iter()
+        .map(|(name, value)| Setting { name, value })
+        .collect()
+}
+
+impl Scene {
+    /// Reads `text` (named `file`) with `settings`, without the GIL.
+    fn read(py: Python<'_>, file: String, text: String, settings: Vec<Setting>) -> PyResult<Self> {
+        let read = py.detach(|| mechdiff::parse_with(&file, &text, &settings));
+        let scene = read.map_err(|e| to_py(py, &e))?;
+        Ok(Scene {
+            file,
+            text,
+            settings,
+            scene,
+        })
+    }
+
+    /// The read scene.
+    pub fn scene(&self) -> &mechdiff::Scene {
+        &self.scene
+    }
+
+    /// The text, name and settings it was read from.
+    pub fn source(&self) -> (&str, &str, &[Setting]) {
+        (&self.file, &self.text, &self.settings)
+    }
+}
+
+#[pymethods]
+impl Scene {
+    /// Reads and checks the scene file at `path` with `settings` (`[(name, value), ...]`,
+    /// each value a number or a formula of the other parameters, in the parameter's unit).
+    #[staticmethod]
+    #[pyo3(signature = (path, settings = Vec::new()))]
+    fn load(py: Python<'_>, path: PathBuf, settings: Vec<(String, String)>) -> PyResult<Self> {
+        let text = py
+            .detach(|| mechdiff::files::read_scene(&path))
+            .map_err(|e| to_py(py, &e))?;
+        Self::read(py, path.display().to_string(), text, settings_of(settings))
+    }
+
+    /// Reads and checks a scene given as `text`, named `file` in messages.
+    #[staticmethod]
+    #[pyo3(signature = (text, file = "<text>".to_owned(), settings = Vec::new()))]
+    fn parse(
+        py: Python<'_>,
+        text: String,
+        file: String,
+        settings: Vec<(String, String)>,
+    ) -> PyResult<Self> {
+        Self::read(py, file, text, settings_of(settings))
+    }
+
+    /// The same scene with `settings` added to its own (a later value of a parameter
+    /// replaces an earlier one).
+    fn with_settings(&self, py: Python<'_>, settings: Vec<(String, String)>) -> PyResult<Self> {
+        let mut all = self.settings.clone();
+        for new in settings_of(settings) {
+            all.retain(|s| s.name != new.name);
+            all.push(new);
+        }
+        Self::read(py, self.file.clone(), self.text.clone(), all)
+    }
+
+    /// The name of the file in messages.
+    #[getter]
+    fn file(&self) -> &str {
+        &self.file
+    }
+
+    /// The scene's text as read.
+    #[getter]
+    fn text(&self) -> &str {
+        &self.text
+    }
+
+    /// The scene's title, if it has one.
+    #[getter]
+    fn title(&self) -> Option<&str> {
+        self.scene.title.as_deref()
+    }
+
+    /// The settings it was read with, `[(name, value), ...]`.
+    #[getter]
+    fn settings(&self) -> Vec<(String, String)> {
+        (self.settings.iter())
+            .map(|s| (s.name.clone(), s.value.clone()))
+            .collect()
+    }
+
+    /// The values of `[parameters]` (after the settings), in the order they were
+    /// evaluated, each in the unit of the fields that use it.
+    #[getter]
+    fn parameters(&self) -> Vec<(String, f64)> {
+        self.scene.parameters.clone()
+    }
+
+    /// The number of drive positions of the scene's sweep.
+    #[getter]
+    fn positions(&self) -> usize {
+        self.scene.positions.len()
+    }
+
+    /// Checks the scene without running its sweep (as `mechdiff check`): a dict with the
+    /// `plan` line and the `columns` a run would have, `[(name, unit), ...]`.
+    fn check<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let checked = py
+            .detach(|| mechdiff::scene::check(&self.scene))
+            .map_err(|e| to_py(py, &e))?;
+        let dict = PyDict::new(py);
+        dict.set_item("plan", checked.plan.describe(&self.scene))?;
+        let columns: Vec<(String, String)> = (checked.columns.iter())
+            .map(|c| (c.name.clone(), c.unit.clone()))
+            .collect();
+        dict.set_item("columns", columns)?;
+        Ok(dict)
+    }
+
+    /// Runs the sweep (or the drive `positions`, in the scene's units of the sweep, when
+    /// given) in memory, with the `evaluator` named (`auto`, `solver`, `program`,
+    /// `interpreter`, `jit`), without the GIL. The columns and findings as a dict (see
+    /// `Columns::into_py`).
+    #[pyo3(signature = (positions = None, evaluator = None))]
+    fn run<'py>(
+        &self,
+        py: Python<'py>,
+        positions: Option<PyReadonlyArray1<'py, f64>>,
+        evaluator: Option<&str>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let evaluator = match evaluator.unwrap_or("auto") {
+            "auto" => Evaluator::Auto,
+            "solver" => Evaluator::Solver,
+            "program" => Evaluator::Program,
+            "interpreter" => Evaluator::Interpreter,
+            "jit" => Evaluator::Jit,
+            other => {
+                return Err(argument(
+                    py,
+                    format!(
+                        "evaluator={other:?} is not one; expected \"auto\", \"solver\", \
+                         \"program\", \"interpreter\" or \"jit\""
+                    ),
+                ));
+            }
+        };
+        let positions = positions.as_ref().map(|p| p.as_slice()).transpose()?;
+        let options = RunOptions { evaluator };
+        let columns = py
+            .detach(|| {
+                let moved;
+                let scene = match positions {
+                    Some(p) => {
+                        moved = self.scene.with_positions(p)?;
+                        &moved
+                    }
+                    None => &self.scene,
+                };
+                let report = mechdiff::run_with(scene, &options)?;
+                Ok(Columns::of(scene, report))
+            })
+            .map_err(|e: mechdiff::Error| to_py(py, &e))?;
+        columns.into_py(py)
+    }
+
+    /// Runs the scene with a `[sensitivity]` table asking for `columns`
+    /// (`"d(COLUMN)/d(PARAMETER)"`; with none, the scene's own `[sensitivity]` and
+    /// `[tolerances]`), without the GIL. Returns the run's dict (its derivative columns
+    /// after the others) and, per derivative column, `(name, method, estimated_error,
+    /// why)`: `method` is `"exact"` (dual numbers) or `"richardson"` (extrapolated
+    /// differences, where the exact route does not reach, with the reason).
+    #[allow(clippy::type_complexity)]
+    fn sensitivity<'py>(
+        &self,
+        py: Python<'py>,
+        columns: Vec<String>,
+    ) -> PyResult<(Bound<'py, PyDict>, Vec<(String, String, f64, String)>)> {
+        let mut text = self.text.clone();
+        if !columns.is_empty() {
+            if mechdiff::sensitivity::requested(&text) {
+                return Err(argument(
+                    py,
+                    format!(
+                        "{}: the scene has a `[sensitivity]` or `[tolerances]` table of its \
+                         own; call sensitivity() without columns to run it, or remove it to \
+                         ask for columns here",
+                        self.file
+                    ),
+                ));
+            }
+            let list: Vec<String> = (columns.iter())
+                .map(|c| toml::Value::String(c.clone()).to_string())
+                .collect();
+            text.push_str(&format!(
+                "\n[sensitivity]\ncolumns = [{}]\n",
+                list.join(", ")
+            ));
+        }
+        let options = mechdiff::sensitivity::Options::default();
+        let (columns, methods) = py
+            .detach(|| {
+                let (scene, report, study) =
+                    mechdiff::sensitivity::run(&self.file, &text, &self.settings, &options)?;
+                let methods = (study.iter())
+                    .flat_map(|s| &s.derivatives)
+                    .map(|d| match &d.method {
+                        mechdiff::sensitivity::Method::Exact => {
+                            (d.name.clone(), "exact".to_owned(), 0.0, String::new())
+                        }
+                        mechdiff::sensitivity::Method::Richardson {
+                            estimated_error,
+                            why,
+                            ..
+                        } => (
+                            d.name.clone(),
+                            "richardson".to_owned(),
+                            *estimated_error,
+                            why.clone(),
+                        ),
+                    })
+                    .collect::<Vec<_>>();
+                Ok((Columns::of(&scene, report), methods))
+            })
+            .map_err(|e: mechdiff::Error| to_py(py, &e))?;
+        Ok((columns.into_py(py)?, methods))
+    }
+
+    /// Runs one variant of the scene per row of `values` (`values[i, j]`: the value of
+    /// parameter `names[j]` in variant `i`, in the parameter's unit), each over the scene's
+    /// sweep, and returns the `columns` asked for (all when `None`) of every variant as an
+    /// array `[variant, position, column]` in the columns' units, with the columns' names
+    /// and the variants that failed as `[(index, kind, message), ...]` (their rows NaN). Without the GIL, in
+    /// blocks between which Ctrl-C interrupts.
+    #[allow(clippy::type_complexity)]
+    #[pyo3(signature = (names, values, columns = None))]
+    fn run_variants<'py>(
+        &self,
+        py: Python<'py>,
+        names: Vec<String>,
+        values: PyReadonlyArray2<'py, f64>,
+        columns: Option<Vec<String>>,
+    ) -> PyResult<(
+        Bound<'py, numpy::PyArray3<f64>>,
+        Vec<String>,
+        Vec<(usize, String, String)>,
+    )> {
+        variants::run(py, self, &names, values, columns)
+    }
+
+    /// Pickling (Dask ships a scene to its workers): read again from the same text, name
+    /// and settings.
+    fn __reduce__(&self, py: Python<'_>) -> PyResult<Reduced> {
+        let parse = py.get_type::<Scene>().getattr("parse")?.unbind();
+        Ok((
+            parse,
+            (self.text.clone(), self.file.clone(), self.settings()),
+        ))
+    }
+}
