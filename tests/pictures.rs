@@ -1262,3 +1262,30 @@ fn cam_and_rotor_scenes_write_their_reports() {
         assert_eq!(number(&shown[k]), want, "{name}");
     }
 }
+
+/// A sweep that starts a step from a limit position (the rack's travel of reference 001,
+/// limit 0.2966 m, sweep from 0.30 m) draws its coupler curves: the limit's pose is a toggle
+/// whose velocity coefficients are infinite, so it is marked at the curve's end next to it,
+/// and the label says so (the plot used to fail with "singular position").
+#[test]
+fn a_limit_just_outside_the_sweep_is_marked_at_the_curves_end() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_mechdiff"))
+        .args(["run", "scenes/rack_slotted_link_travel.toml", "--plot"])
+        .arg(dir.path())
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for point in ["C", "D", "G1"] {
+        let svg = std::fs::read_to_string(dir.path().join(format!("path_{point}.svg"))).unwrap();
+        assert!(
+            svg.contains("limit position at φ = 0.296595 m (marked at the nearest drawn position)"),
+            "{point}"
+        );
+    }
+}

@@ -359,8 +359,7 @@ fn check_page(browser: &mut Chromium, case: &Case, viewport: (u32, u32)) -> Vec<
             layout["used"]
         ));
     }
-    if layout["cursors"].as_u64().unwrap() > 0 && layout["cursorAtTop"] != json!(true)
-    {
+    if layout["cursors"].as_u64().unwrap() > 0 && layout["cursorAtTop"] != json!(true) {
         failures.push(format!("{label}: no diagram cursor in view at the top"));
     }
     failures

@@ -86,7 +86,33 @@ pub fn plots(
             (l.limit.phi, words.to_owned())
         })
         .collect();
-    let limit_poses = poses(scene, &m, &limits.iter().map(|l| l.0).collect::<Vec<_>>())?;
+    // A limit is a toggle of the loop that stops there: its pose may not solve with the
+    // derivatives the drawings carry (the velocity coefficients are infinite). Such a limit is
+    // marked at the drawn pose nearest to it (the curve's end next to it), and says so.
+    let mut limit_poses = Poses {
+        phi: Vec::new(),
+        xy: Vec::new(),
+    };
+    let mut limits = limits;
+    for (phi, words) in &mut limits {
+        let pose = match poses(scene, &m, &[*phi]) {
+            Ok(p) => p.xy.into_iter().next().expect("one pose asked"),
+            Err(_) => {
+                let nearest = (0..drawn.phi.len())
+                    .min_by(|&a, &b| {
+                        (drawn.phi[a] - *phi)
+                            .abs()
+                            .total_cmp(&(drawn.phi[b] - *phi).abs())
+                    })
+                    .expect("drawn poses are not empty");
+                let at = format!("φ = {} {}", short(*phi / drive.factor), drive.unit);
+                words.push_str(&format!(" at {at} (marked at the nearest drawn position)"));
+                drawn.xy[nearest].clone()
+            }
+        };
+        limit_poses.phi.push(*phi);
+        limit_poses.xy.push(pose);
+    }
     let title = scene.title.clone().unwrap_or_else(|| scene.file.clone());
     let mut out = Vec::new();
     for &k in traced {
