@@ -15,7 +15,7 @@ TOLERANCES = {"a": 5e-4, "b": 5e-4}
 
 def timed(scene, seed, out, key):
     start = time.perf_counter()
-    out[key] = study.monte_carlo(scene, TOLERANCES, 3072, chunk=1024, seed=seed, client="serial")
+    out[key] = study.monte_carlo(scene, TOLERANCES, 1024, chunk=1024, seed=seed, client="serial")
     return time.perf_counter() - start
 
 
