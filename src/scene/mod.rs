@@ -57,6 +57,7 @@ pub(crate) mod plan;
 pub mod plot;
 pub(crate) mod positions;
 pub(crate) mod preflight;
+mod resample;
 pub(crate) mod resolve;
 pub mod run;
 pub mod setup;
