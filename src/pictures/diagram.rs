@@ -883,6 +883,28 @@ mod tests {
         assert!(r.end > r.start);
     }
 
+    /// The legend goes to the corner its box covers the fewest curve points in (the issue's
+    /// "legends over curves"): a curve rising to the upper right puts it upper left, one
+    /// falling from the upper left puts it upper right.
+    #[test]
+    fn the_legend_takes_the_emptiest_corner() {
+        // x, y in 0..100 drawn 1:1 on a 400 × 200 px plot (y up).
+        let pixel = |p: [f64; 2]| ((4.0 * p[0]) as i32, (200.0 - 2.0 * p[1]) as i32);
+        let (px, py) = (0..400, 0..200);
+        let rising: Vec<[f64; 2]> = (0..=100).map(|k| [k as f64, k as f64]).collect();
+        let panel = Panel::new("y").series("rising", rising);
+        assert!(matches!(
+            emptiest_corner(&panel, pixel, (&px, &py)),
+            SeriesLabelPosition::UpperLeft | SeriesLabelPosition::LowerRight
+        ));
+        let falling: Vec<[f64; 2]> = (0..=100).map(|k| [k as f64, 100.0 - k as f64]).collect();
+        let panel = Panel::new("y").series("falling", falling);
+        assert!(matches!(
+            emptiest_corner(&panel, pixel, (&px, &py)),
+            SeriesLabelPosition::UpperRight | SeriesLabelPosition::LowerLeft
+        ));
+    }
+
     /// NaN splits a curve into runs and is never drawn.
     #[test]
     fn non_finite_points_break_curves() {
