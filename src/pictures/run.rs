@@ -395,8 +395,20 @@ pub fn write_dir(scene: &Scene, report: &Report, dir: &Path) -> Result<Vec<PathB
         };
         pictures.insert(0, (name.clone(), svg));
     }
+    write_folder(dir, &pictures, &html, &paths)
+}
+
+/// Writes a `--plot` folder: each picture as SVG and PNG, `report.html`, and each coupler
+/// curve's CSV, after refusing any of those names that is an input of the run. Returns the
+/// files written.
+pub(crate) fn write_folder(
+    dir: &Path,
+    pictures: &[(String, String)],
+    html: &str,
+    paths: &[super::path::PathPlot],
+) -> Result<Vec<PathBuf>> {
     let mut written = Vec::new();
-    for (name, _) in &pictures {
+    for (name, _) in pictures {
         written.push(dir.join(format!("{name}.svg")));
         written.push(dir.join(format!("{name}.png")));
     }
@@ -410,7 +422,7 @@ pub fn write_dir(scene: &Scene, report: &Report, dir: &Path) -> Result<Vec<PathB
         super::raster::write_png(svg, &files[1])?;
     }
     super::write_file(&dir.join("report.html"), html.as_bytes())?;
-    for p in &paths {
+    for p in paths {
         super::write_file(&dir.join(format!("{}.csv", p.name)), p.csv.as_bytes())?;
     }
     Ok(written)

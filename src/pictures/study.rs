@@ -226,25 +226,7 @@ pub fn write_dir(sweep: &ParameterSweep, runs: &[StudyRun], dir: &Path) -> Resul
         pictures.push((p.name.clone(), drawing.to_svg()));
     }
     let html = super::report::html(scene, report, &animation, &whole)?;
-    let mut written = Vec::new();
-    for (name, _) in &pictures {
-        written.push(dir.join(format!("{name}.svg")));
-        written.push(dir.join(format!("{name}.png")));
-    }
-    let pngs = written.len();
-    written.push(dir.join("report.html"));
-    written.extend(paths.iter().map(|p| dir.join(format!("{}.csv", p.name))));
-    crate::files::refuse_inputs(written.iter().map(PathBuf::as_path))?;
-    crate::files::create_output_folder(dir)?;
-    for ((_, svg), files) in pictures.iter().zip(written[..pngs].chunks(2)) {
-        super::write_file(&files[0], svg.as_bytes())?;
-        super::raster::write_png(svg, &files[1])?;
-    }
-    super::write_file(&dir.join("report.html"), html.as_bytes())?;
-    for p in &paths {
-        super::write_file(&dir.join(format!("{}.csv", p.name)), p.csv.as_bytes())?;
-    }
-    Ok(written)
+    super::run::write_folder(dir, &pictures, &html, &paths)
 }
 
 /// Writes the HTML report of a study to `path`: the first value's run, with the families of
