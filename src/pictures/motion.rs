@@ -41,12 +41,13 @@ pub fn diagrams(title: &str, report: &MotionReport) -> Vec<(&'static str, Diagra
 /// # Errors
 /// The folder's or a file's write error, or a diagram that cannot be drawn.
 pub fn write_dir(title: &str, report: &MotionReport, dir: &Path) -> Result<Vec<PathBuf>> {
+    let diagrams = diagrams(title, report);
+    let written: Vec<PathBuf> = diagrams.iter().map(|(name, _)| dir.join(name)).collect();
+    // As every `--plot` folder: no picture lands on a file the run read.
+    crate::files::refuse_inputs(written.iter().map(PathBuf::as_path))?;
     crate::files::create_output_folder(dir)?;
-    let mut written = Vec::new();
-    for (name, diagram) in diagrams(title, report) {
-        let path = dir.join(name);
-        diagram.write_svg(&path)?;
-        written.push(path);
+    for ((_, diagram), path) in diagrams.iter().zip(&written) {
+        diagram.write_svg(path)?;
     }
     Ok(written)
 }
