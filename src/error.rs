@@ -520,6 +520,17 @@ pub enum Error {
         /// What to do instead.
         advice: &'static str,
     },
+    /// A scene's `[synthesize]` section that the synthesis engine refuses, or a search
+    /// that found no usable mechanism: the engine's reason, placed at the part of the
+    /// section it concerns.
+    #[error("{location}: {source}")]
+    Synthesis {
+        /// Where in the `[synthesize]` section.
+        location: Location,
+        /// The engine's reason (it says what to change).
+        #[source]
+        source: mechdiff_core::synthesis::SynthesisError,
+    },
     /// A command-line option that does not apply to this kind of scene.
     #[error("{option} does not apply to {scene}: {why}")]
     OptionNotApplicable {

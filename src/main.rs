@@ -36,6 +36,9 @@ enum Command {
     Accuracy(cli::accuracy::AccuracyArgs),
     /// Convert a Pyslvs expression or a PMKS text file into a scene (printed, or --out FILE).
     Import(cli::import::ImportArgs),
+    /// Size a scene's parameters from what it must do (its `[synthesize]` section: path,
+    /// function or motion generation), by least squares with the exact Jacobian.
+    Synthesize(cli::synthesize::SynthesizeArgs),
     /// Generate Rust code: a formula's function and its derivatives, or a scene's whole pose
     /// (symbolic, with CSE)
     Codegen(mechdiff::codegen::Args),
@@ -62,6 +65,7 @@ fn main() -> ExitCode {
         Some(Command::Check(args)) => cli::check::check(&args).map_err(Into::into),
         Some(Command::Accuracy(args)) => cli::accuracy::accuracy(&args).map_err(Into::into),
         Some(Command::Import(args)) => cli::import::import(&args).map_err(Into::into),
+        Some(Command::Synthesize(args)) => cli::synthesize::synthesize(&args).map_err(Into::into),
         Some(Command::Codegen(args)) => mechdiff::codegen::run(&args).map_err(Into::into),
     };
     match result {

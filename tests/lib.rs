@@ -40,5 +40,6 @@ mod sensitivity_exact;
 mod sensitivity_methods;
 mod streaming;
 mod sweep_limits;
+mod synthesize_cli;
 mod user_files;
 mod whitworth_report;

@@ -8,6 +8,7 @@ pub mod import;
 pub mod motion;
 pub mod rotor;
 pub mod run;
+pub mod synthesize;
 
 use std::path::Path;
 

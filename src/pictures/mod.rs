@@ -58,6 +58,7 @@ pub mod run;
 pub mod scene;
 pub mod study;
 pub mod symbols;
+pub mod synthesis;
 pub(crate) mod vectors;
 
 use std::path::Path;

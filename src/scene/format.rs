@@ -76,6 +76,9 @@ pub struct SceneFile {
     /// ± tolerances of parameters for a tolerance study; read by the sensitivity study
     /// (`mechdiff::sensitivity`), not by the scene reader.
     pub tolerances: Option<de::IgnoredAny>,
+    /// Dimensional synthesis of the scene's parameters; read by `mechdiff synthesize`
+    /// ([`super::synthesize`]), not by the scene reader.
+    pub synthesize: Option<de::IgnoredAny>,
 }
 
 impl<'a> DynamicsSections<'a> {

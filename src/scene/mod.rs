@@ -64,6 +64,7 @@ pub mod setup;
 pub mod solver;
 pub(crate) mod source;
 pub mod study;
+pub mod synthesize;
 pub(crate) mod sweep;
 pub(crate) mod sweep_limits;
 pub mod table;

@@ -1,0 +1,121 @@
+//! Dimensional synthesis of a scene's `[parameters]`: the `[synthesize]` section (read in a
+//! pass of its own: the scene's reader skips it) names a linkage the synthesis engine sizes
+//! (`mechdiff_core::synthesis`), the scene's parameters that are its dimensions, their
+//! bounds, one task (path, function or motion generation), constraints and the search's
+//! limits. [`read`] checks it all before any work (every error at `file:line:column`),
+//! [`Setup::solve`] runs the search, [`Setup::found_scene`] writes the scene with the
+//! parameters found, and [`Setup::margins`] measures the constraints at the answer.
+//!
+//! ```
+//! let text = std::fs::read_to_string("scenes/synthesis_four_bar_path.toml")?;
+//! let setup = mechdiff::scene::synthesize::read("synthesis_four_bar_path.toml", &text)?;
+//! assert_eq!(setup.problem.task().target_count(), 10);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+mod margins;
+mod read;
+mod section;
+mod summary;
+
+use std::ops::Range;
+
+use mechdiff_core::synthesis::{Problem, Report, Synthesis, SynthesisError};
+
+use crate::error::{Error, Result};
+use crate::scene::Source;
+use crate::scene::units::{Dimension, Units};
+
+pub use margins::{Margin, Margins};
+pub use read::{DEFAULT_TIME_LIMIT, MAX_EVALUATIONS, MAX_TIME_LIMIT, check_time_limit, read};
+pub use summary::summary;
+
+/// A design variable of the linkage or the task, and where it lives in the scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Variable {
+    /// The engine's name (`crank`, `o4x`, `drive0`, …).
+    pub name: String,
+    /// The scene parameter it is (`None` for the task's angles: `drive0`, `pose_angle`, …).
+    pub parameter: Option<String>,
+    /// Its unit's dimension (length or angle).
+    pub dimension: Dimension,
+    /// Its bounds (SI; equal when fixed at the scene's value); `None` for a task angle left
+    /// to the engine's default.
+    pub bounds: Option<(f64, f64)>,
+    /// The span of its value in `[parameters]`, where the value found is written (a free
+    /// design variable only).
+    pub value_span: Option<Range<usize>>,
+}
+
+/// A scene's synthesis, read and checked.
+#[derive(Debug, Clone)]
+pub struct Setup {
+    /// The engine's problem (SI).
+    pub problem: Problem,
+    /// The search's settings from the section (the command line may change them).
+    pub settings: Synthesis,
+    /// The design variables, in the problem's order.
+    pub variables: Vec<Variable>,
+    /// The file's units.
+    pub units: Units,
+    /// The scene's text, for messages and for writing the scene found.
+    pub source: Source,
+    /// The linkage as the section names it (`four_bar`, …).
+    pub linkage_name: String,
+    /// Whether the crank must turn fully.
+    pub crank_rotates: bool,
+    /// The least transmission angle required (rad; 0 when none).
+    pub min_transmission: f64,
+    bounds_span: Range<usize>,
+    time_span: Range<usize>,
+}
+
+impl Setup {
+    /// Runs the search with `settings` (the section's, or changed by the command line).
+    ///
+    /// # Errors
+    /// [`Error::Synthesis`]: no sample of the bounds is a usable mechanism (at
+    /// `[synthesize.bounds]`, with the defects counted), or the time limit ran out before
+    /// one was found (at `time_limit`).
+    pub fn solve(&self, settings: &Synthesis) -> Result<Report> {
+        settings.solve(&self.problem).map_err(|source| {
+            let span = match &source {
+                SynthesisError::TimeLimit { .. } | SynthesisError::InvalidSetting { .. } => {
+                    self.time_span.clone()
+                }
+                _ => self.bounds_span.clone(),
+            };
+            Error::Synthesis {
+                location: self.source.location(span),
+                source,
+            }
+        })
+    }
+
+    /// The value of variable `k` of `report` in the file's unit.
+    pub fn in_file_units(&self, report: &Report, k: usize) -> f64 {
+        self.units
+            .from_si(report.variables[k].1, self.variables[k].dimension)
+    }
+
+    /// The scene's text with each free design variable's value in `[parameters]` replaced
+    /// by the value found (in the file's unit, shortest form that reads back exactly); the
+    /// rest of the file, comments and `[synthesize]` included, as it was.
+    pub fn found_scene(&self, report: &Report) -> String {
+        let mut edits: Vec<(Range<usize>, String)> = self
+            .variables
+            .iter()
+            .enumerate()
+            .filter_map(|(k, v)| {
+                let span = v.value_span.clone()?;
+                Some((span, format!("{}", self.in_file_units(report, k))))
+            })
+            .collect();
+        edits.sort_by_key(|(span, _)| std::cmp::Reverse(span.start));
+        let mut text = self.source.text.clone();
+        for (span, value) in edits {
+            text.replace_range(span, &value);
+        }
+        text
+    }
+}

@@ -1,0 +1,266 @@
+//! `mechdiff synthesize` and the `[synthesize]` section: the shipped scenes' known answers
+//! recovered, the scene written with the parameters found run as is, the residual table
+//! against the objective, and bad input (unknown names, bounds that exclude every assembly,
+//! targets out of reach, zero and huge limits) answered with located errors, never a hang.
+//!
+//! The known answers are the dimensions the targets were computed from (in Python, by the
+//! closed form written out in each scene's comment, 17 digits); the scene run checks the
+//! answer with the scene's own geometry solver (Newton on the sketch's constraints), a
+//! route independent of the synthesis's closed forms.
+
+use std::time::Duration;
+
+use mechdiff::Error;
+use mechdiff::scene::{self, synthesize};
+use mechdiff_core::synthesis::{Report, StopReason};
+
+use crate::common::{column, mechdiff, scene_path, stderr, stdout, temp_file};
+
+fn text(name: &str) -> String {
+    std::fs::read_to_string(scene_path(name)).unwrap()
+}
+
+fn solve(name: &str, text: &str) -> (synthesize::Setup, Report) {
+    let setup = synthesize::read(name, text).unwrap_or_else(|e| panic!("{e}"));
+    let report = setup
+        .solve(&setup.settings)
+        .unwrap_or_else(|e| panic!("{e}"));
+    (setup, report)
+}
+
+/// Asserts the objective ≤ 1e-20 and every `known` value (in the file's units) to 1e-9
+/// (dimensions of order 1 m; angles in degrees, 1e-9 deg is far below the 1e-12 the
+/// objective allows).
+fn assert_known(setup: &synthesize::Setup, report: &Report, known: &[(&str, f64)]) {
+    assert!(report.objective <= 1e-20, "objective {}", report.objective);
+    for (name, value) in known {
+        let k = (setup.variables.iter())
+            .position(|v| v.parameter.as_deref().unwrap_or(&v.name) == *name)
+            .unwrap_or_else(|| panic!("no variable {name}"));
+        let found = setup.in_file_units(report, k);
+        assert!((found - value).abs() <= 1e-9, "{name}: {found} against {value}");
+    }
+}
+
+const PATH: &str = "synthesis_four_bar_path.toml";
+const FUNCTION: &str = "synthesis_four_bar_function.toml";
+const MOTION: &str = "synthesis_four_bar_motion.toml";
+
+/// The four-bar the path and motion targets come from (m), see the scenes' comments.
+const FOUR_BAR: [(&str, f64); 9] = [
+    ("o2x", 0.0),
+    ("o2y", 0.0),
+    ("o4x", 1.2),
+    ("o4y", 0.1),
+    ("crank", 0.4),
+    ("coupler", 1.1),
+    ("rocker", 0.9),
+    ("px", 0.5),
+    ("py", 0.35),
+];
+
+#[test]
+fn four_bar_path_known_answer_is_recovered_and_its_scene_meets_the_targets() {
+    // Symmetries: the mirror image (P right of A→B) is excluded by py > 0, and the
+    // cognates by the timing (they trace the curve with other crank angles), so the answer
+    // is unique within the bounds.
+    let (setup, report) = solve(PATH, &text(PATH));
+    let mut known = FOUR_BAR.to_vec();
+    known.push(("drive0", 20.0));
+    assert_known(&setup, &report, &known);
+    // The scene written with the answer runs as is; its own solver puts P on the targets
+    // (Newton's tolerance on lengths of order 1 m: 1e-9 m is far above it).
+    let found = setup.found_scene(&report);
+    let scene = scene::parse("found.toml", &found).unwrap_or_else(|e| panic!("{e}"));
+    let drive: Vec<f64> = (0..10).map(|k| 20.0 + 30.0 * f64::from(k)).collect();
+    let run = scene::run(&scene.with_positions(&drive).unwrap()).unwrap();
+    let (x, y) = (column(&run, "x_P"), column(&run, "y_P"));
+    let mechdiff_core::synthesis::Task::Path { targets, .. } = setup.problem.task() else {
+        panic!("a path task")
+    };
+    for (k, t) in targets.iter().enumerate() {
+        assert!((x[k] - t[0]).hypot(y[k] - t[1]) <= 1e-9, "target {k}");
+    }
+    // And the whole sweep of the written scene runs (the crank turns fully).
+    assert_eq!(scene::run(&scene).unwrap().rows.len(), 37);
+}
+
+#[test]
+fn four_bar_function_known_answer_is_recovered() {
+    // Only the shape counts for an angle output; the ground is fixed, so the answer is
+    // unique.
+    let (setup, report) = solve(FUNCTION, &text(FUNCTION));
+    let known = [
+        ("crank", 0.3),
+        ("coupler", 1.0),
+        ("rocker", 0.8),
+        ("drive0", 40.0),
+    ];
+    assert_known(&setup, &report, &known);
+}
+
+#[test]
+fn four_bar_motion_known_answer_is_recovered() {
+    let (setup, report) = solve(MOTION, &text(MOTION));
+    let mut known = FOUR_BAR.to_vec();
+    known.push(("pose_angle", 0.0));
+    assert_known(&setup, &report, &known);
+}
+
+/// The function scene with a target no four-bar of the bounds reaches: the rocker asked to
+/// turn 170° more at the last pair.
+fn unreachable() -> String {
+    text(FUNCTION).replace("[200, 133.53754519579596]", "[200, 303.53754519579596]")
+}
+
+#[test]
+fn unreachable_targets_give_the_best_found_and_why_with_residuals_summing_to_the_objective() {
+    let path = temp_file("unreachable.toml");
+    std::fs::write(&path, unreachable()).unwrap();
+    let out = mechdiff(&[
+        "synthesize",
+        path.to_str().unwrap(),
+        "--starts",
+        "200",
+        "--time-limit",
+        "20",
+    ]);
+    std::fs::remove_file(&path).ok();
+    assert!(out.status.success(), "{}", stderr(&out));
+    let printed = stdout(&out);
+    assert!(printed.contains("not better because:"), "{printed}");
+    let objective: f64 = printed
+        .lines()
+        .find_map(|l| l.strip_prefix("objective: "))
+        .and_then(|l| l.split_whitespace().next())
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(objective > 1e-3, "{objective}");
+    // The rows under `target output`: 6 significant digits each, so each square is within
+    // 1e-6 relative, and the objective printed within 5e-7: 3e-6 covers both.
+    let rows = printed
+        .lines()
+        .skip_while(|l| !l.trim_start().starts_with("target"))
+        .skip(1)
+        .take_while(|l| !l.trim().is_empty());
+    let sum: f64 = rows
+        .map(|l| l.split_whitespace().nth(1).unwrap().parse::<f64>().unwrap())
+        .map(|r| r * r)
+        .sum();
+    assert!(
+        (sum - objective).abs() <= 3e-6 * objective,
+        "{sum} against {objective}"
+    );
+}
+
+fn read_error(file: &str, text: &str) -> String {
+    match synthesize::read(file, text) {
+        Ok(_) => panic!("{file} was accepted"),
+        Err(e) => e.to_string(),
+    }
+}
+
+/// The 1-based line of the first occurrence of `needle` in `text`.
+fn line_of(text: &str, needle: &str) -> usize {
+    text[..text.find(needle).unwrap()].lines().count() + 1
+}
+
+#[test]
+fn an_unknown_point_is_a_located_error_listing_the_points() {
+    let bad = text(PATH).replace("point = \"P\"", "point = \"Z\"");
+    let message = read_error("bad.toml", &bad);
+    let line = line_of(&bad, "point = \"Z\"");
+    assert!(message.starts_with(&format!("bad.toml:{line}:")), "{message}");
+    assert!(message.contains("unknown point `Z`") && message.contains("A, B, P"), "{message}");
+}
+
+#[test]
+fn a_bound_on_a_name_that_is_no_design_variable_is_a_located_error() {
+    let bad = text(PATH).replace("px = [-1.5, 1.5]", "pz = [-1.5, 1.5]");
+    let message = read_error("bad.toml", &bad);
+    let line = line_of(&bad, "pz = [");
+    assert!(message.starts_with(&format!("bad.toml:{line}:")), "{message}");
+    assert!(message.contains("`pz` is not a design variable"), "{message}");
+}
+
+#[test]
+fn bounds_that_exclude_every_assembly_are_a_located_error_with_the_defects_counted() {
+    // The ground is at least 1.4 m long (o4x ≥ 1.4 with O2 near the origin) and the
+    // coupler and rocker together at most 0.4 m: no four-bar closes.
+    let bad = text(PATH)
+        .replace("o4x = [0, 2]", "o4x = [1.4, 2]")
+        .replace("coupler = [0.1, 2]", "coupler = [0.1, 0.2]")
+        .replace("rocker = [0.1, 2]", "rocker = [0.1, 0.2]")
+        .replace("crank = [0.1, 1]", "crank = [0.01, 0.05]")
+        .replace("starts = 2000", "starts = 300");
+    let setup = synthesize::read("bad.toml", &bad).unwrap();
+    let error = setup.solve(&setup.settings).unwrap_err();
+    let message = error.to_string();
+    assert!(matches!(error, Error::Synthesis { .. }), "{message}");
+    let line = line_of(&bad, "[synthesize.bounds]");
+    assert!(message.starts_with(&format!("bad.toml:{line}:")), "{message}");
+    assert!(message.contains("widen the bounds"), "{message}");
+    assert!(!message.contains("NaN"), "{message}");
+}
+
+#[test]
+fn zero_and_huge_limits_are_located_errors_before_any_work() {
+    for (from, to, says) in [
+        ("time_limit = 60", "time_limit = 0", "time limit"),
+        ("time_limit = 60", "time_limit = 1e9", "time limit"),
+        ("starts = 2000", "starts = 0", "`starts` = 0"),
+        ("starts = 2000", "starts = 100000000", "`starts` = 100000000"),
+        ("local_searches = 200", "local_searches = 5000", "`local_searches`"),
+        ("seed = 1", "seed = 1\nevaluations = 0", "`evaluations` = 0"),
+    ] {
+        let bad = text(PATH).replace(from, to);
+        let message = read_error("bad.toml", &bad);
+        let line = line_of(&bad, to.lines().last().unwrap());
+        assert!(message.starts_with(&format!("bad.toml:{line}:")), "{to}: {message}");
+        assert!(message.contains(says), "{to}: {message}");
+    }
+}
+
+#[test]
+fn the_time_limit_is_honoured_on_targets_out_of_reach() {
+    // Many starts and local searches on targets out of reach: only the time limit stops
+    // it. One local search step is far below a second, so 0.5 s + 10 s of slack for a
+    // loaded debug machine cannot fail by the search overrunning its check.
+    let bad = unreachable()
+        .replace("starts = 2000", "starts = 100000")
+        .replace("local_searches = 200", "local_searches = 100000")
+        .replace("time_limit = 60", "time_limit = 0.5");
+    let (setup, report) = solve("bad.toml", &bad);
+    assert_eq!(setup.settings.time_limit, Some(Duration::from_millis(500)));
+    assert_eq!(report.stop, StopReason::Time);
+    assert!(report.elapsed < Duration::from_secs_f64(10.5), "{:?}", report.elapsed);
+    assert!(report.objective.is_finite() && report.residuals.iter().all(|r| r.is_finite()));
+}
+
+#[test]
+fn out_is_written_runs_as_a_scene_and_is_never_an_existing_file_or_an_input() {
+    let out = temp_file("found_function.toml");
+    std::fs::remove_file(&out).ok();
+    let scene = scene_path(FUNCTION);
+    let args = |target: &str, force: bool| {
+        let mut a = vec!["synthesize", scene.to_str().unwrap(), "--out", target].into_iter().map(str::to_owned).collect::<Vec<_>>();
+        if force {
+            a.push("--force".into());
+        }
+        a
+    };
+    let run = |a: Vec<String>| mechdiff(&a.iter().map(String::as_str).collect::<Vec<_>>());
+    let first = run(args(out.to_str().unwrap(), false));
+    assert!(first.status.success(), "{}", stderr(&first));
+    let written = std::fs::read_to_string(&out).unwrap();
+    assert!(written.contains("crank = 0.3"), "{written}");
+    let ran = mechdiff(&["run", out.to_str().unwrap()]);
+    assert!(ran.status.success(), "{}", stderr(&ran));
+    // An existing file needs --force; the scene itself is refused even with it.
+    let again = run(args(out.to_str().unwrap(), false));
+    assert!(!again.status.success() && stderr(&again).contains("--force"));
+    let input = run(args(scene.to_str().unwrap(), true));
+    assert!(!input.status.success() && stderr(&input).contains("refusing to write"));
+    std::fs::remove_file(&out).ok();
+}
