@@ -48,6 +48,7 @@ pub fn check(args: &CheckArgs) -> Result<(), Error> {
     // The study is checked against the columns a run would have, with the errors `run`
     // gives, before anything is printed.
     let study = sensitivity::check(&file, &text, &args.set, &checked.columns)?;
+    let synthesis = scene::synthesize::read_if_present(&file, &text)?;
     let m = &checked.mechanism;
     // Written whole, then shown with the scene's text escaped for the terminal.
     let mut out = String::new();
@@ -95,6 +96,9 @@ pub fn check(args: &CheckArgs) -> Result<(), Error> {
     let _ = writeln!(out, "{}", checked.plan.describe(&scene));
     if let Some(study) = &study {
         let _ = writeln!(out, "{}", study.describe(&checked.columns));
+    }
+    if let Some(synthesis) = &synthesis {
+        let _ = writeln!(out, "{}", scene::synthesize::describe(synthesis));
     }
     if let Some(metrics) = scene::metrics::SceneMetrics::of(&scene)? {
         for line in metrics.lines(&scene) {

@@ -51,7 +51,12 @@ pub fn synthesize(args: &SynthesizeArgs) -> Result<(), Error> {
     let text = files::read_scene(&args.scene)?;
     let setup = synthesize::read(&args.scene.display().to_string(), &text)?;
     let settings = settings(&setup, args)?;
-    let outputs: Vec<&std::path::Path> = args.out.iter().chain(&args.plot).map(|p| p.as_path()).collect();
+    let outputs: Vec<&std::path::Path> = args
+        .out
+        .iter()
+        .chain(&args.plot)
+        .map(|p| p.as_path())
+        .collect();
     files::refuse_inputs(outputs)?;
     if let Some(out) = &args.out
         && !args.force
@@ -76,6 +81,7 @@ pub fn synthesize(args: &SynthesizeArgs) -> Result<(), Error> {
         printed.push_str(&compare(&report, &other));
     }
     let found = setup.found_scene(&report);
+    printed.push_str(&scene_check(&setup, &report, &found));
     if let Some(out) = &args.out {
         // The scene found must read back as a scene `mechdiff run` accepts.
         mechdiff::scene::parse(&out.display().to_string(), &found)?;
@@ -89,11 +95,42 @@ pub fn synthesize(args: &SynthesizeArgs) -> Result<(), Error> {
         }
     }
     std::io::stdout()
-        .write_all(printed.as_bytes())
+        .write_all(mechdiff::escape::terminal(&printed).as_bytes())
         .map_err(|source| Error::Write {
             path: PathBuf::from("<stdout>"),
             source,
         })
+}
+
+/// What the scene's own solver says of the scene found.
+fn scene_check(setup: &Setup, report: &Report, found: &str) -> String {
+    let length = mechdiff::scene::units::Dimension::Length;
+    let unit = setup.units.symbol(length);
+    match setup.check_scene(report, found) {
+        Ok(c) if c.compared.is_empty() => format!(
+            "warning: the scene has none of the points {} on a moving link, so it cannot be \
+             compared with the linkage sized\n",
+            setup.problem.linkage().point_names().join(", ")
+        ),
+        Ok(c) if c.deviation <= setup.scene_tolerance() => format!(
+            "the scene with these parameters, moved through the targets by its own solver, \
+             places {} within {:.3e} {unit} of the linkage sized\n",
+            c.compared.join(", "),
+            setup.units.from_si(c.deviation, length)
+        ),
+        Ok(c) => format!(
+            "warning: the scene does not draw the linkage sized: its points {} lie up to \
+             {:.6e} {unit} from the engine's; build them from the parameters as \
+             docs/scene-format.md shows (the dyad's side = `branch`, the coupler point's side \
+             = the sign of py)\n",
+            c.compared.join(", "),
+            setup.units.from_si(c.deviation, length)
+        ),
+        Err(e) => format!(
+            "warning: the scene with these parameters cannot be moved through the targets \
+             by its own solver: {e}\n"
+        ),
+    }
 }
 
 /// The section's settings with the command line's changes, checked.

@@ -81,7 +81,10 @@ pub fn write(setup: &Setup, report: &Report, dir: &Path) -> Result<Vec<PathBuf>>
             let unit = units.symbol(dimension);
             let diagram = Diagram::new(
                 &format!("function generation: change of {output} against the drive"),
-                &format!("drive from the first pair [{}]", units.symbol(Dimension::Angle)),
+                &format!(
+                    "drive from the first pair [{}]",
+                    units.symbol(Dimension::Angle)
+                ),
             )
             .panel(
                 Panel::new(&format!("change of {output} [{unit}]"))
@@ -179,7 +182,10 @@ fn scene_drawing(
             drawing = drawing.block(b, x[5]);
         } else {
             let o4 = length([x[2], x[3]]);
-            drawing = drawing.polyline(&[b, o4], Style::link()).ground(o4).joint("O4", o4);
+            drawing = drawing
+                .polyline(&[b, o4], Style::link())
+                .ground(o4)
+                .joint("O4", o4);
         }
         if linkage == Linkage::StephensonSix {
             let [e, q] = [length(pose.points[3]), length(pose.points[4])];

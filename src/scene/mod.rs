@@ -64,9 +64,9 @@ pub mod setup;
 pub mod solver;
 pub(crate) mod source;
 pub mod study;
-pub mod synthesize;
 pub(crate) mod sweep;
 pub(crate) mod sweep_limits;
+pub mod synthesize;
 pub mod table;
 pub mod tangent;
 

@@ -15,6 +15,7 @@
 
 mod margins;
 mod read;
+mod scene_check;
 mod section;
 mod summary;
 
@@ -27,8 +28,11 @@ use crate::scene::Source;
 use crate::scene::units::{Dimension, Units};
 
 pub use margins::{Margin, Margins};
-pub use read::{DEFAULT_TIME_LIMIT, MAX_EVALUATIONS, MAX_TIME_LIMIT, check_time_limit, read};
-pub use summary::summary;
+pub use read::{
+    DEFAULT_TIME_LIMIT, MAX_EVALUATIONS, MAX_TIME_LIMIT, check_time_limit, read, read_if_present,
+};
+pub use scene_check::SceneCheck;
+pub use summary::{describe, summary};
 
 /// A design variable of the linkage or the task, and where it lives in the scene.
 #[derive(Debug, Clone, PartialEq)]
@@ -90,6 +94,17 @@ impl Setup {
                 source,
             }
         })
+    }
+
+    /// The deviation below which the scene found draws the linkage the engine sized (m):
+    /// 1e-9 of the largest bound (at least 1 m), far above the solvers' tolerances.
+    pub fn scene_tolerance(&self) -> f64 {
+        let (lower, upper) = self.problem.bounds();
+        1e-9 * lower
+            .iter()
+            .chain(upper)
+            .map(|v| v.abs())
+            .fold(1.0, f64::max)
     }
 
     /// The value of variable `k` of `report` in the file's unit.

@@ -7,8 +7,8 @@ use std::ops::Range;
 use std::time::Duration;
 
 use mechdiff_core::synthesis::{
-    Constraints, Derivatives, Linkage, MAX_STARTS, MAX_TARGETS, Problem, Synthesis,
-    SynthesisError, Task, Timing,
+    Constraints, Derivatives, Linkage, MAX_STARTS, MAX_TARGETS, Problem, Synthesis, SynthesisError,
+    Task, Timing,
 };
 use toml::Spanned;
 
@@ -64,6 +64,17 @@ pub fn read(file: &str, text: &str) -> Result<Setup> {
         units: &units,
     };
     reader.setup(&only, section, &values)
+}
+
+/// As [`read`], `None` when the scene has no `[synthesize]` section (`mechdiff check`).
+///
+/// # Errors
+/// As [`read`].
+pub fn read_if_present(file: &str, text: &str) -> Result<Option<Setup>> {
+    let present = text
+        .parse::<toml::Table>()
+        .is_ok_and(|t| t.contains_key("synthesize"));
+    present.then(|| read(file, text)).transpose()
 }
 
 struct Reader<'a> {
@@ -163,7 +174,10 @@ impl Reader<'_> {
         let mut renamed: HashMap<&str, &Spanned<String>> = HashMap::new();
         if let Some(names) = &def.names {
             for (variable, parameter) in names.get_ref() {
-                if !linkage.variable_names().contains(&variable.get_ref().as_str()) {
+                if !linkage
+                    .variable_names()
+                    .contains(&variable.get_ref().as_str())
+                {
                     return Err(self.invalid(
                         variable.span(),
                         format!(
@@ -294,29 +308,21 @@ impl Reader<'_> {
         };
         let (crank_rotates, min_transmission) =
             (constraints.crank_rotates, constraints.min_transmission);
-        let problem = builder
-            .constraints(constraints)
-            .build()
-            .map_err(|source| {
-                let span = match &source {
-                    SynthesisError::InvalidBound { variable, .. } => {
-                        bound_spans.get(variable).cloned()
-                    }
-                    SynthesisError::InvalidSetting { setting, .. } => match *setting {
-                        "min_transmission" => def.min_transmission.as_ref().map(Spanned::span),
-                        "angle_weight" => def
-                            .motion
-                            .as_ref()
-                            .map(|m| m.get_ref().angle_weight.span()),
-                        _ => None,
-                    },
+        let problem = builder.constraints(constraints).build().map_err(|source| {
+            let span = match &source {
+                SynthesisError::InvalidBound { variable, .. } => bound_spans.get(variable).cloned(),
+                SynthesisError::InvalidSetting { setting, .. } => match *setting {
+                    "min_transmission" => def.min_transmission.as_ref().map(Spanned::span),
+                    "angle_weight" => def.motion.as_ref().map(|m| m.get_ref().angle_weight.span()),
                     _ => None,
-                };
-                Error::Synthesis {
-                    location: self.source.location(span.unwrap_or(task_span.clone())),
-                    source,
-                }
-            })?;
+                },
+                _ => None,
+            };
+            Error::Synthesis {
+                location: self.source.location(span.unwrap_or(task_span.clone())),
+                source,
+            }
+        })?;
         let settings = self.settings(def)?;
         Ok(Setup {
             problem,
@@ -328,7 +334,10 @@ impl Reader<'_> {
             crank_rotates,
             min_transmission,
             bounds_span: def.bounds.span(),
-            time_span: def.time_limit.as_ref().map_or(section.span(), Spanned::span),
+            time_span: def
+                .time_limit
+                .as_ref()
+                .map_or(section.span(), Spanned::span),
         })
     }
 
@@ -357,7 +366,11 @@ impl Reader<'_> {
         }
         if let Some(function) = &def.function {
             let task = self.function(function)?;
-            return Ok((task, function.get_ref().output.span(), vec!["drive0".into()]));
+            return Ok((
+                task,
+                function.get_ref().output.span(),
+                vec!["drive0".into()],
+            ));
         }
         let motion = def.motion.as_ref().expect("one task is given");
         let (task, mut angles) = self.motion(motion.get_ref())?;
@@ -417,7 +430,9 @@ impl Reader<'_> {
             self.row(drive, &dimensions, "`drive`")
         };
         match (kind, drive) {
-            (None, Some(_)) | (Some("absolute"), _) => Ok((Timing::Absolute(angles(drive)?), vec![])),
+            (None, Some(_)) | (Some("absolute"), _) => {
+                Ok((Timing::Absolute(angles(drive)?), vec![]))
+            }
             (Some("relative"), _) => Ok((Timing::Relative(angles(drive)?), vec!["drive0".into()])),
             (None, None) | (Some("free"), None) => Ok((
                 Timing::Free,
@@ -531,8 +546,8 @@ impl Reader<'_> {
                 let phi = from_si + (to_si - from_si) * k as f64 / (count - 1) as f64;
                 let written = self.units.from_si(phi, Dimension::Angle);
                 context.insert("phi".into(), written);
-                let value = formula(text.get_ref(), &context)
-                    .map_err(|e| self.invalid(text.span(), e))?;
+                let value =
+                    formula(text.get_ref(), &context).map_err(|e| self.invalid(text.span(), e))?;
                 if !value.is_finite() {
                     return Err(self.invalid(
                         text.span(),

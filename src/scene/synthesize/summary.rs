@@ -8,6 +8,24 @@ use mechdiff_core::synthesis::{Derivatives, Report, StopReason, Synthesis, Task,
 use super::Setup;
 use crate::scene::units::Dimension;
 
+/// One line saying what the section asks (as `mechdiff check` prints it).
+pub fn describe(setup: &Setup) -> String {
+    let (lower, upper) = setup.problem.bounds();
+    let free = lower.iter().zip(upper).filter(|(l, u)| l < u).count();
+    let task = match setup.problem.task() {
+        Task::Path { point, .. } => format!("path generation of point {point}"),
+        Task::Function { output, .. } => format!("function generation of output {output}"),
+        Task::Motion { link, .. } => format!("motion generation of link {link}"),
+    };
+    format!(
+        "synthesis: {}, {task}, {} targets, {free} of {} design variables free; `mechdiff \
+         synthesize` sizes them",
+        setup.linkage_name,
+        setup.problem.task().target_count(),
+        lower.len()
+    )
+}
+
 /// The text report of `report`, found with `settings`.
 pub fn summary(setup: &Setup, settings: &Synthesis, report: &Report) -> String {
     let mut out = String::new();
@@ -51,7 +69,13 @@ pub fn summary(setup: &Setup, settings: &Synthesis, report: &Report) -> String {
                 .at_bounds
                 .iter()
                 .find(|(n, _)| *n == v.name)
-                .map_or("", |(_, up)| if *up { ", at the upper bound" } else { ", at the lower bound" });
+                .map_or("", |(_, up)| {
+                    if *up {
+                        ", at the upper bound"
+                    } else {
+                        ", at the lower bound"
+                    }
+                });
             format!(
                 "bounds [{}, {}]{at}",
                 units.from_si(lower[k], v.dimension),
@@ -65,7 +89,10 @@ pub fn summary(setup: &Setup, settings: &Synthesis, report: &Report) -> String {
         "\nobjective: {:.6e} (sum of the squared residuals below)",
         report.objective
     );
-    let _ = writeln!(out, "residuals (SI: m, rad; a pose's angle error times its weight, m):");
+    let _ = writeln!(
+        out,
+        "residuals (SI: m, rad; a pose's angle error times its weight, m):"
+    );
     let labels: &[&str] = match task {
         Task::Path { .. } => &["x", "y"],
         Task::Function { .. } => &["output"],
@@ -127,7 +154,10 @@ pub fn summary(setup: &Setup, settings: &Synthesis, report: &Report) -> String {
             );
         }
         Err(e) => {
-            let _ = writeln!(out, "warning: core's geometry solver cannot move the answer: {e}");
+            let _ = writeln!(
+                out,
+                "warning: core's geometry solver cannot move the answer: {e}"
+            );
         }
     }
     if let Some(why) = report.why_not_better(settings) {
