@@ -74,6 +74,12 @@ fn four_bar_path_known_answer_is_recovered_and_its_scene_meets_the_targets() {
     // The scene written with the answer runs as is; its own solver puts P on the targets
     // (Newton's tolerance on lengths of order 1 m: 1e-9 m is far above it).
     let found = setup.found_scene(&report);
+    // Drawn at the first target: `sketch = "theta"` set to drive0 + 0 = 20° (to 1e-9 deg,
+    // as drive0 above).
+    let source = scene::Source::new("found.toml", found.as_str());
+    let values = scene::parameters::read(&found, &source, &[]).unwrap();
+    let theta = values.iter().find(|(n, _)| n == "theta").unwrap().1;
+    assert!((theta - 20.0).abs() <= 1e-9, "{theta}");
     let scene = scene::parse("found.toml", &found).unwrap_or_else(|e| panic!("{e}"));
     let drive: Vec<f64> = (0..10).map(|k| 20.0 + 30.0 * f64::from(k)).collect();
     let run = scene::run(&scene.with_positions(&drive).unwrap()).unwrap();

@@ -170,7 +170,7 @@ fn scene_drawing(
         .step_by(97)
         .fold(0.0f64, f64::max);
     let mut drawing = Drawing::new(title).unit(units.symbol(Dimension::Length), 1.0);
-    drawing = drawing.path(&linkage.point_names()[k], &finite);
+    drawing = drawing.path(linkage.point_names()[k], &finite);
     if let Ok(pose) = linkage.pose(&x, phis[0], problem.branch()) {
         let o2 = length([x[0], x[1]]);
         let [a, b] = [length(pose.points[0]), length(pose.points[1])];

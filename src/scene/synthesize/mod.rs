@@ -70,6 +70,8 @@ pub struct Setup {
     pub crank_rotates: bool,
     /// The least transmission angle required (rad; 0 when none).
     pub min_transmission: f64,
+    /// The span of the value of the parameter `sketch` names, if any.
+    sketch_span: Option<Range<usize>>,
     bounds_span: Range<usize>,
     time_span: Range<usize>,
 }
@@ -114,8 +116,9 @@ impl Setup {
     }
 
     /// The scene's text with each free design variable's value in `[parameters]` replaced
-    /// by the value found (in the file's unit, shortest form that reads back exactly); the
-    /// rest of the file, comments and `[synthesize]` included, as it was.
+    /// by the value found (in the file's unit, shortest form that reads back exactly), and
+    /// the parameter `sketch` names (if any) by the first target's drive position; the rest
+    /// of the file, comments and `[synthesize]` included, as it was.
     pub fn found_scene(&self, report: &Report) -> String {
         let mut edits: Vec<(Range<usize>, String)> = self
             .variables
@@ -126,6 +129,11 @@ impl Setup {
                 Some((span, format!("{}", self.in_file_units(report, k))))
             })
             .collect();
+        if let Some(span) = &self.sketch_span {
+            let first = self.problem.drive_angles(&report.x())[0];
+            let first = self.units.from_si(first, Dimension::Angle);
+            edits.push((span.clone(), format!("{first}")));
+        }
         edits.sort_by_key(|(span, _)| std::cmp::Reverse(span.start));
         let mut text = self.source.text.clone();
         for (span, value) in edits {

@@ -286,6 +286,35 @@ impl Reader<'_> {
                 }
             }
         }
+        let sketch_span = match &def.sketch {
+            None => None,
+            Some(name) => {
+                let entry =
+                    table.and_then(|t| t.iter().find(|(n, _)| n.get_ref() == name.get_ref()));
+                match entry {
+                    Some((_, written))
+                        if matches!(written.get_ref(), ParameterValue::Plain(Plain::Number(_)))
+                            && !variables.iter().any(|v| {
+                                v.parameter.as_deref() == Some(name.get_ref().as_str())
+                            }) =>
+                    {
+                        Some(written.span())
+                    }
+                    _ => {
+                        return Err(self.invalid(
+                            name.span(),
+                            format!(
+                                "`sketch` names the parameter holding the sketch's drive \
+                                 position (a plain number in the file's angle unit, used in \
+                                 the crank's `angle`, and not a dimension of the linkage); \
+                                 `{}` is not such a parameter",
+                                name.get_ref()
+                            ),
+                        ));
+                    }
+                }
+            }
+        };
         let mut builder = Problem::builder(linkage, task).branch(&branch);
         for v in &variables {
             if let Some((lower, upper)) = v.bounds {
@@ -328,11 +357,12 @@ impl Reader<'_> {
             problem,
             settings,
             variables,
-            units: self.units.clone(),
+            units: *self.units,
             source: self.source.clone(),
             linkage_name: def.linkage.get_ref().clone(),
             crank_rotates,
             min_transmission,
+            sketch_span,
             bounds_span: def.bounds.span(),
             time_span: def
                 .time_limit

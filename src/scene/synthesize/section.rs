@@ -32,6 +32,9 @@ pub(super) struct SynthesizeDef {
     pub branch: Option<Spanned<Vec<Spanned<String>>>>,
     /// The engine's variable → the scene's parameter, where the names differ.
     pub names: Option<Spanned<BTreeMap<Spanned<String>, Spanned<String>>>>,
+    /// The parameter holding the sketch's drive position: the scene found is drawn at the
+    /// first target's.
+    pub sketch: Option<Spanned<String>>,
     /// Design variables: a parameter (or a task angle) → `[lower, upper]`.
     pub bounds: Spanned<BTreeMap<Spanned<String>, Numbers>>,
     /// The seed of the starts.
