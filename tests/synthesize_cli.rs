@@ -335,3 +335,78 @@ fn out_is_written_runs_as_a_scene_and_is_never_an_existing_file_or_an_input() {
     assert!(!input.status.success() && stderr(&input).contains("refusing to write"));
     std::fs::remove_file(&out).ok();
 }
+
+#[test]
+fn a_function_given_as_a_formula_is_sampled_over_its_drive_range_in_the_files_units() {
+    // 5 positions from 40° to 200° (40° apart) of a line 88° + 0.3·(phi − 40°): the pairs
+    // in SI are (40° + 40°k, 88° + 12°k) in radians, to rounding (1e-15 rad).
+    let written = text(FUNCTION);
+    let start = written.find("pairs = [").unwrap();
+    let end = start + written[start..].find("\n]\n").unwrap() + 2;
+    let formula = "formula = \"88 + 0.3*(phi - 40)\"\nfrom = 40\nto = 200\ncount = 5";
+    let with_formula = format!("{}{formula}{}", &written[..start], &written[end..]);
+    let setup = synthesize::read("formula.toml", &with_formula).unwrap_or_else(|e| panic!("{e}"));
+    let mechdiff_core::synthesis::Task::Function { pairs, .. } = setup.problem.task() else {
+        panic!("a function task")
+    };
+    assert_eq!(pairs.len(), 5);
+    for (k, pair) in pairs.iter().enumerate() {
+        let k = k as f64;
+        assert!(
+            (pair[0] - (40.0 + 40.0 * k).to_radians()).abs() <= 1e-15,
+            "{pair:?}"
+        );
+        assert!(
+            (pair[1] - (88.0 + 12.0 * k).to_radians()).abs() <= 1e-15,
+            "{pair:?}"
+        );
+    }
+    // A count over the limit is refused at `count` before any sample is computed.
+    let huge = with_formula.replace("count = 5", "count = 1000000");
+    let message = read_error("formula.toml", &huge);
+    let line = line_of(&huge, "count = 1000000");
+    assert!(
+        message.starts_with(&format!("formula.toml:{line}:")),
+        "{message}"
+    );
+}
+
+#[test]
+fn free_timing_makes_each_targets_drive_position_a_design_variable() {
+    let free = text(PATH)
+        .replace("timing = \"relative\"", "timing = \"free\"")
+        .replace(
+            "drive = [0, 30, 60, 90, 120, 150, 180, 210, 240, 270]\n",
+            "",
+        );
+    let setup = synthesize::read("free.toml", &free).unwrap_or_else(|e| panic!("{e}"));
+    let names: Vec<&str> = setup.variables.iter().map(|v| v.name.as_str()).collect();
+    let drives: Vec<String> = (1..=10).map(|i| format!("drive{i}")).collect();
+    assert_eq!(
+        names[9..],
+        drives.iter().map(String::as_str).collect::<Vec<_>>()[..]
+    );
+    // Free timing with drive positions given is a located error saying what to remove.
+    let both = text(PATH).replace("timing = \"relative\"", "timing = \"free\"");
+    let message = read_error("free.toml", &both);
+    let line = line_of(&both, "drive = [0, 30");
+    assert!(
+        message.starts_with(&format!("free.toml:{line}:")),
+        "{message}"
+    );
+    assert!(message.contains("remove `drive`"), "{message}");
+}
+
+#[test]
+fn check_describes_the_synthesis() {
+    let out = mechdiff(&["check", scene_path(PATH).to_str().unwrap()]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(
+        stdout(&out).contains(
+            "synthesis: four_bar, path generation of point P, 10 targets, 10 of 10 design \
+             variables free"
+        ),
+        "{}",
+        stdout(&out)
+    );
+}
