@@ -410,3 +410,27 @@ fn check_describes_the_synthesis() {
         stdout(&out)
     );
 }
+
+#[test]
+fn command_line_limits_out_of_range_are_refused_before_any_work() {
+    let scene = scene_path(PATH);
+    for (option, value, says) in [
+        ("--time-limit", "0", "more than 0"),
+        ("--time-limit", "1e9", "at most 86400"),
+        ("--starts", "0", "from 1 to 100000"),
+        ("--starts", "1000000", "from 1 to 100000"),
+    ] {
+        let out = mechdiff(&["synthesize", scene.to_str().unwrap(), option, value]);
+        assert!(!out.status.success(), "{option} {value}");
+        let message = stderr(&out);
+        assert!(
+            message.contains(option) && message.contains(says),
+            "{message}"
+        );
+        assert!(
+            stdout(&out).is_empty(),
+            "{option} {value}: {}",
+            stdout(&out)
+        );
+    }
+}
