@@ -29,6 +29,7 @@
 //! diagram), rotor scenes from [`rotor`] (the force and couple polygons and the answers).
 
 pub mod cam;
+pub mod motion;
 pub mod rotor;
 
 use serde_json::json;

@@ -41,6 +41,7 @@ mod curves;
 mod equation;
 mod format;
 mod model;
+pub mod playback;
 mod resolve;
 pub mod run;
 mod words;
@@ -51,4 +52,5 @@ pub use format::{CharacteristicDef, CharacteristicKind, Find, MeanSpeedDef, Simu
 pub use model::SceneMotion;
 pub(crate) use resolve::resolve;
 pub use resolve::{LARGEST_TOLERANCE, MAX_STEPS, MAX_TIME, MAX_TURNS, SMALLEST_TOLERANCE};
-pub use run::{MotionReport, run};
+pub use playback::{PLAYBACK_FRAMES, Part, Playback};
+pub use run::{MotionOptions, MotionReport, run, run_with};

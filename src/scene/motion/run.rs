@@ -27,6 +27,7 @@ use super::curves::Curves;
 use super::equation;
 use super::format::Find;
 use super::model::SceneMotion;
+use super::playback::{self, Clocked, Part, Playback};
 use super::words::{Words, column, flywheel_lines, motion_error, significant, steady_line};
 
 /// What a run with `[simulate]` found (its rows went to the sinks).
@@ -52,6 +53,18 @@ pub struct MotionReport {
     pub curves: Curves,
     /// The headline numbers, one line each, in the scene's units.
     pub summary: Vec<String>,
+    /// The plan: the equation's terms as printed before the tables.
+    pub plan: String,
+    /// The frames of a report's playback, when [`MotionOptions::playback`] asks for them.
+    pub playback: Option<Playback>,
+}
+
+/// What a run with `[simulate]` produces besides its streamed tables.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct MotionOptions {
+    /// The frames of a report that plays the motion in real time ([`Playback`]): states at
+    /// equal steps of simulated time, at most [`playback::PLAYBACK_FRAMES`].
+    pub playback: bool,
 }
 
 /// The code of a row's `event` column.
@@ -112,6 +125,7 @@ struct TimeOut<'r, 'a> {
     rows: &'r mut Option<Rows>,
     sinks: &'r mut MotionSinks<'a>,
     curves: &'r mut Curves,
+    clock: &'r mut Clocked,
     columns: &'r [Column],
     /// SI per printed unit of the speed and the torque.
     speed: f64,
@@ -156,12 +170,33 @@ impl<'s> RowMaker<'s> {
             )?),
         };
         rows.row(out.sinks, &self.row)?;
+        (out.clock).push([sample.time, sample.phi, sample.omega, state.alpha]);
         let t = sample.time;
         out.curves.omega_time.push([t, sample.omega / out.speed]);
         out.curves
             .motor_torque
             .push([t, state.motor_torque / out.torque]);
         Ok(())
+    }
+
+    /// A row maker like this one, from the sketch again (its trackers at the start).
+    fn fresh(
+        &self,
+        setup: &'s Setup<'s>,
+        plan: &Plan,
+        machine: &Machine<'s>,
+        w: &Words<'_>,
+        motion: &SceneMotion,
+    ) -> Result<Self> {
+        Ok(RowMaker {
+            keep: self.keep.clone(),
+            sweeper: sweeper(setup, plan, false)?,
+            tracker: (machine.tracker())
+                .map_err(|e| motion_error(w, "the motion", &motion.location, e))?,
+            buffer: Vec::new(),
+            row: Vec::new(),
+            failure: None,
+        })
     }
 
     /// The scene's outputs at `phi` with speed `omega` and acceleration `alpha`, appended
@@ -183,6 +218,18 @@ impl<'s> RowMaker<'s> {
 /// that fails (a motor that cannot start the machine, no steady state within the turns),
 /// a solver error of the scene's outputs, or [`Error::Write`].
 pub fn run(scene: &Scene, sinks: &mut MotionSinks<'_>) -> Result<MotionReport> {
+    run_with(scene, sinks, &MotionOptions::default())
+}
+
+/// [`run`], with the frames of a report's playback when `options` asks for them.
+///
+/// # Errors
+/// As [`run`].
+pub fn run_with(
+    scene: &Scene,
+    sinks: &mut MotionSinks<'_>,
+    options: &MotionOptions,
+) -> Result<MotionReport> {
     let Some(motion) = &scene.motion else {
         return Err(Error::Invalid {
             location: scene.drive.location.clone(),
@@ -219,7 +266,8 @@ pub fn run(scene: &Scene, sinks: &mut MotionSinks<'_>) -> Result<MotionReport> {
         head.push_str(title);
         head.push('\n');
     }
-    head.push_str(&equation::describe(scene, motion, &effects));
+    let described = equation::describe(scene, motion, &effects);
+    head.push_str(&described);
     sinks.say(&head)?;
 
     let plan = Plan::of(&setup);
@@ -265,7 +313,12 @@ pub fn run(scene: &Scene, sinks: &mut MotionSinks<'_>) -> Result<MotionReport> {
             ..Curves::default()
         },
         summary: Vec::new(),
+        plan: described,
+        playback: None,
     };
+    let mut time_clock = Clocked::default();
+    let mut steady_clock = Clocked::default();
+    let mut coast_from: Option<f64> = None;
     let tolerances = motion.tolerances;
     let coasting = machine.clone().without_motor();
 
@@ -288,6 +341,7 @@ pub fn run(scene: &Scene, sinks: &mut MotionSinks<'_>) -> Result<MotionReport> {
                         rows: &mut time_rows,
                         sinks,
                         curves: &mut report.curves,
+                        clock: &mut time_clock,
                         columns: &time_columns,
                         speed: speed_unit.factor,
                         torque: torque_unit.factor,
@@ -373,6 +427,7 @@ pub fn run(scene: &Scene, sinks: &mut MotionSinks<'_>) -> Result<MotionReport> {
                     )?),
                 };
                 rows.row(sinks, &make.row)?;
+                steady_clock.push([a.time, a.phi, a.omega, state.alpha]);
                 report
                     .curves
                     .omega_angle
@@ -409,6 +464,7 @@ pub fn run(scene: &Scene, sinks: &mut MotionSinks<'_>) -> Result<MotionReport> {
     if motion.finds(Find::CoastDown)
         && let Some(start) = end
     {
+        coast_from = Some(start.time);
         let mut sink = |r: Record| {
             if make.failure.is_none()
                 && let Err(e) = make.time_row(
@@ -418,6 +474,7 @@ pub fn run(scene: &Scene, sinks: &mut MotionSinks<'_>) -> Result<MotionReport> {
                         rows: &mut time_rows,
                         sinks,
                         curves: &mut report.curves,
+                        clock: &mut time_clock,
                         columns: &time_columns,
                         speed: speed_unit.factor,
                         torque: torque_unit.factor,
@@ -465,6 +522,57 @@ pub fn run(scene: &Scene, sinks: &mut MotionSinks<'_>) -> Result<MotionReport> {
         })?;
         report.summary.extend(flywheel_lines(&w, motion, &f));
         report.flywheel = Some(f);
+    }
+    if options.playback {
+        let mut parts = Vec::new();
+        if !time_clock.states.is_empty() {
+            let name = match (report.start_up.is_some(), report.coast_down.is_some()) {
+                (true, true) => "the start-up, then the coast-down",
+                (false, true) => "the coast-down",
+                _ => "the start-up",
+            };
+            parts.push((name.to_owned(), time_clock));
+        }
+        parts.push(("one period of the steady state".to_owned(), steady_clock));
+        let (step, joined) = playback::join(parts);
+        let mut columns = vec![column("clock", "s", 1.0)];
+        columns.extend(time_columns.iter().filter(|c| c.name != "event").cloned());
+        let mut out = Playback {
+            columns,
+            rows: Vec::new(),
+            step,
+            parts: Vec::new(),
+        };
+        for (name, states) in joined {
+            let first = out.rows.len();
+            let mut make = make.fresh(&setup, &plan, &machine, &w, motion)?;
+            for (k, [t, phi, omega]) in states.iter().copied().enumerate() {
+                let which = match coast_from {
+                    Some(c) if first == 0 && t > c => &coasting,
+                    _ => &machine,
+                };
+                let state = (which.state(&mut make.tracker, phi, omega))
+                    .map_err(|e| motion_error(&w, "the motion", &motion.location, e))?;
+                make.row.clear();
+                make.row.extend_from_slice(&[
+                    (first + k) as f64 * step,
+                    t,
+                    phi,
+                    omega,
+                    state.alpha,
+                    state.motor_torque,
+                    state.drive_torque,
+                    state.reduced_inertia,
+                ]);
+                make.outputs(phi, omega, state.alpha)?;
+                out.rows.push(make.row.clone());
+            }
+            out.parts.push(Part {
+                name,
+                frames: first..out.rows.len(),
+            });
+        }
+        report.playback = Some(out);
     }
     let mut text = String::from("\n");
     for line in &report.summary {
