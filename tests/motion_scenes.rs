@@ -463,3 +463,156 @@ fn mechdiff_run_simulates_prints_and_writes_the_tables_and_diagrams() {
         let _ = std::fs::remove_file(f);
     }
 }
+
+/// The shaper's start-up and steady state without the flywheel's sizing (a shorter run).
+fn shaper_without_flywheel() -> Scene {
+    let text = text("shaper_motor.toml")
+        .replacen(
+            "find = [\"start_up\", \"steady_state\", \"flywheel\"]",
+            "find = [\"start_up\", \"steady_state\"]",
+            1,
+        )
+        .replacen("delta = 0.02 ", "", 1);
+    scene::parse("shaper_motor.toml", &text).unwrap()
+}
+
+/// The report's playback (item 6, "a report that plays the motion in real time"): its frames
+/// lie at equal steps of one clock (exact multiples of the step, a power of two of seconds),
+/// at most `PLAYBACK_FRAMES`; the start-up's frames run from rest at t = 0 to within one step
+/// of the time the speed was reached, the steady period's from t = 0 to within one step of
+/// the period. Every frame lies on the simulated motion: its t(φ) equals the steady table's
+/// t at that φ, interpolated between the table's rows (cubic Hermite with dt/dφ = 1/φ̇, the
+/// other direction from the frames' φ(t)), to 1e-7 s (both interpolants err by about
+/// h⁴/384·|d⁴t/dφ⁴| with the table's steps of h ≈ 1.6°: 1.0e-8 s measured; 1e-7 s is 1.6e-7
+/// of the period and 1/20000 of a frame step); and each frame's row meets the equation of motion: the
+/// motor torque a prescribed-motion run needs for the frame's φ, φ̇, φ̈ is the frame's
+/// M_motor, to 1e-9 relative (as for the table's rows above).
+#[test]
+fn the_report_plays_the_simulated_motion_at_equal_steps_of_simulated_time() {
+    use mechdiff::scene::motion::{MotionOptions, PLAYBACK_FRAMES, run_with};
+    let scene = shaper_without_flywheel();
+    let mut steady_csv = Vec::new();
+    let mut sinks = MotionSinks {
+        steady_csv: Some(Sink {
+            path: PathBuf::from("steady.csv"),
+            out: &mut steady_csv,
+        }),
+        ..MotionSinks::default()
+    };
+    let report = run_with(&scene, &mut sinks, &MotionOptions { playback: true }).unwrap();
+    drop(sinks);
+    let steady = rows_si(&steady_csv, &report.steady_columns);
+    let p = report.playback.as_ref().unwrap();
+    let names: Vec<&str> = p.columns.iter().map(|c| c.name.as_str()).collect();
+    assert_eq!(
+        names[..8],
+        [
+            "clock", "t", "phi", "omega", "alpha", "M_motor", "M_drive", "J"
+        ]
+    );
+    assert!(p.rows.len() <= PLAYBACK_FRAMES && p.rows.len() > 100);
+    assert_eq!(p.step, 2f64.powi(p.step.log2().round() as i32));
+    for (k, row) in p.rows.iter().enumerate() {
+        assert_eq!(row[0], k as f64 * p.step);
+    }
+    assert_eq!(p.parts.len(), 2);
+    let (up, period) = (&p.parts[0], &p.parts[1]);
+    assert!(up.name.contains("start-up") && period.name.contains("steady"));
+    assert_eq!((up.frames.start, up.frames.end), (0, period.frames.start));
+    let s = report.start_up.unwrap();
+    let last_up = &p.rows[up.frames.end - 1];
+    assert_eq!(p.rows[0][1], 0.0);
+    assert!(s.time_to_speed - last_up[1] < p.step && last_up[1] <= s.time_to_speed);
+    let steady_state = report.steady.unwrap();
+    let last = p.rows.last().unwrap();
+    assert!(steady_state.period - last[1] < p.step && last[1] <= steady_state.period);
+
+    let (t, phi, omega) = (1, 2, 3);
+    let sc = &report.steady_columns;
+    let at = |name: &str| sc.iter().position(|c| c.name == name).unwrap();
+    let (sphi, st, somega) = (at("phi"), at("t"), at("omega"));
+    let mut worst: f64 = 0.0;
+    for row in &p.rows[period.frames.clone()] {
+        let k = steady
+            .partition_point(|r| r[sphi] <= row[phi])
+            .clamp(1, steady.len() - 1);
+        let (a, b) = (&steady[k - 1], &steady[k]);
+        let h = b[sphi] - a[sphi];
+        let u = (row[phi] - a[sphi]) / h;
+        let (u2, u3) = (u * u, u * u * u);
+        let t_of_phi = (2.0 * u3 - 3.0 * u2 + 1.0) * a[st]
+            + (u3 - 2.0 * u2 + u) * h / a[somega]
+            + (3.0 * u2 - 2.0 * u3) * b[st]
+            + (u3 - u2) * h / b[somega];
+        worst = worst.max((t_of_phi - row[t]).abs());
+        assert!(row[omega] > 0.0);
+    }
+    assert!(worst < 1e-7, "t(φ) of the frames off by {worst} s");
+
+    let motor = 5;
+    for row in [
+        &p.rows[up.frames.end / 2],
+        &p.rows[period.frames.start + 100],
+    ] {
+        let (names, values) = prescribed(&scene, row[phi], row[omega], row[4]);
+        let needed = values[names.iter().position(|n| n == "M_motor").unwrap()];
+        assert!(
+            (needed - row[motor]).abs() <= 1e-9 * row[motor].abs(),
+            "{needed} vs {}",
+            row[motor]
+        );
+    }
+}
+
+/// `mechdiff run <simulate scene> --report FILE` writes the page: its data hold the frames
+/// of the playback (the clock first, in s; the drive in the scene's deg), played at 1 clock
+/// second per second at ×1, and each diagram sits in an element naming the columns of its
+/// moving marker (t or φ on x; ω and M_motor on y) and the frames it moves during.
+#[test]
+fn mechdiff_run_writes_a_report_of_the_simulated_motion() {
+    use crate::common::{mechdiff, stderr, temp_file};
+    let path = temp_file("rack_motor_report.toml");
+    let text = text("rack_slotted_link_motor.toml").replacen(
+        "find = [\"start_up\"]",
+        "find = [\"start_up\", \"coast_down\"]",
+        1,
+    );
+    std::fs::write(&path, &text).unwrap();
+    let html = temp_file("rack_motor_report.html");
+    let out = mechdiff(&[
+        "run",
+        path.to_str().unwrap(),
+        "--report",
+        html.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let page = std::fs::read_to_string(&html).unwrap();
+    let open = r#"<script type="application/json" id="data">"#;
+    let start = page.find(open).unwrap() + open.len();
+    let end = start + page[start..].find("</script>").unwrap();
+    let data: serde_json::Value = serde_json::from_str(&page[start..end]).unwrap();
+    let columns: Vec<(&str, &str)> = (data["columns"].as_array().unwrap().iter())
+        .map(|c| (c["name"].as_str().unwrap(), c["unit"].as_str().unwrap()))
+        .collect();
+    assert_eq!(columns[..3], [("clock", "s"), ("t", "s"), ("phi", "deg")]);
+    assert_eq!(data["rate"], 1.0);
+    let values = data["values"].as_array().unwrap();
+    assert_eq!(values.len(), data["xy"].as_array().unwrap().len());
+    let clock: Vec<f64> = values.iter().map(|v| v[0].as_f64().unwrap()).collect();
+    let step = clock[1] - clock[0];
+    assert!(
+        (clock.windows(2)).all(|w| w[1] - w[0] == step),
+        "a clock at equal steps"
+    );
+    // The start-up, then the coast-down to rest: one motion over time, the last frame
+    // within a step of rest.
+    assert!(page.contains("the start-up, then the coast-down"));
+    assert!(values.last().unwrap()[3].as_f64().unwrap().abs() < 1.0);
+    assert!(page.contains(&format!(
+        r#"data-column="1" data-y-columns="3 5" data-frames="0 {}""#,
+        values.len()
+    )));
+    for f in [path, html] {
+        let _ = std::fs::remove_file(f);
+    }
+}

@@ -85,7 +85,11 @@ pub fn html(scene: &Scene, report: &MotionReport) -> Result<String> {
         })
         .collect();
     let values = (playback.rows.iter())
-        .map(|r| (r.iter().zip(&playback.columns)).map(|(v, c)| v / c.factor).collect())
+        .map(|r| {
+            (r.iter().zip(&playback.columns))
+                .map(|(v, c)| v / c.factor)
+                .collect()
+        })
         .collect();
     let mut notes = vec![report.plan.trim_end().to_owned(), report.summary.join("\n")];
     notes.push(clock_note(playback));

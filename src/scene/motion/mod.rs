@@ -50,7 +50,7 @@ pub use curves::{CURVE_POINTS, Curves, Thinned};
 pub use equation::describe;
 pub use format::{CharacteristicDef, CharacteristicKind, Find, MeanSpeedDef, SimulateDef};
 pub use model::SceneMotion;
+pub use playback::{PLAYBACK_FRAMES, Part, Playback};
 pub(crate) use resolve::resolve;
 pub use resolve::{LARGEST_TOLERANCE, MAX_STEPS, MAX_TIME, MAX_TURNS, SMALLEST_TOLERANCE};
-pub use playback::{PLAYBACK_FRAMES, Part, Playback};
 pub use run::{MotionOptions, MotionReport, run, run_with};
