@@ -499,7 +499,11 @@ fn the_report_plays_the_simulated_motion_at_equal_steps_of_simulated_time() {
         }),
         ..MotionSinks::default()
     };
-    let report = run_with(&scene, &mut sinks, &MotionOptions { playback: true }).unwrap();
+    let options = MotionOptions {
+        playback: true,
+        ..MotionOptions::default()
+    };
+    let report = run_with(&scene, &mut sinks, &options).unwrap();
     drop(sinks);
     let steady = rows_si(&steady_csv, &report.steady_columns);
     let p = report.playback.as_ref().unwrap();
@@ -615,4 +619,86 @@ fn mechdiff_run_writes_a_report_of_the_simulated_motion() {
     for f in [path, html] {
         let _ = std::fs::remove_file(f);
     }
+}
+
+/// `mechdiff check` of a scene with `[simulate]` describes the simulation in the words the
+/// run's plan prints: the gearbox and the rotor reduced to the drive (J_d/τ² = 0.012 × 15² =
+/// 2.7 kg·m²), each analysis with its target and limit, the tolerances and the events. Its
+/// J(φ) range over one turn is the prescribed-motion run's `J_red` (the kinetic energy's
+/// reduced inertia, the rotor included: another code path) at the same 1° positions, to the
+/// 7 significant digits printed (5e-7 relative). The rack machine's check prints its start-up
+/// speed's default (0.95 × 40 rad/s / 30) when `speed` is left out, and `mechdiff run` prints
+/// the check's lines of the simulation verbatim.
+#[test]
+fn mechdiff_check_describes_the_simulation_as_the_run_plans_it() {
+    use crate::common::{mechdiff, stderr, stdout, temp_file};
+    let out = mechdiff(&["check", "scenes/shaper_motor.toml"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let printed = stdout(&out);
+    for line in [
+        "  gearbox: τ = 0.06666667 (drive speed / motor speed), η = 1; the rotor's J_d enters \
+         the drive as J_d/τ² = 2.7 kg*m^2",
+        "    start-up: from rest at 0 deg until the drive turns at 95 rpm, within 20 s (time to \
+         speed, peak motor torque)",
+        "    flywheel: on the drive shaft, for δ = 0.02 against the time mean 2π/T; exactly (the \
+         periodic solution iterated, each iteration at most 200 turns) and by the classic \
+         energy method",
+        "  integration: relative tolerance 1e-10 and absolute 1e-10 per step, at most 1000000 \
+         steps a run; located as events (never stepped over): load switches at 67.97569 deg, \
+         292.0243 deg, turn ends, the start-up's speed, rest",
+    ] {
+        assert!(printed.lines().any(|l| l == line), "{line}\n{printed}");
+    }
+    assert!(printed.contains("    steady state: the periodic turn through 0 deg, by shooting"));
+    let range = (printed.lines())
+        .find_map(|l| l.strip_prefix("  J(φ) over one turn from 0 deg: "))
+        .unwrap();
+    let numbers: Vec<f64> = (range.split(' ')).filter_map(|w| w.parse().ok()).collect();
+    let mut s = scene::load("scenes/shaper_motor.toml").unwrap();
+    s.motion = None;
+    s.positions = Positions::List((0..360).map(|k| (k as f64).to_radians()).collect());
+    let extra = "[[dynamics]]\noutput = \"reduced_inertia\"\n";
+    let with_j = scene::parse("shaper_motor.toml", &(text("shaper_motor.toml") + extra)).unwrap();
+    s.dynamics = with_j.dynamics;
+    s.outputs.clear();
+    let report = scene::run(&s).unwrap();
+    let j = report
+        .columns
+        .iter()
+        .position(|c| c.name == "J_red")
+        .unwrap();
+    let (lo, hi) = (report.rows.iter()).fold((f64::INFINITY, 0.0f64), |(lo, hi), r| {
+        (lo.min(r[j]), hi.max(r[j]))
+    });
+    assert_eq!(numbers.len(), 2, "{range}");
+    assert!(
+        (numbers[0] / lo - 1.0).abs() < 5e-7,
+        "{} vs {lo}",
+        numbers[0]
+    );
+    assert!(
+        (numbers[1] / hi - 1.0).abs() < 5e-7,
+        "{} vs {hi}",
+        numbers[1]
+    );
+
+    let path = temp_file("rack_motor_check.toml");
+    let text = text("rack_slotted_link_motor.toml").replacen("speed = 1.2 ", "", 1);
+    assert!(!text.contains("speed = 1.2 "));
+    std::fs::write(&path, &text).unwrap();
+    let checked = stdout(&mechdiff(&["check", path.to_str().unwrap()]));
+    let line = "    start-up: from rest at 0 deg until the drive turns at 1.266667 rad/s (0.95 × the \
+                motor's no-load speed through the gearbox), within 10 s (time to speed, peak \
+                motor torque)";
+    assert!(checked.lines().any(|l| l == line), "{checked}");
+    let ran = stdout(&mechdiff(&["run", path.to_str().unwrap()]));
+    let plan: Vec<&str> = (checked.lines())
+        .skip_while(|l| !l.starts_with("the machine in motion"))
+        .take_while(|l| l.starts_with("the machine in motion") || l.starts_with("  "))
+        .collect();
+    assert!(
+        plan.len() > 6 && ran.contains(&plan.join("\n")),
+        "{plan:?}\n{ran}"
+    );
+    let _ = std::fs::remove_file(path);
 }

@@ -66,6 +66,7 @@ pub fn run(args: &RunArgs, scene: &Scene) -> Result<(), Error> {
     };
     let options = mechdiff::scene::motion::MotionOptions {
         playback: args.report.is_some(),
+        ..Default::default()
     };
     let report = mechdiff::scene::motion::run_with(scene, &mut sinks, &options)?;
     drop(sinks);

@@ -65,6 +65,9 @@ pub struct MotionOptions {
     /// The frames of a report that plays the motion in real time ([`Playback`]): states at
     /// equal steps of simulated time, at most [`playback::PLAYBACK_FRAMES`].
     pub playback: bool,
+    /// Only the plan ([`MotionReport::plan`]: the equation's terms, J(φ)'s range, what the
+    /// analyses find and where they stop), nothing simulated: `mechdiff check`.
+    pub plan_only: bool,
 }
 
 /// The code of a row's `event` column.
@@ -266,7 +269,8 @@ pub fn run_with(
         head.push_str(title);
         head.push('\n');
     }
-    let described = equation::describe(scene, motion, &effects);
+    let range = inertia_range(&machine, motion, &w)?;
+    let described = equation::describe(scene, motion, &effects, &range);
     head.push_str(&described);
     sinks.say(&head)?;
 
@@ -316,6 +320,9 @@ pub fn run_with(
         plan: described,
         playback: None,
     };
+    if options.plan_only {
+        return Ok(report);
+    }
     let mut time_clock = Clocked::default();
     let mut steady_clock = Clocked::default();
     let mut coast_from: Option<f64> = None;
@@ -328,9 +335,7 @@ pub fn run_with(
     if motion.finds(Find::StartUp) {
         let speed = match motion.speed {
             Some(s) => s,
-            None => {
-                0.95 * motion.characteristic.no_load_speed().unwrap_or(0.0) * machine.ratio().abs()
-            }
+            None => equation::start_up_speed(motion, machine.ratio()).unwrap_or(0.0),
         };
         let mut sink = |r: Record| {
             if make.failure.is_none()
@@ -581,6 +586,48 @@ pub fn run_with(
     }
     sinks.say(&text)?;
     Ok(report)
+}
+
+/// Positions of one turn at which the plan gives J(φ)'s range.
+const INERTIA_POSITIONS: usize = 360;
+
+/// The plan's line of J(φ)'s range: over one turn from the start for an angle drive that
+/// turns one (at [`INERTIA_POSITIONS`] positions), else J at the start.
+///
+/// # Errors
+/// The machine's error at the start (it does not assemble there).
+fn inertia_range(machine: &Machine<'_>, motion: &SceneMotion, w: &Words<'_>) -> Result<String> {
+    let fail = |e| motion_error(w, "the motion", &motion.location, e);
+    let mut tracker = machine.tracker().map_err(fail)?;
+    let at_start = (machine.state(&mut tracker, motion.start, 0.0))
+        .map_err(fail)?
+        .reduced_inertia;
+    let j = |v: f64| w.text(v, w.inertia());
+    let start = w.position(motion.start);
+    if w.drive == crate::scene::model::DriveKind::Angle {
+        let mut range = (at_start, at_start);
+        let turn = (1..=INERTIA_POSITIONS).try_for_each(|k| {
+            let phi = motion.start + std::f64::consts::TAU * k as f64 / INERTIA_POSITIONS as f64;
+            let v = machine.state(&mut tracker, phi, 0.0)?.reduced_inertia;
+            range = (range.0.min(v), range.1.max(v));
+            Ok::<(), MotionError>(())
+        });
+        if turn.is_ok() {
+            return Ok(format!(
+                "  J(φ) over one turn from {start}: {} to {} ({INERTIA_POSITIONS} positions)\n",
+                j(range.0),
+                j(range.1)
+            ));
+        }
+    }
+    let why = match w.drive {
+        crate::scene::model::DriveKind::Angle => " (the drive does not turn a whole turn)",
+        crate::scene::model::DriveKind::Displacement => "",
+    };
+    Ok(format!(
+        "  J(φ) at the start {start}: {}{why}\n",
+        j(at_start)
+    ))
 }
 
 /// The steady-state search's settings from `[simulate]`.
