@@ -10,7 +10,9 @@
 //! [`crate::scene::motion::PLAYBACK_FRAMES`] in all. The values at each frame are the
 //! machine's state and the scene's outputs evaluated at that frame's φ and φ̇.
 //!
-//! Each diagram sits in an element carrying `data-column` (the column its x axis shows),
+//! The diagrams stand side by side under the mechanism from 760 to 1400 px (so that the
+//! moving marker stays in view), one over the other otherwise. Each sits in an
+//! element carrying `data-column` (the column its x axis shows),
 //! `data-y-columns` (per panel, the column its curve shows) and `data-frames` (the frames
 //! during which its marker moves): the page's script draws a cursor and a dot there.
 
@@ -136,7 +138,7 @@ fn diagrams(report: &MotionReport, playback: &Playback) -> Result<String> {
     let c = &report.curves;
     let [time, angle, speed, torque] = &c.labels;
     let part = |name: &str| playback.parts.iter().find(|p| p.name.contains(name));
-    let mut out = String::new();
+    let mut out = String::from("<div class=\"motion-diagrams\">\n");
     let mut holder = |diagram: Diagram, x: usize, ys: &[usize], frames: &std::ops::Range<usize>| {
         let ys: Vec<String> = ys.iter().map(usize::to_string).collect();
         diagram.to_svg().map(|svg| {
@@ -164,6 +166,7 @@ fn diagrams(report: &MotionReport, playback: &Playback) -> Result<String> {
             .panel(Panel::new(speed).series("omega", c.omega_angle.points.clone()));
         holder(d, PHI, &[OMEGA], &p.frames)?;
     }
+    out.push_str("</div>");
     Ok(out)
 }
 
