@@ -702,3 +702,51 @@ fn mechdiff_check_describes_the_simulation_as_the_run_plans_it() {
     );
     let _ = std::fs::remove_file(path);
 }
+
+/// Item 5, bad input: a start-up asked for a speed the motor never gives (120 rpm, above
+/// its no-load 100 rpm at the crank) and a coast-down of a machine that nothing brakes (no
+/// load, no friction: it coasts for ever) end at their `time` limit as errors located at
+/// `time`, with the speeds in the scene's rpm and the way out — never a hang. The start-up's
+/// highest speed (the crank swings above the motor's no-load 100 rpm within a turn: 107 rpm)
+/// lies below the 120 rpm asked; the coasting machine still turns at the end.
+#[test]
+fn speeds_not_reached_within_the_time_are_located_errors_in_the_scene_units() {
+    let good = text("shaper_motor.toml");
+    let find = "find = [\"start_up\", \"steady_state\", \"flywheel\"]";
+    let fast = good
+        .replacen(find, "find = [\"start_up\"]", 1)
+        .replacen("speed = 95 ", "speed = 120 ", 1)
+        .replacen("time = 20 ", "time = 0.5 ", 1)
+        .replacen("delta = 0.02 ", "", 1);
+    let scene = scene::parse("shaper_motor.toml", &fast).unwrap();
+    let e = run(&scene, &mut MotionSinks::default())
+        .unwrap_err()
+        .to_string();
+    let line = line_of(&fast, "time = 0.5");
+    assert!(
+        e.starts_with(&format!("shaper_motor.toml:{line}:"))
+            && e.contains("start-up (120 rpm not reached; the highest was ")
+            && e.contains("allow more `time`"),
+        "{e}"
+    );
+    let highest: f64 = e.split("the highest was ").nth(1).unwrap()[..8]
+        .trim()
+        .parse()
+        .unwrap();
+    assert!(highest > 0.0 && highest < 120.0, "{e}");
+
+    let coasting = good
+        .replacen(find, "find = [\"coast_down\"]", 1)
+        .replacen("force = [2000, 0]", "force = [0, 0]", 1)
+        .replacen("time = 20 ", "time = 0.5 ", 1)
+        .replacen("delta = 0.02 ", "", 1);
+    let scene = scene::parse("shaper_motor.toml", &coasting).unwrap();
+    let e = run(&scene, &mut MotionSinks::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with(&format!("shaper_motor.toml:{line}:"))
+            && e.contains("coast-down (0 rpm not reached; at the end it was "),
+        "{e}"
+    );
+}
