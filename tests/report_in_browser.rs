@@ -1,5 +1,6 @@
 //! The HTML reports in a real browser (issue 24 item 7): every shipped scene's report
-//! (`scenes/*.toml` and `scenes/cams/*.toml`: linkages, cams, the rotor) is opened in headless
+//! (`scenes/*.toml` and `scenes/cams/*.toml`: linkages, cams, the rotor; a scene with
+//! `[simulate]` also as its machine runs, played on the simulated clock) is opened in headless
 //! Chromium at 400, 1024 and 1920 px width, scrubbed with its slider to three frames, and
 //! checked from the DOM and from screenshots: the joints are where the solver puts them, no
 //! element covers a value's name, the page never scrolls sideways, the mechanism stays in
@@ -489,6 +490,53 @@ fn check_input(browser: &mut Chromium, case: &Case) -> Vec<String> {
     failures
 }
 
+/// The report of a shipped scene with `[simulate]` playing its motion (start-up, coast-down,
+/// one steady period; the flywheel's sizing left out, it draws nothing), written into `dir`,
+/// with the solver's joints at each frame's simulated φ, its clock (one second a second at
+/// ×1) and the clock's span.
+fn motion_case(path: &Path, dir: &Path) -> Option<Case> {
+    use mechdiff::scene::motion::{Find, MotionOptions, run_with};
+    let text = std::fs::read_to_string(path).unwrap();
+    let AnyScene::Linkage(mut scene) =
+        scene::any::read(&path.display().to_string(), &text, &[]).unwrap()
+    else {
+        return None;
+    };
+    scene.motion.as_mut()?.find.retain(|f| *f != Find::Flywheel);
+    let name = format!("{}_motion", path.file_stem().unwrap().to_string_lossy());
+    let file = dir.join(format!("{name}.html"));
+    let options = MotionOptions {
+        playback: true,
+        ..MotionOptions::default()
+    };
+    let report = run_with(&scene, &mut Default::default(), &options).unwrap();
+    mechdiff::pictures::report::motion::write(&scene, &report, &file).unwrap();
+    let playback = report.playback.unwrap();
+    let m = scene::build::mechanism(&scene).unwrap();
+    let mut joints = Vec::new();
+    for part in &playback.parts {
+        let phi: Vec<f64> = playback.rows[part.frames.clone()]
+            .iter()
+            .map(|r| r[2])
+            .collect();
+        let poses = mechdiff::pictures::scene::poses(&scene, &m, &phi).unwrap();
+        joints.extend(poses.xy.iter().map(|pose| {
+            (scene.points.iter().zip(pose))
+                .map(|(p, at)| (p.name.clone(), *at))
+                .collect()
+        }));
+    }
+    let clock = |r: &Vec<f64>| r[0];
+    let span = clock(playback.rows.last().unwrap()) - clock(&playback.rows[0]);
+    Some(Case {
+        name,
+        file,
+        joints,
+        rate: Some(1.0),
+        span,
+    })
+}
+
 /// Playback at the drive speed: with the speed factor chosen so that about 30 frames pass in
 /// 0.4 s, the frames shown at two animation frames differ by what the drive's speed gives
 /// over the time between them, within one frame (the page shows whole frames). Measured on
@@ -575,10 +623,12 @@ fn reports_hold_up_in_a_real_browser() {
     };
     let dir = tempfile::tempdir().unwrap();
     let started = Instant::now();
-    let cases: Vec<Case> = shipped_scenes()
+    let mut cases: Vec<Case> = shipped_scenes()
         .iter()
         .map(|p| case(p, dir.path()))
         .collect();
+    // The scenes with `[simulate]` also as their machine really runs, on the simulated clock.
+    cases.extend((shipped_scenes().iter()).filter_map(|p| motion_case(p, dir.path())));
     let written = started.elapsed();
     assert!(cases.len() >= 14, "the shipped scenes: {}", cases.len());
     let mut failures = Vec::new();

@@ -94,6 +94,16 @@ pub fn check(args: &CheckArgs) -> Result<(), Error> {
         let _ = writeln!(out, "length {link}: {a}–{b} = {length} {unit}");
     }
     let _ = writeln!(out, "{}", checked.plan.describe(&scene));
+    if scene.motion.is_some() {
+        // The plan `run` prints before it simulates, in the same words.
+        let options = scene::motion::MotionOptions {
+            plan_only: true,
+            ..Default::default()
+        };
+        let sinks = &mut mechdiff::stream::motion::MotionSinks::default();
+        let planned = scene::motion::run_with(&scene, sinks, &options)?;
+        let _ = write!(out, "{}", planned.plan);
+    }
     if let Some(study) = &study {
         let _ = writeln!(out, "{}", study.describe(&checked.columns));
     }

@@ -2,7 +2,7 @@
 //! plan (the equation's terms), the table over time and the steady state's table over the
 //! drive angle stream to the terminal and to `--csv FILE` (over time) and `FILE_steady.csv`
 //! (over the angle) as they are computed; `--plot DIR` draws ω(t), the motor's torque and
-//! ω(φ).
+//! ω(φ); `--report FILE.html` plays the motion on the simulated clock beside them.
 
 use std::io::{BufWriter, Write};
 use std::path::PathBuf;
@@ -21,7 +21,6 @@ pub fn run(args: &RunArgs, scene: &Scene) -> Result<(), Error> {
         ("--sweep", args.sweep.is_some()),
         ("--json", args.json.is_some()),
         ("--jsonl", args.jsonl.is_some()),
-        ("--report", args.report.is_some()),
         ("--monte-carlo", args.monte_carlo.is_some()),
         (
             "--evaluator",
@@ -34,7 +33,7 @@ pub fn run(args: &RunArgs, scene: &Scene) -> Result<(), Error> {
             scene: args.scene.clone(),
             why: "a scene with `[simulate]` runs its machine under the motor: it prints the \
                   tables over time and over the drive angle, writes them with --csv (FILE and \
-                  FILE_steady) and draws them with --plot"
+                  FILE_steady), draws them with --plot and plays the motion with --report"
                 .to_owned(),
         });
     }
@@ -65,7 +64,11 @@ pub fn run(args: &RunArgs, scene: &Scene) -> Result<(), Error> {
         time_csv: time_csv.as_mut().map(sink),
         steady_csv: steady_csv.as_mut().map(sink),
     };
-    let report = mechdiff::scene::motion::run(scene, &mut sinks)?;
+    let options = mechdiff::scene::motion::MotionOptions {
+        playback: args.report.is_some(),
+        ..Default::default()
+    };
+    let report = mechdiff::scene::motion::run_with(scene, &mut sinks, &options)?;
     drop(sinks);
     if let Some(file) = time_csv {
         file.commit()?;
@@ -78,6 +81,9 @@ pub fn run(args: &RunArgs, scene: &Scene) -> Result<(), Error> {
     if let Some(dir) = &args.plot {
         let title = scene.title.as_deref().unwrap_or("the machine in motion");
         pictures::motion::write_dir(title, &report, dir)?;
+    }
+    if let Some(path) = &args.report {
+        pictures::report::motion::write(scene, &report, path)?;
     }
     match stdout.flush() {
         Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),

@@ -26,9 +26,11 @@
 //! headless Chromium through it.
 //!
 //! Cam scenes get their report from [`cam`] (the cam turning, the follower moving, the SVAJ
-//! diagram), rotor scenes from [`rotor`] (the force and couple polygons and the answers).
+//! diagram), rotor scenes from [`rotor`] (the force and couple polygons and the answers),
+//! scenes with `[simulate]` from [`motion`] (the machine played on its simulated clock).
 
 pub mod cam;
+pub mod motion;
 pub mod rotor;
 
 use serde_json::json;

@@ -199,6 +199,14 @@ impl TorqueTable {
         Ok(TorqueTable { speeds, torques })
     }
 
+    /// The table's points `(speed, torque)` (rad/s, N·m), in increasing speed.
+    pub fn points(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
+        self.speeds
+            .iter()
+            .copied()
+            .zip(self.torques.iter().copied())
+    }
+
     /// The interpolated torque at `speed`.
     pub fn torque(&self, speed: f64) -> f64 {
         let n = self.speeds.len();

@@ -107,14 +107,17 @@ pub enum MotionError {
         message: String,
     },
     /// A speed the run waits for is not reached within the run's limit.
-    #[error("speed {speed} rad/s not reached within {limit}; the highest was {reached} rad/s")]
+    #[error("speed {speed} rad/s not reached within {limit}; {reached_as} {reached} rad/s")]
     NotReached {
         /// Speed asked for.
         speed: f64,
         /// The limit (time or turns) in words.
         limit: String,
-        /// The highest speed reached.
+        /// The speed that shows how far the run got: a start-up's highest, a coast-down's
+        /// last.
         reached: f64,
+        /// Which speed `reached` is, in words (`"the highest was"`, `"at the end it was"`).
+        reached_as: &'static str,
     },
     /// No periodic steady state exists within the turns allowed.
     #[error(

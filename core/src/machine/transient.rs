@@ -72,6 +72,7 @@ pub fn start_up(
             speed,
             limit: format!("{max_time} s"),
             reached: s.max_speed,
+            reached_as: "the highest was",
         }),
     }
 }
@@ -118,6 +119,7 @@ pub fn coast_down(
             speed: speed.unwrap_or(0.0),
             limit: format!("{max_time} s"),
             reached: s.end.omega,
+            reached_as: "at the end it was",
         }),
     }
 }

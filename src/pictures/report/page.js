@@ -25,7 +25,8 @@ for (const el of mech.querySelectorAll('[data-bind]')) {
 
 // The diagram's cursor: one vertical line per plot frame.
 const cursors = [];
-if (diagram) {
+const held = document.querySelectorAll('#diagram [data-column]');
+if (diagram && held.length === 0) {
   for (const r of diagram.querySelectorAll('rect.plot-frame')) {
     const line = document.createElementNS(NS, 'line');
     line.setAttribute('class', 'cursor');
@@ -34,6 +35,46 @@ if (diagram) {
     line.setAttribute('y2', +r.getAttribute('y') + +r.getAttribute('height'));
     diagram.appendChild(line);
     cursors.push([r, line]);
+  }
+}
+
+// Diagrams held in an element with data-column (a report of the machine in motion): each
+// plot frame's cursor at that column's value and a dot on its panel's curve (the column
+// data-y-columns names for it), shown during the frames data-frames names.
+const markers = [];
+for (const holder of held) {
+  const svg = holder.querySelector('svg');
+  const ys = (holder.dataset.yColumns || '').split(' ').filter(s => s !== '').map(Number);
+  const [from, to] = (holder.dataset.frames || '0 ' + frames).split(' ').map(Number);
+  for (const r of svg.querySelectorAll('rect.plot-frame')) {
+    const line = document.createElementNS(NS, 'line');
+    line.setAttribute('class', 'cursor');
+    line.setAttribute('stroke', 'black'); line.setAttribute('stroke-width', '1.5');
+    line.setAttribute('y1', r.getAttribute('y'));
+    line.setAttribute('y2', +r.getAttribute('y') + +r.getAttribute('height'));
+    const dot = document.createElementNS(NS, 'circle');
+    dot.setAttribute('class', 'marker'); dot.setAttribute('r', '4');
+    dot.setAttribute('fill', '#d62728'); dot.setAttribute('stroke', 'white');
+    svg.appendChild(line); svg.appendChild(dot);
+    markers.push({ r, line, dot, x: +holder.dataset.column, y: ys[+r.getAttribute('data-panel')], from, to });
+  }
+}
+function showMarkers(f) {
+  const row = D.values[f];
+  for (const m of markers) {
+    const x0 = +m.r.getAttribute('data-x0'), x1 = +m.r.getAttribute('data-x1');
+    const y0 = +m.r.getAttribute('data-y0'), y1 = +m.r.getAttribute('data-y1');
+    const vx = row[m.x], vy = m.y === undefined ? null : row[m.y];
+    const on = f >= m.from && f < m.to && vx !== null && vx >= Math.min(x0, x1) && vx <= Math.max(x0, x1);
+    m.line.style.display = on ? '' : 'none';
+    m.dot.style.display = on && vy !== null ? '' : 'none';
+    if (!on) continue;
+    const x = +m.r.getAttribute('x') + (vx - x0) / (x1 - x0) * +m.r.getAttribute('width');
+    m.line.setAttribute('x1', x); m.line.setAttribute('x2', x);
+    if (vy !== null) {
+      const top = +m.r.getAttribute('y'), h = +m.r.getAttribute('height');
+      m.dot.setAttribute('cx', x); m.dot.setAttribute('cy', top + (y1 - vy) / (y1 - y0) * h);
+    }
   }
 }
 
@@ -119,6 +160,7 @@ function show(f) {
   showVectors(frame);
   const row = D.values[frame];
   const phi = row[0];
+  showMarkers(frame);
   for (const [r, line] of cursors) {
     const x0 = +r.getAttribute('data-x0'), x1 = +r.getAttribute('data-x1');
     const x = +r.getAttribute('x') + (phi - x0) / (x1 - x0) * +r.getAttribute('width');

@@ -13,13 +13,15 @@ use super::words::significant;
 
 /// The equation of motion the run integrates, one line per term the scene gives (masses,
 /// rotor, flywheel; weights, loads with their ranges, friction, efficiencies; the motor),
-/// and the relation between the motor's torque and the kinetostatic drive torque.
-pub fn describe(scene: &Scene, motion: &SceneMotion, effects: &Effects) -> String {
+/// and the relation between the motor's torque and the kinetostatic drive torque; the gearbox
+/// and the rotor's inertia reduced to the drive; `inertia`, a line of J(φ)'s range; what each
+/// analysis finds and where it stops; the integration's tolerances and events.
+pub fn describe(scene: &Scene, motion: &SceneMotion, effects: &Effects, inertia: &str) -> String {
     let units = &scene.units;
     let q =
         |v: f64, d: Dimension| format!("{} {}", significant(units.from_si(v, d)), units.symbol(d));
     let drive = scene.drive.kind;
-    let inertia = match drive {
+    let inertia_unit = match drive {
         DriveKind::Angle => Dimension::MomentOfInertia,
         DriveKind::Displacement => Dimension::Mass,
     };
@@ -47,10 +49,26 @@ pub fn describe(scene: &Scene, motion: &SceneMotion, effects: &Effects) -> Strin
             significant(m.ratio)
         ));
     }
+    let gearbox = motor.map(|m| {
+        format!(
+            "  gearbox: τ = {} (drive speed / motor speed), η = {}; the rotor's J_d enters \
+             the drive as J_d/τ² = {}\n",
+            significant(m.ratio),
+            significant(m.efficiency),
+            q(m.rotor_inertia / (m.ratio * m.ratio), inertia_unit)
+        )
+    });
     if motion.flywheel > 0.0 {
-        j.push(format!("J_f (flywheel {})", q(motion.flywheel, inertia)));
+        j.push(format!(
+            "J_f (flywheel {})",
+            q(motion.flywheel, inertia_unit)
+        ));
     }
     out.push_str(&format!("  J = {}\n", j.join(" + ")));
+    if let Some(g) = gearbox {
+        out.push_str(&g);
+    }
+    out.push_str(inertia);
     let mut res = Vec::new();
     if effects.gravity
         && let Some(g) = &d.data.gravity
@@ -123,7 +141,16 @@ pub fn describe(scene: &Scene, motion: &SceneMotion, effects: &Effects) -> Strin
             torque(*breakdown_torque),
             significant(*breakdown_slip)
         ),
-        Characteristic::Table(_) => "a torque–speed table, interpolated linearly".to_owned(),
+        Characteristic::Table(t) => {
+            let points: Vec<String> = (t.points())
+                .map(|(w, m)| format!("{} → {}", speed(w), torque(m)))
+                .collect();
+            format!(
+                "a torque–speed table, interpolated linearly and its end segments extended \
+                 ({})",
+                points.join(", ")
+            )
+        }
         _ => "a characteristic".to_owned(),
     };
     out.push_str(&format!(
@@ -139,5 +166,96 @@ pub fn describe(scene: &Scene, motion: &SceneMotion, effects: &Effects) -> Strin
         })
         .collect();
     out.push_str(&format!("  finds: {}\n", finds.join(", ")));
+    for f in &motion.find {
+        let ratio = motor.map_or(1.0, |m| m.ratio);
+        out.push_str(&format!("    {}\n", find_line(scene, motion, ratio, *f)));
+    }
+    let t = &motion.tolerances;
+    let mut events = Vec::new();
+    if effects.loads {
+        let switches: Vec<String> = (d.data.loads.iter())
+            .filter_map(|l| l.active)
+            .flatten()
+            .map(|a| q(a, drive.dimension()))
+            .collect();
+        if !switches.is_empty() {
+            events.push(format!("load switches at {}", switches.join(", ")));
+        }
+    }
+    if drive == DriveKind::Angle {
+        events.push("turn ends".to_owned());
+    }
+    if motion.finds(Find::StartUp) {
+        events.push("the start-up's speed".to_owned());
+    }
+    events.push("rest".to_owned());
+    out.push_str(&format!(
+        "  integration: relative tolerance {:e} and absolute {:e} per step, at most {} steps a \
+         run; located as events (never stepped over): {}\n",
+        t.relative,
+        t.absolute,
+        t.max_steps,
+        events.join(", ")
+    ));
     out
+}
+
+/// What the analysis `find` does and where it stops, in the scene's units.
+fn find_line(scene: &Scene, motion: &SceneMotion, ratio: f64, find: Find) -> String {
+    let units = &scene.units;
+    let drive = scene.drive.kind;
+    let q =
+        |v: f64, d: Dimension| format!("{} {}", significant(units.from_si(v, d)), units.symbol(d));
+    let start = q(motion.start, drive.dimension());
+    let time = significant(motion.time);
+    match find {
+        Find::StartUp => {
+            let speed = match motion.speed {
+                Some(w) => q(w, drive.speed_dimension()),
+                None => match start_up_speed(motion, ratio) {
+                    Some(w) => format!(
+                        "{} (0.95 × the motor's no-load speed through the gearbox)",
+                        q(w, drive.speed_dimension())
+                    ),
+                    None => "the motor's no-load speed (none: give `speed`)".to_owned(),
+                },
+            };
+            format!(
+                "start-up: from rest at {start} until the drive turns at {speed}, within \
+                 {time} s (time to speed, peak motor torque)"
+            )
+        }
+        Find::SteadyState => format!(
+            "steady state: the periodic turn through {start}, by shooting on its start energy \
+             E = ½·J·φ̇² in the energy form (over φ), at most {} turns; ω(φ), t(φ), period, \
+             ω_min, ω_max, δ against the time mean 2π/T and the mid-range; checked by the same \
+             turn integrated in time",
+            motion.turns
+        ),
+        Find::CoastDown => format!(
+            "coast-down: the motor off, from where the start-up ended (or from the steady \
+             state) until rest, within {time} s"
+        ),
+        Find::Flywheel => {
+            let mean = match motion.mean {
+                mechdiff_core::machine::MeanSpeed::MidRange => "the mid-range (ω_max + ω_min)/2",
+                _ => "the time mean 2π/T",
+            };
+            format!(
+                "flywheel: on the drive shaft, for δ = {} against {mean}; exactly (the \
+                 periodic solution iterated, each iteration at most {} turns) and by the \
+                 classic energy method",
+                significant(motion.delta.unwrap_or(0.02)),
+                motion.turns
+            )
+        }
+    }
+}
+
+/// The speed a start-up runs to when `[simulate] speed` is not given: 0.95 of the motor's
+/// no-load speed through the gearbox (none for a characteristic without one);
+/// `ratio` is the gearbox's τ (1 without a motor), as [`mechdiff_core::machine::Machine::ratio`].
+pub(crate) fn start_up_speed(motion: &SceneMotion, ratio: f64) -> Option<f64> {
+    let no_load = motion.characteristic.no_load_speed()?;
+    Some(0.95 * no_load * ratio.abs())
 }

@@ -27,6 +27,7 @@ use super::curves::Curves;
 use super::equation;
 use super::format::Find;
 use super::model::SceneMotion;
+use super::playback::{self, Clocked, Part, Playback};
 use super::words::{Words, column, flywheel_lines, motion_error, significant, steady_line};
 
 /// What a run with `[simulate]` found (its rows went to the sinks).
@@ -52,6 +53,21 @@ pub struct MotionReport {
     pub curves: Curves,
     /// The headline numbers, one line each, in the scene's units.
     pub summary: Vec<String>,
+    /// The plan: the equation's terms as printed before the tables.
+    pub plan: String,
+    /// The frames of a report's playback, when [`MotionOptions::playback`] asks for them.
+    pub playback: Option<Playback>,
+}
+
+/// What a run with `[simulate]` produces besides its streamed tables.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct MotionOptions {
+    /// The frames of a report that plays the motion in real time ([`Playback`]): states at
+    /// equal steps of simulated time, at most [`playback::PLAYBACK_FRAMES`].
+    pub playback: bool,
+    /// Only the plan ([`MotionReport::plan`]: the equation's terms, J(φ)'s range, what the
+    /// analyses find and where they stop), nothing simulated: `mechdiff check`.
+    pub plan_only: bool,
 }
 
 /// The code of a row's `event` column.
@@ -112,6 +128,7 @@ struct TimeOut<'r, 'a> {
     rows: &'r mut Option<Rows>,
     sinks: &'r mut MotionSinks<'a>,
     curves: &'r mut Curves,
+    clock: &'r mut Clocked,
     columns: &'r [Column],
     /// SI per printed unit of the speed and the torque.
     speed: f64,
@@ -156,12 +173,33 @@ impl<'s> RowMaker<'s> {
             )?),
         };
         rows.row(out.sinks, &self.row)?;
+        (out.clock).push([sample.time, sample.phi, sample.omega, state.alpha]);
         let t = sample.time;
         out.curves.omega_time.push([t, sample.omega / out.speed]);
         out.curves
             .motor_torque
             .push([t, state.motor_torque / out.torque]);
         Ok(())
+    }
+
+    /// A row maker like this one, from the sketch again (its trackers at the start).
+    fn fresh(
+        &self,
+        setup: &'s Setup<'s>,
+        plan: &Plan,
+        machine: &Machine<'s>,
+        w: &Words<'_>,
+        motion: &SceneMotion,
+    ) -> Result<Self> {
+        Ok(RowMaker {
+            keep: self.keep.clone(),
+            sweeper: sweeper(setup, plan, false)?,
+            tracker: (machine.tracker())
+                .map_err(|e| motion_error(w, "the motion", &motion.location, e))?,
+            buffer: Vec::new(),
+            row: Vec::new(),
+            failure: None,
+        })
     }
 
     /// The scene's outputs at `phi` with speed `omega` and acceleration `alpha`, appended
@@ -183,6 +221,18 @@ impl<'s> RowMaker<'s> {
 /// that fails (a motor that cannot start the machine, no steady state within the turns),
 /// a solver error of the scene's outputs, or [`Error::Write`].
 pub fn run(scene: &Scene, sinks: &mut MotionSinks<'_>) -> Result<MotionReport> {
+    run_with(scene, sinks, &MotionOptions::default())
+}
+
+/// [`run`], with the frames of a report's playback when `options` asks for them.
+///
+/// # Errors
+/// As [`run`].
+pub fn run_with(
+    scene: &Scene,
+    sinks: &mut MotionSinks<'_>,
+    options: &MotionOptions,
+) -> Result<MotionReport> {
     let Some(motion) = &scene.motion else {
         return Err(Error::Invalid {
             location: scene.drive.location.clone(),
@@ -219,7 +269,9 @@ pub fn run(scene: &Scene, sinks: &mut MotionSinks<'_>) -> Result<MotionReport> {
         head.push_str(title);
         head.push('\n');
     }
-    head.push_str(&equation::describe(scene, motion, &effects));
+    let range = inertia_range(&machine, motion, &w)?;
+    let described = equation::describe(scene, motion, &effects, &range);
+    head.push_str(&described);
     sinks.say(&head)?;
 
     let plan = Plan::of(&setup);
@@ -265,7 +317,15 @@ pub fn run(scene: &Scene, sinks: &mut MotionSinks<'_>) -> Result<MotionReport> {
             ..Curves::default()
         },
         summary: Vec::new(),
+        plan: described,
+        playback: None,
     };
+    if options.plan_only {
+        return Ok(report);
+    }
+    let mut time_clock = Clocked::default();
+    let mut steady_clock = Clocked::default();
+    let mut coast_from: Option<f64> = None;
     let tolerances = motion.tolerances;
     let coasting = machine.clone().without_motor();
 
@@ -275,9 +335,7 @@ pub fn run(scene: &Scene, sinks: &mut MotionSinks<'_>) -> Result<MotionReport> {
     if motion.finds(Find::StartUp) {
         let speed = match motion.speed {
             Some(s) => s,
-            None => {
-                0.95 * motion.characteristic.no_load_speed().unwrap_or(0.0) * machine.ratio().abs()
-            }
+            None => equation::start_up_speed(motion, machine.ratio()).unwrap_or(0.0),
         };
         let mut sink = |r: Record| {
             if make.failure.is_none()
@@ -288,6 +346,7 @@ pub fn run(scene: &Scene, sinks: &mut MotionSinks<'_>) -> Result<MotionReport> {
                         rows: &mut time_rows,
                         sinks,
                         curves: &mut report.curves,
+                        clock: &mut time_clock,
                         columns: &time_columns,
                         speed: speed_unit.factor,
                         torque: torque_unit.factor,
@@ -373,6 +432,7 @@ pub fn run(scene: &Scene, sinks: &mut MotionSinks<'_>) -> Result<MotionReport> {
                     )?),
                 };
                 rows.row(sinks, &make.row)?;
+                steady_clock.push([a.time, a.phi, a.omega, state.alpha]);
                 report
                     .curves
                     .omega_angle
@@ -409,6 +469,7 @@ pub fn run(scene: &Scene, sinks: &mut MotionSinks<'_>) -> Result<MotionReport> {
     if motion.finds(Find::CoastDown)
         && let Some(start) = end
     {
+        coast_from = Some(start.time);
         let mut sink = |r: Record| {
             if make.failure.is_none()
                 && let Err(e) = make.time_row(
@@ -418,6 +479,7 @@ pub fn run(scene: &Scene, sinks: &mut MotionSinks<'_>) -> Result<MotionReport> {
                         rows: &mut time_rows,
                         sinks,
                         curves: &mut report.curves,
+                        clock: &mut time_clock,
                         columns: &time_columns,
                         speed: speed_unit.factor,
                         torque: torque_unit.factor,
@@ -466,6 +528,57 @@ pub fn run(scene: &Scene, sinks: &mut MotionSinks<'_>) -> Result<MotionReport> {
         report.summary.extend(flywheel_lines(&w, motion, &f));
         report.flywheel = Some(f);
     }
+    if options.playback {
+        let mut parts = Vec::new();
+        if !time_clock.states.is_empty() {
+            let name = match (report.start_up.is_some(), report.coast_down.is_some()) {
+                (true, true) => "the start-up, then the coast-down",
+                (false, true) => "the coast-down",
+                _ => "the start-up",
+            };
+            parts.push((name.to_owned(), time_clock));
+        }
+        parts.push(("one period of the steady state".to_owned(), steady_clock));
+        let (step, joined) = playback::join(parts);
+        let mut columns = vec![column("clock", "s", 1.0)];
+        columns.extend(time_columns.iter().filter(|c| c.name != "event").cloned());
+        let mut out = Playback {
+            columns,
+            rows: Vec::new(),
+            step,
+            parts: Vec::new(),
+        };
+        for (name, states) in joined {
+            let first = out.rows.len();
+            let mut make = make.fresh(&setup, &plan, &machine, &w, motion)?;
+            for (k, [t, phi, omega]) in states.iter().copied().enumerate() {
+                let which = match coast_from {
+                    Some(c) if first == 0 && t > c => &coasting,
+                    _ => &machine,
+                };
+                let state = (which.state(&mut make.tracker, phi, omega))
+                    .map_err(|e| motion_error(&w, "the motion", &motion.location, e))?;
+                make.row.clear();
+                make.row.extend_from_slice(&[
+                    (first + k) as f64 * step,
+                    t,
+                    phi,
+                    omega,
+                    state.alpha,
+                    state.motor_torque,
+                    state.drive_torque,
+                    state.reduced_inertia,
+                ]);
+                make.outputs(phi, omega, state.alpha)?;
+                out.rows.push(make.row.clone());
+            }
+            out.parts.push(Part {
+                name,
+                frames: first..out.rows.len(),
+            });
+        }
+        report.playback = Some(out);
+    }
     let mut text = String::from("\n");
     for line in &report.summary {
         text.push_str(line);
@@ -473,6 +586,48 @@ pub fn run(scene: &Scene, sinks: &mut MotionSinks<'_>) -> Result<MotionReport> {
     }
     sinks.say(&text)?;
     Ok(report)
+}
+
+/// Positions of one turn at which the plan gives J(φ)'s range.
+const INERTIA_POSITIONS: usize = 360;
+
+/// The plan's line of J(φ)'s range: over one turn from the start for an angle drive that
+/// turns one (at [`INERTIA_POSITIONS`] positions), else J at the start.
+///
+/// # Errors
+/// The machine's error at the start (it does not assemble there).
+fn inertia_range(machine: &Machine<'_>, motion: &SceneMotion, w: &Words<'_>) -> Result<String> {
+    let fail = |e| motion_error(w, "the motion", &motion.location, e);
+    let mut tracker = machine.tracker().map_err(fail)?;
+    let at_start = (machine.state(&mut tracker, motion.start, 0.0))
+        .map_err(fail)?
+        .reduced_inertia;
+    let j = |v: f64| w.text(v, w.inertia());
+    let start = w.position(motion.start);
+    if w.drive == crate::scene::model::DriveKind::Angle {
+        let mut range = (at_start, at_start);
+        let turn = (1..=INERTIA_POSITIONS).try_for_each(|k| {
+            let phi = motion.start + std::f64::consts::TAU * k as f64 / INERTIA_POSITIONS as f64;
+            let v = machine.state(&mut tracker, phi, 0.0)?.reduced_inertia;
+            range = (range.0.min(v), range.1.max(v));
+            Ok::<(), MotionError>(())
+        });
+        if turn.is_ok() {
+            return Ok(format!(
+                "  J(φ) over one turn from {start}: {} to {} ({INERTIA_POSITIONS} positions)\n",
+                j(range.0),
+                j(range.1)
+            ));
+        }
+    }
+    let why = match w.drive {
+        crate::scene::model::DriveKind::Angle => " (the drive does not turn a whole turn)",
+        crate::scene::model::DriveKind::Displacement => "",
+    };
+    Ok(format!(
+        "  J(φ) at the start {start}: {}{why}\n",
+        j(at_start)
+    ))
 }
 
 /// The steady-state search's settings from `[simulate]`.

@@ -109,6 +109,21 @@ pub(crate) fn motion_error(
             position.push_str(&format!(", t = {} s", significant(t)));
         }
     }
+    if let MotionError::NotReached {
+        speed,
+        reached,
+        reached_as,
+        ..
+    } = &error
+    {
+        // The speeds in the scene's unit, and the way out.
+        position = format!(
+            " ({} not reached; {reached_as} {}: allow more `time`, or ask for a speed the \
+             machine reaches)",
+            w.speed(*speed),
+            w.speed(*reached)
+        );
+    }
     Error::Motion {
         location: location.clone(),
         analysis,
