@@ -46,6 +46,7 @@
 
 mod certify;
 mod error;
+mod evolution;
 mod linkage;
 mod lm;
 mod problem;

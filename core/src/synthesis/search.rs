@@ -369,14 +369,7 @@ impl Synthesis {
         };
         let residuals = problem.residuals(&best.x).unwrap_or_default();
         let names = problem.variable_names();
-        let at_bounds = free
-            .iter()
-            .filter_map(|&i| {
-                let x = best.x[i];
-                let touch = |b: f64| (x - b).abs() <= 1e-12 * b.abs().max(1.0);
-                (touch(lower[i]) || touch(upper[i])).then(|| (names[i].clone(), touch(upper[i])))
-            })
-            .collect();
+        let at_bounds = at_bounds(problem, &free, &best.x);
         Ok(Report {
             variables: names.iter().cloned().zip(best.x.iter().copied()).collect(),
             objective: best.objective,
@@ -396,7 +389,7 @@ impl Synthesis {
         })
     }
 
-    fn validate(&self) -> Result<(), SynthesisError> {
+    pub(super) fn validate(&self) -> Result<(), SynthesisError> {
         let bad = |setting, value: f64, reason| {
             Err(SynthesisError::InvalidSetting {
                 setting,
@@ -441,7 +434,12 @@ impl Synthesis {
     /// one turn of the first.
     /// Round `round` draws from its own stream: round 0 from `seed` itself (the sampling
     /// of a single-round search), round r from `seed` mixed with r.
-    fn latin_hypercube(&self, problem: &Problem, free: &[usize], round: usize) -> Vec<Vec<f64>> {
+    pub(super) fn latin_hypercube(
+        &self,
+        problem: &Problem,
+        free: &[usize],
+        round: usize,
+    ) -> Vec<Vec<f64>> {
         let (lower, upper) = problem.bounds();
         let stream = (round as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15);
         let mut rng = fastrand::Rng::with_seed(self.seed ^ stream);
@@ -476,20 +474,32 @@ impl Synthesis {
     }
 }
 
+/// The free variables of `x` at a bound (name, and whether the upper one).
+pub(super) fn at_bounds(problem: &Problem, free: &[usize], x: &[f64]) -> Vec<(String, bool)> {
+    let (lower, upper) = problem.bounds();
+    let names = problem.variable_names();
+    free.iter()
+        .filter_map(|&i| {
+            let touch = |b: f64| (x[i] - b).abs() <= 1e-12 * b.abs().max(1.0);
+            (touch(lower[i]) || touch(upper[i])).then(|| (names[i].clone(), touch(upper[i])))
+        })
+        .collect()
+}
+
 /// The problem's residuals and Jacobians for the local phase, counting evaluations and
 /// rejected trial points.
-struct Evaluator<'p> {
-    problem: &'p Problem,
-    free: &'p [usize],
-    derivatives: Derivatives,
-    evaluations: usize,
-    max_evaluations: usize,
-    deadline: Option<Instant>,
-    rejected: Vec<usize>,
+pub(super) struct Evaluator<'p> {
+    pub(super) problem: &'p Problem,
+    pub(super) free: &'p [usize],
+    pub(super) derivatives: Derivatives,
+    pub(super) evaluations: usize,
+    pub(super) max_evaluations: usize,
+    pub(super) deadline: Option<Instant>,
+    pub(super) rejected: Vec<usize>,
 }
 
 impl Evaluator<'_> {
-    fn feasible(&mut self, x: &[f64]) -> Option<Vec<f64>> {
+    pub(super) fn feasible(&mut self, x: &[f64]) -> Option<Vec<f64>> {
         self.evaluations += 1;
         match self
             .problem
