@@ -11,7 +11,6 @@ mod literature;
 use literature::{Literature, from_paper};
 use mechdiff_core::synthesis::{Problem, Synthesis};
 use std::f64::consts::PI;
-use std::time::Duration;
 
 fn objective_at(problem: &Problem, linkage: [f64; 9], task: &[f64]) -> f64 {
     let mut x = linkage.to_vec();

@@ -250,34 +250,6 @@ fn carried<D: Scalar>(from: [D; 2], to: [D; 2], length: D, along: D, across: D) 
     )
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn four_bar_closes_its_loop_on_both_branches() {
-        let x: [f64; 9] = [0.0, 0.0, 1.0, 0.0, 0.4, 1.2, 0.9, 0.5, 0.3];
-        for branch in [1.0, -1.0] {
-            let pose = Linkage::FourBar.pose(&x, 0.7, &[branch]).unwrap();
-            let [a, b] = [pose.points[0], pose.points[1]];
-            // Lengths of order 1 formed from O(1) numbers: rounding ~1e-15.
-            assert!(((b[0] - a[0]).hypot(b[1] - a[1]) - 1.2).abs() < 1e-14);
-            assert!(((b[0] - 1.0).hypot(b[1]) - 0.9).abs() < 1e-14);
-            // σ = +1 puts B left of A→O4.
-            let side = (1.0 - a[0]) * (b[1] - a[1]) - (-a[1]) * (b[0] - a[0]);
-            assert_eq!(side > 0.0, branch > 0.0);
-        }
-    }
-
-    #[test]
-    fn a_dyad_too_short_to_close_is_no_assembly() {
-        let x: [f64; 9] = [0.0, 0.0, 3.0, 0.0, 0.4, 1.0, 1.0, 0.5, 0.3];
-        let err = Linkage::FourBar.pose(&x, 0.0, &[1.0]).unwrap_err();
-        assert_eq!(err.dyad, 0);
-        assert!(err.margin < 0.0);
-    }
-}
-
 impl Linkage {
     /// The variables of the same linkage moved as a rigid body and scaled: every point p
     /// taken to `scale`·R(`rotation`)·p + `shift`, lengths and coupler-point coordinates
@@ -306,5 +278,33 @@ impl Linkage {
             y[5] = x[5] + rotation;
         }
         y
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn four_bar_closes_its_loop_on_both_branches() {
+        let x: [f64; 9] = [0.0, 0.0, 1.0, 0.0, 0.4, 1.2, 0.9, 0.5, 0.3];
+        for branch in [1.0, -1.0] {
+            let pose = Linkage::FourBar.pose(&x, 0.7, &[branch]).unwrap();
+            let [a, b] = [pose.points[0], pose.points[1]];
+            // Lengths of order 1 formed from O(1) numbers: rounding ~1e-15.
+            assert!(((b[0] - a[0]).hypot(b[1] - a[1]) - 1.2).abs() < 1e-14);
+            assert!(((b[0] - 1.0).hypot(b[1]) - 0.9).abs() < 1e-14);
+            // σ = +1 puts B left of A→O4.
+            let side = (1.0 - a[0]) * (b[1] - a[1]) - (-a[1]) * (b[0] - a[0]);
+            assert_eq!(side > 0.0, branch > 0.0);
+        }
+    }
+
+    #[test]
+    fn a_dyad_too_short_to_close_is_no_assembly() {
+        let x: [f64; 9] = [0.0, 0.0, 3.0, 0.0, 0.4, 1.0, 1.0, 0.5, 0.3];
+        let err = Linkage::FourBar.pose(&x, 0.0, &[1.0]).unwrap_err();
+        assert_eq!(err.dyad, 0);
+        assert!(err.margin < 0.0);
     }
 }

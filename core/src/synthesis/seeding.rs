@@ -199,8 +199,8 @@ fn fit_free(problem: &Problem, x: &mut [f64], first: usize) -> usize {
         })
     };
     let mut best: (f64, Vec<usize>) = (f64::INFINITY, Vec::new());
-    for s in 0..m {
-        if path[s].is_none() || m - 1 < n - 1 {
+    for (s, start_point) in path.iter().enumerate() {
+        if start_point.is_none() {
             continue;
         }
         // value[i][j]: least cost of targets 0..=i with target i at grid index s + j.

@@ -173,8 +173,9 @@ fn solve3(mut m: Vec<[f64; 4]>) -> [f64; 3] {
         for r in 0..3 {
             if r != i {
                 let f = m[r][i] / m[i][i];
-                for c in 0..4 {
-                    m[r][c] -= f * m[i][c];
+                let pivot = m[i];
+                for (v, p) in m[r].iter_mut().zip(pivot) {
+                    *v -= f * p;
                 }
             }
         }
