@@ -16,11 +16,19 @@
 //! Their closed form (Freudenstein's half-angle formula with the root −√) is mechdiff's
 //! branch +1, B left of A→O4 (checked on the published dimensions).
 //!
-//! Bounds: mechdiff's box is chosen inside the papers' search space (lengths, coupler point
-//! and O2 as published; O4 in a box, the ground length r1 ≤ its published bound checked on
-//! the answer), and the crank is required to turn fully (Grashof, crank shortest): so
-//! mechdiff's answers are admissible answers of the papers' problems, and a lower objective
-//! is a like-for-like improvement, not the fruit of a larger space.
+//! Bounds of the path problems: mechdiff's box is chosen inside the papers' search space
+//! (lengths, coupler point and O2 as published; O4 in a box, the ground length r1 ≤ its
+//! published bound checked on the answer), and the crank is required to turn fully
+//! (Grashof, crank shortest — the papers ask Grashof, Cabrera's straight line also the crank
+//! shortest): so mechdiff's answers are admissible answers of the papers' problems, and a
+//! lower objective is a like-for-like improvement, not the fruit of a larger space. Timing:
+//! the papers' drive angles increase or decrease; mechdiff's free drive angles increase
+//! (counter-clockwise) on branch +1, half of the papers' space for the straight line (its
+//! clockwise solutions are the counter-clockwise ones of branch −1, mirrored).
+//!
+//! The function generator has no published least-squares value that could be traced here;
+//! its reference is Freudenstein's three-precision-point design of the same task, computed
+//! independently below, so it says only that the search beats the classical method.
 #![allow(dead_code)]
 
 use mechdiff_core::synthesis::{Constraints, Linkage, Problem, Task, Timing};
