@@ -39,3 +39,4 @@ mod symbolic_rules;
 mod symbolic_signs;
 mod synthesis_bad_input;
 mod synthesis_known_answers;
+mod synthesis_literature;

@@ -250,6 +250,37 @@ fn carried<D: Scalar>(from: [D; 2], to: [D; 2], length: D, along: D, across: D) 
     )
 }
 
+impl Linkage {
+    /// The variables of the same linkage moved as a rigid body and scaled: every point p
+    /// taken to `scale`·R(`rotation`)·p + `shift`, lengths and coupler-point coordinates
+    /// times `scale`, the slider's guide turned by `rotation` (its positions are then met
+    /// at drive angles `rotation` greater). `scale` > 0 keeps every branch.
+    pub(crate) fn similar(self, x: &[f64], scale: f64, rotation: f64, shift: [f64; 2]) -> Vec<f64> {
+        let (sin, cos) = rotation.sin_cos();
+        let mut y = x.to_vec();
+        let mut point = |i: usize| {
+            let (px, py) = (x[i], x[i + 1]);
+            y[i] = scale * (cos * px - sin * py) + shift[0];
+            y[i + 1] = scale * (sin * px + cos * py) + shift[1];
+        };
+        let (points, lengths): (&[usize], &[usize]) = match self {
+            Linkage::FourBar => (&[0, 2], &[4, 5, 6, 7, 8]),
+            Linkage::SliderCrank => (&[0], &[2, 3, 4, 6, 7]),
+            Linkage::StephensonSix => (&[0, 2, 9], &[4, 5, 6, 7, 8, 11, 12, 13, 14]),
+        };
+        for &i in points {
+            point(i);
+        }
+        for &i in lengths {
+            y[i] = scale * x[i];
+        }
+        if self == Linkage::SliderCrank {
+            y[5] = x[5] + rotation;
+        }
+        y
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -46,10 +46,12 @@
 
 mod certify;
 mod error;
+mod evolution;
 mod linkage;
 mod lm;
 mod problem;
 mod search;
+mod seeding;
 mod task;
 
 pub use certify::Certificate;
@@ -57,5 +59,5 @@ pub use error::{Defect, SynthesisError};
 pub use linkage::{Linkage, LinkagePose, NoAssembly};
 pub use lm::LocalStop;
 pub use problem::{Constraints, MAX_CHECKS, MAX_TARGETS, Problem, ProblemBuilder};
-pub use search::{Derivatives, MAX_STARTS, Report, StopReason, Synthesis};
+pub use search::{Derivatives, MAX_ROUNDS, MAX_STARTS, Report, StopReason, Synthesis};
 pub use task::{Task, Timing};

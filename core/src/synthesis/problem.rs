@@ -48,7 +48,7 @@ pub struct Problem {
     pub(crate) upper: Vec<f64>,
     pub(crate) constraints: Constraints,
     /// The index of the traced point (path) or output (function).
-    selected: usize,
+    pub(crate) selected: usize,
 }
 
 /// Bounds and settings not yet validated; see [`ProblemBuilder::build`].

@@ -4,12 +4,15 @@
 use super::error::{Defect, SynthesisError};
 use super::lm::{self, LeastSquares, LocalStop};
 use super::problem::Problem;
+use super::seeding;
 use super::task::Timing;
 use nalgebra::DMatrix;
 use std::time::{Duration, Instant};
 
 /// The most starts a search may sample.
 pub const MAX_STARTS: usize = 100_000;
+/// The most sampling rounds of a search.
+pub const MAX_ROUNDS: usize = 1_000_000;
 
 /// How the local phase gets its Jacobian.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -42,6 +45,16 @@ pub struct Synthesis {
     pub time_limit: Option<Duration>,
     /// Exact or difference Jacobians.
     pub derivatives: Derivatives,
+    /// Rounds of sampling: each round samples `starts` fresh points of the box and polishes
+    /// its best `local_searches`; the next round starts while the objective is not reached
+    /// and the time and evaluation limits allow (default 1).
+    pub rounds: usize,
+    /// Give each sample the timing that suits its dimensions before ranking it (the best
+    /// `drive0` of relative timing; free drive angles matched in order to the nearest
+    /// points of its path; a path task's sample also moved, turned and scaled onto the
+    /// targets), see `seeding` (default off: it costs up to a hundred evaluations a sample,
+    /// which pays where random samples are poor, as on the literature's problems).
+    pub fit_timing: bool,
 }
 
 impl Default for Synthesis {
@@ -55,6 +68,8 @@ impl Default for Synthesis {
             max_evaluations: 10_000_000,
             time_limit: None,
             derivatives: Derivatives::Exact,
+            rounds: 1,
+            fit_timing: false,
         }
     }
 }
@@ -200,6 +215,18 @@ impl Synthesis {
         self
     }
 
+    /// Sets the number of sampling rounds (see [`Synthesis::rounds`]).
+    pub fn with_rounds(mut self, rounds: usize) -> Self {
+        self.rounds = rounds;
+        self
+    }
+
+    /// Sets whether samples get the timing that suits them (see [`Synthesis::fit_timing`]).
+    pub fn with_fitted_timing(mut self, fit: bool) -> Self {
+        self.fit_timing = fit;
+        self
+    }
+
     /// Sets the objective at which the search stops.
     pub fn with_stop_objective(mut self, objective: f64) -> Self {
         self.stop_objective = objective;
@@ -217,20 +244,6 @@ impl Synthesis {
         let count = |d: Defect, defects: &mut Vec<usize>| {
             defects[Defect::ALL.iter().position(|&k| k == d).unwrap_or(0)] += 1;
         };
-        let mut ranked = Vec::new();
-        let mut evaluations = 0;
-        for x in self.latin_hypercube(problem, &free) {
-            evaluations += 1;
-            match problem.objective(&x) {
-                Ok(value) if value.is_finite() => ranked.push((value, x)),
-                Ok(_) => count(Defect::NoAssemblyAtTarget, &mut defects),
-                Err(d) => count(d, &mut defects),
-            }
-            if deadline.is_some_and(|d| Instant::now() >= d) {
-                break;
-            }
-        }
-        let samples = evaluations;
         let tally = |defects: &[usize]| {
             Defect::ALL
                 .iter()
@@ -239,68 +252,101 @@ impl Synthesis {
                 .map(|(d, n)| (*d, *n))
                 .collect::<Vec<_>>()
         };
-        if ranked.is_empty() && deadline.is_some_and(|d| Instant::now() >= d) {
-            return Err(SynthesisError::TimeLimit {
-                samples,
-                limit: self.time_limit.unwrap_or_default(),
-            });
-        }
-        if ranked.is_empty() {
-            return Err(SynthesisError::NoAssembly {
-                samples,
-                defects: tally(&defects),
-            });
-        }
-        ranked.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let feasible_samples = ranked.len();
-        // The best sample stands as the answer if the budget allows no local search.
-        let fallback = lm::Local {
-            x: ranked[0].1.clone(),
-            objective: ranked[0].0,
-            gradient_norm: f64::NAN,
-            stop: LocalStop::Budget,
-        };
         let mut f = Evaluator {
             problem,
             free: &free,
             derivatives: self.derivatives,
-            evaluations,
+            evaluations: 0,
             max_evaluations: self.max_evaluations,
             deadline,
             rejected: vec![0; Defect::ALL.len()],
         };
+        let (mut samples, mut feasible_samples) = (0, 0);
+        let fit_cost = seeding::fit_cost(problem);
+        // The best sample stands as the answer if the budget allows no local search.
+        let mut fallback: Option<lm::Local> = None;
         let mut best: Option<lm::Local> = None;
         let (mut searches, mut successes) = (0, 0);
         let mut stop = StopReason::Starts;
-        for (_, x0) in ranked.into_iter().take(self.local_searches) {
-            if f.exhausted() {
-                stop = if deadline.is_some_and(|d| Instant::now() >= d) {
-                    StopReason::Time
-                } else {
-                    StopReason::Evaluations
-                };
-                break;
+        'rounds: for round in 0..self.rounds {
+            let mut ranked = Vec::new();
+            for mut x in self.latin_hypercube(problem, &free, round) {
+                // The evaluation limit ends the sampling once a usable sample is in hand.
+                if (round > 0 || !ranked.is_empty()) && f.exhausted() {
+                    break;
+                }
+                // Fitted only while the evaluation limit allows a whole fit.
+                if self.fit_timing && f.evaluations + fit_cost < f.max_evaluations {
+                    f.evaluations += seeding::fit_timing(problem, &mut x);
+                }
+                f.evaluations += 1;
+                samples += 1;
+                match problem.objective(&x) {
+                    Ok(value) if value.is_finite() => ranked.push((value, x)),
+                    Ok(_) => count(Defect::NoAssemblyAtTarget, &mut defects),
+                    Err(d) => count(d, &mut defects),
+                }
+                if deadline.is_some_and(|d| Instant::now() >= d) {
+                    break;
+                }
             }
-            let local = lm::minimize(
-                &mut f,
-                x0,
-                &free,
-                lower,
-                upper,
-                self.stop_objective,
-                self.iterations,
-                deadline,
-            );
-            searches += 1;
-            successes += usize::from(local.objective <= self.stop_objective);
-            if best.as_ref().is_none_or(|b| local.objective < b.objective) {
-                best = Some(local);
+            if round == 0 && ranked.is_empty() {
+                if deadline.is_some_and(|d| Instant::now() >= d) {
+                    return Err(SynthesisError::TimeLimit {
+                        samples,
+                        limit: self.time_limit.unwrap_or_default(),
+                    });
+                }
+                return Err(SynthesisError::NoAssembly {
+                    samples,
+                    defects: tally(&defects),
+                });
             }
-            if best
-                .as_ref()
-                .is_some_and(|b| b.objective <= self.stop_objective)
+            ranked.sort_by(|a, b| a.0.total_cmp(&b.0));
+            feasible_samples += ranked.len();
+            if let Some((value, x)) = ranked.first()
+                && fallback.as_ref().is_none_or(|b| *value < b.objective)
             {
-                stop = StopReason::Objective;
+                fallback = Some(lm::Local {
+                    x: x.clone(),
+                    objective: *value,
+                    gradient_norm: f64::NAN,
+                    stop: LocalStop::Budget,
+                });
+            }
+            for (_, x0) in ranked.into_iter().take(self.local_searches) {
+                if f.exhausted() {
+                    stop = if deadline.is_some_and(|d| Instant::now() >= d) {
+                        StopReason::Time
+                    } else {
+                        StopReason::Evaluations
+                    };
+                    break 'rounds;
+                }
+                let local = lm::minimize(
+                    &mut f,
+                    x0,
+                    &free,
+                    lower,
+                    upper,
+                    self.stop_objective,
+                    self.iterations,
+                    deadline,
+                );
+                searches += 1;
+                successes += usize::from(local.objective <= self.stop_objective);
+                if best.as_ref().is_none_or(|b| local.objective < b.objective) {
+                    best = Some(local);
+                }
+                if best
+                    .as_ref()
+                    .is_some_and(|b| b.objective <= self.stop_objective)
+                {
+                    stop = StopReason::Objective;
+                    break 'rounds;
+                }
+            }
+            if f.exhausted() {
                 break;
             }
         }
@@ -314,17 +360,16 @@ impl Synthesis {
         for (d, n) in defects.iter_mut().zip(&f.rejected) {
             *d += n;
         }
-        let best = best.unwrap_or(fallback);
+        // Round 0 returned an error without a usable sample, so there is one.
+        let Some(best) = best.or(fallback) else {
+            return Err(SynthesisError::NoAssembly {
+                samples,
+                defects: tally(&defects),
+            });
+        };
         let residuals = problem.residuals(&best.x).unwrap_or_default();
         let names = problem.variable_names();
-        let at_bounds = free
-            .iter()
-            .filter_map(|&i| {
-                let x = best.x[i];
-                let touch = |b: f64| (x - b).abs() <= 1e-12 * b.abs().max(1.0);
-                (touch(lower[i]) || touch(upper[i])).then(|| (names[i].clone(), touch(upper[i])))
-            })
-            .collect();
+        let at_bounds = at_bounds(problem, &free, &best.x);
         Ok(Report {
             variables: names.iter().cloned().zip(best.x.iter().copied()).collect(),
             objective: best.objective,
@@ -344,7 +389,7 @@ impl Synthesis {
         })
     }
 
-    fn validate(&self) -> Result<(), SynthesisError> {
+    pub(super) fn validate(&self) -> Result<(), SynthesisError> {
         let bad = |setting, value: f64, reason| {
             Err(SynthesisError::InvalidSetting {
                 setting,
@@ -366,6 +411,13 @@ impl Synthesis {
                 "at least one local search of 1 to 100 000 iterations",
             );
         }
+        if self.rounds == 0 || self.rounds > MAX_ROUNDS {
+            return bad(
+                "rounds",
+                self.rounds as f64,
+                "between 1 and 1 000 000 rounds of sampling",
+            );
+        }
         if !(self.stop_objective >= 0.0 && self.stop_objective.is_finite()) {
             return bad(
                 "stop_objective",
@@ -380,9 +432,17 @@ impl Synthesis {
     /// (slices matched at random, the point uniform in its cell); fixed variables at their
     /// value; free drive angles sorted (the order the targets are met in) and brought within
     /// one turn of the first.
-    fn latin_hypercube(&self, problem: &Problem, free: &[usize]) -> Vec<Vec<f64>> {
+    /// Round `round` draws from its own stream: round 0 from `seed` itself (the sampling
+    /// of a single-round search), round r from `seed` mixed with r.
+    pub(super) fn latin_hypercube(
+        &self,
+        problem: &Problem,
+        free: &[usize],
+        round: usize,
+    ) -> Vec<Vec<f64>> {
         let (lower, upper) = problem.bounds();
-        let mut rng = fastrand::Rng::with_seed(self.seed);
+        let stream = (round as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+        let mut rng = fastrand::Rng::with_seed(self.seed ^ stream);
         let n = self.starts;
         let mut points = vec![lower.to_vec(); n];
         for &i in free {
@@ -414,20 +474,32 @@ impl Synthesis {
     }
 }
 
+/// The free variables of `x` at a bound (name, and whether the upper one).
+pub(super) fn at_bounds(problem: &Problem, free: &[usize], x: &[f64]) -> Vec<(String, bool)> {
+    let (lower, upper) = problem.bounds();
+    let names = problem.variable_names();
+    free.iter()
+        .filter_map(|&i| {
+            let touch = |b: f64| (x[i] - b).abs() <= 1e-12 * b.abs().max(1.0);
+            (touch(lower[i]) || touch(upper[i])).then(|| (names[i].clone(), touch(upper[i])))
+        })
+        .collect()
+}
+
 /// The problem's residuals and Jacobians for the local phase, counting evaluations and
 /// rejected trial points.
-struct Evaluator<'p> {
-    problem: &'p Problem,
-    free: &'p [usize],
-    derivatives: Derivatives,
-    evaluations: usize,
-    max_evaluations: usize,
-    deadline: Option<Instant>,
-    rejected: Vec<usize>,
+pub(super) struct Evaluator<'p> {
+    pub(super) problem: &'p Problem,
+    pub(super) free: &'p [usize],
+    pub(super) derivatives: Derivatives,
+    pub(super) evaluations: usize,
+    pub(super) max_evaluations: usize,
+    pub(super) deadline: Option<Instant>,
+    pub(super) rejected: Vec<usize>,
 }
 
 impl Evaluator<'_> {
-    fn feasible(&mut self, x: &[f64]) -> Option<Vec<f64>> {
+    pub(super) fn feasible(&mut self, x: &[f64]) -> Option<Vec<f64>> {
         self.evaluations += 1;
         match self
             .problem
