@@ -11,6 +11,7 @@
 
 mod columns;
 mod errors;
+mod pictures;
 mod scene;
 mod variants;
 
@@ -20,6 +21,8 @@ use pyo3::prelude::*;
 #[pymodule]
 fn _mechdiff(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<scene::Scene>()?;
+    m.add_class::<pictures::Pictures>()?;
+    m.add("MAX_PICTURED_ROWS", pictures::MAX_PICTURED_ROWS)?;
     m.add("MAX_VARIANTS", variants::MAX_VARIANTS)?;
     m.add("MAX_VALUES", variants::MAX_VALUES)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

@@ -86,6 +86,7 @@ pub use run::{Checked, Report};
 pub use setup::{RunOptions, Setup};
 pub use source::Source;
 pub use sweep::Sweeper;
+pub use sweep_limits::kind_words;
 pub use sweep_limits::SweepLimit;
 
 /// The most list entries (commas) a scene's text may hold: a `positions` list of
