@@ -409,7 +409,11 @@ class Scene:
 
     def check(self) -> Dict[str, Any]:
         """Checks the scene without running its sweep (``mechdiff check``): ``{"plan": str,
-        "columns": [(name, unit), ...]}``; raises what a run would raise before solving."""
+        "columns": [(name, unit), ...], "degrees_of_freedom": int, "loops": [(joints,
+        branch sign), ...], "closed_form": [bool, ...], "motion_range": (lower, upper)}``,
+        each end of the drive's motion range ``(position in the drive's unit, kind,
+        joints)`` or ``None`` where it turns fully (a string saying why when it could not be
+        walked); raises what a run would raise before solving."""
         return self._rust.check()
 
     def run(self, positions: Optional[Any] = None, *, evaluator: Optional[str] = None) -> Run:

@@ -36,7 +36,10 @@ pub fn accuracy_csv(
         ));
     }
     if positions == Some(0) {
-        return Err(argument(py, "positions=0: measure at least one drive position".to_owned()));
+        return Err(argument(
+            py,
+            "positions=0: measure at least one drive position".to_owned(),
+        ));
     }
     let timing = Timing {
         repeats,
@@ -60,7 +63,9 @@ pub fn accuracy_csv(
                 reason: e.to_string(),
             })?;
             let linkage = whitworth::linkage(&shaper)?;
-            return Ok(thinned(whitworth::case(&shaper, &linkage)?, positions)?.measure(&timing)?.csv());
+            return Ok(thinned(whitworth::case(&shaper, &linkage)?, positions)?
+                .measure(&timing)?
+                .csv());
         }
         let report = match mechdiff::scene::kind(&text) {
             Kind::Formula => {
@@ -88,7 +93,10 @@ pub fn accuracy_csv(
 }
 
 /// `case` thinned to `positions` drive positions, or whole.
-fn thinned(case: accuracy::Case<'_>, positions: Option<usize>) -> mechdiff::Result<accuracy::Case<'_>> {
+fn thinned(
+    case: accuracy::Case<'_>,
+    positions: Option<usize>,
+) -> mechdiff::Result<accuracy::Case<'_>> {
     match positions {
         Some(n) => case.thinned(n),
         None => Ok(case),

@@ -4,8 +4,8 @@
 
 use std::path::PathBuf;
 
-use mechdiff::core::cams::law::Side;
 use mechdiff::core::cams::continuity::ContinuityReport;
+use mechdiff::core::cams::law::Side;
 use mechdiff::report::cam;
 use mechdiff::scene::cam::CamScene;
 use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
@@ -127,7 +127,10 @@ impl Cam {
         if let Some(i) = theta.iter().position(|t| !t.is_finite()) {
             return Err(argument(
                 py,
-                format!("cam angle {i} (from 0) is {}; give finite angles (rad)", theta[i]),
+                format!(
+                    "cam angle {i} (from 0) is {}; give finite angles (rad)",
+                    theta[i]
+                ),
             ));
         }
         let program = &self.scene.mechanism.program;

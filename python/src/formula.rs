@@ -87,7 +87,9 @@ impl Formula {
     /// The value and each derivative as an s-expression (`(* l (cos phi))`), simplified
     /// and sharing common subexpressions in the engine.
     fn expressions(&self) -> Vec<String> {
-        (self.outputs.iter()).map(|&id| self.graph.to_sexpr(id)).collect()
+        (self.outputs.iter())
+            .map(|&id| self.graph.to_sexpr(id))
+            .collect()
     }
 
     /// The value and the derivatives at each point given by `values[k]`, the values of
@@ -123,7 +125,10 @@ impl Formula {
                 ),
             ));
         }
-        let columns: Vec<&[f64]> = values.iter().map(|v| v.as_slice()).collect::<Result<_, _>>()?;
+        let columns: Vec<&[f64]> = values
+            .iter()
+            .map(|v| v.as_slice())
+            .collect::<Result<_, _>>()?;
         let points = columns.first().map_or(1, |c| c.len());
         if columns.iter().any(|c| c.len() != points) {
             return Err(argument(
@@ -136,14 +141,15 @@ impl Formula {
         if points > MAX_POINTS {
             return Err(argument(
                 py,
-                format!("{points} points in one call is over the limit of {MAX_POINTS}; ask in chunks"),
+                format!(
+                    "{points} points in one call is over the limit of {MAX_POINTS}; ask in chunks"
+                ),
             ));
         }
         let width = self.outputs.len();
         let found = py.detach(|| {
             let mut out = Vec::with_capacity(points * width);
-            let mut bindings: Vec<(&str, f64)> =
-                names.iter().map(|n| (n.as_str(), 0.0)).collect();
+            let mut bindings: Vec<(&str, f64)> = names.iter().map(|n| (n.as_str(), 0.0)).collect();
             for i in 0..points {
                 for (binding, column) in bindings.iter_mut().zip(&columns) {
                     binding.1 = column[i];
@@ -151,7 +157,9 @@ impl Formula {
                 let at = self.graph.evaluate_f64(&self.outputs, &bindings);
                 match at {
                     Ok(v) if v.iter().all(|x| x.is_finite()) => out.extend(v),
-                    Ok(v) => return Err((i, bindings_text(&bindings), format!("not finite: {v:?}"))),
+                    Ok(v) => {
+                        return Err((i, bindings_text(&bindings), format!("not finite: {v:?}")));
+                    }
                     Err(e) => return Err((i, bindings_text(&bindings), e.to_string())),
                 }
             }

@@ -21,7 +21,10 @@ pub struct Rotor {
 }
 
 impl Rotor {
-    fn answered(py: Python<'_>, read: impl Send + FnOnce() -> mechdiff::Result<RotorScene>) -> PyResult<Self> {
+    fn answered(
+        py: Python<'_>,
+        read: impl Send + FnOnce() -> mechdiff::Result<RotorScene>,
+    ) -> PyResult<Self> {
         let answered = py.detach(|| {
             let scene = read()?;
             let answers = scene.rotor.answers()?;

@@ -143,7 +143,11 @@ impl Scene {
     }
 
     /// Checks the scene without running its sweep (as `mechdiff check`): a dict with the
-    /// `plan` line and the `columns` a run would have, `[(name, unit), ...]`.
+    /// `plan` line, the `columns` a run would have (`[(name, unit), ...]`), the
+    /// `degrees_of_freedom`, the `loops` the solver closes (`[(joints, branch sign), ...]`)
+    /// and which of them by a `closed_form`, and the drive's `motion_range` from the sketch
+    /// (`(lower, upper)`, each `(position, kind, joints)` in the drive's unit or `None` when
+    /// the drive turns fully that way; or why it could not be walked).
     fn check<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let checked = py
             .detach(|| mechdiff::scene::check(&self.scene))
@@ -154,6 +158,24 @@ impl Scene {
             .map(|c| (c.name.clone(), c.unit.clone()))
             .collect();
         dict.set_item("columns", columns)?;
+        dict.set_item("degrees_of_freedom", checked.mobility.degrees_of_freedom)?;
+        dict.set_item("loops", checked.loops)?;
+        dict.set_item("closed_form", checked.closed_form)?;
+        // The ends of the drive's motion range from the sketch, in the drive's unit.
+        let drive = self.scene.drive.kind.dimension();
+        let end = |limit: &Option<mechdiff::core::geometry::DriveLimit>| {
+            limit.as_ref().map(|l| {
+                (
+                    self.scene.units.from_si(l.phi, drive),
+                    mechdiff::scene::kind_words(l.kind).to_owned(),
+                    l.joints.clone(),
+                )
+            })
+        };
+        match &checked.motion_range {
+            Ok(range) => dict.set_item("motion_range", (end(&range.lower), end(&range.upper)))?,
+            Err(why) => dict.set_item("motion_range", why)?,
+        }
         Ok(dict)
     }
 

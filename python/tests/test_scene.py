@@ -169,5 +169,9 @@ def test_a_sweep_that_reaches_a_limit_position_lists_it_in_the_drives_unit(norto
     )
     run = scene.run()
     kinds = {round(l.position, 6): l.kind for l in run.limits}
+    # `check` walks the same range from the sketch both ways: ±φ_max.
+    lower, upper = scene.check()["motion_range"]
+    assert abs(lower[0] + limit) < 1e-6 and abs(upper[0] - limit) < 1e-6
+    assert upper[1] == "limit position" and set(upper[2]) == {"A", "B", "O4"}
     # Walked from the sketch to 1e-9 rad: 1e-6 deg.
     assert any(abs(p - limit) < 1e-6 and k == "limit position" for p, k in kinds.items()), kinds
