@@ -176,8 +176,9 @@ class Run(Mapping[str, np.ndarray]):
     @property
     def metrics_lines(self) -> List[str]:
         """The linkage metrics in words, as ``mechdiff check`` prints them (empty without)."""
-        self.metrics
-        return getattr(self, "_metrics_lines", [])
+        if self.metrics is None:
+            return []
+        return self._metrics_lines
 
     def __getitem__(self, name: str) -> np.ndarray:
         try:
