@@ -278,19 +278,25 @@ class Run(Mapping[str, np.ndarray]):
         return self._kept_pictures().diagram_svg()
 
     def _kept_pictures(self):
-        if self._pictures is None:
+        if self._pictures is None and self.positions > MAX_PICTURED_ROWS:
             raise errors.ArgumentError(
                 f"this run has {self.positions} positions; its pictures are kept for runs of at "
                 f"most {MAX_PICTURED_ROWS} (run the scene at fewer positions to draw it)"
+            )
+        if self._pictures is None:
+            raise errors.ArgumentError(
+                "a sensitivity run keeps no pictures; draw the scene's own run (scene.run())"
             )
         return self._pictures
 
     def _pictures_html(self) -> str:
         """The drawing and the diagram side by side, inline SVG (no network), or a note."""
-        if self._pictures is None:
+        if self._pictures is None and self.positions > MAX_PICTURED_ROWS:
             return (
                 f"<p>(pictures are drawn for runs of at most {MAX_PICTURED_ROWS} positions)</p>"
             )
+        if self._pictures is None:
+            return ""
         try:
             drawing, diagram = self._pictures.drawing_svg(), self._pictures.diagram_svg()
         except errors.MechdiffError as e:
