@@ -104,7 +104,7 @@ pub mod sensitivity;
 pub mod stream;
 
 pub use error::{Error, Result};
-pub use scene::launch::{run, run_with};
+pub use scene::launch::{run, run_between, run_with};
 pub use scene::outputs::Column;
 pub use scene::parameters::Setting;
 pub use scene::{Report, RunOptions, Scene, load, load_with, parse, parse_with};

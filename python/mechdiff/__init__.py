@@ -11,14 +11,18 @@ its sweep, and get every column as a NumPy array, in the units the column names:
     sens = scene.sensitivity(of="psi", wrt="b")
     sens["d(psi)/d(b)"], sens.methods        # exact dψ/db (dual numbers), per position
 
-Every run releases the GIL, so threads run scenes in parallel; `mechdiff.study` spreads
-many variants over a Dask cluster. Failures raise the classes of `mechdiff.errors`, whose
-messages keep the file, line and column, or the drive position in the scene's units.
+Every run releases the GIL, so threads run scenes in parallel, and Ctrl-C interrupts it;
+`mechdiff.study` spreads many variants over a Dask cluster. Failures raise the classes of
+`mechdiff.errors`, whose messages keep the file, line and column, or the drive position in
+the scene's units. Beside linkages: cams (`mechdiff.Cam`), rotors (`mechdiff.Rotor`),
+formula derivatives (`mechdiff.derive`), generated Rust (`mechdiff.codegen`) and the
+accuracy report (`mechdiff.accuracy`). In Jupyter a run shows its mechanism and diagram.
 """
 
 from __future__ import annotations
 
 import html
+import json
 import os
 from dataclasses import dataclass
 from typing import Any, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple, Union
@@ -26,10 +30,14 @@ from typing import Any, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple
 import numpy as np
 
 from . import errors
-from ._mechdiff import MAX_VALUES, MAX_VARIANTS
+from ._mechdiff import MAX_PICTURED_ROWS, MAX_VALUES, MAX_VARIANTS
 from ._mechdiff import Scene as _RustScene
 from ._mechdiff import __version__
 from .errors import *  # noqa: F401,F403 (the exception classes at the package's top)
+from .accuracy_report import accuracy
+from .balancing import Rotor
+from .cams import Cam
+from .formulas import Derivatives, codegen, derive
 
 __all__ = [
     "Scene",
@@ -38,6 +46,15 @@ __all__ = [
     "Sensitivity",
     "DerivativeMethod",
     "Variants",
+    "Limit",
+    "Counterweight",
+    "Cam",
+    "Rotor",
+    "Derivatives",
+    "derive",
+    "codegen",
+    "accuracy",
+    "MAX_PICTURED_ROWS",
     "load",
     "parse",
     "errors",
@@ -81,6 +98,30 @@ class Column:
         return f"{self.name} [{self.unit}]" if self.unit else self.name
 
 
+@dataclass(frozen=True)
+class Limit:
+    """A limit position, change point or toggle the sweep reaches: the drive position (in
+    the drive's unit), what it is (``"limit position"``, ``"change point"``, ``"toggle"``,
+    ...) and the joints of the loop that stops the drive."""
+
+    position: float
+    kind: str
+    joints: List[str]
+
+
+@dataclass(frozen=True)
+class Counterweight:
+    """A counterweight ``[balancing]`` sized: its link, mass (kg), mass-radius ``m r`` (kg m),
+    angle from the link's line (the scene's angle unit, counter-clockwise) and centre at the
+    sketch pose (``[x, y]``, the scene's length unit)."""
+
+    link: str
+    mass: float
+    mass_radius: float
+    angle: float
+    center: np.ndarray
+
+
 class Run(Mapping[str, np.ndarray]):
     """A run's columns, each a NumPy array in its column's unit (the drive first), and what
     the run found: ``plan``, ``warnings``, ``dead_positions``, ``summary``.
@@ -88,7 +129,11 @@ class Run(Mapping[str, np.ndarray]):
     A mapping from column name to array: ``run["psi"]``, ``list(run)``, ``dict(run)``.
     """
 
-    def __init__(self, raw: Dict[str, Any]):
+    def __init__(self, raw: Dict[str, Any], scene: Optional["Scene"] = None):
+        self._scene = scene
+        #: The run's drawing and diagram (kept for runs of at most ``MAX_PICTURED_ROWS``
+        #: positions), for ``_repr_html_``.
+        self._pictures = raw.get("pictures")
         self.columns: List[Column] = [
             Column(n, u, f) for n, u, f in zip(raw["names"], raw["units"], raw["factors"])
         ]
@@ -104,6 +149,36 @@ class Run(Mapping[str, np.ndarray]):
         }
         #: What the table prints after its rows: dead positions, limits, dynamics summaries.
         self.summary: str = raw["after_rows"]
+        #: The limit positions, change points and toggles the sweep reaches: ``[Limit]``, the
+        #: drive position in the drive's unit.
+        self.limits: List[Limit] = [Limit(phi, kind, list(joints)) for phi, kind, joints in raw["limits"]]
+        #: The lines ``[balancing]`` prints after the table (empty without it).
+        self.balancing: List[str] = list(raw["balancing"])
+        #: The counterweights ``[balancing]`` sized: ``[Counterweight]``, in the scene's units.
+        self.counterweights: List[Counterweight] = [
+            Counterweight(link, mass, mass_radius, angle, np.array(center))
+            for link, mass, mass_radius, angle, center in raw["counterweights"]
+        ]
+
+    @property
+    def metrics(self) -> Optional[Dict[str, Any]]:
+        """The scene's linkage metrics (Grashof class, the input's range, transmission angle,
+        quick return; as ``mechdiff check --json`` writes them, in the scene's units), or
+        ``None`` when it has none. Computed when first asked for."""
+        if self._scene is None:
+            return None
+        if not hasattr(self, "_metrics"):
+            found = self._scene._rust.metrics()
+            self._metrics = None if found is None else json.loads(found[1])
+            self._metrics_lines = [] if found is None else list(found[0])
+        return self._metrics
+
+    @property
+    def metrics_lines(self) -> List[str]:
+        """The linkage metrics in words, as ``mechdiff check`` prints them (empty without)."""
+        if self.metrics is None:
+            return []
+        return self._metrics_lines
 
     def __getitem__(self, name: str) -> np.ndarray:
         try:
@@ -143,20 +218,23 @@ class Run(Mapping[str, np.ndarray]):
         return np.column_stack(list(self._values.values()))
 
     def to_pandas(self, headers: bool = False):
-        """The table as a pandas DataFrame (pandas must be installed): columns named as the
-        run names them (``headers=True``: ``name [unit]``), units in ``df.attrs["units"]``."""
+        """The table as a pandas DataFrame (pandas must be installed; the arrays are handed
+        over, not copied where pandas can keep them): columns named as the run names them
+        (``headers=True``: ``name [unit]``), units in ``df.attrs["units"]`` (by column) and
+        the plan in ``df.attrs["plan"]``."""
         try:
             import pandas as pd
         except ImportError as e:  # pragma: no cover - depends on the environment
             raise ImportError("to_pandas() needs pandas: pip install pandas") from e
         names = [c.header if headers else c.name for c in self.columns]
-        frame = pd.DataFrame(dict(zip(names, self._values.values())))
-        frame.attrs["units"] = self.units
+        frame = pd.DataFrame(dict(zip(names, self._values.values())), copy=False)
+        frame.attrs["units"] = {n: c.unit for n, c in zip(names, self.columns)}
         frame.attrs["plan"] = self.plan
         return frame
 
     def to_polars(self):
-        """The table as a polars DataFrame (polars must be installed), named ``name [unit]``."""
+        """The table as a polars DataFrame (polars must be installed), each column named
+        ``name [unit]`` (polars keeps no other metadata per column)."""
         try:
             import polars as pl
         except ImportError as e:  # pragma: no cover - depends on the environment
@@ -182,10 +260,50 @@ class Run(Mapping[str, np.ndarray]):
         notes = "".join(f"<li>{html.escape(w)}</li>" for w in self.warnings)
         summary = f"<pre>{html.escape(self.summary)}</pre>" if self.summary.strip() else ""
         return (
-            f"<p>{html.escape(self.plan)}</p><table><thead><tr>{head}</tr></thead>"
+            f"<p>{html.escape(self.plan)}</p>{self._pictures_html()}"
+            f"<table><thead><tr>{head}</tr></thead>"
             f"<tbody>{''.join(body)}</tbody></table>{summary}"
             + (f"<ul>{notes}</ul>" if notes else "")
         )
+
+    def drawing_svg(self) -> str:
+        """The mechanism drawn at the run's first drawn position with its traced paths, as
+        the HTML report draws it (SVG text); raises ``ArgumentError`` for a run of more than
+        ``MAX_PICTURED_ROWS`` positions (draw a run at fewer)."""
+        return self._kept_pictures().drawing_svg()
+
+    def diagram_svg(self) -> str:
+        """The run's diagram (its columns against the drive position, dead positions and
+        limits marked; polar panels for forces), as the HTML report draws it (SVG text)."""
+        return self._kept_pictures().diagram_svg()
+
+    def _kept_pictures(self):
+        if self._pictures is None and self.positions > MAX_PICTURED_ROWS:
+            raise errors.ArgumentError(
+                f"this run has {self.positions} positions; its pictures are kept for runs of at "
+                f"most {MAX_PICTURED_ROWS} (run the scene at fewer positions to draw it)"
+            )
+        if self._pictures is None:
+            raise errors.ArgumentError(
+                "a sensitivity run keeps no pictures; draw the scene's own run (scene.run())"
+            )
+        return self._pictures
+
+    def _pictures_html(self) -> str:
+        """The drawing and the diagram side by side, inline SVG (no network), or a note."""
+        if self._pictures is None and self.positions > MAX_PICTURED_ROWS:
+            return (
+                f"<p>(pictures are drawn for runs of at most {MAX_PICTURED_ROWS} positions)</p>"
+            )
+        if self._pictures is None:
+            return ""
+        try:
+            drawing, diagram = self._pictures.drawing_svg(), self._pictures.diagram_svg()
+        except errors.MechdiffError as e:
+            return f"<p>(no pictures: {html.escape(str(e))})</p>"
+        box = "display:inline-block;vertical-align:top;max-width:49%"
+        return f'<div><div style="{box}">{drawing}</div><div style="{box}">{diagram}</div></div>'
+
 
 
 @dataclass(frozen=True)
@@ -210,8 +328,13 @@ class Sensitivity(Run):
     of the parameter as ``[parameters]`` writes it, and how each was computed
     (``methods``)."""
 
-    def __init__(self, raw: Dict[str, Any], methods: Sequence[Tuple[str, str, float, str]]):
-        super().__init__(raw)
+    def __init__(
+        self,
+        raw: Dict[str, Any],
+        methods: Sequence[Tuple[str, str, float, str]],
+        scene: Optional["Scene"] = None,
+    ):
+        super().__init__(raw, scene)
         #: Per derivative column: how it was computed.
         self.methods: Dict[str, DerivativeMethod] = {
             name: DerivativeMethod(method, error, why) for name, method, error, why in methods
@@ -293,7 +416,11 @@ class Scene:
 
     def check(self) -> Dict[str, Any]:
         """Checks the scene without running its sweep (``mechdiff check``): ``{"plan": str,
-        "columns": [(name, unit), ...]}``; raises what a run would raise before solving."""
+        "columns": [(name, unit), ...], "degrees_of_freedom": int, "loops": [(joints,
+        branch sign), ...], "closed_form": [bool, ...], "motion_range": (lower, upper)}``,
+        each end of the drive's motion range ``(position in the drive's unit, kind,
+        joints)`` or ``None`` where it turns fully (a string saying why when it could not be
+        walked); raises what a run would raise before solving."""
         return self._rust.check()
 
     def run(self, positions: Optional[Any] = None, *, evaluator: Optional[str] = None) -> Run:
@@ -302,10 +429,14 @@ class Scene:
 
         ``evaluator``: ``"auto"`` (default), ``"solver"``, ``"program"``, ``"interpreter"``
         or ``"jit"``, as ``mechdiff run --evaluator``.
+
+        The run releases the GIL and looks for Ctrl-C every 1024 positions
+        (``KeyboardInterrupt``). In Jupyter the result shows the mechanism and the diagram
+        (``_repr_html_``, runs of at most ``MAX_PICTURED_ROWS`` positions).
         """
         if positions is not None:
             positions = np.ascontiguousarray(positions, dtype=np.float64).reshape(-1)
-        return Run(self._rust.run(positions, evaluator))
+        return Run(self._rust.run(positions, evaluator), self)
 
     def sensitivity(
         self,
@@ -327,7 +458,7 @@ class Scene:
             wrts = [wrt] if isinstance(wrt, str) else list(wrt)
             wanted += [f"d({c})/d({p})" for c in ofs for p in wrts]
         raw, methods = self._rust.sensitivity(wanted)
-        return Sensitivity(raw, methods)
+        return Sensitivity(raw, methods, self)
 
     def run_variants(
         self,
@@ -350,6 +481,11 @@ class Scene:
         asked = None if columns is None else list(columns)
         values, picked, failures = self._rust.run_variants(names, table, asked)
         return Variants(picked, values, failures)
+
+    def codegen(self) -> str:
+        """The Rust module computing the scene's outputs and their derivatives, as ``mechdiff
+        codegen SCENE`` prints it (every loop must have a closed form)."""
+        return self._rust.codegen()
 
     def __reduce__(self):
         return (_restore, (self.text, self.file, self._rust.settings))

@@ -9,22 +9,32 @@ and what to do about it), and its parts as attributes:
 - ``position``: the drive position with its unit, for a failure found by solving;
 - ``settings``: the parameters as moved, for a run of a study or a variant.
 
-The tree::
+The tree (a group, then the kinds with a class of their own)::
 
     MechdiffError
     ├── SceneFileError (OSError)          the file cannot be read
+    │   └── ReadError, TooLargeError, NotRegularFileError, OutsideSceneFolderError,
+    │       NotUtf8Error
     ├── SceneSyntaxError (ValueError)     not TOML, or a key or value the format does not know
     ├── InvalidSceneError (ValueError)    an inconsistency in the scene (unknown point, ...)
+    │   └── UnknownPointError, UnknownNameError, DuplicatePointError,
+    │       NonPositiveLengthError, OutOfRangeError, SceneImportError, UnconstructibleError
     ├── SettingError (ValueError)         a parameter setting that names no parameter, ...
     ├── ArgumentError (ValueError)        an argument of the Python API (shape, name)
     ├── LimitError (ValueError)           a count over its documented limit
+    ├── FormulaError (ValueError)         a formula of `derive` that cannot be read or evaluated
     ├── ModelError                        mobility, redundancy
     ├── EvaluatorError                    the evaluator asked for cannot evaluate the scene
     ├── StudyError                        a sensitivity or tolerance study cannot be made
+    ├── AccuracyError                     an accuracy report that cannot be measured
     └── MotionError                       found by solving a drive position
         ├── UnassemblableError, BlockedError, ChangePointError, SingularError,
-        ├── BranchFlipError, NotReachedError, SelfLockingError, MoveTooLongError
+        ├── BranchFlipError, NotReachedError, SelfLockingError, MoveTooLongError,
+        ├── MachineMotionError (the machine's motion in time)
         └── NotFiniteError (also ArithmeticError)
+
+A Ctrl-C during a run interrupts it with ``KeyboardInterrupt`` (the run looks for it every
+1024 drive positions).
 """
 
 from __future__ import annotations
@@ -141,3 +151,118 @@ class MoveTooLongError(MotionError):
 
 class NotFiniteError(MotionError, ArithmeticError):
     """A result left the range of f64 (overflow, or a singular position)."""
+
+
+class FormulaError(MechdiffError, ValueError):
+    """A formula that cannot be read or differentiated (``mechdiff.derive``, ``codegen``):
+    the message names the place in the formula."""
+
+
+# One class per kind the library distinguishes, under the class of its group: catch the
+# group (``InvalidSceneError``) or the kind (``UnknownPointError``).
+
+
+class ReadError(SceneFileError):
+    """The file cannot be read (missing, no permission)."""
+
+
+class TooLargeError(SceneFileError):
+    """The file is larger than a scene may be."""
+
+
+class NotRegularFileError(SceneFileError):
+    """The path is a directory or a device, not a file."""
+
+
+class OutsideSceneFolderError(SceneFileError):
+    """A file the scene names lies outside the scene's folder."""
+
+
+class NotUtf8Error(SceneFileError):
+    """The file is not UTF-8 text (the message gives the line and column)."""
+
+
+class UnknownPointError(InvalidSceneError):
+    """A point name that the scene does not define (the message lists the points)."""
+
+
+class UnknownNameError(InvalidSceneError):
+    """A link, joint, output or other name that the scene does not define."""
+
+
+class DuplicatePointError(InvalidSceneError):
+    """A point defined twice."""
+
+
+class NonPositiveLengthError(InvalidSceneError):
+    """A length, radius or mass that must be positive and is not."""
+
+
+class OutOfRangeError(InvalidSceneError):
+    """A number outside the range its field allows."""
+
+
+class SceneImportError(InvalidSceneError):
+    """A geometry file the scene imports cannot be used."""
+
+
+class UnconstructibleError(InvalidSceneError):
+    """A point given by lengths that cannot be constructed (the circles do not meet)."""
+
+
+class MachineMotionError(MotionError):
+    """The motion of the machine in time (start-up, steady state) cannot be computed."""
+
+
+class AccuracyError(MechdiffError):
+    """An accuracy report that cannot be measured (a method failed, no reference)."""
+
+
+#: The class of each kind (the Rust variant's name) that has its own.
+_CLASS_OF_KIND = {
+    "Read": ReadError,
+    "TooLarge": TooLargeError,
+    "NotRegularFile": NotRegularFileError,
+    "OutsideSceneFolder": OutsideSceneFolderError,
+    "NotUtf8": NotUtf8Error,
+    "UnknownPoint": UnknownPointError,
+    "UnknownName": UnknownNameError,
+    "DuplicatePoint": DuplicatePointError,
+    "NonPositiveLength": NonPositiveLengthError,
+    "OutOfRange": OutOfRangeError,
+    "Import": SceneImportError,
+    "Unconstructible": UnconstructibleError,
+    "Motion": MachineMotionError,
+    "Method": AccuracyError,
+    "MethodNotFinite": AccuracyError,
+    "Reference": AccuracyError,
+}
+
+
+def class_for(kind: str, group: str) -> type:
+    """The exception class of an error of ``kind`` (the Rust variant), whose group class is
+    named ``group``: the kind's own class where it has one, else the group's (used by the
+    Rust extension)."""
+    own = _CLASS_OF_KIND.get(kind)
+    if own is not None and issubclass(own, globals()[group]):
+        return own
+    return globals()[group]
+
+
+__all__ += [
+    "FormulaError",
+    "ReadError",
+    "TooLargeError",
+    "NotRegularFileError",
+    "OutsideSceneFolderError",
+    "NotUtf8Error",
+    "UnknownPointError",
+    "UnknownNameError",
+    "DuplicatePointError",
+    "NonPositiveLengthError",
+    "OutOfRangeError",
+    "SceneImportError",
+    "UnconstructibleError",
+    "MachineMotionError",
+    "AccuracyError",
+]

@@ -5,7 +5,9 @@
 //! class and hands over its message (the facade's, word for word: `file:line:column`, the
 //! drive position in the scene's units, what to do) and its parts as attributes: `kind`
 //! (the Rust variant), `file`, `line`, `column`, `position`, and `settings` for a run with
-//! parameters moved.
+//! parameters moved. The class is the variant's own (`UnknownPointError`) where
+//! `mechdiff/errors.py` has one (`class_for`), under the class of its group
+//! (`InvalidSceneError`) that [`parts`] names.
 
 use mechdiff::Error;
 use mechdiff::error::Location;
@@ -49,9 +51,11 @@ fn raise(py: Python<'_>, error: &Error) -> PyResult<PyErr> {
         parts.at = parts.at.or(inner.at);
         parts.position = parts.position.or(inner.position);
     }
-    let class = py.import(MODULE)?.getattr(parts.class)?;
+    // The class of the variant (`UnknownPointError`), under the class of its group.
+    let kind = kind(innermost);
+    let class = (py.import(MODULE)?.getattr("class_for")?).call1((&kind, parts.class))?;
     let exception = class.call1((error.to_string(),))?;
-    exception.setattr("kind", kind(innermost))?;
+    exception.setattr("kind", kind)?;
     exception.setattr("file", parts.file)?;
     exception.setattr("line", parts.at.map(|a| a.0))?;
     exception.setattr("column", parts.at.map(|a| a.1))?;
@@ -131,6 +135,21 @@ fn parts(error: &Error) -> Parts {
         } => Parts {
             position: Some(position.clone()),
             ..located("SelfLockingError", location)
+        },
+        Error::Motion {
+            location, position, ..
+        } => Parts {
+            // ` at drive position 12.5 deg, t = 0.31 s`, or empty.
+            position: (position.strip_prefix(" at drive position "))
+                .map(str::to_owned)
+                .or_else(|| (!position.is_empty()).then(|| position.trim().to_owned())),
+            ..located("MotionError", location)
+        },
+        Error::Codegen { origin, .. } => in_file("FormulaError", origin, None),
+        Error::Write { path, .. } | Error::OutputIsInput { output: path, .. } => Parts {
+            class: "SceneFileError",
+            file: Some(path.display().to_string()),
+            ..Parts::default()
         },
         Error::Model { file, .. } => in_file("ModelError", file, None),
         Error::Unassemblable { file, position, .. } => {

@@ -1,6 +1,7 @@
 //! The `Scene` class: a read and checked scene with the text and settings it was read from,
 //! so that a sensitivity study or a variant re-reads it as the command line's `--set` does.
 
+use std::ops::ControlFlow;
 use std::path::PathBuf;
 
 use mechdiff::evaluator::Evaluator;
@@ -11,7 +12,12 @@ use pyo3::types::PyDict;
 
 use crate::columns::Columns;
 use crate::errors::{argument, to_py};
+use crate::pictures::Pictures;
 use crate::variants;
+
+/// Drive positions solved between two looks for Ctrl-C (a few milliseconds of a scene with
+/// dynamics; the look itself takes a microsecond).
+const CHUNK: usize = 1024;
 
 /// A scene file read and checked (`mechdiff.Scene` wraps it; see `mechdiff/__init__.py`).
 #[pyclass(module = "mechdiff._mechdiff", name = "Scene", frozen)]
@@ -137,7 +143,11 @@ impl Scene {
     }
 
     /// Checks the scene without running its sweep (as `mechdiff check`): a dict with the
-    /// `plan` line and the `columns` a run would have, `[(name, unit), ...]`.
+    /// `plan` line, the `columns` a run would have (`[(name, unit), ...]`), the
+    /// `degrees_of_freedom`, the `loops` the solver closes (`[(joints, branch sign), ...]`)
+    /// and which of them by a `closed_form`, and the drive's `motion_range` from the sketch
+    /// (`(lower, upper)`, each `(position, kind, joints)` in the drive's unit or `None` when
+    /// the drive turns fully that way; or why it could not be walked).
     fn check<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let checked = py
             .detach(|| mechdiff::scene::check(&self.scene))
@@ -148,13 +158,33 @@ impl Scene {
             .map(|c| (c.name.clone(), c.unit.clone()))
             .collect();
         dict.set_item("columns", columns)?;
+        dict.set_item("degrees_of_freedom", checked.mobility.degrees_of_freedom)?;
+        dict.set_item("loops", checked.loops)?;
+        dict.set_item("closed_form", checked.closed_form)?;
+        // The ends of the drive's motion range from the sketch, in the drive's unit.
+        let drive = self.scene.drive.kind.dimension();
+        let end = |limit: &Option<mechdiff::core::geometry::DriveLimit>| {
+            limit.as_ref().map(|l| {
+                (
+                    self.scene.units.from_si(l.phi, drive),
+                    mechdiff::scene::kind_words(l.kind).to_owned(),
+                    l.joints.clone(),
+                )
+            })
+        };
+        match &checked.motion_range {
+            Ok(range) => dict.set_item("motion_range", (end(&range.lower), end(&range.upper)))?,
+            Err(why) => dict.set_item("motion_range", why)?,
+        }
         Ok(dict)
     }
 
     /// Runs the sweep (or the drive `positions`, in the scene's units of the sweep, when
     /// given) in memory, with the `evaluator` named (`auto`, `solver`, `program`,
-    /// `interpreter`, `jit`), without the GIL. The columns and findings as a dict (see
-    /// `Columns::into_py`).
+    /// `interpreter`, `jit`), without the GIL, looking for Ctrl-C every `CHUNK` positions
+    /// (`KeyboardInterrupt`). The columns and findings as a dict (see `Columns::into_py`),
+    /// with `pictures`: the run's drawing and diagram (`None` for a run of more than
+    /// `MAX_PICTURED_ROWS` positions).
     #[pyo3(signature = (positions = None, evaluator = None))]
     fn run<'py>(
         &self,
@@ -180,21 +210,56 @@ impl Scene {
         };
         let positions = positions.as_ref().map(|p| p.as_slice()).transpose()?;
         let options = RunOptions { evaluator };
-        let columns = py
-            .detach(|| {
-                let moved;
-                let scene = match positions {
-                    Some(p) => {
-                        moved = self.scene.with_positions(p)?;
-                        &moved
-                    }
-                    None => &self.scene,
-                };
-                let report = mechdiff::run_with(scene, &options)?;
-                Ok(Columns::of(scene, report))
-            })
-            .map_err(|e: mechdiff::Error| to_py(py, &e))?;
-        columns.into_py(py)
+        let ran = py.detach(|| {
+            let moved;
+            let scene = match positions {
+                Some(p) => {
+                    moved = self.scene.with_positions(p)?;
+                    &moved
+                }
+                None => &self.scene,
+            };
+            // Ctrl-C: the GIL taken back between chunks of positions to look for it.
+            let flow = mechdiff::run_between(scene, &options, |done| {
+                if done == 0 || done % CHUNK != 0 {
+                    return ControlFlow::Continue(());
+                }
+                match Python::attach(|py| py.check_signals()) {
+                    Ok(()) => ControlFlow::Continue(()),
+                    Err(interrupted) => ControlFlow::Break(interrupted),
+                }
+            })?;
+            Ok(flow.map_continue(|report| {
+                let columns = Columns::of(scene, &report);
+                (columns, Pictures::of(scene, report))
+            }))
+        });
+        let (columns, pictures) = match ran.map_err(|e: mechdiff::Error| to_py(py, &e))? {
+            ControlFlow::Continue(done) => done,
+            ControlFlow::Break(interrupted) => return Err(interrupted),
+        };
+        let dict = columns.into_py(py)?;
+        dict.set_item("pictures", pictures.map(|p| Py::new(py, p)).transpose()?)?;
+        Ok(dict)
+    }
+
+    /// The linkage metrics of the scene (as `mechdiff check` prints them: Grashof class, the
+    /// input's range, transmission angle, quick return), or `None` when it has none: the
+    /// printed lines and the same as JSON text, in the scene's units, without the GIL.
+    fn metrics(&self, py: Python<'_>) -> PyResult<Option<(Vec<String>, String)>> {
+        let scene = &self.scene;
+        py.detach(|| {
+            let metrics = mechdiff::scene::metrics::SceneMetrics::of(scene)?;
+            Ok(metrics.map(|m| (m.lines(scene), m.json(scene).to_string())))
+        })
+        .map_err(|e: mechdiff::Error| to_py(py, &e))
+    }
+
+    /// The Rust module computing the scene's outputs and their derivatives (as `mechdiff
+    /// codegen SCENE` prints it), without the GIL.
+    fn codegen(&self, py: Python<'_>) -> PyResult<String> {
+        py.detach(|| mechdiff::codegen::scene::module(&self.scene, &self.file))
+            .map_err(|e| to_py(py, &e))
     }
 
     /// Runs the scene with a `[sensitivity]` table asking for `columns`
@@ -253,7 +318,7 @@ impl Scene {
                         ),
                     })
                     .collect::<Vec<_>>();
-                Ok((Columns::of(&scene, report), methods))
+                Ok((Columns::of(&scene, &report), methods))
             })
             .map_err(|e: mechdiff::Error| to_py(py, &e))?;
         Ok((columns.into_py(py)?, methods))

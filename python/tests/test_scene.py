@@ -134,3 +134,44 @@ def test_to_dict_and_to_numpy_hold_the_same_columns(norton_path):
     for k, (name, values) in enumerate(run.to_dict().items()):
         np.testing.assert_array_equal(table[:, k], values)
     assert "<table>" in run._repr_html_() and "psi [deg]" in run._repr_html_()
+
+
+def test_repr_html_shows_the_drawing_and_the_diagram_inline(norton_path):
+    run = mechdiff.load(norton_path).run()
+    page = run._repr_html_()
+    # The mechanism's drawing and the diagram, each an inline SVG, then the table.
+    assert page.count("<svg") == 2 and "psi [deg]" in page
+    assert run.drawing_svg() in page and run.diagram_svg() in page
+    # Nothing is fetched: no script, stylesheet or image from elsewhere.
+    for fetched in ('src="http', "src='http", 'href="http', "@import", "<script src"):
+        assert fetched not in page
+
+
+def test_metrics_are_those_of_the_four_bar_by_its_lengths(norton_path):
+    run = mechdiff.load(norton_path).run()
+    (four_bar,) = run.metrics["linkage"]["four_bars"]
+    grashof = four_bar["grashof"]
+    # Norton's four-bar: a = c = 0.86 m, b = 1.85 m, d = 2.22 m. s + l = 0.86 + 2.22 = 3.08 m
+    # against p + q = 0.86 + 1.85 = 2.71 m: not Grashof (no link turns fully).
+    assert abs(grashof["s_plus_l"] - 3.08) < 1e-12 and abs(grashof["p_plus_q"] - 2.71) < 1e-12
+    assert "non-Grashof" in grashof["class"]
+    assert any("Grashof" in line or "grashof" in line for line in run.metrics_lines)
+
+
+def test_a_sweep_that_reaches_a_limit_position_lists_it_in_the_drives_unit(norton_path):
+    # The crank rocks between the limits at ±φ_max where the coupler and the rocker are in
+    # line: |A O4| = b + c, so a² + d² − 2 a d cos φ = (b + c)², φ_max = 116.3...°.
+    a, b, c, d = 0.86, 1.85, 0.86, 2.22
+    limit = np.degrees(np.arccos((a * a + d * d - (b + c) ** 2) / (2 * a * d)))
+    scene = mechdiff.parse(
+        (SCENES / "norton_four_bar.toml").read_text().replace("to = 100", f"to = {limit - 0.01:.6f}"),
+        file="norton.toml",
+    )
+    run = scene.run()
+    kinds = {round(l.position, 6): l.kind for l in run.limits}
+    # `check` walks the same range from the sketch both ways: ±φ_max.
+    lower, upper = scene.check()["motion_range"]
+    assert abs(lower[0] + limit) < 1e-6 and abs(upper[0] - limit) < 1e-6
+    assert upper[1] == "limit position" and set(upper[2]) == {"A", "B", "O4"}
+    # Walked from the sketch to 1e-9 rad: 1e-6 deg.
+    assert any(abs(p - limit) < 1e-6 and k == "limit position" for p, k in kinds.items()), kinds

@@ -125,8 +125,9 @@ fn derivative_factor(scene: &CamScene, dimension: Dimension) -> f64 {
     }
 }
 
-/// Header and values of the SVAJ table, in the scene's units.
-fn table_cells(scene: &CamScene, rows: &[SvajRow]) -> (Vec<String>, Vec<(String, Vec<f64>)>) {
+/// Header (`name [unit]`) and values of the SVAJ table, in the scene's units: per row the
+/// cam angle as printed (a boundary's side marked `−` or `+`) and its numbers.
+pub fn table_cells(scene: &CamScene, rows: &[SvajRow]) -> (Vec<String>, Vec<(String, Vec<f64>)>) {
     let (names, dimension) = column_units(scene);
     let u = &scene.units;
     let angle = u.symbol(Dimension::Angle);

@@ -3,6 +3,7 @@
 //! [`crate::stream`]); the scene itself words the terminal table ([`TableWords`]).
 
 use std::io;
+use std::ops::ControlFlow;
 
 use crate::error::Result;
 use crate::stream::{self, Sinks, Streamed, TableWords};
@@ -61,6 +62,35 @@ pub fn run(scene: &Scene) -> Result<Report> {
 /// evaluate the scene.
 pub fn run_with(scene: &Scene, options: &RunOptions) -> Result<Report> {
     run::collect(&Setup::of(scene, options)?)
+}
+
+/// [`run_with`], asking `between(done)` before each drive position (`done` positions
+/// solved so far) whether to go on: `ControlFlow::Break(b)` stops the run there and is
+/// returned as it is. The Python package checks for Ctrl-C this way.
+///
+/// ```
+/// use std::ops::ControlFlow;
+///
+/// let scene = mechdiff::load("scenes/norton_four_bar.toml")?;
+/// let options = mechdiff::RunOptions::default();
+/// // Stopped before the fourth of the 11 positions.
+/// let stopped = mechdiff::run_between(&scene, &options, |done| {
+///     if done == 3 { ControlFlow::Break(done) } else { ControlFlow::Continue(()) }
+/// })?;
+/// assert!(matches!(stopped, ControlFlow::Break(3)));
+/// let whole = mechdiff::run_between(&scene, &options, |_| ControlFlow::<()>::Continue(()))?;
+/// assert!(matches!(whole, ControlFlow::Continue(r) if r.rows.len() == 11));
+/// # Ok::<(), mechdiff::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`run_with`], for the positions solved before a break.
+pub fn run_between<B>(
+    scene: &Scene,
+    options: &RunOptions,
+    between: impl FnMut(usize) -> ControlFlow<B>,
+) -> Result<ControlFlow<B, Report>> {
+    run::collect_between(&Setup::of(scene, options)?, between)
 }
 
 /// Runs a scene and streams its rows to `sinks` ([`crate::stream::sweep`], the positions

@@ -88,6 +88,7 @@ pub use setup::{RunOptions, Setup};
 pub use source::Source;
 pub use sweep::Sweeper;
 pub use sweep_limits::SweepLimit;
+pub use sweep_limits::kind_words;
 
 /// The most list entries (commas) a scene's text may hold: a `positions` list of
 /// `values::MAX_POSITIONS` ([`Positions::to_vec`]) and room for the rest. TOML is parsed

@@ -4,6 +4,8 @@
 //! [`super::Scene`].
 
 use std::cell::RefCell;
+use std::convert::Infallible;
+use std::ops::ControlFlow;
 
 use mechdiff_core::geometry::{Mechanism, Mobility, MotionRange};
 use mechdiff_core::{DeadPosition, DeadPositionSearch};
@@ -162,6 +164,22 @@ pub fn columns(setup: &Setup<'_>) -> Vec<Column> {
 /// (keeping the sketch's assembly branch) and feeds that pose to the outputs,
 /// `[[dynamics]]` and `[balancing]`; then searches the dead positions asked for.
 pub fn collect(setup: &Setup<'_>) -> Result<Report> {
+    match collect_between(setup, |_| ControlFlow::<Infallible>::Continue(()))? {
+        ControlFlow::Continue(report) => Ok(report),
+        ControlFlow::Break(never) => match never {},
+    }
+}
+
+/// [`collect`], asking `between(done)` before each drive position (`done` positions solved
+/// so far) whether to go on: `ControlFlow::Break(b)` stops the run there and is returned
+/// as it is (a caller that must stay interruptible, such as the Python package on Ctrl-C).
+///
+/// # Errors
+/// As [`collect`], for the positions solved before a break.
+pub fn collect_between<B>(
+    setup: &Setup<'_>,
+    mut between: impl FnMut(usize) -> ControlFlow<B>,
+) -> Result<ControlFlow<B, Report>> {
     super::preflight::before_solving(setup)?;
     let (cx, mechanism) = (&setup.context, &setup.mechanism);
     let mut plan = Plan::of(setup);
@@ -173,6 +191,9 @@ pub fn collect(setup: &Setup<'_>) -> Result<Report> {
     let width = all.len() - (setup.balancing).map_or(0, |b| super::balancing::columns(cx, b).len());
     let mut rows = Vec::with_capacity(positions.len());
     for &phi in &positions {
+        if let ControlFlow::Break(b) = between(rows.len()) {
+            return Ok(ControlFlow::Break(b));
+        }
         let mut row = Vec::with_capacity(all.len());
         sweeper.row(phi, &mut row)?;
         // The first error in drive order, as a streamed run reports it.
@@ -215,7 +236,7 @@ pub fn collect(setup: &Setup<'_>) -> Result<Report> {
         stats,
     };
     all_finite(cx, &report)?;
-    Ok(report)
+    Ok(ControlFlow::Continue(report))
 }
 
 /// The sweep of `setup` with its `[[dynamics]]` and `[balancing]` fed from the one walk;
