@@ -12,6 +12,7 @@
 mod columns;
 mod errors;
 mod scene;
+mod synthesis;
 mod variants;
 
 use pyo3::prelude::*;
@@ -20,6 +21,7 @@ use pyo3::prelude::*;
 #[pymodule]
 fn _mechdiff(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<scene::Scene>()?;
+    m.add_class::<synthesis::SynthesisProblem>()?;
     m.add("MAX_VARIANTS", variants::MAX_VARIANTS)?;
     m.add("MAX_VALUES", variants::MAX_VALUES)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
