@@ -582,7 +582,7 @@ def grid(
             f"parameter {', '.join(map(repr, clash))} has the name of a column of the study; "
             "leave that column out with `columns=`"
         )
-    overhead = per_variant = math.nan
+    overhead = per_variant = None  # measured only when the chunk is not given
     if chunk is None:
         # Enough variants that a task takes TASK_SECONDS with the call's overhead.
         overhead, per_variant = _variant_cost(scene, names, table[0], asked)
