@@ -19,11 +19,15 @@ import numpy as np
 import mechdiff
 import mechdiff.study
 
+# Dask's worker processes import this file to start: the cells that compute, draw or start a
+# cluster run only as `__main__` (in the notebook, or as the script).
+MAIN = __name__ == "__main__"
 ROOT = Path(__file__).resolve().parents[2] if "__file__" in globals() else Path.cwd()
 scene = mechdiff.load(ROOT / "scenes" / "whitworth.toml")
-run = scene.run()
-print(run.plan)
-print({name: run.units[name] for name in run})
+if MAIN:
+    run = scene.run()
+    print(run.plan)
+    print({name: run.units[name] for name in run})
 
 # %% [markdown]
 # The rocker's angle against its closed form (reference 000: λ = l1/l0 = 0.375,
@@ -31,21 +35,20 @@ print({name: run.units[name] for name in run})
 # Newton on the exact derivatives: at cos φ = λ.
 
 # %%
-lam = 0.150 / 0.400
-phi = np.radians(run["phi"])
-closed = np.degrees(np.arctan2(lam * np.sin(phi), 1 - lam * np.cos(phi)))
-print(f"max |ψ − closed form| = {np.max(np.abs(run['psi'] - closed)):.1e} deg")
-print("dead positions of the ram (φ deg, x_C m):", run.dead_positions["x_C"])
-print(f"cos φ = λ at φ = {math.degrees(math.acos(lam)):.10f} deg")
+if MAIN:
+    lam = 0.150 / 0.400
+    phi = np.radians(run["phi"])
+    closed = np.degrees(np.arctan2(lam * np.sin(phi), 1 - lam * np.cos(phi)))
+    print(f"max |ψ − closed form| = {np.max(np.abs(run['psi'] - closed)):.1e} deg")
+    print("dead positions of the ram (φ deg, x_C m):", run.dead_positions["x_C"])
+    print(f"cos φ = λ at φ = {math.degrees(math.acos(lam)):.10f} deg")
 
 # %% [markdown]
 # ψ′ and ψ″ — the rocker's velocity and acceleration coefficients — over a turn of the crank:
 # exact (dual numbers), no difference quotient. The ram's dead positions are marked.
 
 # %%
-# Dask's worker processes import this file to start (without running the `__main__` parts):
-# the cells that draw or start a cluster run only in the notebook or the script itself.
-if __name__ == "__main__":
+if MAIN:
     import matplotlib
 
     if "ipykernel" not in sys.modules:
@@ -90,7 +93,7 @@ text = text.replace("step = 0.5", "step = 5")
 tolerant = mechdiff.parse(text, file="whitworth.toml (l0, l1 as parameters)")
 tolerances = {"l0": 1e-4, "l1": 1e-4}  # ± m
 
-if __name__ == "__main__":
+if MAIN:
     cluster = LocalCluster(n_workers=2, threads_per_worker=1, dashboard_address=None)
     client = Client(cluster)
     mc = mechdiff.study.monte_carlo(tolerant, tolerances, 20_480, columns=["x_C"], client=client)
@@ -109,7 +112,7 @@ if __name__ == "__main__":
 # position, units in `grid.attrs["units"]`.
 
 # %%
-if __name__ == "__main__":
+if MAIN:
     grid = mechdiff.study.grid(
         tolerant, {"l1": np.linspace(0.10, 0.20, 5)}, columns=["x_C"], client=client
     )
