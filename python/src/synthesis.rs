@@ -41,7 +41,11 @@ fn linkage(py: Python<'_>, name: &str) -> PyResult<Linkage> {
 }
 
 /// The targets as rows of `width` numbers, or which row has another width.
-fn rows<const N: usize>(py: Python<'_>, task: &str, targets: &[Vec<f64>]) -> PyResult<Vec<[f64; N]>> {
+fn rows<const N: usize>(
+    py: Python<'_>,
+    task: &str,
+    targets: &[Vec<f64>],
+) -> PyResult<Vec<[f64; N]>> {
     (targets.iter().enumerate())
         .map(|(i, row)| {
             <[f64; N]>::try_from(row.as_slice()).map_err(|_| {
@@ -250,7 +254,10 @@ impl SynthesisProblem {
         if x.len() != n {
             return Err(argument(
                 py,
-                format!("x has {} values; the problem has {n} design variables", x.len()),
+                format!(
+                    "x has {} values; the problem has {n} design variables",
+                    x.len()
+                ),
             ));
         }
         Ok(self.problem.residuals(&x).ok())
@@ -294,7 +301,9 @@ impl SynthesisProblem {
             if !(seconds > 0.0 && seconds <= MAX_SECONDS) {
                 return Err(argument(
                     py,
-                    format!("time_limit={seconds} s: expected more than 0 and at most {MAX_SECONDS} s"),
+                    format!(
+                        "time_limit={seconds} s: expected more than 0 and at most {MAX_SECONDS} s"
+                    ),
                 ));
             }
             settings = settings.with_time_limit(Duration::from_secs_f64(seconds));
