@@ -114,3 +114,39 @@ def accuracy_csv(
     positions: Optional[int] = None,
     crank_ratio: Optional[float] = None,
 ) -> str: ...
+
+class SynthesisProblem:
+    """A synthesis problem of the core engine (wrapped by `mechdiff.synthesis.Problem`)."""
+
+    def __init__(
+        self,
+        linkage: str,
+        task: str,
+        targets: Sequence[Sequence[float]],
+        *,
+        name: Optional[str] = None,
+        timing: str = "absolute",
+        drive: Optional[Sequence[float]] = None,
+        bounds: Sequence[Tuple[str, float, float]] = ...,
+        branch: Optional[Sequence[float]] = None,
+        crank_rotates: bool = False,
+        min_transmission: float = 0.0,
+        checks_between_targets: int = 8,
+        angle_weight: float = 1.0,
+    ) -> None: ...
+    @property
+    def variable_names(self) -> List[str]: ...
+    @property
+    def bounds(self) -> List[Tuple[float, float]]: ...
+    def residuals(self, x: Sequence[float]) -> Optional[List[float]]: ...
+    def solve(
+        self,
+        seed: int = 0,
+        samples: int = 1000,
+        local_searches: int = 100,
+        iterations: int = 200,
+        stop_objective: float = 1e-24,
+        max_evaluations: int = 10_000_000,
+        time_limit: Optional[float] = None,
+        exact: bool = True,
+    ) -> Dict[str, Any]: ...

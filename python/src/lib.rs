@@ -19,6 +19,7 @@ mod formula;
 mod pictures;
 mod rotor;
 mod scene;
+mod synthesis;
 mod variants;
 
 use pyo3::prelude::*;
@@ -36,6 +37,7 @@ fn _mechdiff(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("MAX_CAM_ANGLES", cam::MAX_CAM_ANGLES)?;
     m.add("MAX_POINTS", formula::MAX_POINTS)?;
     m.add("MAX_PICTURED_ROWS", pictures::MAX_PICTURED_ROWS)?;
+    m.add_class::<synthesis::SynthesisProblem>()?;
     m.add("MAX_VARIANTS", variants::MAX_VARIANTS)?;
     m.add("MAX_VALUES", variants::MAX_VALUES)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

@@ -25,5 +25,22 @@ def norton_psi(phi, b, a=0.86, c=0.86, d=2.22):
 
 
 @pytest.fixture(scope="session")
+def norton_psi_deg():
+    """:func:`norton_psi` with ``phi`` and the result in degrees."""
+    return lambda phi, **lengths: np.degrees(norton_psi(np.radians(phi), **lengths))
+
+
+@pytest.fixture(scope="session")
 def norton_path():
     return SCENES / "norton_four_bar.toml"
+
+
+@pytest.fixture(scope="session")
+def client():
+    """A Dask client of a 2-worker LocalCluster (one thread each), shared by the studies'
+    tests (starting one takes seconds)."""
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    ) as cluster, distributed.Client(cluster) as client:
+        yield client
