@@ -122,9 +122,12 @@ pub struct Playback {
     pub parts: Vec<Part>,
 }
 
+/// A motion's name with its frames, each a `(t, φ, φ̇)` state.
+pub(crate) type NamedFrames = (String, Vec<[f64; 3]>);
+
 /// The motions' frames on one clock with one step and at most [`PLAYBACK_FRAMES`] in all:
 /// each `(name, frames)` with its `(t, φ, φ̇)` states; empty motions are left out.
-pub(crate) fn join(mut motions: Vec<(String, Clocked)>) -> (f64, Vec<(String, Vec<[f64; 3]>)>) {
+pub(crate) fn join(mut motions: Vec<(String, Clocked)>) -> (f64, Vec<NamedFrames>) {
     motions.retain(|(_, c)| !c.states.is_empty());
     let mut step = motions.iter().map(|(_, c)| c.step).fold(0.0, f64::max);
     loop {
