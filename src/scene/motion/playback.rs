@@ -122,12 +122,9 @@ pub struct Playback {
     pub parts: Vec<Part>,
 }
 
-/// A motion's name with its frames, each a `(t, φ, φ̇)` state.
-pub(crate) type NamedFrames = (String, Vec<[f64; 3]>);
-
 /// The motions' frames on one clock with one step and at most [`PLAYBACK_FRAMES`] in all:
-/// each `(name, frames)` with its `(t, φ, φ̇)` states; empty motions are left out.
-pub(crate) fn join(mut motions: Vec<(String, Clocked)>) -> (f64, Vec<NamedFrames>) {
+/// each `(name, frames)` coarsened to the common step; empty motions are left out.
+pub(crate) fn join(mut motions: Vec<(String, Clocked)>) -> (f64, Vec<(String, Clocked)>) {
     motions.retain(|(_, c)| !c.states.is_empty());
     let mut step = motions.iter().map(|(_, c)| c.step).fold(0.0, f64::max);
     loop {
@@ -140,8 +137,7 @@ pub(crate) fn join(mut motions: Vec<(String, Clocked)>) -> (f64, Vec<NamedFrames
         }
         step *= 2.0;
     }
-    let out = motions.into_iter().map(|(n, c)| (n, c.states)).collect();
-    (step, out)
+    (step, motions)
 }
 
 #[cfg(test)]
@@ -181,10 +177,10 @@ mod tests {
             short.push([t * 1e-2, t * 1e-2, 1.0, 0.0]);
         }
         let (step, joined) = join(vec![("a".into(), long), ("b".into(), short)]);
-        let total: usize = joined.iter().map(|(_, s)| s.len()).sum();
+        let total: usize = joined.iter().map(|(_, c)| c.states.len()).sum();
         assert!(total <= PLAYBACK_FRAMES);
-        for (_, states) in &joined {
-            for w in states.windows(2) {
+        for (_, c) in &joined {
+            for w in c.states.windows(2) {
                 assert!((w[1][0] - w[0][0] - step).abs() < 1e-15);
             }
         }

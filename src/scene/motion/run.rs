@@ -548,10 +548,10 @@ pub fn run_with(
             step,
             parts: Vec::new(),
         };
-        for (name, states) in joined {
+        for (name, clocked) in joined {
             let first = out.rows.len();
             let mut make = make.fresh(&setup, &plan, &machine, &w, motion)?;
-            for (k, [t, phi, omega]) in states.iter().copied().enumerate() {
+            for (k, [t, phi, omega]) in clocked.states.iter().copied().enumerate() {
                 let which = match coast_from {
                     Some(c) if first == 0 && t > c => &coasting,
                     _ => &machine,
