@@ -371,7 +371,7 @@ mod tests {
             2 => Some(f64::from_bits(bits))
                 .filter(|v| v.is_finite())
                 .unwrap_or(1.0),
-            _ if bits % 2 == 0 => -0.0,
+            _ if bits.is_multiple_of(2) => -0.0,
             _ => 0.0,
         }
     }
