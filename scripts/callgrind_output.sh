@@ -10,8 +10,9 @@
 # N and at N/2 positions (both above the 65 536 positions from which the table is streamed,
 # so both runs take the same path) and the start-up removed: (count(N) − count(N/2)) /
 # (N − N/2). Two runs per size: the table to /dev/null (where the run formats no table) and
-# to a file. `callgrind_annotate --inclusive=yes` gives the split: `format_batch` and
-# `write_texts` are the text, `Sweep::walk` the rows.
+# to a file. `callgrind_annotate --inclusive=yes` gives the split: `RowFormat::row` (the
+# numbers turned into text) and `write_texts` (the text written) against `Sweep::walk` (the
+# rows solved).
 set -euo pipefail
 bin=${1:-target/release/mechdiff}
 n=${2:-200000}
@@ -52,11 +53,12 @@ for target in null file; do
     big="$dir/cg.$target.$n.txt"
     small="$dir/cg.$target.$((n / 2)).txt"
     per() {
+        if [ -z "$1" ] || [ -z "$2" ]; then echo "n/a"; return; fi
         python3 -c "print(f'{($1 - $2) / ($n - $n // 2):.1f}')"
     }
     echo "table to $target ($n and $((n / 2)) positions):"
     echo "  end to end        $(per "$(total "$big")" "$(total "$small")") instructions/position"
-    for what in "format_batch" "write_texts" "Sweep.*::walk"; do
+    for what in "RowFormat::row" "write_texts" "Sweep.*::walk"; do
         printf '  %-17s %s\n' "$what" \
             "$(per "$(inclusive "$big" "$what")" "$(inclusive "$small" "$what")")"
     done
