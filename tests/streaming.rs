@@ -503,3 +503,82 @@ fn streamed_dynamics_and_balancing_give_the_bytes_of_a_run_in_memory() {
         assert_eq!((stats.sweep.rows, stats.sweep.solves), (n, n));
     }
 }
+
+/// A table that goes nowhere (`discard_table`: the terminal is `/dev/null`) is neither
+/// formatted nor written, and the run is otherwise the same: the same CSV and JSON Lines
+/// bytes with the table printed from its values and with the streamed one; a blocked sweep
+/// with no other output still walks to its first error and reports it.
+#[test]
+fn a_discarded_table_leaves_the_files_and_the_errors_as_they_were() {
+    let scene = slider_crank("0.25");
+    for table_from_values in [stream::TABLE_FROM_VALUES, 100] {
+        let kept = Options {
+            table_from_values,
+            ..options(1, 1 << 14, 1 << 10)
+        };
+        let discarded = Options {
+            discard_table: true,
+            ..kept.clone()
+        };
+        let (kept, discarded) = (streamed(&scene, &kept), streamed(&scene, &discarded));
+        assert!(kept.result.is_ok() && discarded.result.is_ok());
+        assert!(!kept.table.is_empty() && discarded.table.is_empty());
+        assert!(kept.csv == discarded.csv && kept.jsonl == discarded.jsonl);
+    }
+    let blocked = scene::parse("blocked.toml", BLOCKED).unwrap();
+    let expected = scene::run(&blocked).unwrap_err().to_string();
+    let mut table = Vec::new();
+    let mut sinks = Sinks {
+        table: Some(Sink {
+            path: PathBuf::from("<stdout>"),
+            out: &mut table,
+        }),
+        ..Sinks::default()
+    };
+    let discard = Options {
+        discard_table: true,
+        ..Options::default()
+    };
+    let e = stream::run(&blocked, &mut sinks, &discard).unwrap_err();
+    drop(sinks);
+    assert_eq!(e.to_string(), expected);
+    assert!(table.is_empty());
+}
+
+/// `mechdiff run` with its standard output on `/dev/null` (where it formats no table):
+/// the same CSV as with the table on a pipe, and a blocked sweep fails with the same error.
+#[test]
+fn a_run_to_dev_null_writes_the_same_csv_and_fails_the_same_way() {
+    let dir = std::env::temp_dir().join(format!("mechdiff-null-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/slider_crank.toml");
+    let toml = std::fs::read_to_string(path).unwrap();
+    std::fs::write(
+        dir.join("sc.toml"),
+        toml.replace("step = 5\n", "step = 0.005\n"),
+    )
+    .unwrap();
+    std::fs::write(dir.join("blocked.toml"), BLOCKED).unwrap();
+    let run = |scene: &str, csv: &str, stdout: std::process::Stdio| {
+        Command::new(env!("CARGO_BIN_EXE_mechdiff"))
+            .current_dir(&dir)
+            .args(["run", scene, "--csv", csv, "--threads", "1"])
+            .stdout(stdout)
+            .output()
+            .unwrap()
+    };
+    let piped = run("sc.toml", "piped.csv", std::process::Stdio::piped());
+    let null = run("sc.toml", "null.csv", std::process::Stdio::null());
+    assert!(piped.status.success() && null.status.success());
+    // 72 001 positions: the table is streamed (scientific columns), not held.
+    assert!(text(&piped.stdout).lines().count() > 72_001);
+    let read = |name: &str| std::fs::read(dir.join(name)).unwrap();
+    assert!(read("piped.csv") == read("null.csv"));
+    let piped = run("blocked.toml", "b1.csv", std::process::Stdio::piped());
+    let null = run("blocked.toml", "b2.csv", std::process::Stdio::null());
+    assert!(!piped.status.success() && !null.status.success());
+    assert_eq!(text(&piped.stderr), text(&null.stderr));
+    assert!(text(&null.stderr).contains("cannot assemble between drive positions 261 deg"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -206,6 +206,7 @@ fn stream(scene: &scene::Scene, args: &RunArgs, run: &RunOptions) -> Result<(), 
         progress: std::io::stderr().is_terminal()
             && scene.positions.len() > stream::TABLE_FROM_VALUES,
         evaluator: run.evaluator,
+        discard_table: stdout_is_null(),
         ..stream::Options::default()
     };
     let streamed = stream::run(scene, &mut sinks, &options)?;
@@ -228,6 +229,25 @@ fn stream(scene: &scene::Scene, args: &RunArgs, run: &RunOptions) -> Result<(), 
             source,
         }),
     }
+}
+
+/// Whether standard output is `/dev/null` (the same file: device and inode), where a table
+/// goes nowhere: `mechdiff run big.toml --csv out.csv > /dev/null` formats no table.
+fn stdout_is_null() -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::fd::AsFd;
+        use std::os::unix::fs::MetadataExt;
+        let stdout = std::io::stdout().as_fd().try_clone_to_owned();
+        let (Ok(stdout), Ok(null)) = (stdout, std::fs::metadata("/dev/null")) else {
+            return false;
+        };
+        std::fs::File::from(stdout)
+            .metadata()
+            .is_ok_and(|m| m.dev() == null.dev() && m.ino() == null.ino())
+    }
+    #[cfg(not(unix))]
+    false
 }
 
 /// The scene's linkage metrics; a failure to compute them is a warning, not the run's

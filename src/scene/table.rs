@@ -3,10 +3,11 @@
 use std::io::{self, Write};
 
 use super::model::Scene;
+use super::outputs::Column;
 use super::run::Report;
 use super::units::Units;
-use crate::report::Table;
-use crate::stream::format::{RowFormat, Texts, Wanted};
+use crate::stream::fixed::push_fixed;
+use crate::stream::format::{RowFormat, Texts, Wanted, push_scientific_signed};
 
 /// Significant digits of a column's largest value in the printed table (the CSV carries every
 /// digit).
@@ -48,12 +49,22 @@ impl ColumnFormat {
         Self::Fixed(exact.unwrap_or(decimals))
     }
 
-    fn format(self, v: f64) -> String {
+    /// Appends `v` in this format: fixed point as [`crate::report::fixed`] prints it,
+    /// scientific as `format!("{v:.8e}")` does, a non-finite value as `Display` does; each
+    /// number formatted once, straight into `out`.
+    fn push(self, v: f64, out: &mut Vec<u8>) {
         match self {
-            _ if !v.is_finite() => v.to_string(),
-            Self::Fixed(decimals) => crate::report::fixed(v, decimals),
-            Self::Scientific => format!("{v:.*e}", (DIGITS - 1) as usize),
+            _ if !v.is_finite() => out.extend_from_slice(v.to_string().as_bytes()),
+            Self::Fixed(decimals) => push_fixed(v, decimals, out),
+            Self::Scientific => push_scientific_signed(v, out),
         }
+    }
+
+    #[cfg(test)]
+    fn format(self, v: f64) -> String {
+        let mut out = Vec::new();
+        self.push(v, &mut out);
+        String::from_utf8(out).expect("numbers are ASCII")
     }
 }
 
@@ -64,37 +75,64 @@ pub fn write_table(scene: &Scene, report: &Report, out: &mut impl Write) -> io::
         writeln!(out, "{title}")?;
     }
     writeln!(out, "{}", report.plan.describe(scene))?;
-    let scaled: Vec<Vec<f64>> = report
-        .rows
-        .iter()
-        .map(|row| {
-            row.iter()
-                .zip(&report.columns)
-                .map(|(v, c)| v / c.factor)
-                .collect()
+    write_rows(&report.columns, &report.rows, out)?;
+    write_after_rows(scene, report, out)
+}
+
+/// The table's two header lines and its rows (values in SI, printed in the columns' units):
+/// each column in the format its values need ([`ColumnFormat::for_column`]), right-aligned in
+/// the width of its widest cell, two spaces between columns. Every number is formatted once
+/// into one buffer of cells, then laid out; the text is written in blocks of 64 KiB.
+fn write_rows(columns: &[Column], rows: &[Vec<f64>], out: &mut impl Write) -> io::Result<()> {
+    let mut values = Vec::with_capacity(rows.len());
+    let formats: Vec<ColumnFormat> = (columns.iter().enumerate())
+        .map(|(k, c)| {
+            values.clear();
+            values.extend(rows.iter().map(|row| row[k] / c.factor));
+            ColumnFormat::for_column(&values)
         })
         .collect();
-    let formats: Vec<ColumnFormat> = (0..report.columns.len())
-        .map(|k| ColumnFormat::for_column(&scaled.iter().map(|row| row[k]).collect::<Vec<_>>()))
+    let mut widths: Vec<usize> = (columns.iter())
+        .map(|c| (c.name.chars().count()).max(c.unit.chars().count() + 2))
         .collect();
-    let mut table = Table::new(0, report.columns.iter().map(|c| c.name.clone()).collect());
-    table.row(
-        report
-            .columns
-            .iter()
-            .map(|c| format!("[{}]", c.unit))
-            .collect(),
-    );
-    for row in &scaled {
-        table.row(
-            row.iter()
-                .zip(&formats)
-                .map(|(&v, f)| f.format(v))
-                .collect(),
-        );
+    // The cells of every row, one after the other, and where each ends (numbers are ASCII:
+    // their bytes are their characters).
+    let mut cells = Vec::new();
+    let mut ends = Vec::with_capacity(rows.len() * columns.len());
+    for row in rows {
+        for (k, ((v, c), format)) in row.iter().zip(columns).zip(&formats).enumerate() {
+            let start = cells.len();
+            format.push(v / c.factor, &mut cells);
+            ends.push(cells.len());
+            widths[k] = widths[k].max(cells.len() - start);
+        }
     }
-    write!(out, "{}", table.render())?;
-    write_after_rows(scene, report, out)
+    let header = |cell: &dyn Fn(&Column) -> String| {
+        let cells: Vec<String> = (columns.iter().zip(&widths))
+            .map(|(c, &w)| format!("{:>w$}", cell(c)))
+            .collect();
+        format!("{}\n", cells.join("  ").trim_end())
+    };
+    let mut text = header(&|c| c.name.clone()).into_bytes();
+    text.extend_from_slice(header(&|c| format!("[{}]", c.unit)).as_bytes());
+    let mut start = 0;
+    for r in 0..rows.len() {
+        let row = &ends[r * columns.len()..(r + 1) * columns.len()];
+        for (k, (&end, &width)) in row.iter().zip(&widths).enumerate() {
+            if k > 0 {
+                text.extend_from_slice(b"  ");
+            }
+            text.resize(text.len() + width - (end - start), b' ');
+            text.extend_from_slice(&cells[start..end]);
+            start = end;
+        }
+        text.push(b'\n');
+        if text.len() >= 1 << 16 {
+            out.write_all(&text)?;
+            text.clear();
+        }
+    }
+    out.write_all(&text)
 }
 
 /// Writes what follows the table's rows: the dead positions ([`write_dead_positions`]),
@@ -260,7 +298,9 @@ pub fn write_json_with(
 
 #[cfg(test)]
 mod tests {
-    use super::ColumnFormat;
+    use super::{Column, ColumnFormat, write_rows};
+    use crate::report::Table;
+    use proptest::prelude::*;
 
     /// Nine significant digits for the column's largest value, the same decimals in every row.
     #[test]
@@ -290,5 +330,81 @@ mod tests {
         let f = ColumnFormat::for_column(&[3.085e6, -1.0]);
         assert_eq!(f, ColumnFormat::Scientific);
         assert_eq!(f.format(3.085e6), "3.08500000e6");
+    }
+
+    /// The table as it was printed before its cells were written straight into one buffer:
+    /// one `String` per cell from the standard library's formatting
+    /// (`{:.N}` less the sign of a zero, `{:.8e}`, `Display`), aligned by [`Table`].
+    fn reference(columns: &[Column], rows: &[Vec<f64>]) -> Vec<u8> {
+        let scaled: Vec<Vec<f64>> = (rows.iter())
+            .map(|row| row.iter().zip(columns).map(|(v, c)| v / c.factor).collect())
+            .collect();
+        let formats: Vec<ColumnFormat> = (0..columns.len())
+            .map(|k| ColumnFormat::for_column(&scaled.iter().map(|r| r[k]).collect::<Vec<_>>()))
+            .collect();
+        let mut table = Table::new(0, columns.iter().map(|c| c.name.clone()).collect());
+        table.row(columns.iter().map(|c| format!("[{}]", c.unit)).collect());
+        for row in &scaled {
+            table.row(
+                (row.iter().zip(&formats))
+                    .map(|(&v, f)| match f {
+                        _ if !v.is_finite() => v.to_string(),
+                        ColumnFormat::Fixed(d) => crate::report::fixed(v, *d),
+                        ColumnFormat::Scientific => format!("{v:.8e}"),
+                    })
+                    .collect(),
+            );
+        }
+        table.render().into_bytes()
+    }
+
+    /// A column's value of kind `kind` from random `bits`: round steps (fixed point with few
+    /// decimals), magnitudes 1e-6…1e8 (fixed point or scientific), any finite `f64`
+    /// (mostly scientific), or zero of either sign.
+    fn value(kind: u8, bits: u64, exponent: i32) -> f64 {
+        match kind {
+            0 => (bits % 4001) as f64 * 0.25 - 500.0,
+            1 => {
+                let unit = (bits >> 11) as f64 / (1u64 << 53) as f64;
+                (2.0 * unit - 1.0) * 10f64.powi(exponent)
+            }
+            2 => Some(f64::from_bits(bits))
+                .filter(|v| v.is_finite())
+                .unwrap_or(1.0),
+            _ if bits.is_multiple_of(2) => -0.0,
+            _ => 0.0,
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(512))]
+        /// Random tables (up to 5 columns of mixed kinds, units with factors, up to 40 rows,
+        /// names wider or narrower than the numbers, non-ASCII units): the same bytes as
+        /// the table of `String` cells.
+        #[test]
+        fn rows_print_as_the_table_of_string_cells(
+            kinds in prop::collection::vec((0u8..4, 0usize..3, -6i32..9), 1..6),
+            cells in prop::collection::vec(any::<u64>(), 0..200),
+        ) {
+            let factors = [1.0, std::f64::consts::PI / 180.0, 1e-3];
+            let columns: Vec<Column> = (kinds.iter().enumerate())
+                .map(|(k, &(_, f, _))| Column {
+                    name: ["phi", "a_very_long_column_name", "ẍ"][k % 3].to_owned(),
+                    unit: ["deg", "mm/s²", "m"][f].to_owned(),
+                    factor: factors[f],
+                })
+                .collect();
+            let rows: Vec<Vec<f64>> = (cells.chunks_exact(columns.len()))
+                .map(|row| {
+                    (row.iter().zip(&kinds))
+                        .map(|(&bits, &(kind, f, e))| value(kind, bits, e) * factors[f])
+                        .collect()
+                })
+                .collect();
+            let mut out = Vec::new();
+            write_rows(&columns, &rows, &mut out).unwrap();
+            prop_assert_eq!(String::from_utf8(out).unwrap(),
+                String::from_utf8(reference(&columns, &rows)).unwrap());
+        }
     }
 }

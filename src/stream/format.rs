@@ -202,6 +202,13 @@ pub fn push_scientific(value: f64, width: usize, out: &mut Vec<u8>) {
     scientific(value + 0.0, None, width, out);
 }
 
+/// Appends finite `value` as `format!("{value:.8e}")` prints it ([`DIGITS`] significant
+/// digits, correctly rounded; `-0` keeps its sign), with no padding: a cell of the table
+/// printed from its values.
+pub fn push_scientific_signed(value: f64, out: &mut Vec<u8>) {
+    scientific(value, None, 0, out);
+}
+
 /// The significant digits kept in the streamed table.
 const KEPT: usize = DIGITS as usize;
 
@@ -547,6 +554,16 @@ mod tests {
         let mut padded = Vec::new();
         push_scientific(-0.5, 16, &mut padded);
         assert_eq!(padded, b"  -5.00000000e-1");
+    }
+
+    /// The table's scientific cells keep the sign of `-0`, as `{:.8e}` does.
+    #[test]
+    fn signed_scientific_cells_match_the_standard_library() {
+        for v in [-0.0, 0.0, -1.0, 3.085e6, -5e-324, 9.999999995] {
+            let mut out = Vec::new();
+            push_scientific_signed(v, &mut out);
+            assert_eq!(String::from_utf8(out).unwrap(), format!("{v:.8e}"), "{v:e}");
+        }
     }
 
     proptest! {

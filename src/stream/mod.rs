@@ -16,6 +16,7 @@
 //! need; a longer one prints every column in scientific notation with 9 significant digits,
 //! whose width is bounded for any `f64` (`-d.dddddddde-308`).
 
+pub mod fixed;
 pub mod format;
 pub mod motion;
 pub mod record;
@@ -100,6 +101,10 @@ pub struct Options {
     pub table_from_values: usize,
     /// How the run evaluates its positions (`--evaluator`, [`crate::RunOptions::evaluator`]).
     pub evaluator: Evaluator,
+    /// The table's bytes go nowhere (the terminal is `/dev/null`): the sweep is solved and
+    /// checked to its end as for a table, with the same errors, but the table is neither
+    /// formatted nor written. Set by the caller, which knows where its table goes.
+    pub discard_table: bool,
 }
 
 impl Default for Options {
@@ -113,6 +118,7 @@ impl Default for Options {
             speculation: Speculation::Auto,
             table_from_values: TABLE_FROM_VALUES,
             evaluator: Evaluator::default(),
+            discard_table: false,
         }
     }
 }
@@ -180,13 +186,15 @@ pub fn sweep(
     plan.evaluated_by(sweeper.loops(), sweeper.backend());
     let format = RowFormat::new(&columns);
     let streamed_table = positions.len() > options.table_from_values;
+    // A table that goes nowhere is not formatted; the sweep still runs as for a table.
+    let table_text = sinks.table.is_some() && !options.discard_table;
     let mut kept_rows: Vec<Vec<f64>> = Vec::new();
 
     if let Some(sink) = &mut sinks.csv {
         let header = record::csv_record(columns.iter().map(|c| c.header()));
         sink.write(header.as_bytes())?;
     }
-    if streamed_table && sinks.table.is_some() {
+    if streamed_table && table_text {
         let mut head = words.head(&plan);
         format.table_header(&columns, &mut head);
         write_table(sinks, head.as_bytes())?;
@@ -210,7 +218,7 @@ pub fn sweep(
             reason: e.to_string(),
         })?;
     let wanted = Wanted {
-        table: streamed_table && sinks.table.is_some(),
+        table: streamed_table && table_text,
         csv: sinks.csv.is_some(),
         jsonl: sinks.jsonl.is_some(),
     };
@@ -251,7 +259,7 @@ pub fn sweep(
             if let (Some(b), Some(chunks)) = (pending.take(), text) {
                 let n = b.rows.len() / format.columns();
                 bar.suspend(|| write_texts(sinks, &texts[..chunks]))?;
-                if sinks.table.is_some() && !streamed_table {
+                if table_text && sinks.table.is_some() && !streamed_table {
                     kept_rows.extend(b.rows.chunks(format.columns()).map(<[f64]>::to_vec));
                 }
                 written += n;
@@ -283,7 +291,7 @@ pub fn sweep(
     let balancing = (setup.balancing)
         .map(|b| crate::scene::balancing::report(cx, b, &setup.mechanism, None))
         .transpose()?;
-    if sinks.table.is_some() {
+    if table_text && sinks.table.is_some() {
         let mut text = Vec::new();
         stats.limit_walks = usize::from(crate::scene::sweep_limits::walks(setup, positions.len()));
         let report = Report {
