@@ -37,10 +37,10 @@
 use mechdiff::core::geometry::{ScalarOutput, Solver, Tracker};
 use mechdiff::core::method::{Differentiator, Dual2};
 use mechdiff::evaluator::Evaluator;
-use mechdiff::scene::{Plan, RunOptions, Setup, Sweeper};
-use num_dual::{Dual2_64, DualNum};
 use mechdiff::mechanisms::whitworth::Whitworth;
 use mechdiff::mechanisms::whitworth::hand;
+use mechdiff::scene::{Plan, RunOptions, Setup, Sweeper};
+use num_dual::{Dual2_64, DualNum};
 use std::hint::black_box;
 use std::process::ExitCode;
 

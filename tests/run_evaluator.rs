@@ -469,8 +469,7 @@ fn auto_compiles_the_program_where_the_cost_model_says_it_pays() {
     let mut compiled = 0;
     for path in linkage_scenes() {
         let scene = scene::load(&path).unwrap();
-        if !matches!(scene.positions, scene::Positions::Steps { .. }) || scene.sweep_of.is_some()
-        {
+        if !matches!(scene.positions, scene::Positions::Steps { .. }) || scene.sweep_of.is_some() {
             continue;
         }
         let solver = run_by(&scene, Evaluator::Solver).unwrap();

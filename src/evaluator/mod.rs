@@ -32,8 +32,8 @@
 //! the JIT falls back to the interpreter with a warning.
 //!
 //! `auto` (the default) chooses by a cost model ([`cost`]): the compiled program where its
-//! set-up (tracing, differentiating, compiling: about a million instructions and more per
-//! loop and output) is repaid by its cheaper rows over the sweep's positions, the solver
+//! set-up (tracing, differentiating, compiling: 2 to 8 million instructions on the shipped
+//! scenes) is repaid by its cheaper rows over the sweep's positions, the solver
 //! otherwise — so the usual short sweeps of a few hundred positions stay on the solver and a
 //! long one runs compiled code. Only where every loop has a closed form, the drive is no cam
 //! and no `[[dynamics]]` or `[balancing]` reads the solver's pose at every position anyway;
