@@ -4,6 +4,7 @@
 
 use std::path::Path;
 
+use mechdiff::evaluator::cost::Costs;
 use mechdiff::evaluator::{Evaluator, LoopPath};
 use mechdiff::scene::{self, Report, Scene};
 use mechdiff::{Error, Result, RunOptions};
@@ -245,28 +246,33 @@ fn the_plan_line_names_each_loops_path() {
 
 #[test]
 fn a_long_sweep_by_the_program_agrees_with_the_solver() {
-    // 3 601 positions (0.1°): the program's steps are each checked; `auto` keeps the solver
-    // while the program is not measured faster (BENCHMARKS.md).
+    // 3 601 positions (0.1°): the program's steps are each checked; `auto` compiles the
+    // program, the cost model finding its set-up repaid (`evaluator::cost`).
     let text = std::fs::read_to_string("scenes/slider_crank.toml")
         .unwrap()
         .replace("step = 5\n", "step = 0.1\n");
     let scene = scene::parse("slider_crank.toml", &text).unwrap();
-    let auto = scene::run(&scene).unwrap();
+    let solver = run_by(&scene, Evaluator::Solver).unwrap();
     assert!(
-        auto.plan
+        solver
+            .plan
             .loops
             .iter()
             .all(|l| l.path == LoopPath::ClosedForm),
         "{:?}",
-        auto.plan.loops
+        solver.plan.loops
     );
     let program = run_by(&scene, Evaluator::Program).unwrap();
-    assert_agree("slider_crank.toml at 0.1°", &auto, &program);
+    assert_agree("slider_crank.toml at 0.1°", &solver, &program);
     // 3 601 positions: `program` compiles to native code (JIT_FROM_POSITIONS); the same
     // bits as the interpreter.
     assert!(scene.positions.len() >= mechdiff::evaluator::JIT_FROM_POSITIONS);
     let interpreted = run_by(&scene, Evaluator::Interpreter).unwrap();
     assert_same_bits("slider_crank.toml at 0.1°", &interpreted, &program);
+    // `auto` runs the same compiled program: the same plan and bits.
+    let auto = scene::run(&scene).unwrap();
+    assert_eq!(auto.plan, program.plan);
+    assert_same_bits("slider_crank.toml at 0.1°, auto", &interpreted, &auto);
 }
 
 /// A triad (a class-III group) matches no closed form: its loop is solved by Newton.
@@ -435,4 +441,63 @@ fn dynamics_under_the_run_time_evaluator_read_the_tracker_that_follows_it() {
         let bits = |r: &[f64]| r[first..].iter().map(|v| v.to_bits()).collect::<Vec<_>>();
         assert_eq!(bits(a), bits(b), "φ = {}", a[0]);
     }
+}
+
+/// `scene` with its `[sweep]` of steps spread over the same range in `count` positions.
+fn with_count(scene: &Scene, count: usize) -> Scene {
+    let mut scene = scene.clone();
+    if let scene::Positions::Steps {
+        step, count: old, ..
+    } = &mut scene.positions
+    {
+        *step *= (*old - 1) as f64 / (count - 1) as f64;
+        *old = count;
+    }
+    scene
+}
+
+/// `auto`, the default evaluator, runs a sweep by the solver or by the run-time evaluator
+/// compiled to native code, whichever the cost model says costs it less
+/// (`evaluator::cost`): on every linkage scene of `scenes/` swept by steps, a short sweep
+/// (24 positions, below every scene's break-even) stays on the solver, and a long one (twice
+/// the scene's break-even) is compiled wherever every loop has a closed form and no
+/// `[[dynamics]]`, `[balancing]` or cam drive reads the solver's pose anyway; either way its
+/// rows agree with the solver's to 1e-13 of each column's scale (`assert_agree`) and it
+/// warns as the solver does.
+#[test]
+fn auto_compiles_the_program_where_the_cost_model_says_it_pays() {
+    let mut compiled = 0;
+    for path in linkage_scenes() {
+        let scene = scene::load(&path).unwrap();
+        if !matches!(scene.positions, scene::Positions::Steps { .. }) || scene.sweep_of.is_some() {
+            continue;
+        }
+        let solver = run_by(&scene, Evaluator::Solver).unwrap();
+        let closed = (solver.plan.loops.iter()).all(|l| l.path == LoopPath::ClosedForm);
+        let plain = closed
+            && scene.drive.cam.is_none()
+            && scene.dynamics.is_none()
+            && scene.balancing.is_none();
+        let values = (scene.outputs.iter())
+            .map(|o| match o.kind {
+                scene::model::OutputKind::Point(_) => 2,
+                _ => 1,
+            })
+            .sum();
+        let costs = Costs::estimate(solver.plan.loops.len(), values);
+        let even = costs.break_even();
+        assert!(even > 24 && even < 20_000, "{path}: break-even {even}");
+        for count in [24, 2 * even] {
+            let scene = with_count(&scene, count);
+            let auto = scene::run(&scene).unwrap();
+            let want = (plain && costs.program_pays(count)).then_some(Backend::Jit);
+            assert_eq!(auto.plan.backend, want, "{path} at {count} positions");
+            assert_eq!(want.is_some(), plain && count > 24, "{path} at {count}");
+            let solver = run_by(&scene, Evaluator::Solver).unwrap();
+            assert_agree(&path, &solver, &auto);
+            assert_eq!(solver.warnings, auto.warnings, "{path}");
+            compiled += usize::from(want.is_some());
+        }
+    }
+    assert!(compiled >= 5, "only {compiled} long sweeps compiled");
 }

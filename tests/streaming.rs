@@ -345,8 +345,11 @@ fn parallel_pieces_give_the_bytes_of_one_thread_up_to_two_limit_positions() {
     );
     let scene = scene::parse("limits.toml", &text).unwrap();
     assert_eq!(scene.positions.len(), 34361);
+    // The solver's pieces: `auto` would compile this long sweep of closed forms, whose
+    // program walks in order (its state is not compared between pieces).
     let long = |o: Options| Options {
         table_from_values: 0,
+        evaluator: mechdiff::evaluator::Evaluator::Solver,
         ..o
     };
     let one = streamed(

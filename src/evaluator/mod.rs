@@ -31,13 +31,20 @@
 //! `--evaluator interpreter|jit` force one. On a host cranelift does not generate code for,
 //! the JIT falls back to the interpreter with a warning.
 //!
-//! `auto` (the default) is the solver for now. The evaluator's rows cost 0.46× (compiled)
-//! and 0.66× (interpreted) the solver's, but its values agree with the solver's to 1e-13, not bit for bit (the JIT is
-//! bit for bit the *interpreter*, not the solver: they differentiate differently):
-//! making it the default changes the last printed digits of existing runs, so `auto` is
-//! where that choice changes once the outputs are re-baselined.
+//! `auto` (the default) chooses by a cost model ([`cost`]): the compiled program where its
+//! set-up (tracing, differentiating, compiling: 2 to 8 million instructions on the shipped
+//! scenes) is repaid by its cheaper rows over the sweep's positions, the solver
+//! otherwise — so the usual short sweeps of a few hundred positions stay on the solver and a
+//! long one runs compiled code. Only where every loop has a closed form, the drive is no cam
+//! and no `[[dynamics]]` or `[balancing]` reads the solver's pose at every position anyway;
+//! and the solver wherever the program cannot be had. The compiled rows agree with the
+//! solver's to 1e-13 (tested on every scene of `scenes/`), not bit for bit (the JIT is bit
+//! for bit the *interpreter*, not the solver: they differentiate differently), so a long
+//! run's last printed digits may differ from `--evaluator solver`'s; the solver stays the
+//! reference, and takes every step the program cannot prove.
 
 pub(crate) mod code;
+pub mod cost;
 mod program;
 
 pub(crate) use program::{ProgramPath, solver_loops};
@@ -50,7 +57,8 @@ use mechdiff_core::trace::Backend;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Evaluator {
-    /// The default path: the solver today (see the module documentation).
+    /// The default path: the solver, or the run-time evaluator compiled to native code where
+    /// the cost model says it pays (see the module documentation and [`cost`]).
     #[default]
     Auto,
     /// The geometry solver: closed forms (or Newton) in dual numbers at every position.

@@ -5,8 +5,10 @@ use mechdiff_core::geometry::Tracker;
 use mechdiff_core::trace::{Backend, MixedTracker, ProgramTracker};
 
 use super::code::SceneCode;
+use super::cost::Costs;
 use super::{Evaluator, JIT_FROM_POSITIONS, LoopPath, LoopPlan};
 use crate::error::{Error, Result};
+use crate::scene::model::OutputKind;
 use crate::scene::setup::Setup;
 
 /// The program of a scene walking its sweep.
@@ -36,13 +38,23 @@ impl ProgramPath {
     /// The program for `setup`'s run, as its `evaluator` asks, with `tracker` the solver's
     /// tracker at the sketch: `None` for the solver.
     ///
+    /// `auto` compiles the program where the cost model says it pays ([`auto_compiles`]),
+    /// and keeps the solver wherever the program cannot be had (an output the trace
+    /// cannot follow, a host without the JIT).
+    ///
     /// # Errors
     /// For `--evaluator program|interpreter|jit` only: [`Error::NoEvaluator`] when the
     /// scene has a cam drive or an output the trace cannot follow.
     pub fn choose(setup: &Setup<'_>, tracker: &Tracker<'_>) -> Result<Option<Self>> {
         let backend = match setup.evaluator {
-            // `auto`: the solver for now (see `evaluator`).
-            Evaluator::Solver | Evaluator::Auto => return Ok(None),
+            Evaluator::Solver => return Ok(None),
+            Evaluator::Auto if !auto_compiles(setup, tracker) => return Ok(None),
+            // The solver wherever the program cannot be had, or only interpreted.
+            Evaluator::Auto => {
+                return Ok(Self::new(setup, tracker, Backend::Jit)
+                    .ok()
+                    .filter(|p| p.backend() == Backend::Jit));
+            }
             Evaluator::Program if setup.positions.len() >= JIT_FROM_POSITIONS => Backend::Jit,
             Evaluator::Program | Evaluator::Interpreter => Backend::Interpreter,
             Evaluator::Jit => Backend::Jit,
@@ -167,6 +179,31 @@ impl ProgramPath {
     pub fn loops(&self) -> Vec<LoopPlan> {
         self.loops.clone()
     }
+}
+
+/// Whether `auto` evaluates `setup`'s run by the compiled program rather than by the solver
+/// (at the sketch, `tracker`): where every loop has a closed form, the drive is no cam,
+/// no `[[dynamics]]` or `[balancing]` reads the solver's pose at every position anyway,
+/// and the cost model says the program's set-up is repaid by its cheaper rows
+/// ([`super::cost`]).
+pub(crate) fn auto_compiles(setup: &Setup<'_>, tracker: &Tracker<'_>) -> bool {
+    let closed = tracker.closed_form_loops();
+    let plain = setup.drive().cam.is_none()
+        && setup.dynamics.is_none()
+        && setup.balancing.is_none()
+        && closed.iter().all(|&c| c);
+    plain && auto_costs(setup, closed.len()).program_pays(setup.positions.len())
+}
+
+/// The cost model's estimate for `setup`'s run with `loops` loops.
+pub(crate) fn auto_costs(setup: &Setup<'_>, loops: usize) -> Costs {
+    let values = (setup.outputs.iter())
+        .map(|o| match o.kind {
+            OutputKind::Point(_) => 2,
+            _ => 1,
+        })
+        .sum();
+    Costs::estimate(loops, values)
 }
 
 /// Each loop of `tracker` and the solver's path for it.

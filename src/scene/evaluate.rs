@@ -13,6 +13,68 @@ use super::model::{Link, Output, OutputKind, Point};
 use super::setup::Setup;
 use mechdiff_core::metrics::TransmissionAngle;
 
+/// An output's values at one position: one for an angle, a slider or a transmission angle,
+/// `[x, y]` for a point. Held inline (a sweep reads every output at every position: no
+/// allocation per output and row); read as a slice.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Values<T> {
+    items: [T; 2],
+    len: usize,
+}
+
+impl<T: Copy> Values<T> {
+    /// One value.
+    fn one(x: T) -> Self {
+        Values {
+            items: [x, x],
+            len: 1,
+        }
+    }
+
+    /// A point's two coordinates.
+    fn two(items: [T; 2]) -> Self {
+        Values { items, len: 2 }
+    }
+
+    /// Each value mapped by `f`.
+    pub fn map<U: Copy>(self, mut f: impl FnMut(T) -> U) -> Values<U> {
+        let first = f(self.items[0]);
+        match self.len {
+            1 => Values::one(first),
+            _ => Values::two([first, f(self.items[1])]),
+        }
+    }
+}
+
+impl<T> std::ops::Deref for Values<T> {
+    type Target = [T];
+    fn deref(&self) -> &[T] {
+        &self.items[..self.len]
+    }
+}
+
+impl<T> std::ops::DerefMut for Values<T> {
+    fn deref_mut(&mut self) -> &mut [T] {
+        &mut self.items[..self.len]
+    }
+}
+
+impl<T> IntoIterator for Values<T> {
+    type Item = T;
+    type IntoIter = std::iter::Take<std::array::IntoIter<T, 2>>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.items.into_iter().take(self.len)
+    }
+}
+
+impl<'a, T> IntoIterator for &'a Values<T> {
+    type Item = &'a T;
+    type IntoIter = std::slice::Iter<'a, T>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.iter()
+    }
+}
+
 /// One quantity of a jet: its value, a coefficient, or a time derivative (a derivative
 /// beyond the jet's order reads as zero; the plan asks for the order the outputs need).
 pub(crate) fn quantity<const N: usize>(jet: &Jet<N>, q: Quantity, drive: &DriveState) -> f64 {
@@ -130,7 +192,7 @@ pub(crate) fn evaluate<const N: usize>(
     k: &Kinematics<'_, N>,
     resolved: &Resolved<'_>,
     previous: &mut Option<f64>,
-) -> Vec<Jet<N>> {
+) -> Values<Jet<N>> {
     let point = |i: usize| -> [Dual3_64; 2] {
         let [x, y] = k.position(&resolved.points[i]);
         [dual(&x), dual(&y)]
@@ -142,7 +204,7 @@ pub(crate) fn evaluate<const N: usize>(
         to_turn(&mut values[0], target);
         *previous = Some(values[0].re);
     }
-    values.iter().map(jet::<N>).collect()
+    values.map(|v| jet::<N>(&v))
 }
 
 /// The output's jets read from the values of the scene's generated code (see
@@ -155,22 +217,20 @@ pub(crate) fn from_code<const N: usize>(
     at: &mut usize,
     width: usize,
     previous: &mut Option<f64>,
-) -> Vec<Jet<N>> {
+) -> Values<Jet<N>> {
     let output = resolved.output;
-    let rows = match output.kind {
-        OutputKind::Point(_) => 2,
-        _ => 1,
+    let row = |r: usize| {
+        let v = &values[*at + r * width..*at + (r + 1) * width];
+        Jet::new(
+            v[0],
+            std::array::from_fn(|k| v.get(k + 1).copied().unwrap_or(0.0)),
+        )
     };
-    let mut jets: Vec<Jet<N>> = values[*at..*at + rows * width]
-        .chunks_exact(width)
-        .map(|v| {
-            Jet::new(
-                v[0],
-                std::array::from_fn(|k| v.get(k + 1).copied().unwrap_or(0.0)),
-            )
-        })
-        .collect();
-    *at += rows * width;
+    let mut jets = match output.kind {
+        OutputKind::Point(_) => Values::two([row(0), row(1)]),
+        _ => Values::one(row(0)),
+    };
+    *at += jets.len() * width;
     if let OutputKind::Angle { .. } = &output.kind {
         let target = previous.unwrap_or(resolved.sketch);
         to_turn(&mut jets[0].value, target);
@@ -184,7 +244,7 @@ pub(crate) fn from_code<const N: usize>(
 pub(crate) fn values_on_sketch_turn<D: Scalar>(
     resolved: &Resolved<'_>,
     point: impl Fn(usize) -> [D; 2],
-) -> Vec<D> {
+) -> Values<D> {
     let mut values = values(resolved.output, point);
     if let OutputKind::Angle { .. } = &resolved.output.kind {
         to_turn(&mut values[0], resolved.sketch);
@@ -203,9 +263,9 @@ fn to_turn<D: Scalar>(angle: &mut D, target: f64) {
 /// The output's values from the positions `point(i)` of its points (in the order of
 /// [`Resolved::points`]), in any scalar: `[x, y]` for a point, one value otherwise (an
 /// angle in (−π, π] before any reference line is subtracted, on no particular turn).
-pub(crate) fn values<D: Scalar>(output: &Output, point: impl Fn(usize) -> [D; 2]) -> Vec<D> {
+pub(crate) fn values<D: Scalar>(output: &Output, point: impl Fn(usize) -> [D; 2]) -> Values<D> {
     match &output.kind {
-        OutputKind::Point(_) => point(0).to_vec(),
+        OutputKind::Point(_) => Values::two(point(0)),
         OutputKind::Angle {
             reference, sense, ..
         } => {
@@ -216,7 +276,7 @@ pub(crate) fn values<D: Scalar>(output: &Output, point: impl Fn(usize) -> [D; 2]
             if *sense == Sense::Cw {
                 angle = -angle;
             }
-            vec![angle]
+            Values::one(angle)
         }
         OutputKind::Slider { .. } => {
             // s = (p − a)·u with u the unit direction a → b of the guide or slot (both points
@@ -225,7 +285,7 @@ pub(crate) fn values<D: Scalar>(output: &Output, point: impl Fn(usize) -> [D; 2]
             let u = [b[0] - a[0], b[1] - a[1]];
             let norm = (u[0] * u[0] + u[1] * u[1]).sqrt();
             let s = ((p[0] - a[0]) * u[0] + (p[1] - a[1]) * u[1]) / norm;
-            vec![s]
+            Values::one(s)
         }
         OutputKind::Transmission { form, points, .. } => {
             // μ between the coupler B → A and the follower B → O_out, or the normal of the
@@ -242,12 +302,12 @@ pub(crate) fn values<D: Scalar>(output: &Output, point: impl Fn(usize) -> [D; 2]
                 }
             };
             let mu = TransmissionAngle::between([a[0] - b[0], a[1] - b[1]], follower);
-            vec![match form {
+            Values::one(match form {
                 TransmissionForm::Signed => mu.signed,
                 TransmissionForm::Unsigned => mu.unsigned,
                 TransmissionForm::Effective => mu.effective,
                 TransmissionForm::Deviation => mu.deviation,
-            }]
+            })
         }
     }
 }

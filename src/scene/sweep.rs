@@ -432,7 +432,7 @@ impl Outputs<'_> {
             let mut values = evaluate(k, resolved, previous);
             if let Some(cam) = &cx.drive.cam {
                 // Derivatives with respect to the cam angle (the chain rule through s(θ)).
-                values = values.iter().map(|v| cam.joint.compose(phi, v)).collect();
+                values = values.map(|v| cam.joint.compose(phi, &v));
             }
             for q in &resolved.output.quantities {
                 for v in &values {

@@ -63,9 +63,10 @@ pub struct RunArgs {
     /// `program` (the run-time evaluator of the scene's traced closed forms: every loop
     /// must have one; compiled to native code from 2500 positions on, interpreted below),
     /// `interpreter` or `jit` (the same evaluator always interpreted, or always compiled:
-    /// the same values bit for bit), or `auto`: the default (today the solver, whose digits
-    /// existing runs print; the program's rows are faster: BENCHMARKS.md). Results agree to
-    /// 1e-13; errors are the solver's. The plan line says which path evaluates each loop.
+    /// the same values bit for bit), or `auto`: the default (the solver, or the program
+    /// compiled where a cost model of set-up and rows says it pays: a long sweep of closed
+    /// forms). Results agree to 1e-13; errors are the solver's. The plan line says which
+    /// path evaluates each loop.
     #[arg(long, value_enum, value_name = "HOW", default_value_t = Evaluator::Auto)]
     pub evaluator: Evaluator,
 }

@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# Instructions per drive position (callgrind: independent of the machine's load) of every way
+# mechdiff computes a row, for the four shipped scenes of issue 28 and for Dual2 on the
+# Whitworth's ψ. Builds `examples/instructions_per_position.rs` once in release, then for each
+# loop counts the instructions with R repetitions and with none; per position is
+#   (count at R − count at 0) / (R × positions per repetition),
+# the set-up (reading the scene, tracing, compiling) cancelling out.
+#
+#   scripts/callgrind_rows.sh                 # every loop below
+#   scripts/callgrind_rows.sh row:whitworth   # only the loops named
+#
+# Loops (see the example's documentation):
+#   code:<scene>         the scene's generated module (`mechdiff codegen`, `mechdiff_scene!`)
+#   row:<scene>          `mechdiff run`'s row (`Sweeper::row`) on the default evaluator, auto
+#   solver:<scene>       the same row on `--evaluator solver`
+#   jit:<scene>          the same row on `--evaluator jit`
+#   interpreter:<scene>  the same row on `--evaluator interpreter`
+#   geometry, four_bar, rack, slider_crank   the solver's tracker alone: move_to + one output
+#                        with ′ and ″ (Whitworth ψ, four-bar ψ, rack θ3, slider-crank s)
+#   hand, generated, jit, program            Whitworth ψ, ψ′, ψ″: hand-derived, generated,
+#                        the run-time evaluator compiled and interpreted
+#   psi, dual2_64        Whitworth ψ by `Dual2.jets` and by num-dual's `Dual2_64` alone
+# with <scene> one of whitworth, four_bar, rack (rack_slotted_link_travel.toml), slider_crank.
+# Prints one line per loop: name, instructions per position, and the two counts.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+export CARGO_INCREMENTAL=0
+cargo build --quiet --release --example instructions_per_position
+bin=target/release/examples/instructions_per_position
+
+loops=("$@")
+if [ ${#loops[@]} -eq 0 ]; then
+    for scene in whitworth four_bar rack slider_crank; do
+        for what in code row solver jit interpreter; do
+            loops+=("$what:$scene")
+        done
+    done
+    loops+=(geometry four_bar rack slider_crank hand generated jit program psi dual2_64)
+fi
+
+# The instructions callgrind counts for one run of `$bin $1 $2`.
+count() {
+    valgrind --tool=callgrind --callgrind-out-file=/dev/null "$bin" "$1" "$2" 2>&1 \
+        | sed -n 's/.*Collected : \([0-9]*\).*/\1/p'
+}
+
+printf '%-22s %12s %16s %16s\n' loop per_position at_R at_0
+for loop in "${loops[@]}"; do
+    # Positions per repetition: the scene's sweep, or the 720 of the fixed loops.
+    n=$("$bin" "$loop" 0 | sed -n 's/^positions per repetition: //p')
+    n=${n:-720}
+    # About 7 200 positions in all, as the fixed loops (10 × 720).
+    reps=$(( (7200 + n - 1) / n ))
+    zero=$(count "$loop" 0)
+    full=$(count "$loop" "$reps")
+    per=$(awk -v a="$full" -v b="$zero" -v r="$reps" -v n="$n" \
+        'BEGIN { printf "%.1f", (a - b) / (r * n) }')
+    printf '%-22s %12s %16s %16s\n' "$loop" "$per" "$full" "$zero"
+done
