@@ -80,6 +80,18 @@ fn prescribed(scene: &Scene, phi: f64, omega: f64, alpha: f64) -> (Vec<String>, 
     (names, report.rows[0].clone())
 }
 
+/// The motor torque a prescribed-motion run needs at the state `(φ, φ̇, φ̈)` is `motor`, to
+/// 1e-9 relative (the equation of motion's Newton steps stop at 1e-13 of φ̈); `at` names the
+/// row in the message.
+fn assert_motor_torque_is_needed(scene: &Scene, state: (f64, f64, f64), motor: f64, at: &str) {
+    let (names, values) = prescribed(scene, state.0, state.1, state.2);
+    let needed = values[names.iter().position(|n| n == "M_motor").unwrap()];
+    assert!(
+        (needed - motor).abs() <= 1e-9 * motor.abs(),
+        "{at}: {needed} vs {motor}"
+    );
+}
+
 /// Bad `[simulate]` and motor data are refused where they are written, saying what is
 /// wrong: a tolerance of 0, turns and time out of their bounds or not finite, a negative
 /// flywheel or rotor inertia, a breakdown slip of 0, a characteristic's missing number.
@@ -248,13 +260,7 @@ fn outputs_along_the_steady_state_equal_a_prescribed_run_at_the_simulated_state(
     ] {
         let state = (row[phi], row[omega], row[alpha]);
         assert_eq!(compare_outputs(&scene, cols, first, row, state), 6);
-        let (names, values) = prescribed(&scene, state.0, state.1, state.2);
-        let needed = values[names.iter().position(|n| n == "M_motor").unwrap()];
-        assert!(
-            (needed - row[motor]).abs() <= 1e-9 * row[motor].abs(),
-            "{needed} vs {}",
-            row[motor]
-        );
+        assert_motor_torque_is_needed(&scene, state, row[motor], "");
     }
 }
 
@@ -281,14 +287,7 @@ fn the_rack_machine_starts_up_meeting_its_equation_of_motion_with_friction_and_e
     for row in time.iter().skip(1) {
         let state = (row[index("phi")], row[omega], row[index("alpha")]);
         compare_outputs(&scene, cols, first, row, state);
-        let (names, values) = prescribed(&scene, state.0, state.1, state.2);
-        let needed = values[names.iter().position(|n| n == "M_motor").unwrap()];
-        assert!(
-            (needed - row[motor]).abs() <= 1e-9 * row[motor].abs(),
-            "t = {}: {needed} vs {}",
-            row[t],
-            row[motor]
-        );
+        assert_motor_torque_is_needed(&scene, state, row[motor], &format!("t = {}", row[t]));
     }
 }
 
@@ -558,13 +557,7 @@ fn the_report_plays_the_simulated_motion_at_equal_steps_of_simulated_time() {
         &p.rows[up.frames.end / 2],
         &p.rows[period.frames.start + 100],
     ] {
-        let (names, values) = prescribed(&scene, row[phi], row[omega], row[4]);
-        let needed = values[names.iter().position(|n| n == "M_motor").unwrap()];
-        assert!(
-            (needed - row[motor]).abs() <= 1e-9 * row[motor].abs(),
-            "{needed} vs {}",
-            row[motor]
-        );
+        assert_motor_torque_is_needed(&scene, (row[phi], row[omega], row[4]), row[motor], "");
     }
 }
 

@@ -32,15 +32,7 @@ impl Synthesis {
         let deadline = self.time_limit.map(|t| started + t);
         let (lower, upper) = problem.bounds();
         let free: Vec<usize> = (0..lower.len()).filter(|&i| lower[i] < upper[i]).collect();
-        let mut f = Evaluator {
-            problem,
-            free: &free,
-            derivatives: self.derivatives,
-            evaluations: 0,
-            max_evaluations: self.max_evaluations,
-            deadline,
-            rejected: vec![0; Defect::ALL.len()],
-        };
+        let mut f = Evaluator::new(problem, &free, self, deadline);
         let size = self.starts.min(PER_VARIABLE * free.len().max(1)).max(4);
         let mut population: Vec<(f64, Vec<f64>)> = Vec::with_capacity(size);
         for mut x in self

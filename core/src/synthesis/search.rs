@@ -252,15 +252,7 @@ impl Synthesis {
                 .map(|(d, n)| (*d, *n))
                 .collect::<Vec<_>>()
         };
-        let mut f = Evaluator {
-            problem,
-            free: &free,
-            derivatives: self.derivatives,
-            evaluations: 0,
-            max_evaluations: self.max_evaluations,
-            deadline,
-            rejected: vec![0; Defect::ALL.len()],
-        };
+        let mut f = Evaluator::new(problem, &free, self, deadline);
         let (mut samples, mut feasible_samples) = (0, 0);
         let fit_cost = seeding::fit_cost(problem);
         // The best sample stands as the answer if the budget allows no local search.
@@ -498,7 +490,26 @@ pub(super) struct Evaluator<'p> {
     pub(super) rejected: Vec<usize>,
 }
 
-impl Evaluator<'_> {
+impl<'p> Evaluator<'p> {
+    /// An evaluator of `problem` over its `free` variables within the search's limits: no
+    /// evaluation yet, no candidate rejected.
+    pub(super) fn new(
+        problem: &'p Problem,
+        free: &'p [usize],
+        search: &Synthesis,
+        deadline: Option<Instant>,
+    ) -> Self {
+        Evaluator {
+            problem,
+            free,
+            derivatives: search.derivatives,
+            evaluations: 0,
+            max_evaluations: search.max_evaluations,
+            deadline,
+            rejected: vec![0; Defect::ALL.len()],
+        }
+    }
+
     pub(super) fn feasible(&mut self, x: &[f64]) -> Option<Vec<f64>> {
         self.evaluations += 1;
         match self
