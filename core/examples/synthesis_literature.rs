@@ -12,7 +12,10 @@
 //! limited to `seconds` (default 3), and prints successes, median objective, evaluations
 //! and time per method.
 //!
-//! `cargo run --release -p mechdiff-core --features synthesis --example synthesis_literature [-- --compare 3]`
+//! `--only PREFIX` runs only the problems whose name starts with PREFIX (e.g. `--only 6-point`);
+//! `--seeds N` runs seeds 0..N (default 10); `--each` prints every run on standard error.
+//!
+//! `cargo run --release -p mechdiff-core --features synthesis --example synthesis_literature [-- --compare 3] [--only 6-point] [--seeds 10]`
 
 #[path = "../tests/data/synthesis/literature.rs"]
 mod literature;
@@ -66,21 +69,75 @@ fn success(lit: &Literature, report: &Report) -> bool {
             .is_ok_and(|c| c.deviation <= 1e-9)
 }
 
+/// One run's line (with `--each`, on standard error).
+fn each(lit: &Literature, seed: u64, report: &Report) {
+    eprintln!(
+        "{} seed {seed}: {:.3e}{} after {} evaluations, {} local searches ({} samples), {:.2} s",
+        lit.name,
+        report.objective,
+        if success(lit, report) {
+            " (reached)"
+        } else {
+            ""
+        },
+        report.evaluations,
+        report.local_searches,
+        report.samples,
+        report.elapsed.as_secs_f64(),
+    );
+}
+
+/// The command line: which problems, how many seeds.
+struct Selection {
+    only: Option<String>,
+    seeds: u64,
+    each: bool,
+}
+
+impl Selection {
+    fn problems(&self) -> Vec<Literature> {
+        literature::problems()
+            .into_iter()
+            .filter(|l| {
+                self.only
+                    .as_ref()
+                    .is_none_or(|p| l.name.starts_with(p.as_str()))
+            })
+            .collect()
+    }
+}
+
 fn main() -> Result<(), SynthesisError> {
     let args: Vec<String> = std::env::args().collect();
-    if args.get(1).is_some_and(|a| a == "--compare") {
-        let seconds: f64 = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(3.0);
-        return compare(Duration::from_secs_f64(seconds));
+    let after = |flag: &str| {
+        args.iter()
+            .position(|a| a == flag)
+            .and_then(|i| args.get(i + 1))
+            .cloned()
+    };
+    let selection = Selection {
+        only: after("--only"),
+        seeds: after("--seeds").and_then(|s| s.parse().ok()).unwrap_or(10),
+        each: args.iter().any(|a| a == "--each"),
+    };
+    if args.iter().any(|a| a == "--compare") {
+        let seconds: f64 = after("--compare")
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(3.0);
+        return compare(&selection, Duration::from_secs_f64(seconds));
     }
     println!(
-        "| problem | source | published best | by | mechdiff best | median | successes of 10 | median evaluations | median time per seed (s) |"
+        "| problem | source | published best | by | mechdiff best | median | successes | median evaluations | median time per seed (s) |"
     );
     println!("|---|---|---|---|---|---|---|---|---|");
-    for lit in literature::problems() {
+    for lit in selection.problems() {
         let (mut objectives, mut evaluations, mut times, mut successes) =
             (Vec::new(), Vec::new(), Vec::new(), 0);
-        for seed in 0..10 {
+        for seed in 0..selection.seeds {
             let report = run(&lit, seed, Method::Exact, Duration::from_secs(10))?;
+            if selection.each {
+                each(&lit, seed, &report);
+            }
             successes += usize::from(success(&lit, &report));
             objectives.push(report.objective);
             evaluations.push(report.evaluations as f64);
@@ -101,16 +158,17 @@ fn main() -> Result<(), SynthesisError> {
     Ok(())
 }
 
-fn compare(limit: Duration) -> Result<(), SynthesisError> {
+fn compare(selection: &Selection, limit: Duration) -> Result<(), SynthesisError> {
     println!(
-        "Each run limited to {:.1} s; seeds 0–9.",
-        limit.as_secs_f64()
+        "Each run limited to {:.1} s; seeds 0–{}.",
+        limit.as_secs_f64(),
+        selection.seeds.saturating_sub(1)
     );
     println!(
-        "| problem | method | successes of 10 | best | median objective | median evaluations | median time (s) |"
+        "| problem | method | successes | best | median objective | median evaluations | median time (s) |"
     );
     println!("|---|---|---|---|---|---|---|");
-    for lit in literature::problems() {
+    for lit in selection.problems() {
         for (label, method) in [
             ("LM, exact Jacobian (dual numbers)", Method::Exact),
             ("LM, central differences", Method::Differences),
@@ -118,8 +176,11 @@ fn compare(limit: Duration) -> Result<(), SynthesisError> {
         ] {
             let (mut objectives, mut evaluations, mut times, mut successes) =
                 (Vec::new(), Vec::new(), Vec::new(), 0);
-            for seed in 0..10 {
+            for seed in 0..selection.seeds {
                 let report = run(&lit, seed, method, limit)?;
+                if selection.each {
+                    each(&lit, seed, &report);
+                }
                 successes += usize::from(success(&lit, &report));
                 objectives.push(report.objective);
                 evaluations.push(report.evaluations as f64);

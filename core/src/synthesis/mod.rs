@@ -47,6 +47,7 @@
 mod certify;
 mod error;
 mod evolution;
+mod inequalities;
 mod linkage;
 mod lm;
 mod problem;

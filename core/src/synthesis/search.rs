@@ -6,7 +6,7 @@ use super::lm::{self, LeastSquares, LocalStop};
 use super::problem::Problem;
 use super::seeding;
 use super::task::Timing;
-use nalgebra::DMatrix;
+use nalgebra::{DMatrix, DVector};
 use std::time::{Duration, Instant};
 
 /// The most starts a search may sample.
@@ -576,6 +576,17 @@ impl LeastSquares for Evaluator<'_> {
             }
         }
         Some(jac)
+    }
+
+    fn inequalities(&self, x: &[f64]) -> Vec<(f64, DVector<f64>)> {
+        self.problem
+            .inequalities(x)
+            .into_iter()
+            .map(|c| {
+                let gradient = self.free.iter().map(|&i| c.gradient[i]);
+                (c.value, DVector::from_iterator(self.free.len(), gradient))
+            })
+            .collect()
     }
 
     fn exhausted(&self) -> bool {
