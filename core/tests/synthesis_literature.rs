@@ -133,6 +133,18 @@ fn five_timed_points_beat_the_published_best() {
     assert_reached(&find("5 points"), 3, 50_000);
 }
 
+/// Cabrera et al.'s untimed straight line: 15 design variables (nine dimensions, six free
+/// drive angles) against 12 residuals, so exact solutions form a three-dimensional set and
+/// the published 2.5e-29 is rounding; a run succeeds at 1e-20 (a residual of 1e-10 on
+/// targets 20–45 units from the origin, 12 digits). Seeds 0–2 with 60 000 evaluations each:
+/// the ten-seed table of the example (10 s per run) spends a median of about 37 000 in a
+/// release build, so this is a typical budget, not a generous one; before the local steps
+/// slid along the order and crank-rotation constraints, it failed here.
+#[test]
+fn untimed_straight_line_reaches_the_published_best() {
+    assert_reached(&find("6-point"), 3, 60_000);
+}
+
 #[test]
 fn eighteen_point_closed_curve_beats_the_published_best() {
     assert_reached(&find("18-point"), 2, 200_000);
