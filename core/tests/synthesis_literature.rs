@@ -33,7 +33,7 @@ fn find(name: &str) -> Literature {
 /// The objectives below were computed independently from the papers' own closed form
 /// (Freudenstein's half-angle formula with the −√ root, the coupler point rotated into the
 /// frame (x0, y0, θ0)) by a separate script, from the dimensions as tabulated in
-/// Nguyen-Van & Gwak's replication files (github.com/sy-nguyen-van/
+/// the replication files of Nguyen-Van, Lieu, Xuan-Mung & Nguyen 2022 (github.com/sy-nguyen-van/
 /// DE_Jaya_Synthesis_Four_Bar_Mechanisms, Case2/CheckCASE2.m and Case3/CheckCASE3.m). They
 /// agree with mechdiff's residuals on branch +1 to 1e-9 relative (the arithmetic differs:
 /// closed-form dyad here, half-angle tangent there; both are exact to about 1e-14 relative,
@@ -66,7 +66,7 @@ fn published_dimensions_give_the_published_objective() {
         );
     }
     let curve = find("18-point");
-    // HCDJ (Nguyen-Van & Gwak 2022): θ2 of the first point 5.0644224 rad.
+    // HCDJ (Nguyen-Van et al. 2022): θ2 of the first point 5.0644224 rad.
     let paper = [
         4.9800886e+01,
         2.8817159e-01,
@@ -88,6 +88,74 @@ fn published_dimensions_give_the_published_objective() {
     let f = objective_at(&curve.problem, from_paper(paper), &[paper[8] + 0.226186]);
     let expected = 3.374_800_291_086e-2;
     assert!((f - expected).abs() <= 1e-9 * expected, "Cabrera: {f:e}");
+}
+
+/// The straight line's published dimensions, from the replication's `Case1/Check.m` and
+/// `Case1/Data1/x_best_HCDJ_Case1.txt` (r1, r2, r3, r4, rcx, rcy, x0, y0, θ0, then θ2 of
+/// each target). Lin & Hsiao's linkage gives their 4.0671751e-12 (recomputed independently
+/// from the papers' closed form; residuals of about 1e-6 computed in two arithmetics with
+/// absolute errors of about 1e-14 agree to a few 1e-8 relative in their squares, so 1e-6).
+/// HCDJ's best run, printed as 2.52e-29, does not assemble at the first target (the
+/// papers' code takes the real part of a complex angle there), and its coupler is shorter
+/// than its crank, which the paper's own constraint forbids: it is no reference.
+#[test]
+fn published_straight_line_dimensions() {
+    let line = find("6-point");
+    let drive =
+        |paper: &[f64; 15]| -> Vec<f64> { paper[9..].iter().map(|t| paper[8] + t).collect() };
+    let head = |paper: &[f64; 15]| -> [f64; 9] { paper[..9].try_into().unwrap() };
+    let lin_hsiao = [
+        45.9540268793200,
+        10.1413352283990,
+        36.1198616002200,
+        49.7905570636800,
+        51.4935231082160,
+        16.4957302836340,
+        59.9251894962240,
+        -0.267255177889410,
+        0.862384954187540,
+        4.49683139849550,
+        3.94685292206840,
+        3.51208539098020,
+        3.11078124880880,
+        2.71010931195190,
+        2.26549866257340,
+    ];
+    let f = objective_at(
+        &line.problem,
+        from_paper(head(&lin_hsiao)),
+        &drive(&lin_hsiao),
+    );
+    let expected = 4.067_175_139e-12;
+    assert!(
+        (f - expected).abs() <= 1e-6 * expected,
+        "Lin & Hsiao: {f:e}"
+    );
+    assert!((line.published_best - expected).abs() <= 1e-6 * expected);
+    let hcdj = [
+        5.9762369e+01,
+        8.4411323e+00,
+        7.7665214e+00,
+        5.9920499e+01,
+        -3.3722130e+00,
+        -8.0856013e+00,
+        2.0324320e+01,
+        3.1625405e+01,
+        4.2516790e+00,
+        5.8672151e+00,
+        1.6315918e+00,
+        1.9329608e+00,
+        2.2322931e+00,
+        2.5454920e+00,
+        2.9316606e+00,
+    ];
+    let mut x = from_paper(head(&hcdj)).to_vec();
+    x.extend(drive(&hcdj));
+    assert_eq!(
+        line.problem.residuals(&x).unwrap_err(),
+        mechdiff_core::synthesis::Defect::NoAssemblyAtTarget
+    );
+    assert!(hcdj[2] < hcdj[1], "coupler shorter than the crank");
 }
 
 /// Runs `lit` with seeds `0..seeds`, each limited to `evaluations` residual evaluations

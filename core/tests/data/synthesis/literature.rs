@@ -2,12 +2,30 @@
 //! published best objectives (shared by `core/tests/synthesis_literature.rs` and
 //! `core/examples/synthesis_literature.rs`).
 //!
-//! Every paper below states its objective as the **sum of squared distances** between the
-//! targets and the coupler point (no square root, no weights), the same as mechdiff's, and
-//! in the units of its targets. The published objectives were recomputed here from the
-//! published dimensions (see `published_dimensions_give_the_published_objective` in the
-//! test file); where they differ from the printed value by rounding of the printed
-//! dimensions, the recomputed value is the one used.
+//! Sources. The target data and the published dimensions are those of the replication files
+//! of Nguyen-Van, Lieu, Xuan-Mung & Nguyen, "A new study on optimization of four-bar
+//! mechanisms based on a hybrid-combined differential evolution and Jaya algorithm" (HCDJ),
+//! Symmetry 14(2):381, 2022 (github.com/sy-nguyen-van/DE_Jaya_Synthesis_Four_Bar_Mechanisms:
+//! `Case1` the straight line, `Case2` the five points, `Case3` the eighteen points, each
+//! with its objective `ObjfN.m`, constraints `ConsN.m`, bounds `Mechanisms.m` and the other
+//! papers' dimensions in `Check*.m`). The problems are those of Cabrera, Simon & Prado,
+//! "Optimal synthesis of mechanisms with genetic algorithms", Mech. Mach. Theory
+//! 37(10):1165–1177, 2002, and of Kunjur & Krishnamurty, "Genetic algorithms in mechanism
+//! synthesis", J. Appl. Mech. Robot. 4(2), 1997 (the eighteen points also in Acharyya &
+//! Mandal, "Performance of EAs for four-bar linkage synthesis", Mech. Mach. Theory 44,
+//! 2009). Cabrera's own example numbers and Kunjur's and Acharyya's texts were not at hand
+//! to check; the replication's data and code were.
+//!
+//! The objective, as every one of these papers and the replication's `ObjfN.m` define it:
+//! the **sum of squared distances** between the targets and the coupler point (no square
+//! root, no weights, no penalty at the optimum), in the units of the targets — the same as
+//! mechdiff's. One difference: their closed form takes the real part of a complex angle
+//! where the loop does not close, so their objective does not see a linkage that fails to
+//! assemble at a target; mechdiff rejects it. The published objectives were recomputed here
+//! from the published dimensions by an independent script (see
+//! `published_dimensions_give_the_published_objective` in the test file); where they differ
+//! from the printed value by rounding of the printed dimensions, the recomputed value is
+//! the one used.
 //!
 //! The papers' four-bar: ground pivot O2 = (x0, y0), ground link r1 at angle θ0, crank r2
 //! at θ2 from the ground line, coupler r3, rocker r4, coupler point (rcx, rcy) in the
@@ -16,15 +34,27 @@
 //! Their closed form (Freudenstein's half-angle formula with the root −√) is mechdiff's
 //! branch +1, B left of A→O4 (checked on the published dimensions).
 //!
-//! Bounds of the path problems: mechdiff's box is chosen inside the papers' search space
-//! (lengths, coupler point and O2 as published; O4 in a box, the ground length r1 ≤ its
-//! published bound checked on the answer), and the crank is required to turn fully
-//! (Grashof, crank shortest — the papers ask Grashof, Cabrera's straight line also the crank
-//! shortest): so mechdiff's answers are admissible answers of the papers' problems, and a
-//! lower objective is a like-for-like improvement, not the fruit of a larger space. Timing:
-//! the papers' drive angles increase or decrease; mechdiff's free drive angles increase
-//! (counter-clockwise) on branch +1, half of the papers' space for the straight line (its
-//! clockwise solutions are the counter-clockwise ones of branch −1, mirrored).
+//! Bounds and constraints, like for like: mechdiff's box is chosen inside the papers'
+//! search space (`Mechanisms.m`: lengths in [0, 60] and coupler point, O2 in [−60, 60] for
+//! the straight line; [0, 50] and [−50, 50] for the others; O4 in a box, the ground length
+//! r1 ≤ its bound checked on the answer), and the crank is required to turn fully (Grashof
+//! with the crank shortest). The papers ask Grashof (`Cons2.m`, `Cons3.m`: any Grashof
+//! class) and, for the straight line, also the crank shortest (`Cons1.m`) and the targets in
+//! order. So mechdiff's answers are admissible answers of the papers' problems, in a space
+//! no larger, and a lower objective is a like-for-like improvement. Timing: the papers'
+//! free drive angles may increase or decrease; mechdiff's increase (counter-clockwise) on
+//! branch +1, half of the papers' space for the straight line (its clockwise solutions are
+//! the counter-clockwise ones of branch −1, mirrored). The five points' crank angles are
+//! prescribed absolutely (θ2 = 30°…90°, the ground along x from the origin, as `Objf2.m`);
+//! the eighteen points' are 20° apart from an unknown first angle (`Objf3.m`).
+//!
+//! The straight line has exact solutions (15 variables, 12 residuals), so its success level
+//! is a rounding level, 1e-20. Its published reference is Lin & Hsiao's 4.07e-12: the
+//! replication's best HCDJ run (`Case1/Data1/Records_HCDJ_Case1.txt`, 2.5243549e-29, its
+//! dimensions in `Case1/Data1/x_best_HCDJ_Case1.txt`) is not a usable linkage — it does not
+//! assemble at the first and the last target, and its coupler (7.77) is shorter than its
+//! crank (8.44), against the paper's own crank-shortest condition (see
+//! `published_straight_line_dimensions` in the test file).
 //!
 //! The function generator has no published least-squares value that could be traced here;
 //! its reference is Freudenstein's three-precision-point design of the same task, computed
@@ -285,30 +315,31 @@ pub fn problems() -> Vec<Literature> {
         Literature {
             name: "5 points, timed",
             source: "Kunjur & Krishnamurty 1997 (J. Appl. Mech. Robot. 4(2)); as restated by \
-                     Cabrera, Simon & Prado 2002 (Mech. Mach. Theory 37), example 2",
+                     Cabrera, Simon & Prado 2002 (Mech. Mach. Theory 37(10))",
             published_best: 1.284_000_7e-6,
-            published_by: "MUMSA (dimensions as tabulated by Nguyen-Van & Gwak 2022, \
-                           Symmetry 14, 381); Cabrera et al. 2002: 1.8270e-6",
+            published_by: "MUMSA (dimensions as tabulated by Nguyen-Van et al. 2022, \
+                           Symmetry 14, 381); HCDJ: 1.9239e-6; Cabrera et al. 2002: 1.8270e-6",
             success_level: 1.284_000_7e-6,
             problem: five,
             max_ground: Some(50.0),
         },
         Literature {
             name: "6-point straight line, untimed",
-            source: "Cabrera, Simon & Prado 2002 (Mech. Mach. Theory 37), example 1",
-            published_best: 2.524_354_9e-29,
-            published_by: "HCDJ, Nguyen-Van & Gwak 2022 (exact solutions exist; \
-                           Lin & Hsiao's DE: 4.07e-12)",
+            source: "Cabrera, Simon & Prado 2002 (Mech. Mach. Theory 37(10))",
+            published_best: 4.067_175_1e-12,
+            published_by: "Lin & Hsiao's DE (dimensions as listed by Nguyen-Van et al. 2022; \
+                           exact solutions exist; HCDJ's printed 2.52e-29 is a linkage that \
+                           does not assemble at two targets)",
             success_level: 1e-20,
             problem: line,
             max_ground: Some(60.0),
         },
         Literature {
             name: "18-point closed curve, timed 20°",
-            source: "Kunjur & Krishnamurty 1997; as restated by Cabrera et al. 2002, \
-                     example 3, and Acharyya & Mandal 2009 (Mech. Mach. Theory 44)",
+            source: "Kunjur & Krishnamurty 1997; as restated by Cabrera et al. 2002 and \
+                     Acharyya & Mandal 2009 (Mech. Mach. Theory 44)",
             published_best: 1.607_768_5e-2,
-            published_by: "HCDJ, Nguyen-Van & Gwak 2022 (recomputed from their \
+            published_by: "HCDJ, Nguyen-Van et al. 2022 (recomputed from their \
                            dimensions); Cabrera et al. 2002: 3.3748e-2",
             success_level: 1.607_768_5e-2,
             problem: curve,
