@@ -255,3 +255,76 @@ pub(crate) fn minimize(
         stop,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// r = (x − 2, y − 1): the least sum of squares lies beyond the wall x < 1, where the
+    /// points are not usable; the best usable point approaches (1, 1).
+    struct Walled {
+        slide: bool,
+        evaluations: usize,
+    }
+
+    impl LeastSquares for Walled {
+        fn residuals(&mut self, x: &[f64]) -> Option<Vec<f64>> {
+            self.evaluations += 1;
+            (x[0] < 1.0).then(|| vec![x[0] - 2.0, x[1] - 1.0])
+        }
+        fn jacobian(&mut self, _x: &[f64]) -> Option<DMatrix<f64>> {
+            Some(DMatrix::identity(2, 2))
+        }
+        fn exhausted(&self) -> bool {
+            false
+        }
+        fn inequalities(&self, x: &[f64]) -> Vec<(f64, DVector<f64>)> {
+            if self.slide {
+                vec![(1.0 - x[0], DVector::from_vec(vec![-1.0, 0.0]))]
+            } else {
+                Vec::new()
+            }
+        }
+    }
+
+    fn run(slide: bool) -> (Local, usize) {
+        let mut f = Walled {
+            slide,
+            evaluations: 0,
+        };
+        let (lower, upper) = ([-10.0; 2], [10.0; 2]);
+        let local = minimize(
+            &mut f,
+            vec![0.0, -3.0],
+            &[0, 1],
+            &lower,
+            &upper,
+            0.0,
+            60,
+            None,
+        );
+        (local, f.evaluations)
+    }
+
+    /// Sliding along the wall, y converges to its optimum 1 (to 1e-9, from an error of 4)
+    /// while x approaches the wall (the margin shrinks tenfold a step: below 1e-6 within 60
+    /// iterations), and every point stays usable. Rejected at the wall instead, the step's
+    /// damping grows and y stays further from 1.
+    #[test]
+    fn a_step_slides_along_a_wall_it_would_cross() {
+        let (sliding, _) = run(true);
+        assert!(
+            sliding.x[0] < 1.0 && sliding.x[0] > 1.0 - 1e-6,
+            "{:?}",
+            sliding.x
+        );
+        assert!((sliding.x[1] - 1.0).abs() < 1e-9, "{:?}", sliding.x);
+        let (rejecting, _) = run(false);
+        assert!(
+            (rejecting.x[1] - 1.0).abs() > (sliding.x[1] - 1.0).abs(),
+            "{:?} against {:?}",
+            rejecting.x,
+            sliding.x
+        );
+    }
+}
