@@ -72,9 +72,9 @@ const KEEP: f64 = 0.1;
 
 /// The step `δ` of the damped normal equations `a·δ = rhs` that keeps every linearised
 /// inequality c + ∇c·δ ≥ KEEP·c: while the step breaks one, the most broken is held as an
-/// equality at KEEP·c (the step slides along it: the least-squares step in the null space
-/// of the held gradients, by the Schur complement of `a`). `None` if `a` is not positive
-/// definite.
+/// equality at KEEP·c (the step slides along it: the damped least-squares step subject to
+/// the held equalities, their Lagrange multipliers from the Schur complement of `a`).
+/// `None` if `a` is not positive definite.
 fn sliding_step(
     a: DMatrix<f64>,
     rhs: &DVector<f64>,
