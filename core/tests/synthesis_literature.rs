@@ -202,9 +202,9 @@ fn five_timed_points_beat_the_published_best() {
 }
 
 /// Cabrera et al.'s untimed straight line: 15 design variables (nine dimensions, six free
-/// drive angles) against 12 residuals, so exact solutions form a three-dimensional set and
-/// the published 2.5e-29 is rounding; a run succeeds at 1e-20 (a residual of 1e-10 on
-/// targets 20–45 units from the origin, 12 digits). Seeds 0–2 with 60 000 evaluations each:
+/// drive angles) against 12 residuals, so exact solutions form a three-dimensional set; a
+/// run succeeds at 1e-20 (a residual of 1e-10 on targets 20–45 units from the origin, 12
+/// digits), far below the best usable published linkage (Lin & Hsiao's 4.07e-12). Seeds 0–2 with 60 000 evaluations each:
 /// the ten-seed table of the example (10 s per run) spends a median of about 37 000 in a
 /// release build, so this is a typical budget, not a generous one; before the local steps
 /// slid along the order and crank-rotation constraints, it failed here.
