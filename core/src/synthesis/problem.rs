@@ -582,3 +582,120 @@ fn check_targets(task: &Task) -> Result<(), SynthesisError> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The function task of a four-bar with the ground 1 m along +x and only its three links
+    /// free, with `weights` if given.
+    fn function(weights: Option<Vec<f64>>) -> Result<Problem, SynthesisError> {
+        let pairs = vec![[0.0, 0.0], [0.2, 0.1], [0.4, 0.3], [0.6, 0.4]];
+        let mut b = Problem::builder(
+            Linkage::FourBar,
+            Task::Function {
+                output: "rocker".into(),
+                pairs,
+            },
+        )
+        .fix("o2x", 0.0)
+        .fix("o2y", 0.0)
+        .fix("o4x", 1.0)
+        .fix("o4y", 0.0)
+        .bound("crank", 0.1, 1.0)
+        .bound("coupler", 0.1, 2.0)
+        .bound("rocker", 0.1, 2.0)
+        .fix("px", 0.0)
+        .fix("py", 0.0);
+        if let Some(w) = weights {
+            b = b.weights(w);
+        }
+        b.build()
+    }
+
+    #[test]
+    fn a_weight_scales_its_targets_squared_error_and_the_reference_pairs_has_none() {
+        let x = [0.0, 0.0, 1.0, 0.0, 0.3, 1.0, 0.8, 0.0, 0.0, 0.7];
+        let plain = function(None).unwrap().residuals(&x).unwrap();
+        // Pair 0 is the reference: its weight changes nothing; pair k's weight multiplies
+        // residual k − 1 by its square root (√4 = 2, √0.25 = 0.5, both exact).
+        let weighted = function(Some(vec![9.0, 4.0, 1.0, 0.25]))
+            .unwrap()
+            .residuals(&x)
+            .unwrap();
+        assert_eq!(weighted, [2.0 * plain[0], plain[1], 0.5 * plain[2]]);
+    }
+
+    #[test]
+    fn weights_and_grashof_classes_that_cannot_hold_are_errors() {
+        assert!(matches!(
+            function(Some(vec![1.0; 3])),
+            Err(SynthesisError::TargetCount {
+                what: "weights",
+                count: 3,
+                ..
+            })
+        ));
+        for bad in [f64::NAN, -1.0, f64::INFINITY] {
+            assert!(matches!(
+                function(Some(vec![1.0, bad, 1.0, 1.0])),
+                Err(SynthesisError::InvalidConstraint {
+                    constraint: "weights",
+                    ..
+                })
+            ));
+        }
+        // Only the reference pair weighed: every mechanism would be an answer.
+        assert!(matches!(
+            function(Some(vec![1.0, 0.0, 0.0, 0.0])),
+            Err(SynthesisError::InvalidConstraint { .. })
+        ));
+        let slider = Problem::builder(
+            Linkage::SliderCrank,
+            Task::Path {
+                point: "P".into(),
+                targets: vec![[0.0, 0.0]],
+                timing: Timing::Absolute(vec![0.0]),
+            },
+        )
+        .grashof(GrashofClass::CrankRocker);
+        let slider = ["o2x", "o2y", "crank", "rod", "offset", "guide", "px", "py"]
+            .iter()
+            .fold(slider, |b, n| b.fix(n, 0.5))
+            .build();
+        assert!(matches!(
+            slider,
+            Err(SynthesisError::InvalidConstraint {
+                constraint: "grashof",
+                ..
+            })
+        ));
+        let Task::Function { pairs, .. } = function(None).unwrap().task else {
+            unreachable!()
+        };
+        let rotating = Problem::builder(
+            Linkage::FourBar,
+            Task::Function {
+                output: "rocker".into(),
+                pairs,
+            },
+        )
+        .constraints(Constraints {
+            crank_rotates: true,
+            ..Constraints::default()
+        })
+        .grashof(GrashofClass::DoubleCrank);
+        let rotating = Linkage::FourBar
+            .variable_names()
+            .iter()
+            .fold(rotating, |b, n| b.fix(n, 0.5))
+            .build();
+        assert!(matches!(
+            rotating,
+            Err(SynthesisError::InvalidConstraint {
+                constraint: "grashof",
+                ..
+            })
+        ));
+    }
+}
