@@ -74,7 +74,7 @@ impl GrashofClass {
         let longest = links.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         let others = links.iter().sum::<f64>() - shortest - longest;
         // Not `>=`: NaN lengths are no Grashof linkage either.
-        if !(shortest + longest < others) {
+        if (shortest + longest).partial_cmp(&others) != Some(std::cmp::Ordering::Less) {
             return GrashofClass::TripleRocker;
         }
         // Strictly Grashof: the shortest link is unique (a tie s = s' would need l < q).

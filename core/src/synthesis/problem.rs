@@ -196,7 +196,7 @@ impl Problem {
             if w != 1.0 {
                 let scale = w.sqrt();
                 for v in chunk {
-                    *v = *v * scale;
+                    *v *= scale;
                 }
             }
         }
