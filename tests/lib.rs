@@ -40,6 +40,7 @@ mod sensitivity_exact;
 mod sensitivity_methods;
 mod streaming;
 mod sweep_limits;
+mod synthesis_scenes;
 mod synthesize_cli;
 mod user_files;
 mod whitworth_report;

@@ -5,10 +5,10 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::time::Duration;
 
-use clap::Args;
-use mechdiff::scene::synthesize::{self, Setup};
+use clap::{Args, ValueEnum};
+use mechdiff::scene::synthesize::{self, Method, Setup};
 use mechdiff::{Error, files};
-use mechdiff_core::synthesis::{Derivatives, MAX_STARTS, Report, Synthesis};
+use mechdiff_core::synthesis::{MAX_ROUNDS, MAX_STARTS, Report, Synthesis};
 
 /// Arguments of `mechdiff synthesize`.
 #[derive(Debug, Args)]
@@ -34,16 +34,52 @@ pub struct SynthesizeArgs {
     /// Samples of the bounds (replaces the section's `starts`).
     #[arg(long)]
     pub starts: Option<usize>,
-    /// Exact Jacobian by dual numbers (the default).
+    /// Rounds of sampling: each samples `starts` fresh points and polishes the best, while
+    /// the objective is not reached and the limits allow (replaces the section's `rounds`).
+    #[arg(long)]
+    pub rounds: Option<usize>,
+    /// Give each sample the timing that suits it before ranking (replaces the section's
+    /// `fit_timing`).
+    #[arg(long)]
+    pub fit_timing: bool,
+    /// How to search (replaces the section's `method`): `lm` (Levenberg–Marquardt, exact
+    /// Jacobian), `differences` (central-difference Jacobian) or `evolution` (differential
+    /// evolution alone).
+    #[arg(long, value_enum, conflicts_with_all = ["exact", "differences"])]
+    pub method: Option<MethodArg>,
+    /// Exact Jacobian by dual numbers (the default; `--method lm`).
     #[arg(long, conflicts_with = "differences")]
     pub exact: bool,
-    /// Central-difference Jacobian instead of the exact one (the baseline).
+    /// Central-difference Jacobian instead of the exact one (`--method differences`).
     #[arg(long)]
     pub differences: bool,
-    /// Run the search with the exact and with the central-difference Jacobian, and print
-    /// both side by side (evaluations, time, objective).
-    #[arg(long, conflicts_with_all = ["exact", "differences"])]
+    /// Run the search by each method (exact Jacobian, central differences, differential
+    /// evolution) with the same seed, starts and limits, and print them side by side
+    /// (objective, evaluations, local searches, time); the answer shown is the method's
+    /// asked for.
+    #[arg(long)]
     pub compare: bool,
+}
+
+/// `--method`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum MethodArg {
+    /// Levenberg–Marquardt with the exact Jacobian (dual numbers).
+    Lm,
+    /// Levenberg–Marquardt with central-difference Jacobians.
+    Differences,
+    /// Differential evolution alone, no derivatives.
+    Evolution,
+}
+
+impl From<MethodArg> for Method {
+    fn from(m: MethodArg) -> Method {
+        match m {
+            MethodArg::Lm => Method::Exact,
+            MethodArg::Differences => Method::Differences,
+            MethodArg::Evolution => Method::Evolution,
+        }
+    }
 }
 
 /// Reads the section, runs the search, prints and writes what was asked.
@@ -51,6 +87,12 @@ pub fn synthesize(args: &SynthesizeArgs) -> Result<(), Error> {
     let text = files::read_scene(&args.scene)?;
     let setup = synthesize::read(&args.scene.display().to_string(), &text)?;
     let settings = settings(&setup, args)?;
+    let method = match (args.method, args.exact, args.differences) {
+        (Some(m), _, _) => m.into(),
+        (None, true, _) => Method::Exact,
+        (None, _, true) => Method::Differences,
+        (None, false, false) => setup.method,
+    };
     let outputs: Vec<&std::path::Path> = args
         .out
         .iter()
@@ -70,15 +112,18 @@ pub fn synthesize(args: &SynthesizeArgs) -> Result<(), Error> {
             ),
         });
     }
-    let report = setup.solve(&settings)?;
-    let mut printed = synthesize::summary(&setup, &settings, &report);
+    let report = setup.solve_by(&settings, method)?;
+    let mut printed = synthesize::summary(&setup, &settings, &report, method);
     if args.compare {
-        let differences = Synthesis {
-            derivatives: Derivatives::CentralDifferences,
-            ..settings.clone()
-        };
-        let other = setup.solve(&differences)?;
-        printed.push_str(&compare(&report, &other));
+        let mut rows = Vec::new();
+        for (_, other) in Method::NAMES {
+            if other == method {
+                rows.push((other, report.clone()));
+            } else {
+                rows.push((other, setup.solve_by(&settings, other)?));
+            }
+        }
+        printed.push_str(&compare(&rows, settings.stop_objective));
     }
     let found = setup.found_scene(&report);
     printed.push_str(&scene_check(&setup, &report, &found));
@@ -158,32 +203,38 @@ fn settings(setup: &Setup, args: &SynthesizeArgs) -> Result<Synthesis, Error> {
         s.starts = starts;
         s.local_searches = s.local_searches.min(starts);
     }
-    if args.differences {
-        s.derivatives = Derivatives::CentralDifferences;
+    if let Some(rounds) = args.rounds {
+        if rounds == 0 || rounds > MAX_ROUNDS {
+            return Err(Error::Setting {
+                option: "--rounds",
+                setting: rounds.to_string(),
+                message: format!("give from 1 to {MAX_ROUNDS} rounds of sampling"),
+            });
+        }
+        s.rounds = rounds;
+    }
+    if args.fit_timing {
+        s.fit_timing = true;
     }
     Ok(s)
 }
 
-/// The two searches side by side.
-fn compare(exact: &Report, differences: &Report) -> String {
-    let row = |name: &str, r: &Report| {
-        format!(
-            "  {name:<20} {:>12.3e} {:>12} {:>8} {:>10.3}\n",
+/// The searches side by side.
+fn compare(rows: &[(Method, Report)], stop_objective: f64) -> String {
+    let mut out = format!(
+        "\nthe same search by each method (same seed, starts and limits; success: objective \
+         ≤ {stop_objective:e}):\n  {:<34} {:>12} {:>12} {:>8} {:>10}\n",
+        "method", "objective", "evaluations", "searches", "time (s)"
+    );
+    for (method, r) in rows {
+        out.push_str(&format!(
+            "  {:<34} {:>12.3e} {:>12} {:>8} {:>10.3}\n",
+            method.describe(),
             r.objective,
             r.evaluations,
             r.local_searches,
             r.elapsed.as_secs_f64()
-        )
-    };
-    format!(
-        "\nexact against differences (same seed, same starts):\n  {:<20} {:>12} {:>12} {:>8} \
-         {:>10}\n{}{}",
-        "Jacobian",
-        "objective",
-        "evaluations",
-        "searches",
-        "time (s)",
-        row("exact (dual numbers)", exact),
-        row("central differences", differences)
-    )
+        ));
+    }
+    out
 }

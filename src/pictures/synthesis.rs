@@ -1,12 +1,15 @@
 //! Pictures of a synthesis (`mechdiff synthesize --plot DIR`): the targets and what the
 //! answer does — the path of the traced point (path and motion generation, with the
 //! linkage drawn at the first target and the poses' directions), or the output's change
-//! against the drive (function generation).
+//! against the drive (function generation) —, and the search's convergence: the best
+//! objective (log scale) against the evaluations spent.
 
 use std::f64::consts::TAU;
 use std::path::{Path, PathBuf};
 
-use mechdiff_core::synthesis::{Linkage, Report, Task};
+use std::fmt::Write as _;
+
+use mechdiff_core::synthesis::{History, Linkage, Report, Task};
 
 use super::diagram::{Diagram, Panel};
 use super::drawing::{Drawing, Style};
@@ -45,6 +48,12 @@ pub fn write(setup: &Setup, report: &Report, dir: &Path) -> Result<Vec<PathBuf>>
         .map(|&phi| linkage.pose(&x, phi, problem.branch()).ok())
         .collect();
     let mut written = Vec::new();
+    let path = dir.join("synthesis_convergence.svg");
+    crate::pictures::write_file(
+        &path,
+        convergence(&report.history, report.evaluations)?.as_bytes(),
+    )?;
+    written.push(path);
     match problem.task() {
         Task::Function { output, pairs } => {
             let k = linkage
@@ -204,4 +213,93 @@ fn scene_drawing(
             .joint("B", b);
     }
     (drawing, (extent / 10.0).max(f64::MIN_POSITIVE))
+}
+
+/// The convergence diagram of `history`: log₁₀ of the best objective against the evaluations
+/// spent, as a staircase (the best holds until the next improvement, the last one until
+/// `evaluations`, the search's total), and each recorded
+/// improvement as a `<circle class="improvement">` with its exact `data-evaluations` and
+/// `data-objective` (an objective of exactly 0 is drawn at the panel's bottom).
+///
+/// # Errors
+/// [`crate::Error::Picture`] if the diagram cannot be drawn.
+pub fn convergence(history: &History, evaluations: usize) -> Result<String> {
+    let points = history.improvements();
+    // log₁₀ of 0 is drawn 2 decades below the least positive objective.
+    let least = points
+        .iter()
+        .map(|p| p.objective)
+        .filter(|v| *v > 0.0)
+        .fold(f64::INFINITY, f64::min);
+    let floor = if least.is_finite() {
+        least.log10() - 2.0
+    } else {
+        -30.0
+    };
+    let log = |v: f64| if v > 0.0 { v.log10() } else { floor };
+    let mut steps: Vec<[f64; 2]> = Vec::with_capacity(2 * points.len());
+    for (k, p) in points.iter().enumerate() {
+        if k > 0 {
+            steps.push([p.evaluations as f64, log(points[k - 1].objective)]);
+        }
+        steps.push([p.evaluations as f64, log(p.objective)]);
+    }
+    if let Some(last) = points.last()
+        && evaluations > last.evaluations
+    {
+        steps.push([evaluations as f64, log(last.objective)]);
+    }
+    let diagram = Diagram::new(
+        &format!(
+            "convergence: best objective against evaluations ({} improvements)",
+            points.len()
+        ),
+        "residual evaluations",
+    )
+    .panel(Panel::new("log₁₀ of the best objective [m², rad²]").series("best", steps));
+    let mut svg = diagram.to_svg()?;
+    // The plotting rectangle and its data range, as the diagram writes them.
+    let frame = svg
+        .find(r#"class="plot-frame""#)
+        .and_then(|at| svg[at..].find("/>").map(|end| svg[at..at + end].to_owned()))
+        .unwrap_or_default();
+    let attribute = |name: &str| -> f64 {
+        let key = format!(r#" {name}=""#);
+        frame
+            .find(&key)
+            .and_then(|at| {
+                let rest = &frame[at + key.len()..];
+                rest[..rest.find('"')?].parse().ok()
+            })
+            .unwrap_or(f64::NAN)
+    };
+    let [x0, x1, y0, y1] = ["data-x0", "data-x1", "data-y0", "data-y1"].map(attribute);
+    let [left, top, width, height] = ["x", "y", "width", "height"].map(attribute);
+    let mut marks = String::from("<g class=\"improvements\">\n");
+    for p in points {
+        let (x, y) = (p.evaluations as f64, log(p.objective));
+        let px = left + (x - x0) / (x1 - x0) * width;
+        let py = top + height - (y - y0) / (y1 - y0) * height;
+        // A degenerate range (one improvement) puts the point in the middle.
+        let px = if px.is_finite() {
+            px
+        } else {
+            left + width / 2.0
+        };
+        let py = if py.is_finite() {
+            py
+        } else {
+            top + height / 2.0
+        };
+        let _ = writeln!(
+            marks,
+            r#"<circle class="improvement" data-evaluations="{}" data-objective="{:e}" cx="{px:.2}" cy="{py:.2}" r="3" fill="{TARGET}"/>"#,
+            p.evaluations, p.objective
+        );
+    }
+    marks.push_str("</g>\n</svg>");
+    if let Some(end) = svg.rfind("</svg>") {
+        svg.replace_range(end.., &marks);
+    }
+    Ok(svg)
 }

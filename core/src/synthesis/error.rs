@@ -18,16 +18,19 @@ pub enum Defect {
     CrankDoesNotRotate,
     /// A dyad's transmission angle falls below the required minimum.
     TransmissionBelowMinimum,
+    /// The four-bar loop is not of the Grashof class asked for ([`super::GrashofClass`]).
+    WrongGrashofClass,
 }
 
 impl Defect {
     /// Every defect, in order.
-    pub const ALL: [Defect; 5] = [
+    pub const ALL: [Defect; 6] = [
         Defect::NoAssemblyAtTarget,
         Defect::BlockedBetweenTargets,
         Defect::OutOfOrder,
         Defect::CrankDoesNotRotate,
         Defect::TransmissionBelowMinimum,
+        Defect::WrongGrashofClass,
     ];
 
     /// What it means, in words.
@@ -38,6 +41,7 @@ impl Defect {
             Defect::OutOfOrder => "free drive angles out of order or spanning a turn",
             Defect::CrankDoesNotRotate => "crank cannot turn fully",
             Defect::TransmissionBelowMinimum => "transmission angle below the minimum",
+            Defect::WrongGrashofClass => "not of the Grashof class asked for",
         }
     }
 }
@@ -103,6 +107,14 @@ pub enum SynthesisError {
         value: f64,
         /// What is allowed.
         reason: &'static str,
+    },
+    /// Constraints or weights that contradict each other or do not apply to the linkage.
+    #[error("{constraint}: {reason}")]
+    InvalidConstraint {
+        /// The constraint or setting (`grashof`, `weights`).
+        constraint: &'static str,
+        /// What is wrong and what to write.
+        reason: String,
     },
     /// The time limit ran out before any sample of the bounds was a usable mechanism.
     #[error(

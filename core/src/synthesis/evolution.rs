@@ -143,6 +143,7 @@ impl Synthesis {
             local_stop: local.stop,
             elapsed: started.elapsed(),
             certificate: problem.certify(&local.x),
+            history: f.history,
         })
     }
 }

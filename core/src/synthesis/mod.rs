@@ -47,6 +47,8 @@
 mod certify;
 mod error;
 mod evolution;
+mod grashof;
+mod history;
 mod inequalities;
 mod linkage;
 mod lm;
@@ -57,6 +59,8 @@ mod task;
 
 pub use certify::Certificate;
 pub use error::{Defect, SynthesisError};
+pub use grashof::GrashofClass;
+pub use history::{History, Improvement, MAX_HISTORY};
 pub use linkage::{Linkage, LinkagePose, NoAssembly};
 pub use lm::LocalStop;
 pub use problem::{Constraints, MAX_CHECKS, MAX_TARGETS, Problem, ProblemBuilder};

@@ -3,6 +3,7 @@
 //! the exact Jacobian) and its defect checks.
 
 use super::error::{Defect, SynthesisError};
+use super::grashof::GrashofClass;
 use super::linkage::{Linkage, LinkagePose};
 use super::task::{Task, Timing};
 use crate::Scalar;
@@ -49,6 +50,10 @@ pub struct Problem {
     pub(crate) constraints: Constraints,
     /// The index of the traced point (path) or output (function).
     pub(crate) selected: usize,
+    /// Each target's weight (1 unless [`ProblemBuilder::weights`] says otherwise).
+    pub(crate) weights: Vec<f64>,
+    /// The Grashof class the four-bar loop must have.
+    pub(crate) grashof: GrashofClass,
 }
 
 /// Bounds and settings not yet validated; see [`ProblemBuilder::build`].
@@ -59,6 +64,8 @@ pub struct ProblemBuilder {
     bounds: Vec<(String, f64, f64)>,
     branch: Vec<f64>,
     constraints: Constraints,
+    weights: Option<Vec<f64>>,
+    grashof: GrashofClass,
 }
 
 impl Problem {
@@ -72,7 +79,23 @@ impl Problem {
             task,
             bounds: Vec::new(),
             constraints: Constraints::default(),
+            weights: None,
+            grashof: GrashofClass::Any,
         }
+    }
+
+    /// Each target's weight wᵢ (1 unless given): the objective is Σ wᵢ·eᵢ², eᵢ² the target's
+    /// squared error (a point's squared distance, a pair's squared output error, a pose's
+    /// squared distance plus its squared weighted angle error), and each residual is
+    /// √wᵢ times the error. A function's first pair is the reference and has no residual, so
+    /// its weight has no effect.
+    pub fn weights(&self) -> &[f64] {
+        &self.weights
+    }
+
+    /// The Grashof class the four-bar loop must have ([`GrashofClass::Any`]: none).
+    pub fn grashof(&self) -> GrashofClass {
+        self.grashof
     }
 
     /// The names of the design variables: the linkage's, then the task's.
@@ -154,7 +177,29 @@ impl Problem {
                 }
             }
         }
+        self.weigh(&mut r);
         Ok(r)
+    }
+
+    /// Multiplies each target's residuals by the square root of its weight (weights of 1 left
+    /// alone, so an unweighted problem's numbers are exactly as before).
+    fn weigh<D: Scalar>(&self, r: &mut [D]) {
+        let per_target = match self.task {
+            Task::Path { .. } => 2,
+            Task::Function { .. } => 1,
+            Task::Motion { .. } => 3,
+        };
+        // A function's residual k belongs to pair k + 1 (pair 0 is the reference).
+        let first = usize::from(matches!(self.task, Task::Function { .. }));
+        for (k, chunk) in r.chunks_mut(per_target).enumerate() {
+            let w = self.weights[k + first];
+            if w != 1.0 {
+                let scale = w.sqrt();
+                for v in chunk {
+                    *v *= scale;
+                }
+            }
+        }
     }
 
     /// The exact Jacobian of the residuals at `x` with respect to the variables `columns`
@@ -187,6 +232,12 @@ impl Problem {
             && (phis.windows(2).any(|w| w[1] <= w[0]) || phis[phis.len() - 1] - phis[0] >= TAU)
         {
             return Err(Defect::OutOfOrder);
+        }
+        if self.grashof != GrashofClass::Any {
+            let ground = (x[2] - x[0]).hypot(x[3] - x[1]);
+            if GrashofClass::of(ground, x[4], x[5], x[6]) != self.grashof {
+                return Err(Defect::WrongGrashofClass);
+            }
         }
         let least = self.constraints.min_transmission.sin().powi(2);
         let margin = |phi: f64, defect: Defect| -> Result<(), Defect> {
@@ -266,6 +317,23 @@ impl ProblemBuilder {
     /// The constraints every candidate must satisfy.
     pub fn constraints(mut self, constraints: Constraints) -> Self {
         self.constraints = constraints;
+        self
+    }
+
+    /// Each target's weight (finite, ≥ 0, one per target, not all 0; default 1 each), see
+    /// [`Problem::weights`].
+    pub fn weights(mut self, weights: Vec<f64>) -> Self {
+        self.weights = Some(weights);
+        self
+    }
+
+    /// The Grashof class the four-bar loop (the four-bar's, or the six-bar's first loop) must
+    /// have; a candidate of another class is rejected ([`Defect::WrongGrashofClass`]). With
+    /// [`Constraints::crank_rotates`] (the crank shortest) only `CrankRocker` and `Any` are
+    /// consistent; a slider-crank has no Grashof class (its crank's rotation is
+    /// `crank_rotates`).
+    pub fn grashof(mut self, class: GrashofClass) -> Self {
+        self.grashof = class;
         self
     }
 
@@ -373,6 +441,33 @@ impl ProblemBuilder {
                 reason: "between 1 and 10 000",
             });
         }
+        let weights = match self.weights {
+            Some(w) => check_weights(w, count, usize::from(matches!(task, Task::Function { .. })))?,
+            None => vec![1.0; count],
+        };
+        let grashof = self.grashof;
+        if grashof != GrashofClass::Any {
+            if linkage == Linkage::SliderCrank {
+                return Err(SynthesisError::InvalidConstraint {
+                    constraint: "grashof",
+                    reason: format!(
+                        "a slider-crank has no Grashof class (`{}` asked); its crank turns \
+                         fully with `crank_rotates`",
+                        grashof.name()
+                    ),
+                });
+            }
+            if self.constraints.crank_rotates && grashof != GrashofClass::CrankRocker {
+                return Err(SynthesisError::InvalidConstraint {
+                    constraint: "grashof",
+                    reason: format!(
+                        "`crank_rotates` asks a crank-rocker (the crank shortest), which \
+                         contradicts the class `{}`; drop one of them",
+                        grashof.name()
+                    ),
+                });
+            }
+        }
         Ok(Problem {
             linkage,
             task,
@@ -382,6 +477,8 @@ impl ProblemBuilder {
             upper,
             constraints: self.constraints,
             selected,
+            weights,
+            grashof,
         })
     }
 }
@@ -403,6 +500,42 @@ fn select(linkage: Linkage, task: &Task) -> Result<usize, SynthesisError> {
         Task::Function { output, .. } => find("output", output, linkage.output_names()),
         Task::Motion { link, .. } => find("link", link, &[linkage.traced_link()]),
     }
+}
+
+/// One finite weight ≥ 0 per target, not all 0.
+/// The first `reference` targets have no residual (a function's first pair), so their
+/// weights do not count towards "not all 0".
+fn check_weights(
+    weights: Vec<f64>,
+    count: usize,
+    reference: usize,
+) -> Result<Vec<f64>, SynthesisError> {
+    if weights.len() != count {
+        return Err(SynthesisError::TargetCount {
+            what: "weights",
+            count: weights.len(),
+            reason: format!("one per target: {count}"),
+        });
+    }
+    if let Some((index, &value)) = weights
+        .iter()
+        .enumerate()
+        .find(|(_, w)| !(w.is_finite() && **w >= 0.0))
+    {
+        return Err(SynthesisError::InvalidConstraint {
+            constraint: "weights",
+            reason: format!("weight {index} is {value}; every weight is a finite number ≥ 0"),
+        });
+    }
+    if weights.iter().skip(reference).all(|w| *w == 0.0) {
+        return Err(SynthesisError::InvalidConstraint {
+            constraint: "weights",
+            reason: "every weight is 0, so every mechanism would be an answer; give at least \
+                     one a positive weight"
+                .into(),
+        });
+    }
+    Ok(weights)
 }
 
 /// Finite targets, timing lists as long as the targets, a positive angle weight.
@@ -448,4 +581,121 @@ fn check_targets(task: &Task) -> Result<(), SynthesisError> {
         finite("drive angle", &mut a.iter().copied(), 1)?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The function task of a four-bar with the ground 1 m along +x and only its three links
+    /// free, with `weights` if given.
+    fn function(weights: Option<Vec<f64>>) -> Result<Problem, SynthesisError> {
+        let pairs = vec![[0.0, 0.0], [0.2, 0.1], [0.4, 0.3], [0.6, 0.4]];
+        let mut b = Problem::builder(
+            Linkage::FourBar,
+            Task::Function {
+                output: "rocker".into(),
+                pairs,
+            },
+        )
+        .fix("o2x", 0.0)
+        .fix("o2y", 0.0)
+        .fix("o4x", 1.0)
+        .fix("o4y", 0.0)
+        .bound("crank", 0.1, 1.0)
+        .bound("coupler", 0.1, 2.0)
+        .bound("rocker", 0.1, 2.0)
+        .fix("px", 0.0)
+        .fix("py", 0.0);
+        if let Some(w) = weights {
+            b = b.weights(w);
+        }
+        b.build()
+    }
+
+    #[test]
+    fn a_weight_scales_its_targets_squared_error_and_the_reference_pairs_has_none() {
+        let x = [0.0, 0.0, 1.0, 0.0, 0.3, 1.0, 0.8, 0.0, 0.0, 0.7];
+        let plain = function(None).unwrap().residuals(&x).unwrap();
+        // Pair 0 is the reference: its weight changes nothing; pair k's weight multiplies
+        // residual k − 1 by its square root (√4 = 2, √0.25 = 0.5, both exact).
+        let weighted = function(Some(vec![9.0, 4.0, 1.0, 0.25]))
+            .unwrap()
+            .residuals(&x)
+            .unwrap();
+        assert_eq!(weighted, [2.0 * plain[0], plain[1], 0.5 * plain[2]]);
+    }
+
+    #[test]
+    fn weights_and_grashof_classes_that_cannot_hold_are_errors() {
+        assert!(matches!(
+            function(Some(vec![1.0; 3])),
+            Err(SynthesisError::TargetCount {
+                what: "weights",
+                count: 3,
+                ..
+            })
+        ));
+        for bad in [f64::NAN, -1.0, f64::INFINITY] {
+            assert!(matches!(
+                function(Some(vec![1.0, bad, 1.0, 1.0])),
+                Err(SynthesisError::InvalidConstraint {
+                    constraint: "weights",
+                    ..
+                })
+            ));
+        }
+        // Only the reference pair weighed: every mechanism would be an answer.
+        assert!(matches!(
+            function(Some(vec![1.0, 0.0, 0.0, 0.0])),
+            Err(SynthesisError::InvalidConstraint { .. })
+        ));
+        let slider = Problem::builder(
+            Linkage::SliderCrank,
+            Task::Path {
+                point: "P".into(),
+                targets: vec![[0.0, 0.0]],
+                timing: Timing::Absolute(vec![0.0]),
+            },
+        )
+        .grashof(GrashofClass::CrankRocker);
+        let slider = ["o2x", "o2y", "crank", "rod", "offset", "guide", "px", "py"]
+            .iter()
+            .fold(slider, |b, n| b.fix(n, 0.5))
+            .build();
+        assert!(matches!(
+            slider,
+            Err(SynthesisError::InvalidConstraint {
+                constraint: "grashof",
+                ..
+            })
+        ));
+        let Task::Function { pairs, .. } = function(None).unwrap().task else {
+            unreachable!()
+        };
+        let rotating = Problem::builder(
+            Linkage::FourBar,
+            Task::Function {
+                output: "rocker".into(),
+                pairs,
+            },
+        )
+        .constraints(Constraints {
+            crank_rotates: true,
+            ..Constraints::default()
+        })
+        .grashof(GrashofClass::DoubleCrank);
+        let rotating = Linkage::FourBar
+            .variable_names()
+            .iter()
+            .fold(rotating, |b, n| b.fix(n, 0.5))
+            .build();
+        assert!(matches!(
+            rotating,
+            Err(SynthesisError::InvalidConstraint {
+                constraint: "grashof",
+                ..
+            })
+        ));
+    }
 }

@@ -2,6 +2,7 @@
 //! by their objective, each polished by Levenberg–Marquardt with the exact Jacobian.
 
 use super::error::{Defect, SynthesisError};
+use super::history::History;
 use super::lm::{self, LeastSquares, LocalStop};
 use super::problem::Problem;
 use super::seeding;
@@ -124,6 +125,9 @@ pub struct Report {
     /// ([`Problem::certify`]): the largest deviation from the closed forms, or why it
     /// cannot move (never expected: every candidate was checked between the targets).
     pub certificate: Result<super::certify::Certificate, crate::Error>,
+    /// The best objective against the evaluations spent, one point per improvement (bounded,
+    /// see [`History`]).
+    pub history: History,
 }
 
 impl Report {
@@ -274,7 +278,10 @@ impl Synthesis {
                 f.evaluations += 1;
                 samples += 1;
                 match problem.objective(&x) {
-                    Ok(value) if value.is_finite() => ranked.push((value, x)),
+                    Ok(value) if value.is_finite() => {
+                        f.history.record(f.evaluations, value);
+                        ranked.push((value, x));
+                    }
                     Ok(_) => count(Defect::NoAssemblyAtTarget, &mut defects),
                     Err(d) => count(d, &mut defects),
                 }
@@ -378,6 +385,7 @@ impl Synthesis {
             local_stop: best.stop,
             elapsed: started.elapsed(),
             certificate: problem.certify(&best.x),
+            history: f.history,
         })
     }
 
@@ -488,6 +496,7 @@ pub(super) struct Evaluator<'p> {
     pub(super) max_evaluations: usize,
     pub(super) deadline: Option<Instant>,
     pub(super) rejected: Vec<usize>,
+    pub(super) history: History,
 }
 
 impl<'p> Evaluator<'p> {
@@ -507,6 +516,7 @@ impl<'p> Evaluator<'p> {
             max_evaluations: search.max_evaluations,
             deadline,
             rejected: vec![0; Defect::ALL.len()],
+            history: History::default(),
         }
     }
 
@@ -517,7 +527,11 @@ impl<'p> Evaluator<'p> {
             .check(x)
             .and_then(|()| self.problem.residuals(x))
         {
-            Ok(r) if r.iter().all(|v| v.is_finite()) => Some(r),
+            Ok(r) if r.iter().all(|v| v.is_finite()) => {
+                let objective = r.iter().map(|v| v * v).sum();
+                self.history.record(self.evaluations, objective);
+                Some(r)
+            }
             Ok(_) => None,
             Err(d) => {
                 self.rejected[Defect::ALL.iter().position(|&k| k == d).unwrap_or(0)] += 1;

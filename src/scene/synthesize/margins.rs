@@ -3,7 +3,7 @@
 
 use std::f64::consts::TAU;
 
-use mechdiff_core::synthesis::{Linkage, Report, Task, Timing};
+use mechdiff_core::synthesis::{GrashofClass, Linkage, Report, Task, Timing};
 
 use super::Setup;
 use crate::scene::units::Dimension;
@@ -65,6 +65,22 @@ impl Setup {
             required: c.0,
             least: c.0.then_some(0.0),
         });
+        let asked = problem.grashof();
+        if asked != GrashofClass::Any {
+            let ground = (x[2] - x[0]).hypot(x[3] - x[1]);
+            let found = GrashofClass::of(ground, x[4], x[5], x[6]);
+            margins.push(Margin {
+                what: format!(
+                    "Grashof class {} ({} asked): p + q − s − l",
+                    found.name(),
+                    asked.name()
+                ),
+                value: GrashofClass::margin(ground, x[4], x[5], x[6]),
+                dimension: Dimension::Length,
+                required: true,
+                least: None,
+            });
+        }
         let phis = problem.drive_angles(&x);
         let mut angles: Vec<f64> = Vec::new();
         let checks = 8usize;

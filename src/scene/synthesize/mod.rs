@@ -21,7 +21,7 @@ mod summary;
 
 use std::ops::Range;
 
-use mechdiff_core::synthesis::{Problem, Report, Synthesis, SynthesisError};
+use mechdiff_core::synthesis::{Derivatives, Problem, Report, Synthesis, SynthesisError};
 
 use crate::error::{Error, Result};
 use crate::scene::Source;
@@ -51,6 +51,41 @@ pub struct Variable {
     pub value_span: Option<Range<usize>>,
 }
 
+/// How the search minimises the objective.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Method {
+    /// `lm`: samples of the bounds polished by Levenberg–Marquardt with the exact Jacobian
+    /// (dual numbers).
+    Exact,
+    /// `differences`: the same with central-difference Jacobians (a baseline).
+    Differences,
+    /// `evolution`: differential evolution alone, no derivatives (a baseline).
+    Evolution,
+}
+
+impl Method {
+    /// Every method by the name a scene or the command line writes.
+    pub const NAMES: [(&'static str, Method); 3] = [
+        ("lm", Method::Exact),
+        ("differences", Method::Differences),
+        ("evolution", Method::Evolution),
+    ];
+
+    /// The method named `name`, if any.
+    pub fn named(name: &str) -> Option<Method> {
+        Self::NAMES.iter().find(|(n, _)| *n == name).map(|m| m.1)
+    }
+
+    /// In words, as the report prints it.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Method::Exact => "LM, exact Jacobian (dual numbers)",
+            Method::Differences => "LM, central differences",
+            Method::Evolution => "differential evolution alone",
+        }
+    }
+}
+
 /// A scene's synthesis, read and checked.
 #[derive(Debug, Clone)]
 pub struct Setup {
@@ -66,6 +101,8 @@ pub struct Setup {
     pub source: Source,
     /// The linkage as the section names it (`four_bar`, …).
     pub linkage_name: String,
+    /// The section's method (`lm` unless it says otherwise; the command line may change it).
+    pub method: Method,
     /// Whether the crank must turn fully.
     pub crank_rotates: bool,
     /// The least transmission angle required (rad; 0 when none).
@@ -84,18 +121,43 @@ impl Setup {
     /// `[synthesize.bounds]`, with the defects counted), or the time limit ran out before
     /// one was found (at `time_limit`).
     pub fn solve(&self, settings: &Synthesis) -> Result<Report> {
-        settings.solve(&self.problem).map_err(|source| {
-            let span = match &source {
-                SynthesisError::TimeLimit { .. } | SynthesisError::InvalidSetting { .. } => {
-                    self.time_span.clone()
-                }
-                _ => self.bounds_span.clone(),
-            };
-            Error::Synthesis {
-                location: self.source.location(span),
-                source,
+        settings
+            .solve(&self.problem)
+            .map_err(|source| self.located(source))
+    }
+
+    /// Runs the search by `method` with `settings`: [`Setup::solve`] with the exact or the
+    /// central-difference Jacobian, or differential evolution alone.
+    ///
+    /// # Errors
+    /// As [`Setup::solve`].
+    pub fn solve_by(&self, settings: &Synthesis, method: Method) -> Result<Report> {
+        let settings = Synthesis {
+            derivatives: match method {
+                Method::Differences => Derivatives::CentralDifferences,
+                _ => Derivatives::Exact,
+            },
+            ..settings.clone()
+        };
+        let result = match method {
+            Method::Evolution => settings.evolve(&self.problem),
+            _ => settings.solve(&self.problem),
+        };
+        result.map_err(|source| self.located(source))
+    }
+
+    /// A search error at its place: the time limit, or the bounds.
+    fn located(&self, source: SynthesisError) -> Error {
+        let span = match &source {
+            SynthesisError::TimeLimit { .. } | SynthesisError::InvalidSetting { .. } => {
+                self.time_span.clone()
             }
-        })
+            _ => self.bounds_span.clone(),
+        };
+        Error::Synthesis {
+            location: self.source.location(span),
+            source,
+        }
     }
 
     /// The deviation below which the scene found draws the linkage the engine sized (m):

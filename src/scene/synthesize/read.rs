@@ -7,13 +7,13 @@ use std::ops::Range;
 use std::time::Duration;
 
 use mechdiff_core::synthesis::{
-    Constraints, Derivatives, Linkage, MAX_STARTS, MAX_TARGETS, Problem, Synthesis, SynthesisError,
-    Task, Timing,
+    Constraints, Derivatives, GrashofClass, Linkage, MAX_ROUNDS, MAX_STARTS, MAX_TARGETS, Problem,
+    Synthesis, SynthesisError, Task, Timing,
 };
 use toml::Spanned;
 
 use super::section::{FunctionDef, MotionDef, Numbers, PathDef, SynthesisOnly, SynthesizeDef};
-use super::{Setup, Variable};
+use super::{Method, Setup, Variable};
 use crate::error::{Error, Result};
 use crate::scene::Source;
 use crate::scene::bindings::Bindings;
@@ -337,6 +337,11 @@ impl Reader<'_> {
         };
         let (crank_rotates, min_transmission) =
             (constraints.crank_rotates, constraints.min_transmission);
+        let weights = self.task_weights(def)?;
+        if let Some(weights) = &weights {
+            builder = builder.weights(weights.clone());
+        }
+        builder = builder.grashof(self.grashof(def, linkage, crank_rotates)?);
         let problem = builder.constraints(constraints).build().map_err(|source| {
             let span = match &source {
                 SynthesisError::InvalidBound { variable, .. } => bound_spans.get(variable).cloned(),
@@ -344,6 +349,10 @@ impl Reader<'_> {
                     "min_transmission" => def.min_transmission.as_ref().map(Spanned::span),
                     "angle_weight" => def.motion.as_ref().map(|m| m.get_ref().angle_weight.span()),
                     _ => None,
+                },
+                SynthesisError::InvalidConstraint { constraint, .. } => match *constraint {
+                    "grashof" => def.grashof.as_ref().map(Spanned::span),
+                    _ => weights_def(def).map(Spanned::span),
                 },
                 _ => None,
             };
@@ -353,6 +362,20 @@ impl Reader<'_> {
             }
         })?;
         let settings = self.settings(def)?;
+        let method = match &def.method {
+            None => Method::Exact,
+            Some(m) => Method::named(m.get_ref()).ok_or_else(|| {
+                self.invalid(
+                    m.span(),
+                    format!(
+                        "unknown method `{}`; write `lm` (Levenberg–Marquardt, exact \
+                         Jacobian), `differences` (the same with central differences) or \
+                         `evolution` (differential evolution, no derivatives)",
+                        m.get_ref()
+                    ),
+                )
+            })?,
+        };
         Ok(Setup {
             problem,
             settings,
@@ -360,6 +383,7 @@ impl Reader<'_> {
             units: *self.units,
             source: self.source.clone(),
             linkage_name: def.linkage.get_ref().clone(),
+            method,
             crank_rotates,
             min_transmission,
             sketch_span,
@@ -617,6 +641,107 @@ impl Reader<'_> {
             .collect()
     }
 
+    /// The task's weights, one per target, each finite and ≥ 0 (checked here with their
+    /// place; the engine checks that not all are 0).
+    fn task_weights(&self, def: &SynthesizeDef) -> Result<Option<Vec<f64>>> {
+        let Some(weights) = weights_def(def) else {
+            return Ok(None);
+        };
+        let count = [
+            def.path
+                .as_ref()
+                .map(|p| p.get_ref().targets.get_ref().len()),
+            def.function.as_ref().map(|f| {
+                let f = f.get_ref();
+                match (&f.pairs, &f.count) {
+                    (Some(pairs), _) => pairs.get_ref().len(),
+                    (None, Some(count)) => (*count.get_ref()).max(0) as usize,
+                    (None, None) => 0,
+                }
+            }),
+            def.motion
+                .as_ref()
+                .map(|m| m.get_ref().poses.get_ref().len()),
+        ]
+        .into_iter()
+        .flatten()
+        .next()
+        .unwrap_or(0);
+        if weights.get_ref().len() != count {
+            return Err(self.invalid(
+                weights.span(),
+                format!(
+                    "{} weights for {count} targets; give one per target (default 1 each)",
+                    weights.get_ref().len()
+                ),
+            ));
+        }
+        weights
+            .get_ref()
+            .iter()
+            .map(|w| {
+                let value: f64 = w
+                    .get_ref()
+                    .value_in(self.bindings)
+                    .map_err(|e| self.invalid(w.span(), e))?;
+                if value.is_finite() && value >= 0.0 {
+                    Ok(value)
+                } else {
+                    Err(self.invalid(
+                        w.span(),
+                        format!("the weight {value} is not a finite number ≥ 0"),
+                    ))
+                }
+            })
+            .collect::<Result<Vec<f64>>>()
+            .map(Some)
+    }
+
+    /// The Grashof class asked for (`any` when none), checked against the linkage and
+    /// `crank_rotates`.
+    fn grashof(
+        &self,
+        def: &SynthesizeDef,
+        linkage: Linkage,
+        crank_rotates: bool,
+    ) -> Result<GrashofClass> {
+        let Some(name) = &def.grashof else {
+            return Ok(GrashofClass::Any);
+        };
+        let Some(class) = GrashofClass::named(name.get_ref()) else {
+            return Err(self.invalid(
+                name.span(),
+                format!(
+                    "unknown Grashof class `{}`; write one of {}",
+                    name.get_ref(),
+                    GrashofClass::NAMES
+                        .iter()
+                        .map(|(n, _)| format!("`{n}`"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            ));
+        };
+        if class != GrashofClass::Any && linkage == Linkage::SliderCrank {
+            return Err(self.invalid(
+                name.span(),
+                "a slider-crank has no Grashof class; ask its crank to turn fully with \
+                 `crank_rotates = true`, or write `grashof = \"any\"`",
+            ));
+        }
+        if crank_rotates && !matches!(class, GrashofClass::Any | GrashofClass::CrankRocker) {
+            return Err(self.invalid(
+                name.span(),
+                format!(
+                    "`crank_rotates = true` asks a crank-rocker (the crank shortest), which \
+                     contradicts `grashof = \"{}\"`; drop one of them",
+                    name.get_ref()
+                ),
+            ));
+        }
+        Ok(class)
+    }
+
     /// The search settings, each limit checked before any work.
     fn settings(&self, def: &SynthesizeDef) -> Result<Synthesis> {
         let mut s = Synthesis::seeded(match &def.seed {
@@ -665,9 +790,21 @@ impl Reader<'_> {
             }
             s.stop_objective = value;
         }
-        s.derivatives = Derivatives::Exact;
+        s.rounds = self.count(def.rounds.as_ref(), "rounds", 1, MAX_ROUNDS as i64, 1)?;
+        s.fit_timing = def.fit_timing.as_ref().is_some_and(|f| *f.get_ref());
+        s.derivatives = match def.method.as_ref().map(|m| m.get_ref().as_str()) {
+            Some("differences") => Derivatives::CentralDifferences,
+            _ => Derivatives::Exact,
+        };
         Ok(s)
     }
+}
+
+/// The task's `weights`, if given.
+fn weights_def(def: &SynthesizeDef) -> Option<&Numbers> {
+    (def.path.as_ref().and_then(|p| p.get_ref().weights.as_ref()))
+        .or_else(|| (def.function.as_ref()).and_then(|f| f.get_ref().weights.as_ref()))
+        .or_else(|| (def.motion.as_ref()).and_then(|m| m.get_ref().weights.as_ref()))
 }
 
 /// A time limit in seconds, checked: positive, finite, at most [`MAX_TIME_LIMIT`].

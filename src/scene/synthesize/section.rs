@@ -55,6 +55,14 @@ pub(super) struct SynthesizeDef {
     pub min_transmission: Option<Spanned<Number>>,
     /// Assembly checks between two consecutive targets.
     pub checks_between_targets: Option<Spanned<i64>>,
+    /// The Grashof class of the four-bar loop (`crank-rocker`, …, `any`).
+    pub grashof: Option<Spanned<String>>,
+    /// Rounds of sampling.
+    pub rounds: Option<Spanned<i64>>,
+    /// Give each sample the timing that suits it before ranking.
+    pub fit_timing: Option<Spanned<bool>>,
+    /// `lm`, `differences` or `evolution`.
+    pub method: Option<Spanned<String>>,
     /// Path generation.
     pub path: Option<Spanned<PathDef>>,
     /// Function generation.
@@ -75,6 +83,8 @@ pub(super) struct PathDef {
     pub drive: Option<Numbers>,
     /// `absolute`, `relative` or `free`.
     pub timing: Option<Spanned<String>>,
+    /// One weight per target (default 1).
+    pub weights: Option<Numbers>,
 }
 
 /// `[synthesize.function]`.
@@ -93,6 +103,8 @@ pub(super) struct FunctionDef {
     pub to: Option<Spanned<Number>>,
     /// Number of positions (both ends included).
     pub count: Option<Spanned<i64>>,
+    /// One weight per pair (default 1; the first pair's has no effect).
+    pub weights: Option<Numbers>,
 }
 
 /// `[synthesize.motion]`.
@@ -109,4 +121,6 @@ pub(super) struct MotionDef {
     pub timing: Option<Spanned<String>>,
     /// The length an angle error of one radian weighs as (file's length unit).
     pub angle_weight: Spanned<Number>,
+    /// One weight per pose (default 1).
+    pub weights: Option<Numbers>,
 }

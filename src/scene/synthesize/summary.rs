@@ -3,9 +3,9 @@
 
 use std::fmt::Write;
 
-use mechdiff_core::synthesis::{Derivatives, Report, StopReason, Synthesis, Task, Timing};
+use mechdiff_core::synthesis::{Report, StopReason, Synthesis, Task, Timing};
 
-use super::Setup;
+use super::{Method, Setup};
 use crate::scene::units::Dimension;
 
 /// One line saying what the section asks (as `mechdiff check` prints it).
@@ -26,8 +26,8 @@ pub fn describe(setup: &Setup) -> String {
     )
 }
 
-/// The text report of `report`, found with `settings`.
-pub fn summary(setup: &Setup, settings: &Synthesis, report: &Report) -> String {
+/// The text report of `report`, found by `method` with `settings`.
+pub fn summary(setup: &Setup, settings: &Synthesis, report: &Report, method: Method) -> String {
     let mut out = String::new();
     let units = &setup.units;
     let task = setup.problem.task();
@@ -45,9 +45,10 @@ pub fn summary(setup: &Setup, settings: &Synthesis, report: &Report) -> String {
         (_, Timing::Relative(_)) => "drive positions given up to drive0",
         (_, Timing::Free) => "drive positions free, in order",
     };
-    let derivatives = match settings.derivatives {
-        Derivatives::Exact => "exact Jacobian (dual numbers)",
-        _ => "central-difference Jacobian",
+    let derivatives = match method {
+        Method::Exact => "exact Jacobian (dual numbers)",
+        Method::Differences => "central-difference Jacobian",
+        Method::Evolution => "differential evolution (no derivatives)",
     };
     let _ = writeln!(
         out,
@@ -89,9 +90,15 @@ pub fn summary(setup: &Setup, settings: &Synthesis, report: &Report) -> String {
         "\nobjective: {:.6e} (sum of the squared residuals below)",
         report.objective
     );
+    let weighted = setup.problem.weights().iter().any(|w| *w != 1.0);
     let _ = writeln!(
         out,
-        "residuals (SI: m, rad; a pose's angle error times its weight, m):"
+        "residuals (SI: m, rad; a pose's angle error times its weight, m{}):",
+        if weighted {
+            "; each times the square root of its target's weight"
+        } else {
+            ""
+        }
     );
     let labels: &[&str] = match task {
         Task::Path { .. } => &["x", "y"],
@@ -115,6 +122,7 @@ pub fn summary(setup: &Setup, settings: &Synthesis, report: &Report) -> String {
                 units.from_si(least, m.dimension),
                 units.from_si(m.value - least, m.dimension)
             ),
+            (true, None) => "required".into(),
             _ => "not required".into(),
         };
         let _ = writeln!(out, "  {}: {value:.6} {symbol} ({need})", m.what);
