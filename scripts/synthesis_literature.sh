@@ -22,7 +22,7 @@ trap 'rm -r "$out"' EXIT
 # scene, problem as the table names it, published best as printed, the paper's ground bound
 problems=(
     "five_points|5 timed points (Kunjur & Krishnamurty 1997, as in Cabrera et al. 2002)|1.2840e-6 (MUMSA)|50"
-    "straight_line|6-point straight line, untimed (Cabrera et al. 2002)|2.52e-29 (HCDJ; success ≤ 1e-20)|60"
+    "straight_line|6-point straight line, untimed (Cabrera et al. 2002)|4.0672e-12 (Lin & Hsiao; success ≤ 1e-20)|60"
     "closed_curve|18-point closed curve, timed (Kunjur & Krishnamurty 1997)|1.6078e-2 (HCDJ)|50"
     "log10|y = log10 x, 1 ≤ x ≤ 10, 21 pairs (Freudenstein 1955)|6.1317e-3 rad² (3-point design)|"
 )

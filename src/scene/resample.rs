@@ -27,10 +27,9 @@ impl Scene {
     /// ```
     ///
     /// # Errors
-    /// [`Error::OverLimit`] for more than [`MAX_IN_MEMORY`] positions (a run in memory holds
-    /// every row); [`Error::Invalid`] (at `[drive]`) for no position or one that is not
-    /// finite, naming its index, or for a single position where an output searches its
-    /// dead positions.
+    /// [`Error::OverLimit`] for more than 10⁶ positions (a run in memory holds every row);
+    /// [`Error::Invalid`] (at `[drive]`) for no position or one that is not finite, naming
+    /// its index, or for a single position where an output searches its dead positions.
     pub fn with_positions(&self, positions: &[f64]) -> Result<Scene> {
         if positions.len() > MAX_IN_MEMORY {
             return Err(Error::OverLimit {
