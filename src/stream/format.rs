@@ -92,9 +92,29 @@ enum Tie {
 }
 
 /// The [`Tie`] class of `value`. Such a value has few binary digits after the point, so its
-/// expansion is counted exactly in `u128`; almost every other value is answered by its
-/// binary exponent alone (at least 23 significant digits).
+/// expansion is counted exactly in `u128`; almost every other value is answered in a few
+/// instructions from its significand's length and its lowest binary digit's place alone.
+#[inline(always)]
 fn tie(value: f64) -> Tie {
+    let bits = value.abs().to_bits();
+    // value = odd × 2^lowest, the odd part of 53 − zeros binary digits for a normal value
+    // (the implicit bit set at 2^52); a subnormal (exponent field 0, its lowest digit at
+    // 2^-1074 or above) and zero land far below the point.
+    let zeros = (bits | (1 << 52)).trailing_zeros() as i32;
+    let lowest = ((bits >> 52) as i32).max(1) - 1075 + zeros;
+    // Below the point the expansion is odd × 5^-lowest (a power of ten shifted), at least
+    // 2^((52 − zeros) + (−lowest)·log2 5); from 2^59.8 ≥ 1e18 on that is 19 significant
+    // digits or more (log2 5 taken low, log2 1e18 high): never a tie of 17 or fewer.
+    if lowest < 0 && (52 - zeros) * 10_000 - lowest * 23_219 >= 597_950 {
+        return Tie::No;
+    }
+    exact_tie(value)
+}
+
+/// [`tie`] of a value whose exact expansion may have 18 significant digits or fewer: counted
+/// in `u128` (`u64` where it fits).
+#[inline(never)]
+fn exact_tie(value: f64) -> Tie {
     if value == 0.0 || !value.is_finite() {
         return Tie::No;
     }
@@ -108,7 +128,7 @@ fn tie(value: f64) -> Tie {
     let zeros = m.trailing_zeros();
     m >>= zeros;
     e += zeros as i32;
-    let mut n: u128 = if e >= 0 {
+    let n: u128 = if e >= 0 {
         if e > 74 {
             return Tie::Maybe;
         }
@@ -119,11 +139,23 @@ fn tie(value: f64) -> Tie {
     } else {
         u128::from(m) * 5u128.pow((-e) as u32)
     };
-    while n.is_multiple_of(10) {
-        n /= 10;
-    }
-    if n % 10 == 5 {
-        Tie::Digits(n.ilog10() as usize + 1)
+    let (last, digits) = match u64::try_from(n) {
+        Ok(mut n) => {
+            while n.is_multiple_of(10) {
+                n /= 10;
+            }
+            (n % 10, n.ilog10())
+        }
+        Err(_) => {
+            let mut n = n;
+            while n.is_multiple_of(10) {
+                n /= 10;
+            }
+            ((n % 10) as u64, n.ilog10())
+        }
+    };
+    if last == 5 {
+        Tie::Digits(digits as usize + 1)
     } else {
         Tie::No
     }
@@ -150,27 +182,38 @@ impl Tie {
 pub fn push_display(value: f64, out: &mut Vec<u8>) {
     let value = value + 0.0;
     let mut buffer = zmij::Buffer::new();
-    display(
-        value,
-        buffer.format_finite(value).as_bytes(),
-        tie(value),
-        out,
-    );
+    display(value, buffer.format_finite(value).as_bytes(), out);
 }
 
-/// [`push_display`] of `value` (not `-0`) from Żmij's `text` of it and its [`Tie`] class.
+/// The magnitudes Żmij writes without an exponent: those whose shortest decimal `d` has
+/// 1e-5 ≤ d < 1e16. Rounding to `f64` is monotone and both ends are the `f64`s nearest
+/// them, so for the `value` that `d` reads back to this is 1e-5 ≤ |value| < 1e16.
+const WITHOUT_EXPONENT: std::ops::Range<f64> = 1e-5..1e16;
+
+/// [`push_display`] of `value` (not `-0`) from Żmij's `text` of it.
 ///
-/// Żmij prints `1e-5 ≤ |value| < 1e16` in the same layout as `Display` but for a trailing
-/// `.0` on whole numbers: those bytes are copied as they are (no tie possible, the usual
-/// case); the others are laid out from their digits.
-fn display(value: f64, text: &[u8], tie: Tie, out: &mut Vec<u8>) {
-    if tie == Tie::No && !text.contains(&b'e') {
+/// Żmij prints `1e-5 ≤ |value| < 1e16` (and zero) in the same layout as `Display` but for
+/// a trailing `.0` on whole numbers: those bytes are copied as they are when no tie is
+/// possible (the usual case, decided from the value in a few instructions); the others are
+/// laid out from their digits.
+#[inline(always)]
+fn display(value: f64, text: &[u8], out: &mut Vec<u8>) {
+    let magnitude = value.abs();
+    if (WITHOUT_EXPONENT.contains(&magnitude) || magnitude == 0.0) && tie(value) == Tie::No {
         out.extend_from_slice(text.strip_suffix(b".0").unwrap_or(text));
-        return;
+    } else {
+        display_from_digits(value, text, out);
     }
+}
+
+/// [`display`] of a value written with an exponent, or that may be a tie: laid out from
+/// Żmij's digits, or printed by the standard library where the two may differ.
+#[cold]
+#[inline(never)]
+fn display_from_digits(value: f64, text: &[u8], out: &mut Vec<u8>) {
     let shortest = Shortest::read(text);
     let (digits, point) = (shortest.digits(), shortest.point);
-    if tie.is(digits.len()) {
+    if tie(value).is(digits.len()) {
         let _ = std::io::Write::write_fmt(out, format_args!("{value}"));
         return;
     }
@@ -199,14 +242,14 @@ fn display(value: f64, text: &[u8], tie: Tie, out: &mut Vec<u8>) {
 /// Appends finite `value` as `format!("{:.8e}", value + 0.0)` prints it ([`DIGITS`]
 /// significant digits, correctly rounded), right-aligned in `width`.
 pub fn push_scientific(value: f64, width: usize, out: &mut Vec<u8>) {
-    scientific(value + 0.0, None, width, out);
+    scientific(value + 0.0, width, out);
 }
 
 /// Appends finite `value` as `format!("{value:.8e}")` prints it ([`DIGITS`] significant
 /// digits, correctly rounded; `-0` keeps its sign), with no padding: a cell of the table
 /// printed from its values.
 pub fn push_scientific_signed(value: f64, out: &mut Vec<u8>) {
-    scientific(value, None, 0, out);
+    scientific(value, 0, out);
 }
 
 /// The significant digits kept in the streamed table.
@@ -218,18 +261,33 @@ const POWERS_OF_TEN: [f64; 23] = [
     1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
 ];
 
-/// [`push_scientific`] of `value` (not `-0`), with Żmij's `text` of it if it was made.
+/// The longest scientific cell: `-d.dddddddde-308`.
+const CELL: usize = SCIENTIFIC_WIDTH;
+
+/// The two-digit numbers `00` to `99`, one after the other.
+const PAIRS: [u8; 200] = {
+    let mut pairs = [0; 200];
+    let mut k = 0;
+    while k < 100 {
+        pairs[2 * k] = b'0' + (k / 10) as u8;
+        pairs[2 * k + 1] = b'0' + (k % 10) as u8;
+        k += 1;
+    }
+    pairs
+};
+
+/// [`push_scientific`] of `value` (not `-0`).
 ///
 /// Most values take [`nine_digits`]; the others (zero, beyond 1e±14…1e31, or within 1e-6
 /// of a rounding tie) round Żmij's shortest digits ([`nine_of_shortest`]) or, where that
-/// cannot decide, let the standard library print them.
-fn scientific(value: f64, text: Option<&[u8]>, width: usize, out: &mut Vec<u8>) {
+/// cannot decide, let the standard library print them. The cell is laid out right-aligned in
+/// a [`CELL`]-byte block and appended in one copy.
+fn scientific(value: f64, width: usize, out: &mut Vec<u8>) {
     let (kept, exponent) = match nine_digits(value) {
         Some(nine) => nine,
         None => {
             let mut buffer = zmij::Buffer::new();
-            let text = text.unwrap_or_else(|| buffer.format_finite(value).as_bytes());
-            match nine_of_shortest(value, text) {
+            match nine_of_shortest(value, buffer.format_finite(value).as_bytes()) {
                 Some(nine) => nine,
                 None => {
                     let _ = std::io::Write::write_fmt(
@@ -241,32 +299,35 @@ fn scientific(value: f64, text: Option<&[u8]>, width: usize, out: &mut Vec<u8>) 
             }
         }
     };
-    let mut text = [0u8; 24];
-    let mut len = 0;
-    let mut push = |b: u8| {
-        text[len] = b;
-        len += 1;
-    };
-    if value.is_sign_negative() {
-        push(b'-');
-    }
-    push(kept[0]);
-    push(b'.');
-    for &d in &kept[1..] {
-        push(d);
-    }
-    push(b'e');
+    let mut cell = [b' '; CELL];
+    // The exponent's digits (no leading zero), its sign, the `e`, from the end.
+    let magnitude = exponent.unsigned_abs() as usize;
+    let places = 1 + usize::from(magnitude >= 10) + usize::from(magnitude >= 100);
+    cell[CELL - 1] = b'0' + (magnitude % 10) as u8;
+    cell[CELL - 2] = b'0' + (magnitude / 10 % 10) as u8;
+    cell[CELL - 3] = b'0' + (magnitude / 100) as u8;
+    let mut start = CELL - places;
     if exponent < 0 {
-        push(b'-');
+        start -= 1;
+        cell[start] = b'-';
     }
-    let magnitude = exponent.unsigned_abs();
-    for divisor in [100, 10, 1] {
-        if magnitude >= divisor || divisor == 1 {
-            push(b'0' + (magnitude / divisor % 10) as u8);
-        }
+    start -= 1;
+    cell[start] = b'e';
+    // `d.dddddddd`, and the sign.
+    start -= KEPT + 1;
+    cell[start] = kept[0];
+    cell[start + 1] = b'.';
+    cell[start + 2..start + KEPT + 1].copy_from_slice(&kept[1..]);
+    if value.is_sign_negative() {
+        start -= 1;
+        cell[start] = b'-';
     }
-    out.resize(out.len() + width.saturating_sub(len), b' ');
-    out.extend_from_slice(&text[..len]);
+    if width >= CELL {
+        out.resize(out.len() + (width - CELL), b' ');
+        out.extend_from_slice(&cell);
+    } else {
+        out.extend_from_slice(&cell[start.min(CELL - width)..]);
+    }
 }
 
 /// The [`KEPT`] significant digits of finite `value`, correctly rounded, and the power of
@@ -312,10 +373,14 @@ fn nine_digits(value: f64) -> Option<([u8; KEPT], i32)> {
         n = 100_000_000;
         k += 1;
     }
+    // The first digit, then the other eight two at a time.
     let mut digits = [b'0'; KEPT];
-    for d in digits.iter_mut().rev() {
-        *d = b'0' + (n % 10) as u8;
-        n /= 10;
+    digits[0] = b'0' + (n / 100_000_000) as u8;
+    let mut rest = n % 100_000_000;
+    for pair in (0..4).rev() {
+        let p = 2 * (rest % 100) as usize;
+        digits[1 + 2 * pair..3 + 2 * pair].copy_from_slice(&PAIRS[p..p + 2]);
+        rest /= 100;
     }
     Some((digits, k))
 }
@@ -436,43 +501,69 @@ impl RowFormat {
     /// value with the digits of [`push_display`]), the JSON Lines record
     /// (`{"name [unit]":value,...}`, Żmij's shortest digits) and the streamed table's line
     /// (every value as [`push_scientific`] writes it, right-aligned in its column's fixed
-    /// width). Each value is formatted by Żmij at most once, for all three.
+    /// width). Each value is formatted by Żmij at most once, for CSV and JSON Lines both;
+    /// which texts are written is decided once per row, not per value.
     pub fn row(&self, row: &[f64], wanted: Wanted, texts: &mut Texts) {
+        match (wanted.csv, wanted.jsonl) {
+            (true, false) => self.csv_line(row, &mut texts.csv),
+            (false, false) => {}
+            (csv, jsonl) => self.shortest_lines(row, csv, jsonl, texts),
+        }
+        if wanted.table {
+            self.table_line(row, &mut texts.table);
+        }
+    }
+
+    /// A row's CSV line alone (the usual case): per value Żmij's text, laid out by
+    /// [`display`].
+    fn csv_line(&self, row: &[f64], out: &mut Vec<u8>) {
         let mut buffer = zmij::Buffer::new();
-        let columns = row
-            .iter()
-            .zip(&self.factors)
-            .zip(&self.keys)
-            .zip(&self.widths);
-        for (k, (((v, factor), key), &width)) in columns.enumerate() {
+        for (k, (v, factor)) in row.iter().zip(&self.factors).enumerate() {
             let value = v / factor + 0.0;
-            let text = (wanted.csv || wanted.jsonl).then(|| buffer.format_finite(value).as_bytes());
-            if let (true, Some(text)) = (wanted.csv, text) {
+            if k > 0 {
+                out.push(b',');
+            }
+            display(value, buffer.format_finite(value).as_bytes(), out);
+        }
+        out.push(b'\n');
+    }
+
+    /// A row's JSON Lines record, and its CSV line if `csv`, from one Żmij text per value.
+    fn shortest_lines(&self, row: &[f64], csv: bool, jsonl: bool, texts: &mut Texts) {
+        let mut buffer = zmij::Buffer::new();
+        for (k, ((v, factor), key)) in row.iter().zip(&self.factors).zip(&self.keys).enumerate() {
+            let value = v / factor + 0.0;
+            let text = buffer.format_finite(value).as_bytes();
+            if csv {
                 if k > 0 {
                     texts.csv.push(b',');
                 }
-                display(value, text, tie(value), &mut texts.csv);
+                display(value, text, &mut texts.csv);
             }
-            if let (true, Some(text)) = (wanted.jsonl, text) {
+            if jsonl {
                 texts.jsonl.extend_from_slice(key.as_bytes());
                 texts.jsonl.extend_from_slice(text);
             }
-            if wanted.table {
-                if k > 0 {
-                    texts.table.extend_from_slice(b"  ");
-                }
-                scientific(value, text, width, &mut texts.table);
-            }
         }
-        if wanted.csv {
+        if csv {
             texts.csv.push(b'\n');
         }
-        if wanted.jsonl {
+        if jsonl {
             texts.jsonl.extend_from_slice(b"}\n");
         }
-        if wanted.table {
-            texts.table.push(b'\n');
+    }
+
+    /// A row's line of the streamed table: every value in scientific notation, right-aligned
+    /// in its column, two spaces between columns.
+    fn table_line(&self, row: &[f64], out: &mut Vec<u8>) {
+        let columns = row.iter().zip(&self.factors).zip(&self.widths);
+        for (k, ((v, factor), &width)) in columns.enumerate() {
+            if k > 0 {
+                out.extend_from_slice(b"  ");
+            }
+            scientific(v / factor + 0.0, width, out);
         }
+        out.push(b'\n');
     }
 
     /// The two header lines of the streamed table: names, then units in brackets, each
@@ -520,6 +611,20 @@ mod tests {
             5e-324,
             f64::MIN_POSITIVE,
             0.30000000000000004,
+            // The ends of Żmij's layout without an exponent, and either side of them.
+            1e-5,
+            1e-5_f64.next_down(),
+            1e-5_f64.next_up(),
+            -1e-5,
+            1e16_f64.next_down(),
+            1e16_f64.next_up(),
+            // Ties of the shortest digits (the standard library decides them), short binary
+            // fractions, and values of a CSV's magnitudes above 2^20.
+            -842335545753126.25,
+            0.5,
+            180.0,
+            3085085.0610378026,
+            -3_085_085.023_246_659_4,
         ] {
             assert_eq!(display(v), (v + 0.0).to_string(), "{v:e}");
         }
@@ -574,6 +679,56 @@ mod tests {
             let v = f64::from_bits(bits);
             prop_assume!(v.is_finite());
             prop_assert_eq!(display(v), (v + 0.0).to_string());
+        }
+
+        /// Values with few binary digits after the point (odd × 2^-k), where the shortest
+        /// digits may be a tie and [`tie`] must count exactly, and whole numbers: as `Display`
+        /// prints them.
+        #[test]
+        fn display_digits_match_for_short_binary_fractions(
+            odd in 0u64..(1 << 53),
+            k in -80i32..60,
+            negative in any::<bool>(),
+        ) {
+            let v = (odd | 1) as f64 * 2f64.powi(-k);
+            let v = if negative { -v } else { v };
+            prop_assume!(v.is_finite());
+            prop_assert_eq!(display(v), (v + 0.0).to_string());
+        }
+
+        /// A row's three texts, against the standard library cell by cell: CSV as `Display`
+        /// prints each value, the streamed table as `{:.8e}` right-aligned in its width, and
+        /// JSON Lines reading back as the same numbers under the CSV's headers.
+        #[test]
+        fn a_row_is_written_as_the_standard_library_writes_each_value(
+            row in proptest::collection::vec(-1e7f64..1e7, 3),
+            scale in -12i32..12,
+            wanted in (any::<bool>(), any::<bool>(), any::<bool>()),
+        ) {
+            let columns = [("phi", "deg", 0.017453292519943295), ("s", "mm", 1e-3), ("F,x", "N", 1.0)]
+                .map(|(name, unit, factor)| Column { name: name.into(), unit: unit.into(), factor });
+            let row: Vec<f64> = row.iter().map(|v| v * 10f64.powi(scale)).collect();
+            let (table, csv, jsonl) = wanted;
+            let mut texts = Texts::default();
+            RowFormat::new(&columns).row(&row, Wanted { table, csv, jsonl }, &mut texts);
+            let values: Vec<f64> = (row.iter().zip(&columns)).map(|(v, c)| v / c.factor + 0.0).collect();
+            let csv_line = values.iter().map(f64::to_string).collect::<Vec<_>>().join(",") + "\n";
+            prop_assert_eq!(String::from_utf8(texts.csv).unwrap(), if csv { csv_line } else { String::new() });
+            let table_line = (values.iter())
+                .map(|v| format!("{v:>SCIENTIFIC_WIDTH$.8e}"))
+                .collect::<Vec<_>>()
+                .join("  ")
+                + "\n";
+            prop_assert_eq!(String::from_utf8(texts.table).unwrap(), if table { table_line } else { String::new() });
+            if jsonl {
+                let record: serde_json::Map<String, serde_json::Value> =
+                    serde_json::from_slice(&texts.jsonl).unwrap();
+                for (c, v) in columns.iter().zip(&values) {
+                    prop_assert_eq!(record[&c.header()].as_f64(), Some(*v));
+                }
+            } else {
+                prop_assert!(texts.jsonl.is_empty());
+            }
         }
 
         /// Any finite `f64` prints as `{:.8e}` prints it: the same nine digits.
