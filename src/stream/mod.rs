@@ -20,6 +20,8 @@ pub mod fixed;
 pub mod format;
 pub mod motion;
 pub mod record;
+mod scientific;
+mod shortest;
 pub(crate) mod speculate;
 
 use std::io::{self, Write};
