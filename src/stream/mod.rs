@@ -20,6 +20,8 @@ pub mod fixed;
 pub mod format;
 pub mod motion;
 pub mod record;
+mod scientific;
+mod shortest;
 pub(crate) mod speculate;
 
 use std::io::{self, Write};
@@ -234,6 +236,8 @@ pub fn sweep(
         Speculation::Never => false,
     };
     let mut pieces = Pieces::default();
+    // Chunks formatted at once (one per thread), then written before the next ones.
+    let round = pool.current_num_threads().max(1);
     let mut texts: Vec<Texts> = Vec::new();
     let mut written = 0;
     let mut next = 0;
@@ -252,13 +256,17 @@ pub fn sweep(
                     })
                 },
                 || {
-                    (pending.as_ref())
-                        .map(|b| format_batch(&format, &b.rows, chunk, wanted, &mut texts))
+                    let mut out = Output {
+                        sinks: &mut *sinks,
+                        texts: &mut texts,
+                        bar: &bar,
+                    };
+                    (pending.as_ref()).map(|b| out.batch(&format, &b.rows, chunk, round, wanted))
                 },
             );
-            if let (Some(b), Some(chunks)) = (pending.take(), text) {
+            if let (Some(b), Some(text)) = (pending.take(), text) {
+                text?;
                 let n = b.rows.len() / format.columns();
-                bar.suspend(|| write_texts(sinks, &texts[..chunks]))?;
                 if table_text && sinks.table.is_some() && !streamed_table {
                     kept_rows.extend(b.rows.chunks(format.columns()).map(<[f64]>::to_vec));
                 }
@@ -358,29 +366,45 @@ fn in_memory(setup: &Setup<'_>, words: &dyn TableWords, sinks: &mut Sinks<'_>) -
     })
 }
 
-/// Formats a batch's rows chunk by chunk in parallel into `texts` (one per chunk, in row
-/// order, reused from batch to batch); returns the number of chunks.
-fn format_batch(
-    format: &RowFormat,
-    rows: &[f64],
-    chunk: usize,
-    wanted: Wanted,
-    texts: &mut Vec<Texts>,
-) -> usize {
-    let width = format.columns();
-    let chunks = rows.len().div_ceil(chunk * width);
-    if texts.len() < chunks {
-        texts.resize_with(chunks, Texts::default);
+/// Where a batch's text goes, and the buffers it is made in.
+struct Output<'s, 'a> {
+    sinks: &'s mut Sinks<'a>,
+    /// One per chunk formatted at once, reused from round to round and batch to batch.
+    texts: &'s mut Vec<Texts>,
+    bar: &'s crate::progress::ProgressBar,
+}
+
+impl Output<'_, '_> {
+    /// Formats a batch's rows and writes them, in order: `round` chunks of `chunk` rows
+    /// formatted in parallel, then written, then the next `round`. The text held is a few
+    /// chunks, whatever the batch, so it stays in cache from formatting to writing.
+    fn batch(
+        &mut self,
+        format: &RowFormat,
+        rows: &[f64],
+        chunk: usize,
+        round: usize,
+        wanted: Wanted,
+    ) -> Result<()> {
+        let width = format.columns();
+        if self.texts.len() < round {
+            self.texts.resize_with(round, Texts::default);
+        }
+        for group in rows.chunks(chunk * width * round) {
+            let chunks = group.len().div_ceil(chunk * width);
+            (self.texts[..chunks].par_iter_mut())
+                .zip(group.par_chunks(chunk * width))
+                .for_each(|(text, rows)| {
+                    text.clear();
+                    for row in rows.chunks(width) {
+                        format.row(row, wanted, text);
+                    }
+                });
+            let texts = &self.texts[..chunks];
+            self.bar.suspend(|| write_texts(self.sinks, texts))?;
+        }
+        Ok(())
     }
-    (texts[..chunks].par_iter_mut())
-        .zip(rows.par_chunks(chunk * width))
-        .for_each(|(text, rows)| {
-            text.clear();
-            for row in rows.chunks(width) {
-                format.row(row, wanted, text);
-            }
-        });
-    chunks
 }
 
 /// Writes the texts of a batch to their outputs, in order.
