@@ -13,21 +13,10 @@ use mechdiff::scene::synthesize;
 use mechdiff_core::synthesis::{Defect, GrashofClass, Report, Task, Timing};
 
 use crate::common::{mechdiff, scene_path, stderr, stdout, temp_file};
+use crate::synthesize_cli::{solve, text};
 
 #[path = "../core/tests/data/synthesis/literature.rs"]
 mod literature;
-
-fn text(name: &str) -> String {
-    std::fs::read_to_string(scene_path(name)).unwrap()
-}
-
-fn solve(name: &str, text: &str) -> (synthesize::Setup, Report) {
-    let setup = synthesize::read(name, text).unwrap_or_else(|e| panic!("{e}"));
-    let report = setup
-        .solve(&setup.settings)
-        .unwrap_or_else(|e| panic!("{e}"));
-    (setup, report)
-}
 
 /// The value of the variable shown as `name` (a parameter, or a task angle) in the file's
 /// units.

@@ -16,11 +16,13 @@ use mechdiff_core::synthesis::{Report, StopReason};
 
 use crate::common::{column, mechdiff, scene_path, stderr, stdout, temp_file};
 
-fn text(name: &str) -> String {
+/// A shipped scene's text.
+pub(crate) fn text(name: &str) -> String {
     std::fs::read_to_string(scene_path(name)).unwrap()
 }
 
-fn solve(name: &str, text: &str) -> (synthesize::Setup, Report) {
+/// Reads `text` as the scene `name` and runs its synthesis with the section's settings.
+pub(crate) fn solve(name: &str, text: &str) -> (synthesize::Setup, Report) {
     let setup = synthesize::read(name, text).unwrap_or_else(|e| panic!("{e}"));
     let report = setup
         .solve(&setup.settings)
