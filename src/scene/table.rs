@@ -9,9 +9,7 @@ use super::units::Units;
 use crate::stream::fixed::push_fixed;
 use crate::stream::format::{RowFormat, Texts, Wanted, push_scientific_signed};
 
-/// Significant digits of a column's largest value in the printed table (the CSV carries every
-/// digit).
-pub const DIGITS: i32 = 9;
+pub use crate::stream::format::DIGITS;
 
 /// How every number of one column is printed, so that the decimal points line up.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -6,7 +6,7 @@ use super::scientific::scientific;
 use super::shortest::display;
 use crate::scene::outputs::Column;
 
-pub use super::scientific::{SCIENTIFIC_WIDTH, push_scientific, push_scientific_signed};
+pub use super::scientific::{DIGITS, SCIENTIFIC_WIDTH, push_scientific, push_scientific_signed};
 pub use super::shortest::push_display;
 
 /// Which texts rows are written into.

@@ -3,7 +3,10 @@
 //! a table column too wide for fixed point.
 
 use super::shortest::{Shortest, tie};
-use crate::scene::table::DIGITS;
+
+/// Significant digits of a column's largest value in the printed table (the CSV carries every
+/// digit).
+pub const DIGITS: i32 = 9;
 
 /// The width of a number in the streamed table: `-d.dddddddde-308`, the longest an `f64`
 /// prints in scientific notation with [`DIGITS`] significant digits.
