@@ -21,7 +21,9 @@
 #                        the run-time evaluator compiled and interpreted
 #   psi, dual2_64        Whitworth ψ by `Dual2.jets` and by num-dual's `Dual2_64` alone
 # with <scene> one of whitworth, four_bar, rack (rack_slotted_link_travel.toml), slider_crank.
-# Prints one line per loop: name, instructions per position, and the two counts.
+# Prints one line per loop: name, instructions per position, and the two counts; then, for
+# every scene whose `code:` loop ran, each of its other loops' ratio to the generated code, and
+# the JIT's set-up (the `jit:` count at no repetition minus the `solver:`'s).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export CARGO_INCREMENTAL=0
@@ -45,6 +47,7 @@ count() {
 }
 
 printf '%-22s %12s %16s %16s\n' loop per_position at_R at_0
+declare -A per_position at_zero
 for loop in "${loops[@]}"; do
     # Positions per repetition: the scene's sweep, or the 720 of the fixed loops.
     n=$("$bin" "$loop" 0 | sed -n 's/^positions per repetition: //p')
@@ -56,4 +59,21 @@ for loop in "${loops[@]}"; do
     per=$(awk -v a="$full" -v b="$zero" -v r="$reps" -v n="$n" \
         'BEGIN { printf "%.1f", (a - b) / (r * n) }')
     printf '%-22s %12s %16s %16s\n' "$loop" "$per" "$full" "$zero"
+    per_position[$loop]=$per
+    at_zero[$loop]=$zero
+done
+
+for scene in whitworth four_bar rack slider_crank; do
+    code=${per_position[code:$scene]:-}
+    [ -n "$code" ] || continue
+    for what in row solver jit interpreter; do
+        per=${per_position[$what:$scene]:-}
+        [ -n "$per" ] || continue
+        awk -v w="$what:$scene" -v p="$per" -v c="$code" \
+            'BEGIN { printf "%-22s %8.1f x code\n", w, p / c }'
+    done
+    if [ -n "${at_zero[jit:$scene]:-}" ] && [ -n "${at_zero[solver:$scene]:-}" ]; then
+        awk -v s="$scene" -v j="${at_zero[jit:$scene]}" -v o="${at_zero[solver:$scene]}" \
+            'BEGIN { printf "%-22s %8.2f M instructions of JIT set-up\n", s, (j - o) / 1e6 }'
+    fi
 done

@@ -69,6 +69,7 @@ impl<F: PositionFunction> Differentiator<F, 1> for Dual1 {
 }
 
 impl<F: PositionFunction> Differentiator<F, 2> for Dual2 {
+    #[inline]
     fn jets(&self, f: &F, phi: f64) -> F::Output<Jet<2>> {
         F::map(f.evaluate(Dual2_64::from(phi).derivative()), |x| {
             Jet::new(x.re, [x.v1, x.v2])

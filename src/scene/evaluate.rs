@@ -1,7 +1,7 @@
 //! Reading an output from a solved pose: point jets from the model, angles and slider
 //! displacements computed from them with exact derivatives (third-order dual numbers).
 
-use mechdiff_core::geometry::{Kinematics, Mechanism, PointOutput};
+use mechdiff_core::geometry::{Kinematics, Mechanism, PointOutput, Tracker};
 use mechdiff_core::num_dual::Dual3_64;
 use mechdiff_core::{DriveState, Jet, Scalar};
 
@@ -193,10 +193,34 @@ pub(crate) fn evaluate<const N: usize>(
     resolved: &Resolved<'_>,
     previous: &mut Option<f64>,
 ) -> Values<Jet<N>> {
-    let point = |i: usize| -> [Dual3_64; 2] {
-        let [x, y] = k.position(&resolved.points[i]);
-        [dual(&x), dual(&y)]
-    };
+    evaluate_points(|p| k.position(p).map(|x| dual(&x)), resolved, previous)
+}
+
+/// The output's jets (N ≤ 2) at the current pose of `tracker`, as [`evaluate`] reads them
+/// from a lifted [`Kinematics`] — the same arithmetic on the same q, q′, q″, so the same
+/// bits (the second derivative, beyond the first order, enters no first one) — read
+/// straight from the tracker: nothing lifted or allocated per row.
+pub(crate) fn evaluate_tracked<const N: usize>(
+    tracker: &Tracker<'_>,
+    resolved: &Resolved<'_>,
+    previous: &mut Option<f64>,
+) -> Values<Jet<N>> {
+    const { assert!(N <= 2, "the tracker holds q′ and q″") };
+    evaluate_points(
+        |p| tracker.position(p).map(|x| dual(&x)),
+        resolved,
+        previous,
+    )
+}
+
+/// The output's jets from its points' positions `position(point)` in third-order dual
+/// numbers, an angle kept continuous through `previous`.
+fn evaluate_points<const N: usize>(
+    position: impl Fn(&PointOutput) -> [Dual3_64; 2],
+    resolved: &Resolved<'_>,
+    previous: &mut Option<f64>,
+) -> Values<Jet<N>> {
+    let point = |i: usize| position(&resolved.points[i]);
     let output = resolved.output;
     let mut values = values(output, point);
     if let OutputKind::Angle { .. } = &output.kind {
@@ -254,6 +278,10 @@ pub(crate) fn values_on_sketch_turn<D: Scalar>(
 
 /// Moves `angle` by whole turns to the one nearest `target` (unchanged when it is there).
 fn to_turn<D: Scalar>(angle: &mut D, target: f64) {
+    // Cheap check first: within 3 rad of the target, the nearest turn is this one.
+    if (target - angle.re()).abs() < 3.0 {
+        return;
+    }
     let turns = ((target - angle.re()) / std::f64::consts::TAU).round();
     if turns != 0.0 {
         *angle += turns * std::f64::consts::TAU;

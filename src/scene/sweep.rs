@@ -4,9 +4,9 @@
 //! (as do the counterweights of `[balancing]`), through [`mechdiff_core::sweep::Consumer`].
 //! [`super::run()`] collects the rows; [`crate::stream`] formats and writes them as they come.
 
-use mechdiff_core::DriveState;
 use mechdiff_core::geometry::{Kinematics, Tracker};
 use mechdiff_core::sweep::Consumer;
+use mechdiff_core::{DriveState, Jet};
 
 use crate::error::{Error, Result};
 use crate::evaluator::{LoopPlan, ProgramPath, solver_loops};
@@ -15,7 +15,7 @@ use mechdiff_core::trace::Backend;
 use super::balancing::BalancingSweep;
 use super::dynamics::DynamicsSweep;
 use super::error_context::ErrorContext;
-use super::evaluate::{Resolved, evaluate, from_code, quantity};
+use super::evaluate::{Resolved, Values, evaluate, evaluate_tracked, from_code, quantity};
 use super::model::Output;
 use super::outputs::{Column, columns};
 use super::plan::Plan;
@@ -283,13 +283,13 @@ impl<'s> Sweeper<'s> {
         self.counts.solves += 1;
         let o = match &mut self.walk {
             Walk::First(o) => {
-                let k = solve_along::<1>(cx, &mut o.tracker, last, phi)?;
-                o.push(cx, phi, &k, row);
+                move_along(cx, &mut o.tracker, last, phi)?;
+                o.push_tracked::<1>(cx, phi, row);
                 o
             }
             Walk::Second(o) => {
-                let k = solve_along::<2>(cx, &mut o.tracker, last, phi)?;
-                o.push(cx, phi, &k, row);
+                move_along(cx, &mut o.tracker, last, phi)?;
+                o.push_tracked::<2>(cx, phi, row);
                 o
             }
             Walk::Third(o) => {
@@ -421,6 +421,8 @@ impl Outputs<'_> {
         }
     }
 
+    /// Pushes the columns of every output at drive position `phi` from the lifted pose
+    /// `k` (the third order).
     fn push<const N: usize>(
         &mut self,
         cx: &ErrorContext<'_>,
@@ -428,8 +430,32 @@ impl Outputs<'_> {
         k: &Kinematics<'_, N>,
         row: &mut Vec<f64>,
     ) {
+        self.push_with(cx, phi, row, |_, r, p| evaluate(k, r, p));
+    }
+
+    /// Pushes the columns of every output at drive position `phi` (order N ≤ 2) read
+    /// straight from the tracker, as [`Outputs::push`] would from the pose lifted: the same
+    /// values, nothing allocated.
+    fn push_tracked<const N: usize>(
+        &mut self,
+        cx: &ErrorContext<'_>,
+        phi: f64,
+        row: &mut Vec<f64>,
+    ) {
+        self.push_with(cx, phi, row, evaluate_tracked::<N>);
+    }
+
+    /// Pushes the columns of every output at drive position `phi`, each output's jets from
+    /// `jets` (given the tracker, the output and its previous angle).
+    fn push_with<const N: usize>(
+        &mut self,
+        cx: &ErrorContext<'_>,
+        phi: f64,
+        row: &mut Vec<f64>,
+        jets: impl Fn(&Tracker<'_>, &Resolved<'_>, &mut Option<f64>) -> Values<Jet<N>>,
+    ) {
         for (resolved, previous) in self.outputs.iter().zip(self.previous.iter_mut()) {
-            let mut values = evaluate(k, resolved, previous);
+            let mut values = jets(&self.tracker, resolved, previous);
             if let Some(cam) = &cx.drive.cam {
                 // Derivatives with respect to the cam angle (the chain rule through s(θ)).
                 values = values.map(|v| cam.joint.compose(phi, &v));

@@ -104,9 +104,8 @@ pub struct ProgramTracker {
     /// The drive position reached, and each loop's margin there.
     phi: f64,
     margins: Vec<Dual2_64>,
-    /// Margins at a step's end, and at the start of the move (restored if it fails).
+    /// Margins at a step's end (swapped with `margins` when the step is accepted).
     trial: Vec<Dual2_64>,
-    start: Vec<Dual2_64>,
 }
 
 impl ProgramTracker {
@@ -193,7 +192,6 @@ impl ProgramTracker {
             phi: tracker.phi(),
             margins: vec![one; loops.len()],
             trial: vec![one; loops.len()],
-            start: vec![one; loops.len()],
             loops,
         };
         if !walk.restart(tracker.phi()) {
@@ -255,7 +253,6 @@ impl ProgramTracker {
             return None;
         }
         let (from, mut steps) = (self.phi, 0);
-        self.start.copy_from_slice(&self.margins);
         while self.phi != phi || steps == 0 {
             let remaining = phi - self.phi;
             let target = if remaining.abs() > self.longest {
@@ -269,11 +266,17 @@ impl ProgramTracker {
                 && (self.loops.iter().zip(&self.margins).zip(&self.trial))
                     .all(|((l, &a), &b)| l.kind == GuardKind::Always || passes(a, b, h));
             if !proven {
+                if steps > 0 {
+                    // Back to the move's start: its margins are the program's values
+                    // there, evaluated again (the same bits; only a move of several
+                    // sub-steps that fails pays this).
+                    let restored = self.restart(from);
+                    debug_assert!(restored, "the guards held at the move's start");
+                }
                 self.phi = from;
-                self.margins.copy_from_slice(&self.start);
                 return None;
             }
-            self.margins.copy_from_slice(&self.trial);
+            std::mem::swap(&mut self.margins, &mut self.trial);
             self.phi = target;
             steps += 1;
         }
@@ -286,7 +289,7 @@ impl ProgramTracker {
         if !(phi.is_finite() && self.evaluate(phi)) {
             return false;
         }
-        self.margins.copy_from_slice(&self.trial);
+        std::mem::swap(&mut self.margins, &mut self.trial);
         self.phi = phi;
         true
     }

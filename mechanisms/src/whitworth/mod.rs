@@ -290,6 +290,7 @@ impl<T> Pose<T> {
 }
 
 /// A point on the crank at distance `radius` from A0 = (0, l0), given sin φ and cos φ.
+#[inline]
 fn on_crank<D: Scalar>(l0: f64, radius: f64, (sin, cos): (D, D)) -> Point<D> {
     Point::new(sin * radius, -cos * radius + l0)
 }
@@ -297,6 +298,7 @@ fn on_crank<D: Scalar>(l0: f64, radius: f64, (sin, cos): (D, D)) -> Point<D> {
 /// The angle from +y towards +x of the line from B0 (the origin) through `p`, for a point
 /// above B0: tan ψ = x/y (1.30). The crank pin is always above B0 (y_A ≥ l0 − l1 > 0, since
 /// `Whitworth::new` demands l1 < l0), so atan(x/y) is atan2(x, y) without its quadrant branch.
+#[inline]
 fn angle_from_vertical<D: Scalar>(p: Point<D>) -> D {
     (p.x / p.y).atan()
 }
@@ -343,6 +345,9 @@ pub struct RockerAngle {
 impl PositionFunction for RockerAngle {
     type Output<T> = T;
 
+    // Inlined into the caller's `Differentiator::jets`, as num-dual's own code is: compiled
+    // as a function of its own, the call cost ~105 instructions per ψ (BENCHMARKS.md).
+    #[inline]
     fn evaluate<D: Scalar>(&self, phi: D) -> D {
         angle_from_vertical(on_crank(self.l0, self.l1, phi.sin_cos()))
     }
