@@ -1,15 +1,15 @@
 //! `mechdiff._mechdiff`: the Rust half of the mechdiff Python package.
 //!
 //! A thin layer over the facade's library API ([`mechdiff::parse_with`], [`mechdiff::run_with`],
-//! [`mechdiff::sensitivity::run`]): a [`scene::Scene`] holds a read scene with its text and
-//! settings; its runs hand columns to NumPy without copying them again ([`columns`]); its
-//! failures become the exception classes of `mechdiff/errors.py` ([`errors`]); its pictures
-//! show in Jupyter ([`pictures`]). Cam and rotor scenes ([`cam`], [`rotor`]), formula
-//! derivatives ([`formula`]) and the accuracy report ([`accuracy`]) are beside it. The Python
+//! [`mechdiff::sensitivity::run`]): a `scene::Scene` holds a read scene with its text and
+//! settings; its runs hand columns to NumPy without copying them again (`columns`); its
+//! failures become the exception classes of `mechdiff/errors.py` (`errors`); its pictures
+//! show in Jupyter (`pictures`). Cam and rotor scenes (`cam`, `rotor`), formula
+//! derivatives (`formula`) and the accuracy report (`accuracy`) are beside it. The Python
 //! modules beside it (`mechdiff/__init__.py`, `mechdiff/study.py`) present the results.
 //!
 //! Every run releases the GIL (`Python::detach`), so two Python threads run two scenes at
-//! once; a batch of variants ([`variants`]) checks for Ctrl-C between its blocks.
+//! once; a batch of variants (`variants`) checks for Ctrl-C between its blocks.
 
 mod accuracy;
 mod cam;
