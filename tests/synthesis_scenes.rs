@@ -13,7 +13,7 @@ use mechdiff::scene::synthesize;
 use mechdiff_core::synthesis::{Defect, GrashofClass, Report, Task, Timing};
 
 use crate::common::{mechdiff, scene_path, stderr, stdout, temp_file};
-use crate::synthesize_cli::{solve, text};
+use crate::synthesize_cli::{line_of, read_error, solve, text};
 
 #[path = "../core/tests/data/synthesis/literature.rs"]
 mod literature;
@@ -295,11 +295,8 @@ fn weights_scale_each_targets_squared_error_in_the_objective() {
         ("weights = [0, 0, 0, 0, 0]", "every weight is 0"),
     ] {
         let text = weighted.replace("weights = [1, 2, 0.5, 3, 0]", bad);
-        let message = match synthesize::read("bad.toml", &text) {
-            Ok(_) => panic!("{bad} was accepted"),
-            Err(e) => e.to_string(),
-        };
-        let line = text[..text.find(bad).unwrap()].lines().count() + 1;
+        let message = read_error("bad.toml", &text);
+        let line = line_of(&text, bad);
         assert!(
             message.starts_with(&format!("bad.toml:{line}:")),
             "{message}"

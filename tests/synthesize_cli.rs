@@ -187,7 +187,8 @@ fn unreachable_targets_give_the_best_found_and_why_with_residuals_summing_to_the
     );
 }
 
-fn read_error(file: &str, text: &str) -> String {
+/// The message of the error reading `text` as `file` gives (a panic if it is read).
+pub(crate) fn read_error(file: &str, text: &str) -> String {
     match synthesize::read(file, text) {
         Ok(_) => panic!("{file} was accepted"),
         Err(e) => e.to_string(),
@@ -195,7 +196,7 @@ fn read_error(file: &str, text: &str) -> String {
 }
 
 /// The 1-based line of the first occurrence of `needle` in `text`.
-fn line_of(text: &str, needle: &str) -> usize {
+pub(crate) fn line_of(text: &str, needle: &str) -> usize {
     text[..text.find(needle).unwrap()].lines().count() + 1
 }
 
