@@ -69,6 +69,50 @@ fn success(lit: &Literature, report: &Report) -> bool {
             .is_ok_and(|c| c.deviation <= 1e-9)
 }
 
+/// One problem's runs over the selection's seeds by one method.
+struct Tally {
+    objectives: Vec<f64>,
+    evaluations: Vec<f64>,
+    times: Vec<f64>,
+    successes: usize,
+}
+
+impl Tally {
+    /// Runs `lit` for each seed (a line per run on stderr with `--each`).
+    fn over_seeds(
+        selection: &Selection,
+        lit: &Literature,
+        method: Method,
+        limit: Duration,
+    ) -> Result<Tally, SynthesisError> {
+        let mut t = Tally {
+            objectives: Vec::new(),
+            evaluations: Vec::new(),
+            times: Vec::new(),
+            successes: 0,
+        };
+        for seed in 0..selection.seeds {
+            let report = run(lit, seed, method, limit)?;
+            if selection.each {
+                each(lit, seed, &report);
+            }
+            t.successes += usize::from(success(lit, &report));
+            t.objectives.push(report.objective);
+            t.evaluations.push(report.evaluations as f64);
+            t.times.push(report.elapsed.as_secs_f64());
+        }
+        Ok(t)
+    }
+
+    /// The least objective of the runs.
+    fn best(&self) -> f64 {
+        self.objectives
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min)
+    }
+}
+
 /// One run's line (with `--each`, on standard error).
 fn each(lit: &Literature, seed: u64, report: &Report) {
     eprintln!(
@@ -131,28 +175,18 @@ fn main() -> Result<(), SynthesisError> {
     );
     println!("|---|---|---|---|---|---|---|---|---|");
     for lit in selection.problems() {
-        let (mut objectives, mut evaluations, mut times, mut successes) =
-            (Vec::new(), Vec::new(), Vec::new(), 0);
-        for seed in 0..selection.seeds {
-            let report = run(&lit, seed, Method::Exact, Duration::from_secs(10))?;
-            if selection.each {
-                each(&lit, seed, &report);
-            }
-            successes += usize::from(success(&lit, &report));
-            objectives.push(report.objective);
-            evaluations.push(report.evaluations as f64);
-            times.push(report.elapsed.as_secs_f64());
-        }
+        let t = Tally::over_seeds(&selection, &lit, Method::Exact, Duration::from_secs(10))?;
         println!(
-            "| {} | {} | {:.4e} | {} | {:.4e} | {:.4e} | {successes} | {:.0} | {:.2} |",
+            "| {} | {} | {:.4e} | {} | {:.4e} | {:.4e} | {} | {:.0} | {:.2} |",
             lit.name,
             lit.source,
             lit.published_best,
             lit.published_by,
-            objectives.iter().copied().fold(f64::INFINITY, f64::min),
-            median(objectives.clone()),
-            median(evaluations),
-            median(times),
+            t.best(),
+            median(t.objectives.clone()),
+            t.successes,
+            median(t.evaluations),
+            median(t.times),
         );
     }
     Ok(())
@@ -174,25 +208,15 @@ fn compare(selection: &Selection, limit: Duration) -> Result<(), SynthesisError>
             ("LM, central differences", Method::Differences),
             ("differential evolution alone", Method::Evolution),
         ] {
-            let (mut objectives, mut evaluations, mut times, mut successes) =
-                (Vec::new(), Vec::new(), Vec::new(), 0);
-            for seed in 0..selection.seeds {
-                let report = run(&lit, seed, method, limit)?;
-                if selection.each {
-                    each(&lit, seed, &report);
-                }
-                successes += usize::from(success(&lit, &report));
-                objectives.push(report.objective);
-                evaluations.push(report.evaluations as f64);
-                times.push(report.elapsed.as_secs_f64());
-            }
+            let t = Tally::over_seeds(selection, &lit, method, limit)?;
             println!(
-                "| {} | {label} | {successes} | {:.4e} | {:.4e} | {:.0} | {:.2} |",
+                "| {} | {label} | {} | {:.4e} | {:.4e} | {:.0} | {:.2} |",
                 lit.name,
-                objectives.iter().copied().fold(f64::INFINITY, f64::min),
-                median(objectives.clone()),
-                median(evaluations),
-                median(times),
+                t.successes,
+                t.best(),
+                median(t.objectives.clone()),
+                median(t.evaluations),
+                median(t.times),
             );
         }
     }
