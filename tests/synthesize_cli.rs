@@ -415,6 +415,53 @@ fn check_describes_the_synthesis() {
 }
 
 #[test]
+fn check_names_the_weights_and_the_grashof_class_a_section_gives() {
+    // The path scene with a weight per target (not all 1) and a Grashof class (the one its
+    // `crank_rotates = true` implies, so the section stays valid).
+    let weights = "weights = [1, 2, 0.5, 1, 1, 1, 1, 1, 1, 3]";
+    let written = text(PATH)
+        .replace("seed = 1", "seed = 1\ngrashof = \"crank-rocker\"")
+        .replace("targets = [", &format!("{weights}\ntargets = ["));
+    let path = temp_file("check_weighted.toml");
+    std::fs::write(&path, &written).unwrap();
+    let out = mechdiff(&["check", path.to_str().unwrap()]);
+    std::fs::remove_file(&path).ok();
+    assert!(out.status.success(), "{}", stderr(&out));
+    let printed = stdout(&out);
+    let line = (printed.lines())
+        .find(|l| l.starts_with("synthesis: "))
+        .unwrap_or_else(|| panic!("no synthesis line: {printed}"));
+    assert_eq!(
+        line,
+        "synthesis: four_bar, path generation of point P, 10 targets (weights 1, 2, 0.5, 1, 1, \
+         1, 1, 1, 1, 3), 10 of 10 design variables free, Grashof class crank-rocker required; \
+         `mechdiff synthesize` sizes them"
+    );
+    // More weights than the line lists: the first twelve, then how many in all.
+    let formula = "formula = \"88 + 0.3*(phi - 40)\"\nfrom = 40\nto = 200\ncount = 15";
+    let function = text(FUNCTION);
+    let start = function.find("pairs = [").unwrap();
+    let end = start + function[start..].find("\n]\n").unwrap() + 2;
+    let many = (1..=15)
+        .map(|k| k.to_string())
+        .collect::<Vec<_>>()
+        .join(", ");
+    let with_weights = format!(
+        "{}{formula}\nweights = [{many}]{}",
+        &function[..start],
+        &function[end..]
+    );
+    let setup = synthesize::read("many.toml", &with_weights).unwrap_or_else(|e| panic!("{e}"));
+    let described = synthesize::describe(&setup);
+    assert!(
+        described.contains(
+            "15 targets (weights 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, … (15 in all)), "
+        ) && !described.contains("Grashof"),
+        "{described}"
+    );
+}
+
+#[test]
 fn command_line_limits_out_of_range_are_refused_before_any_work() {
     let scene = scene_path(PATH);
     for (option, value, says) in [

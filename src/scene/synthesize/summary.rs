@@ -3,25 +3,49 @@
 
 use std::fmt::Write;
 
-use mechdiff_core::synthesis::{Report, StopReason, Synthesis, Task, Timing};
+use mechdiff_core::synthesis::{GrashofClass, Report, StopReason, Synthesis, Task, Timing};
 
 use super::{Method, Setup};
 use crate::scene::units::Dimension;
 
-/// One line saying what the section asks (as `mechdiff check` prints it).
+/// The most weights [`describe`] lists; a longer list is cut after them.
+const LISTED_WEIGHTS: usize = 12;
+
+/// One line saying what the section asks (as `mechdiff check` prints it): the linkage, the
+/// task, the targets with their weights (where one is not 1), the design variables free,
+/// and the Grashof class required (where the section names one).
 pub fn describe(setup: &Setup) -> String {
-    let (lower, upper) = setup.problem.bounds();
+    let problem = &setup.problem;
+    let (lower, upper) = problem.bounds();
     let free = lower.iter().zip(upper).filter(|(l, u)| l < u).count();
-    let task = match setup.problem.task() {
+    let task = match problem.task() {
         Task::Path { point, .. } => format!("path generation of point {point}"),
         Task::Function { output, .. } => format!("function generation of output {output}"),
         Task::Motion { link, .. } => format!("motion generation of link {link}"),
     };
+    let weights = problem.weights();
+    let weighted = if weights.iter().any(|w| *w != 1.0) {
+        let listed: Vec<String> = (weights.iter().take(LISTED_WEIGHTS))
+            .map(|w| w.to_string())
+            .collect();
+        let rest = if weights.len() > LISTED_WEIGHTS {
+            format!(", … ({} in all)", weights.len())
+        } else {
+            String::new()
+        };
+        format!(" (weights {}{rest})", listed.join(", "))
+    } else {
+        String::new()
+    };
+    let grashof = match problem.grashof() {
+        GrashofClass::Any => String::new(),
+        class => format!(", Grashof class {} required", class.name()),
+    };
     format!(
-        "synthesis: {}, {task}, {} targets, {free} of {} design variables free; `mechdiff \
-         synthesize` sizes them",
+        "synthesis: {}, {task}, {} targets{weighted}, {free} of {} design variables \
+         free{grashof}; `mechdiff synthesize` sizes them",
         setup.linkage_name,
-        setup.problem.task().target_count(),
+        problem.task().target_count(),
         lower.len()
     )
 }
