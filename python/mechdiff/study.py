@@ -640,7 +640,8 @@ def _starts_chunk(problem, seeds: List[int], settings: Dict[str, Any]):
     import pandas as pd
 
     frame = pd.DataFrame([problem.solve_row(seed, **settings) for seed in seeds])
-    for text in ("stop", "kind", "reason"):  # text or missing, the same type in every chunk
+    # Text or missing, the same type in every chunk.
+    for text in ("grashof_class", "stop", "kind", "reason"):
         frame[text] = frame[text].astype("string")
     return frame
 
@@ -667,7 +668,8 @@ def synthesis(
 
     ``problem`` is a :class:`mechdiff.synthesis.Problem`. Returns a DataFrame, one row per
     start in order: ``start`` (the seed), ``objective`` (m², rad²), the design variables
-    (m, rad), ``evaluations``, ``successes``, ``stop``, ``certificate_deviation`` (m),
+    (m, rad), ``grashof_class`` (the answer's four-bar loop; missing for the slider-crank),
+    ``evaluations``, ``successes``, ``stop``, ``certificate_deviation`` (m),
     ``seconds``, and ``kind``/``reason`` for a start that finds no usable mechanism (its
     values NaN); sort by ``objective`` for the best. ``chunk``: starts per task (default:
     from the measured time of the first start, which is kept).

@@ -49,6 +49,13 @@ class Solution:
     report: Dict[str, Any]
 
     @property
+    def grashof_class(self) -> Optional[str]:
+        """The Grashof class of the answer's four-bar loop (``"crank-rocker"``,
+        ``"double-crank"``, ``"rocker-crank"``, ``"double-rocker"``, ``"triple-rocker"``),
+        ``None`` for the slider-crank, which has none."""
+        return self.report["grashof_class"]
+
+    @property
     def why_not_better(self) -> Optional[str]:
         """``None`` when the objective reached the level asked for; otherwise why not."""
         return self.report["why_not_better"]
@@ -73,6 +80,8 @@ class Problem:
         min_transmission: float = 0.0,
         checks_between_targets: int = 8,
         angle_weight: float = 1.0,
+        weights: Optional[Sequence[float]] = None,
+        grashof: str = "any",
     ):
         pairs = []
         for variable, bound in bounds.items():
@@ -97,6 +106,8 @@ class Problem:
             min_transmission=float(min_transmission),
             checks_between_targets=int(checks_between_targets),
             angle_weight=float(angle_weight),
+            weights=None if weights is None else [float(w) for w in weights],
+            grashof=str(grashof),
         )
         args = dict(self._args)
         self._rust = _RustProblem(args.pop("linkage"), args.pop("task"), args.pop("targets"), **args)
@@ -119,6 +130,17 @@ class Problem:
     def bounds(self) -> Dict[str, Tuple[float, float]]:
         """The bounds of every design variable (equal for a fixed one)."""
         return dict(zip(self.variable_names, self._rust.bounds))
+
+    @property
+    def weights(self) -> List[float]:
+        """Each target's weight, in order (1 where none was given): it multiplies the
+        target's squared error in the objective."""
+        return self._rust.weights
+
+    @property
+    def grashof(self) -> str:
+        """The Grashof class the four-bar loop must have (``"any"``: none required)."""
+        return self._rust.grashof
 
     def residuals(self, values: Mapping[str, float]) -> Optional[List[float]]:
         """The residuals (m, rad) of the mechanism ``values`` (every design variable), or
@@ -149,22 +171,23 @@ class Problem:
         return Solution(dict(report["variables"]), report["objective"], report["residuals"], report)
 
     def solve_row(self, seed: int, **settings: Any) -> Dict[str, Any]:
-        """One search as a row of a study: ``start``, ``objective``, the variables, what it
-        cost and how it ended; a start without a usable mechanism has NaN values and its
-        ``kind`` and ``reason``."""
+        """One search as a row of a study: ``start``, ``objective``, the variables, the
+        answer's ``grashof_class``, what it cost and how it ended; a start without a usable
+        mechanism has NaN values, no class, and its ``kind`` and ``reason``."""
         row: Dict[str, Any] = {"start": seed}
         try:
             found = self.solve(seed, **settings)
         except errors.StudyError as failure:
             row["objective"] = math.nan
             row.update({n: math.nan for n in self.variable_names})
-            row.update(evaluations=0, successes=0, stop=None, certificate_deviation=math.nan,
+            row.update(grashof_class=None, evaluations=0, successes=0, stop=None, certificate_deviation=math.nan,
                        seconds=math.nan, kind=failure.kind, reason=str(failure))
             return row
         report = found.report
         row["objective"] = found.objective
         row.update(found.values)
         row.update(
+            grashof_class=found.grashof_class,
             evaluations=report["evaluations"],
             successes=report["successes"],
             stop=report["stop"],

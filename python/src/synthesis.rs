@@ -6,7 +6,8 @@
 use std::time::Duration;
 
 use mechdiff::core::synthesis::{
-    Constraints, Derivatives, Linkage, Problem, Report, Synthesis, SynthesisError, Task, Timing,
+    Constraints, Derivatives, GrashofClass, Linkage, Problem, Report, Synthesis, SynthesisError,
+    Task, Timing,
 };
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -38,6 +39,22 @@ fn linkage(py: Python<'_>, name: &str) -> PyResult<Linkage> {
             ),
         )),
     }
+}
+
+/// The Grashof class a name stands for (`"any"`: none required).
+fn grashof(py: Python<'_>, name: &str) -> PyResult<GrashofClass> {
+    GrashofClass::named(name).ok_or_else(|| {
+        let names: Vec<String> = (GrashofClass::NAMES.iter())
+            .map(|(n, _)| format!("{n:?}"))
+            .collect();
+        argument(
+            py,
+            format!(
+                "grashof={name:?} is not a Grashof class; expected one of {}",
+                names.join(", ")
+            ),
+        )
+    })
 }
 
 /// The targets as rows of `width` numbers, or which row has another width.
@@ -73,6 +90,7 @@ fn to_py(py: Python<'_>, error: &SynthesisError) -> PyErr {
         SynthesisError::MissingBound { .. } => ("ArgumentError", "MissingBound"),
         SynthesisError::InvalidBound { .. } => ("ArgumentError", "InvalidBound"),
         SynthesisError::NonFiniteTarget { .. } => ("ArgumentError", "NonFiniteTarget"),
+        SynthesisError::InvalidConstraint { .. } => ("ArgumentError", "InvalidConstraint"),
         _ => ("ArgumentError", "InvalidSetting"),
     };
     let message = format!("synthesis: {error}");
@@ -87,14 +105,18 @@ fn to_py(py: Python<'_>, error: &SynthesisError) -> PyErr {
     }
 }
 
-/// A report as a dict of plain values (see `SynthesisProblem.solve`).
+/// A report of a search of `problem` as a dict of plain values (see
+/// `SynthesisProblem.solve`).
 fn report_dict<'py>(
     py: Python<'py>,
+    problem: &Problem,
     report: &Report,
     settings: &Synthesis,
 ) -> PyResult<Bound<'py, PyDict>> {
     let dict = PyDict::new(py);
     dict.set_item("variables", report.variables.clone())?;
+    let class = problem.linkage().grashof_class(&report.x());
+    dict.set_item("grashof_class", class.map(GrashofClass::name))?;
     dict.set_item("objective", report.objective)?;
     dict.set_item("residuals", report.residuals.clone())?;
     dict.set_item("gradient_norm", report.gradient_norm)?;
@@ -134,12 +156,15 @@ impl SynthesisProblem {
     /// first output, its traced link). `timing` (path and motion): `"absolute"` (`drive`
     /// gives each target's drive angle, rad), `"relative"` (`drive` relative to an unknown
     /// `drive0`) or `"free"`. `bounds`: `[(variable, lower, upper), ...]`, equal bounds fix
-    /// a variable.
+    /// a variable. `weights`: one per target (each finite and ≥ 0, default 1), multiplying
+    /// its squared error in the objective. `grashof`: the Grashof class the four-bar loop
+    /// must have (`"crank-rocker"`, `"double-crank"`, `"rocker-crank"`, `"double-rocker"`,
+    /// `"triple-rocker"`; `"any"`: none).
     #[new]
     #[allow(clippy::too_many_arguments)]
     #[pyo3(signature = (linkage, task, targets, *, name = None, timing = "absolute", drive = None,
         bounds = Vec::new(), branch = None, crank_rotates = false, min_transmission = 0.0,
-        checks_between_targets = 8, angle_weight = 1.0))]
+        checks_between_targets = 8, angle_weight = 1.0, weights = None, grashof = "any"))]
     fn new(
         py: Python<'_>,
         linkage: &str,
@@ -154,8 +179,11 @@ impl SynthesisProblem {
         min_transmission: f64,
         checks_between_targets: usize,
         angle_weight: f64,
+        weights: Option<Vec<f64>>,
+        grashof: &str,
     ) -> PyResult<Self> {
         let linkage = self::linkage(py, linkage)?;
+        let grashof = self::grashof(py, grashof)?;
         let timing = match (timing, drive) {
             ("absolute", Some(d)) => Timing::Absolute(d),
             ("relative", Some(d)) => Timing::Relative(d),
@@ -229,6 +257,10 @@ impl SynthesisProblem {
         if let Some(branch) = branch {
             builder = builder.branch(&branch);
         }
+        if let Some(weights) = weights {
+            builder = builder.weights(weights);
+        }
+        builder = builder.grashof(grashof);
         let problem = builder.build().map_err(|e| to_py(py, &e))?;
         Ok(SynthesisProblem { problem })
     }
@@ -245,6 +277,18 @@ impl SynthesisProblem {
     fn bounds(&self) -> Vec<(f64, f64)> {
         let (lower, upper) = self.problem.bounds();
         lower.iter().copied().zip(upper.iter().copied()).collect()
+    }
+
+    /// Each target's weight, in order (1 where none was given).
+    #[getter]
+    fn weights(&self) -> Vec<f64> {
+        self.problem.weights().to_vec()
+    }
+
+    /// The Grashof class the four-bar loop must have (`"any"`: none required).
+    #[getter]
+    fn grashof(&self) -> &'static str {
+        self.problem.grashof().name()
     }
 
     /// The residuals at the design variables `x` (in order), or `None` where the linkage
@@ -268,6 +312,7 @@ impl SynthesisProblem {
     /// polished by Levenberg–Marquardt with the exact Jacobian (`exact=False`: central
     /// differences), each of at most `iterations`; stopped at `stop_objective`,
     /// `max_evaluations` or `time_limit` (s). A dict: `variables` `[(name, value)]`,
+    /// `grashof_class` (the answer's four-bar loop, `None` for the slider-crank),
     /// `objective`, `residuals`, `gradient_norm`, `at_bounds`, `evaluations`, `samples`,
     /// `feasible_samples`, `local_searches`, `successes`, `defects` `[(what, count)]`,
     /// `stop`, `local_stop`, `seconds`, `certificate_deviation` (m; NaN with
@@ -311,6 +356,6 @@ impl SynthesisProblem {
         let report = py
             .detach(|| settings.solve(&self.problem))
             .map_err(|e| to_py(py, &e))?;
-        report_dict(py, &report, &settings)
+        report_dict(py, &self.problem, &report, &settings)
     }
 }

@@ -4,6 +4,7 @@ dimensions recovered; a start that finds no usable mechanism is a row with its r
 study on a 2-worker cluster equals the serial one bit for bit."""
 
 import math
+import pickle
 from pathlib import Path
 
 import numpy as np
@@ -98,3 +99,80 @@ def test_a_problem_that_cannot_be_set_up_is_refused_with_what_is_wrong():
         synthesis.Problem("four_bar", "path", [[0, 0], [0, 0, 0]], drive=[0.0, 1.0], bounds={})
     with pytest.raises(mechdiff.ArgumentError, match="linkage=\"five_bar\""):
         synthesis.Problem("five_bar", "path", [[0, 0]], drive=[0.0], bounds={})
+
+
+def grashof_class_by_hand(values):
+    """The Grashof class of a four-bar's loop from its link lengths (Norton §2.12): with s the
+    shortest, l the longest and p, q the other two of ground |O4 − O2|, crank, coupler and
+    rocker, s + l < p + q is a Grashof linkage, named by its shortest link; otherwise a
+    triple rocker."""
+    links = {
+        "ground": math.hypot(values["o4x"] - values["o2x"], values["o4y"] - values["o2y"]),
+        "crank": values["crank"],
+        "coupler": values["coupler"],
+        "rocker": values["rocker"],
+    }
+    s, l = min(links.values()), max(links.values())
+    p_plus_q = sum(links.values()) - s - l
+    if s + l >= p_plus_q:
+        return "triple-rocker"
+    shortest = min(links, key=links.get)
+    return {"crank": "crank-rocker", "ground": "double-crank", "rocker": "rocker-crank",
+            "coupler": "double-rocker"}[shortest]
+
+
+def test_the_grashof_class_of_each_answer_is_the_class_of_its_link_lengths(problem, serial):
+    # The known four-bar: ground 0.4, crank 0.1, coupler √0.2 ≈ 0.447, rocker 0.3 m;
+    # 0.1 + 0.447 < 0.4 + 0.3 with the crank shortest: a crank-rocker.
+    assert grashof_class_by_hand({**PIVOTS, **KNOWN}) == "crank-rocker"
+    assert problem.grashof == "any"  # none required unless asked
+    for _, row in serial.iterrows():
+        assert row.grashof_class == grashof_class_by_hand(row), row
+    best = serial.sort_values("objective").iloc[0]
+    assert best.grashof_class == "crank-rocker"
+
+
+def variant(problem, **changes):
+    """``problem`` built again with some of its arguments changed."""
+    args = {**problem._args, **changes}
+    bounds = {n: (lo, hi) for n, lo, hi in args.pop("bounds")}
+    return synthesis.Problem(args.pop("linkage"), args.pop("task"), args.pop("targets"),
+                             bounds=bounds, **args)
+
+
+def test_a_grashof_class_asked_holds_for_the_answer_and_survives_pickling(problem):
+    asked = variant(problem, grashof="crank-rocker")
+    assert asked.grashof == "crank-rocker"
+    found = asked.solve(seed=1, **SETTINGS)
+    assert found.grashof_class == grashof_class_by_hand(found.values) == "crank-rocker"
+    assert pickle.loads(pickle.dumps(asked)).grashof == "crank-rocker"
+    # An unknown class, and one that `crank_rotates` (a crank-rocker) contradicts, are
+    # refused with what to write.
+    with pytest.raises(mechdiff.ArgumentError, match='grashof="crank_rocker" is not a Grashof '
+                       'class; expected one of "any", "crank-rocker"'):
+        variant(problem, grashof="crank_rocker")
+    with pytest.raises(mechdiff.ArgumentError, match="contradicts the class `double-crank`") as e:
+        variant(problem, crank_rotates=True, grashof="double-crank")
+    assert e.value.kind == "InvalidConstraint"
+
+
+def test_weights_given_come_back_and_scale_each_targets_residuals(problem):
+    weights = [1.0, 2.0, 0.5, 3.0, 0.0, 1.0]
+    weighted = variant(problem, weights=weights)
+    assert weighted.weights == weights
+    assert problem.weights == [1.0] * 6  # 1 each unless given
+    assert pickle.loads(pickle.dumps(weighted)).weights == weights
+    # Away from the answer (every residual of order 1e-2 m): each target's two residuals
+    # times √(its weight). One rounding of the product: 1e-15 relative is 4 ulps.
+    values = {**PIVOTS, **KNOWN, "crank": 0.11, "rocker": 0.29}
+    plain = problem.residuals(values)
+    scaled = weighted.residuals(values)
+    assert len(plain) == len(scaled) == 12 and min(abs(r) for r in plain) > 0
+    for k, (r, s) in enumerate(zip(plain, scaled)):
+        expected = math.sqrt(weights[k // 2]) * r
+        assert abs(s - expected) <= 1e-15 * abs(r), (k, s, expected)
+    # Wrong counts and negative weights are refused.
+    with pytest.raises(mechdiff.LimitError, match="5 weights: one per target: 6"):
+        variant(problem, weights=weights[:5])
+    with pytest.raises(mechdiff.ArgumentError, match="weight 2 is -0.5"):
+        variant(problem, weights=[1, 1, -0.5, 1, 1, 1])

@@ -22,6 +22,7 @@
 //! it places, or between the rod and the guide's normal for the RRP dyad): 1 at its best, 0
 //! at a limit position, negative where it cannot close.
 
+use super::grashof::GrashofClass;
 use crate::{Scalar, atan2};
 
 /// A linkage kind that synthesis sizes.
@@ -68,6 +69,28 @@ impl Linkage {
             Linkage::FourBar => &FOUR_BAR[..],
             Linkage::SliderCrank => &["o2x", "o2y", "crank", "rod", "offset", "guide", "px", "py"],
             Linkage::StephensonSix => &SIX_BAR[..],
+        }
+    }
+
+    /// The Grashof class of the four-bar loop O2–A–B–O4 of the mechanism `x` (its variables
+    /// in order; ground |O4 − O2|, crank, coupler, rocker), or `None` for the slider-crank,
+    /// which has no such loop, or an `x` too short to hold the loop.
+    ///
+    /// ```
+    /// use mechdiff_core::synthesis::{GrashofClass, Linkage};
+    /// // Ground |(1.2, 0.1)| ≈ 1.204, crank 0.4, coupler 1.1, rocker 0.9: 0.4 + 1.204 < 2.
+    /// let x = [0.0, 0.0, 1.2, 0.1, 0.4, 1.1, 0.9, 0.5, 0.35];
+    /// assert_eq!(Linkage::FourBar.grashof_class(&x), Some(GrashofClass::CrankRocker));
+    /// assert_eq!(Linkage::SliderCrank.grashof_class(&x), None);
+    /// ```
+    pub fn grashof_class(self, x: &[f64]) -> Option<GrashofClass> {
+        match (self, x) {
+            (Linkage::SliderCrank, _) => None,
+            (_, [o2x, o2y, o4x, o4y, crank, coupler, rocker, ..]) => {
+                let ground = (o4x - o2x).hypot(o4y - o2y);
+                Some(GrashofClass::of(ground, *crank, *coupler, *rocker))
+            }
+            _ => None,
         }
     }
 

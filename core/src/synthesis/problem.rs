@@ -233,11 +233,9 @@ impl Problem {
         {
             return Err(Defect::OutOfOrder);
         }
-        if self.grashof != GrashofClass::Any {
-            let ground = (x[2] - x[0]).hypot(x[3] - x[1]);
-            if GrashofClass::of(ground, x[4], x[5], x[6]) != self.grashof {
-                return Err(Defect::WrongGrashofClass);
-            }
+        if self.grashof != GrashofClass::Any && self.linkage.grashof_class(x) != Some(self.grashof)
+        {
+            return Err(Defect::WrongGrashofClass);
         }
         let least = self.constraints.min_transmission.sin().powi(2);
         let margin = |phi: f64, defect: Defect| -> Result<(), Defect> {
