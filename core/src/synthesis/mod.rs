@@ -56,6 +56,7 @@ mod problem;
 mod search;
 mod seeding;
 mod task;
+mod workers;
 
 pub use certify::Certificate;
 pub use error::{Defect, SynthesisError};
@@ -66,3 +67,4 @@ pub use lm::LocalStop;
 pub use problem::{Constraints, MAX_CHECKS, MAX_TARGETS, Problem, ProblemBuilder};
 pub use search::{Derivatives, MAX_ROUNDS, MAX_STARTS, Report, StopReason, Synthesis};
 pub use task::{Task, Timing};
+pub use workers::{InOrder, Workers};

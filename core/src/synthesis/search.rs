@@ -2,11 +2,12 @@
 //! by their objective, each polished by Levenberg–Marquardt with the exact Jacobian.
 
 use super::error::{Defect, SynthesisError};
-use super::history::History;
+use super::history::{History, Improvement};
 use super::lm::{self, LeastSquares, LocalStop};
 use super::problem::Problem;
 use super::seeding;
 use super::task::Timing;
+use super::workers::{InOrder, RunAhead, Workers};
 use nalgebra::{DMatrix, DVector};
 use std::time::{Duration, Instant};
 
@@ -237,8 +238,48 @@ impl Synthesis {
         self
     }
 
-    /// Runs the search on `problem`.
+    /// Runs the search on `problem`, on the calling thread.
     pub fn solve(&self, problem: &Problem) -> Result<Report, SynthesisError> {
+        self.solve_on(problem, &InOrder)
+    }
+
+    /// Runs the search on `problem` with its local searches on `workers`, up to
+    /// [`Workers::width`] of them at once: the report is [`Synthesis::solve`]'s, whatever
+    /// the number of threads (but for the time taken, and unless a time limit cuts the
+    /// search short; see `workers`).
+    ///
+    /// ```
+    /// use mechdiff_core::synthesis::{InOrder, Linkage, Problem, Synthesis, Task, Timing, Workers};
+    /// /// Two jobs at once, each on a thread of its own.
+    /// struct Two;
+    /// impl Workers for Two {
+    ///     fn width(&self) -> usize { 2 }
+    ///     fn run<T: Send>(&self, count: usize, job: &(dyn Fn(usize) -> T + Sync)) -> Vec<T> {
+    ///         std::thread::scope(|s| {
+    ///             let handles: Vec<_> = (0..count).map(|j| s.spawn(move || job(j))).collect();
+    ///             handles.into_iter().map(|h| h.join().unwrap()).collect()
+    ///         })
+    ///     }
+    /// }
+    /// let targets = vec![[0.5, 0.1], [0.2, 0.6], [-0.4, 0.3]];
+    /// let task = Task::Path { point: "A".into(), targets, timing: Timing::Free };
+    /// let problem = Problem::builder(Linkage::FourBar, task)
+    ///     .fix("o2x", 0.0).fix("o2y", 0.0).fix("o4x", 1.0).fix("o4y", 0.0)
+    ///     .bound("crank", 0.1, 0.9).fix("coupler", 1.0).fix("rocker", 1.0)
+    ///     .fix("px", 0.0).fix("py", 0.0)
+    ///     .build()
+    ///     .unwrap();
+    /// let settings = Synthesis::seeded(3).with_starts(40, 6);
+    /// let mut alone = settings.solve_on(&problem, &InOrder).unwrap();
+    /// let two = settings.solve_on(&problem, &Two).unwrap();
+    /// alone.elapsed = two.elapsed;
+    /// assert_eq!(alone, two);
+    /// ```
+    pub fn solve_on<W: Workers>(
+        &self,
+        problem: &Problem,
+        workers: &W,
+    ) -> Result<Report, SynthesisError> {
         self.validate()?;
         let started = Instant::now();
         let deadline = self.time_limit.map(|t| started + t);
@@ -313,36 +354,55 @@ impl Synthesis {
                     stop: LocalStop::Budget,
                 });
             }
-            for (_, x0) in ranked.into_iter().take(self.local_searches) {
-                if f.exhausted() {
-                    stop = if deadline.is_some_and(|d| Instant::now() >= d) {
-                        StopReason::Time
-                    } else {
-                        StopReason::Evaluations
+            let starts: Vec<Vec<f64>> = (ranked.into_iter().take(self.local_searches))
+                .map(|(_, x0)| x0)
+                .collect();
+            // Batches of local searches run ahead at once, then taken in order (`workers`).
+            for batch in starts.chunks(workers.width().max(1)) {
+                let mut ahead = if batch.len() > 1 {
+                    let from = f.evaluations;
+                    let run = |j: usize| {
+                        RunAhead::run(problem, &free, self, deadline, from, batch[j].clone())
                     };
-                    break 'rounds;
+                    workers.run(batch.len(), &run)
+                } else {
+                    Vec::new()
                 }
-                let local = lm::minimize(
-                    &mut f,
-                    x0,
-                    &free,
-                    lower,
-                    upper,
-                    self.stop_objective,
-                    self.iterations,
-                    deadline,
-                );
-                searches += 1;
-                successes += usize::from(local.objective <= self.stop_objective);
-                if best.as_ref().is_none_or(|b| local.objective < b.objective) {
-                    best = Some(local);
-                }
-                if best
-                    .as_ref()
-                    .is_some_and(|b| b.objective <= self.stop_objective)
-                {
-                    stop = StopReason::Objective;
-                    break 'rounds;
+                .into_iter();
+                for x0 in batch {
+                    if f.exhausted() {
+                        stop = if deadline.is_some_and(|d| Instant::now() >= d) {
+                            StopReason::Time
+                        } else {
+                            StopReason::Evaluations
+                        };
+                        break 'rounds;
+                    }
+                    let local = match ahead.next() {
+                        Some(run) if run.holds_at(&f) => run.take_into(&mut f),
+                        _ => lm::minimize(
+                            &mut f,
+                            x0.clone(),
+                            &free,
+                            lower,
+                            upper,
+                            self.stop_objective,
+                            self.iterations,
+                            deadline,
+                        ),
+                    };
+                    searches += 1;
+                    successes += usize::from(local.objective <= self.stop_objective);
+                    if best.as_ref().is_none_or(|b| local.objective < b.objective) {
+                        best = Some(local);
+                    }
+                    if best
+                        .as_ref()
+                        .is_some_and(|b| b.objective <= self.stop_objective)
+                    {
+                        stop = StopReason::Objective;
+                        break 'rounds;
+                    }
                 }
             }
             if f.exhausted() {
@@ -497,6 +557,9 @@ pub(super) struct Evaluator<'p> {
     pub(super) deadline: Option<Instant>,
     pub(super) rejected: Vec<usize>,
     pub(super) history: History,
+    /// A local search run ahead of its turn (`workers`) records its own improvements here,
+    /// at its own counts, instead of in `history`.
+    pub(super) ahead: Option<Vec<Improvement>>,
 }
 
 impl<'p> Evaluator<'p> {
@@ -517,6 +580,7 @@ impl<'p> Evaluator<'p> {
             deadline,
             rejected: vec![0; Defect::ALL.len()],
             history: History::default(),
+            ahead: None,
         }
     }
 
@@ -528,8 +592,20 @@ impl<'p> Evaluator<'p> {
             .and_then(|()| self.problem.residuals(x))
         {
             Ok(r) if r.iter().all(|v| v.is_finite()) => {
-                let objective = r.iter().map(|v| v * v).sum();
-                self.history.record(self.evaluations, objective);
+                let objective: f64 = r.iter().map(|v| v * v).sum();
+                match &mut self.ahead {
+                    None => self.history.record(self.evaluations, objective),
+                    Some(own) => {
+                        if objective.is_finite()
+                            && own.last().is_none_or(|best| objective < best.objective)
+                        {
+                            own.push(Improvement {
+                                evaluations: self.evaluations,
+                                objective,
+                            });
+                        }
+                    }
+                }
                 Some(r)
             }
             Ok(_) => None,
