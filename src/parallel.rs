@@ -1,15 +1,16 @@
 //! Work shared among threads: rayon with the `parallel` feature; without it, the same calls
 //! run in order on the calling thread.
 //!
-//! The callers ([`crate::stream`], the Monte-Carlo samples of [`crate::sensitivity`]) give
-//! the same results in either case by construction: every parallel piece of work writes to
+//! The callers ([`crate::stream`], the Monte-Carlo samples of [`crate::sensitivity`], the
+//! local searches of [`crate::scene::synthesize`]) give the same results in either case by
+//! construction: every parallel piece of work writes to
 //! its own place and is joined in order. Only the names used by the crate are provided.
 
 #[cfg(feature = "parallel")]
-pub(crate) use rayon::{ThreadPoolBuilder, join, prelude};
+pub(crate) use rayon::{ThreadPool, ThreadPoolBuilder, join, prelude};
 
 #[cfg(not(feature = "parallel"))]
-pub(crate) use sequential::{ThreadPoolBuilder, join, prelude};
+pub(crate) use sequential::{ThreadPool, ThreadPoolBuilder, join, prelude};
 
 /// rayon's API as used by the crate, run in order on the calling thread.
 #[cfg(any(test, not(feature = "parallel")))]

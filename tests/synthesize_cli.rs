@@ -187,6 +187,56 @@ fn unreachable_targets_give_the_best_found_and_why_with_residuals_summing_to_the
     );
 }
 
+#[test]
+fn the_local_searches_on_two_threads_give_the_answer_of_one_thread_digit_for_digit() {
+    // Targets out of reach: every local search runs, so two threads run them two at a time.
+    // No time limit that the search could reach (the clock would decide where it stops).
+    let path = temp_file("unreachable_threads.toml");
+    std::fs::write(&path, unreachable()).unwrap();
+    let scene = path.to_str().unwrap();
+    let run = |threads: &str| {
+        let out = mechdiff(&[
+            "synthesize",
+            scene,
+            "--starts",
+            "40",
+            "--time-limit",
+            "86400",
+            "--threads",
+            threads,
+        ]);
+        assert!(out.status.success(), "{threads}: {}", stderr(&out));
+        stdout(&out)
+    };
+    let (one, two) = (run("1"), run("2"));
+    let over = mechdiff(&["synthesize", scene, "--threads", "1025"]);
+    std::fs::remove_file(&path).ok();
+    // Everything but the time the search took (`search: …, 0.123 s; stopped by …`).
+    let untimed = |printed: &str| -> Vec<String> {
+        (printed.lines())
+            .map(|l| match l.find(" s; stopped by") {
+                Some(end) if l.starts_with("search: ") => {
+                    let start = l[..end].rfind(", ").unwrap();
+                    format!("{}{}", &l[..start], &l[end..])
+                }
+                _ => l.to_owned(),
+            })
+            .collect()
+    };
+    assert_eq!(untimed(&one), untimed(&two));
+    let searches: usize = (one.lines())
+        .find_map(|l| l.strip_prefix("search: "))
+        .and_then(|l| l.split(", ").nth(2))
+        .and_then(|l| l.split_whitespace().next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no count of local searches: {one}"));
+    assert!(searches > 1, "{one}");
+    assert!(one.contains("not better because:"), "{one}");
+    // More threads than the limit are refused before any work.
+    assert!(!over.status.success() && stdout(&over).is_empty());
+    assert!(stderr(&over).contains("--threads"), "{}", stderr(&over));
+}
+
 /// The message of the error reading `text` as `file` gives (a panic if it is read).
 pub(crate) fn read_error(file: &str, text: &str) -> String {
     match synthesize::read(file, text) {

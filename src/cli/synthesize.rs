@@ -53,6 +53,11 @@ pub struct SynthesizeArgs {
     /// Central-difference Jacobian instead of the exact one (`--method differences`).
     #[arg(long)]
     pub differences: bool,
+    /// Worker threads running the local searches (0: `RAYON_NUM_THREADS`, else one per
+    /// core). The answer is the same, digit for digit, for any number; at most 1024.
+    #[arg(long, value_name = "N", default_value_t = 0,
+          value_parser = clap::value_parser!(u64).range(0..=mechdiff::stream::MAX_THREADS as u64))]
+    pub threads: u64,
     /// Run the search by each method (exact Jacobian, central differences, differential
     /// evolution) with the same seed, starts and limits, and print them side by side
     /// (objective, evaluations, local searches, time); the answer shown is the method's
@@ -112,7 +117,8 @@ pub fn synthesize(args: &SynthesizeArgs) -> Result<(), Error> {
             ),
         });
     }
-    let report = setup.solve_by(&settings, method)?;
+    let threads = args.threads as usize;
+    let report = setup.solve_threaded(&settings, method, threads)?;
     let mut printed = synthesize::summary(&setup, &settings, &report, method);
     if args.compare {
         let mut rows = Vec::new();
@@ -120,7 +126,7 @@ pub fn synthesize(args: &SynthesizeArgs) -> Result<(), Error> {
             if other == method {
                 rows.push((other, report.clone()));
             } else {
-                rows.push((other, setup.solve_by(&settings, other)?));
+                rows.push((other, setup.solve_threaded(&settings, other, threads)?));
             }
         }
         printed.push_str(&compare(&rows, settings.stop_objective));

@@ -21,7 +21,7 @@ mod summary;
 
 use std::ops::Range;
 
-use mechdiff_core::synthesis::{Derivatives, Problem, Report, Synthesis, SynthesisError};
+use mechdiff_core::synthesis::{Derivatives, Problem, Report, Synthesis, SynthesisError, Workers};
 
 use crate::error::{Error, Result};
 use crate::scene::Source;
@@ -132,6 +132,40 @@ impl Setup {
     /// # Errors
     /// As [`Setup::solve`].
     pub fn solve_by(&self, settings: &Synthesis, method: Method) -> Result<Report> {
+        self.solve_threaded(settings, method, 1)
+    }
+
+    /// [`Setup::solve_by`] with the local searches of Levenberg–Marquardt run on `threads`
+    /// worker threads (0: `RAYON_NUM_THREADS`, else one per core; one without the
+    /// `parallel` feature): the same report for any number, but for the time taken
+    /// ([`Synthesis::solve_on`]). Differential evolution runs on the calling thread.
+    ///
+    /// # Errors
+    /// As [`Setup::solve`]; [`Error::OverLimit`] for more than
+    /// [`MAX_THREADS`](crate::stream::MAX_THREADS) threads, [`Error::Threads`] when the
+    /// threads cannot be started.
+    pub fn solve_threaded(
+        &self,
+        settings: &Synthesis,
+        method: Method,
+        threads: usize,
+    ) -> Result<Report> {
+        if threads > crate::stream::MAX_THREADS {
+            return Err(Error::OverLimit {
+                option: "--threads",
+                value: threads as u64,
+                limit: crate::stream::MAX_THREADS as u64,
+                what: "worker threads",
+                advice: "give at most one or two per core, or 0 for one per core",
+            });
+        }
+        let pool = crate::parallel::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .map_err(|e| Error::Threads {
+                threads,
+                reason: e.to_string(),
+            })?;
         let settings = Synthesis {
             derivatives: match method {
                 Method::Differences => Derivatives::CentralDifferences,
@@ -141,7 +175,7 @@ impl Setup {
         };
         let result = match method {
             Method::Evolution => settings.evolve(&self.problem),
-            _ => settings.solve(&self.problem),
+            _ => settings.solve_on(&self.problem, &Pool(pool)),
         };
         result.map_err(|source| self.located(source))
     }
@@ -202,5 +236,21 @@ impl Setup {
             text.replace_range(span, &value);
         }
         text
+    }
+}
+
+/// A search's local searches on a pool of worker threads ([`Workers`]).
+struct Pool(crate::parallel::ThreadPool);
+
+impl Workers for Pool {
+    fn width(&self) -> usize {
+        self.0.current_num_threads()
+    }
+
+    fn run<T: Send>(&self, count: usize, job: &(dyn Fn(usize) -> T + Sync)) -> Vec<T> {
+        use crate::parallel::prelude::*;
+        let jobs: Vec<usize> = (0..count).collect();
+        self.0
+            .install(|| jobs.par_iter().map(|&j| job(j)).collect())
     }
 }
