@@ -53,8 +53,9 @@ pub struct SynthesizeArgs {
     /// Central-difference Jacobian instead of the exact one (`--method differences`).
     #[arg(long)]
     pub differences: bool,
-    /// Worker threads running the local searches (0: `RAYON_NUM_THREADS`, else one per
-    /// core). The answer is the same, digit for digit, for any number; at most 1024.
+    /// Worker threads evaluating the samples and polishing the local searches (0:
+    /// `RAYON_NUM_THREADS`, else one per core). The answer is the same, digit for digit, for
+    /// any number; at most 1024. Differential evolution runs on one thread.
     #[arg(long, value_name = "N", default_value_t = 0,
           value_parser = clap::value_parser!(u64).range(0..=mechdiff::stream::MAX_THREADS as u64))]
     pub threads: u64,

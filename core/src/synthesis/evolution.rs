@@ -9,9 +9,10 @@
 //! comparison. It stops at the objective, the time or the evaluation limit.
 
 use super::error::{Defect, SynthesisError};
+use super::evaluator::Evaluator;
 use super::lm::{LeastSquares, Local, LocalStop};
 use super::problem::Problem;
-use super::search::{Evaluator, Report, StopReason, Synthesis, at_bounds};
+use super::search::{Report, StopReason, Synthesis, at_bounds};
 use super::seeding;
 use std::time::Instant;
 
@@ -32,7 +33,13 @@ impl Synthesis {
         let deadline = self.time_limit.map(|t| started + t);
         let (lower, upper) = problem.bounds();
         let free: Vec<usize> = (0..lower.len()).filter(|&i| lower[i] < upper[i]).collect();
-        let mut f = Evaluator::new(problem, &free, self, deadline);
+        let mut f = Evaluator::new(
+            problem,
+            &free,
+            self.derivatives,
+            self.max_evaluations,
+            deadline,
+        );
         let size = self.starts.min(PER_VARIABLE * free.len().max(1)).max(4);
         let mut population: Vec<(f64, Vec<f64>)> = Vec::with_capacity(size);
         for mut x in self

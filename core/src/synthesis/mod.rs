@@ -46,6 +46,7 @@
 
 mod certify;
 mod error;
+mod evaluator;
 mod evolution;
 mod grashof;
 mod history;
@@ -60,11 +61,12 @@ mod workers;
 
 pub use certify::Certificate;
 pub use error::{Defect, SynthesisError};
+pub use evaluator::Derivatives;
 pub use grashof::GrashofClass;
 pub use history::{History, Improvement, MAX_HISTORY};
 pub use linkage::{Linkage, LinkagePose, NoAssembly};
 pub use lm::LocalStop;
 pub use problem::{Constraints, MAX_CHECKS, MAX_TARGETS, Problem, ProblemBuilder};
-pub use search::{Derivatives, MAX_ROUNDS, MAX_STARTS, Report, StopReason, Synthesis};
+pub use search::{MAX_ROUNDS, MAX_STARTS, Report, StopReason, Synthesis};
 pub use task::{Task, Timing};
 pub use workers::{InOrder, Workers};

@@ -2,31 +2,19 @@
 //! by their objective, each polished by Levenberg–Marquardt with the exact Jacobian.
 
 use super::error::{Defect, SynthesisError};
-use super::history::{History, Improvement};
+use super::evaluator::{Derivatives, Evaluator};
+use super::history::History;
 use super::lm::{self, LeastSquares, LocalStop};
 use super::problem::Problem;
 use super::seeding;
 use super::task::Timing;
-use super::workers::{InOrder, RunAhead, Workers};
-use nalgebra::{DMatrix, DVector};
+use super::workers::{InOrder, RunAhead, SAMPLES_AHEAD, Sample, Workers};
 use std::time::{Duration, Instant};
 
 /// The most starts a search may sample.
 pub const MAX_STARTS: usize = 100_000;
 /// The most sampling rounds of a search.
 pub const MAX_ROUNDS: usize = 1_000_000;
-
-/// How the local phase gets its Jacobian.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[non_exhaustive]
-pub enum Derivatives {
-    /// Exact: one evaluation of the residuals in `Dual64` numbers per free variable.
-    Exact,
-    /// Central differences, step h = ε^(1/3)·max(|x|, 1) (one-sided where a side is
-    /// infeasible): two evaluations per free variable; the baseline exact derivatives are
-    /// compared with.
-    CentralDifferences,
-}
 
 /// Search settings, with builder methods; [`Synthesis::solve`] runs it.
 #[derive(Debug, Clone, PartialEq)]
@@ -243,10 +231,10 @@ impl Synthesis {
         self.solve_on(problem, &InOrder)
     }
 
-    /// Runs the search on `problem` with its local searches on `workers`, up to
-    /// [`Workers::width`] of them at once: the report is [`Synthesis::solve`]'s, whatever
-    /// the number of threads (but for the time taken, and unless a time limit cuts the
-    /// search short; see `workers`).
+    /// Runs the search on `problem` with its samples and local searches on `workers`,
+    /// [`Workers::width`] at once: the report is [`Synthesis::solve`]'s, whatever the number
+    /// of threads (but for the time taken, and unless a time limit cuts the search short;
+    /// see `workers`).
     ///
     /// ```
     /// use mechdiff_core::synthesis::{InOrder, Linkage, Problem, Synthesis, Task, Timing, Workers};
@@ -297,7 +285,13 @@ impl Synthesis {
                 .map(|(d, n)| (*d, *n))
                 .collect::<Vec<_>>()
         };
-        let mut f = Evaluator::new(problem, &free, self, deadline);
+        let mut f = Evaluator::new(
+            problem,
+            &free,
+            self.derivatives,
+            self.max_evaluations,
+            deadline,
+        );
         let (mut samples, mut feasible_samples) = (0, 0);
         let fit_cost = seeding::fit_cost(problem);
         // The best sample stands as the answer if the budget allows no local search.
@@ -307,27 +301,46 @@ impl Synthesis {
         let mut stop = StopReason::Starts;
         'rounds: for round in 0..self.rounds {
             let mut ranked = Vec::new();
-            for mut x in self.latin_hypercube(problem, &free, round) {
-                // The evaluation limit ends the sampling once a usable sample is in hand.
-                if (round > 0 || !ranked.is_empty()) && f.exhausted() {
-                    break;
+            let points = self.latin_hypercube(problem, &free, round);
+            let width = workers.width().max(1);
+            let batch = if width > 1 {
+                SAMPLES_AHEAD * width
+            } else {
+                points.len()
+            };
+            // Batches of samples evaluated ahead at once, then taken in order (`workers`).
+            'samples: for batch in points.chunks(batch.max(1)) {
+                let mut ahead = if width > 1 {
+                    let take = |j: usize| Sample::take(problem, batch[j].clone(), self.fit_timing);
+                    workers.run(batch.len(), &take)
+                } else {
+                    Vec::new()
                 }
-                // Fitted only while the evaluation limit allows a whole fit.
-                if self.fit_timing && f.evaluations + fit_cost < f.max_evaluations {
-                    f.evaluations += seeding::fit_timing(problem, &mut x);
-                }
-                f.evaluations += 1;
-                samples += 1;
-                match problem.objective(&x) {
-                    Ok(value) if value.is_finite() => {
-                        f.history.record(f.evaluations, value);
-                        ranked.push((value, x));
+                .into_iter();
+                for x in batch {
+                    // The evaluation limit ends the sampling once a usable sample is in hand.
+                    if (round > 0 || !ranked.is_empty()) && f.exhausted() {
+                        break 'samples;
                     }
-                    Ok(_) => count(Defect::NoAssemblyAtTarget, &mut defects),
-                    Err(d) => count(d, &mut defects),
-                }
-                if deadline.is_some_and(|d| Instant::now() >= d) {
-                    break;
+                    // Fitted only while the evaluation limit allows a whole fit.
+                    let fit = self.fit_timing && f.evaluations + fit_cost < f.max_evaluations;
+                    let sample = match ahead.next() {
+                        Some(sample) if sample.fitted == fit => sample,
+                        _ => Sample::take(problem, x.clone(), fit),
+                    };
+                    f.evaluations += sample.fit_evaluations + 1;
+                    samples += 1;
+                    match sample.objective {
+                        Ok(value) if value.is_finite() => {
+                            f.history.record(f.evaluations, value);
+                            ranked.push((value, sample.x));
+                        }
+                        Ok(_) => count(Defect::NoAssemblyAtTarget, &mut defects),
+                        Err(d) => count(d, &mut defects),
+                    }
+                    if deadline.is_some_and(|d| Instant::now() >= d) {
+                        break 'samples;
+                    }
                 }
             }
             if round == 0 && ranked.is_empty() {
@@ -544,143 +557,4 @@ pub(super) fn at_bounds(problem: &Problem, free: &[usize], x: &[f64]) -> Vec<(St
             (touch(lower[i]) || touch(upper[i])).then(|| (names[i].clone(), touch(upper[i])))
         })
         .collect()
-}
-
-/// The problem's residuals and Jacobians for the local phase, counting evaluations and
-/// rejected trial points.
-pub(super) struct Evaluator<'p> {
-    pub(super) problem: &'p Problem,
-    pub(super) free: &'p [usize],
-    pub(super) derivatives: Derivatives,
-    pub(super) evaluations: usize,
-    pub(super) max_evaluations: usize,
-    pub(super) deadline: Option<Instant>,
-    pub(super) rejected: Vec<usize>,
-    pub(super) history: History,
-    /// A local search run ahead of its turn (`workers`) records its own improvements here,
-    /// at its own counts, instead of in `history`.
-    pub(super) ahead: Option<Vec<Improvement>>,
-}
-
-impl<'p> Evaluator<'p> {
-    /// An evaluator of `problem` over its `free` variables within the search's limits: no
-    /// evaluation yet, no candidate rejected.
-    pub(super) fn new(
-        problem: &'p Problem,
-        free: &'p [usize],
-        search: &Synthesis,
-        deadline: Option<Instant>,
-    ) -> Self {
-        Evaluator {
-            problem,
-            free,
-            derivatives: search.derivatives,
-            evaluations: 0,
-            max_evaluations: search.max_evaluations,
-            deadline,
-            rejected: vec![0; Defect::ALL.len()],
-            history: History::default(),
-            ahead: None,
-        }
-    }
-
-    pub(super) fn feasible(&mut self, x: &[f64]) -> Option<Vec<f64>> {
-        self.evaluations += 1;
-        match self
-            .problem
-            .check(x)
-            .and_then(|()| self.problem.residuals(x))
-        {
-            Ok(r) if r.iter().all(|v| v.is_finite()) => {
-                let objective: f64 = r.iter().map(|v| v * v).sum();
-                match &mut self.ahead {
-                    None => self.history.record(self.evaluations, objective),
-                    Some(own) => {
-                        if objective.is_finite()
-                            && own.last().is_none_or(|best| objective < best.objective)
-                        {
-                            own.push(Improvement {
-                                evaluations: self.evaluations,
-                                objective,
-                            });
-                        }
-                    }
-                }
-                Some(r)
-            }
-            Ok(_) => None,
-            Err(d) => {
-                self.rejected[Defect::ALL.iter().position(|&k| k == d).unwrap_or(0)] += 1;
-                None
-            }
-        }
-    }
-}
-
-impl LeastSquares for Evaluator<'_> {
-    fn residuals(&mut self, x: &[f64]) -> Option<Vec<f64>> {
-        self.feasible(x)
-    }
-
-    fn jacobian(&mut self, x: &[f64]) -> Option<DMatrix<f64>> {
-        let rows = self.problem.task.residual_count();
-        let mut jac = DMatrix::zeros(rows, self.free.len());
-        match self.derivatives {
-            Derivatives::Exact => {
-                self.evaluations += self.free.len();
-                jac = self.problem.jacobian(x, self.free).ok()?;
-            }
-            Derivatives::CentralDifferences => {
-                let (lower, upper) = self.problem.bounds();
-                for (k, &i) in self.free.iter().enumerate() {
-                    let h = f64::EPSILON.cbrt() * x[i].abs().max(1.0);
-                    let side = |s: f64, me: &mut Self| {
-                        let mut xs = x.to_vec();
-                        xs[i] = (x[i] + s * h).clamp(lower[i], upper[i]);
-                        let step = xs[i] - x[i];
-                        me.evaluations += 1;
-                        let r = me.problem.residuals(&xs).ok()?;
-                        (step != 0.0).then_some((r, step))
-                    };
-                    let plus = side(1.0, self);
-                    let minus = side(-1.0, self);
-                    let r0 = || self.problem.residuals(x).ok();
-                    let column: Vec<f64> = match (plus, minus) {
-                        (Some((rp, hp)), Some((rm, hm))) => rp
-                            .iter()
-                            .zip(&rm)
-                            .map(|(p, m)| (p - m) / (hp - hm))
-                            .collect(),
-                        (Some((rp, hp)), None) => {
-                            rp.iter().zip(r0()?).map(|(p, c)| (p - c) / hp).collect()
-                        }
-                        (None, Some((rm, hm))) => {
-                            rm.iter().zip(r0()?).map(|(m, c)| (m - c) / hm).collect()
-                        }
-                        (None, None) => return None,
-                    };
-                    for (row, v) in column.iter().enumerate() {
-                        jac[(row, k)] = *v;
-                    }
-                }
-            }
-        }
-        Some(jac)
-    }
-
-    fn inequalities(&self, x: &[f64]) -> Vec<(f64, DVector<f64>)> {
-        self.problem
-            .inequalities(x)
-            .into_iter()
-            .map(|c| {
-                let gradient = self.free.iter().map(|&i| c.gradient[i]);
-                (c.value, DVector::from_iterator(self.free.len(), gradient))
-            })
-            .collect()
-    }
-
-    fn exhausted(&self) -> bool {
-        self.evaluations >= self.max_evaluations
-            || self.deadline.is_some_and(|d| Instant::now() >= d)
-    }
 }

@@ -135,8 +135,8 @@ impl Setup {
         self.solve_threaded(settings, method, 1)
     }
 
-    /// [`Setup::solve_by`] with the local searches of Levenberg–Marquardt run on `threads`
-    /// worker threads (0: `RAYON_NUM_THREADS`, else one per core; one without the
+    /// [`Setup::solve_by`] with the samples and the local searches of Levenberg–Marquardt
+    /// run on `threads` worker threads (0: `RAYON_NUM_THREADS`, else one per core; one without the
     /// `parallel` feature): the same report for any number, but for the time taken
     /// ([`Synthesis::solve_on`]). Differential evolution runs on the calling thread.
     ///
