@@ -311,7 +311,9 @@ impl Synthesis {
             // Batches of samples evaluated ahead at once, then taken in order (`workers`).
             'samples: for batch in points.chunks(batch.max(1)) {
                 let mut ahead = if width > 1 {
-                    let take = |j: usize| Sample::take(problem, batch[j].clone(), self.fit_timing);
+                    // Fitted if the budget allows a fit now (it allows none later if not).
+                    let fit = self.fit_timing && f.evaluations + fit_cost < f.max_evaluations;
+                    let take = |j: usize| Sample::take(problem, batch[j].clone(), fit);
                     workers.run(batch.len(), &take)
                 } else {
                     Vec::new()

@@ -1,4 +1,5 @@
-//! Local searches run ahead on several threads, with the answer of a search run in order.
+//! Samples and local searches run ahead on several threads, with the answer of the search
+//! run in order.
 //!
 //! A round's samples of the bounds are ranked, then its local searches are polished one
 //! after another. The samples are independent (each one's fit and objective are a function
@@ -32,10 +33,11 @@ use super::problem::Problem;
 use super::search::Synthesis;
 use super::seeding;
 
-/// The threads a search may run its local searches on: how many run at once, and how a
-/// batch of independent jobs is run (a thread pool, or [`InOrder`]).
+/// The threads a search may evaluate its samples and run its local searches on: how many
+/// jobs run at once, and how a batch of independent jobs is run (a thread pool, or
+/// [`InOrder`]).
 pub trait Workers {
-    /// How many jobs are worth running at once (1: no search is run ahead).
+    /// How many jobs are worth running at once (1: nothing is run ahead).
     fn width(&self) -> usize;
 
     /// Runs `job(0)`, …, `job(count − 1)`, in any order or at once, and returns their
@@ -103,7 +105,8 @@ pub(super) struct RunAhead {
     to: usize,
     /// Candidates it rejected, by defect (as [`Evaluator::rejected`]).
     rejected: Vec<usize>,
-    /// Its own improvements of the objective, at the counts of the run ahead.
+    /// Its own improvements of the objective, at the counts of the run ahead (at most one
+    /// per evaluation of one local search).
     improvements: Vec<Improvement>,
 }
 
