@@ -3,7 +3,7 @@
 //! scientific columns.
 
 use super::scientific::scientific;
-use super::shortest::display;
+use super::shortest::{display, display_then};
 use crate::scene::outputs::Column;
 
 pub use super::scientific::{DIGITS, SCIENTIFIC_WIDTH, push_scientific, push_scientific_signed};
@@ -97,17 +97,18 @@ impl RowFormat {
     }
 
     /// A row's CSV line alone (the usual case): per value Żmij's text, laid out by
-    /// [`display`].
+    /// [`display_then`] with the comma that follows it.
     fn csv_line(&self, row: &[f64], out: &mut Vec<u8>) {
         let mut buffer = zmij::Buffer::new();
-        for (k, (v, factor)) in row.iter().zip(&self.factors).enumerate() {
+        for (v, factor) in row.iter().zip(&self.factors) {
             let value = v / factor + 0.0;
-            if k > 0 {
-                out.push(b',');
-            }
-            display(value, buffer.format_finite(value).as_bytes(), out);
+            display_then(value, buffer.format_finite(value).as_bytes(), b',', out);
         }
-        out.push(b'\n');
+        // The last cell's comma ends the line (a row of no columns is an empty line).
+        match out.last_mut() {
+            Some(last) if !row.is_empty() => *last = b'\n',
+            _ => out.push(b'\n'),
+        }
     }
 
     /// A row's JSON Lines record, and its CSV line if `csv`, from one Żmij text per value.
