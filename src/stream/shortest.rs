@@ -190,7 +190,7 @@ const WITHOUT_EXPONENT: std::ops::Range<f64> = 1e-5..1e16;
 /// possible (the usual case, decided from the value in a few instructions); the others are
 /// laid out from their digits.
 #[inline(always)]
-pub(super) fn display(value: f64, text: &[u8], out: &mut Vec<u8>) {
+fn display(value: f64, text: &[u8], out: &mut Vec<u8>) {
     if as_written(value) {
         out.extend_from_slice(text.strip_suffix(b".0").unwrap_or(text));
     } else {
