@@ -14,8 +14,9 @@
 #  1. `mechdiff run --csv` of the slider-crank (scenes/slider_crank.toml swept finely), the
 #     table to /dev/null (where the run formats no table) and to a file: end to end,
 #     `RowFormat::row` (the numbers turned into text), of it Żmij's shortest digits
-#     (`write_to_zmij_buffer`), `write_texts` (the text written) and `Sweep::walk` (the rows
-#     solved). With GENERATED=<instructions per position of the scene's generated code>
+#     (`write_to_zmij_buffer`), `Output::batch` (the text made and written: `RowFormat::row`
+#     and the writing, where `write_texts` is inlined), `write_texts` (the text written) and
+#     `Sweep::walk` (the rows solved). With GENERATED=<instructions per position of the scene's generated code>
 #     (scripts/callgrind_rows.sh, `code:`), end to end is also given as a multiple of it.
 #  2. The Whitworth forces (scenes/whitworth_forces.toml swept finely, dynamics columns), its
 #     table written to a file against the same run with the table discarded (stdout
@@ -131,7 +132,8 @@ for target in null file; do
     else
         echo "  end to end        $end instructions/position"
     fi
-    for what in "RowFormat::row" "write_to_zmij_buffer" "write_texts" "Sweep.*::walk"; do
+    for what in "RowFormat::row" "write_to_zmij_buffer" "Output::batch" "write_texts" \
+        "Sweep.*::walk"; do
         printf '  %-20s %s\n' "$what" \
             "$(per "$(inclusive "$big" "$what")" "$(inclusive "$small" "$what")")"
     done

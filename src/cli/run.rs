@@ -186,6 +186,9 @@ fn stream(scene: &scene::Scene, args: &RunArgs, run: &RunOptions) -> Result<(), 
         .map(files::AtomicFile::create)
         .transpose()?;
     let mut stdout = BufWriter::with_capacity(1 << 16, escape::Terminal::new(std::io::stdout()));
+    // A table that goes nowhere is not formatted, nor the metrics after it (their sweep of
+    // the transmission angle costs ~200 instructions per slider-crank position).
+    let discard_table = stdout_is_null();
     fn sink(file: &mut files::AtomicFile) -> stream::Sink<'_> {
         let path = file.path().to_owned();
         stream::Sink {
@@ -206,13 +209,16 @@ fn stream(scene: &scene::Scene, args: &RunArgs, run: &RunOptions) -> Result<(), 
         progress: std::io::stderr().is_terminal()
             && scene.positions.len() > stream::TABLE_FROM_VALUES,
         evaluator: run.evaluator,
-        discard_table: stdout_is_null(),
+        discard_table,
         ..stream::Options::default()
     };
     let streamed = stream::run(scene, &mut sinks, &options)?;
     drop(sinks);
     let metrics = metrics_of(scene);
-    let written = write_metrics(scene, metrics.as_ref(), &mut stdout);
+    let written = match discard_table {
+        true => Ok(()),
+        false => write_metrics(scene, metrics.as_ref(), &mut stdout),
+    };
     for warning in &streamed.warnings {
         eprintln!(
             "{}",

@@ -3,7 +3,7 @@
 //! scientific columns.
 
 use super::scientific::scientific;
-use super::shortest::display;
+use super::shortest::display_then;
 use crate::scene::outputs::Column;
 
 pub use super::scientific::{DIGITS, SCIENTIFIC_WIDTH, push_scientific, push_scientific_signed};
@@ -97,30 +97,24 @@ impl RowFormat {
     }
 
     /// A row's CSV line alone (the usual case): per value Żmij's text, laid out by
-    /// [`display`].
+    /// [`display_then`] with the comma that follows it.
     fn csv_line(&self, row: &[f64], out: &mut Vec<u8>) {
         let mut buffer = zmij::Buffer::new();
-        for (k, (v, factor)) in row.iter().zip(&self.factors).enumerate() {
+        for (v, factor) in row.iter().zip(&self.factors) {
             let value = v / factor + 0.0;
-            if k > 0 {
-                out.push(b',');
-            }
-            display(value, buffer.format_finite(value).as_bytes(), out);
+            display_then(value, buffer.format_finite(value).as_bytes(), b',', out);
         }
-        out.push(b'\n');
+        end_csv_line(row.is_empty(), out);
     }
 
     /// A row's JSON Lines record, and its CSV line if `csv`, from one Żmij text per value.
     fn shortest_lines(&self, row: &[f64], csv: bool, jsonl: bool, texts: &mut Texts) {
         let mut buffer = zmij::Buffer::new();
-        for (k, ((v, factor), key)) in row.iter().zip(&self.factors).zip(&self.keys).enumerate() {
+        for ((v, factor), key) in row.iter().zip(&self.factors).zip(&self.keys) {
             let value = v / factor + 0.0;
             let text = buffer.format_finite(value).as_bytes();
             if csv {
-                if k > 0 {
-                    texts.csv.push(b',');
-                }
-                display(value, text, &mut texts.csv);
+                display_then(value, text, b',', &mut texts.csv);
             }
             if jsonl {
                 texts.jsonl.extend_from_slice(key.as_bytes());
@@ -128,7 +122,7 @@ impl RowFormat {
             }
         }
         if csv {
-            texts.csv.push(b'\n');
+            end_csv_line(row.is_empty(), &mut texts.csv);
         }
         if jsonl {
             texts.jsonl.extend_from_slice(b"}\n");
@@ -160,6 +154,15 @@ impl RowFormat {
         };
         line(out, &|c| c.name.clone());
         line(out, &|c| format!("[{}]", c.unit));
+    }
+}
+
+/// Ends a CSV line whose every cell was written with its comma: the last comma becomes
+/// the line's end (a row of no columns, `empty`, is an empty line).
+fn end_csv_line(empty: bool, out: &mut Vec<u8>) {
+    match out.last_mut() {
+        Some(last) if !empty => *last = b'\n',
+        _ => out.push(b'\n'),
     }
 }
 

@@ -190,13 +190,80 @@ const WITHOUT_EXPONENT: std::ops::Range<f64> = 1e-5..1e16;
 /// possible (the usual case, decided from the value in a few instructions); the others are
 /// laid out from their digits.
 #[inline(always)]
-pub(super) fn display(value: f64, text: &[u8], out: &mut Vec<u8>) {
-    let magnitude = value.abs();
-    if (WITHOUT_EXPONENT.contains(&magnitude) || magnitude == 0.0) && tie(value) == Tie::No {
+fn display(value: f64, text: &[u8], out: &mut Vec<u8>) {
+    if as_written(value) {
         out.extend_from_slice(text.strip_suffix(b".0").unwrap_or(text));
     } else {
         display_from_digits(value, text, out);
     }
+}
+
+/// The longest text Żmij writes for an `f64` (`-1.2345678901234567e-308`).
+const LONGEST: usize = 24;
+
+/// A cell on the stack: the longest text and a separator, rounded up to two 16-byte words
+/// (appended whole, then the line cut to its text).
+const CELL: usize = 32;
+
+/// [`display`] of `value` followed by `separator`, from Żmij's `text`. The usual value (in
+/// [`WITHOUT_EXPONENT`], 26 binary digits or more after the point: no tie, no `.0`;
+/// decided from its bits in a few instructions) is laid out in a cell on the stack and
+/// appended by fixed-size copies, which compile to a few moves where a copy of any length
+/// is a call; the others take [`display`].
+#[inline(always)]
+pub(super) fn display_then(value: f64, text: &[u8], separator: u8, out: &mut Vec<u8>) {
+    if !fraction_of_text(value) {
+        display_rare_then(value, text, separator, out);
+        return;
+    }
+    let n = text.len().min(LONGEST);
+    let mut cell = [separator; CELL];
+    if n >= 16 {
+        cell[..16].copy_from_slice(&text[..16]);
+        cell[n - 16..n].copy_from_slice(&text[n - 16..n]);
+    } else if n >= 8 {
+        cell[..8].copy_from_slice(&text[..8]);
+        cell[n - 8..n].copy_from_slice(&text[n - 8..n]);
+    } else {
+        cell[..n].copy_from_slice(&text[..n]);
+    }
+    let end = out.len() + n + 1;
+    out.extend_from_slice(&cell);
+    out.truncate(end);
+}
+
+/// [`display_then`] of a value it does not lay out itself.
+#[inline(never)]
+fn display_rare_then(value: f64, text: &[u8], separator: u8, out: &mut Vec<u8>) {
+    display(value, text, out);
+    out.push(separator);
+}
+
+/// Whether Żmij's text of `value` is `Display`'s as it is, by a sufficient test on the bits:
+/// a magnitude in [`WITHOUT_EXPONENT`] (one comparison: the bits of finite magnitudes are
+/// ordered as their values) whose lowest binary digit is at 2^-26 or below. Such a value is
+/// not whole (no `.0` to drop), and its exact expansion, odd × 5^k / 10^k with k ≥ 26, has
+/// more than 18 significant digits (5^26 > 1e18), so it is no tie of the shortest digits
+/// ([`tie`]).
+#[inline(always)]
+fn fraction_of_text(value: f64) -> bool {
+    const LOW: u64 = WITHOUT_EXPONENT.start.to_bits();
+    const HIGH: u64 = WITHOUT_EXPONENT.end.to_bits();
+    let bits = value.abs().to_bits();
+    let zeros = (bits | (1 << 52)).trailing_zeros() as i32;
+    let lowest = (bits >> 52) as i32 - 1075 + zeros;
+    bits.wrapping_sub(LOW) < HIGH - LOW && lowest <= -26
+}
+
+/// Whether Żmij's text of `value` is `Display`'s but for a trailing `.0`: zero, or a
+/// magnitude in [`WITHOUT_EXPONENT`] (one comparison of the bits, which order finite
+/// magnitudes as their values) that cannot be a tie ([`tie`]).
+#[inline(always)]
+fn as_written(value: f64) -> bool {
+    const LOW: u64 = WITHOUT_EXPONENT.start.to_bits();
+    const HIGH: u64 = WITHOUT_EXPONENT.end.to_bits();
+    let bits = value.abs().to_bits();
+    (bits.wrapping_sub(LOW) < HIGH - LOW || bits == 0) && tie(value) == Tie::No
 }
 
 /// [`display`] of a value written with an exponent, or that may be a tie: laid out from
@@ -281,6 +348,60 @@ mod tests {
         }
     }
 
+    /// [`display_then`]'s cell: the value as `Display` prints it, then the separator.
+    fn cell(v: f64) -> String {
+        let v = v + 0.0;
+        let mut out = b"x".to_vec();
+        display_then(
+            v,
+            zmij::Buffer::new().format_finite(v).as_bytes(),
+            b';',
+            &mut out,
+        );
+        String::from_utf8(out).unwrap()
+    }
+
+    /// The edges of the cell's quick test: the ends of [`WITHOUT_EXPONENT`], the lowest
+    /// binary digit at 2^-26 (laid out in the cell) and at 2^-25 (not), whole numbers,
+    /// ties, and texts of 1 to 24 bytes.
+    #[test]
+    fn a_cell_is_the_value_as_display_prints_it_and_its_separator() {
+        let at = |odd: f64, lowest: i32| odd * 2f64.powi(lowest);
+        for v in [
+            0.0,
+            -0.0,
+            1.0,
+            -7.0,
+            0.5,
+            1e-5,
+            1e-5_f64.next_down(),
+            1e-5_f64.next_up(),
+            -1e-5,
+            1e16_f64.next_down(),
+            1e16,
+            1e-7,
+            1.7976931348623157e308,
+            5e-324,
+            at(1.0, -26),
+            at(3.0, -26),
+            at(12_345.0, -26),
+            at(1.0, -25),
+            at(12_345.0, -25),
+            at(((1u64 << 53) - 1) as f64, -26),
+            at(((1u64 << 53) - 1) as f64, -78),
+            -3_369_342_183_012_505.0 / 4.0,
+            3085085.0610378026,
+            -3_085_085.023_246_659_4,
+            0.30000000000000004,
+            -1.2345678901234567e-300,
+            123.0,
+            0.000396,
+            0.00039600000000000003,
+        ] {
+            assert_eq!(cell(v), format!("x{};", v + 0.0), "{v:e}");
+        }
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(4096))]
         /// Any finite `f64` prints as `Display` prints it: same shortest digits, same layout.
@@ -289,6 +410,27 @@ mod tests {
             let v = f64::from_bits(bits);
             prop_assume!(v.is_finite());
             prop_assert_eq!(display(v), (v + 0.0).to_string());
+        }
+
+        /// Any finite `f64` in a cell: as `Display` prints it, then the separator.
+        #[test]
+        fn a_cell_matches_the_standard_library(bits in any::<u64>()) {
+            let v = f64::from_bits(bits);
+            prop_assume!(v.is_finite());
+            prop_assert_eq!(cell(v), format!("x{};", v + 0.0));
+        }
+
+        /// Values with their lowest binary digit near 2^-26 (the quick test's edge), of
+        /// every magnitude a CSV has: as `Display` prints them, then the separator.
+        #[test]
+        fn a_cell_matches_near_its_quick_test(
+            odd in 0u64..(1 << 53),
+            lowest in -40i32..-10,
+            negative in any::<bool>(),
+        ) {
+            let v = (odd | 1) as f64 * 2f64.powi(lowest);
+            let v = if negative { -v } else { v };
+            prop_assert_eq!(cell(v), format!("x{};", v + 0.0));
         }
 
         /// Values with few binary digits after the point (odd × 2^-k), where the shortest
