@@ -12,6 +12,8 @@
 # Loops (see the example's documentation):
 #   code:<scene>         the scene's generated module (`mechdiff codegen`, `mechdiff_scene!`)
 #   row:<scene>          `mechdiff run`'s row (`Sweeper::row`) on the default evaluator, auto
+#   long:<scene>         the same over the scene's sweep refined to ≥ 20 000 positions, where
+#                        auto compiles the program (the Done-when row of issue 28)
 #   solver:<scene>       the same row on `--evaluator solver`
 #   jit:<scene>          the same row on `--evaluator jit`
 #   interpreter:<scene>  the same row on `--evaluator interpreter`
@@ -33,7 +35,7 @@ bin=target/release/examples/instructions_per_position
 loops=("$@")
 if [ ${#loops[@]} -eq 0 ]; then
     for scene in whitworth four_bar rack slider_crank; do
-        for what in code row solver jit interpreter; do
+        for what in code row long solver jit interpreter; do
             loops+=("$what:$scene")
         done
     done
@@ -66,7 +68,7 @@ done
 for scene in whitworth four_bar rack slider_crank; do
     code=${per_position[code:$scene]:-}
     [ -n "$code" ] || continue
-    for what in row solver jit interpreter; do
+    for what in row long solver jit interpreter; do
         per=${per_position[$what:$scene]:-}
         [ -n "$per" ] || continue
         awk -v w="$what:$scene" -v p="$per" -v c="$code" \
@@ -75,5 +77,11 @@ for scene in whitworth four_bar rack slider_crank; do
     if [ -n "${at_zero[jit:$scene]:-}" ] && [ -n "${at_zero[solver:$scene]:-}" ]; then
         awk -v s="$scene" -v j="${at_zero[jit:$scene]}" -v o="${at_zero[solver:$scene]}" \
             'BEGIN { printf "%-22s %8.2f M instructions of JIT set-up\n", s, (j - o) / 1e6 }'
+        # The measured break-even: set-up ÷ (solver row − JIT row).
+        if [ -n "${per_position[jit:$scene]:-}" ] && [ -n "${per_position[solver:$scene]:-}" ]; then
+            awk -v s="$scene" -v j="${at_zero[jit:$scene]}" -v o="${at_zero[solver:$scene]}" \
+                -v pj="${per_position[jit:$scene]}" -v ps="${per_position[solver:$scene]}" \
+                'BEGIN { printf "%-22s %8.0f positions: measured break-even of the JIT\n", s, (j - o) / (ps - pj) }'
+        fi
     fi
 done

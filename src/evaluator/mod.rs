@@ -46,6 +46,7 @@
 pub(crate) mod code;
 pub mod cost;
 mod program;
+mod row;
 
 pub(crate) use program::{ProgramPath, solver_loops};
 
