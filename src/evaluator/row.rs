@@ -1,7 +1,7 @@
-//! A row of `mechdiff run` from the run-time evaluator's values: where each column's value
-//! and derivatives lie in the program's outputs and which quantity it reports, fixed once
-//! before the sweep, so that a row is one pass over its columns (a few loads, products and
-//! one store each, the row grown once).
+//! A row of `mechdiff run` from the run-time evaluator's values: where each output's value
+//! rows `[x, x′, …]` lie in the program's outputs, which quantities its columns report and
+//! where they go in the row, fixed once before the sweep, so that a row reads each value
+//! row once and writes each column once (the row grown once).
 //!
 //! The arithmetic is the solver path's own ([`quantity_in`]: ω x′, α x′ + ω² x″, …, a
 //! derivative beyond the plan's order or the program's read as zero; an angle kept
@@ -14,75 +14,62 @@ use crate::scene::evaluate::{Resolved, quantity_in, to_turn};
 use crate::scene::format::Quantity;
 use crate::scene::model::OutputKind;
 
-/// One column: a quantity of the value row at `at`.
-#[derive(Debug, Clone, Copy)]
-struct Column {
-    /// Index of the value `x` of the column's value row `[x, x′, …]` in the program's values.
+/// How one output's columns are read from the program's values.
+#[derive(Debug, Clone)]
+struct OutputColumns {
+    /// Index of the output's first value row `[x, x′, …]` in the program's values (a
+    /// point's y follows its x).
     at: usize,
-    /// The quantity reported.
-    quantity: Quantity,
-    /// For an angle output, its index in [`CodeRow::angles`]: the value is the angle kept
-    /// continuous, not the program's.
-    angle: Option<usize>,
-}
-
-/// An angle output, kept continuous along the sweep.
-#[derive(Debug, Clone, Copy)]
-struct Angle {
-    /// Index of its value in the program's values.
-    at: usize,
-    /// Index of the output (in `previous`, see [`CodeRow::push`]).
-    output: usize,
-    /// Its value at the sketch pose, where its continuity starts.
-    sketch: f64,
+    /// Whether the output is a point: two value rows (x, y), the columns of each quantity
+    /// x then y.
+    point: bool,
+    /// An angle output's value at the sketch pose, where its continuity starts; `None` for
+    /// the other outputs.
+    angle: Option<f64>,
+    /// The quantities reported, in column order.
+    quantities: Vec<Quantity>,
 }
 
 /// The columns of a row from the program's values (see the module documentation).
 #[derive(Debug, Clone)]
 pub(crate) struct CodeRow {
-    columns: Vec<Column>,
-    angles: Vec<Angle>,
-    /// Each angle's value at the current row (in the order of `angles`).
-    turned: Vec<f64>,
+    outputs: Vec<OutputColumns>,
+    /// Values per value row of the program (a value and its derivatives).
+    width: usize,
     /// Derivatives read from the program (the plan's order, at most the program's): one
     /// beyond reads as zero.
     known: usize,
+    /// Columns per row.
+    columns: usize,
 }
 
 impl CodeRow {
     /// The row of `outputs` (in the order their values follow one another in the program,
-    /// `width` values per value row: a value and its derivatives) at derivative order
-    /// `order` (1 to 3).
+    /// `width` values per value row) at derivative order `order` (1 to 3).
     pub fn new(outputs: &[Resolved<'_>], width: usize, order: usize) -> Self {
-        let (mut at, mut columns, mut angles) = (0, Vec::new(), Vec::new());
-        for (index, resolved) in outputs.iter().enumerate() {
-            let output = resolved.output;
-            let rows = match output.kind {
-                OutputKind::Point(_) => 2,
-                _ => 1,
-            };
-            let angle = matches!(output.kind, OutputKind::Angle { .. }).then(|| {
-                angles.push(Angle {
+        let (mut at, mut columns) = (0, 0);
+        let outputs = (outputs.iter())
+            .map(|resolved| {
+                let output = resolved.output;
+                let point = matches!(output.kind, OutputKind::Point(_));
+                let rows = if point { 2 } else { 1 };
+                let of = OutputColumns {
                     at,
-                    output: index,
-                    sketch: resolved.sketch(),
-                });
-                angles.len() - 1
-            });
-            for &quantity in &output.quantities {
-                columns.extend((0..rows).map(|r| Column {
-                    at: at + r * width,
-                    quantity,
-                    angle,
-                }));
-            }
-            at += rows * width;
-        }
+                    point,
+                    angle: matches!(output.kind, OutputKind::Angle { .. })
+                        .then(|| resolved.sketch()),
+                    quantities: output.quantities.clone(),
+                };
+                at += rows * width;
+                columns += rows * output.quantities.len();
+                of
+            })
+            .collect();
         CodeRow {
-            columns,
-            turned: vec![0.0; angles.len()],
-            angles,
+            outputs,
+            width,
             known: order.clamp(1, 3).min(width.saturating_sub(1)),
+            columns,
         }
     }
 
@@ -90,26 +77,56 @@ impl CodeRow {
     /// state `drive`; `previous` holds each output's angle at the previous position (read
     /// and updated for angle outputs).
     pub fn push(
-        &mut self,
+        &self,
         values: &[f64],
         previous: &mut [Option<f64>],
         drive: &DriveState,
         row: &mut Vec<f64>,
     ) {
-        for (a, turned) in self.angles.iter().zip(&mut self.turned) {
-            let previous = &mut previous[a.output];
-            *turned = values[a.at];
-            to_turn(turned, previous.unwrap_or(a.sketch));
-            *previous = Some(*turned);
+        // The derivatives read, known when compiled: no test per value.
+        match self.known {
+            1 => self.push_known::<1>(values, previous, drive, row),
+            2 => self.push_known::<2>(values, previous, drive, row),
+            _ => self.push_known::<3>(values, previous, drive, row),
         }
-        let (known, turned) = (self.known, &self.turned);
-        row.extend(self.columns.iter().map(|c| {
-            let d = |k: usize| if k <= known { values[c.at + k] } else { 0.0 };
-            let x = match c.angle {
-                Some(a) => turned[a],
-                None => values[c.at],
-            };
-            quantity_in([x, d(1), d(2), d(3)], c.quantity, drive)
-        }));
+    }
+
+    /// [`CodeRow::push`] reading `K` derivatives of each value row.
+    fn push_known<const K: usize>(
+        &self,
+        values: &[f64],
+        previous: &mut [Option<f64>],
+        drive: &DriveState,
+        row: &mut Vec<f64>,
+    ) {
+        let start = row.len();
+        row.resize(start + self.columns, 0.0);
+        let mut column = &mut row[start..];
+        // `[x, x′, x″, x‴]` of the value row at `at`, zero beyond the `K` known.
+        let jet = |at: usize| {
+            let v = &values[at..=at + K];
+            std::array::from_fn(|k| if k <= K { v[k] } else { 0.0 })
+        };
+        for (o, previous) in self.outputs.iter().zip(previous) {
+            let mut x: [f64; 4] = jet(o.at);
+            if let Some(sketch) = o.angle {
+                to_turn(&mut x[0], previous.unwrap_or(sketch));
+                *previous = Some(x[0]);
+            }
+            let rows = if o.point { 2 } else { 1 };
+            let (these, rest) = std::mem::take(&mut column).split_at_mut(rows * o.quantities.len());
+            column = rest;
+            if o.point {
+                let y = jet(o.at + self.width);
+                for (&q, pair) in o.quantities.iter().zip(these.chunks_exact_mut(2)) {
+                    pair[0] = quantity_in(x, q, drive);
+                    pair[1] = quantity_in(y, q, drive);
+                }
+            } else {
+                for (&q, slot) in o.quantities.iter().zip(these) {
+                    *slot = quantity_in(x, q, drive);
+                }
+            }
+        }
     }
 }
