@@ -24,8 +24,15 @@
 #   psi, dual2_64        Whitworth ψ by `Dual2.jets` and by num-dual's `Dual2_64` alone
 # with <scene> one of whitworth, four_bar, rack (rack_slotted_link_travel.toml), slider_crank.
 # Prints one line per loop: name, instructions per position, and the two counts; then, for
-# every scene whose `code:` loop ran, each of its other loops' ratio to the generated code, and
-# the JIT's set-up (the `jit:` count at no repetition minus the `solver:`'s).
+# every scene whose `code:` loop ran, each of its other loops' ratio to the generated code, the
+# JIT's set-up (the `jit:` count at no repetition minus the `solver:`'s) and the measured
+# break-even (set-up ÷ (solver row − JIT row): the positions from which compiling pays; compare
+# the cost model's in src/evaluator/cost.rs). Each `<what>:<scene>` loop says on stderr which
+# evaluator ran it. Issue 28's Done-when line for the default row reads the `long:` ratios (at
+# ≥ 20 000 positions the harness's one clone of the sweeper per repetition costs < 2
+# instructions per position; at a scene's own sweep of 73–721 positions it costs ~30–460).
+#
+#   scripts/callgrind_rows.sh code:whitworth long:whitworth solver:whitworth jit:whitworth
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export CARGO_INCREMENTAL=0
