@@ -32,7 +32,10 @@
 //! by `mechdiff_scene!`, what `mechdiff codegen` prints: every output with ′ and ″ and
 //! every loop's guard), `row:<scene>` (`mechdiff run`'s row, `Sweeper::row`, on the default
 //! evaluator `auto`), `solver:<scene>`, `interpreter:<scene>` and `jit:<scene>` (the same
-//! row on `--evaluator solver|interpreter|jit`). `scripts/callgrind_rows.sh` counts them all.
+//! row on `--evaluator solver|interpreter|jit`), and `long:<scene>` (the default row over the
+//! scene's sweep with its step divided to give at least 20 000 positions, where `auto`
+//! compiles the program; which evaluator runs is printed to stderr).
+//! `scripts/callgrind_rows.sh` counts them all.
 
 use mechdiff::core::geometry::{ScalarOutput, Solver, Tracker};
 use mechdiff::core::method::{Differentiator, Dual2};
@@ -124,6 +127,12 @@ fn row_loop(
 ) -> Result<f64, Box<dyn std::error::Error>> {
     let plan = Plan::of(setup);
     let start = Sweeper::new(setup, &plan)?;
+    eprintln!(
+        "evaluated by: {}",
+        start
+            .backend()
+            .map_or("the solver".to_owned(), |b| format!("the program ({b:?})"))
+    );
     let (mut row, mut acc) = (Vec::new(), 0.0);
     for _ in 0..reps {
         let mut sweeper = start.clone();
@@ -143,16 +152,19 @@ fn scene_loop(which: &str, reps: usize) -> Result<ExitCode, Box<dyn std::error::
         eprintln!("unknown scene `{name}`: whitworth, four_bar, rack or slider_crank");
         return Ok(ExitCode::FAILURE);
     };
-    let scene = mechdiff::scene::load(file)?;
+    let mut scene = mechdiff::scene::load(file)?;
+    if what == "long" {
+        scene = long_sweep(scene);
+    }
     let positions = scene.positions.to_vec()?;
     let evaluator = match what {
         "code" => None,
-        "row" => Some(Evaluator::Auto),
+        "row" | "long" => Some(Evaluator::Auto),
         "solver" => Some(Evaluator::Solver),
         "interpreter" => Some(Evaluator::Interpreter),
         "jit" => Some(Evaluator::Jit),
         other => {
-            eprintln!("unknown loop `{other}:`: code, row, solver, interpreter or jit");
+            eprintln!("unknown loop `{other}:`: code, row, long, solver, interpreter or jit");
             return Ok(ExitCode::FAILURE);
         }
     };
@@ -167,6 +179,21 @@ fn scene_loop(which: &str, reps: usize) -> Result<ExitCode, Box<dyn std::error::
     println!("{acc}\npositions per repetition: {}", positions.len());
     Ok(ExitCode::SUCCESS)
 }
+
+/// `scene` with its sweep's steps spread over the same range in at least
+/// [`LONG_POSITIONS`] positions (the `long:` loops), as `tests/run_evaluator.rs` does.
+fn long_sweep(mut scene: mechdiff::scene::Scene) -> mechdiff::scene::Scene {
+    if let mechdiff::scene::Positions::Steps { step, count, .. } = &mut scene.positions {
+        let divide = LONG_POSITIONS.div_ceil((*count).max(2) - 1);
+        *step /= divide as f64;
+        *count = (*count - 1) * divide + 1;
+    }
+    scene
+}
+
+/// Drive positions of a `long:` loop's sweep, at least: where `auto` compiles the program on
+/// every shipped scene.
+const LONG_POSITIONS: usize = 20_000;
 
 /// The Whitworth's ψ = atan(l1 sin φ / (l0 − l1 cos φ)) in num-dual's `Dual2_64` alone, as
 /// `RockerAngle` writes it, without mechdiff's `Differentiator`, `Scalar`, `Point` or `Jet`.
@@ -202,7 +229,7 @@ fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
         eprintln!(
             "usage: instructions_per_position \
              geometry|newton|psi|pose|rack|four_bar|slider_crank|hand|generated|hand_pose|\
-             generated_pose|program|jit|dual2_64|<code|row|solver|interpreter|jit>:<scene> \
+             generated_pose|program|jit|dual2_64|<code|row|long|solver|interpreter|jit>:<scene> \
              REPETITIONS"
         );
         return Ok(ExitCode::FAILURE);
@@ -333,7 +360,7 @@ fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
                 eprintln!(
                     "unknown loop `{other}`: geometry, newton, psi, pose, rack, four_bar, \
                      slider_crank, hand, generated, hand_pose, generated_pose, program, jit, \
-                     dual2_64 or <code|row|solver|interpreter|jit>:<scene>"
+                     dual2_64 or <code|row|long|solver|interpreter|jit>:<scene>"
                 );
                 return Ok(ExitCode::FAILURE);
             }

@@ -12,6 +12,8 @@
 # Loops (see the example's documentation):
 #   code:<scene>         the scene's generated module (`mechdiff codegen`, `mechdiff_scene!`)
 #   row:<scene>          `mechdiff run`'s row (`Sweeper::row`) on the default evaluator, auto
+#   long:<scene>         the same over the scene's sweep refined to ≥ 20 000 positions, where
+#                        auto compiles the program (the Done-when row of issue 28)
 #   solver:<scene>       the same row on `--evaluator solver`
 #   jit:<scene>          the same row on `--evaluator jit`
 #   interpreter:<scene>  the same row on `--evaluator interpreter`
@@ -22,8 +24,15 @@
 #   psi, dual2_64        Whitworth ψ by `Dual2.jets` and by num-dual's `Dual2_64` alone
 # with <scene> one of whitworth, four_bar, rack (rack_slotted_link_travel.toml), slider_crank.
 # Prints one line per loop: name, instructions per position, and the two counts; then, for
-# every scene whose `code:` loop ran, each of its other loops' ratio to the generated code, and
-# the JIT's set-up (the `jit:` count at no repetition minus the `solver:`'s).
+# every scene whose `code:` loop ran, each of its other loops' ratio to the generated code, the
+# JIT's set-up (the `jit:` count at no repetition minus the `solver:`'s) and the measured
+# break-even (set-up ÷ (solver row − JIT row): the positions from which compiling pays; compare
+# the cost model's in src/evaluator/cost.rs). Each `<what>:<scene>` loop says on stderr which
+# evaluator ran it. Issue 28's Done-when line for the default row reads the `long:` ratios (at
+# ≥ 20 000 positions the harness's one clone of the sweeper per repetition costs < 2
+# instructions per position; at a scene's own sweep of 73–721 positions it costs ~30–460).
+#
+#   scripts/callgrind_rows.sh code:whitworth long:whitworth solver:whitworth jit:whitworth
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export CARGO_INCREMENTAL=0
@@ -33,7 +42,7 @@ bin=target/release/examples/instructions_per_position
 loops=("$@")
 if [ ${#loops[@]} -eq 0 ]; then
     for scene in whitworth four_bar rack slider_crank; do
-        for what in code row solver jit interpreter; do
+        for what in code row long solver jit interpreter; do
             loops+=("$what:$scene")
         done
     done
@@ -66,7 +75,7 @@ done
 for scene in whitworth four_bar rack slider_crank; do
     code=${per_position[code:$scene]:-}
     [ -n "$code" ] || continue
-    for what in row solver jit interpreter; do
+    for what in row long solver jit interpreter; do
         per=${per_position[$what:$scene]:-}
         [ -n "$per" ] || continue
         awk -v w="$what:$scene" -v p="$per" -v c="$code" \
@@ -75,5 +84,11 @@ for scene in whitworth four_bar rack slider_crank; do
     if [ -n "${at_zero[jit:$scene]:-}" ] && [ -n "${at_zero[solver:$scene]:-}" ]; then
         awk -v s="$scene" -v j="${at_zero[jit:$scene]}" -v o="${at_zero[solver:$scene]}" \
             'BEGIN { printf "%-22s %8.2f M instructions of JIT set-up\n", s, (j - o) / 1e6 }'
+        # The measured break-even: set-up ÷ (solver row − JIT row).
+        if [ -n "${per_position[jit:$scene]:-}" ] && [ -n "${per_position[solver:$scene]:-}" ]; then
+            awk -v s="$scene" -v j="${at_zero[jit:$scene]}" -v o="${at_zero[solver:$scene]}" \
+                -v pj="${per_position[jit:$scene]}" -v ps="${per_position[solver:$scene]}" \
+                'BEGIN { printf "%-22s %8.0f positions: measured break-even of the JIT\n", s, (j - o) / (ps - pj) }'
+        fi
     fi
 done

@@ -94,3 +94,73 @@ fn traced_crank_tip_and_its_derivatives_are_exact() {
         }
     }
 }
+
+/// A crank-rocker four-bar (crank 1, coupler 3.5, rocker 3, ground 4: Grashof, the crank
+/// turns fully), sketched with the crank pointing away from the rocker's pivot, where the
+/// dyad's discriminant is larger than over about half of the turn.
+fn four_bar() -> Mechanism {
+    let x: f64 = (3.25 + 15.0) / 10.0;
+    let b = [x, (9.0 - (x - 4.0) * (x - 4.0)).sqrt()];
+    Mechanism::builder()
+        .point("A0", [0.0, 0.0])
+        .point("B0", [4.0, 0.0])
+        .point("A", [-1.0, 0.0])
+        .point("B", b)
+        .ground(["A0", "B0"])
+        .link("crank", ["A0", "A"])
+        .link("coupler", ["A", "B"])
+        .link("rocker", ["B0", "B"])
+        .revolute("A0", "ground", "crank", "A0")
+        .revolute("A", "crank", "coupler", "A")
+        .revolute("B", "coupler", "rocker", "B")
+        .revolute("B0", "rocker", "ground", "B0")
+        .drive(Drive::angle("A0"))
+        .build()
+        .unwrap()
+}
+
+/// `amplification_over(floor)` (which passes over loops whose margin shows them below the
+/// worst so far) gives `amplification()`'s result, value and loop, bit for bit, wherever
+/// that is above `floor`, and at most `floor` elsewhere: at 360 positions of a four-bar
+/// whose margin falls below the sketch's (amplification above 1), for floors just below,
+/// at and above the pose's own amplification, and none (NaN).
+#[test]
+fn the_amplification_over_a_floor_is_the_amplification_where_it_exceeds_it() {
+    let m = four_bar();
+    let tip = m.point_output("rocker", "B").unwrap();
+    let t = Solver::default().track(&m).unwrap();
+    let mut traced = trace::trace(&t, |pose| pose.point(&tip).to_vec()).unwrap();
+    let x = traced.outputs[0];
+    let mut walk =
+        trace::ProgramTracker::new(&t, &mut traced, &[x], trace::Backend::Interpreter).unwrap();
+    let (mut above_one, mut exact) = (0, 0);
+    let start = walk.phi();
+    for i in 1..=360 {
+        let phi = start + f64::from(i).to_radians();
+        assert!(walk.move_to(phi).is_some(), "φ = {phi}");
+        let (k, l) = walk.amplification();
+        above_one += usize::from(k > 1.0);
+        for floor in [
+            f64::NAN,
+            0.5,
+            1.0,
+            k * (1.0 - 1e-12),
+            k,
+            k * (1.0 + 1e-12),
+            2.0 * k,
+        ] {
+            let (over, loop_over) = walk.amplification_over(floor);
+            if k > floor || floor.is_nan() || floor < 1.0 {
+                assert_eq!((over.to_bits(), loop_over), (k.to_bits(), l), "φ = {phi}");
+                exact += 1;
+            } else {
+                assert!(over <= floor, "φ = {phi}: {over} over the floor {floor}");
+            }
+        }
+    }
+    assert!(
+        above_one > 30,
+        "the margin fell below the sketch's at {above_one} positions"
+    );
+    assert!(exact > 360 * 3, "{exact}");
+}

@@ -4,10 +4,14 @@
 use mechdiff_core::geometry::Tracker;
 use mechdiff_core::trace::{Backend, MixedTracker, ProgramTracker};
 
+use mechdiff_core::DriveState;
+
 use super::code::SceneCode;
 use super::cost::Costs;
+use super::row::CodeRow;
 use super::{Evaluator, JIT_FROM_POSITIONS, LoopPath, LoopPlan};
 use crate::error::{Error, Result};
+use crate::scene::evaluate::Resolved;
 use crate::scene::model::OutputKind;
 use crate::scene::setup::Setup;
 
@@ -24,6 +28,8 @@ pub(crate) struct ProgramPath {
     loop_indices: Vec<usize>,
     /// Why `--evaluator jit` interprets this scene's programs (a mixed plan), if it does.
     jit_refused: Option<String>,
+    /// The row's columns from the program's values ([`ProgramPath::with_row`]).
+    row: Option<CodeRow>,
 }
 
 /// The evaluator of a scene whose every loop has a closed form, or of a mixed plan (its
@@ -109,7 +115,43 @@ impl ProgramPath {
             loop_indices: position.guards.iter().map(|g| g.loop_index).collect(),
             loops: loops.into_iter().map(|(_, plan)| plan).collect(),
             jit_refused,
+            row: None,
         })
+    }
+
+    /// The program writing rows of `outputs` (the run's outputs resolved, in the order
+    /// traced) at derivative order `order` ([`ProgramPath::row`]).
+    pub fn with_row(mut self, outputs: &[Resolved<'_>], order: usize) -> Self {
+        self.row = Some(CodeRow::new(outputs, self.width, order));
+        self
+    }
+
+    /// Moves to `phi` and pushes the row's output columns onto `row` (see
+    /// [`CodeRow::push`]), or `false`, `row` untouched, where the solver must take the
+    /// step ([`ProgramTracker::move_to`]).
+    ///
+    /// # Panics
+    /// Without [`ProgramPath::with_row`] (a caller's bug).
+    pub fn row(
+        &mut self,
+        phi: f64,
+        previous: &mut [Option<f64>],
+        drive: &DriveState,
+        row: &mut Vec<f64>,
+    ) -> bool {
+        let columns = self
+            .row
+            .as_mut()
+            .expect("ProgramPath::with_row before rows");
+        let values = match &mut self.tracker {
+            Walker::Closed(t) => t.move_to(phi),
+            Walker::Mixed(t) => t.move_to(phi),
+        };
+        let Some(values) = values else {
+            return false;
+        };
+        columns.push(values, previous, drive, row);
+        true
     }
 
     /// The back end evaluating the program.
@@ -139,20 +181,6 @@ impl ProgramPath {
         }
     }
 
-    /// Values per output row (value and derivatives).
-    pub fn width(&self) -> usize {
-        self.width
-    }
-
-    /// Moves to `phi`: every output row's `[x, x′, …]` in turn, or `None` where the solver
-    /// must take the step (see [`ProgramTracker::move_to`]).
-    pub fn move_to(&mut self, phi: f64) -> Option<&[f64]> {
-        match &mut self.tracker {
-            Walker::Closed(t) => t.move_to(phi),
-            Walker::Mixed(t) => t.move_to(phi),
-        }
-    }
-
     /// Places the program at `phi`, where the solver now stands: `false` if its guards
     /// fail there (rounding at a guard's edge; the caller then keeps the solver).
     pub fn restart(&mut self, phi: f64) -> bool {
@@ -164,11 +192,13 @@ impl ProgramPath {
 
     /// How much the current pose amplifies rounding, and the solver's index of the loop
     /// that does (as the solver's `Tracker::amplification_loop`, which measures it on
-    /// closed-form plans only: 1 for a mixed plan).
-    pub fn amplification(&self) -> (f64, usize) {
+    /// closed-form plans only: 1 for a mixed plan), where it may exceed `worst` (the
+    /// worst so far): loops certainly below it are passed over (see
+    /// [`ProgramTracker::amplification_over`]), so only a result above `worst` is exact.
+    pub fn amplification_over(&self, worst: f64) -> (f64, usize) {
         match &self.tracker {
             Walker::Closed(t) => {
-                let (k, l) = t.amplification();
+                let (k, l) = t.amplification_over(worst);
                 (k, self.loop_indices[l])
             }
             Walker::Mixed(_) => (1.0, 0),

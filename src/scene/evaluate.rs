@@ -144,6 +144,12 @@ impl<'s> Resolved<'s> {
     pub fn points(&self) -> &[PointOutput] {
         &self.points
     }
+
+    /// An angle output's value at the sketch pose, where a sweep's angle continuity starts
+    /// (0 for the others).
+    pub fn sketch(&self) -> f64 {
+        self.sketch
+    }
 }
 
 /// The points an output is computed from, each with a link that carries it: `(link,
@@ -231,38 +237,6 @@ fn evaluate_points<const N: usize>(
     values.map(|v| jet::<N>(&v))
 }
 
-/// The output's jets read from the values of the scene's generated code (see
-/// [`crate::codegen::scene`]: per output row `[x, x′, …]`, `width` values, from
-/// `values[*at..]`; `at` is moved past them), an angle kept continuous along the sweep
-/// through `previous` as [`evaluate`] keeps it.
-pub(crate) fn from_code<const N: usize>(
-    resolved: &Resolved<'_>,
-    values: &[f64],
-    at: &mut usize,
-    width: usize,
-    previous: &mut Option<f64>,
-) -> Values<Jet<N>> {
-    let output = resolved.output;
-    let row = |r: usize| {
-        let v = &values[*at + r * width..*at + (r + 1) * width];
-        Jet::new(
-            v[0],
-            std::array::from_fn(|k| v.get(k + 1).copied().unwrap_or(0.0)),
-        )
-    };
-    let mut jets = match output.kind {
-        OutputKind::Point(_) => Values::two([row(0), row(1)]),
-        _ => Values::one(row(0)),
-    };
-    *at += jets.len() * width;
-    if let OutputKind::Angle { .. } = &output.kind {
-        let target = previous.unwrap_or(resolved.sketch);
-        to_turn(&mut jets[0].value, target);
-        *previous = Some(jets[0].value);
-    }
-    jets
-}
-
 /// The output's values as [`values`] gives them, with an angle moved by whole turns to the
 /// one nearest its angle in the sketch (where a sweep's angle continuity starts).
 pub(crate) fn values_on_sketch_turn<D: Scalar>(
@@ -277,7 +251,7 @@ pub(crate) fn values_on_sketch_turn<D: Scalar>(
 }
 
 /// Moves `angle` by whole turns to the one nearest `target` (unchanged when it is there).
-fn to_turn<D: Scalar>(angle: &mut D, target: f64) {
+pub(crate) fn to_turn<D: Scalar>(angle: &mut D, target: f64) {
     // Cheap check first: within 3 rad of the target, the nearest turn is this one.
     if (target - angle.re()).abs() < 3.0 {
         return;

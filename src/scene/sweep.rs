@@ -15,7 +15,7 @@ use mechdiff_core::trace::Backend;
 use super::balancing::BalancingSweep;
 use super::dynamics::DynamicsSweep;
 use super::error_context::ErrorContext;
-use super::evaluate::{Resolved, Values, evaluate, evaluate_tracked, from_code, quantity};
+use super::evaluate::{Resolved, Values, evaluate, evaluate_tracked, quantity};
 use super::model::Output;
 use super::outputs::{Column, columns};
 use super::plan::Plan;
@@ -128,7 +128,12 @@ impl<'s> Sweeper<'s> {
         let outputs = (setup.outputs.iter())
             .map(|output| Resolved::new(setup, output))
             .collect::<Result<Vec<_>>>()?;
-        let program = ProgramPath::choose(setup, &tracker)?;
+        let order = match plan.order {
+            0 | 1 => 1,
+            2 => 2,
+            _ => 3,
+        };
+        let program = ProgramPath::choose(setup, &tracker)?.map(|p| p.with_row(&outputs, order));
         let jit_warning = program.as_ref().and_then(ProgramPath::jit_warning);
         let outputs = Outputs {
             tracker,
@@ -136,8 +141,8 @@ impl<'s> Sweeper<'s> {
             previous: vec![None; outputs.len()],
             outputs,
         };
-        let walk = match plan.order {
-            0 | 1 => Walk::First(outputs),
+        let walk = match order {
+            1 => Walk::First(outputs),
             2 => Walk::Second(outputs),
             _ => Walk::Third(outputs),
         };
@@ -234,16 +239,13 @@ impl<'s> Sweeper<'s> {
         let Some(p) = &mut self.program else {
             return false;
         };
-        let width = p.width();
-        let Some(values) = p.move_to(phi) else {
+        let (Walk::First(o) | Walk::Second(o) | Walk::Third(o)) = &mut self.walk;
+        if !p.row(phi, &mut o.previous, &o.drive, row) {
             return false;
-        };
-        match &mut self.walk {
-            Walk::First(o) => o.push_code::<1>(values, width, row),
-            Walk::Second(o) => o.push_code::<2>(values, width, row),
-            Walk::Third(o) => o.push_code::<3>(values, width, row),
         }
-        let (amplification, l) = p.amplification();
+        // Only a loop that may beat the worst so far is measured (`amplification_over`).
+        let floor = self.worst.map_or(f64::NAN, |w| w.0);
+        let (amplification, l) = p.amplification_over(floor);
         if is_worse(amplification, self.worst.as_ref()) {
             self.worst = Some((amplification, phi, l));
         }
@@ -407,20 +409,6 @@ impl<'s> Sweeper<'s> {
 }
 
 impl Outputs<'_> {
-    /// Pushes the columns of every output from the generated code's `values` (each output
-    /// row `[x, x′, …]`, `width` values).
-    fn push_code<const N: usize>(&mut self, values: &[f64], width: usize, row: &mut Vec<f64>) {
-        let mut at = 0;
-        for (resolved, previous) in self.outputs.iter().zip(self.previous.iter_mut()) {
-            let jets = from_code::<N>(resolved, values, &mut at, width, previous);
-            for q in &resolved.output.quantities {
-                for v in &jets {
-                    row.push(quantity(v, *q, &self.drive));
-                }
-            }
-        }
-    }
-
     /// Pushes the columns of every output at drive position `phi` from the lifted pose
     /// `k` (the third order).
     fn push<const N: usize>(

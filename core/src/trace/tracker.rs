@@ -56,9 +56,13 @@ impl Code {
     }
 }
 
-/// One loop's guard as the program reads it.
+/// One loop's guard as the program reads it (a loop that always closes has none to check).
 #[derive(Debug, Clone, Copy)]
 struct Loop {
+    /// The loop's index among the position's guards.
+    index: usize,
+    /// Where its guard values `[disc, condition, disc′, disc″]` start in the outputs.
+    at: usize,
     kind: GuardKind,
     /// The solver's margin is the discriminant (or slope) times this.
     scale: f64,
@@ -96,6 +100,7 @@ pub struct ProgramTracker {
     /// loop by loop.
     out: Vec<f64>,
     values: usize,
+    /// The loops with a guard to check (not those that always close), in solving order.
     loops: Vec<Loop>,
     /// The solver's singular threshold.
     limit: f64,
@@ -174,8 +179,11 @@ impl ProgramTracker {
                 ),
             },
         };
-        let loops: Vec<Loop> = (position.guards.iter())
-            .map(|g| Loop {
+        let loops: Vec<Loop> = (position.guards.iter().enumerate())
+            .filter(|(_, g)| g.kind != GuardKind::Always)
+            .map(|(index, g)| Loop {
+                index,
+                at: values.len() + 4 * index,
                 kind: g.kind,
                 scale: g.scale,
             })
@@ -233,12 +241,12 @@ impl ProgramTracker {
     /// Evaluates at `phi` into `out` and the trial margins; `false` if a guard fails.
     fn evaluate(&mut self, phi: f64) -> bool {
         self.code.evaluate(phi, &mut self.out);
-        let guards = &self.out[self.values..];
-        for (l, (lp, g)) in self.loops.iter().zip(guards.chunks_exact(4)).enumerate() {
+        for (lp, trial) in self.loops.iter().zip(&mut self.trial) {
+            let g = &self.out[lp.at..lp.at + 4];
             if lp.kind.verdict(g[0], g[1], self.limit).is_err() {
                 return false;
             }
-            self.trial[l] = Dual2_64::new(g[0], g[2], g[3]) * lp.scale;
+            *trial = Dual2_64::new(g[0], g[2], g[3]) * lp.scale;
         }
         true
     }
@@ -264,7 +272,7 @@ impl ProgramTracker {
             let proven = steps < MAX_SUBSTEPS
                 && self.evaluate(target)
                 && (self.loops.iter().zip(&self.margins).zip(&self.trial))
-                    .all(|((l, &a), &b)| l.kind == GuardKind::Always || passes(a, b, h));
+                    .all(|((_, &a), &b)| passes(a, b, h));
             if !proven {
                 if steps > 0 {
                     // Back to the move's start: its margins are the program's values
@@ -297,11 +305,31 @@ impl ProgramTracker {
     /// How much the current pose amplifies rounding, and in which loop (its index), as
     /// [`Tracker::amplification`] computes it from the same margins.
     pub fn amplification(&self) -> (f64, usize) {
+        self.amplification_over(f64::NAN)
+    }
+
+    /// [`ProgramTracker::amplification`] where it may exceed `floor` (the worst of a sweep
+    /// so far; NaN or below 1 for none): a loop whose margin shows its amplification below
+    /// `floor` by far more than rounding (`|margin| floor² > 1 + 10⁻⁹` for a square root,
+    /// `|margin| floor > 1 + 10⁻⁹` for a slope) is passed over without its square root and
+    /// quotient. So the result equals [`ProgramTracker::amplification`]'s, loop included,
+    /// whenever that is above `floor` or NaN, and is at most `floor` otherwise.
+    pub fn amplification_over(&self, floor: f64) -> (f64, usize) {
+        /// Margin of the test above rounding: the amplification's own rounding is a few ε.
+        const CLEARLY: f64 = 1.0 + 1e-9;
         let mut worst = (1.0, 0);
-        for (l, (lp, m)) in self.loops.iter().zip(&self.margins).enumerate() {
-            let k = amplification(lp.kind.root(), m.re);
+        for (lp, m) in self.loops.iter().zip(&self.margins) {
+            let root = lp.kind.root();
+            let below = match root {
+                Some(true) => m.re.abs() * floor * floor > CLEARLY,
+                _ => m.re.abs() * floor > CLEARLY,
+            };
+            if below && floor >= 1.0 {
+                continue;
+            }
+            let k = amplification(root, m.re);
             if k > worst.0 || k.is_nan() {
-                worst = (k, l);
+                worst = (k, lp.index);
             }
         }
         worst
