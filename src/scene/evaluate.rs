@@ -354,6 +354,7 @@ pub(crate) fn values<D: Scalar>(output: &Output, point: impl Fn(usize) -> [D; 2]
 /// [`values`], with an angle's line (`shortcut(0)`) and reference line (`shortcut(1)`), a
 /// slider's displacement (`shortcut(0)`), read from the pose where `shortcut` gives them
 /// (see [`on_links`]): the same values, an angle on a continuous turn.
+#[inline]
 pub(crate) fn values_read<D: Scalar>(
     output: &Output,
     point: impl Fn(usize) -> [D; 2],

@@ -8,7 +8,7 @@ use std::convert::Infallible;
 use std::ops::ControlFlow;
 
 use mechdiff_core::geometry::{Mechanism, Mobility, MotionRange};
-use mechdiff_core::num_dual::Dual3_64;
+use mechdiff_core::num_dual::Dual2_64;
 use mechdiff_core::{DeadPosition, DeadPositionSearch};
 
 use crate::error::{Error, Result};
@@ -453,19 +453,17 @@ fn search_dead_positions(
     );
     let resolved = Resolved::new(setup, output)?;
     let previous = RefCell::new(None);
-    // q‴ of each position, its buffer reused (nothing allocated per evaluation).
-    let dddq = RefCell::new(Vec::new());
     let solved = std::cell::Cell::new(0);
+    // x′ and x″ read from each solved pose (the search reads no third derivative), nothing
+    // allocated per evaluation.
     let found = DeadPositionSearch::new(lo..=hi)
         .with_step(step)
         .find_roots(|phi| {
             solved.set(solved.get() + 1);
-            let (mut t, mut dddq) = (tracker.borrow_mut(), dddq.borrow_mut());
+            let mut t = tracker.borrow_mut();
             t.move_to(phi)?;
-            t.third_derivatives(&mut dddq)?;
-            let pose = t.pose_jets_with(&dddq);
             let previous = &mut previous.borrow_mut();
-            Ok(evaluate_pose::<Dual3_64, 3>(&pose, &resolved, previous)[0])
+            Ok(evaluate_pose::<Dual2_64, 2>(&t.pose_jets(), &resolved, previous)[0])
         })
         .map_err(|e| cx.solver_error(e))?;
     Ok((found, solved.get()))

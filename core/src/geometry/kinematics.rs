@@ -117,7 +117,7 @@ pub(crate) fn jet<const N: usize>(x: Dual3_64) -> Jet<N> {
 
 /// `A(θ_b)·v` for a link-local vector `v` (data in `T`), `(sin θ_k, cos θ_k)` of body `k`
 /// being `frame(k)`.
-#[inline]
+#[inline(always)]
 fn rotate<T: Copy, D: Absorb<T>>(frame: &impl Fn(usize) -> (D, D), b: Body, v: [T; 2]) -> [D; 2] {
     match b {
         None => [D::datum(v[0]), D::datum(v[1])],
@@ -145,7 +145,7 @@ pub(crate) fn place<T: Copy, D: Absorb<T>>(
 }
 
 /// [`place`] with the bodies' `(sin θ, cos θ)` given by `frame(k)`.
-#[inline]
+#[inline(always)]
 pub(crate) fn place_with<T: Copy, D: Absorb<T>>(
     coordinate: &impl Fn(usize) -> D,
     frame: &impl Fn(usize) -> (D, D),
@@ -191,7 +191,7 @@ pub(crate) fn scalar<T: Copy, D: Absorb<T>>(
 }
 
 /// [`scalar`] with the bodies' `(sin θ, cos θ)` given by `frame(k)`.
-#[inline]
+#[inline(always)]
 pub(crate) fn scalar_with<T: Copy, D: Absorb<T>>(
     coordinate: &impl Fn(usize) -> D,
     frame: &impl Fn(usize) -> (D, D),

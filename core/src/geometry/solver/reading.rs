@@ -117,10 +117,11 @@ impl<'m> Tracker<'m> {
     /// capacity).
     pub fn coordinates_into(&self, out: &mut Vec<Jet<2>>) {
         out.clear();
-        let derivatives = self.dq.iter().zip(self.ddq.iter());
-        out.extend(
-            (self.q.iter().zip(derivatives)).map(|(&x, (&dx, &ddx))| Jet::new(x, [dx, ddx])),
-        );
+        // Slices' iterators: the extension's length known up front (no check per element).
+        let (q, dq, ddq) = (self.q.as_slice(), self.dq.as_slice(), self.ddq.as_slice());
+        let jets =
+            (q.iter().zip(dq.iter().zip(ddq))).map(|(&x, (&dx, &ddx))| Jet::new(x, [dx, ddx]));
+        out.extend(jets);
     }
 
     /// The current pose as the move solved it, to be read at the order of a [`JetDual`]:
@@ -207,7 +208,7 @@ pub struct PoseJets<'a> {
 
 impl PoseJets<'_> {
     /// Coordinate `i` with its derivatives.
-    #[inline]
+    #[inline(always)]
     fn coordinate<D: JetDual>(&self, i: usize) -> D {
         let d3 = if D::ORDER >= 3 {
             self.dddq.get(i).copied().unwrap_or(0.0)
@@ -219,7 +220,7 @@ impl PoseJets<'_> {
 
     /// `(sin θ_k, cos θ_k)` of body `k` with their derivatives: the solver's sine and cosine,
     /// differentiated through θ′, θ″, θ‴ (e.g. (sin θ)″ = θ″ cos θ − θ′² sin θ).
-    #[inline]
+    #[inline(always)]
     fn frame<D: JetDual>(&self, k: usize) -> (D, D) {
         let (s, c) = self.frames[k];
         let [_, t1, t2, t3] = self.coordinate::<D>(3 * k + 2).derivatives();
