@@ -83,8 +83,14 @@ impl DeadPositionSearch {
         self.find_roots(jet)
     }
 
-    /// The dead positions of a jet given as a function of φ.
-    pub fn find_roots(&self, jet: impl Fn(f64) -> Result<Jet<3>>) -> Result<Vec<DeadPosition>> {
+    /// The dead positions of a jet given as a function of φ (of order `N` ≥ 2: x′ is
+    /// bracketed, x″ refines it; a third derivative is not read, so an order-2 jet costs
+    /// less and finds the same positions).
+    pub fn find_roots<const N: usize>(
+        &self,
+        jet: impl Fn(f64) -> Result<Jet<N>>,
+    ) -> Result<Vec<DeadPosition>> {
+        const { assert!(N >= 2, "x′ and x″ are needed") };
         let (start, end) = (*self.range.start(), *self.range.end());
         let grid = sample_points(start, end, self.step)?;
         let samples = grid
@@ -109,7 +115,7 @@ impl DeadPositionSearch {
     }
 }
 
-fn dead_position(phi: f64, x: &Jet<3>) -> DeadPosition {
+fn dead_position<const N: usize>(phi: f64, x: &Jet<N>) -> DeadPosition {
     DeadPosition {
         phi,
         value: x.value,
@@ -150,14 +156,14 @@ fn sample_points(start: f64, end: f64, step: f64) -> Result<Vec<f64>> {
 
 /// Newton on x′ with derivative x″, kept inside the bracket [a, b] where x′ changes sign;
 /// a step that would leave the bracket (or not shrink it fast enough) is a bisection.
-fn refine(
-    jet: &impl Fn(f64) -> Result<Jet<3>>,
+fn refine<const N: usize>(
+    jet: &impl Fn(f64) -> Result<Jet<N>>,
     (mut a, fa): (f64, f64),
     (mut b, _): (f64, f64),
-) -> Result<(f64, Jet<3>)> {
+) -> Result<(f64, Jet<N>)> {
     let sign_a = fa.signum();
     let mut phi = 0.5 * (a + b);
-    let mut best: Option<(f64, Jet<3>)> = None;
+    let mut best: Option<(f64, Jet<N>)> = None;
     for _ in 0..200 {
         let x = jet(phi)?;
         if best.is_none_or(|(_, y)| x.d1().abs() < y.d1().abs()) {

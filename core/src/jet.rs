@@ -85,3 +85,79 @@ impl<const N: usize> Jet<N> {
         Motion::from_jet(self, drive)
     }
 }
+
+/// A dual number that carries a jet in φ: [`Dual64`] (order 1), [`Dual2_64`] (order 2),
+/// [`Dual3_64`] (order 3). Generic code evaluated in it computes a quantity's derivatives up
+/// to its order and no further (an order-2 sweep never computes third derivatives).
+///
+/// ```
+/// use mechdiff_core::JetDual;
+/// use mechdiff_core::num_dual::Dual2_64;
+/// let x = Dual2_64::from_derivatives([1.0, 2.0, 3.0, 4.0]); // x‴ beyond the order: dropped
+/// assert_eq!((x * x).derivatives(), [1.0, 4.0, 14.0, 0.0]); // (x²)″ = 2x′² + 2x x″
+/// assert_eq!(x.jet::<1>().derivatives, [2.0]);
+/// ```
+///
+/// [`Dual64`]: num_dual::Dual64
+/// [`Dual2_64`]: num_dual::Dual2_64
+/// [`Dual3_64`]: num_dual::Dual3_64
+pub trait JetDual: crate::Scalar {
+    /// The highest derivative carried.
+    const ORDER: usize;
+
+    /// The number `x` with derivatives `[x, x′, x″, x‴]` (those beyond [`JetDual::ORDER`]
+    /// are dropped).
+    fn from_derivatives(d: [f64; 4]) -> Self;
+
+    /// `[x, x′, x″, x‴]`, zero beyond [`JetDual::ORDER`].
+    fn derivatives(&self) -> [f64; 4];
+
+    /// The jet of order `N` ≤ [`JetDual::ORDER`] (derivatives beyond the order read as 0).
+    #[inline]
+    fn jet<const N: usize>(&self) -> Jet<N> {
+        let d = self.derivatives();
+        Jet::new(d[0], std::array::from_fn(|k| d[k + 1]))
+    }
+}
+
+impl JetDual for num_dual::Dual64 {
+    const ORDER: usize = 1;
+
+    #[inline]
+    fn from_derivatives(d: [f64; 4]) -> Self {
+        num_dual::Dual64::new(d[0], d[1])
+    }
+
+    #[inline]
+    fn derivatives(&self) -> [f64; 4] {
+        [self.re, self.eps, 0.0, 0.0]
+    }
+}
+
+impl JetDual for num_dual::Dual2_64 {
+    const ORDER: usize = 2;
+
+    #[inline]
+    fn from_derivatives(d: [f64; 4]) -> Self {
+        num_dual::Dual2_64::new(d[0], d[1], d[2])
+    }
+
+    #[inline]
+    fn derivatives(&self) -> [f64; 4] {
+        [self.re, self.v1, self.v2, 0.0]
+    }
+}
+
+impl JetDual for num_dual::Dual3_64 {
+    const ORDER: usize = 3;
+
+    #[inline]
+    fn from_derivatives(d: [f64; 4]) -> Self {
+        num_dual::Dual3_64::new(d[0], d[1], d[2], d[3])
+    }
+
+    #[inline]
+    fn derivatives(&self) -> [f64; 4] {
+        [self.re, self.v1, self.v2, self.v3]
+    }
+}

@@ -50,7 +50,7 @@ pub mod trace;
 
 pub use dead_position::{DeadPosition, DeadPositionSearch};
 pub use error::{Error, Result};
-pub use jet::Jet;
+pub use jet::{Jet, JetDual};
 pub use motion::{DriveState, Motion};
 pub use num_dual;
 pub use point::Point;

@@ -568,6 +568,73 @@ fn mixed_closed_form_and_newton_loops_match_newton() {
     assert!(e <= 1e-12, "scaled difference {e:e}");
 }
 
+/// `Tracker::pose_jets` reads the pose as the move solved it (the solver's own sines and
+/// cosines, differentiated through θ′, θ″, θ‴; a link's rotation from its angle): the same
+/// outputs as a `Kinematics::<3>` (whose points turn with `sin_cos` of θ in `Dual3_64`), on
+/// both paths, and a slot's travel equal to the law of cosines, with exactly the derivatives
+/// its scalar carries.
+#[test]
+fn outputs_read_from_the_solved_pose_agree_with_the_kinematics_and_the_law_of_cosines() {
+    use common::{L0, L1};
+    use mechdiff_core::JetDual;
+    use mechdiff_core::num_dual::{Dual2_64, Dual3_64, DualNum};
+    let m = whitworth().unwrap();
+    let psi = m.rotation_output("rocker").unwrap();
+    let ram = m.displacement_output("ram guide").unwrap();
+    let pin = m.point_output("crank", "A").unwrap();
+    // The crank pin's distance from B0 along the slot B0 → S: |A − B0|, with A = O + L1
+    // (sin φ, −cos φ) and O = (0, L0): √(L0² + L1² − 2 L0 L1 cos φ).
+    let slot = m.slide_output("rocker", ["B0", "S"], "crank", "A").unwrap();
+    let law_of_cosines = |phi: f64| {
+        let phi = Dual3_64::new(phi, 1.0, 0.0, 0.0);
+        (phi.cos() * (-2.0 * L0 * L1) + (L0 * L0 + L1 * L1)).sqrt()
+    };
+    // Lengths of O(1) m, angles of O(1) rad, their derivatives up to ~10: a few ulps of
+    // each (the sine and cosine of either route are correctly rounded to an ulp), so 1e-13
+    // of max(1, |x|) leaves a margin of ~100, and a wrong term of the chain rule is O(1).
+    let close = |a: [f64; 4], b: [f64; 4], what: &str, phi: f64| {
+        for (k, (x, y)) in a.iter().zip(b).enumerate() {
+            assert!(
+                (x - y).abs() <= 1e-13 * y.abs().max(1.0),
+                "{what}, φ = {phi}, derivative {k}: {x:e} against {y:e}"
+            );
+        }
+    };
+    for closed_form in [true, false] {
+        let mut t = Solver::default()
+            .with_closed_form(closed_form)
+            .track(&m)
+            .unwrap();
+        let mut dddq = Vec::new();
+        for phi in revolution(7.5, &[]) {
+            t.move_to(phi).unwrap();
+            t.third_derivatives(&mut dddq).unwrap();
+            let k = t.kinematics::<3>().unwrap();
+            let pose = t.pose_jets_with(&dddq);
+            let parts = |j: Jet<3>| [j.value, j.d1(), j.d2(), j.d3()];
+            // A rotation is the link's angle itself: bit for bit.
+            assert_eq!(pose.value::<Dual3_64>(&psi).jet::<3>(), k.value(&psi));
+            let ram3 = pose.value::<Dual3_64>(&ram);
+            close(ram3.derivatives(), parts(k.value(&ram)), "x_C", phi);
+            let [x, y] = pose.position::<Dual3_64>(&pin);
+            let [kx, ky] = k.position(&pin);
+            close(x.derivatives(), parts(kx), "x_A", phi);
+            close(y.derivatives(), parts(ky), "y_A", phi);
+            let travel = pose.value::<Dual3_64>(&slot).derivatives();
+            close(travel, law_of_cosines(phi).derivatives(), "|B0A|", phi);
+            // Order 2 carries x, x′, x″ (the same to rounding) and nothing beyond.
+            let ram2 = t.pose_jets().value::<Dual2_64>(&ram).derivatives();
+            assert_eq!(ram2[3], 0.0);
+            close(
+                ram2,
+                [ram3.re, ram3.v1, ram3.v2, 0.0],
+                "x_C in Dual2_64",
+                phi,
+            );
+        }
+    }
+}
+
 /// `Tracker::value` and `Tracker::position` (read straight from the tracker) give the same
 /// outputs as a `Kinematics::<2>` built at the same pose, on both paths; on the closed-form
 /// path `move_to` does not evaluate Φ (`residual` is `None`) and `Tracker::residual`

@@ -1,9 +1,9 @@
 //! Reading an output from a solved pose: point jets from the model, angles and slider
 //! displacements computed from them with exact derivatives (third-order dual numbers).
 
-use mechdiff_core::geometry::{Kinematics, Mechanism, PointOutput, Tracker};
+use mechdiff_core::geometry::{Kinematics, Mechanism, PointOutput, PoseJets, ScalarOutput};
 use mechdiff_core::num_dual::Dual3_64;
-use mechdiff_core::{DriveState, Jet, Scalar};
+use mechdiff_core::{DriveState, Jet, JetDual, Scalar};
 
 use crate::error::{Error, Result};
 
@@ -106,6 +106,10 @@ pub(crate) struct Resolved<'s> {
     pub output: &'s Output,
     /// Its points, in the order of [`point_names`].
     points: Vec<PointOutput>,
+    /// An angle's line and reference line read as the rotation of a link that carries both
+    /// points, a slider's displacement along a line one link carries, where there is one
+    /// (see [`on_links`]): read from the pose's coordinates, not from the points.
+    shortcuts: [Option<ScalarOutput>; 2],
     /// An angle output's value at the sketch pose, where a sweep's angle continuity starts
     /// (0 for the others).
     sketch: f64,
@@ -133,9 +137,18 @@ impl<'s> Resolved<'s> {
                 (mechanism.point_output(link, name)).map_err(|e| cx.solver_error(e))
             })
             .collect::<Result<_>>()?;
+        let shortcuts = on_links(links, output).map(|on| {
+            on.and_then(|on| match on {
+                OnLinks::Line(link, [a, b]) => mechanism.angle_output(link, a, b).ok(),
+                OnLinks::Slide(guide, line, slider, point) => {
+                    mechanism.slide_output(guide, line, slider, point).ok()
+                }
+            })
+        });
         Ok(Resolved {
             output,
             points: resolved,
+            shortcuts,
             sketch: sketch_angle(points, output),
         })
     }
@@ -172,6 +185,47 @@ pub(crate) fn points_on_links<'a>(
         .collect()
 }
 
+/// A line of an output that one link carries (see [`on_links`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum OnLinks<'a> {
+    /// An angle's line `[from, to]` on a link: it turns with the link, its direction the
+    /// link's angle plus the line's direction in the sketch.
+    Line(&'a str, [&'a str; 2]),
+    /// A slider's line `[from, to]` on a link, and its point on a link: `(line's link, line,
+    /// point's link, point)`; the line's unit direction turns with its link.
+    Slide(&'a str, [&'a str; 2], &'a str, &'a str),
+}
+
+/// An angle output's line and reference line, a slider's line (then `None`), each where one
+/// link carries both its points (`None` otherwise, and for the other outputs): what a
+/// solved pose gives without trigonometry (an angle) or a square root and a division (a
+/// slider's unit direction).
+pub(crate) fn on_links<'a>(links: &'a [Link], output: &'a Output) -> [Option<OnLinks<'a>>; 2] {
+    let carries = |l: &Link, name: &str| l.points.iter().any(|p| p == name);
+    let on_one_link = |[a, b]: &'a [String; 2]| {
+        (links.iter())
+            .find(|l| carries(l, a) && carries(l, b))
+            .map(|l| (l.name.as_str(), [a.as_str(), b.as_str()]))
+    };
+    match &output.kind {
+        OutputKind::Angle {
+            line, reference, ..
+        } => [
+            on_one_link(line).map(|(l, ab)| OnLinks::Line(l, ab)),
+            (reference.as_ref().and_then(on_one_link)).map(|(l, ab)| OnLinks::Line(l, ab)),
+        ],
+        OutputKind::Slider { point, line, .. } => {
+            let slider = links.iter().find(|l| carries(l, point));
+            let slide = on_one_link(line).zip(slider);
+            [
+                slide.map(|((guide, ab), s)| OnLinks::Slide(guide, ab, &s.name, point)),
+                None,
+            ]
+        }
+        _ => [None, None],
+    }
+}
+
 /// The points an output is computed from: the point; the line, then the reference line;
 /// the sliding point, then the line.
 fn point_names(output: &Output) -> Vec<&str> {
@@ -199,42 +253,44 @@ pub(crate) fn evaluate<const N: usize>(
     resolved: &Resolved<'_>,
     previous: &mut Option<f64>,
 ) -> Values<Jet<N>> {
-    evaluate_points(|p| k.position(p).map(|x| dual(&x)), resolved, previous)
+    let position = |p: &PointOutput| k.position(p).map(|x| dual(&x));
+    let rotation = |r: &ScalarOutput| dual(&k.value(r));
+    evaluate_with::<Dual3_64, N>(position, rotation, resolved, previous)
 }
 
-/// The output's jets (N ≤ 2) at the current pose of `tracker`, as [`evaluate`] reads them
-/// from a lifted [`Kinematics`] — the same arithmetic on the same q, q′, q″, so the same
-/// bits (the second derivative, beyond the first order, enters no first one) — read
-/// straight from the tracker: nothing lifted or allocated per row.
-pub(crate) fn evaluate_tracked<const N: usize>(
-    tracker: &Tracker<'_>,
+/// The output's jets at the pose `pose` as the tracker's move solved it (see
+/// [`PoseJets`]), evaluated in `D` (its order at least `N`): every quantity once, at the
+/// order the plan needs, nothing allocated. Angles are kept continuous along the sweep
+/// through `previous`.
+pub(crate) fn evaluate_pose<D: JetDual, const N: usize>(
+    pose: &PoseJets<'_>,
     resolved: &Resolved<'_>,
     previous: &mut Option<f64>,
 ) -> Values<Jet<N>> {
-    const { assert!(N <= 2, "the tracker holds q′ and q″") };
-    evaluate_points(
-        |p| tracker.position(p).map(|x| dual(&x)),
-        resolved,
-        previous,
-    )
+    let position = |p: &PointOutput| pose.position::<D>(p);
+    let rotation = |r: &ScalarOutput| pose.value::<D>(r);
+    evaluate_with::<D, N>(position, rotation, resolved, previous)
 }
 
-/// The output's jets from its points' positions `position(point)` in third-order dual
-/// numbers, an angle kept continuous through `previous`.
-fn evaluate_points<const N: usize>(
-    position: impl Fn(&PointOutput) -> [Dual3_64; 2],
+/// The output's jets from its points' positions `position(point)` and its lines' rotations
+/// `rotation(line)` in `D`, an angle kept continuous through `previous`.
+#[inline]
+fn evaluate_with<D: JetDual, const N: usize>(
+    position: impl Fn(&PointOutput) -> [D; 2],
+    rotation: impl Fn(&ScalarOutput) -> D,
     resolved: &Resolved<'_>,
     previous: &mut Option<f64>,
 ) -> Values<Jet<N>> {
     let point = |i: usize| position(&resolved.points[i]);
+    let line = |i: usize| resolved.shortcuts[i].as_ref().map(&rotation);
     let output = resolved.output;
-    let mut values = values(output, point);
+    let mut values = values_read(output, point, line);
     if let OutputKind::Angle { .. } = &output.kind {
         let target = previous.unwrap_or(resolved.sketch);
         to_turn(&mut values[0], target);
-        *previous = Some(values[0].re);
+        *previous = Some(values[0].re());
     }
-    values.map(|v| jet::<N>(&v))
+    values.map(|v| v.jet::<N>())
 }
 
 /// The output's values as [`values`] gives them, with an angle moved by whole turns to the
@@ -266,29 +322,40 @@ pub(crate) fn to_turn<D: Scalar>(angle: &mut D, target: f64) {
 /// [`Resolved::points`]), in any scalar: `[x, y]` for a point, one value otherwise (an
 /// angle in (−π, π] before any reference line is subtracted, on no particular turn).
 pub(crate) fn values<D: Scalar>(output: &Output, point: impl Fn(usize) -> [D; 2]) -> Values<D> {
+    values_read(output, point, |_| None)
+}
+
+/// [`values`], with an angle's line (`shortcut(0)`) and reference line (`shortcut(1)`), a
+/// slider's displacement (`shortcut(0)`), read from the pose where `shortcut` gives them
+/// (see [`on_links`]): the same values, an angle on a continuous turn.
+#[inline]
+pub(crate) fn values_read<D: Scalar>(
+    output: &Output,
+    point: impl Fn(usize) -> [D; 2],
+    shortcut: impl Fn(usize) -> Option<D>,
+) -> Values<D> {
     match &output.kind {
         OutputKind::Point(_) => Values::two(point(0)),
         OutputKind::Angle {
             reference, sense, ..
         } => {
-            let mut angle = direction(point(0), point(1));
+            let mut angle = shortcut(0).unwrap_or_else(|| direction(point(0), point(1)));
             if reference.is_some() {
-                angle -= direction(point(2), point(3));
+                angle -= shortcut(1).unwrap_or_else(|| direction(point(2), point(3)));
             }
             if *sense == Sense::Cw {
                 angle = -angle;
             }
             Values::one(angle)
         }
-        OutputKind::Slider { .. } => {
+        OutputKind::Slider { .. } => Values::one(shortcut(0).unwrap_or_else(|| {
             // s = (p − a)·u with u the unit direction a → b of the guide or slot (both points
             // on one link, so |b − a| is constant; it is differentiated anyway, exactly).
             let (p, a, b) = (point(0), point(1), point(2));
             let u = [b[0] - a[0], b[1] - a[1]];
             let norm = (u[0] * u[0] + u[1] * u[1]).sqrt();
-            let s = ((p[0] - a[0]) * u[0] + (p[1] - a[1]) * u[1]) / norm;
-            Values::one(s)
-        }
+            ((p[0] - a[0]) * u[0] + (p[1] - a[1]) * u[1]) / norm
+        })),
         OutputKind::Transmission { form, points, .. } => {
             // μ between the coupler B → A and the follower B → O_out, or the normal of the
             // slider's path (its direction g0 → g1 turned +90°), as core defines it.
@@ -347,9 +414,4 @@ fn direction<D: Scalar>(a: [D; 2], b: [D; 2]) -> D {
 fn dual<const N: usize>(j: &Jet<N>) -> Dual3_64 {
     let d = |k: usize| j.derivatives.get(k).copied().unwrap_or(0.0);
     Dual3_64::new(j.value, d(0), d(1), d(2))
-}
-
-fn jet<const N: usize>(x: &Dual3_64) -> Jet<N> {
-    let d = [x.v1, x.v2, x.v3];
-    Jet::new(x.re, std::array::from_fn(|k| d[k]))
 }

@@ -8,12 +8,13 @@ use std::convert::Infallible;
 use std::ops::ControlFlow;
 
 use mechdiff_core::geometry::{Mechanism, Mobility, MotionRange};
+use mechdiff_core::num_dual::Dual2_64;
 use mechdiff_core::{DeadPosition, DeadPositionSearch};
 
 use crate::error::{Error, Result};
 
 use super::error_context::ErrorContext;
-use super::evaluate::{Resolved, evaluate};
+use super::evaluate::{Resolved, evaluate, evaluate_pose};
 use super::model::{DriveKind, Output};
 use super::outputs::Column;
 use super::plan::Plan;
@@ -453,13 +454,16 @@ fn search_dead_positions(
     let resolved = Resolved::new(setup, output)?;
     let previous = RefCell::new(None);
     let solved = std::cell::Cell::new(0);
+    // x′ and x″ read from each solved pose (the search reads no third derivative), nothing
+    // allocated per evaluation.
     let found = DeadPositionSearch::new(lo..=hi)
         .with_step(step)
         .find_roots(|phi| {
             solved.set(solved.get() + 1);
             let mut t = tracker.borrow_mut();
-            let k = t.move_to(phi).and_then(|_| t.kinematics::<3>())?;
-            Ok(evaluate(&k, &resolved, &mut previous.borrow_mut())[0])
+            t.move_to(phi)?;
+            let previous = &mut previous.borrow_mut();
+            Ok(evaluate_pose::<Dual2_64, 2>(&t.pose_jets(), &resolved, previous)[0])
         })
         .map_err(|e| cx.solver_error(e))?;
     Ok((found, solved.get()))

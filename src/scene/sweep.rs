@@ -5,8 +5,9 @@
 //! [`super::run()`] collects the rows; [`crate::stream`] formats and writes them as they come.
 
 use mechdiff_core::geometry::{Kinematics, Tracker};
+use mechdiff_core::num_dual::{Dual2_64, Dual3_64};
 use mechdiff_core::sweep::Consumer;
-use mechdiff_core::{DriveState, Jet};
+use mechdiff_core::{DriveState, JetDual};
 
 use crate::error::{Error, Result};
 use crate::evaluator::{LoopPlan, ProgramPath, solver_loops};
@@ -15,7 +16,7 @@ use mechdiff_core::trace::Backend;
 use super::balancing::BalancingSweep;
 use super::dynamics::DynamicsSweep;
 use super::error_context::ErrorContext;
-use super::evaluate::{Resolved, Values, evaluate, evaluate_tracked, quantity};
+use super::evaluate::{Resolved, evaluate_pose, quantity};
 use super::model::Output;
 use super::outputs::{Column, columns};
 use super::plan::Plan;
@@ -117,6 +118,8 @@ struct Outputs<'s> {
     outputs: Vec<Resolved<'s>>,
     /// Each angle output's value at the previous position (angles are kept continuous).
     previous: Vec<Option<f64>>,
+    /// q‴ of the pose (the third order's buffer, reused at every position).
+    dddq: Vec<f64>,
 }
 
 impl<'s> Sweeper<'s> {
@@ -140,6 +143,7 @@ impl<'s> Sweeper<'s> {
             drive: plan.drive.unwrap_or(DriveState::constant_speed(0.0)),
             previous: vec![None; outputs.len()],
             outputs,
+            dddq: Vec::new(),
         };
         let walk = match order {
             1 => Walk::First(outputs),
@@ -284,25 +288,30 @@ impl<'s> Sweeper<'s> {
         let (last, cx) = (self.last, &setup.context);
         self.counts.solves += 1;
         let o = match &mut self.walk {
+            // Orders 1 and 2 both read the pose in `Dual2_64`: the first derivatives of an
+            // order-1 run are those of an order-2 run, bit for bit.
             Walk::First(o) => {
                 move_along(cx, &mut o.tracker, last, phi)?;
-                o.push_tracked::<1>(cx, phi, row);
+                o.push_tracked::<Dual2_64, 1>(cx, phi, row)?;
                 o
             }
             Walk::Second(o) => {
                 move_along(cx, &mut o.tracker, last, phi)?;
-                o.push_tracked::<2>(cx, phi, row);
+                o.push_tracked::<Dual2_64, 2>(cx, phi, row)?;
                 o
             }
             Walk::Third(o) => {
-                let k = solve_along::<3>(cx, &mut o.tracker, last, phi)?;
-                o.push(cx, phi, &k, row);
+                move_along(cx, &mut o.tracker, last, phi)?;
+                o.push_tracked::<Dual3_64, 3>(cx, phi, row)?;
                 o
             }
         };
         self.last = Some(phi);
-        let (amplification, l) = o.tracker.amplification_loop();
-        if is_worse(amplification, self.worst.as_ref()) {
+        // Only an amplification above the warning's limit can be reported (see
+        // `Sweeper::warnings`): the others are not computed.
+        if let Some((amplification, l)) = o.tracker.amplification_over(ILL_CONDITIONED)
+            && is_worse(amplification, self.worst.as_ref())
+        {
             self.worst = Some((amplification, phi, l));
         }
         if let Some(p) = &mut self.program
@@ -409,41 +418,25 @@ impl<'s> Sweeper<'s> {
 }
 
 impl Outputs<'_> {
-    /// Pushes the columns of every output at drive position `phi` from the lifted pose
-    /// `k` (the third order).
-    fn push<const N: usize>(
-        &mut self,
-        cx: &ErrorContext<'_>,
-        phi: f64,
-        k: &Kinematics<'_, N>,
-        row: &mut Vec<f64>,
-    ) {
-        self.push_with(cx, phi, row, |_, r, p| evaluate(k, r, p));
-    }
-
-    /// Pushes the columns of every output at drive position `phi` (order N ≤ 2) read
-    /// straight from the tracker, as [`Outputs::push`] would from the pose lifted: the same
-    /// values, nothing allocated.
-    fn push_tracked<const N: usize>(
+    /// Pushes the columns of every output at drive position `phi`, read in `D` (order N)
+    /// from the pose as the tracker's move solved it (see
+    /// [`mechdiff_core::geometry::PoseJets`]): every quantity
+    /// once, at the order the plan needs, nothing allocated per row (the third order's q‴
+    /// goes into a buffer kept from row to row).
+    fn push_tracked<D: JetDual, const N: usize>(
         &mut self,
         cx: &ErrorContext<'_>,
         phi: f64,
         row: &mut Vec<f64>,
-    ) {
-        self.push_with(cx, phi, row, evaluate_tracked::<N>);
-    }
-
-    /// Pushes the columns of every output at drive position `phi`, each output's jets from
-    /// `jets` (given the tracker, the output and its previous angle).
-    fn push_with<const N: usize>(
-        &mut self,
-        cx: &ErrorContext<'_>,
-        phi: f64,
-        row: &mut Vec<f64>,
-        jets: impl Fn(&Tracker<'_>, &Resolved<'_>, &mut Option<f64>) -> Values<Jet<N>>,
-    ) {
+    ) -> Result<()> {
+        let pose = if N >= 3 {
+            (self.tracker.third_derivatives(&mut self.dddq)).map_err(|e| cx.solver_error(e))?;
+            self.tracker.pose_jets_with(&self.dddq)
+        } else {
+            self.tracker.pose_jets()
+        };
         for (resolved, previous) in self.outputs.iter().zip(self.previous.iter_mut()) {
-            let mut values = jets(&self.tracker, resolved, previous);
+            let mut values = evaluate_pose::<D, N>(&pose, resolved, previous);
             if let Some(cam) = &cx.drive.cam {
                 // Derivatives with respect to the cam angle (the chain rule through s(θ)).
                 values = values.map(|v| cam.joint.compose(phi, &v));
@@ -454,25 +447,14 @@ impl Outputs<'_> {
                 }
             }
         }
+        Ok(())
     }
 }
 
-/// Moves `tracker` to drive position `phi` and lifts the pose to `N` derivatives. The
-/// solver moves the driven joint: to φ itself, or for a cam drive to s(θ) along the cam
-/// from the previous position `last` (through every displacement the follower passes
-/// between them, see [`mechdiff_core::cams::CamJoint::move_tracker`]; from the sketch,
-/// straight to s(θ)).
-fn solve_along<'m, const N: usize>(
-    cx: &ErrorContext<'_>,
-    tracker: &mut Tracker<'m>,
-    last: Option<f64>,
-    phi: f64,
-) -> Result<Kinematics<'m, N>> {
-    move_along(cx, tracker, last, phi)?;
-    tracker.kinematics::<N>().map_err(|e| cx.solver_error(e))
-}
-
-/// Moves `tracker` to drive position `phi` as [`solve_along`] does, lifting nothing.
+/// Moves `tracker` to drive position `phi`. The solver moves the driven joint: to φ
+/// itself, or for a cam drive to s(θ) along the cam from the previous position `last`
+/// (through every displacement the follower passes between them, see
+/// [`mechdiff_core::cams::CamJoint::move_tracker`]; from the sketch, straight to s(θ)).
 fn move_along(
     cx: &ErrorContext<'_>,
     tracker: &mut Tracker<'_>,

@@ -20,7 +20,7 @@ use mechdiff_core::num_dual::Dual64;
 
 use crate::error::Result;
 use crate::scene::dynamics::column_derivatives;
-use crate::scene::evaluate::{points_on_links, quantity_in, values};
+use crate::scene::evaluate::{OnLinks, on_links, points_on_links, quantity_in, values_read};
 use crate::scene::setup::{RunOptions, Setup};
 use crate::scene::sweep::solve;
 use crate::scene::tangent::{SceneTangent, scene_tangent};
@@ -83,7 +83,17 @@ fn walk<const N: usize>(
                     (parametric.point_output(link, point)).map_err(|e| cx.solver_error(e))
                 })
                 .collect::<Result<Vec<_>>>()?;
-            Ok((output, points))
+            // The outputs read as a run reads them: a line one link carries turns with that
+            // link (so ψ′ here is the run's ψ′, and d(ω ψ′)/dω is it exactly).
+            let shortcuts = on_links(setup.links, output).map(|on| {
+                on.and_then(|on| match on {
+                    OnLinks::Line(link, [a, b]) => parametric.angle_output(link, a, b).ok(),
+                    OnLinks::Slide(guide, line, slider, point) => {
+                        parametric.slide_output(guide, line, slider, point).ok()
+                    }
+                })
+            });
+            Ok((output, points, shortcuts))
         })
         .collect::<Result<Vec<_>>>()?;
     let state = Plan::of(setup)
@@ -102,9 +112,11 @@ fn walk<const N: usize>(
         let k = solve::<N>(cx, &mut tracker, phi)?;
         let pose = parametric.pose(&k).map_err(|e| cx.solver_error(e))?;
         let mut row = vec![0.0];
-        for (output, points) in &outputs {
+        for (output, points, shortcuts) in &outputs {
             // An angle's whole turns (kept continuous by a run) do not change d/dp.
-            let values = values(output, |i| points[i].position(&pose));
+            let point = |i: usize| points[i].position(&pose);
+            let shortcut = |i: usize| shortcuts[i].as_ref().map(|r| r.value(&pose));
+            let values = values_read(output, point, shortcut);
             for q in &output.quantities {
                 for v in &values {
                     row.push(quantity_in([v.re, v.v1, v.v2, v.v3], *q, &drive).eps);

@@ -36,25 +36,12 @@ pub fn energy<const N: usize>(
     drive: &DriveState,
 ) -> Energy {
     const { assert!(N >= 1, "the kinetic energy needs first derivatives") };
-    let padded: Vec<Jet<2>> = coordinates
-        .iter()
-        .map(|j| {
-            Jet::new(
-                j.value,
-                [
-                    j.derivatives[0],
-                    j.derivatives.get(1).copied().unwrap_or(0.0),
-                ],
-            )
-        })
-        .collect();
-    let e = energy_of(
-        &model.data(),
-        &padded,
-        |j| [j.value, j.derivatives[0], j.derivatives[1]],
-        drive.omega,
-        drive.alpha,
-    );
+    // q″ read as 0 from first derivatives only.
+    let jet = |j: &Jet<N>| {
+        let second = j.derivatives.get(1).copied().unwrap_or(0.0);
+        [j.value, j.derivatives[0], second]
+    };
+    let e = energy_of(&model.data(), coordinates, jet, drive.omega, drive.alpha);
     Energy {
         reduced_inertia_derivative: e.reduced_inertia_derivative.filter(|_| N >= 2),
         kinetic_rate: e.kinetic_rate.filter(|_| N >= 2),

@@ -39,22 +39,31 @@ pub(crate) fn loads<T: Scalar>(
     masses: &[Mass<T>],
     states: &[LinkState<T>],
 ) -> Vec<InertialLoad<T>> {
-    masses
-        .iter()
-        .map(|m| {
-            let s = of(states, m.link);
-            let center = s.position(m.center);
-            let acceleration = s.acceleration_at(center);
-            InertialLoad {
-                link: m.link,
-                center,
-                velocity: s.velocity_at(center),
-                acceleration,
-                force: [-(m.mass * acceleration[0]), -(m.mass * acceleration[1])],
-                couple: -(m.moment * s.alpha),
-            }
-        })
-        .collect()
+    let mut loads = Vec::with_capacity(masses.len());
+    loads_into(masses, states, &mut loads);
+    loads
+}
+
+/// [`loads`] into `loads` (cleared first; nothing allocated once it has the capacity).
+pub(crate) fn loads_into<T: Scalar>(
+    masses: &[Mass<T>],
+    states: &[LinkState<T>],
+    loads: &mut Vec<InertialLoad<T>>,
+) {
+    loads.clear();
+    loads.extend(masses.iter().map(|m| {
+        let s = of(states, m.link);
+        let center = s.position(m.center);
+        let acceleration = s.acceleration_at(center);
+        InertialLoad {
+            link: m.link,
+            center,
+            velocity: s.velocity_at(center),
+            acceleration,
+            force: [-(m.mass * acceleration[0]), -(m.mass * acceleration[1])],
+            couple: -(m.moment * s.alpha),
+        }
+    }));
 }
 
 /// Adds the inertial loads to the generalized loads.

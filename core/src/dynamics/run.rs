@@ -5,8 +5,9 @@ use super::energy::{Energy, energy};
 use super::kinetostatics;
 use super::model::CompiledModel;
 use super::plan::{Plan, Trace};
-use super::shaking::{ShakingForce, shaking_force};
+use super::shaking::{ShakingForce, shaking_into};
 use super::solution::Solution;
+use super::state::{self, LinkState};
 use crate::geometry::{Solver, Tracker};
 use crate::sweep::{Consumer, Sweep};
 use crate::{DriveState, Error, Jet};
@@ -198,21 +199,54 @@ pub fn step_at(
                 step.solution = Some(s);
             }
         }
-        order => {
-            let coordinates: Vec<Jet<2>> = if order == 2 {
-                tracker.kinematics::<2>()?.coordinates
-            } else {
-                tracker
-                    .kinematics::<3>()?
-                    .coordinates
-                    .iter()
-                    .map(|j| j.truncate::<2>())
-                    .collect()
-            };
+        _ => {
+            let mut coordinates = Vec::new();
+            tracker.coordinates_into(&mut coordinates);
             return step_from(plan, model, phi, d, &coordinates, trace);
         }
     }
     all_finite(&step)?;
+    Ok(step)
+}
+
+/// What [`step_reusing`] keeps from one position to the next: the pose's coordinates, the
+/// links' states and the last step, so that a plan of order 2 or more allocates nothing per
+/// position for its shaking force and kinetic energy (the equilibrium's solve still does).
+#[derive(Debug, Clone, Default)]
+pub struct StepBuffers {
+    coordinates: Vec<Jet<2>>,
+    states: Vec<LinkState>,
+    step: Option<Step>,
+}
+
+/// [`step_at`] with buffers kept by the caller from one position to the next: the same
+/// results, bit for bit, and a reference to them (valid until the next call).
+///
+/// # Errors
+/// As [`step_at`].
+pub fn step_reusing<'b>(
+    plan: &Plan,
+    model: &CompiledModel<'_>,
+    tracker: &Tracker<'_>,
+    phi: f64,
+    d: DriveState,
+    trace: &mut Trace,
+    buffers: &'b mut StepBuffers,
+) -> Result<&'b Step, Error> {
+    if plan.order < 2 {
+        return Ok(buffers
+            .step
+            .insert(step_at(plan, model, tracker, phi, d, trace)?));
+    }
+    let StepBuffers {
+        coordinates,
+        states,
+        step,
+    } = buffers;
+    trace.positions += 1;
+    tracker.coordinates_into(coordinates);
+    let step = step.get_or_insert_with(|| Step::at(phi, d));
+    fill(plan, model, phi, d, coordinates, trace, step, states)?;
     Ok(step)
 }
 
@@ -231,25 +265,59 @@ pub fn step_from(
     coordinates: &[Jet<2>],
     trace: &mut Trace,
 ) -> Result<Step, Error> {
-    debug_assert!(plan.order >= 2, "a plan of order {} lifts less", plan.order);
     let mut step = Step::at(phi, d);
+    fill(
+        plan,
+        model,
+        phi,
+        d,
+        coordinates,
+        trace,
+        &mut step,
+        &mut Vec::new(),
+    )?;
+    Ok(step)
+}
+
+/// Fills `step` (its buffers reused) with the results of a plan of order 2 or more at the
+/// pose `coordinates` (see [`step_from`]); `states` is the links' states' buffer.
+#[allow(clippy::too_many_arguments)]
+fn fill(
+    plan: &Plan,
+    model: &CompiledModel<'_>,
+    phi: f64,
+    d: DriveState,
+    coordinates: &[Jet<2>],
+    trace: &mut Trace,
+    step: &mut Step,
+    states: &mut Vec<LinkState>,
+) -> Result<(), Error> {
+    debug_assert!(plan.order >= 2, "a plan of order {} lifts less", plan.order);
+    (step.phi, step.drive) = (phi, d);
     trace.derivatives += 1;
-    if plan.energy {
-        step.energy = Some(energy(model, coordinates, &d));
-        trace.energy += 1;
-    }
+    step.energy = plan.energy.then(|| energy(model, coordinates, &d));
+    trace.energy += usize::from(plan.energy);
     if plan.shaking {
-        step.shaking = Some(shaking_force(model, phi, coordinates, &d));
+        state::link_states_into(coordinates, &d, states);
+        let shaking = step.shaking.get_or_insert_with(|| ShakingForce {
+            phi,
+            force: [0.0; 2],
+            moment: 0.0,
+            links: Vec::new(),
+        });
+        shaking_into(&model.masses, phi, states, shaking);
         trace.shaking += 1;
         trace.inertia += 1;
+    } else {
+        step.shaking = None;
     }
+    step.solution = None;
     if plan.kinetostatics {
         let s = kinetostatics::solve_at(model, &plan.effects, phi, coordinates, &d)?;
         trace.add(&s.trace);
         step.solution = Some(s);
     }
-    all_finite(&step)?;
-    Ok(step)
+    all_finite(step)
 }
 
 /// Checks every number of a step: an overflow (or 0/0) for some combination of inputs is

@@ -36,20 +36,33 @@ pub(crate) fn shaking_of<T: Scalar>(
     phi: f64,
     states: &[LinkState<T>],
 ) -> ShakingForce<T> {
-    let links = inertia::loads(masses, states);
+    let mut shaking = ShakingForce {
+        phi,
+        force: [T::zero(); 2],
+        moment: T::zero(),
+        links: Vec::with_capacity(masses.len()),
+    };
+    shaking_into(masses, phi, states, &mut shaking);
+    shaking
+}
+
+/// [`shaking_of`] written into `shaking` (its links' buffer reused: nothing allocated once
+/// it has the capacity).
+pub(crate) fn shaking_into<T: Scalar>(
+    masses: &[Mass<T>],
+    phi: f64,
+    states: &[LinkState<T>],
+    shaking: &mut ShakingForce<T>,
+) {
+    inertia::loads_into(masses, states, &mut shaking.links);
     let mut force = [T::zero(); 2];
     let mut moment = T::zero();
-    for l in &links {
+    for l in &shaking.links {
         force[0] += l.force[0];
         force[1] += l.force[1];
         moment += cross(l.center, l.force) + l.couple;
     }
-    ShakingForce {
-        phi,
-        force,
-        moment,
-        links,
-    }
+    (shaking.phi, shaking.force, shaking.moment) = (phi, force, moment);
 }
 
 /// An extreme value over a sweep and where it occurs.

@@ -90,12 +90,25 @@ impl<T: Scalar> LinkState<T> {
 /// The states of all moving links (index `k − 1` for link `k`) from the pose coordinates and
 /// their φ-derivatives, for the drive state `drive`: `q̇ = ω q′`, `q̈ = α q′ + ω² q″`.
 pub(crate) fn link_states(coordinates: &[Jet<2>], drive: &DriveState) -> Vec<LinkState> {
-    states_of(
+    let mut states = Vec::new();
+    link_states_into(coordinates, drive, &mut states);
+    states
+}
+
+/// [`link_states`] into `states` (cleared first; nothing allocated once it has the
+/// capacity).
+pub(crate) fn link_states_into(
+    coordinates: &[Jet<2>],
+    drive: &DriveState,
+    states: &mut Vec<LinkState>,
+) {
+    states_into(
         coordinates,
         |j| [j.value, j.derivatives[0], j.derivatives[1]],
         drive.omega,
         drive.alpha,
-    )
+        states,
+    );
 }
 
 /// [`link_states`] in any scalar: `jet` gives `(q, q′, q″)` of one coordinate, `omega` and
@@ -106,27 +119,38 @@ pub(crate) fn states_of<C, T: Scalar>(
     omega: T,
     alpha: T,
 ) -> Vec<LinkState<T>> {
+    let mut states = Vec::with_capacity(coordinates.len() / 3);
+    states_into(coordinates, jet, omega, alpha, &mut states);
+    states
+}
+
+/// [`states_of`] into `states` (cleared first).
+pub(crate) fn states_into<C, T: Scalar>(
+    coordinates: &[C],
+    jet: impl Fn(&C) -> [T; 3],
+    omega: T,
+    alpha: T,
+    states: &mut Vec<LinkState<T>>,
+) {
     let drive = DriveState {
         omega,
         alpha,
         jerk: T::zero(),
     };
-    coordinates
-        .chunks_exact(3)
-        .map(|c| {
-            let [x, y, t] = [jet(&c[0]), jet(&c[1]), jet(&c[2])];
-            let vel = |j: [T; 3]| drive.velocity(j[1]);
-            let acc = |j: [T; 3]| drive.acceleration(j[1], j[2]);
-            LinkState {
-                r: [x[0], y[0]],
-                v: [vel(x), vel(y)],
-                a: [acc(x), acc(y)],
-                theta: t[0],
-                omega: vel(t),
-                alpha: acc(t),
-            }
-        })
-        .collect()
+    states.clear();
+    states.extend(coordinates.chunks_exact(3).map(|c| {
+        let [x, y, t] = [jet(&c[0]), jet(&c[1]), jet(&c[2])];
+        let vel = |j: [T; 3]| drive.velocity(j[1]);
+        let acc = |j: [T; 3]| drive.acceleration(j[1], j[2]);
+        LinkState {
+            r: [x[0], y[0]],
+            v: [vel(x), vel(y)],
+            a: [acc(x), acc(y)],
+            theta: t[0],
+            omega: vel(t),
+            alpha: acc(t),
+        }
+    }));
 }
 
 /// State of link `link` (0 = ground) among `states`.

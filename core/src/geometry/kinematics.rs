@@ -115,17 +115,23 @@ pub(crate) fn jet<const N: usize>(x: Dual3_64) -> Jet<N> {
     Jet::new(x.re, std::array::from_fn(|k| d[k]))
 }
 
-/// `A(θ_b)·v` for a link-local vector `v` (data in `T`), coordinate `i` of the pose being
-/// `coordinate(i)`.
-#[inline]
-fn rotate<T: Copy, D: Absorb<T>>(coordinate: &impl Fn(usize) -> D, b: Body, v: [T; 2]) -> [D; 2] {
+/// `A(θ_b)·v` for a link-local vector `v` (data in `T`), `(sin θ_k, cos θ_k)` of body `k`
+/// being `frame(k)`.
+#[inline(always)]
+fn rotate<T: Copy, D: Absorb<T>>(frame: &impl Fn(usize) -> (D, D), b: Body, v: [T; 2]) -> [D; 2] {
     match b {
         None => [D::datum(v[0]), D::datum(v[1])],
         Some(k) => {
-            let (s, c) = coordinate(3 * k + 2).sin_cos();
+            let (s, c) = frame(k);
             [c.times(v[0]) - s.times(v[1]), s.times(v[0]) + c.times(v[1])]
         }
     }
+}
+
+/// `(sin θ_k, cos θ_k)` of body `k` from its angle, coordinate `3k + 2` of the pose.
+#[inline]
+fn sin_cos_of<D: crate::Scalar>(coordinate: &impl Fn(usize) -> D) -> impl Fn(usize) -> (D, D) {
+    move |k| coordinate(3 * k + 2).sin_cos()
 }
 
 /// Position of the point of body `b` at link-local `p`.
@@ -135,7 +141,18 @@ pub(crate) fn place<T: Copy, D: Absorb<T>>(
     b: Body,
     p: [T; 2],
 ) -> [D; 2] {
-    let r = rotate(coordinate, b, p);
+    place_with(coordinate, &sin_cos_of(coordinate), b, p)
+}
+
+/// [`place`] with the bodies' `(sin θ, cos θ)` given by `frame(k)`.
+#[inline(always)]
+pub(crate) fn place_with<T: Copy, D: Absorb<T>>(
+    coordinate: &impl Fn(usize) -> D,
+    frame: &impl Fn(usize) -> (D, D),
+    b: Body,
+    p: [T; 2],
+) -> [D; 2] {
+    let r = rotate(frame, b, p);
     match b {
         None => r,
         Some(k) => [coordinate(3 * k) + r[0], coordinate(3 * k + 1) + r[1]],
@@ -169,13 +186,24 @@ pub(crate) fn scalar<T: Copy, D: Absorb<T>>(
     coordinate: impl Fn(usize) -> D,
     output: &Scalar<T>,
 ) -> D {
+    let frame = sin_cos_of(&coordinate);
+    scalar_with(&coordinate, &frame, output)
+}
+
+/// [`scalar`] with the bodies' `(sin θ, cos θ)` given by `frame(k)`.
+#[inline(always)]
+pub(crate) fn scalar_with<T: Copy, D: Absorb<T>>(
+    coordinate: &impl Fn(usize) -> D,
+    frame: &impl Fn(usize) -> (D, D),
+    output: &Scalar<T>,
+) -> D {
     match *output {
-        Scalar::Rotation { body, offset } => rotation_of(&coordinate, body).plus(offset),
-        Scalar::Relative { a, b } => rotation_of(&coordinate, b) - rotation_of(&coordinate, a),
+        Scalar::Rotation { body, offset } => rotation_of(coordinate, body).plus(offset),
+        Scalar::Relative { a, b } => rotation_of(coordinate, b) - rotation_of(coordinate, a),
         Scalar::Displacement(slide) => {
-            let u = rotate(&coordinate, slide.line.body, slide.line.direction);
-            let a = place(&coordinate, slide.line.body, slide.line.origin);
-            let r = place(&coordinate, slide.slider, slide.point);
+            let u = rotate(frame, slide.line.body, slide.line.direction);
+            let a = place_with(coordinate, frame, slide.line.body, slide.line.origin);
+            let r = place_with(coordinate, frame, slide.slider, slide.point);
             u[0] * (r[0] - a[0]) + u[1] * (r[1] - a[1])
         }
     }

@@ -35,4 +35,4 @@ pub use model::{
 };
 pub use output::{PointOutput, ScalarOutput};
 pub use parametric::{DataTangent, Parametric, ParametricPoint, ParametricScalar, PoseTangent};
-pub use solver::{DriveLimit, LimitKind, MotionRange, SolveReport, Solver, Tracker};
+pub use solver::{DriveLimit, LimitKind, MotionRange, PoseJets, SolveReport, Solver, Tracker};

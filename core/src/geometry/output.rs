@@ -191,6 +191,67 @@ impl Mechanism {
         }
     }
 
+    /// Displacement of point `point` of link `point_link` along the line `line` (`from → to`)
+    /// of link `line_link` (m), measured from `from`: `(p − a)·u` with `u` the line's unit direction,
+    /// which turns with its link (a slider's travel along its guide, read without a square
+    /// root or a division per position).
+    ///
+    /// ```
+    /// use mechdiff_core::geometry::{Drive, Mechanism, Solver};
+    /// let m = Mechanism::builder()
+    ///     .point("O", [0.0, 0.0]).point("A", [2.0, 0.0]).point("X", [0.0, 1.0])
+    ///     .ground(["O", "X"]).link("crank", ["O", "A"])
+    ///     .revolute("O", "ground", "crank", "O")
+    ///     .drive(Drive::angle("O"))
+    ///     .build().unwrap();
+    /// let height = m.slide_output("ground", ["O", "X"], "crank", "A").unwrap();
+    /// let mut t = Solver::default().track(&m).unwrap();
+    /// t.move_to(0.5).unwrap();
+    /// assert!((t.kinematics::<1>().unwrap().value(&height).value - 2.0 * 0.5f64.sin()).abs() < 1e-15);
+    /// ```
+    pub fn slide_output(
+        &self,
+        line_link: &str,
+        line: [&str; 2],
+        point_link: &str,
+        point: &str,
+    ) -> Result<ScalarOutput, Error> {
+        let data = Data::of(self);
+        Ok(ScalarOutput(self.resolve_slide(
+            &data, line_link, line, point_link, point,
+        )?))
+    }
+
+    /// [`Mechanism::slide_output`] with the sketch from `data`.
+    pub(crate) fn resolve_slide<T: Datum>(
+        &self,
+        data: &Data<'_, T>,
+        line_link: &str,
+        [from, to]: [&str; 2],
+        point_link: &str,
+        point: &str,
+    ) -> Result<Scalar<T>, Error> {
+        let (guide, slider) = (self.output_link(line_link)?, self.output_link(point_link)?);
+        let (a, b) = (
+            self.output_point_on(guide, from)?,
+            self.output_point_on(guide, to)?,
+        );
+        if self.points[a].sketch == self.points[b].sketch {
+            return Err(invalid(
+                &format!("{from}–{to}"),
+                "the two points coincide; the direction is undefined",
+            ));
+        }
+        let p = self.output_point_on(slider, point)?;
+        Ok(Scalar::Displacement(constraints::compile_slide(
+            data,
+            guide,
+            [a, b],
+            slider,
+            p,
+        )))
+    }
+
     /// Relative rotation of link b with respect to link a in revolute joint `joint` since
     /// the sketch (rad).
     pub fn joint_rotation_output(&self, joint: &str) -> Result<ScalarOutput, Error> {

@@ -477,6 +477,20 @@ impl<'m> Parametric<'m> {
         Ok(ParametricScalar(s))
     }
 
+    /// Displacement of a point along a line of a link (as [`Mechanism::slide_output`]), the
+    /// line's sketch with d/dp.
+    pub fn slide_output(
+        &self,
+        line_link: &str,
+        [from, to]: [&str; 2],
+        point_link: &str,
+        point: &str,
+    ) -> Result<ParametricScalar, Error> {
+        let s =
+            (self.mechanism).resolve_slide(&self.data, line_link, [from, to], point_link, point)?;
+        Ok(ParametricScalar(s))
+    }
+
     /// Relative rotation in revolute joint `joint` (as
     /// [`Mechanism::joint_rotation_output`]).
     pub fn joint_rotation_output(&self, joint: &str) -> Result<ParametricScalar, Error> {

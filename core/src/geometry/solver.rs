@@ -43,6 +43,7 @@ pub(crate) mod interval;
 mod newton_path;
 mod range;
 mod reading;
+pub use reading::PoseJets;
 
 pub use range::{DriveLimit, LimitKind, MotionRange};
 
@@ -414,6 +415,18 @@ impl<'m> Tracker<'m> {
             }
         }
         worst
+    }
+
+    /// [`Tracker::amplification_loop`] where it exceeds `limit` (≥ 1) or is NaN, `None`
+    /// where every loop's amplification is at most `limit`: cheap checks first (each
+    /// margin against the limit, no square root or division), for a sweep that reports only
+    /// the positions that amplify rounding by more than a limit.
+    pub fn amplification_over(&self, limit: f64) -> Option<(f64, usize)> {
+        let within = |(l, m): (usize, &Dual2_64)| self.closed.surely_within(l, m.re, limit);
+        if !self.closed_only || self.margins.iter().enumerate().all(within) {
+            return None;
+        }
+        Some(self.amplification_loop()).filter(|(k, _)| *k > limit || k.is_nan())
     }
 
     /// Whether `other` (a tracker of the same mechanism and solver) is in the same state as

@@ -1,7 +1,7 @@
 //! Running the `[[dynamics]]` outputs: the planned sweep and its columns.
 
 use mechdiff_core::cams::CamJoint;
-use mechdiff_core::dynamics::run::{Run, Step, step_at};
+use mechdiff_core::dynamics::run::{Run, Step, StepBuffers, step_reusing};
 use mechdiff_core::dynamics::{
     Energy, JointReaction, Plan, PowerBalance, ShakingForce, ShakingSummary, Trace,
 };
@@ -65,6 +65,8 @@ pub(crate) struct DynamicsSweep<'s> {
     trace: Trace,
     /// Every step, when the run keeps them (a run in memory, [`DynamicsReport::run`]).
     steps: Option<Vec<Step>>,
+    /// The planned step's buffers, reused at every position.
+    buffers: StepBuffers,
 }
 
 impl<'s> DynamicsSweep<'s> {
@@ -95,6 +97,7 @@ impl<'s> DynamicsSweep<'s> {
             worst_balance: 0.0,
             trace: Trace::default(),
             steps: keep_steps.then(Vec::new),
+            buffers: StepBuffers::default(),
         }))
     }
 
@@ -195,14 +198,8 @@ impl Consumer for DynamicsSweep<'_> {
             }
             None => (phi, self.drive),
         };
-        let step = step_at(
-            &self.plan,
-            &self.model,
-            tracker,
-            joint,
-            state,
-            &mut self.trace,
-        )?;
+        let (plan, model, trace) = (&self.plan, &self.model, &mut self.trace);
+        let step = step_reusing(plan, model, tracker, joint, state, trace, &mut self.buffers)?;
         let cam = self.cam.map(|(c, _)| {
             let [s1, s2, _] = c.svaj(phi).derivatives;
             Cam { s1, s2 }
@@ -218,7 +215,7 @@ impl Consumer for DynamicsSweep<'_> {
             shaking: step.shaking.as_ref(),
         };
         let (joints, d, m) = (self.joints, self.d, self.mechanism);
-        row.extend(self::row(joints, d, m, &values, self.drive.omega, cam));
+        push_row(joints, d, m, &values, self.drive.omega, cam, row);
         if let Some(f) = &step.shaking {
             ShakingSummary::add(&mut self.shaking, f);
         }
@@ -228,7 +225,7 @@ impl Consumer for DynamicsSweep<'_> {
             self.worst_balance = self.worst_balance.max(residual);
         }
         if let Some(steps) = &mut self.steps {
-            steps.push(step);
+            steps.push(step.clone());
         }
         Ok(())
     }
@@ -321,23 +318,26 @@ pub(super) struct Cam<T> {
 }
 
 /// One row of the dynamic columns (in the order of [`columns`]), from one position's results
-/// in any scalar: the `f64` table, and (with `Dual64`) its exact derivatives. `joints` are
-/// the scene's (their kinds say which numbers a reaction has); `omega` is the drive speed.
-pub(super) fn row<T: Scalar>(
+/// in any scalar: the `f64` table, and (with `Dual64`) its exact derivatives, pushed onto
+/// `row`. `joints` are the scene's (their kinds say which numbers a reaction has); `omega`
+/// is the drive speed. Nothing is allocated but `row`'s growth.
+pub(super) fn push_row<T: Scalar>(
     joints: &[Joint],
     d: &SceneDynamics,
     m: &Mechanism,
     step: &StepValues<'_, T>,
     omega: T,
     cam: Option<Cam<T>>,
-) -> Vec<T> {
-    (d.outputs.iter())
-        .flat_map(|o| output_row(joints, d, m, o, step, omega, cam))
-        .collect()
+    row: &mut Vec<T>,
+) {
+    for o in &d.outputs {
+        push_output_row(joints, d, m, o, step, omega, cam, row);
+    }
 }
 
-/// The values of output `o`'s columns in one row (see [`row`]).
-pub(super) fn output_row<T: Scalar>(
+/// The values of output `o`'s columns in one row, pushed onto `row` (see [`push_row`]).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn push_output_row<T: Scalar>(
     joints: &[Joint],
     d: &SceneDynamics,
     m: &Mechanism,
@@ -345,10 +345,9 @@ pub(super) fn output_row<T: Scalar>(
     step: &StepValues<'_, T>,
     omega: T,
     cam: Option<Cam<T>>,
-) -> Vec<T> {
-    let mass_links: Vec<&str> = model_links(d);
+    row: &mut Vec<T>,
+) {
     let nan = T::from(f64::NAN);
-    let mut row = Vec::new();
     match o.quantity {
         DynamicQuantity::ShakingForce => {
             let s = step.shaking.expect("planned");
@@ -356,7 +355,7 @@ pub(super) fn output_row<T: Scalar>(
         }
         DynamicQuantity::InertialForces => {
             let s = step.shaking.expect("planned");
-            for l in selected(&o.names, &mass_links) {
+            for l in selected(&o.names, model_links(d)) {
                 let k = m.link_index(l).expect("checked");
                 let f = s
                     .links
@@ -368,14 +367,14 @@ pub(super) fn output_row<T: Scalar>(
         }
         DynamicQuantity::Reactions => {
             let s = step.solution.as_ref().expect("planned");
-            let all: Vec<&str> = m.joints().iter().map(|j| j.name.as_str()).collect();
-            for j in selected(&o.names, &all) {
+            let all = m.joints().iter().map(|j| j.name.as_str());
+            for j in selected(&o.names, all) {
                 let r = s
                     .reactions
                     .iter()
                     .find(|r| r.joint == j)
                     .expect("every joint");
-                row.extend(reaction_values(joints, r, has_friction(d, j)));
+                push_reaction_values(joints, r, has_friction(d, j), row);
             }
         }
         DynamicQuantity::DriveTorque => {
@@ -423,7 +422,6 @@ pub(super) fn output_row<T: Scalar>(
             ]);
         }
     }
-    row
 }
 
 /// Prints a force, torque, mass or moment-of-inertia column (and a reduced inertia's
@@ -484,7 +482,6 @@ pub(super) fn output_columns(
     } else {
         ("F_drive", "N")
     };
-    let mass_links: Vec<&str> = model_links(d);
     // With a cam the balance gives the cam-shaft torque.
     let balance_unit = if cx.drive.cam.is_some() {
         "N m"
@@ -499,7 +496,7 @@ pub(super) fn output_columns(
             column("M_shaking", "N m"),
         ]),
         DynamicQuantity::InertialForces => {
-            for l in selected(&o.names, &mass_links) {
+            for l in selected(&o.names, model_links(d)) {
                 columns.extend([
                     column(format!("Fx_{l}"), "N"),
                     column(format!("Fy_{l}"), "N"),
@@ -508,8 +505,8 @@ pub(super) fn output_columns(
             }
         }
         DynamicQuantity::Reactions => {
-            let all: Vec<&str> = mechanism.joints().iter().map(|j| j.name.as_str()).collect();
-            for j in selected(&o.names, &all) {
+            let all = mechanism.joints().iter().map(|j| j.name.as_str());
+            for j in selected(&o.names, all) {
                 columns.extend(reaction_columns(cx.joints, j, has_friction(d, j)));
             }
         }
@@ -542,16 +539,22 @@ pub(super) fn output_columns(
     columns
 }
 
-fn model_links(d: &SceneDynamics) -> Vec<&str> {
-    d.masses.iter().map(|(l, _)| l.as_str()).collect()
+/// The links with mass of `d`'s model.
+fn model_links(d: &SceneDynamics) -> impl Iterator<Item = &str> + Clone {
+    d.masses.iter().map(|(l, _)| l.as_str())
 }
 
-fn selected<'a>(names: &'a [String], all: &[&'a str]) -> Vec<&'a str> {
-    if names.is_empty() {
-        all.to_vec()
-    } else {
-        names.iter().map(String::as_str).collect()
-    }
+/// The names an output selects (`names`), or all of `all` when it names none.
+fn selected<'a>(
+    names: &'a [String],
+    all: impl Iterator<Item = &'a str>,
+) -> impl Iterator<Item = &'a str> {
+    let chosen = (!names.is_empty()).then(|| names.iter().map(String::as_str));
+    let every = names.is_empty().then_some(all);
+    chosen
+        .into_iter()
+        .flatten()
+        .chain(every.into_iter().flatten())
 }
 
 fn joint_kind<'s>(joints: &'s [Joint], name: &str) -> &'s JointKind {
@@ -610,17 +613,31 @@ fn friction_index(kind: &JointKind) -> Option<usize> {
     }
 }
 
-fn reaction_values<T: Scalar>(joints: &[Joint], r: &JointReaction<T>, friction: bool) -> Vec<T> {
+/// The numbers of reaction `r` (of one of `joints`) in the order of [`reaction_columns`],
+/// pushed onto `row`; the friction number only if `friction`.
+fn push_reaction_values<T: Scalar>(
+    joints: &[Joint],
+    r: &JointReaction<T>,
+    friction: bool,
+    row: &mut Vec<T>,
+) {
     let kind = joint_kind(joints, &r.joint);
-    let mut values = match kind {
-        JointKind::Revolute { .. } => vec![r.force[0], r.force[1], r.friction],
-        JointKind::Prismatic { .. } => vec![r.normal, r.friction, r.couple],
-        JointKind::PinInSlot { .. } => vec![r.normal, r.friction],
-        JointKind::RackPinion { .. } | JointKind::Gear { .. } => vec![r.normal],
-        JointKind::Weld { .. } => vec![r.force[0], r.force[1], r.couple],
+    let values = match kind {
+        JointKind::Revolute { .. } => [r.force[0], r.force[1], r.friction],
+        JointKind::Prismatic { .. } => [r.normal, r.friction, r.couple],
+        JointKind::PinInSlot { .. } => [r.normal, r.friction, r.friction],
+        JointKind::RackPinion { .. } | JointKind::Gear { .. } => [r.normal; 3],
+        JointKind::Weld { .. } => [r.force[0], r.force[1], r.couple],
     };
-    if let Some(k) = friction_index(kind).filter(|_| !friction) {
-        values.remove(k);
+    let count = match kind {
+        JointKind::PinInSlot { .. } => 2,
+        JointKind::RackPinion { .. } | JointKind::Gear { .. } => 1,
+        _ => 3,
+    };
+    let skip = friction_index(kind).filter(|_| !friction);
+    for (k, v) in values.into_iter().take(count).enumerate() {
+        if Some(k) != skip {
+            row.push(v);
+        }
     }
-    values
 }

@@ -13,7 +13,7 @@ use crate::scene::error_context::ErrorContext;
 
 use super::format::DynamicQuantity;
 use super::model::SceneDynamics;
-use super::run::{SolutionValues, StepValues, drive_state, output_columns, output_row};
+use super::run::{SolutionValues, StepValues, drive_state, output_columns, push_output_row};
 
 /// The exact derivatives d/dp of the dynamic columns of a run, or why a column has none.
 #[derive(Debug, Clone, PartialEq)]
@@ -150,9 +150,11 @@ pub fn column_derivatives(
             shaking: shaking.as_ref(),
         };
         let mut row = Vec::with_capacity(not_carried.len());
+        let mut values = Vec::new();
         for (o, &w) in d.outputs.iter().zip(&widths) {
             if carried_output(o.quantity) {
-                let values = output_row(cx.joints, d, mechanism, o, &step, omega, None);
+                values.clear();
+                push_output_row(cx.joints, d, mechanism, o, &step, omega, None, &mut values);
                 row.extend(values.iter().map(|v| Some(v.eps)));
             } else {
                 row.extend(std::iter::repeat_n(None, w));

@@ -41,6 +41,18 @@ impl ClosedForm {
         amplification(self.kinds.get(l).copied().flatten(), margin)
     }
 
+    /// Whether loop `l`'s amplification at `margin` is surely at most `limit` (≥ 1), told
+    /// without a square root or a division: `|margin|` at least twice the bound's (`1/limit²`
+    /// for a square-root pattern, `1/limit` for a slope), so rounding cannot turn the
+    /// verdict; `false` near the bound and for NaN (then compute [`ClosedForm::amplification`]).
+    pub fn surely_within(&self, l: usize, margin: f64, limit: f64) -> bool {
+        match self.kinds.get(l).copied().flatten() {
+            Some(true) => margin.abs() * (limit * limit) >= 2.0,
+            Some(false) => margin.abs() * limit >= 2.0,
+            None => true,
+        }
+    }
+
     /// Whether loop `l` has a margin that can vanish (a square root or a slope).
     pub fn has_margin(&self, l: usize) -> bool {
         self.kinds.get(l).copied().flatten().is_some()
