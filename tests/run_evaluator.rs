@@ -246,11 +246,11 @@ fn the_plan_line_names_each_loops_path() {
 
 #[test]
 fn a_long_sweep_by_the_program_agrees_with_the_solver() {
-    // 3 601 positions (0.1°): the program's steps are each checked; `auto` compiles the
+    // 7 201 positions (0.05°): the program's steps are each checked; `auto` compiles the
     // program, the cost model finding its set-up repaid (`evaluator::cost`).
     let text = std::fs::read_to_string("scenes/slider_crank.toml")
         .unwrap()
-        .replace("step = 5\n", "step = 0.1\n");
+        .replace("step = 5\n", "step = 0.05\n");
     let scene = scene::parse("slider_crank.toml", &text).unwrap();
     let solver = run_by(&scene, Evaluator::Solver).unwrap();
     assert!(
@@ -263,16 +263,16 @@ fn a_long_sweep_by_the_program_agrees_with_the_solver() {
         solver.plan.loops
     );
     let program = run_by(&scene, Evaluator::Program).unwrap();
-    assert_agree("slider_crank.toml at 0.1°", &solver, &program);
-    // 3 601 positions: `program` compiles to native code (JIT_FROM_POSITIONS); the same
+    assert_agree("slider_crank.toml at 0.05°", &solver, &program);
+    // 7 201 positions: `program` compiles to native code (JIT_FROM_POSITIONS); the same
     // bits as the interpreter.
     assert!(scene.positions.len() >= mechdiff::evaluator::JIT_FROM_POSITIONS);
     let interpreted = run_by(&scene, Evaluator::Interpreter).unwrap();
-    assert_same_bits("slider_crank.toml at 0.1°", &interpreted, &program);
+    assert_same_bits("slider_crank.toml at 0.05°", &interpreted, &program);
     // `auto` runs the same compiled program: the same plan and bits.
     let auto = scene::run(&scene).unwrap();
     assert_eq!(auto.plan, program.plan);
-    assert_same_bits("slider_crank.toml at 0.1°, auto", &interpreted, &auto);
+    assert_same_bits("slider_crank.toml at 0.05°, auto", &interpreted, &auto);
 }
 
 /// A triad (a class-III group) matches no closed form: its loop is solved by Newton.
