@@ -35,15 +35,15 @@
 //! set-up (tracing, differentiating, compiling: 2.2 to 8.2 million instructions on the
 //! shipped scenes) is repaid by its cheaper rows over the sweep's positions
 //! (positions × (solver row − program row) > set-up, each estimated from the numbers of
-//! loops and output values; the model compiles from 3 530–4 071 positions on the shipped
-//! scenes, where the measured break-even is 750–3 127), the solver otherwise — so the usual
+//! loops and output values; the model compiles from 4 667–5 737 positions on the shipped
+//! scenes, where the measured break-even is 1 249–5 365), the solver otherwise — so the usual
 //! short sweeps of a few hundred positions stay on the solver and a long one runs compiled
 //! code. A compiled row writes its columns straight from the program's values
 //! (`row.rs`: each value row read once, the quantities fixed before the sweep). Measured
 //! (callgrind instructions per position, `scripts/callgrind_rows.sh`, the default row at
 //! ≥ 20 000 positions, `long:<scene>`, against the scene's generated code): Whitworth
-//! 1 309 (4.4× the code's 298), four-bar 1 747 (2.4× 716), rack 1 992 (2.8× 715),
-//! slider-crank 1 239 (3.2× 387); the solver's rows cost 4 154–4 807. Only where every loop has a closed form, the drive is no cam
+//! 1 377 (4.6× the code's 298), four-bar 1 808 (2.5× 716), rack 2 060 (2.9× 715),
+//! slider-crank 1 308 (3.4× 387); the solver's rows cost 3 137–3 871. Only where every loop has a closed form, the drive is no cam
 //! and no `[[dynamics]]` or `[balancing]` reads the solver's pose at every position anyway;
 //! and the solver wherever the program cannot be had. The compiled rows agree with the
 //! solver's to 1e-13 (tested on every scene of `scenes/`), not bit for bit (the JIT is bit
