@@ -222,9 +222,13 @@ fn timed_literature_scenes_reach_the_published_level_and_their_scenes_run() {
 #[test]
 fn untimed_straight_line_scene_runs_briefly_and_writes_a_scene_that_runs() {
     // The straight line needs seconds in release (its success rate is the script's table);
-    // here one second of search, whose best is a defect-free mechanism all the same.
+    // here a budget of 30 000 evaluations (about a second in a debug build), not a time
+    // limit: a time-limited search's best depends on the machine's load, and one stopped
+    // early under load was a mechanism whose run meets a change point. With seed 0 the
+    // budget's search is the same on every machine (it reaches the objective at 25 437
+    // evaluations); the time limit stays only as a guard.
     let scene = "synthesis_literature_straight_line.toml";
-    let short = text(scene).replace("time_limit = 10", "time_limit = 1");
+    let short = text(scene).replace("time_limit = 10", "time_limit = 60\nevaluations = 30000");
     let (setup, report) = solve(scene, &short);
     assert!(report.objective.is_finite());
     assert!(report.certificate.as_ref().unwrap().deviation <= 1e-9);
